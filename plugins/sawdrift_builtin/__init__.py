@@ -1,0 +1,1 @@
+"""Built-in sawdrift contact models, registered through the sawdrift.models entry points."""

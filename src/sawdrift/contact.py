@@ -1,0 +1,255 @@
+"""The contact-model interface every plugin implements.
+
+A contact model turns the contact displacements (a*, b*) of ../shared/physics.md into the
+normalized forces (N*, T*) and owns whatever history that takes. Two kinds exist:
+
+* **compliant** models (``capabilities.rigid = False``) give (N*, T*) from (a*, b*) and their
+  history. They provide a pure-Python reference (:meth:`ContactModel.reference`) and, where speed
+  matters, a numba kernel (:attr:`ContactModel.kernel`). The runner integrates paper eq. 5 with
+  them.
+* **rigid** models (``capabilities.rigid = True``, the material point of paper section 4) have no
+  displacement law: the runner uses a unilateral-constraint scheme with Coulomb friction.
+
+Kernel protocol (numba ``@njit`` functions, both engines follow the same rules)::
+
+    reset(fs, is_, pp)                          -> None        # empty history, no contact
+    force(fs, is_, pp, a, b, adot, bdot)        -> (N, T)      # advance AND commit to (a, b)
+
+``fs`` (float64) and ``is_`` (int64) are the model's state arrays, of the sizes
+:meth:`ContactModel.state_sizes` returns; ``pp`` is the float64 vector from
+:meth:`ContactModel.packed_params`. ``force`` treats the move from the previous committed (a*, b*)
+to the new one as a straight path (the exact solution for piecewise-linear histories), commits it,
+and returns the forces there. A fresh state is out of contact at (0, 0); the runner brings it to
+the initial compression by calling ``force`` once.
+
+The trial/commit rule: kernels always commit. Code that needs a trial evaluation (a multi-stage
+integrator, a Newton iteration) uses :meth:`ContactHistory.trial`, which evaluates on a copy, so a
+trial can never corrupt the committed history.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, ClassVar, Protocol
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict
+
+from .profiles import Profile
+
+
+class NoParams(BaseModel):
+    """Parameter schema of a model that takes none."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+
+@dataclass(frozen=True)
+class Capabilities:
+    """What a model can do, so the runner can refuse or adapt before anything runs.
+
+    Attributes
+    ----------
+    rigid
+        True for a material point (no contact compliance); the runner then uses the rigid scheme.
+    profiles
+        Profile shapes the model supports (``"power"`` means any power law p >= 1).
+    compiled
+        True if the model has a numba kernel.
+    history
+        True if the tangential force depends on the displacement history, not only on (a*, b*).
+    uses_velocity
+        True if the force depends on (adot, bdot) (e.g. viscous damping).
+    """
+
+    rigid: bool = False
+    profiles: tuple[str, ...] = ("sphere", "cone", "flat", "power")
+    compiled: bool = True
+    history: bool = True
+    uses_velocity: bool = False
+
+
+class Kernel(Protocol):
+    """The pair of numba functions a compiled model provides."""
+
+    reset: Callable[..., None]
+    force: Callable[..., tuple[float, float]]
+
+
+@dataclass(frozen=True)
+class KernelPair:
+    """Compiled ``reset`` and ``force`` functions of a model (see module docstring)."""
+
+    reset: Any
+    force: Any
+
+
+class ReferenceContact(Protocol):
+    """Readable pure-Python implementation of a compliant model's contact law."""
+
+    def reset(self) -> None:
+        """Forget all history: out of contact at (a*, b*) = (0, 0)."""
+
+    def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
+        """Advance along a straight path to (a*, b*), commit, and return (N*, T*)."""
+
+
+class ContactModel:
+    """Base class of every contact model plugin.
+
+    Subclasses set the class attributes and implement the methods their kind needs. They are
+    registered by returning the class from the ``sawdrift_contact_models`` hook of a module named
+    in the ``sawdrift.models`` entry-point group.
+
+    Parameters
+    ----------
+    params
+        An instance of the model's :attr:`Params` schema.
+    profile
+        The particle's profile.
+    """
+
+    name: ClassVar[str]
+    summary: ClassVar[str]
+    Params: ClassVar[type[BaseModel]] = NoParams
+    capabilities: ClassVar[Capabilities] = Capabilities()
+    kernel: ClassVar[KernelPair | None] = None
+
+    def __init__(self, params: BaseModel | None = None, profile: Profile | None = None) -> None:
+        self.params = params if params is not None else self.Params()
+        self.profile = profile if profile is not None else Profile()
+
+    # -- compliant models -------------------------------------------------------------------
+    def state_sizes(self) -> tuple[int, int]:
+        """Sizes of the float64 and int64 state arrays the kernel works on."""
+        raise NotImplementedError(f"model {self.name!r} has no kernel state")
+
+    def packed_params(self) -> np.ndarray:
+        """Float64 vector of everything the kernel needs (profile exponent first, by convention)."""
+        return np.array([self.profile.p], dtype=np.float64)
+
+    def reference(self) -> ReferenceContact:
+        """A fresh pure-Python reference contact (empty history)."""
+        raise NotImplementedError(f"model {self.name!r} has no pure-Python reference")
+
+    # -- shared -----------------------------------------------------------------------------
+    @classmethod
+    def describe(cls) -> dict[str, Any]:
+        """Name, summary, capabilities and parameter schema with defaults (for ``models --json``)."""
+        schema = cls.Params.model_json_schema()
+        params = {
+            key: {
+                "default": prop.get("default"),
+                "type": prop.get("type", prop.get("anyOf")),
+                "description": prop.get("description", ""),
+            }
+            for key, prop in schema.get("properties", {}).items()
+        }
+        caps = cls.capabilities
+        return {
+            "name": cls.name,
+            "summary": cls.summary,
+            "rigid": caps.rigid,
+            "compiled": caps.compiled,
+            "history": caps.history,
+            "profiles": list(caps.profiles),
+            "parameters": params,
+        }
+
+    def new_history(self, engine: str = "compiled") -> ContactHistory:
+        """A committed contact history driven through this model (see :class:`ContactHistory`)."""
+        return ContactHistory(self, engine)
+
+
+class ContactHistory:
+    """A model's committed history with a safe trial/commit interface.
+
+    ``advance`` moves the history to (a*, b*) and commits; ``trial`` evaluates the forces that
+    ``advance`` would give without touching the committed state (it works on a copy).
+
+    Parameters
+    ----------
+    model
+        A compliant contact model.
+    engine
+        ``"compiled"`` (numba kernel) or ``"python"`` (the reference implementation).
+    """
+
+    def __init__(self, model: ContactModel, engine: str = "compiled") -> None:
+        if model.capabilities.rigid:
+            raise ValueError(f"model {model.name!r} is rigid: it has no displacement history")
+        self.model = model
+        self.engine = engine
+        if engine == "compiled":
+            if model.kernel is None:
+                raise ValueError(f"model {model.name!r} has no compiled kernel")
+            nf, ni = model.state_sizes()
+            self._fs = np.zeros(nf, dtype=np.float64)
+            self._is = np.zeros(ni, dtype=np.int64)
+            self._pp = model.packed_params()
+            model.kernel.reset(self._fs, self._is, self._pp)
+            self._ref = None
+        elif engine == "python":
+            self._ref = model.reference()
+            self._ref.reset()
+        else:
+            raise ValueError(f"engine = {engine!r}; allowed: 'compiled', 'python'")
+
+    def advance(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
+        """Move the history along a straight path to (a*, b*), commit, return (N*, T*)."""
+        if self._ref is not None:
+            return self._ref.force(a, b, adot, bdot)
+        n, t = self.model.kernel.force(self._fs, self._is, self._pp, a, b, adot, bdot)
+        return float(n), float(t)
+
+    def trial(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
+        """The forces ``advance`` would return, computed on a copy: the history is unchanged."""
+        clone = self.copy()
+        return clone.advance(a, b, adot, bdot)
+
+    def copy(self) -> ContactHistory:
+        """An independent copy (checkpoint) of this history."""
+        import copy as _copy
+
+        new = object.__new__(ContactHistory)
+        new.model, new.engine = self.model, self.engine
+        if self._ref is not None:
+            new._ref = _copy.deepcopy(self._ref)
+        else:
+            new._ref = None
+            new._fs, new._is, new._pp = self._fs.copy(), self._is.copy(), self._pp
+        return new
+
+    def drive(self, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Advance through sampled histories a*(k), b*(k); return arrays N*(k), T*(k)."""
+        a = np.asarray(a, dtype=np.float64)
+        b = np.asarray(b, dtype=np.float64)
+        n_out = np.empty_like(a)
+        t_out = np.empty_like(a)
+        if self._ref is None:
+            _drive_compiled(self.model.kernel.force, self._fs, self._is, self._pp, a, b, n_out, t_out)
+        else:
+            for k in range(a.size):
+                n_out[k], t_out[k] = self._ref.force(a[k], b[k], 0.0, 0.0)
+        return n_out, t_out
+
+
+_DRIVERS: dict[Any, Callable[..., None]] = {}
+
+
+def _drive_compiled(force, fs, is_, pp, a, b, n_out, t_out) -> None:
+    """Run a kernel over a sampled history inside one compiled loop (one per kernel, cached)."""
+    fn = _DRIVERS.get(force)
+    if fn is None:
+        from numba import njit
+
+        def loop(fs, is_, pp, a, b, n_out, t_out):
+            for k in range(a.size):
+                n, t = force(fs, is_, pp, a[k], b[k], 0.0, 0.0)
+                n_out[k] = n
+                t_out[k] = t
+
+        fn = njit(loop)
+        _DRIVERS[force] = fn
+    fn(fs, is_, pp, a, b, n_out, t_out)

@@ -1,0 +1,26 @@
+"""User-facing errors: one line, naming the field and what is allowed."""
+
+from __future__ import annotations
+
+
+class SawdriftError(Exception):
+    """An error caused by the user's input or environment, reported as one line.
+
+    The CLI prints ``str(error)`` and exits with status 2; it never shows a traceback.
+    """
+
+
+class SceneError(SawdriftError, ValueError):
+    """A scene field has a value outside its allowed range."""
+
+
+class ModelNotFoundError(SawdriftError, LookupError):
+    """No registered contact model has the requested name."""
+
+
+class PluginError(SawdriftError, RuntimeError):
+    """Plugins disagree (for example two distributions claim one model name)."""
+
+
+class NonFiniteStateError(SawdriftError, FloatingPointError):
+    """The integrated state stopped being finite."""

@@ -1,0 +1,120 @@
+"""Model registry: plugins discovered lazily from the ``sawdrift.models`` entry points.
+
+Pattern of tox 4 (one registration hook; built-ins load like third-party plugins) and xarray's
+backend plugins (lazy discovery, a plugin that fails to import becomes a warning naming it).
+"""
+
+from __future__ import annotations
+
+import importlib.metadata as im
+import warnings
+from dataclasses import dataclass
+
+import pluggy
+
+from . import hookspecs
+from .contact import ContactModel
+from .errors import ModelNotFoundError, PluginError
+
+ENTRY_POINT_GROUP = "sawdrift.models"
+
+
+class PluginWarning(UserWarning):
+    """A plugin could not be loaded; the other models keep working."""
+
+
+@dataclass(frozen=True)
+class ModelEntry:
+    """A registered model and where it came from."""
+
+    cls: type[ContactModel]
+    distribution: str
+    entry_point: str
+
+
+class Registry:
+    """Contact models by name. Discovery runs once, on first use."""
+
+    def __init__(self) -> None:
+        self._models: dict[str, ModelEntry] | None = None
+        self.failed: dict[str, str] = {}
+
+    def _discover(self) -> dict[str, ModelEntry]:
+        pm = pluggy.PluginManager(hookspecs.PROJECT)
+        pm.add_hookspecs(hookspecs)
+        models: dict[str, ModelEntry] = {}
+        for ep in sorted(im.entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+            dist = ep.dist.name if ep.dist is not None else "<unknown>"
+            try:
+                plugin = ep.load()
+                pm.register(plugin, name=f"{dist}:{ep.name}")
+                classes = plugin.sawdrift_contact_models()
+            except Exception as exc:  # noqa: BLE001 - a broken plugin must not break the others
+                msg = f"{type(exc).__name__}: {exc}".splitlines()[0]
+                self.failed[ep.name] = msg
+                warnings.warn(
+                    f"sawdrift plugin {ep.name!r} from distribution {dist!r} failed to load "
+                    f"and is skipped ({msg})",
+                    PluginWarning,
+                    stacklevel=3,
+                )
+                continue
+            for cls in classes:
+                name = getattr(cls, "name", None)
+                if not isinstance(name, str) or not issubclass(cls, ContactModel):
+                    raise PluginError(
+                        f"plugin {ep.name!r} from {dist!r} returned {cls!r}, "
+                        "which is not a named ContactModel subclass"
+                    )
+                if name in models and models[name].cls is not cls:
+                    other = models[name]
+                    raise PluginError(
+                        f"model name {name!r} is claimed by two distributions: "
+                        f"{other.distribution!r} (entry point {other.entry_point!r}) and "
+                        f"{dist!r} (entry point {ep.name!r})"
+                    )
+                models[name] = ModelEntry(cls, dist, ep.name)
+        return models
+
+    @property
+    def models(self) -> dict[str, ModelEntry]:
+        if self._models is None:
+            self._models = self._discover()
+        return self._models
+
+    def names(self) -> list[str]:
+        """Sorted names of all loaded models."""
+        return sorted(self.models)
+
+    def get(self, name: str) -> type[ContactModel]:
+        """The model class called ``name``; a one-line error lists the known names otherwise."""
+        try:
+            return self.models[name].cls
+        except KeyError:
+            known = ", ".join(self.names()) or "none"
+            raise ModelNotFoundError(
+                f"model = {name!r} is not a registered contact model; known models: {known}"
+            ) from None
+
+    def register(self, cls: type[ContactModel], distribution: str = "<runtime>") -> None:
+        """Register a model class at run time (tests, notebooks)."""
+        if cls.name in self.models and self.models[cls.name].cls is not cls:
+            raise PluginError(f"model name {cls.name!r} is already registered")
+        self.models[cls.name] = ModelEntry(cls, distribution, cls.name)
+
+    def unregister(self, name: str) -> None:
+        """Remove a model registered at run time."""
+        self.models.pop(name, None)
+
+    def reload(self) -> None:
+        """Forget cached discovery (after installing a plugin in the same process)."""
+        self._models = None
+        self.failed = {}
+
+
+registry = Registry()
+
+
+def get_model(name: str) -> type[ContactModel]:
+    """The registered contact model class called ``name``."""
+    return registry.get(name)
