@@ -1,0 +1,177 @@
+"""Adams-Bashforth integration of paper eq. 5 for compliant contact models.
+
+The loop is written once, in plain Python; the compiled engine is the same function compiled by
+numba with the model's kernel bound in (one specialization per kernel, built on first use), the
+python engine runs it as it is with the model's pure-Python reference. Per step it does O(1) work
+plus one call of the contact law, allocates nothing, and evaluates the (history-dependent) force
+exactly once, at the committed state: Adams-Bashforth needs no trial evaluations.
+
+Equations (normalized, physics.md section 1)::
+
+    m* x''  = -mu T*(b*, a*)              theta mu b* = x* - u_x(t*)
+    m* y''  = 1 - N*(a*)                   a*          = y* - u_y(t*)
+    u_x = -A* r R(t*) sin(2 pi t*)         u_y = A* R(t*) cos(2 pi t*)
+
+R(t*) = sin^2(pi t* / (2 T_ramp)) for t* < T_ramp, else 1.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from numba import njit
+
+#: Adams-Bashforth coefficients, row k-1 for order k (Hairer, Norsett, Wanner, *Solving ODEs I*,
+#: section III.1, table 1.1), newest derivative first.
+AB_COEFFS = np.array(
+    [
+        [1.0, 0.0, 0.0, 0.0],
+        [3.0 / 2.0, -1.0 / 2.0, 0.0, 0.0],
+        [23.0 / 12.0, -16.0 / 12.0, 5.0 / 12.0, 0.0],
+        [55.0 / 24.0, -59.0 / 24.0, 37.0 / 24.0, -9.0 / 24.0],
+    ]
+)
+
+# Layout of the parameter vector ``prm`` passed to the loops.
+P_M, P_A, P_R, P_MU, P_THETA, P_RAMP, P_H, P_ORDER = 0, 1, 2, 3, 4, 5, 6, 7
+P_FRICTION, P_DAMP, P_P, P_HORIZ, P_VERT, P_KRAMP = 8, 9, 10, 11, 12, 13
+N_PRM = 14
+
+# Layout of the statistics vector ``st``.
+S_LOST, S_AMIN, S_OUT, S_COUNT, S_BAD, S_BADSTEP, S_WORK_T, S_WORK_N = 0, 1, 2, 3, 4, 5, 6, 7
+N_ST = 8
+
+# Columns of the trajectory record.
+REC_COLUMNS = ("t", "x", "vx", "y", "vy", "a", "b", "N", "T")
+N_REC = len(REC_COLUMNS)
+
+TWO_PI = 2.0 * math.pi
+
+
+@njit(cache=True)
+def ramp(t: float, t_ramp: float) -> tuple[float, float]:
+    """R(t*) = sin^2(pi t*/(2 T)) for t* < T, else 1, and its derivative (physics.md sec. 1)."""
+    if t_ramp <= 0.0 or t >= t_ramp:
+        return 1.0, 0.0
+    arg = 0.5 * math.pi * t / t_ramp
+    s = math.sin(arg)
+    return s * s, 0.5 * math.pi / t_ramp * math.sin(2.0 * arg)
+
+
+@njit(cache=True)
+def surface(t: float, amp: float, r: float, t_ramp: float, horiz: float, vert: float):
+    """Substrate displacement and velocity (u_x, u_x', u_y, u_y') of paper eq. 1 with the ramp."""
+    rr, rd = ramp(t, t_ramp)
+    s2 = math.sin(TWO_PI * t)
+    c2 = math.cos(TWO_PI * t)
+    ux = -amp * r * rr * s2 * horiz
+    uxd = -amp * r * (rd * s2 + rr * TWO_PI * c2) * horiz
+    uy = amp * rr * c2 * vert
+    uyd = amp * (rd * c2 - rr * TWO_PI * s2) * vert
+    return ux, uxd, uy, uyd
+
+
+def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
+    """Build the wave-scene loop with ``force`` bound in (compiled or not by the caller)."""
+    ab = AB_COEFFS
+
+    def loop(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
+        m = prm[P_M]
+        amp = prm[P_A]
+        r = prm[P_R]
+        mu = prm[P_MU]
+        scale_b = 1.0 / (prm[P_THETA] * mu)
+        t_ramp = prm[P_RAMP]
+        h = prm[P_H]
+        order = int(prm[P_ORDER])
+        friction = prm[P_FRICTION] > 0.0
+        damp = prm[P_DAMP]
+        p = prm[P_P]
+        horiz = prm[P_HORIZ]
+        vert = prm[P_VERT]
+        k_ramp = int(prm[P_KRAMP])
+        n_rec = rec.shape[0]
+        for _ in range(n_steps):
+            k = ctr[0]
+            t = k * h
+            ux, uxd, uy, uyd = surface(t, amp, r, t_ramp, horiz, vert)
+            a = y[2] - uy
+            adot = y[3] - uyd
+            if friction:
+                b = (y[0] - ux) * scale_b
+                bdot = (y[1] - uxd) * scale_b
+                nf, tf = force(fs, is_, pp, a, b, adot, bdot)
+            else:
+                b = 0.0
+                nf = a**p if a > 0.0 else 0.0
+                tf = 0.0
+            if damp > 0.0 and a > 0.0:
+                nf += damp * adot
+                if nf < 0.0:
+                    nf = 0.0
+            ax = -mu * tf / m
+            ay = (1.0 - nf) / m
+            if k >= k_ramp:
+                if a <= 0.0:
+                    st[S_LOST] = 1.0
+                    st[S_OUT] += 1.0
+                if a < st[S_AMIN]:
+                    st[S_AMIN] = a
+                st[S_COUNT] += 1.0
+                # work of the contact forces on the particle over one step (for energy checks)
+                st[S_WORK_T] += -mu * tf * y[1] * h
+                st[S_WORK_N] += -nf * y[3] * h
+            if rec_every > 0 and k % rec_every == 0:
+                i = ctr[2]
+                if i < n_rec:
+                    rec[i, 0] = t
+                    rec[i, 1] = y[0]
+                    rec[i, 2] = y[1]
+                    rec[i, 3] = y[2]
+                    rec[i, 4] = y[3]
+                    rec[i, 5] = a
+                    rec[i, 6] = b
+                    rec[i, 7] = nf
+                    rec[i, 8] = tf
+                    ctr[2] = i + 1
+            for j in range(3, 0, -1):
+                for c in range(4):
+                    fh[j, c] = fh[j - 1, c]
+            fh[0, 0] = y[1] if friction else 0.0
+            fh[0, 1] = ax
+            fh[0, 2] = y[3]
+            fh[0, 3] = ay
+            q = ctr[1] + 1
+            if q > order:
+                q = order
+            for c in range(4):
+                acc = 0.0
+                for j in range(q):
+                    acc += ab[q - 1, j] * fh[j, c]
+                y[c] += h * acc
+            if ctr[1] < 4:
+                ctr[1] += 1
+            ctr[0] = k + 1
+            if not (math.isfinite(y[0] + y[1] + y[2] + y[3]) and math.isfinite(nf + tf)):
+                st[S_BAD] = 1.0
+                st[S_BADSTEP] = k
+                return
+
+    return loop
+
+
+_COMPILED: dict[Any, Callable[..., None]] = {}
+
+
+def wave_loop(force: Callable[..., Any], compiled: bool) -> Callable[..., None]:
+    """The wave-scene loop for a given force function (compiled loops are cached per kernel)."""
+    if not compiled:
+        return _wave_loop_source(force)
+    fn = _COMPILED.get(force)
+    if fn is None:
+        fn = njit(_wave_loop_source(force))
+        _COMPILED[force] = fn
+    return fn

@@ -1,0 +1,309 @@
+"""Time stepping for a rigid material point: unilateral contact with Coulomb friction.
+
+Paper section 4 (after Verma and DasGupta, Phys. Rev. E 88, 052915, 2013), normalized as in
+../shared/physics.md section 2: a* = 0 while in contact, and then
+
+    N*(t*) = 1 - m* u_y''(t*)          (N* = 1 with the vertical inertia switched off)
+    stick:  x*'' = u_x''   while |T_req| = |m* u_x''| / mu <= N*
+    slip:   m* x*'' = -mu N* sgn(s),   s = x*' - u_x'
+    flight: m* y*'' = 1, x*'' = 0       (contact lost when N* would turn negative)
+
+Re-contact is an impact with a Newton restitution coefficient e (default 0) and a Coulomb-limited
+tangential impulse. Within a fixed step, events (break-away, slip reversal or stick, lift-off,
+impact) are located by bisection on closed-form expressions: in contact the substrate motion is
+known, so N*(t) and its integral are exact and the slip velocity is integrated exactly. The only
+approximation is that a stick or contact violation that begins and ends inside one step is missed.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .integrators import (
+    P_A,
+    P_FRICTION,
+    P_H,
+    P_HORIZ,
+    P_KRAMP,
+    P_M,
+    P_MU,
+    P_R,
+    P_RAMP,
+    P_VERT,
+    S_AMIN,
+    S_BAD,
+    S_BADSTEP,
+    S_COUNT,
+    S_LOST,
+    S_OUT,
+    TWO_PI,
+)
+
+#: Extra slots of the parameter vector used by the rigid scheme.
+P_RESTITUTION = 14
+P_VINERTIA = 15
+N_PRM_RIGID = 16
+
+_BISECT = 60
+
+
+@njit(cache=True)
+def _kinematics(t, amp, r, t_ramp, horiz, vert):
+    """(u_x, u_x', u_x'', u_y, u_y', u_y'') of paper eq. 1 times R(t*) = sin^2(pi t*/(2T))."""
+    if t_ramp <= 0.0 or t >= t_ramp:
+        rr, rd, rdd = 1.0, 0.0, 0.0
+    else:
+        w = 0.5 * math.pi / t_ramp
+        s = math.sin(w * t)
+        rr = s * s
+        rd = w * math.sin(2.0 * w * t)
+        rdd = 2.0 * w * w * math.cos(2.0 * w * t)
+    s2 = math.sin(TWO_PI * t)
+    c2 = math.cos(TWO_PI * t)
+    k2 = TWO_PI * TWO_PI
+    ax = -amp * r * horiz
+    ay = amp * vert
+    ux = ax * rr * s2
+    uxd = ax * (rd * s2 + rr * TWO_PI * c2)
+    uxdd = ax * (rdd * s2 + 2.0 * rd * TWO_PI * c2 - rr * k2 * s2)
+    uy = ay * rr * c2
+    uyd = ay * (rd * c2 - rr * TWO_PI * s2)
+    uydd = ay * (rdd * c2 - 2.0 * rd * TWO_PI * s2 - rr * k2 * c2)
+    return ux, uxd, uxdd, uy, uyd, uydd
+
+
+@njit(cache=True)
+def _normal(t, prm):
+    """N*(t) in permanent contact (1 - m* u_y'' with vertical inertia, else 1)."""
+    if prm[P_VINERTIA] <= 0.0:
+        return 1.0
+    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    return 1.0 - prm[P_M] * k[5]
+
+
+@njit(cache=True)
+def _stick_margin(t, prm):
+    """N* - |T_req| with T_req = -m* u_x''/mu: stick holds while this is >= 0."""
+    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    return _normal(t, prm) - abs(prm[P_M] * k[2] / prm[P_MU])
+
+
+@njit(cache=True)
+def _t_req(t, prm):
+    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    return -prm[P_M] * k[2] / prm[P_MU]
+
+
+@njit(cache=True)
+def _slip_state(t0, x0, v0, t, sigma, prm):
+    """Exact (x*, x*') at t after slipping with sgn(s) = sigma from (t0, x0, v0).
+
+    In contact int N* dt = dt - m* (u_y'(t) - u_y'(t0)), so the slip motion has a closed form.
+    """
+    m = prm[P_M]
+    c = prm[P_MU] * sigma / m
+    dt = t - t0
+    if prm[P_VINERTIA] > 0.0:
+        k0 = _kinematics(t0, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+        k1 = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+        int_n = dt - m * (k1[4] - k0[4])
+        int2_n = 0.5 * dt * dt - m * (k1[3] - k0[3] - k0[4] * dt)
+    else:
+        int_n = dt
+        int2_n = 0.5 * dt * dt
+    return x0 + v0 * dt - c * int2_n, v0 - c * int_n
+
+
+@njit(cache=True)
+def _slip_velocity(t0, x0, v0, t, sigma, prm):
+    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    return _slip_state(t0, x0, v0, t, sigma, prm)[1] - k[1]
+
+
+@njit(cache=True)
+def _gap(t0, y0, v0, t, prm):
+    """a* = y* - u_y at t in flight from (t0, y0, v0): negative while separated."""
+    dt = t - t0
+    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    return y0 + v0 * dt + 0.5 * dt * dt / prm[P_M] - k[3]
+
+
+@njit(cache=True)
+def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
+    """Advance the material point ``n_steps`` fixed steps; state in ``y`` = (x, x', y, y').
+
+    ``ctr`` = (step index, mode 0 contact / 1 flight, record index, stick flag, sigma).
+    """
+    h = prm[P_H]
+    m = prm[P_M]
+    mu = prm[P_MU]
+    e = prm[P_RESTITUTION]
+    friction = prm[P_FRICTION] > 0.0
+    k_ramp = int(prm[P_KRAMP])
+    amp, r, t_ramp, horiz, vert = prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT]
+    n_rec = rec.shape[0]
+    for _ in range(n_steps):
+        k = ctr[0]
+        t = k * h
+        t_end = t + h
+        tau = t
+        out_time = 0.0
+        guard = 0
+        while tau < t_end and guard < 64:
+            guard += 1
+            if ctr[1] == 1:  # flight
+                if _gap(tau, y[2], y[3], t_end, prm) < 0.0:
+                    dt = t_end - tau
+                    y[0] += y[1] * dt
+                    y[2] += y[3] * dt + 0.5 * dt * dt / m
+                    y[3] += dt / m
+                    out_time += dt
+                    tau = t_end
+                    break
+                lo, hi = tau, t_end
+                for _i in range(_BISECT):
+                    mid = 0.5 * (lo + hi)
+                    if _gap(tau, y[2], y[3], mid, prm) < 0.0:
+                        lo = mid
+                    else:
+                        hi = mid
+                tc = hi
+                dt = tc - tau
+                out_time += dt
+                y[0] += y[1] * dt
+                vy = y[3] + dt / m
+                kk = _kinematics(tc, amp, r, t_ramp, horiz, vert)
+                vn = vy - kk[4]
+                if vn < 0.0:
+                    vn = 0.0
+                y[2] = kk[3]
+                if friction:
+                    s = y[1] - kk[1]
+                    dv = min(abs(s), mu * (1.0 + e) * vn)
+                    y[1] -= math.copysign(dv, s) if s != 0.0 else 0.0
+                tau = tc
+                if e * vn > 1e-9 and _normal(tc, prm) > 0.0:
+                    y[3] = kk[4] - e * vn
+                else:
+                    ctr[1] = 0
+                    y[3] = kk[4]
+                    s = y[1] - kk[1]
+                    if not friction:
+                        ctr[3] = 0
+                    elif abs(s) <= 1e-14 and _stick_margin(tc, prm) >= 0.0:
+                        ctr[3] = 1
+                        y[1] = kk[1]
+                    else:
+                        ctr[3] = 0
+                        ctr[4] = 1 if (s > 0.0 or (s == 0.0 and _t_req(tc, prm) > 0.0)) else -1
+                continue
+            # ---- contact ----
+            if _normal(tau, prm) < 0.0:
+                ctr[1] = 1
+                continue
+            seg_end = t_end
+            lift = False
+            if _normal(t_end, prm) < 0.0:
+                lo, hi = tau, t_end
+                for _i in range(_BISECT):
+                    mid = 0.5 * (lo + hi)
+                    if _normal(mid, prm) >= 0.0:
+                        lo = mid
+                    else:
+                        hi = mid
+                seg_end = lo
+                lift = True
+            if not friction:
+                dt = seg_end - tau
+                y[0] += y[1] * dt
+            elif ctr[3] == 1:  # stick: follows the substrate
+                if _stick_margin(seg_end, prm) < 0.0:
+                    lo, hi = tau, seg_end
+                    for _i in range(_BISECT):
+                        mid = 0.5 * (lo + hi)
+                        if _stick_margin(mid, prm) >= 0.0:
+                            lo = mid
+                        else:
+                            hi = mid
+                    k0 = _kinematics(tau, amp, r, t_ramp, horiz, vert)
+                    k1 = _kinematics(hi, amp, r, t_ramp, horiz, vert)
+                    y[0] += k1[0] - k0[0]
+                    y[1] = k1[1]
+                    ctr[3] = 0
+                    ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
+                    tau = hi
+                    continue
+                k0 = _kinematics(tau, amp, r, t_ramp, horiz, vert)
+                k1 = _kinematics(seg_end, amp, r, t_ramp, horiz, vert)
+                y[0] += k1[0] - k0[0]
+                y[1] = k1[1]
+            else:  # slip with sgn(s) = sigma
+                sigma = float(ctr[4])
+                if sigma * _slip_velocity(tau, y[0], y[1], seg_end, sigma, prm) <= 0.0:
+                    lo, hi = tau, seg_end
+                    for _i in range(_BISECT):
+                        mid = 0.5 * (lo + hi)
+                        if sigma * _slip_velocity(tau, y[0], y[1], mid, sigma, prm) > 0.0:
+                            lo = mid
+                        else:
+                            hi = mid
+                    xs, _vs = _slip_state(tau, y[0], y[1], hi, sigma, prm)
+                    k1 = _kinematics(hi, amp, r, t_ramp, horiz, vert)
+                    y[0] = xs
+                    y[1] = k1[1]
+                    if _stick_margin(hi, prm) >= 0.0:
+                        ctr[3] = 1
+                    else:
+                        ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
+                    tau = hi
+                    continue
+                xs, vs = _slip_state(tau, y[0], y[1], seg_end, sigma, prm)
+                y[0] = xs
+                y[1] = vs
+            kk = _kinematics(seg_end, amp, r, t_ramp, horiz, vert)
+            y[2] = kk[3]
+            y[3] = kk[4]
+            tau = seg_end
+            if lift:
+                ctr[1] = 1
+        # ---- bookkeeping at the end of the step ----
+        kk = _kinematics(t_end, amp, r, t_ramp, horiz, vert)
+        a = y[2] - kk[3] if ctr[1] == 1 else 0.0
+        if ctr[1] == 1:
+            nf = 0.0
+            tf = 0.0
+        else:
+            nf = _normal(t_end, prm)
+            if not friction:
+                tf = 0.0
+            elif ctr[3] == 1:
+                tf = _t_req(t_end, prm)
+            else:
+                tf = nf * ctr[4]
+        if k >= k_ramp:
+            if out_time > 0.0 or ctr[1] == 1:
+                st[S_LOST] = 1.0
+                st[S_OUT] += min(1.0, out_time / h) if out_time > 0.0 else 1.0
+            if a < st[S_AMIN]:
+                st[S_AMIN] = a
+            st[S_COUNT] += 1.0
+        if rec_every > 0 and (k + 1) % rec_every == 0:
+            i = ctr[2]
+            if i < n_rec:
+                rec[i, 0] = t_end
+                rec[i, 1] = y[0]
+                rec[i, 2] = y[1]
+                rec[i, 3] = y[2]
+                rec[i, 4] = y[3]
+                rec[i, 5] = a
+                rec[i, 6] = math.nan
+                rec[i, 7] = nf
+                rec[i, 8] = tf
+                ctr[2] = i + 1
+        ctr[0] = k + 1
+        if not math.isfinite(y[0] + y[1] + y[2] + y[3]):
+            st[S_BAD] = 1.0
+            st[S_BADSTEP] = k
+            return

@@ -1,0 +1,291 @@
+"""Run one scene: assemble only what its effects need, integrate, and summarize.
+
+Compliant models go through the Adams-Bashforth loop of :mod:`sawdrift.integrators`; rigid ones
+through the unilateral-contact scheme of :mod:`sawdrift.rigid`; a prescribed drive feeds a*(t*),
+b*(t*) straight into the contact law.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Literal
+
+import numpy as np
+import pandas as pd
+from numba import njit
+
+from . import integrators as ig
+from . import rigid as rg
+from .contact import ContactHistory, ContactModel
+from .errors import NonFiniteStateError, SceneError
+from .regimes import classify
+from .result import Result
+from .scene import Prescribed, Scene, Wave
+
+Engine = Literal["compiled", "python"]
+
+#: Trajectory samples recorded per wave period (at most).
+RECORDS_PER_PERIOD = 200
+
+
+def run(scene: Scene, *, trajectory: bool = False, engine: Engine = "compiled") -> Result:
+    """Run ``scene`` and return its :class:`~sawdrift.result.Result`.
+
+    Parameters
+    ----------
+    scene
+        The experiment.
+    trajectory
+        Also return the time series (t, x, vx, y, vy, a, b, N, T) as a DataFrame.
+    engine
+        ``"compiled"`` (numba kernels) or ``"python"`` (the readable reference implementations).
+    """
+    if engine not in ("compiled", "python"):
+        raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    model = scene.model_instance()
+    if isinstance(scene.drive, Prescribed):
+        return _run_prescribed(scene, model, engine)
+    if engine == "compiled" and not model.capabilities.compiled and not model.capabilities.rigid:
+        engine = "python"
+    return _run_wave(scene, model, trajectory, engine)
+
+
+class _Stepper:
+    """One wave-scene integration, advanced in segments so that x* can be read between them."""
+
+    def __init__(self, scene: Scene, model: ContactModel, engine: Engine, record: bool):
+        self.scene = scene
+        wave = scene.drive
+        assert isinstance(wave, Wave)
+        self.k_per = scene.steps_per_period()
+        self.h = 1.0 / self.k_per
+        self.rigid = model.capabilities.rigid
+        eff = scene.effects
+        prm = np.zeros(rg.N_PRM_RIGID)
+        prm[ig.P_M] = scene.particle.m_star
+        prm[ig.P_A] = wave.amplitude
+        prm[ig.P_R] = scene.horizontal_ratio
+        prm[ig.P_MU] = scene.material.mu
+        prm[ig.P_THETA] = scene.theta
+        prm[ig.P_RAMP] = wave.ramp_periods
+        prm[ig.P_H] = self.h
+        prm[ig.P_ORDER] = scene.numerics.order
+        prm[ig.P_FRICTION] = 1.0 if eff.friction else 0.0
+        prm[ig.P_DAMP] = eff.normal_damping
+        prm[ig.P_P] = scene.particle.profile.p
+        prm[ig.P_HORIZ] = 1.0 if eff.horizontal_wave else 0.0
+        prm[ig.P_VERT] = 1.0 if eff.vertical_wave else 0.0
+        prm[ig.P_KRAMP] = math.ceil(wave.ramp_periods * self.k_per - 1e-9)
+        self.st = np.zeros(ig.N_ST)
+        self.st[ig.S_AMIN] = np.inf
+        self.y = np.zeros(4)
+        self.record = record
+        self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
+        self.rec_chunks: list[np.ndarray] = []
+        if self.rigid:
+            prm[rg.P_RESTITUTION] = float(model.params.restitution)
+            prm[rg.P_VINERTIA] = 1.0 if eff.vertical_inertia else 0.0
+            self.ctr = np.zeros(5, dtype=np.int64)
+            self.ctr[3] = 1  # starts stuck to the substrate at rest
+            self.prm = prm
+            self.loop = rg.rigid_loop
+        else:
+            self.prm = prm[: ig.N_PRM]
+            self.ctr = np.zeros(3, dtype=np.int64)
+            self.fh = np.zeros((4, 4))
+            self.y[2] = 1.0  # a* = 1: static compression under M g (physics.md section 1)
+            compiled = engine == "compiled"
+            if eff.friction:
+                if compiled:
+                    nf, ni = model.state_sizes()
+                    self.fs = np.zeros(nf)
+                    self.is_ = np.zeros(ni, dtype=np.int64)
+                    self.pp = model.packed_params()
+                    model.kernel.reset(self.fs, self.is_, self.pp)
+                    force = model.kernel.force
+                    force(self.fs, self.is_, self.pp, 1.0, 0.0, 0.0, 0.0)
+                else:
+                    ref = model.reference()
+                    ref.reset()
+                    ref.force(1.0, 0.0, 0.0, 0.0)
+                    self.fs = np.zeros(1)
+                    self.is_ = np.zeros(1, dtype=np.int64)
+                    self.pp = np.zeros(1)
+
+                    def force(fs, is_, pp, a, b, adot, bdot, _ref=ref):
+                        return _ref.force(a, b, adot, bdot)
+            else:
+                # Friction off: the tangential law is never called (not even compiled in).
+                self.fs = np.zeros(1)
+                self.is_ = np.zeros(1, dtype=np.int64)
+                self.pp = np.zeros(1)
+                force = _no_tangential_law
+            self.loop = ig.wave_loop(force, compiled)
+
+    @property
+    def step(self) -> int:
+        return int(self.ctr[0])
+
+    def advance(self, n_steps: int) -> None:
+        if n_steps <= 0:
+            return
+        rec = np.zeros((n_steps // self.rec_every + 2, ig.N_REC)) if self.record else np.zeros((0, ig.N_REC))
+        self.ctr[2] = 0
+        if self.rigid:
+            self.loop(self.y, self.ctr, self.prm, n_steps, rec, self.rec_every, self.st)
+        else:
+            self.loop(
+                self.y, self.fh, self.ctr, self.fs, self.is_, self.pp, self.prm, n_steps,
+                rec, self.rec_every, self.st,
+            )
+        if self.record:
+            self.rec_chunks.append(rec[: self.ctr[2]].copy())
+        if self.st[ig.S_BAD] > 0.0:
+            k = int(self.st[ig.S_BADSTEP])
+            m = self.scene.particle.m_star
+            raise NonFiniteStateError(
+                f"non-finite state at t* = {k * self.h:.6g} (step {k}; x* = {self.y[0]:.6g}, "
+                f"x*' = {self.y[1]:.6g}, y* = {self.y[2]:.6g}, y*' = {self.y[3]:.6g}): the step "
+                f"1/{self.k_per} is likely too coarse for m* = {m:g}; try a larger "
+                "--steps-per-period or a lower Adams-Bashforth order"
+            )
+
+    def trajectory(self) -> pd.DataFrame:
+        data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
+        return pd.DataFrame(data, columns=list(ig.REC_COLUMNS))
+
+
+@njit(cache=True)
+def _no_tangential_law(fs, is_, pp, a, b, adot, bdot):  # pragma: no cover - never called
+    # Stands in for the model with friction off; the loop never reaches it (see Effects).
+    if a == a:
+        raise RuntimeError("the tangential law must not be called with friction off")
+    return 0.0, 0.0
+
+
+def _run_wave(scene: Scene, model: ContactModel, trajectory: bool, engine: Engine) -> Result:
+    wave = scene.drive
+    assert isinstance(wave, Wave)
+    t0 = time.perf_counter()
+    num = scene.numerics
+    stepper = _Stepper(scene, model, engine, trajectory)
+    k_per = stepper.k_per
+    n_measure = scene.measure_periods() * k_per
+    n_total = max(int(round(num.periods * k_per)), n_measure)
+    n_max = max(n_total, int(round(num.max_periods * k_per)))
+    stepper.advance(n_total - n_measure)
+    x0 = stepper.y[0]
+    stepper.advance(n_measure)
+    drift = (stepper.y[0] - x0) / scene.measure_periods()
+    speed = 2.0 * math.pi * scene.horizontal_ratio * wave.amplitude
+    ratio = drift / speed if speed > 0.0 else 0.0
+    if num.settle:
+        previous = math.inf
+        while abs(ratio - previous) > num.settle_tolerance and stepper.step + n_measure <= n_max:
+            previous = ratio
+            x0 = stepper.y[0]
+            stepper.advance(n_measure)
+            drift = (stepper.y[0] - x0) / scene.measure_periods()
+            ratio = drift / speed if speed > 0.0 else 0.0
+    st = stepper.st
+    lost = bool(st[ig.S_LOST] > 0.0)
+    count = max(st[ig.S_COUNT], 1.0)
+    return Result(
+        model=scene.model,
+        engine=engine,
+        m_star=scene.particle.m_star,
+        amplitude=wave.amplitude,
+        mu=scene.material.mu,
+        nu=scene.material.nu,
+        horizontal_ratio=scene.horizontal_ratio,
+        profile=scene.particle.profile.shape,
+        steps_per_period=k_per,
+        periods=stepper.step / k_per,
+        ramp_periods=wave.ramp_periods,
+        measure_periods=scene.measure_periods(),
+        drift_velocity=float(drift),
+        drift_ratio=float(ratio),
+        regime=classify(lost, ratio, num.drift_tolerance),
+        contact_lost=lost,
+        out_of_contact_fraction=float(st[ig.S_OUT] / count),
+        min_compression=float(st[ig.S_AMIN]) if math.isfinite(st[ig.S_AMIN]) else math.nan,
+        steps=stepper.step,
+        wall_time_s=time.perf_counter() - t0,
+        trajectory=stepper.trajectory() if trajectory else None,
+    )
+
+
+def prescribed_history(drive: Prescribed) -> tuple[np.ndarray, np.ndarray]:
+    """The sampled a*(k), b*(k) of a prescribed drive (see :class:`~sawdrift.scene.Prescribed`)."""
+    n = drive.samples_per_segment
+
+    def path(vertices: list[tuple[float, float]]) -> tuple[np.ndarray, np.ndarray]:
+        av, bv = [vertices[0][0]], [vertices[0][1]]
+        for (a0, b0), (a1, b1) in zip(vertices[:-1], vertices[1:], strict=True):
+            s = np.arange(1, n + 1) / n
+            av.extend(a0 + (a1 - a0) * s)
+            bv.extend(b0 + (b1 - b0) * s)
+        return np.asarray(av), np.asarray(bv)
+
+    if drive.waveform == "samples":
+        return np.asarray(drive.a, dtype=float), np.asarray(drive.b, dtype=float)
+    if drive.waveform == "proportional":
+        return path([(0.0, 0.0), (drive.a_max, drive.slope * drive.a_max)])
+    if drive.waveform == "mindlin_loop":
+        am, bb = drive.a_max, drive.b_amplitude
+        vertices = [(0.0, 0.0), (am, 0.0), (am, bb)]
+        for _ in range(drive.cycles):
+            vertices += [(am, -bb), (am, bb)]
+        return path(vertices)
+    rng = np.random.default_rng(drive.seed)
+    m = 10 * drive.cycles
+    a_v = drive.a_max * rng.uniform(-0.3, 1.5, size=m)
+    b_v = np.cumsum(drive.a_max * rng.normal(0.0, 0.5, size=m))
+    return path([(0.0, 0.0), *zip(a_v.tolist(), b_v.tolist(), strict=True)])
+
+
+def _run_prescribed(scene: Scene, model: ContactModel, engine: Engine) -> Result:
+    drive = scene.drive
+    assert isinstance(drive, Prescribed)
+    t0 = time.perf_counter()
+    a, b = prescribed_history(drive)
+    if engine == "compiled" and not model.capabilities.compiled:
+        engine = "python"
+    history = ContactHistory(model, engine)
+    n_f, t_f = history.drive(a, b)
+    bad = ~np.isfinite(n_f + t_f)
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise NonFiniteStateError(
+            f"model {scene.model!r} returned a non-finite force at sample {k} "
+            f"(a* = {a[k]:.6g}, b* = {b[k]:.6g})"
+        )
+    # dissipated work: the integral of T* db*, trapezoidal over the sampled path
+    work = float(np.sum(0.5 * (t_f[1:] + t_f[:-1]) * np.diff(b))) if a.size > 1 else 0.0
+    frame = pd.DataFrame({"t": np.arange(a.size, dtype=float), "a": a, "b": b, "N": n_f, "T": t_f})
+    nan = math.nan
+    return Result(
+        model=scene.model,
+        engine=engine,
+        m_star=scene.particle.m_star,
+        amplitude=nan,
+        mu=scene.material.mu,
+        nu=scene.material.nu,
+        horizontal_ratio=nan,
+        profile=scene.particle.profile.shape,
+        steps_per_period=0,
+        periods=0.0,
+        ramp_periods=0.0,
+        measure_periods=0,
+        drift_velocity=nan,
+        drift_ratio=nan,
+        regime="prescribed",
+        contact_lost=bool(np.any(a <= 0.0)),
+        out_of_contact_fraction=float(np.mean(a <= 0.0)),
+        min_compression=float(a.min()) if a.size else nan,
+        steps=int(a.size),
+        wall_time_s=time.perf_counter() - t0,
+        trajectory=frame,
+        extra={"dissipated_work": work},
+    )
