@@ -1,27 +1,65 @@
-"""sawdrift: frictional contact models compared on a particle driven by a Rayleigh wave."""
+"""sawdrift: frictional contact models compared on a particle driven by a Rayleigh wave.
 
+The public API; the CLI uses nothing else.
+"""
+
+from . import scene
 from .contact import Capabilities, ContactHistory, ContactModel, KernelPair, NoParams
-from .errors import SawdriftError, SceneError
+from .errors import ModelNotFoundError, NonFiniteStateError, PluginError, SawdriftError, SceneError
 from .hookspecs import hookimpl
 from .profiles import Profile
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio, theta
+from .regimes import REGIMES, classify
 from .registry import get_model, registry
+from .result import SUMMARY_FIELDS, Result
+from .runner import prescribed_history, run
+from .scene import Effects, Material, Numerics, Particle, Prescribed, Scene, Wave
 
 __version__ = "0.1.0"
 
+_LAZY = {"plot_trajectory": "plots"}
+
+
+def __getattr__(name: str):
+    # matplotlib is imported only when a figure is asked for
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module 'sawdrift' has no attribute {name!r}")
+
+
 __all__ = [
+    "REGIMES",
+    "SUMMARY_FIELDS",
     "Capabilities",
     "ContactHistory",
     "ContactModel",
+    "Effects",
     "KernelPair",
+    "Material",
+    "ModelNotFoundError",
     "NoParams",
+    "NonFiniteStateError",
+    "Numerics",
+    "Particle",
+    "PluginError",
+    "Prescribed",
     "Profile",
+    "Result",
     "SawdriftError",
+    "Scene",
     "SceneError",
+    "Wave",
+    "classify",
     "get_model",
     "hookimpl",
+    "plot_trajectory",
+    "prescribed_history",
     "rayleigh_ratio",
     "rayleigh_speed_ratio",
     "registry",
+    "run",
+    "scene",
     "theta",
 ]

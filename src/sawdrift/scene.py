@@ -30,7 +30,7 @@ from .rayleigh import rayleigh_ratio, theta
 
 def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
     left = ("(" if lo_open else "[") + ("-inf" if lo is None else f"{lo:g}")
-    right = ("inf" if hi is None else f"{hi:g}") + (")" if hi_open else "]")
+    right = "inf)" if hi is None else f"{hi:g}" + (")" if hi_open else "]")
     return f"{left}, {right}"
 
 
@@ -263,13 +263,19 @@ class Scene(BaseModel):
     def steps_per_period(self) -> int:
         """Steps per period: the scene's, or the automatic default.
 
-        The default resolves the contact's small-amplitude natural frequency
+        For a rigid model the default is 256 (nothing stiff to resolve). Otherwise it resolves
+        the contact's small-amplitude natural frequency
         omega = sqrt(k / m*) (per unit t*, physics.md section 1) with h omega <= 0.06, where
         k = p a_ref^(p-1) max(1, 1/theta) bounds the normal and tangential stiffness at the
         largest expected compression a_ref = 1 + 2 A*, and never goes below 128 per period.
         """
         if self.numerics.steps_per_period is not None:
             return self.numerics.steps_per_period
+        from .registry import get_model
+
+        if get_model(self.model).capabilities.rigid:
+            # no contact stiffness to resolve; events are located by bisection inside steps
+            return 256
         p = self.particle.profile.p
         amp = self.drive.amplitude if isinstance(self.drive, Wave) else 0.0
         a_ref = 1.0 + 2.0 * amp

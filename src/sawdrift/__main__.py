@@ -1,0 +1,5 @@
+"""``python -m sawdrift`` runs the CLI."""
+
+from .cli import main
+
+main()

@@ -1,0 +1,45 @@
+"""Figures: trajectories of single runs (phase diagrams live in :mod:`sawdrift.diagrams`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from .result import Result  # noqa: E402
+
+
+def plot_trajectory(result: Result, path: str | Path) -> Path:
+    """Write a PNG of x*, a*, N* and T* against t* for a run made with ``trajectory=True``."""
+    if result.trajectory is None:
+        raise ValueError("the result has no trajectory; run with trajectory=True")
+    tr = result.trajectory
+    fig, axes = plt.subplots(4, 1, figsize=(9, 9), sharex=True, constrained_layout=True)
+    series = [
+        ("x", "x*  (particle position)"),
+        ("a", "a*  (normal contact displacement)"),
+        ("N", "N*  (normal force)"),
+        ("T", "T*  (friction force)"),
+    ]
+    for ax, (col, label) in zip(axes, series, strict=True):
+        ax.plot(tr["t"], tr[col], lw=0.8)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    if result.regime != "prescribed":
+        for ax in axes:
+            ax.axvspan(0, result.ramp_periods, color="0.9", zorder=0)
+    axes[-1].set_xlabel("t*  (wave periods)" if result.regime != "prescribed" else "sample")
+    title = (
+        f"{result.model}: m* = {result.m_star:g}, A* = {result.amplitude:g}, mu = {result.mu:g}, "
+        f"nu = {result.nu:g}  ->  {result.regime} (V = {result.drift_ratio:.3g})"
+        if result.regime != "prescribed"
+        else f"{result.model}: prescribed history"
+    )
+    fig.suptitle(title, fontsize=10)
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

@@ -1,0 +1,84 @@
+"""The command line: JSON output, determinism, one-line errors with exit status 2."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pandas as pd
+import pytest
+
+
+def cli(*args: str, check: bool = False) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "sawdrift", *args], capture_output=True, text=True, check=check,
+        timeout=600,
+    )
+
+
+REQUIRED = {"model", "m_star", "amplitude", "mu", "nu", "horizontal_ratio", "drift_velocity",
+            "drift_ratio", "regime", "contact_lost", "steps", "wall_time_s"}
+
+
+def test_models_json_lists_material_point_with_distribution():
+    out = cli("models", "--json", check=True)
+    rows = {row["name"]: row for row in json.loads(out.stdout)}
+    assert rows["material_point"]["distribution"] == "sawdrift"
+    assert "restitution" in rows["material_point"]["parameters"]
+
+
+def test_run_json_is_one_object_and_deterministic():
+    args = ("run", "--model", "material_point", "--m-star", "0.1", "--amplitude", "0.1", "--json")
+    first, second = cli(*args, check=True), cli(*args, check=True)
+    a, b = json.loads(first.stdout), json.loads(second.stdout)
+    assert REQUIRED <= set(a)
+    assert a["regime"] == "drift_against"
+    a.pop("wall_time_s"), b.pop("wall_time_s")
+    assert a == b
+
+
+def test_run_writes_parquet_and_png(tmp_path):
+    cli("run", "--model", "material_point", "--periods", "10", "-o", str(tmp_path), check=True)
+    frame = pd.read_parquet(tmp_path / "trajectory.parquet")
+    assert {"t", "x", "a", "N", "T"} <= set(frame.columns)
+    assert frame["t"].iloc[-1] == pytest.approx(10.0, abs=0.01)
+    assert (tmp_path / "trajectory.png").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (("--m-star", "-1"), "particle.m_star"),
+        (("--m-star", "0"), "particle.m_star"),
+        (("--mu", "0"), "material.mu"),
+        (("--mu", "-0.5"), "material.mu"),
+        (("--nu", "0.5"), "material.nu"),
+        (("--nu", "-1.5"), "material.nu"),
+        (("--model", "no_such_model"), "no_such_model"),
+        (("--m-star", "abc"), "m-star"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(args, needle):
+    out = cli("run", "--model", "material_point", *args) if "--model" not in args else cli(
+        "run", *args)
+    assert out.returncode == 2
+    err = [line for line in out.stderr.splitlines() if line.startswith("error")]
+    assert len(err) == 1 and needle in err[0]
+    assert "Traceback" not in out.stderr
+
+
+def test_malformed_scene_file(tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text("model = 'material_point'\n[particle\n")
+    out = cli("run", str(path))
+    assert out.returncode == 2
+    assert "malformed TOML" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_scene_file_with_bad_value(tmp_path):
+    path = tmp_path / "scene.toml"
+    path.write_text("model = 'material_point'\n[material]\nnu = 0.7\n")
+    out = cli("run", str(path))
+    assert out.returncode == 2
+    assert "material.nu = 0.7 is outside the allowed range (-1, 0.5)" in out.stderr

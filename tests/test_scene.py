@@ -1,0 +1,83 @@
+"""Scene validation, defaults and TOML round trips."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+import sawdrift as sd
+from sawdrift.errors import ModelNotFoundError, SceneError
+from sawdrift.scene import build_scene
+
+
+def test_defaults_follow_the_paper():
+    s = sd.Scene()
+    assert s.material.mu == 0.1 and s.material.nu == 0.3
+    assert s.particle.profile.shape == "sphere" and s.particle.profile.p == 1.5
+    assert s.drive.ramp_periods == 5.0
+    assert s.horizontal_ratio == pytest.approx(sd.rayleigh_ratio(0.3), rel=1e-15)
+
+
+def test_scene_is_frozen():
+    s = sd.Scene()
+    with pytest.raises(Exception):  # noqa: B017 - pydantic raises ValidationError on frozen models
+        s.particle.m_star = 2.0
+
+
+@pytest.mark.parametrize(
+    ("data", "pattern"),
+    [
+        ({"particle": {"m_star": -1}}, r"particle\.m_star = -1 is outside the allowed range \(0, inf\)"),
+        ({"particle": {"m_star": 0}}, r"particle\.m_star"),
+        ({"material": {"mu": 0}}, r"material\.mu = 0 is outside the allowed range \(0, 10\]"),
+        ({"material": {"nu": 0.5}}, r"material\.nu = 0.5 is outside the allowed range \(-1, 0.5\)"),
+        ({"material": {"nu": -1.0}}, r"material\.nu"),
+        ({"material": {"mu": float("nan")}}, r"material\.mu"),
+        ({"drive": {"amplitude": -0.1}}, r"drive\.amplitude"),
+        ({"numerics": {"order": 5}}, r"numerics\.order"),
+        ({"particle": {"mass": 1}}, r"particle\.mass is not a known field"),
+        ({"model": "material_point", "model_params": {"restitution": 2}}, r"restitution"),
+    ],
+)
+def test_bad_fields_give_one_line_naming_the_field(data, pattern):
+    with pytest.raises(SceneError, match=pattern) as info:
+        build_scene(data)
+    assert "\n" not in str(info.value)
+
+
+def test_unknown_model_names_known_ones():
+    with pytest.raises(ModelNotFoundError, match="known models: .*material_point"):
+        build_scene({"model": "no_such_model"})
+
+
+def test_toml_round_trip(tmp_path):
+    s = sd.Scene(model="material_point", particle={"m_star": 0.25}, drive={"amplitude": 0.5},
+                 numerics={"periods": 12})
+    path = tmp_path / "scene.toml"
+    s.to_toml(path)
+    assert sd.Scene.from_toml(path) == s
+
+
+def test_malformed_toml_is_one_line(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text("[particle\nm_star = 1\n")
+    with pytest.raises(SceneError, match="malformed TOML") as info:
+        sd.Scene.from_toml(path)
+    assert "\n" not in str(info.value)
+
+
+def test_automatic_steps_resolve_the_natural_frequency():
+    for m_star in [1e-4, 1e-2, 1.0, 100.0]:
+        s = sd.Scene(particle={"m_star": m_star}, drive={"amplitude": 0.1})
+        omega = math.sqrt(1.5 / m_star)  # small-amplitude normal frequency per unit t*
+        k = s.steps_per_period()
+        assert k >= 128
+        assert omega / k <= 0.06
+
+
+def test_with_updates_validates():
+    s = sd.Scene(model="material_point")
+    assert s.with_updates(**{"particle.m_star": 2.0}).particle.m_star == 2.0
+    with pytest.raises(SceneError, match="particle.m_star"):
+        s.with_updates(**{"particle.m_star": -2.0})
