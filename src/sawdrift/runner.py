@@ -130,7 +130,8 @@ class _Stepper:
     def advance(self, n_steps: int) -> None:
         if n_steps <= 0:
             return
-        rec = np.zeros((n_steps // self.rec_every + 2, ig.N_REC)) if self.record else np.zeros((0, ig.N_REC))
+        n_rec = n_steps // self.rec_every + 2 if self.record else 0
+        rec = np.zeros((n_rec, ig.N_REC))
         self.ctr[2] = 0
         if self.rigid:
             self.loop(self.y, self.ctr, self.prm, n_steps, rec, self.rec_every, self.st)
