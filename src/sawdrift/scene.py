@@ -235,7 +235,9 @@ class Scene(BaseModel):
                 + ", ".join(cls.capabilities.profiles)
             )
         if isinstance(self.drive, Prescribed) and cls.capabilities.rigid:
-            raise ValueError(f"model {self.model!r} is rigid: a prescribed a*, b* history needs a compliant model")
+            raise ValueError(
+                f"model {self.model!r} is rigid: a prescribed a*, b* history needs a compliant model"
+            )
         _ = self.particle.profile.p
         return self
 
