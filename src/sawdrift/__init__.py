@@ -9,6 +9,7 @@ from .errors import ModelNotFoundError, NonFiniteStateError, PluginError, Sawdri
 from .hookspecs import hookimpl
 from .profiles import Profile
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio, theta
+from . import regimes
 from .regimes import REGIMES, classify
 from .registry import get_model, registry
 from .result import SUMMARY_FIELDS, Result

@@ -42,7 +42,8 @@ N_PRM = 14
 
 # Layout of the statistics vector ``st``.
 S_LOST, S_AMIN, S_OUT, S_COUNT, S_BAD, S_BADSTEP, S_WORK_T, S_WORK_N = 0, 1, 2, 3, 4, 5, 6, 7
-N_ST = 8
+S_LIFTS, S_PREVIN = 8, 9  # lift-offs counted (reset by the runner), and contact at the last step
+N_ST = 10
 
 # Columns of the trajectory record.
 REC_COLUMNS = ("t", "x", "vx", "y", "vy", "a", "b", "N", "T")
@@ -114,6 +115,11 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
                     nf = 0.0
             ax = -mu * tf / m
             ay = (1.0 - nf) / m
+            if a > 0.0:
+                st[S_PREVIN] = 1.0
+            elif st[S_PREVIN] > 0.0:
+                st[S_PREVIN] = 0.0
+                st[S_LIFTS] += 1.0
             if k >= k_ramp:
                 if a <= 0.0:
                     st[S_LOST] = 1.0

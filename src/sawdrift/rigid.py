@@ -36,6 +36,7 @@ from .integrators import (
     S_BAD,
     S_BADSTEP,
     S_COUNT,
+    S_LIFTS,
     S_LOST,
     S_OUT,
     TWO_PI,
@@ -186,6 +187,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 tau = tc
                 if e * vn > 1e-9 and _normal(tc, prm) > 0.0:
                     y[3] = kk[4] - e * vn
+                    st[S_LIFTS] += 1.0
                 else:
                     ctr[1] = 0
                     y[3] = kk[4]
@@ -202,6 +204,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             # ---- contact ----
             if _normal(tau, prm) < 0.0:
                 ctr[1] = 1
+                st[S_LIFTS] += 1.0
                 continue
             seg_end = t_end
             lift = False
@@ -268,6 +271,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             tau = seg_end
             if lift:
                 ctr[1] = 1
+                st[S_LIFTS] += 1.0
         # ---- bookkeeping at the end of the step ----
         kk = _kinematics(t_end, amp, r, t_ramp, horiz, vert)
         a = y[2] - kk[3] if ctr[1] == 1 else 0.0

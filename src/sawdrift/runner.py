@@ -79,6 +79,7 @@ class _Stepper:
         prm[ig.P_KRAMP] = math.ceil(wave.ramp_periods * self.k_per - 1e-9)
         self.st = np.zeros(ig.N_ST)
         self.st[ig.S_AMIN] = np.inf
+        self.st[ig.S_PREVIN] = 1.0
         self.y = np.zeros(4)
         self.record = record
         self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
@@ -165,6 +166,31 @@ def _no_tangential_law(fs, is_, pp, a, b, adot, bdot):  # pragma: no cover - nev
     return 0.0, 0.0
 
 
+def _measure(stepper: _Stepper, periods: int) -> tuple[float, list[np.ndarray]]:
+    """Advance ``periods`` whole periods; return Delta x* and the stroboscopic samples."""
+    x0 = stepper.y[0]
+    samples = []
+    for _ in range(periods):
+        stepper.advance(stepper.k_per)
+        samples.append(stepper.y.copy())
+    return stepper.y[0] - x0, samples
+
+
+def periodicity(samples: list[np.ndarray], amp: float, r: float, last: int = 10) -> float:
+    """Largest scaled change of the stroboscopic state between consecutive periods.
+
+    The state (x*', y*, y*') is sampled at the same wave phase once per period; each component
+    is scaled by its natural size (2 pi r A*, 1 + A*, 2 pi (1 + A*)). A periodic motion of period
+    one gives 0.
+    """
+    if len(samples) < 2:
+        return math.inf
+    s = np.array(samples[-last - 1 :])
+    scale = np.array([2 * math.pi * max(r * amp, 1e-12), 1.0 + amp, 2 * math.pi * (1.0 + amp)])
+    diffs = np.abs(np.diff(s[:, 1:4], axis=0)) / scale
+    return float(diffs.max())
+
+
 def _run_wave(scene: Scene, model: ContactModel, trajectory: bool, engine: Engine) -> Result:
     wave = scene.drive
     assert isinstance(wave, Wave)
@@ -172,26 +198,28 @@ def _run_wave(scene: Scene, model: ContactModel, trajectory: bool, engine: Engin
     num = scene.numerics
     stepper = _Stepper(scene, model, engine, trajectory)
     k_per = stepper.k_per
-    n_measure = scene.measure_periods() * k_per
+    n_periods = scene.measure_periods()
+    n_measure = n_periods * k_per
     n_total = max(int(round(num.periods * k_per)), n_measure)
     n_max = max(n_total, int(round(num.max_periods * k_per)))
     stepper.advance(n_total - n_measure)
-    x0 = stepper.y[0]
-    stepper.advance(n_measure)
-    drift = (stepper.y[0] - x0) / scene.measure_periods()
+    stepper.st[ig.S_LIFTS] = 0.0
+    dx, samples = _measure(stepper, n_periods)
     speed = 2.0 * math.pi * scene.horizontal_ratio * wave.amplitude
-    ratio = drift / speed if speed > 0.0 else 0.0
+    ratio = dx / n_periods / speed if speed > 0.0 else 0.0
     if num.settle:
         previous = math.inf
         while abs(ratio - previous) > num.settle_tolerance and stepper.step + n_measure <= n_max:
             previous = ratio
-            x0 = stepper.y[0]
-            stepper.advance(n_measure)
-            drift = (stepper.y[0] - x0) / scene.measure_periods()
-            ratio = drift / speed if speed > 0.0 else 0.0
+            stepper.st[ig.S_LIFTS] = 0.0
+            dx, samples = _measure(stepper, n_periods)
+            ratio = dx / n_periods / speed if speed > 0.0 else 0.0
+    drift = dx / n_periods
     st = stepper.st
     lost = bool(st[ig.S_LOST] > 0.0)
     count = max(st[ig.S_COUNT], 1.0)
+    lifts = float(st[ig.S_LIFTS]) / n_periods
+    period_change = periodicity(samples, wave.amplitude, scene.horizontal_ratio)
     return Result(
         model=scene.model,
         engine=engine,
@@ -204,16 +232,18 @@ def _run_wave(scene: Scene, model: ContactModel, trajectory: bool, engine: Engin
         steps_per_period=k_per,
         periods=stepper.step / k_per,
         ramp_periods=wave.ramp_periods,
-        measure_periods=scene.measure_periods(),
+        measure_periods=n_periods,
         drift_velocity=float(drift),
         drift_ratio=float(ratio),
-        regime=classify(lost, ratio, num.drift_tolerance),
+        regime=classify(lost, ratio, num.drift_tolerance, lifts, period_change,
+                        num.periodic_tolerance),
         contact_lost=lost,
         out_of_contact_fraction=float(st[ig.S_OUT] / count),
         min_compression=float(st[ig.S_AMIN]) if math.isfinite(st[ig.S_AMIN]) else math.nan,
         steps=stepper.step,
         wall_time_s=time.perf_counter() - t0,
         trajectory=stepper.trajectory() if trajectory else None,
+        extra={"periodicity": period_change, "liftoffs_per_period": lifts},
     )
 
 

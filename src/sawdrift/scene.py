@@ -170,6 +170,9 @@ class Numerics(BaseModel):
     drift_tolerance: Annotated[float, bounded(0.0, 1.0)] = Field(
         1e-3, description="|drift_ratio| below this is 'stick' (no steady drift)"
     )
+    periodic_tolerance: Annotated[float, bounded(0.0, 1.0)] = Field(
+        1e-3, description="stroboscopic change below which a hopping motion counts as periodic"
+    )
     settle: bool = Field(
         False, description="run on, in chunks of measure_periods, until the drift has settled"
     )

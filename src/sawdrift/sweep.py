@@ -1,0 +1,315 @@
+"""Parameter sweeps over (model, m*, A*): executors, a resumable table, and lossless resume.
+
+Every finished cell is appended, as one JSON line, to a journal next to the table
+(``TABLE.journal.jsonl``) the moment it completes; one ``write`` of a short line, flushed, so a
+kill -9 loses at most the cells still running. Re-running the same sweep reads the table and the
+journal, skips every cell already there (cells are identified by a hash of their whole scene), and
+computes only the rest. At the end the rows are consolidated into the Parquet table with an atomic
+replace and the journal is removed.
+
+Executors: ``serial``; local processes (default, all cores); or an existing dask.distributed
+cluster (``scheduler=ADDRESS``). All run the same cell function, so they give identical values.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .errors import SawdriftError, SceneError
+from .result import SUMMARY_FIELDS
+from .scene import Scene, build_scene, set_dotted
+
+#: Columns of a sweep table, in order.
+TABLE_COLUMNS = ("cell_id", *SUMMARY_FIELDS, "periodicity", "liftoffs_per_period", "error")
+
+
+def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
+    """Grid values from ``START:STOP:N`` (N log-spaced values, ends included) or ``a,b,c``.
+
+    Raises
+    ------
+    SceneError
+        With one line naming ``name`` when the specification is malformed.
+    """
+    if not isinstance(spec, str):
+        values = np.asarray(list(spec), dtype=float)
+    elif ":" in spec:
+        parts = spec.split(":")
+        if len(parts) != 3:
+            raise SceneError(f"{name} = {spec!r} must be START:STOP:N (N log-spaced values)")
+        try:
+            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
+        except ValueError:
+            raise SceneError(
+                f"{name} = {spec!r} must be START:STOP:N with numbers START, STOP > 0 and an integer N"
+            ) from None
+        if not (start > 0 and stop > 0 and math.isfinite(start) and math.isfinite(stop)):
+            raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis")
+        if not 1 <= n <= 100_000:
+            raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
+        values = np.geomspace(start, stop, n) if n > 1 else np.array([start])
+    else:
+        try:
+            values = np.array([float(v) for v in spec.split(",") if v.strip()], dtype=float)
+        except ValueError:
+            raise SceneError(f"{name} = {spec!r} must be START:STOP:N or a comma list of numbers") from None
+    if values.size == 0 or not np.all(np.isfinite(values)):
+        raise SceneError(f"{name} = {spec!r} must hold at least one finite value")
+    return values
+
+
+def cell_id(scene: Scene) -> str:
+    """Stable identifier of a cell: a hash of the whole validated scene."""
+    return hashlib.sha1(scene.model_dump_json().encode()).hexdigest()[:16]
+
+
+def grid(
+    models: Sequence[str],
+    m_star: Iterable[float],
+    amplitude: Iterable[float],
+    base: Scene | None = None,
+    overrides: dict[str, Any] | None = None,
+) -> list[Scene]:
+    """The scenes of a (model, m*, A*) grid, all other fields from ``base`` and ``overrides``."""
+    data = base.model_dump(exclude_none=True) if base is not None else {}
+    for dotted, value in (overrides or {}).items():
+        set_dotted(data, dotted, value)
+    m_values = [float(v) for v in m_star]
+    a_values = [float(v) for v in amplitude]
+    scenes = []
+    for model in models:
+        per_model = dict(data, model=model)
+        if base is not None and model != base.model:
+            per_model["model_params"] = {}
+        for m in m_values:
+            for a in a_values:
+                cell = json.loads(json.dumps(per_model))
+                set_dotted(cell, "particle.m_star", m)
+                set_dotted(cell, "drive.amplitude", a)
+                scenes.append(build_scene(cell))
+    return scenes
+
+
+def run_cell(scene_json: str) -> dict[str, Any]:
+    """Run one cell from its scene JSON and return its table row; an error fills ``error``.
+
+    A model that raises or returns NaN fails only its own cell.
+    """
+    from .runner import run
+
+    scene = Scene.model_validate_json(scene_json)
+    row: dict[str, Any] = {key: None for key in TABLE_COLUMNS}
+    row["cell_id"] = cell_id(scene)
+    try:
+        result = run(scene)
+        row.update(result.summary())
+        row["error"] = None
+    except Exception as exc:  # noqa: BLE001 - recorded in the table, the sweep goes on
+        kind = "" if isinstance(exc, SawdriftError) else f"{type(exc).__name__}: "
+        row.update(
+            model=scene.model,
+            m_star=scene.particle.m_star,
+            amplitude=getattr(scene.drive, "amplitude", None),
+            mu=scene.material.mu,
+            nu=scene.material.nu,
+            profile=scene.particle.profile.shape,
+            regime="error",
+            error=(kind + str(exc)).splitlines()[0],
+        )
+    return {key: row.get(key) for key in TABLE_COLUMNS}
+
+
+# -- the resumable table ---------------------------------------------------------------------
+
+
+def journal_path(table: Path) -> Path:
+    """Where finished cells are journaled before consolidation."""
+    return table.with_name(table.name + ".journal.jsonl")
+
+
+def read_rows(table: Path) -> dict[str, dict[str, Any]]:
+    """Rows already finished: from the Parquet table and the journal, by cell id."""
+    rows: dict[str, dict[str, Any]] = {}
+    if table.exists():
+        try:
+            frame = pd.read_parquet(table)
+        except Exception as exc:  # noqa: BLE001 - a foreign or broken file must not be overwritten
+            raise SceneError(f"table {str(table)!r} exists but is not a readable Parquet file ({exc})") from None
+        if "cell_id" not in frame.columns:
+            raise SceneError(f"table {str(table)!r} is not a sawdrift sweep table (no cell_id column)")
+        for rec in frame.to_dict(orient="records"):
+            rows[rec["cell_id"]] = _clean(rec)
+    journal = journal_path(table)
+    if journal.exists():
+        with journal.open() as fh:
+            for line in fh:
+                try:
+                    rec = json.loads(line)
+                except json.JSONDecodeError:
+                    continue  # a line cut by a kill mid-write: that cell is simply recomputed
+                rows[rec["cell_id"]] = rec
+    return rows
+
+
+def _clean(rec: dict[str, Any]) -> dict[str, Any]:
+    out = {}
+    for key, value in rec.items():
+        if isinstance(value, float) and math.isnan(value):
+            value = None
+        elif isinstance(value, np.generic):
+            value = value.item()
+        out[key] = value
+    return out
+
+
+def to_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
+    """Rows as a DataFrame with the table's columns, sorted by (model, m*, A*)."""
+    frame = pd.DataFrame(list(rows), columns=list(TABLE_COLUMNS))
+    for col in ("error", "regime", "model", "engine", "profile", "cell_id"):
+        frame[col] = frame[col].astype("string")
+    frame = frame.sort_values(["model", "m_star", "amplitude", "cell_id"], kind="stable")
+    return frame.reset_index(drop=True)
+
+
+def write_table(frame: pd.DataFrame, table: Path) -> None:
+    """Write the Parquet table atomically (temporary file, then replace)."""
+    tmp = table.with_name(f".{table.name}.{os.getpid()}.tmp")
+    frame.to_parquet(tmp, index=False)
+    os.replace(tmp, table)
+
+
+# -- executors -------------------------------------------------------------------------------
+
+
+def _serial(cells: list[str], workers: int, scheduler: str | None) -> Iterator[dict[str, Any]]:
+    for cell in cells:
+        yield run_cell(cell)
+
+
+def _processes(cells: list[str], workers: int, scheduler: str | None) -> Iterator[dict[str, Any]]:
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(run_cell, cell) for cell in cells]
+        try:
+            for fut in as_completed(futures):
+                yield fut.result()
+        finally:
+            for fut in futures:
+                fut.cancel()
+
+
+def _dask(cells: list[str], workers: int, scheduler: str | None) -> Iterator[dict[str, Any]]:
+    try:
+        from distributed import Client, as_completed as dask_completed
+    except ImportError:
+        raise SceneError("--scheduler needs dask.distributed: pip install 'sawdrift[dask]'") from None
+    try:
+        client = Client(scheduler, timeout="10s") if isinstance(scheduler, str) else Client(scheduler)
+    except OSError as exc:
+        raise SceneError(f"scheduler = {scheduler!r} could not be reached ({exc})") from None
+    try:
+        futures = client.map(run_cell, cells, pure=False)
+        for fut in dask_completed(futures):
+            yield fut.result()
+    finally:
+        if isinstance(scheduler, str):
+            client.close()
+
+
+def sweep(
+    models: str | Sequence[str],
+    m_star: str | Sequence[float],
+    amplitude: str | Sequence[float],
+    *,
+    base: Scene | None = None,
+    overrides: dict[str, Any] | None = None,
+    table: str | Path | None = None,
+    workers: int | None = None,
+    scheduler: Any = None,
+    progress: bool = True,
+    on_row: Callable[[dict[str, Any]], None] | None = None,
+) -> pd.DataFrame:
+    """Run a (model, m*, A*) grid and return one row per cell as a DataFrame.
+
+    Parameters
+    ----------
+    models
+        Model names (a list or a comma-separated string).
+    m_star, amplitude
+        Axes: ``"START:STOP:N"`` (log-spaced, ends included), ``"a,b,c"``, or a sequence.
+    base, overrides
+        The scene every cell starts from, and dotted-path overrides (``{"material.mu": 0.2}``).
+    table
+        Parquet file. Finished cells already in it (or in its journal) are not recomputed.
+    workers
+        1 runs serially; K > 1 uses K local processes; default: all cores.
+    scheduler
+        Address of a dask.distributed scheduler (or a ``Client``/``LocalCluster``) to run on.
+    progress
+        Show a progress bar (tqdm) on stderr.
+    """
+    names = [m.strip() for m in models.split(",")] if isinstance(models, str) else list(models)
+    if not names or any(not n for n in names):
+        raise SceneError(f"models = {models!r} must name at least one model")
+    scenes = grid(names, parse_axis(m_star, "m_star"), parse_axis(amplitude, "amplitude"), base, overrides)
+    path = Path(table) if table is not None else None
+    done = read_rows(path) if path is not None else {}
+    todo: list[str] = []
+    seen: set[str] = set()
+    for scene in scenes:
+        cid = cell_id(scene)
+        if cid not in done and cid not in seen:
+            todo.append(scene.model_dump_json())
+            seen.add(cid)
+    wanted = {cell_id(s) for s in scenes}
+    workers = workers if workers is not None else (os.cpu_count() or 1)
+    if workers < 1:
+        raise SceneError(f"workers = {workers} must be >= 1")
+    if scheduler is not None:
+        executor = _dask
+    elif workers == 1 or len(todo) <= 1:
+        executor = _serial
+    else:
+        executor = _processes
+    rows = {cid: row for cid, row in done.items() if cid in wanted}
+    journal = journal_path(path) if path is not None else None
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    bar = None
+    if progress and todo:
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(wanted), initial=len(rows), unit="cell", desc="sweep", dynamic_ncols=True)
+    fh = journal.open("a") if journal is not None and todo else None
+    try:
+        for row in executor(todo, workers, scheduler):
+            rows[row["cell_id"]] = row
+            if fh is not None:
+                fh.write(json.dumps(row) + "\n")
+                fh.flush()
+            if on_row is not None:
+                on_row(row)
+            if bar is not None:
+                bar.update(1)
+    finally:
+        if fh is not None:
+            fh.close()
+        if bar is not None:
+            bar.close()
+    frame = to_frame(rows.values())
+    if path is not None:
+        everything = read_rows(path)
+        everything.update(rows)
+        write_table(to_frame(everything.values()), path)
+        if journal is not None and journal.exists():
+            journal.unlink()
+    return frame
