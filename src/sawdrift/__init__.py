@@ -3,13 +3,12 @@
 The public API; the CLI uses nothing else.
 """
 
-from . import scene
+from . import regimes, scene
 from .contact import Capabilities, ContactHistory, ContactModel, KernelPair, NoParams
 from .errors import ModelNotFoundError, NonFiniteStateError, PluginError, SawdriftError, SceneError
 from .hookspecs import hookimpl
 from .profiles import Profile
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio, theta
-from . import regimes
 from .regimes import REGIMES, classify
 from .registry import get_model, registry
 from .result import SUMMARY_FIELDS, Result
@@ -59,6 +58,7 @@ __all__ = [
     "prescribed_history",
     "rayleigh_ratio",
     "rayleigh_speed_ratio",
+    "regimes",
     "registry",
     "run",
     "scene",

@@ -144,7 +144,9 @@ def read_rows(table: Path) -> dict[str, dict[str, Any]]:
         try:
             frame = pd.read_parquet(table)
         except Exception as exc:  # noqa: BLE001 - a foreign or broken file must not be overwritten
-            raise SceneError(f"table {str(table)!r} exists but is not a readable Parquet file ({exc})") from None
+            raise SceneError(
+                f"table {str(table)!r} exists but is not a readable Parquet file ({exc})"
+            ) from None
         if "cell_id" not in frame.columns:
             raise SceneError(f"table {str(table)!r} is not a sawdrift sweep table (no cell_id column)")
         for rec in frame.to_dict(orient="records"):
@@ -209,7 +211,8 @@ def _processes(cells: list[str], workers: int, scheduler: str | None) -> Iterato
 
 def _dask(cells: list[str], workers: int, scheduler: str | None) -> Iterator[dict[str, Any]]:
     try:
-        from distributed import Client, as_completed as dask_completed
+        from distributed import Client
+        from distributed import as_completed as dask_completed
     except ImportError:
         raise SceneError("--scheduler needs dask.distributed: pip install 'sawdrift[dask]'") from None
     try:
