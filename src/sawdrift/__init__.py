@@ -14,6 +14,7 @@ from .registry import get_model, registry
 from .result import SUMMARY_FIELDS, Result
 from .runner import prescribed_history, run
 from .scene import Effects, Material, Numerics, Particle, Prescribed, Scene, Wave
+from .sweep import parse_axis, sweep
 
 __version__ = "0.1.0"
 
@@ -62,5 +63,7 @@ __all__ = [
     "registry",
     "run",
     "scene",
+    "sweep",
+    "parse_axis",
     "theta",
 ]

@@ -145,6 +145,113 @@ def run_cmd(
         typer.echo(f"wrote {out}/trajectory.parquet, trajectory.png, scene.toml, result.json")
 
 
+def _load_table(path: Path):
+    import pandas as pd
+
+    if not path.exists():
+        _fail(f"table {str(path)!r} does not exist")
+    try:
+        return pd.read_parquet(path)
+    except Exception as exc:  # noqa: BLE001
+        _fail(f"table {str(path)!r} is not a readable Parquet file ({exc})".splitlines()[0])
+
+
+@app.command("sweep")
+def sweep_cmd(
+    out: Annotated[Path, typer.Option("-o", "--out", help="Parquet table (resumed if it exists)")],
+    model: Annotated[str, typer.Option("--model", help="model name(s), comma-separated")] = "mmd",
+    m_star: Annotated[str, typer.Option("--m-star", help="START:STOP:N (log) or a,b,c")] = "1e-3:1e2:11",
+    amplitude: Annotated[str, typer.Option("--amplitude", help="START:STOP:N (log) or a,b,c")] = "1e-2:10:11",
+    scene_file: Annotated[Path | None, typer.Option("--scene", help="base scene TOML")] = None,
+    mu: Annotated[float | None, typer.Option("--mu")] = None,
+    nu: Annotated[float | None, typer.Option("--nu")] = None,
+    horizontal_ratio: Annotated[float | None, typer.Option("--horizontal-ratio")] = None,
+    periods: Annotated[float | None, typer.Option("--periods")] = None,
+    steps_per_period: Annotated[int | None, typer.Option("--steps-per-period")] = None,
+    order: Annotated[int | None, typer.Option("--order")] = None,
+    profile: Annotated[str | None, typer.Option("--profile")] = None,
+    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    workers: Annotated[int | None, typer.Option("--workers", help="local processes")] = None,
+    scheduler: Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")] = None,
+    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
+) -> None:
+    """Run a (model, m*, A*) grid into a resumable Parquet table."""
+    models = [m.strip() for m in model.split(",") if m.strip()]
+    for name in models:
+        sd.get_model(name)
+    base = scene_from_options(
+        scene_file, model=models[0], mu=mu, nu=nu, horizontal_ratio=horizontal_ratio,
+        periods=periods, steps_per_period=steps_per_period, order=order, profile=profile,
+        params=_parse_param(param),
+    )
+    frame = sd.sweep(models, m_star, amplitude, base=base, table=out, workers=workers,
+                     scheduler=scheduler, progress=progress)
+    counts = frame.groupby(["model", "regime"]).size()
+    for (name, regime), n in counts.items():
+        typer.echo(f"{name:>20} {regime:>14}: {n}")
+    errors = int(frame["error"].notna().sum())
+    typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)")
+
+
+@app.command("phase-diagram")
+def phase_diagram_cmd(
+    table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
+    model: Annotated[str | None, typer.Option("--model", help="model to draw")] = None,
+) -> None:
+    """Draw the regime phase diagram of one model over (A*, m*)."""
+    from .diagrams import plot_phase_diagram
+
+    frame = _load_table(table)
+    path = plot_phase_diagram(frame, out, model)
+    typer.echo(f"wrote {path}")
+
+
+@app.command("compare")
+def compare_cmd(
+    table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
+    models: Annotated[str, typer.Option("--models", help="comma-separated model names")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
+) -> None:
+    """Side-by-side phase diagrams, the cells where models disagree, and an agreement table."""
+    from .diagrams import plot_compare
+
+    frame = _load_table(table)
+    path, md = plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out)
+    typer.echo(md)
+    typer.echo(f"wrote {path} and {path.with_suffix('.md')}")
+
+
+@app.command("demo")
+def demo_cmd(
+    out: Annotated[Path, typer.Option("-o", "--out", help="output folder")] = Path("sawdrift_out"),
+    n: Annotated[int, typer.Option("--n", help="grid points per axis")] = 21,
+    workers: Annotated[int | None, typer.Option("--workers")] = None,
+) -> None:
+    """The main job: a default scene, and the phase diagrams of material_point and mmd.
+
+    The grid is the paper's Fig. 3 plane, m* in [1e-3, 1e2] and A* in [1e-2, 10], at mu = 0.1,
+    nu = 0.3; the figures and the table go to OUT.
+    """
+    from .diagrams import plot_compare, plot_phase_diagram
+
+    out.mkdir(parents=True, exist_ok=True)
+    scene = sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
+    result = sd.run(scene, trajectory=True)
+    sd.plot_trajectory(result, out / "default_scene.png")
+    scene.to_toml(out / "default_scene.toml")
+    typer.echo(f"default scene (mmd, m* = 0.1, A* = 0.316): {result.regime}, "
+               f"drift ratio {result.drift_ratio:.4f}; wrote {out / 'default_scene.png'}")
+    table = out / "phase_table.parquet"
+    frame = sd.sweep(["material_point", "mmd"], f"1e-3:1e2:{n}", f"1e-2:10:{n}",
+                     base=sd.Scene(numerics={"periods": 40}), table=table, workers=workers)
+    for name in ("material_point", "mmd"):
+        plot_phase_diagram(frame, out / f"phase_{name}.png", name)
+    path, md = plot_compare(frame, ["material_point", "mmd"], out / "compare.png")
+    typer.echo(md)
+    typer.echo(f"wrote {table}, phase_material_point.png, phase_mmd.png, {path.name} in {out}")
+
+
 def main() -> None:
     """Console entry point: one-line errors and exit status 2 for user errors."""
     warnings.showwarning = _one_line_warnings
