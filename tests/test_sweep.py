@@ -1,0 +1,171 @@
+"""Sweeps: executors agree, resume is lossless, and the material point's diagram is analytic."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy.optimize import brentq
+
+import sawdrift as sd
+from sawdrift.errors import SceneError
+from sawdrift.sweep import journal_path, parse_axis
+
+def _values(frame: pd.DataFrame) -> pd.DataFrame:
+    return frame.drop(columns=["wall_time_s"]).reset_index(drop=True)
+
+
+def test_parse_axis():
+    assert np.allclose(parse_axis("1e-3:1e2:6"), [1e-3, 1e-2, 1e-1, 1, 10, 100], rtol=1e-12)
+    assert np.allclose(parse_axis("0.1,0.2, 0.5"), [0.1, 0.2, 0.5])
+    for bad in ["1:2", "a:b:3", "0:1:3", "1:10:0", "x,y", ""]:
+        with pytest.raises(SceneError, match="m_star"):
+            parse_axis(bad, "m_star")
+
+
+BASE = sd.Scene(model="mmd", numerics={"periods": 20})
+
+
+def test_serial_processes_and_dask_agree():
+    kwargs = dict(base=BASE, progress=False)
+    serial = sd.sweep("mmd,material_point", "0.01:1:3", "0.05:0.5:3", workers=1, **kwargs)
+    procs = sd.sweep("mmd,material_point", "0.01:1:3", "0.05:0.5:3", workers=2, **kwargs)
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cl:
+        dask = sd.sweep("mmd,material_point", "0.01:1:3", "0.05:0.5:3", scheduler=cl, **kwargs)
+    assert len(serial) == 18
+    pd.testing.assert_frame_equal(_values(serial), _values(procs))
+    pd.testing.assert_frame_equal(_values(serial), _values(dask))
+
+
+def test_resume_computes_only_missing_cells(tmp_path):
+    table = tmp_path / "t.parquet"
+    first = sd.sweep("material_point", "0.01,0.1", "0.1,1", base=BASE, table=table, progress=False,
+                     workers=1)
+    computed = []
+    again = sd.sweep("material_point", "0.01,0.1,1", "0.1,1", base=BASE, table=table, progress=False,
+                     workers=1, on_row=computed.append)
+    assert len(first) == 4 and len(again) == 6
+    assert len(computed) == 2 and {r["m_star"] for r in computed} == {1.0}
+    assert not journal_path(table).exists()
+
+
+def test_error_in_one_cell_is_recorded_and_the_sweep_goes_on(tmp_path):
+    # m* so small that the fixed step is far too coarse: AB4 blows up in that cell only
+    base = sd.Scene(model="mmd", numerics={"periods": 20, "steps_per_period": 8, "order": 4})
+    frame = sd.sweep("mmd", "1e-4,1", "0.1", base=base, table=tmp_path / "t.parquet",
+                     progress=False, workers=1)
+    bad = frame[frame.m_star == 1e-4].iloc[0]
+    good = frame[frame.m_star == 1].iloc[0]
+    assert bad.regime == "error" and "non-finite state" in bad.error
+    assert pd.isna(good.error) and good.regime in sd.REGIMES
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="kill -9")
+def test_kill_9_then_resume_equals_uninterrupted(tmp_path):
+    args = ["sweep", "--model", "mmd", "--m-star", "0.01:1:6", "--amplitude", "0.05:0.8:6",
+            "--periods", "400", "--workers", "1", "--no-progress"]
+    table = tmp_path / "killed.parquet"
+    proc = subprocess.Popen([sys.executable, "-m", "sawdrift", *args, "-o", str(table)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    journal = journal_path(table)
+    deadline = time.time() + 120
+    while time.time() < deadline:
+        if journal.exists() and len(journal.read_text().splitlines()) >= 12:
+            break
+        time.sleep(0.05)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    before = [json.loads(line)["cell_id"] for line in journal.read_text().splitlines()
+              if line.endswith("}")]
+    assert 12 <= len(before) < 36, "the kill must land halfway"
+    assert not table.exists()
+    subprocess.run([sys.executable, "-m", "sawdrift", *args, "-o", str(table)], check=True,
+                   capture_output=True, timeout=600)
+    resumed = pd.read_parquet(table)
+    assert resumed["cell_id"].is_unique and len(resumed) == 36
+    clean = tmp_path / "clean.parquet"
+    subprocess.run([sys.executable, "-m", "sawdrift", *args, "-o", str(clean)], check=True,
+                   capture_output=True, timeout=600)
+    pd.testing.assert_frame_equal(_values(resumed), _values(pd.read_parquet(clean)))
+
+
+# -- the material point's phase diagram against the analytic thresholds ----------------------
+
+MU = 0.1
+
+
+def point_prediction(gz: float, gx: float, mu: float = MU) -> str:
+    """Regime of the material point from closed-form thresholds (physics.md section 3).
+
+    * Gz > 1: contact lost;
+    * R = sqrt((Gx/mu)^2 + Gz^2) <= 1 (i.e. Gx <= mu sqrt(1 - Gz^2)): stick;
+    * otherwise the point slips. In psi = phi - delta (R cos delta = Gx/mu, R sin delta = Gz) a
+      slip starting from stick at psi1 = arcsin(1/R) ends where
+      R (cos psi1 - cos psi) = psi - psi1; the backward slip starts pi - 2 delta later, and the
+      two are mirror images (zero net drift) unless the first lasts that long (continuous
+      sliding, drift against the wave).
+    """
+    if gz > 1.0:
+        return "lost"
+    big_r = math.hypot(gx / mu, gz)
+    if big_r <= 1.0:
+        return "stick"
+    psi1 = math.asin(1.0 / big_r)
+    delta = math.atan2(gz, gx / mu)
+
+    def f(psi: float) -> float:
+        return big_r * (math.cos(psi1) - math.cos(psi)) - (psi - psi1)
+
+    lo = math.pi - psi1
+    hi = lo + 2.0 * math.pi
+    if f(hi) > 0.0:
+        return "drift_against"
+    psi2 = brentq(f, lo, hi)
+    return "drift_against" if psi2 - psi1 >= math.pi - 2.0 * delta else "stick"
+
+
+def _regime_class(regime: str) -> str:
+    return "lost" if regime in sd.regimes.CONTACT_LOST else regime
+
+
+def test_material_point_diagram_matches_analytic_thresholds():
+    n = 21
+    frame = sd.sweep("material_point", f"1e-3:1e2:{n}", f"1e-2:10:{n}", base=BASE, progress=False,
+                     workers=1)
+    r = sd.rayleigh_ratio(0.3)
+    masses = np.sort(frame.m_star.unique())
+    amps = np.sort(frame.amplitude.unique())
+    got = {(m, a): _regime_class(g) for m, a, g in zip(frame.m_star, frame.amplitude, frame.regime,
+                                                        strict=True)}
+    pred = {}
+    for m in masses:
+        for a in amps:
+            gz = 4 * math.pi**2 * m * a
+            pred[(m, a)] = point_prediction(gz, r * gz)
+    checked = 0
+    for i, m in enumerate(masses):
+        for j, a in enumerate(amps):
+            neigh = {pred[(masses[i2], amps[j2])] for i2 in range(max(0, i - 1), min(n, i + 2))
+                     for j2 in range(max(0, j - 1), min(n, j + 2))}
+            if len(neigh) > 1:
+                continue  # adjacent to a boundary
+            checked += 1
+            assert got[(m, a)] == pred[(m, a)], (m, a, got[(m, a)], pred[(m, a)])
+    assert checked > 300
+    assert "drift_with" not in set(frame.regime)
+
+
+def test_mmd_diagram_shows_all_four_regimes():
+    frame = sd.sweep("mmd", "1e-3:1e2:21", "1e-2:10:21", base=BASE, progress=False)
+    found = {_regime_class(g) for g in frame.regime}
+    assert {"stick", "drift_with", "drift_against", "lost"} <= found
