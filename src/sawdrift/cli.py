@@ -174,6 +174,7 @@ def sweep_cmd(
     workers: Annotated[int | None, typer.Option("--workers", help="local processes")] = None,
     scheduler: Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")] = None,
     progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
+    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
 ) -> None:
     """Run a (model, m*, A*) grid into a resumable Parquet table."""
     models = [m.strip() for m in model.split(",") if m.strip()]
@@ -185,7 +186,7 @@ def sweep_cmd(
         params=_parse_param(param),
     )
     frame = sd.sweep(models, m_star, amplitude, base=base, table=out, workers=workers,
-                     scheduler=scheduler, progress=progress)
+                     scheduler=scheduler, progress=progress, engine=engine)
     counts = frame.groupby(["model", "regime"]).size()
     for (name, regime), n in counts.items():
         typer.echo(f"{name:>20} {regime:>14}: {n}")

@@ -100,7 +100,7 @@ def grid(
     return scenes
 
 
-def run_cell(scene_json: str) -> dict[str, Any]:
+def run_cell(scene_json: str, engine: str = "compiled") -> dict[str, Any]:
     """Run one cell from its scene JSON and return its table row; an error fills ``error``.
 
     A model that raises or returns NaN fails only its own cell.
@@ -111,7 +111,7 @@ def run_cell(scene_json: str) -> dict[str, Any]:
     row: dict[str, Any] = {key: None for key in TABLE_COLUMNS}
     row["cell_id"] = cell_id(scene)
     try:
-        result = run(scene)
+        result = run(scene, engine=engine)  # type: ignore[arg-type]
         row.update(result.summary())
         row["error"] = None
     except Exception as exc:  # noqa: BLE001 - recorded in the table, the sweep goes on
@@ -193,14 +193,14 @@ def write_table(frame: pd.DataFrame, table: Path) -> None:
 # -- executors -------------------------------------------------------------------------------
 
 
-def _serial(cells: list[str], workers: int, scheduler: str | None) -> Iterator[dict[str, Any]]:
+def _serial(cells: list[str], workers: int, scheduler: Any, engine: str) -> Iterator[dict[str, Any]]:
     for cell in cells:
-        yield run_cell(cell)
+        yield run_cell(cell, engine)
 
 
-def _processes(cells: list[str], workers: int, scheduler: str | None) -> Iterator[dict[str, Any]]:
+def _processes(cells: list[str], workers: int, scheduler: Any, engine: str) -> Iterator[dict[str, Any]]:
     with ProcessPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(run_cell, cell) for cell in cells]
+        futures = [pool.submit(run_cell, cell, engine) for cell in cells]
         try:
             for fut in as_completed(futures):
                 yield fut.result()
@@ -209,7 +209,7 @@ def _processes(cells: list[str], workers: int, scheduler: str | None) -> Iterato
                 fut.cancel()
 
 
-def _dask(cells: list[str], workers: int, scheduler: str | None) -> Iterator[dict[str, Any]]:
+def _dask(cells: list[str], workers: int, scheduler: Any, engine: str) -> Iterator[dict[str, Any]]:
     try:
         from distributed import Client
         from distributed import as_completed as dask_completed
@@ -220,7 +220,7 @@ def _dask(cells: list[str], workers: int, scheduler: str | None) -> Iterator[dic
     except OSError as exc:
         raise SceneError(f"scheduler = {scheduler!r} could not be reached ({exc})") from None
     try:
-        futures = client.map(run_cell, cells, pure=False)
+        futures = client.map(run_cell, cells, engine=engine, pure=False)
         for fut in dask_completed(futures):
             yield fut.result()
     finally:
@@ -239,6 +239,7 @@ def sweep(
     workers: int | None = None,
     scheduler: Any = None,
     progress: bool = True,
+    engine: str = "compiled",
     on_row: Callable[[dict[str, Any]], None] | None = None,
 ) -> pd.DataFrame:
     """Run a (model, m*, A*) grid and return one row per cell as a DataFrame.
@@ -259,7 +260,13 @@ def sweep(
         Address of a dask.distributed scheduler (or a ``Client``/``LocalCluster``) to run on.
     progress
         Show a progress bar (tqdm) on stderr.
+    engine
+        ``"compiled"`` (numba) or ``"python"`` (reference implementations).
+    on_row
+        Called with each finished row (in completion order).
     """
+    if engine not in ("compiled", "python"):
+        raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
     names = [m.strip() for m in models.split(",")] if isinstance(models, str) else list(models)
     if not names or any(not n for n in names):
         raise SceneError(f"models = {models!r} must name at least one model")
@@ -294,7 +301,7 @@ def sweep(
         bar = tqdm(total=len(wanted), initial=len(rows), unit="cell", desc="sweep", dynamic_ncols=True)
     fh = journal.open("a") if journal is not None and todo else None
     try:
-        for row in executor(todo, workers, scheduler):
+        for row in executor(todo, workers, scheduler, engine):
             rows[row["cell_id"]] = row
             if fh is not None:
                 fh.write(json.dumps(row) + "\n")
