@@ -19,6 +19,7 @@ import sawdrift as sd
 from sawdrift.errors import SceneError
 from sawdrift.sweep import journal_path, parse_axis
 
+
 def _values(frame: pd.DataFrame) -> pd.DataFrame:
     return frame.drop(columns=["wall_time_s"]).reset_index(drop=True)
 

@@ -1,0 +1,215 @@
+"""The tangential law of discrete-element codes: an incremental Mindlin spring with a Coulomb cap.
+
+This is the "Hertz-Mindlin (no-slip)" contact of DEM codes (LAMMPS ``pair granular ... tangential
+mindlin/force`` and ``mindlin_rescale/force``; LIGGGHTS ``tangential history``; Thornton et al.
+2013, Powder Technol. 233, 30-46, eq. 18). In the normalized variables of ../shared/physics.md:
+
+    dT* = k_t(a*) db*,   k_t(a*) = N*'(a*) = p a*^(p-1)   (Mindlin 1949 initial stiffness),
+    |T*| <= N*(a*) = a*^p,  a spring that would exceed the cap is reset onto it.
+
+With ``rescale = True`` the stored force is also scaled with the stiffness when the contact
+shrinks (LAMMPS ``mindlin_rescale``, which multiplies the stored tangential history by a/a_old,
+the contact-radius ratio, i.e. by k_t(new)/k_t(old) for a Hertz contact; here generalized to
+k_t = N*'(a*) for every profile): while a* decreases, dT* = k_t db* + T* d ln k_t. Loading never
+rescales.
+
+Straight-path exactness. ``force`` integrates the law exactly along the straight path from the
+committed (a*, b*) (the kernel protocol of sawdrift.contact), which makes the result independent
+of how a straight move is split:
+
+* without rescaling, the elastic increment is integral k_t db* = (db*/da*) [N*(a1) - N*(a0)]
+  (= k_t db* at fixed a*); a path that reaches the cap stays on it (the elastic rate points out
+  of the admissible set on both the loading and the unloading side), so the end value is the
+  elastic trial clipped to [-N*, N*];
+* with rescaling on an unloading path, T*/k_t is a displacement that moves with b* and the cap
+  is |T*/k_t| <= a*/p, both linear along the path, so T1 = k1 clip(T0/k0 + db*, +-a1/p). This is
+  exactly the LAMMPS update (rescale, add k_t(new) db*, cap), which is therefore path-exact.
+
+LAMMPS without rescaling adds k_t(a_new) db* per step instead of the path integral; the two
+differ by O(da* db*) per step and agree as the step shrinks.
+
+What it does not have, compared with Mindlin & Deresiewicz (1953) (the ``mmd`` / ``jaeger``
+laws): the tangential stiffness is Mindlin's *initial* stiffness for all |T*| < N*, so there is
+no partial slip and no dissipation below the Coulomb limit. Under a displacement cycle of
+amplitude B at fixed a*, its hysteresis loop is the elastic-perfectly-plastic parallelogram
+
+    W*_DEM = 4 N* (B - N*/k_t) if B > N*/k_t = a*/p, else 0,
+
+whereas the Mindlin-Masing loop dissipates at every amplitude. Oblique loading from zero along
+b* = lambda a* (|lambda| <= 1) gives T* = lambda N*, the Mindlin-Deresiewicz value.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar
+
+import numpy as np
+from numba import njit
+from pydantic import BaseModel, ConfigDict, Field
+
+from sawdrift.contact import Capabilities, ContactModel, KernelPair
+from sawdrift.hookspecs import hookimpl
+
+# float state layout: committed a*, committed b*, stored tangential force T*
+_A, _B, _T = 0, 1, 2
+
+
+class HertzMindlinDEMParams(BaseModel):
+    """Parameters of the DEM incremental Hertz-Mindlin tangential law."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    rescale: bool = Field(
+        False,
+        description=(
+            "Scale the stored tangential force by k_t(new)/k_t(old) = N*'(a_new)/N*'(a_old) "
+            "when the contact shrinks (LAMMPS mindlin_rescale/force)."
+        ),
+    )
+
+
+@njit(cache=True)
+def _secant_slope(a0: float, a1: float, p: float) -> float:
+    """[N*(a1) - N*(a0)] / (a1 - a0) without cancellation (both a > 0; N*'(a) when equal)."""
+    h = a1 - a0
+    if h == 0.0:
+        return p * a0 ** (p - 1.0)
+    return a0**p * math.expm1(p * math.log1p(h / a0)) / h
+
+
+@njit(cache=True)
+def dem_tangential_update(
+    t0: float, a0: float, b0: float, a1: float, b1: float, p: float, rescale: bool
+) -> float:
+    """T* at the end of the straight path (a0, b0) -> (a1, b1), both a > 0, from T* = t0."""
+    n1 = a1**p
+    if rescale and a1 < a0 and p != 1.0:
+        k0 = p * a0 ** (p - 1.0)
+        k1 = p * a1 ** (p - 1.0)
+        t = t0 * (k1 / k0) + k1 * (b1 - b0)
+    else:
+        t = t0 + (b1 - b0) * _secant_slope(a0, a1, p)
+    if t > n1:
+        return n1
+    if t < -n1:
+        return -n1
+    return t
+
+
+@njit(cache=True)
+def dem_reset(fs, is_, pp) -> None:
+    """Empty history, out of contact at (a*, b*) = (0, 0)."""
+    fs[:] = 0.0
+
+
+@njit(cache=True)
+def dem_force(fs, is_, pp, a: float, b: float, adot: float, bdot: float):
+    """Advance along the straight path from the committed (a*, b*) to (a, b), commit, (N*, T*)."""
+    p = pp[0]
+    rescale = pp[1] != 0.0
+    a0 = fs[_A]
+    b0 = fs[_B]
+    t0 = fs[_T]
+    fs[_A] = a
+    fs[_B] = b
+    if a <= 0.0:
+        fs[_T] = 0.0
+        return 0.0, 0.0
+    n1 = a**p
+    if a0 <= 0.0:
+        # enters contact at a* = 0 with T* = 0; integral k_t db* = lambda N*(a) with lambda = db/da
+        t = (b - b0) / (a - a0) * n1
+        t = min(max(t, -n1), n1)
+    else:
+        t = dem_tangential_update(t0, a0, b0, a, b, p, rescale)
+    fs[_T] = t
+    return n1, t
+
+
+class HertzMindlinDEMReference:
+    """Pure-Python DEM Hertz-Mindlin contact (incremental spring, Coulomb cap, optional rescale).
+
+    Parameters
+    ----------
+    p
+        Exponent of the normal law N*(a*) = a*^p.
+    rescale
+        Scale the stored force by N*'(a_new)/N*'(a_old) when a* decreases.
+    """
+
+    def __init__(self, p: float, rescale: bool = False) -> None:
+        self.p = p
+        self.rescale = rescale
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget all history: out of contact at (a*, b*) = (0, 0)."""
+        self.a = 0.0
+        self.b = 0.0
+        self.t = 0.0
+
+    def stiffness(self, a: float) -> float:
+        """Mindlin's initial tangential stiffness k_t = N*'(a*) = p a*^(p-1)."""
+        return self.p * a ** (self.p - 1.0)
+
+    def force(
+        self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0
+    ) -> tuple[float, float]:
+        """Advance along a straight path to (a*, b*), commit, and return (N*, T*)."""
+        a, b = float(a), float(b)
+        a0, b0, t0 = self.a, self.b, self.t
+        self.a, self.b = a, b
+        if a <= 0.0:
+            self.t = 0.0
+            return 0.0, 0.0
+        n = a**self.p
+        if a0 <= 0.0:
+            t = (b - b0) / (a - a0) * n
+        elif self.rescale and a < a0:
+            k0, k1 = self.stiffness(a0), self.stiffness(a)
+            t = t0 * k1 / k0 + k1 * (b - b0)
+        elif a == a0:
+            t = t0 + self.stiffness(a) * (b - b0)
+        else:
+            # integral of N*'(a) db along the line: (db/da) [N*(a) - N*(a0)], free of cancellation
+            h = a - a0
+            t = t0 + (b - b0) * a0**self.p * math.expm1(self.p * math.log1p(h / a0)) / h
+        self.t = min(max(t, -n), n)
+        return n, self.t
+
+
+class HertzMindlinDEM(ContactModel):
+    """Incremental Hertz-Mindlin spring with a Coulomb cap, as in DEM codes (module docstring).
+
+    Mindlin (1949) initial stiffness, no partial slip; compare with Mindlin & Deresiewicz (1953).
+    """
+
+    name: ClassVar[str] = "hertz_mindlin_dem"
+    summary: ClassVar[str] = (
+        "DEM tangential spring (LAMMPS mindlin/force, LIGGGHTS tangential history): stiffness "
+        "N*'(a*), Coulomb cap |T*| <= N*, optional mindlin_rescale"
+    )
+    Params: ClassVar[type[BaseModel]] = HertzMindlinDEMParams
+    capabilities: ClassVar[Capabilities] = Capabilities(
+        rigid=False, compiled=True, history=True, uses_velocity=False
+    )
+    kernel: ClassVar[KernelPair] = KernelPair(reset=dem_reset, force=dem_force)
+
+    def state_sizes(self) -> tuple[int, int]:
+        """Float state: a*, b*, T*; no integer state (one unused slot)."""
+        return 3, 1
+
+    def packed_params(self) -> np.ndarray:
+        """[p, rescale (0 or 1)]."""
+        return np.array([self.profile.p, 1.0 if self.params.rescale else 0.0], dtype=np.float64)
+
+    def reference(self) -> HertzMindlinDEMReference:
+        """A fresh pure-Python reference contact (empty history)."""
+        return HertzMindlinDEMReference(self.profile.p, bool(self.params.rescale))
+
+
+@hookimpl
+def sawdrift_contact_models() -> list[type[ContactModel]]:
+    """Register the ``hertz_mindlin_dem`` model."""
+    return [HertzMindlinDEM]

@@ -1,0 +1,364 @@
+"""Jaeger / Cattaneo-Mindlin superposition with the Masing rule: a closed-form tangential law.
+
+At a fixed contact size a* the tangential history of a power-law profile has a closed form
+(Cattaneo 1938, Mindlin 1949, Mindlin & Deresiewicz 1953; for any axisymmetric profile by the
+superposition principle of Jaeger 1998, J. Tribol. 120, 677-684). In the memory-diagram (MDR)
+picture of ../shared/physics.md section 2, write the strip displacement as a function of the
+distance u = a* - z from the contact edge. At fixed a* every profile v(u) reachable from an
+unloaded contact is a zig-zag: slope s = +-1 (the current direction of motion) on [0, c], then
+alternating slopes on [c, C_{n-1}], [C_{n-1}, C_{n-2}], ..., [C_1, C_0], and flat (a stuck core)
+beyond C_0, with c < C_{n-1} < ... < C_0 <= a*. Since T* = integral v dN*'(z) = sum over linear
+pieces of slope sigma on [u1, u2] of sigma [N*(a* - u1) - N*(a* - u2)], the force is
+
+    T* = s N*(a*) - 2 s N*(a* - c) + 2 s N*(a* - C_{n-1}) - ... (alternating) -+ N*(a* - C_0),
+
+with N*(x) = x^p for x > 0 and 0 otherwise. The breakpoints are the Masing memory:
+
+* virgin loading from the origin o: c = |b* - o|, T* = N*(a*) - N*(a* - |b* - o|) (Cattaneo-
+  Mindlin; for the sphere a*^(3/2) - (a* - b*)^(3/2));
+* a reversal at b_k pushes the current extent on the stack and starts a branch with c = |b* -
+  b_k| / 2: T* = T_k - 2 s [N*(a*) - N*(a* - |b* - b_k| / 2)] (Masing's doubled virgin curve; for
+  the sphere the unloading formula of physics.md section 3);
+* a branch that grows back to the enclosing breakpoint (c = C_{n-1}, i.e. b* re-crosses the
+  previous turning point) erases both turning points and continues on the enclosing branch
+  (memory wipe-out, Mindlin & Deresiewicz 1953);
+* when the current extent reaches a* the whole contact slides, |T*| = N*(a*), and the memory is
+  cleared (the origin is re-based so that c = a*).
+
+At constant a* this is exact: it reproduces the memory-diagram law ``mmd`` to round-off.
+
+When a* varies, the model evaluates the same breakpoints at the current a* ("the stack evaluated
+at the current a*": the displacement profile is held fixed in the distance-from-edge coordinate u
+and the contact edge carries it along). Precisely, compared with the full memory-diagram law it
+ignores:
+
+1. **Mindlin-Deresiewicz load-path dependence while loading.** Strips that enter contact while
+   a* grows carry zero displacement in the MDR law, so raising a* at fixed b* leaves T*
+   unchanged; here the profile stays attached to the moving edge, so T* = N*(a*) - N*(a* - c)
+   grows with a*. Oblique loading from zero along b* = lambda a* gives T* = lambda N*(a*)
+   exactly; here it gives N*(a*) - N*((1 - lambda) a*) (larger).
+2. **Slip caused by normal unloading.** When a* falls at fixed b* the MDR law clips the strips
+   next to the new edge (v(z) is fixed in z, the bound a* - z shrinks); here v(u) is fixed in u,
+   so no strip slips until the current extent c itself reaches a* (full sliding).
+3. **The displacement history of strips that left contact or entered while a* varied.** Memory
+   breakpoints that lie beyond a shrinking a* are forgotten (collapsed into one breakpoint at the
+   new a*, so the profile inside the contact is kept and the core beyond it is flat if a* grows
+   again); the true history of those strips is not tracked.
+4. **Contact re-entry.** A contact that starts at level a* = 0 on a straight path is treated as
+   virgin tangential loading from the entry point at the current a* (item 1 again).
+
+Full sliding (c >= a*) and the wipe-out of turning points are evaluated exactly along each
+straight path (both are monotone events there), so splitting a straight step into sub-steps
+changes nothing.
+
+Memory capacity: the stack holds at most ``memory_capacity`` breakpoints. If a reversal would
+overflow it, the interior pair of adjacent breakpoints with the smallest gap is dropped, which
+changes T* by at most 2 N*'(a*) times that gap (never triggered by histories whose nesting depth
+stays below the capacity).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar
+
+import numpy as np
+from numba import njit
+from pydantic import BaseModel, ConfigDict, Field
+
+from sawdrift.contact import Capabilities, ContactModel, KernelPair
+from sawdrift.hookspecs import hookimpl
+
+# float state layout: previous a*, previous b*, reference point of the current branch, breakpoints
+_A, _B, _REF, _MEM = 0, 1, 2, 3
+# int state layout: number of stored breakpoints, current direction of motion (+1 or -1)
+_N, _DIR = 0, 1
+
+
+class JaegerParams(BaseModel):
+    """Parameters of the Jaeger / Masing model."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    memory_capacity: int = Field(
+        64,
+        ge=4,
+        le=4096,
+        description=(
+            "Maximum number of Masing memory breakpoints (nested unclosed loops) kept; on "
+            "overflow the closest interior pair is merged (error <= 2 N*'(a*) x its gap)."
+        ),
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# compiled kernel
+# --------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _nstar(x: float, p: float) -> float:
+    """N*(x) = x^p for x > 0, else 0."""
+    return x**p if x > 0.0 else 0.0
+
+
+@njit(cache=True)
+def _extent(fs, n: int, s: int, b: float) -> float:
+    """Extent c of the current branch in u: |b - o| on the virgin curve, |b - b_k| / 2 after."""
+    f = 1.0 if n == 0 else 0.5
+    return f * s * (b - fs[_REF])
+
+
+@njit(cache=True)
+def _push(fs, is_, c: float) -> None:
+    """Push a breakpoint; on overflow first drop the interior adjacent pair with the least gap."""
+    n = is_[_N]
+    cap = fs.size - _MEM
+    if n >= cap:
+        best = 1
+        gap = math.inf
+        for j in range(1, n - 1):
+            g = fs[_MEM + j] - fs[_MEM + j + 1]
+            if g < gap:
+                gap = g
+                best = j
+        for j in range(best, n - 2):
+            fs[_MEM + j] = fs[_MEM + j + 2]
+        n -= 2
+    fs[_MEM + n] = c
+    is_[_N] = n + 1
+
+
+@njit(cache=True)
+def _move_tangential(fs, is_, a1: float, b0: float, b1: float) -> None:
+    """Advance the memory along a straight path ending at (a1, b1), b monotone from b0."""
+    n = is_[_N]
+    s = is_[_DIR]
+    d = 0
+    if b1 > b0:
+        d = 1
+    elif b1 < b0:
+        d = -1
+    if d != 0:
+        if d != s:
+            # reversal at b0: the current extent becomes a memory breakpoint
+            _push(fs, is_, _extent(fs, n, s, b0))
+            n = is_[_N]
+            fs[_REF] = b0
+            s = d
+        while n > 0:
+            top = fs[_MEM + n - 1]
+            if _extent(fs, n, s, b1) < top:
+                break
+            # wipe-out: the branch re-joins the enclosing one where its extent equals `top`
+            b_w = fs[_REF] + 2.0 * s * top
+            if n >= 2:
+                c_w = fs[_MEM + n - 2]
+                n -= 2
+            else:
+                c_w = top
+                n = 0
+            f = 1.0 if n == 0 else 0.5
+            fs[_REF] = b_w - s * c_w / f
+    if _extent(fs, n, s, b1) >= a1:
+        # full sliding: memory cleared, origin re-based so that the virgin extent is a1
+        n = 0
+        fs[_REF] = b1 - s * a1
+    elif n > 0 and fs[_MEM] >= a1:
+        # breakpoints beyond the (shrunken) contact collapse into one at a1
+        j = 0
+        while j < n and fs[_MEM + j] >= a1:
+            j += 1
+        fs[_MEM] = a1
+        for k in range(j, n):
+            fs[_MEM + k - j + 1] = fs[_MEM + k]
+        n = n - j + 1
+    is_[_N] = n
+    is_[_DIR] = s
+
+
+@njit(cache=True)
+def _tangential_force(fs, is_, p: float, a: float, b: float) -> float:
+    """T* as the alternating sum over the zig-zag memory profile (module docstring)."""
+    n = is_[_N]
+    sign = float(is_[_DIR])
+    c = _extent(fs, n, is_[_DIR], b)
+    t = sign * (_nstar(a, p) - _nstar(a - c, p))
+    u_prev = c
+    for k in range(n - 1, -1, -1):
+        if u_prev >= a:
+            break
+        sign = -sign
+        u_k = fs[_MEM + k]
+        t += sign * (_nstar(a - u_prev, p) - _nstar(a - u_k, p))
+        u_prev = u_k
+    return t
+
+
+@njit(cache=True)
+def jaeger_reset(fs, is_, pp) -> None:
+    """Empty history, out of contact at (a*, b*) = (0, 0)."""
+    fs[:] = 0.0
+    is_[_N] = 0
+    is_[_DIR] = 1
+
+
+@njit(cache=True)
+def jaeger_force(fs, is_, pp, a: float, b: float, adot: float, bdot: float):
+    """Advance along the straight path from the committed (a*, b*) to (a, b), commit, (N*, T*)."""
+    p = pp[0]
+    a0 = fs[_A]
+    b0 = fs[_B]
+    fs[_A] = a
+    fs[_B] = b
+    if a <= 0.0:
+        is_[_N] = 0
+        is_[_DIR] = 1
+        fs[_REF] = b
+        return 0.0, 0.0
+    if a0 <= 0.0:
+        # the straight path enters contact at a* = 0: a virgin contact from the entry point
+        b0 = b0 + (b - b0) * (a0 / (a0 - a))
+        is_[_N] = 0
+        is_[_DIR] = 1
+        fs[_REF] = b0
+    _move_tangential(fs, is_, a, b0, b)
+    t = _tangential_force(fs, is_, p, a, b)
+    return a**p, t
+
+
+# --------------------------------------------------------------------------------------------
+# readable reference
+# --------------------------------------------------------------------------------------------
+
+
+class JaegerReference:
+    """Pure-Python Jaeger / Masing contact: the same rules as the kernel, written plainly.
+
+    Parameters
+    ----------
+    p
+        Exponent of the normal law N*(a*) = a*^p.
+    capacity
+        Maximum number of memory breakpoints.
+    """
+
+    def __init__(self, p: float, capacity: int = 64) -> None:
+        self.p = p
+        self.capacity = capacity
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget all history: out of contact at (a*, b*) = (0, 0)."""
+        self.a = 0.0
+        self.b = 0.0
+        self.ref = 0.0  # origin o of the virgin curve, or the last turning point b_k
+        self.direction = 1
+        self.breakpoints: list[float] = []  # C_0 > C_1 > ... (outermost first)
+
+    def _n(self, x: float) -> float:
+        return x**self.p if x > 0.0 else 0.0
+
+    def extent(self, b: float) -> float:
+        """Extent c of the current branch (virgin: |b - o|; Masing branch: |b - b_k| / 2)."""
+        factor = 1.0 if not self.breakpoints else 0.5
+        return factor * self.direction * (b - self.ref)
+
+    def _reverse(self, b_turn: float, direction: int) -> None:
+        mem = self.breakpoints
+        if len(mem) >= self.capacity:
+            gaps = [mem[j] - mem[j + 1] for j in range(1, len(mem) - 1)]
+            j = 1 + gaps.index(min(gaps))
+            del mem[j : j + 2]
+        mem.append(self.extent(b_turn))
+        self.ref = b_turn
+        self.direction = direction
+
+    def _move(self, a1: float, b0: float, b1: float) -> None:
+        direction = (b1 > b0) - (b1 < b0)
+        if direction != 0:
+            if direction != self.direction:
+                self._reverse(b0, direction)
+            mem = self.breakpoints
+            while mem and self.extent(b1) >= mem[-1]:
+                top = mem.pop()
+                b_wipe = self.ref + 2.0 * self.direction * top
+                c_wipe = mem.pop() if mem else top  # extent of the re-joined branch there
+                factor = 1.0 if not mem else 0.5
+                self.ref = b_wipe - self.direction * c_wipe / factor
+        if self.extent(b1) >= a1:
+            self.breakpoints = []
+            self.ref = b1 - self.direction * a1
+        elif self.breakpoints and self.breakpoints[0] >= a1:
+            inside = [c for c in self.breakpoints if c < a1]
+            self.breakpoints = [a1, *inside]
+
+    def tangential(self, a: float, b: float) -> float:
+        """T* = sum over the linear pieces of the memory profile v(u) (module docstring)."""
+        sign = float(self.direction)
+        c = self.extent(b)
+        t = sign * (self._n(a) - self._n(a - c))
+        u_prev = c
+        for u_k in reversed(self.breakpoints):
+            sign = -sign
+            t += sign * (self._n(a - u_prev) - self._n(a - u_k))
+            u_prev = u_k
+        return t
+
+    def force(
+        self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0
+    ) -> tuple[float, float]:
+        """Advance along a straight path to (a*, b*), commit, and return (N*, T*)."""
+        a, b = float(a), float(b)
+        a0, b0 = self.a, self.b
+        self.a, self.b = a, b
+        if a <= 0.0:
+            self.breakpoints = []
+            self.direction = 1
+            self.ref = b
+            return 0.0, 0.0
+        if a0 <= 0.0:
+            b0 = b0 + (b - b0) * (a0 / (a0 - a))
+            self.breakpoints = []
+            self.direction = 1
+            self.ref = b0
+        self._move(a, b0, b)
+        return a**self.p, self.tangential(a, b)
+
+
+class Jaeger(ContactModel):
+    """Closed-form Cattaneo-Mindlin / Jaeger superposition with Masing memory (see module doc).
+
+    Exact at constant contact size a*; with varying a* it evaluates the turning-point memory at
+    the current a* and ignores the load-path effects listed in the module docstring
+    (Mindlin & Deresiewicz 1953; Jaeger 1998, J. Tribol. 120, 677-684).
+    """
+
+    name: ClassVar[str] = "jaeger"
+    summary: ClassVar[str] = (
+        "Cattaneo-Mindlin/Jaeger closed form with Masing turning-point memory; exact at fixed a*, "
+        "evaluated at the current a* when the normal load varies"
+    )
+    Params: ClassVar[type[BaseModel]] = JaegerParams
+    capabilities: ClassVar[Capabilities] = Capabilities(
+        rigid=False, compiled=True, history=True, uses_velocity=False
+    )
+    kernel: ClassVar[KernelPair] = KernelPair(reset=jaeger_reset, force=jaeger_force)
+
+    def state_sizes(self) -> tuple[int, int]:
+        """Float state: a*, b*, branch reference and the breakpoints; int state: count, direction."""
+        return _MEM + int(self.params.memory_capacity), 2
+
+    def packed_params(self) -> np.ndarray:
+        """[p]: the capacity is carried by the size of the float state."""
+        return np.array([self.profile.p], dtype=np.float64)
+
+    def reference(self) -> JaegerReference:
+        """A fresh pure-Python reference contact (empty history)."""
+        return JaegerReference(self.profile.p, int(self.params.memory_capacity))
+
+
+@hookimpl
+def sawdrift_contact_models() -> list[type[ContactModel]]:
+    """Register the ``jaeger`` model."""
+    return [Jaeger]
