@@ -12,8 +12,8 @@ from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio, theta
 from .regimes import REGIMES, classify
 from .registry import get_model, registry
 from .result import SUMMARY_FIELDS, Result
-from .runner import prescribed_history, run
-from .scene import Effects, Material, Numerics, Particle, Prescribed, Scene, Wave
+from .runner import Assembly, assemble, explain, prescribed_history, run
+from .scene import Effects, Impact, Material, Numerics, Particle, Prescribed, Scene, Wave
 from .sweep import parse_axis, sweep
 
 __version__ = "0.1.0"
@@ -31,6 +31,10 @@ def __getattr__(name: str):
 
 
 __all__ = [
+    "Assembly",
+    "Impact",
+    "assemble",
+    "explain",
     "REGIMES",
     "SUMMARY_FIELDS",
     "Capabilities",

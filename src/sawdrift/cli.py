@@ -64,6 +64,11 @@ def scene_from_options(scene_file: Path | None, **options: Any) -> sd.Scene:
         "order": "numerics.order",
         "settle": "numerics.settle",
         "profile": "particle.profile.shape",
+        "friction": "effects.friction",
+        "vertical_inertia": "effects.vertical_inertia",
+        "normal_damping": "effects.normal_damping",
+        "horizontal_wave": "effects.horizontal_wave",
+        "vertical_wave": "effects.vertical_wave",
     }
     for key, dotted in mapping.items():
         value = options.get(key)
@@ -119,15 +124,28 @@ def run_cmd(
     engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write trajectory and figure here")] = None,
+    friction: Annotated[bool | None, typer.Option("--friction/--no-friction")] = None,
+    vertical_inertia: Annotated[
+        bool | None, typer.Option("--vertical-inertia/--no-vertical-inertia", help="rigid point only")
+    ] = None,
+    normal_damping: Annotated[float | None, typer.Option("--normal-damping", help="viscous c >= 0")] = None,
+    horizontal_wave: Annotated[bool | None, typer.Option("--horizontal-wave/--no-horizontal-wave")] = None,
+    vertical_wave: Annotated[bool | None, typer.Option("--vertical-wave/--no-vertical-wave")] = None,
+    explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
 ) -> None:
     """Run one scene and report its drift and motion regime."""
     scene = scene_from_options(
         scene_file, model=model, m_star=m_star, amplitude=amplitude, mu=mu, nu=nu,
         horizontal_ratio=horizontal_ratio, periods=periods, steps_per_period=steps_per_period,
         order=order, settle=settle, profile=profile, params=_parse_param(param),
+        friction=friction, vertical_inertia=vertical_inertia, normal_damping=normal_damping,
+        horizontal_wave=horizontal_wave, vertical_wave=vertical_wave,
     )
     if engine not in ("compiled", "python"):
         _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    if explain:
+        typer.echo(sd.explain(scene, engine))  # type: ignore[arg-type]
+        return
     result = sd.run(scene, trajectory=out is not None, engine=engine)  # type: ignore[arg-type]
     summary = result.summary()
     if out is not None:

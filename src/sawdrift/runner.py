@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
@@ -21,7 +22,7 @@ from .contact import ContactHistory, ContactModel
 from .errors import NonFiniteStateError, SceneError
 from .regimes import classify
 from .result import Result
-from .scene import Prescribed, Scene, Wave
+from .scene import Impact, Prescribed, Scene, Wave
 
 Engine = Literal["compiled", "python"]
 
@@ -44,39 +45,148 @@ def run(scene: Scene, *, trajectory: bool = False, engine: Engine = "compiled") 
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
     model = scene.model_instance()
-    if isinstance(scene.drive, Prescribed):
-        return _run_prescribed(scene, model, engine)
-    if engine == "compiled" and not model.capabilities.compiled and not model.capabilities.rigid:
+    plan = assemble(scene, engine)
+    if plan.scheme == "prescribed":
+        return _run_prescribed(scene, model, plan.engine)
+    if plan.scheme == "impact":
+        return _run_impact(scene, model, plan, trajectory)
+    return _run_wave(scene, model, trajectory, plan)
+
+
+@dataclass(frozen=True)
+class Assembly:
+    """What a run computes, decided once from the scene's effects (LAMMPS-style slots).
+
+    The runner builds exactly this; :func:`explain` prints it. An empty slot is never computed.
+    """
+
+    scheme: str
+    engine: Engine
+    integrate_x: bool
+    tangential_law: bool
+    normal_law: str
+    normal_damping: float
+    horizontal_wave: bool
+    vertical_wave: bool
+    ramp_periods: float
+    equations: tuple[str, ...]
+    calls: tuple[str, ...]
+    outputs: tuple[str, ...]
+
+
+def assemble(scene: Scene, engine: Engine = "compiled") -> Assembly:
+    """Decide the scheme, the slots that are on, and the engine for ``scene``."""
+    if engine not in ("compiled", "python"):
+        raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    cls = scene.model_instance()
+    caps = cls.capabilities
+    eff = scene.effects
+    drive = scene.drive
+    if engine == "compiled" and not caps.compiled:
         engine = "python"
-    return _run_wave(scene, model, trajectory, engine)
+    name = scene.model
+    kernel = f"{name}.kernel.force" if engine == "compiled" else f"{name}.reference().force"
+    if isinstance(drive, Prescribed):
+        return Assembly(
+            "prescribed", engine, False, True, f"{name} (a*^{scene.particle.profile.p:g})", 0.0,
+            False, False, 0.0,
+            ("a*(k), b*(k) prescribed (" + drive.waveform + "); no dynamics",),
+            (f"{kernel}(a*, b*) once per sample, committing the history",),
+            ("N*(k)", "T*(k)", "dissipated work = sum of T* db*"),
+        )
+    horiz = isinstance(drive, Wave) and eff.horizontal_wave
+    vert = isinstance(drive, Wave) and eff.vertical_wave
+    ramp = drive.ramp_periods if isinstance(drive, Wave) else 0.0
+    equations: list[str] = []
+    calls: list[str] = []
+    if caps.rigid:
+        scheme = "rigid"
+        normal = "N* = 1 - m* u_y''" if eff.vertical_inertia else "N* = 1 (vertical inertia off)"
+        equations.append("a* = 0 in contact; flight m* y*'' = 1 when N* < 0; impact with restitution")
+        equations.append(normal)
+        if eff.friction:
+            equations.append("Coulomb: stick x*'' = u_x'' while |m* u_x''/mu| <= N*, "
+                             "else m* x*'' = -mu N* sgn(x*' - u_x')")
+        else:
+            equations.append("x*'' = 0 (friction off: no tangential force)")
+        calls.append("closed-form N*(t), slip velocity and event bisection (sawdrift.rigid)")
+    else:
+        scheme = "impact" if isinstance(drive, Impact) else "adams-bashforth"
+        normal = f"{name} normal law" if eff.friction else f"profile law N* = a*^{scene.particle.profile.p:g}"
+        equations.append(f"m* y*'' = 1 - N*(a*), a* = y* - u_y; N* from the {normal}")
+        if eff.normal_damping > 0.0:
+            equations.append(f"N* += {eff.normal_damping:g} a*' while a* > 0 (viscous normal damping)")
+        if eff.friction:
+            equations.append("m* x*'' = -mu T*(b*, a*), theta mu b* = x* - u_x")
+            calls.append(f"{kernel}(a*, b*, a*', b*') once per step, committing the history")
+        else:
+            equations.append("x* not integrated (friction off); the tangential law is never called")
+        calls.append(f"Adams-Bashforth order {scene.numerics.order}, "
+                     f"{scene.steps_per_period()} steps per period")
+    if horiz:
+        equations.append(f"u_x = -A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
+                         f"r = {scene.horizontal_ratio:.6g}")
+    if vert:
+        equations.append(f"u_y = A* R(t*) cos(2 pi t*), A* = {drive.amplitude:g}")
+    if isinstance(drive, Wave) and not (horiz or vert):
+        equations.append("substrate at rest (both wave components off)")
+    if isinstance(drive, Wave):
+        equations.append(f"R(t*) = sin^2(pi t* / (2 x {ramp:g})) ramp" if ramp > 0 else "no ramp")
+    if isinstance(drive, Impact):
+        equations.append(f"substrate at rest; start at a* = 0 with a*' = {drive.velocity:g}")
+    outputs = (
+        ("rebound speed ratio", "contact duration", "max compression")
+        if isinstance(drive, Impact)
+        else ("drift_velocity", "drift_ratio", "regime", "contact_lost", "min_compression",
+              "periodicity", "liftoffs_per_period")
+    )
+    return Assembly(
+        scheme, engine, eff.friction, eff.friction and not caps.rigid, normal,
+        eff.normal_damping, horiz, vert, ramp, tuple(equations), tuple(calls), outputs,
+    )
+
+
+def explain(scene: Scene, engine: Engine = "compiled") -> str:
+    """A readable description of the system :func:`run` assembles for ``scene``."""
+    plan = assemble(scene, engine)
+    lines = [f"model {scene.model!r}, scheme {plan.scheme}, engine {plan.engine}", "equations:"]
+    lines += [f"  {eq}" for eq in plan.equations]
+    lines.append("calls:")
+    lines += [f"  {c}" for c in plan.calls]
+    lines.append("outputs: " + ", ".join(plan.outputs))
+    return "\n".join(lines)
 
 
 class _Stepper:
-    """One wave-scene integration, advanced in segments so that x* can be read between them."""
+    """One integration, advanced in segments so that x* can be read between them."""
 
-    def __init__(self, scene: Scene, model: ContactModel, engine: Engine, record: bool):
+    def __init__(
+        self, scene: Scene, model: ContactModel, plan: Assembly, record: bool, preload: bool = True
+    ):
         self.scene = scene
         wave = scene.drive
-        assert isinstance(wave, Wave)
+        amplitude = wave.amplitude if isinstance(wave, Wave) else 0.0
+        ramp = wave.ramp_periods if isinstance(wave, Wave) else 0.0
+        engine = plan.engine
         self.k_per = scene.steps_per_period()
         self.h = 1.0 / self.k_per
         self.rigid = model.capabilities.rigid
         eff = scene.effects
         prm = np.zeros(rg.N_PRM_RIGID)
         prm[ig.P_M] = scene.particle.m_star
-        prm[ig.P_A] = wave.amplitude
-        prm[ig.P_R] = scene.horizontal_ratio
+        prm[ig.P_A] = amplitude
+        prm[ig.P_R] = scene.horizontal_ratio if isinstance(wave, Wave) else 0.0
         prm[ig.P_MU] = scene.material.mu
         prm[ig.P_THETA] = scene.theta
-        prm[ig.P_RAMP] = wave.ramp_periods
+        prm[ig.P_RAMP] = ramp
         prm[ig.P_H] = self.h
         prm[ig.P_ORDER] = scene.numerics.order
-        prm[ig.P_FRICTION] = 1.0 if eff.friction else 0.0
-        prm[ig.P_DAMP] = eff.normal_damping
+        prm[ig.P_FRICTION] = 1.0 if plan.integrate_x else 0.0
+        prm[ig.P_DAMP] = plan.normal_damping
         prm[ig.P_P] = scene.particle.profile.p
-        prm[ig.P_HORIZ] = 1.0 if eff.horizontal_wave else 0.0
-        prm[ig.P_VERT] = 1.0 if eff.vertical_wave else 0.0
-        prm[ig.P_KRAMP] = math.ceil(wave.ramp_periods * self.k_per - 1e-9)
+        prm[ig.P_HORIZ] = 1.0 if plan.horizontal_wave else 0.0
+        prm[ig.P_VERT] = 1.0 if plan.vertical_wave else 0.0
+        prm[ig.P_KRAMP] = math.ceil(ramp * self.k_per - 1e-9)
         self.st = np.zeros(ig.N_ST)
         self.st[ig.S_AMIN] = np.inf
         self.st[ig.S_PREVIN] = 1.0
@@ -95,9 +205,10 @@ class _Stepper:
             self.prm = prm[: ig.N_PRM]
             self.ctr = np.zeros(3, dtype=np.int64)
             self.fh = np.zeros((4, 4))
-            self.y[2] = 1.0  # a* = 1: static compression under M g (physics.md section 1)
+            # a* = 1: static compression under M g (physics.md section 1); an impact starts at 0
+            self.y[2] = 1.0 if preload else 0.0
             compiled = engine == "compiled"
-            if eff.friction:
+            if plan.tangential_law:
                 if compiled:
                     nf, ni = model.state_sizes()
                     self.fs = np.zeros(nf)
@@ -105,17 +216,13 @@ class _Stepper:
                     self.pp = model.packed_params()
                     model.kernel.reset(self.fs, self.is_, self.pp)
                     force = model.kernel.force
-                    force(self.fs, self.is_, self.pp, 1.0, 0.0, 0.0, 0.0)
                 else:
-                    ref = model.reference()
-                    ref.reset()
-                    ref.force(1.0, 0.0, 0.0, 0.0)
                     self.fs = np.zeros(1)
                     self.is_ = np.zeros(1, dtype=np.int64)
                     self.pp = np.zeros(1)
-
-                    def force(fs, is_, pp, a, b, adot, bdot, _ref=ref):
-                        return _ref.force(a, b, adot, bdot)
+                    force = _reference_force(model)
+                if preload:
+                    force(self.fs, self.is_, self.pp, 1.0, 0.0, 0.0, 0.0)
             else:
                 # Friction off: the tangential law is never called (not even compiled in).
                 self.fs = np.zeros(1)
@@ -191,12 +298,13 @@ def periodicity(samples: list[np.ndarray], amp: float, r: float, last: int = 10)
     return float(diffs.max())
 
 
-def _run_wave(scene: Scene, model: ContactModel, trajectory: bool, engine: Engine) -> Result:
+def _run_wave(scene: Scene, model: ContactModel, trajectory: bool, plan: Assembly) -> Result:
     wave = scene.drive
     assert isinstance(wave, Wave)
     t0 = time.perf_counter()
     num = scene.numerics
-    stepper = _Stepper(scene, model, engine, trajectory)
+    engine = plan.engine
+    stepper = _Stepper(scene, model, plan, trajectory)
     k_per = stepper.k_per
     n_periods = scene.measure_periods()
     n_measure = n_periods * k_per
@@ -281,8 +389,6 @@ def _run_prescribed(scene: Scene, model: ContactModel, engine: Engine) -> Result
     assert isinstance(drive, Prescribed)
     t0 = time.perf_counter()
     a, b = prescribed_history(drive)
-    if engine == "compiled" and not model.capabilities.compiled:
-        engine = "python"
     history = ContactHistory(model, engine)
     n_f, t_f = history.drive(a, b)
     bad = ~np.isfinite(n_f + t_f)
@@ -320,3 +426,52 @@ def _run_prescribed(scene: Scene, model: ContactModel, engine: Engine) -> Result
         trajectory=frame,
         extra={"dissipated_work": work},
     )
+
+
+def _run_impact(scene: Scene, model: ContactModel, plan: Assembly, trajectory: bool) -> Result:
+    """A free normal impact: integrate from first touch until contact is lost again."""
+    drive = scene.drive
+    assert isinstance(drive, Impact)
+    t0 = time.perf_counter()
+    stepper = _Stepper(scene, model, plan, record=True, preload=False)
+    stepper.rec_every = 1
+    stepper.y[:] = (0.0, drive.tangential_velocity, 0.0, drive.velocity)
+    chunk = max(8, stepper.k_per // 8)
+    n_max = int(round(scene.numerics.periods * stepper.k_per))
+    separated = False
+    while stepper.step < n_max and not separated:
+        stepper.advance(chunk)
+        separated = stepper.y[2] < 0.0 and stepper.step > 1
+    tr = stepper.trajectory()
+    rebound = math.nan
+    duration = math.nan
+    if separated:
+        a = tr["a"].to_numpy()
+        k = int(np.nonzero((a[:-1] > 0.0) & (a[1:] <= 0.0))[0][-1])
+        w = a[k] / (a[k] - a[k + 1])
+        v_out = (1 - w) * tr["vy"].iloc[k] + w * tr["vy"].iloc[k + 1]
+        rebound = abs(v_out) / drive.velocity
+        duration = float((k + w) * stepper.h)
+    nan = math.nan
+    return Result(
+        model=scene.model, engine=plan.engine, m_star=scene.particle.m_star, amplitude=0.0,
+        mu=scene.material.mu, nu=scene.material.nu, horizontal_ratio=nan,
+        profile=scene.particle.profile.shape, steps_per_period=stepper.k_per,
+        periods=stepper.step / stepper.k_per, ramp_periods=0.0, measure_periods=0,
+        drift_velocity=nan, drift_ratio=nan, regime="impact", contact_lost=separated,
+        out_of_contact_fraction=nan, min_compression=nan, steps=stepper.step,
+        wall_time_s=time.perf_counter() - t0, trajectory=tr if trajectory else None,
+        extra={"rebound_ratio": rebound, "contact_duration": duration,
+               "max_compression": float(tr["a"].max())},
+    )
+
+
+def _reference_force(model: ContactModel):
+    """The model's pure-Python reference wrapped in the kernel's call signature."""
+    ref = model.reference()
+    ref.reset()
+
+    def force(fs, is_, pp, a, b, adot, bdot):
+        return ref.force(a, b, adot, bdot)
+
+    return force

@@ -146,6 +146,24 @@ class Prescribed(BaseModel):
         return self
 
 
+class Impact(BaseModel):
+    """A free normal impact: the particle touches the substrate (a* = 0) moving into it.
+
+    The substrate is at rest (no wave); the run ends when contact is lost again. The result
+    carries the rebound speed ratio |a*'_out| / |a*'_in| (1 for an elastic, undamped contact).
+    """
+
+    model_config = _FROZEN
+
+    kind: Literal["impact"] = "impact"
+    velocity: Annotated[float, bounded(0.0, 1e3, lo_open=True)] = Field(
+        1.0, description="approach speed a*' at first touch, > 0"
+    )
+    tangential_velocity: Annotated[float, bounded(-1e3, 1e3)] = Field(
+        0.0, description="tangential speed x*' at first touch"
+    )
+
+
 class Numerics(BaseModel):
     """Integrator and measurement settings."""
 
@@ -218,7 +236,9 @@ class Scene(BaseModel):
     material: Material = Field(default_factory=Material)
     particle: Particle = Field(default_factory=Particle)
     drive: Annotated[
-        Annotated[Wave, Tag("wave")] | Annotated[Prescribed, Tag("prescribed")],
+        Annotated[Wave, Tag("wave")]
+        | Annotated[Prescribed, Tag("prescribed")]
+        | Annotated[Impact, Tag("impact")],
         Discriminator(_drive_kind),
     ] = Field(default_factory=Wave)
     numerics: Numerics = Field(default_factory=Numerics)
@@ -237,10 +257,23 @@ class Scene(BaseModel):
                 f"model {self.model!r} does not support profile {shape!r}; it supports "
                 + ", ".join(cls.capabilities.profiles)
             )
-        if isinstance(self.drive, Prescribed) and cls.capabilities.rigid:
+        rigid = cls.capabilities.rigid
+        eff = self.effects
+        if isinstance(self.drive, (Prescribed, Impact)) and rigid:
             raise ValueError(
-                f"model {self.model!r} is rigid: a prescribed a*, b* history needs a compliant model"
+                f"model {self.model!r} is rigid: a {self.drive.kind} drive needs a compliant model"
             )
+        if not eff.vertical_inertia and not rigid:
+            raise ValueError(
+                "effects.vertical_inertia = false applies to a rigid point only; a compliant "
+                f"model ({self.model!r}) gets its normal force from the contact compression"
+            )
+        if eff.normal_damping > 0.0 and rigid:
+            raise ValueError(
+                f"effects.normal_damping needs a compliant model; {self.model!r} is rigid"
+            )
+        if isinstance(self.drive, Prescribed) and not eff.friction:
+            raise ValueError("effects.friction = false leaves nothing to compute for a prescribed drive")
         _ = self.particle.profile.p
         return self
 
@@ -284,6 +317,13 @@ class Scene(BaseModel):
         p = self.particle.profile.p
         amp = self.drive.amplitude if isinstance(self.drive, Wave) else 0.0
         a_ref = 1.0 + 2.0 * amp
+        if isinstance(self.drive, Impact):
+            # largest compression from the energy balance with gravity:
+            # a^(p+1) / (p+1) - a = m* v^2 / 2, solved by fixed-point iteration
+            energy = 0.5 * self.particle.m_star * self.drive.velocity**2
+            a_ref = 1.0
+            for _ in range(60):
+                a_ref = ((p + 1.0) * (energy + a_ref)) ** (1.0 / (p + 1.0))
         k = p * a_ref ** (p - 1.0) * max(1.0, 1.0 / self.theta)
         omega = math.sqrt(k / self.particle.m_star)
         return int(min(10_000_000, max(128, math.ceil(omega / 0.06))))
