@@ -1,0 +1,828 @@
+"""Validation harness: run the cases of ``validation/`` and write an HTML and JSON report.
+
+A *case* is one Python file in the cases folder (by default ``validation/`` at the repository
+root). It asserts one physical or numerical fact against a closed-form oracle or an independent
+reference, with a stated tolerance, and defines
+
+* ``CASE``: a :class:`Case` (name, group, statement, tolerance, whether it is in the quick subset,
+  the models it is run for, and which of them deviate by design);
+* ``run()`` (or ``run(model)`` when ``CASE.models`` is not empty; optionally a ``quick`` keyword)
+  returning a :class:`CaseResult`, normally built with :meth:`Case.result`.
+
+:func:`validate` discovers the cases, runs them (once per model for model-parametrized cases),
+and writes ``OUT/index.html`` (summary, PASS/FAIL table per group, figures inline as base64 PNG),
+``OUT/results.json`` and ``OUT/figures/*.png``. A case that raises, or whose model is not
+registered, is reported as an *error* and counts as a failure; it never stops the other cases.
+A case whose model is marked as not exact by design reports its deviation as an *expected
+deviation*: shown with its value, not counted as a failure.
+
+The module also holds the closed-form oracles the cases share (../shared/physics.md section 3).
+"""
+
+from __future__ import annotations
+
+import base64
+import fnmatch
+import html
+import importlib.util
+import inspect
+import io
+import json
+import math
+import platform
+import sys
+import time
+import traceback
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+#: Case groups, in report order: key -> heading.
+GROUPS: dict[str, str] = {
+    "material_point": "1. Material point against the analytic results",
+    "mindlin": "2. Cattaneo-Mindlin, Masing, loop area and proportional loading, every compliant model",
+    "convergence": "3. Numerical cross-checks: mdr to mmd, kernels against references, Rayleigh ratio",
+    "diagrams": "4. Regime diagrams and the paper's statements",
+    "point_mass": "5. The later paper's point-mass claim",
+}
+
+#: The compliant models the oracle cases run for by default.
+COMPLIANT_MODELS: tuple[str, ...] = ("mmd", "mdr", "jaeger", "hertz_mindlin_dem")
+
+#: The models drawn in the regime diagrams.
+DIAGRAM_MODELS: tuple[str, ...] = ("material_point", *COMPLIANT_MODELS)
+
+#: Friction coefficient and Poisson's ratio of the paper's figures (physics.md section 4).
+MU = 0.1
+NU = 0.3
+
+Status = Literal["pass", "fail", "expected deviation", "error"]
+Compare = Literal["<=", ">="]
+
+
+def default_cases_dir() -> Path:
+    """The ``validation/`` folder at the repository root (next to ``src/``)."""
+    import sawdrift
+
+    return Path(sawdrift.__file__).resolve().parents[2] / "validation"
+
+
+# -- the case API ------------------------------------------------------------------------------
+
+
+@dataclass
+class CaseResult:
+    """The outcome of one case (for one model).
+
+    A case's ``run`` fills the measured part (normally through :meth:`Case.result`); the harness
+    fills the identity and the status.
+
+    Attributes
+    ----------
+    value
+        The measured metric (an error, a count, a ratio), NaN if it could not be measured.
+    tolerance
+        The bound the value is compared with.
+    passed
+        True if the fact holds: ``value`` within ``tolerance`` and every side condition met.
+    message
+        One or two sentences: what was measured, the numbers behind the value.
+    figure
+        Optional matplotlib ``Figure`` or PNG bytes (the harness converts and closes it).
+    compare
+        ``"<="`` (pass if value <= tolerance) or ``">="``.
+    details
+        Extra JSON-ready numbers written to ``results.json``.
+    case, group, title, model
+        Identity of the case (filled by the harness).
+    status
+        ``"pass"``, ``"fail"``, ``"expected deviation"`` or ``"error"`` (filled by the harness).
+    expected_deviation
+        True if the model is marked as not exact by design for this case.
+    seconds
+        Wall time of the case.
+    figure_file
+        Path of the written PNG relative to the report folder, if any.
+    """
+
+    value: float
+    tolerance: float
+    passed: bool
+    message: str = ""
+    figure: Any = field(default=None, repr=False)
+    compare: Compare = "<="
+    details: dict[str, Any] = field(default_factory=dict)
+    case: str = ""
+    group: str = ""
+    title: str = ""
+    model: str | None = None
+    status: Status | Literal[""] = ""
+    expected_deviation: bool = False
+    seconds: float = 0.0
+    figure_file: str | None = None
+
+    @property
+    def name(self) -> str:
+        """``case[model]`` for a model-parametrized case, else ``case``."""
+        return f"{self.case}[{self.model}]" if self.model else self.case
+
+    @property
+    def failed(self) -> bool:
+        """True if this result counts as a failure (``fail`` or ``error``)."""
+        return self.status in ("fail", "error")
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-ready summary (non-finite numbers become None)."""
+        return {
+            "name": self.name,
+            "case": self.case,
+            "group": self.group,
+            "title": self.title,
+            "model": self.model,
+            "status": self.status,
+            "passed": self.passed,
+            "expected_deviation": self.expected_deviation,
+            "value": _finite(self.value),
+            "compare": self.compare,
+            "tolerance": _finite(self.tolerance),
+            "message": self.message,
+            "seconds": round(self.seconds, 4),
+            "figure": self.figure_file,
+            "details": _jsonable(self.details),
+        }
+
+
+@dataclass(frozen=True)
+class Case:
+    """Declaration of one validation case (the ``CASE`` of a case file).
+
+    Parameters
+    ----------
+    name
+        Short identifier, unique in the cases folder (e.g. ``"cm_monotonic"``).
+    group
+        One of :data:`GROUPS` (unknown groups are reported last).
+    title
+        The fact asserted, in one sentence, with its oracle.
+    tolerance
+        Bound on the case's value; see ``compare``.
+    quick
+        True if the case belongs to the ``--quick`` subset (CI).
+    models
+        Run once per model name, calling ``run(model=...)``; empty for a model-free case.
+    model_tolerance
+        Per-model tolerances overriding ``tolerance`` (e.g. a discretized model).
+    expected_deviation
+        True, or the model names, for which the fact does not hold by design: a miss is reported
+        as an expected deviation with its value, not as a failure.
+    compare
+        ``"<="``: pass if value <= tolerance; ``">="``: pass if value >= tolerance.
+    """
+
+    name: str
+    group: str
+    title: str
+    tolerance: float
+    quick: bool = False
+    models: tuple[str, ...] = ()
+    model_tolerance: Mapping[str, float] = field(default_factory=dict)
+    expected_deviation: bool | tuple[str, ...] = False
+    compare: Compare = "<="
+
+    def tolerance_for(self, model: str | None) -> float:
+        """The tolerance that applies to ``model``."""
+        if model is not None and model in self.model_tolerance:
+            return float(self.model_tolerance[model])
+        return float(self.tolerance)
+
+    def deviation_expected(self, model: str | None) -> bool:
+        """True if ``model`` is marked as not exact by design for this case."""
+        if isinstance(self.expected_deviation, bool):
+            return self.expected_deviation
+        return model is not None and model in self.expected_deviation
+
+    def within(self, value: float, model: str | None = None) -> bool:
+        """True if ``value`` satisfies the tolerance for ``model`` (NaN never does)."""
+        tol = self.tolerance_for(model)
+        if math.isnan(value):
+            return False
+        return value <= tol if self.compare == "<=" else value >= tol
+
+    def result(
+        self,
+        value: float,
+        *,
+        model: str | None = None,
+        message: str = "",
+        figure: Any = None,
+        require: bool = True,
+        details: Mapping[str, Any] | None = None,
+    ) -> CaseResult:
+        """Build the :class:`CaseResult`: passed = value within tolerance and ``require``.
+
+        Parameters
+        ----------
+        value
+            The measured metric.
+        model
+            The model this result is for (selects the tolerance).
+        message
+            What was measured.
+        figure
+            Optional matplotlib figure or PNG bytes.
+        require
+            Side conditions of the fact (all must hold), e.g. "contact is kept at Gz = 0.98".
+        details
+            Extra numbers for ``results.json``.
+        """
+        value = float(value)
+        return CaseResult(
+            value=value,
+            tolerance=self.tolerance_for(model),
+            passed=bool(require) and self.within(value, model),
+            message=message,
+            figure=figure,
+            compare=self.compare,
+            details=dict(details or {}),
+        )
+
+
+@dataclass
+class LoadedCase:
+    """A case file after import: its declaration and its run function (or the import error)."""
+
+    path: Path
+    case: Case
+    run: Callable[..., CaseResult] | None
+    error: str | None = None
+
+
+@dataclass
+class ValidationReport:
+    """All results of one :func:`validate` call.
+
+    Attributes
+    ----------
+    results
+        One :class:`CaseResult` per (case, model), in report order.
+    out
+        The report folder.
+    quick
+        True for the ``--quick`` subset.
+    seconds
+        Total wall time.
+    """
+
+    results: list[CaseResult]
+    out: Path
+    quick: bool
+    seconds: float
+
+    @property
+    def passed(self) -> bool:
+        """True if no case failed or errored (expected deviations do not count)."""
+        return not any(r.failed for r in self.results)
+
+    def count(self, status: Status) -> int:
+        """Number of results with ``status``."""
+        return sum(r.status == status for r in self.results)
+
+    def get(self, name: str) -> CaseResult:
+        """The result called ``name`` (``case`` or ``case[model]``)."""
+        for r in self.results:
+            if r.name == name:
+                return r
+        raise KeyError(name)
+
+    def summary(self) -> str:
+        """One line: N passed, M failed, K expected deviations (and errors among the failures)."""
+        n_err = self.count("error")
+        failed = self.count("fail") + n_err
+        text = (
+            f"{'PASS' if self.passed else 'FAIL'}: {self.count('pass')} passed, {failed} failed, "
+            f"{self.count('expected deviation')} expected deviations"
+        )
+        if n_err:
+            text += f" ({n_err} errors counted as failed)"
+        return text + f", {self.seconds:.1f} s" + (" (quick)" if self.quick else "")
+
+
+# -- discovery and running ----------------------------------------------------------------------
+
+
+def load_cases(cases_dir: Path | None = None) -> list[LoadedCase]:
+    """Import every ``*.py`` in ``cases_dir`` (files starting with ``_`` are skipped).
+
+    A file that fails to import, or defines no valid ``CASE``/``run``, becomes a case with an
+    ``error`` (named after the file) instead of stopping the discovery.
+    """
+    cases_dir = Path(cases_dir) if cases_dir is not None else default_cases_dir()
+    if not cases_dir.is_dir():
+        raise FileNotFoundError(f"validation cases folder {str(cases_dir)!r} does not exist")
+    loaded: list[LoadedCase] = []
+    for path in sorted(cases_dir.glob("*.py")):
+        if path.name.startswith("_"):
+            continue
+        fallback = Case(name=path.stem, group="?", title=f"case file {path.name}", tolerance=math.nan)
+        try:
+            spec = importlib.util.spec_from_file_location(f"sawdrift_validation_cases.{path.stem}", path)
+            assert spec is not None and spec.loader is not None
+            module = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(module)
+            case = getattr(module, "CASE", None)
+            run = getattr(module, "run", None)
+            if not isinstance(case, Case) or not callable(run):
+                raise TypeError("a case file must define CASE = Case(...) and a run() function")
+            loaded.append(LoadedCase(path, case, run))
+        except Exception as exc:  # noqa: BLE001 - a broken case file is reported, not fatal
+            loaded.append(LoadedCase(path, fallback, None, _one_line(exc)))
+    names = [lc.case.name for lc in loaded]
+    for lc in loaded:
+        if names.count(lc.case.name) > 1 and lc.error is None:
+            lc.error = f"case name {lc.case.name!r} is used by more than one file"
+    group_order = {g: i for i, g in enumerate(GROUPS)}
+    loaded.sort(key=lambda lc: (group_order.get(lc.case.group, len(GROUPS)), lc.path.name))
+    return loaded
+
+
+def run_case(loaded: LoadedCase, model: str | None = None, quick: bool = False) -> CaseResult:
+    """Run one case (for one model) and return its result with identity and status filled in.
+
+    Never raises: an exception inside the case, an import error, or a model that is not
+    registered becomes ``status = "error"``.
+    """
+    from .registry import registry
+
+    case = loaded.case
+    t0 = time.perf_counter()
+    result: CaseResult
+    try:
+        if loaded.error is not None or loaded.run is None:
+            raise _CaseError(loaded.error or "case has no run function")
+        if model is not None and model not in registry.models:
+            why = registry.failed.get(model)
+            raise _CaseError(
+                f"model {model!r} is not available" + (f" (plugin failed to load: {why})" if why else "")
+                + f"; registered: {', '.join(registry.names()) or 'none'}"
+            )
+        params = inspect.signature(loaded.run).parameters
+        kwargs: dict[str, Any] = {}
+        if model is not None:
+            kwargs["model"] = model
+        if "quick" in params:
+            kwargs["quick"] = quick
+        result = loaded.run(**kwargs)
+        if not isinstance(result, CaseResult):
+            raise _CaseError(f"run() returned {type(result).__name__}, not a CaseResult")
+        status: Status
+        if result.passed:
+            status = "pass"
+        elif case.deviation_expected(model):
+            status = "expected deviation"
+        else:
+            status = "fail"
+    except Exception as exc:  # noqa: BLE001 - reported as an error, the other cases go on
+        detail = str(exc) if isinstance(exc, _CaseError) else _one_line(exc)
+        tb = "" if isinstance(exc, _CaseError) else traceback.format_exc(limit=-3)
+        result = CaseResult(value=math.nan, tolerance=case.tolerance_for(model), passed=False,
+                            message=f"error: {detail}", compare=case.compare,
+                            details={"traceback": tb} if tb else {})
+        status = "error"
+    result.case, result.group, result.title, result.model = case.name, case.group, case.title, model
+    result.status = status
+    result.expected_deviation = case.deviation_expected(model)
+    if status == "pass" and result.expected_deviation:
+        result.message += " (a deviation is expected by design but stayed within the tolerance)"
+    result.seconds = time.perf_counter() - t0
+    return result
+
+
+class _CaseError(Exception):
+    """A case could not run (import error, missing model); reported without a traceback."""
+
+
+def validate(
+    out: Path,
+    quick: bool = False,
+    cases_dir: Path | None = None,
+    progress: bool = True,
+    *,
+    models: Sequence[str] | None = None,
+    only: Sequence[str] | None = None,
+) -> ValidationReport:
+    """Run the validation cases and write ``out/index.html``, ``out/results.json`` and figures.
+
+    Parameters
+    ----------
+    out
+        Report folder (created if needed).
+    quick
+        Run only the cases marked ``quick`` (the CI subset).
+    cases_dir
+        Folder of case files; default :func:`default_cases_dir`.
+    progress
+        Print one line per finished case on stderr.
+    models
+        Run the model-parametrized cases for these models instead of each case's own list
+        (e.g. a model registered at run time); model-free cases are unaffected.
+    only
+        Keep only cases whose name or group matches one of these ``fnmatch`` patterns.
+
+    Returns
+    -------
+    ValidationReport
+        ``.passed`` is False if any case failed or errored.
+    """
+    t0 = time.perf_counter()
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    clear_shared()
+    loaded = load_cases(cases_dir)
+    selected = [
+        lc for lc in loaded
+        if (not quick or lc.case.quick or lc.error is not None)
+        and (only is None or any(fnmatch.fnmatch(lc.case.name, p) or fnmatch.fnmatch(lc.case.group, p)
+                                 for p in only))
+    ]
+    jobs: list[tuple[LoadedCase, str | None]] = []
+    for lc in selected:
+        names = (list(models) if models is not None else list(lc.case.models)) if lc.case.models else [None]
+        jobs.extend((lc, m) for m in names)
+    results: list[CaseResult] = []
+    for i, (lc, model) in enumerate(jobs, 1):
+        res = run_case(lc, model, quick)
+        results.append(res)
+        if progress:
+            label = {"pass": "PASS", "fail": "FAIL", "expected deviation": "DEV ", "error": "ERR "}
+            print(f"[{i:>3}/{len(jobs)}] {label[res.status]} {res.name:<42} "
+                  f"{_fmt(res.value):>10} {res.compare} {_fmt(res.tolerance):<9} ({res.seconds:.1f} s)",
+                  file=sys.stderr, flush=True)
+    clear_shared()
+    report = ValidationReport(results, out, quick, time.perf_counter() - t0)
+    _write_figures(report)
+    write_json(report, out / "results.json")
+    write_html(report, out / "index.html")
+    if progress:
+        print(report.summary(), file=sys.stderr, flush=True)
+    return report
+
+
+# -- values shared between cases of one run ----------------------------------------------------
+
+_SHARED: dict[Any, Any] = {}
+
+
+def shared(key: Any, compute: Callable[[], Any]) -> Any:
+    """``compute()`` once per :func:`validate` call for ``key`` (sweeps, reference histories).
+
+    An exception is cached too and raised again for every case that asks for the same key.
+    """
+    if key not in _SHARED:
+        try:
+            _SHARED[key] = (True, compute())
+        except Exception as exc:  # noqa: BLE001 - re-raised below, for each asking case
+            _SHARED[key] = (False, exc)
+    ok, value = _SHARED[key]
+    if not ok:
+        raise value
+    return value
+
+
+def clear_shared() -> None:
+    """Forget the shared values (at the start and end of :func:`validate`)."""
+    _SHARED.clear()
+
+
+# -- closed-form oracles (physics.md section 3) -------------------------------------------------
+
+
+def heavy_sliding_v(gz: float) -> float:
+    """Drift ratio of the material point for mu / Gx -> 0: V = cos(phi0), 2 phi0 - pi = 2 Gz sin(phi0)."""
+    from scipy.optimize import brentq
+
+    phi0 = brentq(lambda p: 2.0 * p - math.pi - 2.0 * gz * math.sin(p), 0.0, math.pi)
+    return math.cos(phi0)
+
+
+def point_prediction(gz: float, gx: float, mu: float = MU) -> str:
+    """Regime of the material point from closed-form thresholds: lost, stick or drift_against.
+
+    Gz > 1: contact lost. R = hypot(Gx/mu, Gz) <= 1: stick. Otherwise the point slips; in
+    psi = phi - delta (R cos delta = Gx/mu, R sin delta = Gz) a slip starting from stick at
+    psi1 = arcsin(1/R) ends where R (cos psi1 - cos psi) = psi - psi1, and the backward slip,
+    its mirror image (no net drift), starts pi - 2 delta later: drift appears only when the
+    first slip lasts that long (the slips merge into continuous sliding, against the wave).
+    """
+    from scipy.optimize import brentq
+
+    if gz > 1.0:
+        return "lost"
+    big_r = math.hypot(gx / mu, gz)
+    if big_r <= 1.0:
+        return "stick"
+    psi1 = math.asin(1.0 / big_r)
+    delta = math.atan2(gz, gx / mu)
+
+    def f(psi: float) -> float:
+        return big_r * (math.cos(psi1) - math.cos(psi)) - (psi - psi1)
+
+    lo = math.pi - psi1
+    hi = lo + 2.0 * math.pi
+    if f(hi) > 0.0:
+        return "drift_against"
+    psi2 = brentq(f, lo, hi)
+    return "drift_against" if psi2 - psi1 >= math.pi - 2.0 * delta else "stick"
+
+
+def point_scene(gz: float, gx: float | None = None, m_star: float = 0.1, mu: float = MU,
+                **numerics: Any):
+    """A material-point wave scene with Gz = 4 pi^2 m* A* and (optionally) Gx = r Gz."""
+    from .scene import Scene
+
+    amp = gz / (4.0 * math.pi**2 * m_star)
+    drive: dict[str, Any] = {"amplitude": amp}
+    if gx is not None:
+        drive["horizontal_ratio"] = gx / gz
+    return Scene(model="material_point", material={"mu": mu, "nu": NU}, particle={"m_star": m_star},
+                 drive=drive, numerics=numerics)
+
+
+def cattaneo_mindlin(a: float, b: np.ndarray | float, p: float = 1.5) -> np.ndarray:
+    """Monotonic loading from b* = 0 at fixed a*: T* = N*(a*) - N*(a* - b*), then T* = N*(a*)."""
+    b = np.asarray(b, dtype=float)
+    return a**p - np.clip(a - b, 0.0, None) ** p
+
+
+def masing_unloading(a: float, b1: float, b: np.ndarray | float, p: float = 1.5) -> np.ndarray:
+    """Unloading from the turning point (b1, T1) of virgin loading, fixed a* (Masing's rule).
+
+    T* = T1 - 2 [N*(a*) - N*(a* - (b1 - b*)/2)]; for the sphere this is physics.md's
+    T1 - 2 a*^(3/2) [1 - (1 - (b1 - b*)/(2 a*))^(3/2)].
+    """
+    b = np.asarray(b, dtype=float)
+    t1 = float(cattaneo_mindlin(a, b1, p))
+    return t1 - 2.0 * (a**p - np.clip(a - (b1 - b) / 2.0, 0.0, None) ** p)
+
+
+def loop_area(a: float, q: float) -> float:
+    """Energy dissipated per cycle between +-q N* (sphere, fixed a*), physics.md section 3."""
+    return 4.8 * a**2.5 * (1.0 - (1.0 - q) ** (5.0 / 3.0) - (5.0 * q / 6.0) * (1.0 + (1.0 - q) ** (2.0 / 3.0)))
+
+
+def amplitude_for_force_ratio(a: float, q: float) -> float:
+    """Displacement amplitude B at which virgin loading reaches T* = q N* (sphere)."""
+    return a * (1.0 - (1.0 - q) ** (2.0 / 3.0))
+
+
+# -- sweeps shared by the diagram cases --------------------------------------------------------
+
+#: Regime-diagram grid: 15 x 15 log-spaced cells, m* in [1e-3, 1e2], A* in [1e-2, 10], 40 periods.
+DIAGRAM_GRID = {"m_star": "1e-3:1e2:15", "amplitude": "1e-2:10:15", "periods": 40.0}
+
+
+def regime_table(model: str):
+    """The regime-diagram sweep table (pandas) of ``model`` on :data:`DIAGRAM_GRID` (shared).
+
+    The registered built-in diagram models are swept together in one process pool; any other
+    model (e.g. registered at run time, which worker processes may not see) runs serially.
+    """
+    from .registry import registry
+    from .scene import Scene
+    from .sweep import sweep
+
+    def one(names: list[str], workers: int | None):
+        base = Scene(model=names[0], material={"mu": MU, "nu": NU},
+                     numerics={"periods": DIAGRAM_GRID["periods"]})
+        return sweep(names, DIAGRAM_GRID["m_star"], DIAGRAM_GRID["amplitude"], base=base,
+                     progress=False, workers=workers)
+
+    builtin = [m for m in DIAGRAM_MODELS
+               if m in registry.models and registry.models[m].distribution != "<runtime>"]
+    if model in builtin:
+        table = shared(("sweep", tuple(builtin)), lambda: one(builtin, None))
+    else:
+        table = shared(("sweep", model), lambda: one([model], 1))
+    return table[table["model"] == model].reset_index(drop=True)
+
+
+def regime_class(regime: str) -> str:
+    """``lost`` for the contact-loss regimes (hopping, bouncing), else the regime itself."""
+    from .regimes import CONTACT_LOST
+
+    return "lost" if regime in CONTACT_LOST else regime
+
+
+# -- report writers ----------------------------------------------------------------------------
+
+
+def _write_figures(report: ValidationReport) -> None:
+    fig_dir = report.out / "figures"
+    for res in report.results:
+        if res.figure is None:
+            continue
+        try:
+            png = figure_png(res.figure)
+        except Exception as exc:  # noqa: BLE001 - a broken figure must not lose the report
+            res.message += f" (figure failed: {_one_line(exc)})"
+            res.figure = None
+            continue
+        fig_dir.mkdir(exist_ok=True)
+        slug = "".join(c if c.isalnum() or c in "-_" else "_" for c in res.name)
+        (fig_dir / f"{slug}.png").write_bytes(png)
+        res.figure = png
+        res.figure_file = f"figures/{slug}.png"
+
+
+def figure_png(figure: Any, dpi: int = 96) -> bytes:
+    """PNG bytes of a matplotlib figure (closed afterwards) or of PNG bytes as given."""
+    if isinstance(figure, bytes | bytearray):
+        return bytes(figure)
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    figure.savefig(buf, format="png", dpi=dpi)
+    plt.close(figure)
+    return buf.getvalue()
+
+
+def write_json(report: ValidationReport, path: Path) -> None:
+    """Write ``results.json``: summary, environment and one record per result."""
+    data = {
+        "passed": report.passed,
+        "summary": report.summary(),
+        "counts": {
+            "passed": report.count("pass"),
+            "failed": report.count("fail") + report.count("error"),
+            "errors": report.count("error"),
+            "expected_deviations": report.count("expected deviation"),
+            "total": len(report.results),
+        },
+        "quick": report.quick,
+        "seconds": round(report.seconds, 3),
+        "environment": _environment(),
+        "groups": GROUPS,
+        "cases": [r.to_json() for r in report.results],
+    }
+    path.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
+
+
+_CSS = """
+body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:24px;color:#222;
+max-width:1400px}
+h1{margin:0 0 4px 0;font-size:24px} h2{margin:28px 0 8px 0;font-size:18px;border-bottom:1px solid #ccc}
+.summary{font-size:18px;padding:10px 14px;border-radius:6px;margin:10px 0}
+.summary.ok{background:#e5f5e0;border:1px solid #31a354}.summary.bad{background:#fde0dd;border:1px solid #d62728}
+.meta{color:#666;font-size:13px}
+table{border-collapse:collapse;width:100%;font-size:13px}
+th,td{border:1px solid #ddd;padding:4px 6px;vertical-align:top;text-align:left}
+th{background:#f3f3f3} td.num{text-align:right;font-family:ui-monospace,Menlo,Consolas,monospace;
+white-space:nowrap}
+.st{font-weight:bold;white-space:nowrap;padding:2px 6px;border-radius:4px;font-size:12px}
+.st-pass{background:#31a354;color:#fff}.st-fail{background:#d62728;color:#fff}
+.st-dev{background:#f0a30a;color:#222}.st-error{background:#67000d;color:#fff}
+.title{color:#444}.figs{display:flex;flex-wrap:wrap;gap:14px;margin-top:12px}
+figure{margin:0;border:1px solid #ddd;padding:6px;background:#fff}
+figure img{display:block;max-width:100%}
+figure.wide{flex-basis:100%} figcaption{font-size:12px;color:#444;margin-top:4px}
+"""
+
+
+def write_html(report: ValidationReport, path: Path) -> None:
+    """Write the self-contained ``index.html`` (figures inline as base64 PNG)."""
+    esc = html.escape
+    env = _environment()
+    parts = [
+        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
+        "<title>sawdrift validation</title>",
+        f"<style>{_CSS}</style></head><body>",
+        "<h1>sawdrift validation report</h1>",
+        f"<div class='meta'>sawdrift {esc(env['sawdrift'])}, Python {esc(env['python'])}, "
+        f"numpy {esc(env['numpy'])}, numba {esc(env['numba'])}; {esc(env['date'])}; "
+        f"{'quick subset' if report.quick else 'full run'}; mu = {MU}, nu = {NU} unless stated. "
+        "Oracles: ../shared/physics.md.</div>",
+        f"<div class='summary {'ok' if report.passed else 'bad'}'><b>{esc(report.summary())}</b></div>",
+    ]
+    groups = list(GROUPS) + sorted({r.group for r in report.results} - set(GROUPS))
+    for group in groups:
+        rows = [r for r in report.results if r.group == group]
+        if not rows:
+            continue
+        parts.append(f"<h2>{esc(GROUPS.get(group, group))}</h2>")
+        parts.append("<table><tr><th>status</th><th>case</th><th>model</th><th>fact checked</th>"
+                     "<th>value</th><th>tolerance</th><th>message</th><th>s</th></tr>")
+        for r in rows:
+            cls, label = {
+                "pass": ("st-pass", "PASS"),
+                "fail": ("st-fail", "FAIL"),
+                "expected deviation": ("st-dev", "expected deviation"),
+                "error": ("st-error", "ERROR"),
+            }[r.status or "error"]
+            parts.append(
+                f"<tr><td><span class='st {cls}'>{label}</span></td><td>{esc(r.case)}</td>"
+                f"<td>{esc(r.model or '')}</td><td class='title'>{esc(r.title)}</td>"
+                f"<td class='num'>{esc(_fmt(r.value))}</td>"
+                f"<td class='num'>{esc(r.compare)} {esc(_fmt(r.tolerance))}</td>"
+                f"<td>{esc(r.message)}</td><td class='num'>{r.seconds:.2f}</td></tr>"
+            )
+        parts.append("</table>")
+        figs = [r for r in rows if isinstance(r.figure, bytes)]
+        if figs:
+            parts.append("<div class='figs'>")
+            for r in figs:
+                b64 = base64.b64encode(r.figure).decode("ascii")
+                wide = " class='wide'" if r.details.get("wide_figure") else ""
+                parts.append(
+                    f"<figure{wide}><img alt='{esc(r.name)}' src='data:image/png;base64,{b64}'>"
+                    f"<figcaption><b>{esc(r.name)}</b> ({esc(r.status)}): {esc(r.title)}"
+                    "</figcaption></figure>"
+                )
+            parts.append("</div>")
+    parts.append("</body></html>")
+    path.write_text("\n".join(parts))
+
+
+# -- small helpers -----------------------------------------------------------------------------
+
+
+def _fmt(value: float) -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "n/a"
+    if value == 0:
+        return "0"
+    if isinstance(value, int) or (float(value).is_integer() and abs(value) < 1e6):
+        return f"{int(value)}"
+    return f"{value:.3g}"
+
+
+def _finite(value: float) -> float | None:
+    return float(value) if value is not None and math.isfinite(value) else None
+
+
+def _jsonable(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _jsonable(obj.tolist())
+    if isinstance(obj, np.generic):
+        obj = obj.item()
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, bool | int | str) or obj is None:
+        return obj
+    return str(obj)
+
+
+def _one_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return f"{type(exc).__name__}: {text[0] if text else ''}"
+
+
+def _environment() -> dict[str, str]:
+    import numba
+
+    import sawdrift
+
+    return {
+        "sawdrift": sawdrift.__version__,
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "numba": numba.__version__,
+        "platform": platform.platform(),
+        "date": datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
+    }
+
+
+__all__ = [
+    "COMPLIANT_MODELS",
+    "DIAGRAM_GRID",
+    "DIAGRAM_MODELS",
+    "GROUPS",
+    "Case",
+    "CaseResult",
+    "LoadedCase",
+    "ValidationReport",
+    "amplitude_for_force_ratio",
+    "cattaneo_mindlin",
+    "clear_shared",
+    "default_cases_dir",
+    "figure_png",
+    "heavy_sliding_v",
+    "load_cases",
+    "loop_area",
+    "masing_unloading",
+    "point_prediction",
+    "point_scene",
+    "regime_class",
+    "regime_table",
+    "run_case",
+    "shared",
+    "validate",
+    "write_html",
+    "write_json",
+]

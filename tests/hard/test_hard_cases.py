@@ -1,0 +1,159 @@
+"""Hard corners of parameter space (fast versions; long ones carry the ``slow`` marker).
+
+Each case asserts finite values, a bounded energy error, convergence as the step is refined,
+and agreement between the python and compiled engines.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import sawdrift as sd
+from sawdrift.energy import energy_residual
+
+# name -> scene fields; each runs a short horizon (3 periods, 1 of ramp) for the step and
+# engine checks, where even a chaotic motion is still a smooth function of the step.
+CASES = {
+    "tiny_mass_mmd": dict(model="mmd", particle={"m_star": 1e-4}, drive={"amplitude": 0.05}),
+    "tiny_mass_point": dict(model="material_point", particle={"m_star": 1e-4}, drive={"amplitude": 1.0}),
+    "heavy_mmd": dict(model="mmd", particle={"m_star": 1e3}, drive={"amplitude": 0.01}),
+    "heavy_point": dict(model="material_point", particle={"m_star": 1e3}, drive={"amplitude": 1e-5}),
+    "big_amplitude_mmd": dict(model="mmd", particle={"m_star": 0.01}, drive={"amplitude": 10.0}),
+    "big_amplitude_point": dict(model="material_point", particle={"m_star": 0.01},
+                                drive={"amplitude": 10.0}),
+    "grazing_mmd": dict(model="mmd", particle={"m_star": 100.0}, drive={"amplitude": 0.95}),
+    "tiny_mu": dict(model="mmd", material={"mu": 1e-6}, particle={"m_star": 0.1},
+                    drive={"amplitude": 0.3}),
+    "big_mu": dict(model="mmd", material={"mu": 2.0}, particle={"m_star": 0.1},
+                   drive={"amplitude": 0.3}),
+    "nu_auxetic": dict(model="mmd", material={"nu": -0.9}, particle={"m_star": 0.1},
+                       drive={"amplitude": 0.3}),
+    "nu_incompressible": dict(model="mmd", material={"nu": 0.499}, particle={"m_star": 0.1},
+                              drive={"amplitude": 0.3}),
+    "cone": dict(model="mmd", particle={"m_star": 0.1, "profile": {"shape": "cone"}},
+                 drive={"amplitude": 0.3}),
+    "flat_punch": dict(model="mmd", particle={"m_star": 0.1, "profile": {"shape": "flat"}},
+                       drive={"amplitude": 0.3}),
+    "flat_punch_mdr": dict(model="mdr", particle={"m_star": 0.1, "profile": {"shape": "flat"}},
+                           drive={"amplitude": 0.3}),
+    "dem_bouncing": dict(model="hertz_mindlin_dem", particle={"m_star": 0.1}, drive={"amplitude": 1.0}),
+    "jaeger_big_amplitude": dict(model="jaeger", particle={"m_star": 0.01}, drive={"amplitude": 10.0}),
+}
+
+
+def _scene(fields: dict, periods: float = 3.0, steps: int | None = None) -> sd.Scene:
+    data = {k: dict(v) if isinstance(v, dict) else v for k, v in fields.items()}
+    data.setdefault("drive", {})["ramp_periods"] = 1.0
+    data["numerics"] = {"periods": periods, "measure_periods": 1, "steps_per_period": steps}
+    return sd.Scene.model_validate(data)
+
+
+def _state(result: sd.Result) -> np.ndarray:
+    last = result.trajectory.iloc[-1]
+    return np.array([last.x, last.vx, last.y, last.vy])
+
+
+def _run(scene: sd.Scene, engine: str = "compiled") -> sd.Result:
+    return sd.run(scene, trajectory=True, engine=engine, record_every=1)
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_finite_and_convergent(name):
+    base = _scene(CASES[name])
+    k = base.steps_per_period()
+    results = [_run(_scene(CASES[name], steps=k * f)) for f in (1, 2, 8)]
+    for res in results:
+        assert np.isfinite(res.trajectory[["x", "vx", "y", "vy", "N", "T"]].to_numpy()).all()
+        assert math.isfinite(res.drift_ratio)
+    ref = _state(results[-1])
+    # each component scaled by its size over the run (a final value may sit near zero)
+    scale = np.maximum(np.abs(results[-1].trajectory[["x", "vx", "y", "vy"]].to_numpy()).max(axis=0),
+                       1e-12)
+    err = [float(np.max(np.abs(_state(r) - ref) / scale)) for r in results[:2]]
+    # the coarse step is already close, and halving it gets closer (or both sit at round-off);
+    # contact loss (N* = a*^p switching off) makes the order drop towards 1 in bouncing cases
+    assert err[0] < 0.05, err
+    assert err[1] < err[0] or err[1] < 1e-9, err
+
+
+@pytest.mark.parametrize("name", sorted(n for n in CASES if not n.endswith("point")))
+def test_energy_error_bounded(name):
+    # compliant models: |Delta KE - work of the contact forces and gravity| relative to the
+    # total work stays small at the default step, and shrinks when the step is halved
+    base = _scene(CASES[name])
+    k = base.steps_per_period()
+    rel = []
+    for f in (1, 4):
+        res = _run(_scene(CASES[name], steps=k * f))
+        resid, scale = energy_residual(res.trajectory, res.m_star, res.mu)
+        rel.append(resid / max(scale, 1e-300))
+    assert rel[0] < 5e-3, rel
+    assert rel[1] < rel[0] or rel[1] < 1e-10, rel
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_python_and_compiled_engines_agree(name):
+    scene = _scene(CASES[name], periods=1.5)
+    fast, slow = _run(scene, "compiled"), _run(scene, "python")
+    assert slow.engine == "python"
+    a = fast.trajectory[["x", "vx", "y", "vy", "N", "T"]].to_numpy()
+    b = slow.trajectory[["x", "vx", "y", "vy", "N", "T"]].to_numpy()
+    assert a.shape == b.shape
+    assert np.allclose(a, b, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(a).max())))
+
+
+def test_zero_amplitude_stays_at_rest():
+    for model in ("mmd", "material_point", "hertz_mindlin_dem"):
+        res = sd.run(sd.Scene(model=model, drive={"amplitude": 0.0}), trajectory=True)
+        assert abs(res.drift_velocity) <= 1e-12
+        assert res.regime == "stick"
+        assert np.abs(res.trajectory["vx"]).max() <= 1e-12
+        if model != "material_point":
+            assert np.abs(res.trajectory["a"] - 1.0).max() <= 1e-12
+
+
+@pytest.mark.parametrize("model", ["mmd", "jaeger", "hertz_mindlin_dem", "mdr"])
+def test_elastic_normal_impact(model):
+    # friction and wave off, no damping: Hertz impact is elastic, so the particle leaves the
+    # surface at the speed it arrived (measured 1 + 2e-5 at the default step)
+    scene = sd.Scene(model=model, particle={"m_star": 1.0}, drive={"kind": "impact", "velocity": 1.0},
+                     effects={"friction": False})
+    res = sd.run(scene)
+    assert res.contact_lost
+    assert abs(res.extra["rebound_ratio"] - 1.0) <= 1e-3
+
+
+def test_damped_impact_loses_more_energy_with_more_damping():
+    ratios = []
+    for c in (0.0, 0.05, 0.1, 0.3):
+        scene = sd.Scene(model="mmd", particle={"m_star": 1.0},
+                         drive={"kind": "impact", "velocity": 3.0},
+                         effects={"friction": False, "normal_damping": c})
+        ratios.append(sd.run(scene).extra["rebound_ratio"])
+    assert abs(ratios[0] - 1.0) <= 1e-3
+    assert all(b < a for a, b in zip(ratios, ratios[1:], strict=False)), ratios
+    # strong damping with gravity can capture the particle: no rebound at all
+    captured = sd.run(sd.Scene(model="mmd", particle={"m_star": 1.0},
+                               drive={"kind": "impact", "velocity": 1.0},
+                               effects={"friction": False, "normal_damping": 0.3}))
+    assert not captured.contact_lost and math.isnan(captured.extra["rebound_ratio"])
+
+
+def test_long_run_stays_finite_fast():
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 1.0}, drive={"amplitude": 0.3},
+                          numerics={"periods": 1000}))
+    assert res.steps == 1000 * res.steps_per_period
+    assert math.isfinite(res.drift_ratio) and math.isfinite(res.min_compression)
+
+
+@pytest.mark.slow
+def test_long_run_10k_periods():
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316},
+                          numerics={"periods": 10_000}))
+    short = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316},
+                            numerics={"periods": 100}))
+    assert res.regime == short.regime == "drift_with"
+    assert res.drift_ratio == pytest.approx(short.drift_ratio, rel=0.02)

@@ -1,0 +1,131 @@
+"""Effects: an off slot is never computed; faulty models fail only their own cell."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from numba import njit
+
+import sawdrift as sd
+from sawdrift.contact import KernelPair
+from sawdrift.errors import NonFiniteStateError, SceneError
+
+MMD = sd.get_model("mmd")
+
+
+@njit
+def _raising_force(fs, is_, pp, a, b, adot, bdot):
+    if a == a:
+        raise RuntimeError("tangential law called")
+    return 0.0, 0.0
+
+
+@njit
+def _nan_force(fs, is_, pp, a, b, adot, bdot):
+    return math.nan, math.nan
+
+
+class _Raising(MMD):
+    name = "test_raising"
+    kernel = KernelPair(reset=MMD.kernel.reset, force=_raising_force)
+
+    def reference(self):
+        class Ref:
+            def reset(self):
+                pass
+
+            def force(self, a, b, adot=0.0, bdot=0.0):
+                raise RuntimeError("tangential law called")
+
+        return Ref()
+
+
+class _NaN(MMD):
+    name = "test_nan"
+    kernel = KernelPair(reset=MMD.kernel.reset, force=_nan_force)
+
+
+@pytest.fixture
+def faulty_models():
+    for cls in (_Raising, _NaN):
+        sd.registry.register(cls)
+    yield
+    for cls in (_Raising, _NaN):
+        sd.registry.unregister(cls.name)
+
+
+@pytest.mark.parametrize("engine", ["compiled", "python"])
+def test_raising_tangential_law_is_never_called_with_friction_off(faulty_models, engine):
+    off = sd.Scene(model="test_raising", effects={"friction": False}, numerics={"periods": 10})
+    res = sd.run(off, engine=engine, trajectory=True)
+    assert np.isfinite(res.trajectory["y"]).all()
+    assert (res.trajectory["T"] == 0.0).all() and (res.trajectory["x"] == 0.0).all()
+    with pytest.raises(RuntimeError, match="tangential law called"):
+        sd.run(off.with_updates(**{"effects.friction": True}), engine=engine)
+
+
+def test_friction_off_is_measurably_faster():
+    # mdr with 4096 strips costs O(4096) per tangential call; with friction off it is skipped
+    base = dict(model="mdr", model_params={"strips": 4096}, numerics={"periods": 20})
+    on, off = sd.Scene(**base), sd.Scene(effects={"friction": False}, **base)
+    sd.run(on), sd.run(off)  # compile both loops first
+    t_on = min(sd.run(on).wall_time_s for _ in range(2))
+    t_off = min(sd.run(off).wall_time_s for _ in range(2))
+    assert t_off * 3 < t_on, (t_on, t_off)
+
+
+def test_nan_model_fails_only_its_own_cell(faulty_models):
+    with pytest.raises(NonFiniteStateError, match=r"non-finite state at t\* = "):
+        sd.run(sd.Scene(model="test_nan"))
+    frame = sd.sweep("test_nan,mmd", "0.1", "0.3", base=sd.Scene(numerics={"periods": 10}),
+                     workers=1, progress=False)
+    by_model = frame.set_index("model")
+    assert by_model.loc["test_nan", "regime"] == "error"
+    assert "non-finite" in by_model.loc["test_nan", "error"]
+    assert by_model.loc["mmd", "regime"] == "drift_with"
+
+
+def test_coarse_step_error_names_time_state_and_cause():
+    scene = sd.Scene(particle={"m_star": 1e-4}, numerics={"steps_per_period": 8, "order": 4})
+    with pytest.raises(NonFiniteStateError) as info:
+        sd.run(scene)
+    msg = str(info.value)
+    assert "t* =" in msg and "y* =" in msg and "too coarse for m* = 0.0001" in msg
+    assert "\n" not in msg
+
+
+@pytest.mark.parametrize(
+    ("fields", "needle"),
+    [
+        (dict(model="mmd", effects={"vertical_inertia": False}), "rigid point only"),
+        (dict(model="material_point", effects={"normal_damping": 0.1}), "needs a compliant model"),
+        (dict(model="material_point", drive={"kind": "prescribed"}), "rigid"),
+        (dict(model="mmd", drive={"kind": "prescribed"}, effects={"friction": False}),
+         "nothing to compute"),
+        (dict(model="material_point", particle={"m_star": 1}, drive={"kind": "impact"}), "rigid"),
+    ],
+)
+def test_impossible_combinations_are_refused_before_the_run(fields, needle):
+    with pytest.raises(SceneError, match=needle):
+        sd.scene.build_scene(fields)
+
+
+def test_explain_lists_only_what_is_on():
+    on = sd.explain(sd.Scene(model="mmd"))
+    off = sd.explain(sd.Scene(model="mmd", effects={"friction": False, "horizontal_wave": False}))
+    assert "mmd.kernel.force" in on and "u_x" in on
+    assert "kernel" not in off and "never called" in off and "u_x" not in off
+    point = sd.explain(sd.Scene(model="material_point", effects={"vertical_inertia": False}))
+    assert "N* = 1" in point
+
+
+def test_wave_components_switch_independently():
+    vertical_only = sd.run(sd.Scene(model="mmd", effects={"horizontal_wave": False},
+                                    numerics={"periods": 20}), trajectory=True)
+    # symmetric excitation: no horizontal forcing and no drift
+    assert abs(vertical_only.drift_velocity) < 1e-12
+    horizontal_only = sd.run(sd.Scene(model="mmd", effects={"vertical_wave": False},
+                                      numerics={"periods": 20}), trajectory=True)
+    assert np.abs(horizontal_only.trajectory["a"] - 1.0).max() < 1e-12
