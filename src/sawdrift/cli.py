@@ -271,6 +271,55 @@ def demo_cmd(
     typer.echo(f"wrote {table}, phase_material_point.png, phase_mmd.png, {path.name} in {out}")
 
 
+@app.command("validate")
+def validate_cmd(
+    out: Annotated[Path, typer.Option("-o", "--out", help="report folder (index.html, results.json)")] = Path(
+        "validation_report"
+    ),
+    quick: Annotated[bool, typer.Option("--quick", help="the fast subset CI runs")] = False,
+    cases: Annotated[Path | None, typer.Option("--cases", help="folder of validation cases")] = None,
+    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
+) -> None:
+    """Run the validation cases and write an HTML report; exit status 1 if any case fails."""
+    from .validation import validate
+
+    report = validate(out, quick=quick, cases_dir=cases, progress=progress)
+    typer.echo(report.summary_line() if hasattr(report, "summary_line") else str(report))
+    typer.echo(f"wrote {out / 'index.html'} and {out / 'results.json'}")
+    if not report.passed:
+        raise typer.Exit(1)
+
+
+bench_app = typer.Typer(help="Performance: work-precision study and speed targets.", no_args_is_help=True)
+app.add_typer(bench_app, name="bench")
+
+
+@bench_app.command("work-precision")
+def bench_work_precision_cmd(
+    out: Annotated[Path, typer.Option("-o", "--out", help="output folder")] = Path("work_precision"),
+    models: Annotated[str | None, typer.Option("--models", help="comma-separated model names")] = None,
+    quick: Annotated[bool, typer.Option("--quick", help="a short ladder (seconds)")] = False,
+) -> None:
+    """Error against wall time for every model, order and step (figures, CSV, observed order)."""
+    from .bench import work_precision
+
+    names = [m.strip() for m in models.split(",")] if models else None
+    for name in names or []:
+        sd.get_model(name)
+    work_precision(names, out, quick=quick)
+    typer.echo(f"wrote {out}")
+
+
+@bench_app.command("speed")
+def bench_speed_cmd(
+    quick: Annotated[bool, typer.Option("--quick", help="small sizes (seconds)")] = False,
+) -> None:
+    """Measure the performance targets and print each with PASS/FAIL."""
+    from .bench import speed
+
+    speed(quick=quick)
+
+
 def main() -> None:
     """Console entry point: one-line errors and exit status 2 for user errors."""
     warnings.showwarning = _one_line_warnings
