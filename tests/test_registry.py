@@ -1,0 +1,96 @@
+"""Plugin discovery: entry points, broken plugins, duplicate names, trial/commit safety."""
+
+from __future__ import annotations
+
+import importlib
+import types
+
+import numpy as np
+import pytest
+
+import sawdrift as sd
+from sawdrift.errors import PluginError
+from sawdrift.registry import PluginWarning, Registry
+
+# ``sawdrift.registry`` the attribute is the Registry instance; this is the module
+reg = importlib.import_module("sawdrift.registry")
+
+
+class _FakeDist:
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+
+class _FakeEntryPoint:
+    def __init__(self, name: str, dist: str, load) -> None:
+        self.name = name
+        self.dist = _FakeDist(dist)
+        self._load = load
+
+    def load(self):
+        return self._load()
+
+
+def _plugin(*classes):
+    module = types.ModuleType("fake_plugin")
+
+    @sd.hookimpl
+    def sawdrift_contact_models():
+        return list(classes)
+
+    module.sawdrift_contact_models = sawdrift_contact_models
+    return module
+
+
+def _with_entry_points(monkeypatch, eps):
+    real = reg.im.entry_points
+
+    def fake(group=None, **kw):
+        if group == reg.ENTRY_POINT_GROUP:
+            return list(real(group=group)) + eps
+        return real(group=group, **kw)
+
+    monkeypatch.setattr(reg.im, "entry_points", fake)
+    return Registry()
+
+
+def test_builtin_models_come_from_entry_points():
+    models = sd.registry.models
+    for name in ("material_point", "mmd", "mdr", "jaeger", "hertz_mindlin_dem"):
+        assert models[name].distribution == "sawdrift"
+        assert models[name].entry_point == name
+
+
+def test_broken_plugin_is_a_warning_naming_it(monkeypatch):
+    def boom():
+        raise ImportError("deliberately broken")
+
+    fresh = _with_entry_points(monkeypatch, [_FakeEntryPoint("broken_model", "broken-dist", boom)])
+    with pytest.warns(PluginWarning, match="'broken_model' from distribution 'broken-dist'"):
+        names = fresh.names()
+    assert "mmd" in names and "material_point" in names
+    assert "broken_model" in fresh.failed
+
+
+def test_two_distributions_claiming_one_name_is_an_error(monkeypatch):
+    class Clash(sd.ContactModel):
+        name = "mmd"
+        summary = "clash"
+
+    fresh = _with_entry_points(monkeypatch, [_FakeEntryPoint("clash", "other-dist", lambda: _plugin(Clash))])
+    with pytest.raises(PluginError, match="'sawdrift'.*'other-dist'"):
+        fresh.names()
+
+
+def test_trial_never_corrupts_the_committed_history():
+    model = sd.get_model("mmd")()
+    rng = np.random.default_rng(3)
+    a = 1.0 + 0.3 * rng.standard_normal(200)
+    b = np.cumsum(0.2 * rng.standard_normal(200))
+    plain = model.new_history()
+    probed = model.new_history()
+    for ai, bi in zip(a, b, strict=True):
+        # a trial far away (full sliding, contact loss) between commits
+        probed.trial(ai + 5.0, bi - 50.0)
+        probed.trial(-1.0, 0.0)
+        assert probed.advance(ai, bi) == plain.advance(ai, bi)
