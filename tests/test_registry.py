@@ -78,7 +78,7 @@ def test_two_distributions_claiming_one_name_is_an_error(monkeypatch):
         summary = "clash"
 
     fresh = _with_entry_points(monkeypatch, [_FakeEntryPoint("clash", "other-dist", lambda: _plugin(Clash))])
-    with pytest.raises(PluginError, match="'sawdrift'.*'other-dist'"):
+    with pytest.raises(PluginError, match="claimed by two distributions: 'other-dist'.*'sawdrift'"):
         fresh.names()
 
 
