@@ -82,3 +82,24 @@ def test_scene_file_with_bad_value(tmp_path):
     out = cli("run", str(path))
     assert out.returncode == 2
     assert "material.nu = 0.7 is outside the allowed range (-1, 0.5)" in out.stderr
+
+
+@pytest.mark.parametrize(
+    ("model", "params"),
+    [("material_point", ()), ("mmd", ()), ("mdr", ("--param", "strips=64")), ("jaeger", ()),
+     ("hertz_mindlin_dem", ("--param", "rescale=true")), ("hertz_tsuji", ("--param", "damping=0.2"))],
+)
+def test_every_model_runs_the_wave_scene(model, params):
+    if model == "hertz_tsuji":
+        pytest.importorskip("sawdrift_tsuji")
+    out = cli("run", "--model", model, "--m-star", "0.1", "--amplitude", "0.316", "--periods", "20",
+              *params, "--json")
+    assert out.returncode == 0, out.stderr
+    row = json.loads(out.stdout)
+    assert row["model"] == model and row["regime"] in {"stick", "drift_with", "drift_against",
+                                                       "hopping", "bouncing"}
+
+
+def test_bad_model_parameter_is_one_line():
+    out = cli("run", "--model", "mdr", "--param", "strips=1")
+    assert out.returncode == 2 and "strips" in out.stderr and "Traceback" not in out.stderr
