@@ -1,0 +1,169 @@
+"""Contact model ``mdr``: Popov's Method of Dimensionality Reduction with N discrete strips.
+
+The memory-diagram rules of physics.md section 2 applied to a fixed grid of strips (MDR springs)
+instead of an exact piecewise-linear diagram: Popov & Hess (2015), "Method of Dimensionality
+Reduction in Contact Mechanics and Friction", Springer; its continuous limit is the Method of Memory
+Diagrams (Aleshin et al. 2015, Int. J. Solids Struct. 60-61) of model ``mmd``, which it
+converges to as the number of strips grows. It is the independent cross-check of ``mmd``.
+Discretization and state layout: :mod:`sawdrift_builtin.mdr_kernel`.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field
+
+from sawdrift.contact import Capabilities, ContactModel, KernelPair
+from sawdrift.hookspecs import hookimpl
+
+from . import mdr_kernel
+
+
+class MdrParams(BaseModel):
+    """Parameters of the ``mdr`` model."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    strips: int = Field(256, ge=2, description="number of strips (MDR springs) on the grid")
+    z_max: float = Field(
+        2.0,
+        gt=0.0,
+        description="initial extent of the strip grid in a*; it doubles (cells merged in pairs) "
+        "when a* exceeds it",
+    )
+
+
+def strip_grid(strips: int, dz: float, p: float) -> tuple[np.ndarray, np.ndarray]:
+    """Centroids c_j and weights m_j of the cells [j dz, (j+1) dz] under the measure dN*'.
+
+    m_j = N*'(e1) - N*'(e0) with N*'(0-) = 0; c_j = integral z dN*' / m_j = ([z N*'] - [N*]) / m_j
+    (the cell midpoint where m_j = 0, as for a flat punch beyond cell 0).
+    """
+    e0 = np.arange(strips, dtype=np.float64) * dz
+    e1 = (np.arange(strips, dtype=np.float64) + 1.0) * dz
+
+    def dn(z: np.ndarray) -> np.ndarray:
+        return np.where(z > 0.0, p * np.where(z > 0.0, z, 1.0) ** (p - 1.0), 0.0)
+
+    def nn(z: np.ndarray) -> np.ndarray:
+        return np.where(z > 0.0, z, 0.0) ** p
+
+    m = dn(e1) - dn(e0)
+    moment = e1 * dn(e1) - e0 * dn(e0) - (nn(e1) - nn(e0))
+    c = np.where(m > 0.0, moment / np.where(m > 0.0, m, 1.0), 0.5 * (e0 + e1))
+    return c, m
+
+
+class MdrReference:
+    """Readable numpy MDR contact: N strips following the memory-diagram rules.
+
+    Parameters
+    ----------
+    p
+        Exponent of the normal law N*(a*) = a*^p (p >= 1).
+    strips
+        Number of strips N.
+    z_max
+        Initial grid extent; dz = z_max / N.
+    """
+
+    def __init__(self, p: float, strips: int = 256, z_max: float = 2.0) -> None:
+        self.p = float(p)
+        self.strips = int(strips)
+        self.z_max = float(z_max)
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget all history: out of contact at (a*, b*) = (0, 0), initial grid."""
+        self.a = 0.0
+        self.b = 0.0
+        self._set_grid(self.z_max / self.strips)
+        self.v = np.zeros(self.strips)
+
+    def _set_grid(self, dz: float) -> None:
+        self.dz = dz
+        self.c, self.m = strip_grid(self.strips, dz, self.p)
+
+    def _coarsen(self, a0: float) -> None:
+        """Double dz; carry the diagram (strips in contact, closed by v(a0) = 0) over by
+        linear interpolation."""
+        inside = self.c < a0
+        zs = np.append(self.c[inside], a0)
+        vs = np.append(self.v[inside], 0.0)
+        self._set_grid(2.0 * self.dz)
+        self.v = np.where(self.c < a0, np.interp(self.c, zs, vs), 0.0)
+
+    def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
+        """Advance along the straight path to (a*, b*), commit, and return (N*, T*).
+
+        ``adot`` and ``bdot`` are ignored (the law is rate independent).
+        """
+        a, b = float(a), float(b)
+        a0, b0 = self.a, self.b
+        self.a, self.b = a, b
+        if not a > 0.0:
+            self.v[:] = 0.0
+            if self.dz != self.z_max / self.strips:
+                self._set_grid(self.z_max / self.strips)
+            return 0.0, 0.0
+        if a0 <= 0.0:
+            if a0 < 0.0:
+                b0 = b0 + (b - b0) * (-a0) / (a - a0)
+            a0 = 0.0
+        while a > self.strips * self.dz:
+            self._coarsen(a0)
+        db = b - b0
+        c = self.c
+        was_in = c < a0
+        now_in = c < a
+        entering = now_in & ~was_in
+        v = np.where(was_in, self.v + db, 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            v = np.where(entering, db * (a - c) / (a - a0), v)
+        lim = np.where(now_in, a - c, 0.0)
+        v = np.where(now_in, np.clip(v, -lim, lim), 0.0)
+        self.v = v
+        return float(np.sum(self.m * lim)), float(np.sum(self.m * v))
+
+
+class MdrModel(ContactModel):
+    """MDR contact (Popov 2015) with N discrete strips; converges to ``mmd`` as N grows.
+
+    Parameters
+    ----------
+    params
+        An :class:`MdrParams`.
+    profile
+        The particle's profile; any power law p >= 1 (flat punch included).
+    """
+
+    name: ClassVar[str] = "mdr"
+    summary: ClassVar[str] = (
+        "Method of Dimensionality Reduction (Popov 2015) on N strips: O(N) per step, "
+        "converges to mmd"
+    )
+    Params: ClassVar[type[BaseModel]] = MdrParams
+    capabilities: ClassVar[Capabilities] = Capabilities()
+    kernel: ClassVar[KernelPair | None] = KernelPair(reset=mdr_kernel.reset, force=mdr_kernel.force)
+
+    def state_sizes(self) -> tuple[int, int]:
+        """Sizes of ``fs`` and ``is_`` (layout in :mod:`sawdrift_builtin.mdr_kernel`)."""
+        return mdr_kernel.state_sizes(self.params.strips)
+
+    def packed_params(self) -> np.ndarray:
+        """``[p, strips, z_max]``."""
+        return np.array(
+            [self.profile.p, float(self.params.strips), self.params.z_max], dtype=np.float64
+        )
+
+    def reference(self) -> MdrReference:
+        """A fresh numpy MDR contact."""
+        return MdrReference(self.profile.p, self.params.strips, self.params.z_max)
+
+
+@hookimpl
+def sawdrift_contact_models() -> list[type[ContactModel]]:
+    """Register the ``mdr`` model."""
+    return [MdrModel]

@@ -1,0 +1,238 @@
+"""Compiled kernel of the ``mdr`` model: Popov's Method of Dimensionality Reduction on N strips.
+
+The same rule set as the memory diagram (physics.md section 2) applied strip by strip on a fixed
+grid: Popov & Hess (2015), "Method of Dimensionality Reduction in Contact Mechanics and
+Friction", Springer (tangential contact with the springs' local Coulomb limits); the continuous
+limit is the Method of Memory Diagrams of Aleshin et al. (2015), Int. J. Solids Struct. 60-61.
+
+Discretization
+--------------
+The level axis [0, z_max] is cut into N cells of width dz = z_max / N. Cell j,
+[j dz, (j+1) dz], is one strip (one MDR spring) of weight m_j = N*'((j+1) dz) - N*'(j dz)
+(the measure dN*' of the cell, with N*'(0-) = 0, so the flat punch's point mass sits in cell 0),
+placed at the centroid of that measure, c_j = integral z dN*' / m_j over the cell. With that
+placement the quadrature of integral v dN*' is exact for v linear on a cell, so the only errors
+are the cells holding a kink of v and the cell holding z = a*, each bounded by dz m_j since
+|dv/dz| <= 1: the error falls like dz^p near z = 0 and dz^2 elsewhere. (In the coordinate
+x = z^(p-1) the measure dN*' = p dx is uniform and z = x^(1/(p-1)) is Popov's equivalent 1-D
+profile, the parabola for a sphere: these are his equally stiff springs, on a grid regular in z
+instead of x, which keeps the flat punch non-degenerate.)
+
+Strip j is in contact when c_j < a*. Each strip follows the rules of the memory diagram
+pointwise, so its value v_j equals the exact v(c_j) of the continuous model:
+
+* a strip that leaves (c_j >= a1) is forgotten (v_j = 0);
+* a strip in contact before and after shifts by db;
+* a strip entering along the straight path (a0 <= c_j < a1) gets db (a1 - c_j) / (a1 - a0);
+* then v_j is clipped to [-(a1 - c_j), a1 - c_j].
+
+Forces: N* = sum_j m_j (a* - c_j)^+ and T* = sum_j m_j v_j, so |T*| <= N* holds exactly (full
+sliding gives T* = N*). N* is the discrete MDR normal force, not the exact a*^p: the two differ
+by O(dz^2) through the partial cell at z = a*.
+
+Adaptive growth: when a* exceeds the grid end N dz, the grid is coarsened (cells merged in
+pairs, dz doubled) until it covers a*; the values on the new centroids are interpolated
+linearly on the old diagram closed by v(a0) = 0. This costs some accuracy once, and is undone
+(back to the initial dz) when contact is lost and the memory is empty anyway.
+
+Cost O(strips in contact) per step, no allocation.
+
+State layout (sizes from :func:`state_sizes`)
+---------------------------------------------
+``fs`` (float64), N = ``strips``: ``fs[0]`` committed a*, ``fs[1]`` committed b*, ``fs[2]`` current
+dz, ``fs[3]``, ``fs[4]`` N*, T* of the last step, ``fs[5:8]`` reserved; then the blocks
+``c`` = ``fs[8 : 8+N]`` (centroids), ``m`` = ``fs[8+N : 8+2N]`` (weights), ``v`` =
+``fs[8+2N : 8+3N]`` (strip displacements) and ``fs[8+3N : 8+4N]`` scratch.
+
+``is_`` (int64): ``is_[0]`` number of coarsenings of the current grid, ``is_[1]`` N,
+``is_[2]`` number of strips in contact (c_j < a*), ``is_[3]`` reserved.
+
+``pp`` (float64): ``pp[0]`` = p, ``pp[1]`` = N, ``pp[2]`` = z_max.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+HEADER = 8
+"""Number of scalar slots at the start of ``fs``."""
+N_INT = 4
+"""Size of ``is_``."""
+JIT_OPTIONS = {"cache": True, "_nrt": False}
+"""numba options of every kernel function: no allocation, so no reference counting (which
+costs atomic operations on every call)."""
+
+
+def state_sizes(strips: int) -> tuple[int, int]:
+    """Sizes of ``fs`` and ``is_`` for ``strips`` strips."""
+    return HEADER + 4 * strips, N_INT
+
+
+@njit(**JIT_OPTIONS, inline="always")
+def _dnormal(z: float, p: float) -> float:
+    """N*'(z) = p z^(p-1) for z > 0; 0 at z <= 0 (N*'(0-) = 0)."""
+    out = 0.0
+    if z <= 0.0:
+        out = 0.0
+    elif p == 1.0:
+        out = 1.0
+    elif p == 1.5:
+        out = 1.5 * math.sqrt(z)
+    else:
+        out = p * z ** (p - 1.0)
+    return out
+
+
+@njit(**JIT_OPTIONS, inline="always")
+def _normal(z: float, p: float) -> float:
+    """N*(z) = z^p for z > 0, else 0."""
+    out = 0.0
+    if z > 0.0:
+        out = z**p
+    return out
+
+
+@njit(**JIT_OPTIONS)
+def _grid(fs, nst, dz, p):
+    """Fill centroids c_j and weights m_j of the cells [j dz, (j+1) dz]."""
+    for j in range(nst):
+        e0 = j * dz
+        e1 = (j + 1) * dz
+        m = _dnormal(e1, p) - _dnormal(e0, p)
+        if m > 0.0:
+            # integral z dN*' over the cell, by parts: [z N*'] - [N*]
+            c = (e1 * _dnormal(e1, p) - e0 * _dnormal(e0, p) - (_normal(e1, p) - _normal(e0, p))) / m
+        else:
+            c = 0.5 * (e0 + e1)
+        fs[HEADER + j] = c
+        fs[HEADER + nst + j] = m
+
+
+@njit(**JIT_OPTIONS)
+def _coarsen(fs, is_, a0, p):
+    """Merge cells in pairs (dz doubled); interpolate the diagram onto the new centroids."""
+    nst = is_[1]
+    n_in = is_[2]
+    ic = HEADER
+    iv = HEADER + 2 * nst
+    isc = HEADER + 3 * nst
+    dz = 2.0 * fs[2]
+    # new centroids into scratch first, to interpolate against the old ones
+    for j in range(nst):
+        e0 = j * dz
+        e1 = (j + 1) * dz
+        m = _dnormal(e1, p) - _dnormal(e0, p)
+        if m > 0.0:
+            c = (e1 * _dnormal(e1, p) - e0 * _dnormal(e0, p) - (_normal(e1, p) - _normal(e0, p))) / m
+        else:
+            c = 0.5 * (e0 + e1)
+        fs[isc + j] = c
+    k = 0
+    n_new = 0
+    for j in range(nst):
+        x = fs[isc + j]
+        if n_in == 0 or x >= a0:
+            fs[isc + j] = 0.0
+            continue
+        while k + 1 < n_in and fs[ic + k + 1] <= x:
+            k += 1
+        zl = fs[ic + k]
+        vl = fs[iv + k]
+        if k + 1 < n_in:
+            zr = fs[ic + k + 1]
+            vr = fs[iv + k + 1]
+        else:
+            zr = a0
+            vr = 0.0
+        if x <= zl or zr <= zl:
+            val = vl
+        else:
+            val = vl + (vr - vl) * ((x - zl) / (zr - zl))
+        fs[isc + j] = val
+        n_new = j + 1
+    for j in range(nst):
+        fs[iv + j] = fs[isc + j]
+    fs[2] = dz
+    _grid(fs, nst, dz, p)
+    is_[0] += 1
+    is_[2] = n_new
+
+
+@njit(**JIT_OPTIONS)
+def reset(fs, is_, pp):
+    """Empty history: out of contact at (a*, b*) = (0, 0), initial grid."""
+    p = pp[0]
+    nst = int(pp[1])
+    fs[:] = 0.0
+    fs[2] = pp[2] / nst
+    is_[0] = 0
+    is_[1] = nst
+    is_[2] = 0
+    is_[3] = 0
+    _grid(fs, nst, fs[2], p)
+
+
+@njit(**JIT_OPTIONS)
+def force(fs, is_, pp, a, b, adot, bdot):
+    """Advance all strips along the straight path to (a*, b*), commit, return (N*, T*).
+
+    ``adot`` and ``bdot`` are ignored (the law is rate independent).
+    """
+    p = pp[0]
+    nst = is_[1]
+    ic = HEADER
+    im = HEADER + nst
+    iv = HEADER + 2 * nst
+    a0 = fs[0]
+    b0 = fs[1]
+    fs[0] = a
+    fs[1] = b
+    nf = 0.0
+    t = 0.0
+    if not a > 0.0:
+        # contact lost: forget every strip, return to the initial grid
+        for j in range(is_[2]):
+            fs[iv + j] = 0.0
+        is_[2] = 0
+        if is_[0] > 0:
+            fs[2] = pp[2] / nst
+            _grid(fs, nst, fs[2], p)
+            is_[0] = 0
+    else:
+        if a0 <= 0.0:
+            # a fresh contact starts where the straight path crosses a* = 0
+            if a0 < 0.0:
+                b0 = b0 + (b - b0) * (-a0 / (a - a0))
+            a0 = 0.0
+        while a > nst * fs[2]:
+            _coarsen(fs, is_, a0, p)
+        db = b - b0
+        n_old = is_[2]
+        n_in = 0
+        for j in range(nst):
+            c = fs[ic + j]
+            if c >= a:
+                if j >= n_old:
+                    break
+                fs[iv + j] = 0.0  # rule 1: the strip leaves contact and is forgotten
+            else:
+                if c < a0:
+                    v = fs[iv + j] + db  # rule 3: shift
+                else:
+                    v = db * ((a - c) / (a - a0))  # rule 2: straight-path entry
+                lim = a - c
+                if v > lim:  # rule 4: local slip
+                    v = lim
+                elif v < -lim:
+                    v = -lim
+                fs[iv + j] = v
+                m = fs[im + j]
+                t += m * v
+                nf += m * lim
+                n_in = j + 1
+        is_[2] = n_in
+    fs[3] = nf
+    fs[4] = t
+    return nf, t
