@@ -17,6 +17,8 @@ def plot_trajectory(result: Result, path: str | Path) -> Path:
     if result.trajectory is None:
         raise ValueError("the result has no trajectory; run with trajectory=True")
     tr = result.trajectory
+    if result.regime == "prescribed":
+        return _plot_prescribed(result, Path(path))
     fig, axes = plt.subplots(4, 1, figsize=(9, 9), sharex=True, constrained_layout=True)
     series = [
         ("x", "x*  (particle position)"),
@@ -28,18 +30,40 @@ def plot_trajectory(result: Result, path: str | Path) -> Path:
         ax.plot(tr["t"], tr[col], lw=0.8)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
-    if result.regime != "prescribed":
-        for ax in axes:
-            ax.axvspan(0, result.ramp_periods, color="0.9", zorder=0)
-    axes[-1].set_xlabel("t*  (wave periods)" if result.regime != "prescribed" else "sample")
+    for ax in axes:
+        ax.axvspan(0, result.ramp_periods, color="0.9", zorder=0)
+    axes[-1].set_xlabel("t*  (wave periods)")
     title = (
         f"{result.model}: m* = {result.m_star:g}, A* = {result.amplitude:g}, mu = {result.mu:g}, "
         f"nu = {result.nu:g}  ->  {result.regime} (V = {result.drift_ratio:.3g})"
-        if result.regime != "prescribed"
-        else f"{result.model}: prescribed history"
     )
     fig.suptitle(title, fontsize=10)
     path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _plot_prescribed(result: Result, path: Path) -> Path:
+    """a*, b*, N*, T* against the sample index, and the T*(b*) hysteresis loop."""
+    tr = result.trajectory
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), constrained_layout=True)
+    for ax, col, label in zip(axes.flat[:3], ("a", "b", "N"), ("a*", "b*", "N*"), strict=True):
+        ax.plot(tr["t"], tr[col], lw=0.8)
+        ax.set_ylabel(label)
+        ax.set_xlabel("sample")
+        ax.grid(alpha=0.3)
+    ax = axes.flat[3]
+    ax.plot(tr["b"], tr["T"], lw=0.8, label="T*")
+    n_max = float(tr["N"].max())
+    ax.axhline(n_max, lw=0.6, ls="--", color="0.5", label="max N* (Coulomb limit)")
+    ax.axhline(-n_max, lw=0.6, ls="--", color="0.5")
+    ax.set_xlabel("b*")
+    ax.set_ylabel("T*")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    work = result.extra.get("dissipated_work", float("nan"))
+    fig.suptitle(f"{result.model}: prescribed history, dissipated work {work:.6g}", fontsize=10)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
