@@ -69,6 +69,8 @@ from pydantic import BaseModel, ConfigDict, Field
 from sawdrift.contact import Capabilities, ContactModel, KernelPair
 from sawdrift.hookspecs import hookimpl
 
+from .normal_law import normal as _nstar
+
 # float state layout: previous a*, previous b*, reference point of the current branch, breakpoints
 _A, _B, _REF, _MEM = 0, 1, 2, 3
 # int state layout: number of stored breakpoints, current direction of motion (+1 or -1)
@@ -94,12 +96,6 @@ class JaegerParams(BaseModel):
 # --------------------------------------------------------------------------------------------
 # compiled kernel
 # --------------------------------------------------------------------------------------------
-
-
-@njit(cache=True)
-def _nstar(x: float, p: float) -> float:
-    """N*(x) = x^p for x > 0, else 0."""
-    return x**p if x > 0.0 else 0.0
 
 
 @njit(cache=True)

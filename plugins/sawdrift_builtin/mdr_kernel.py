@@ -52,15 +52,16 @@ dz, ``fs[3]``, ``fs[4]`` N*, T* of the last step, ``fs[5:8]`` reserved; then the
 
 from __future__ import annotations
 
-import math
-
 from numba import njit
+
+from .normal_law import JIT_OPTIONS
+from .normal_law import dnormal as _dnormal
+from .normal_law import normal as _normal
 
 HEADER = 8
 """Number of scalar slots at the start of ``fs``."""
 N_INT = 4
 """Size of ``is_``."""
-JIT_OPTIONS = {"cache": True, "_nrt": False}
 """numba options of every kernel function: no allocation, so no reference counting (which
 costs atomic operations on every call)."""
 
@@ -68,30 +69,6 @@ costs atomic operations on every call)."""
 def state_sizes(strips: int) -> tuple[int, int]:
     """Sizes of ``fs`` and ``is_`` for ``strips`` strips."""
     return HEADER + 4 * strips, N_INT
-
-
-@njit(**JIT_OPTIONS, inline="always")
-def _dnormal(z: float, p: float) -> float:
-    """N*'(z) = p z^(p-1) for z > 0; 0 at z <= 0 (N*'(0-) = 0)."""
-    out = 0.0
-    if z <= 0.0:
-        out = 0.0
-    elif p == 1.0:
-        out = 1.0
-    elif p == 1.5:
-        out = 1.5 * math.sqrt(z)
-    else:
-        out = p * z ** (p - 1.0)
-    return out
-
-
-@njit(**JIT_OPTIONS, inline="always")
-def _normal(z: float, p: float) -> float:
-    """N*(z) = z^p for z > 0, else 0."""
-    out = 0.0
-    if z > 0.0:
-        out = z**p
-    return out
 
 
 @njit(**JIT_OPTIONS)

@@ -69,12 +69,13 @@ If the capacity is exceeded, :class:`MemoryCapacityError` is raised and the hist
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
 from sawdrift.errors import SawdriftError
+
+from .normal_law import JIT_OPTIONS
+from .normal_law import dnormal as _dnormal
 
 HEADER = 8
 """Number of scalar slots at the start of ``fs``."""
@@ -86,12 +87,6 @@ REBASE_LIMIT = 64.0
 """Re-base the offset when it exceeds this many times max(1, a*)."""
 COLLINEAR_RTOL = 4.0 * 2.220446049250313e-16
 """A pushed kink moves the top along its line when the top lies on it to this tolerance."""
-JIT_OPTIONS = {"cache": True, "_nrt": False}
-"""numba options of every kernel function. The kernel never allocates; without the runtime's
-reference counting of the state arrays (atomic operations on every call, which numba does not
-prune across the helper calls here) a step is several times faster."""
-
-
 class MemoryCapacityError(SawdriftError, RuntimeError):
     """The memory diagram needs more points than ``max_memory_points`` allows."""
 
@@ -99,23 +94,6 @@ class MemoryCapacityError(SawdriftError, RuntimeError):
 def state_sizes(max_memory_points: int) -> tuple[int, int]:
     """Sizes of ``fs`` and ``is_`` for a stack of ``max_memory_points`` kinks."""
     return HEADER + RECORD * max_memory_points, N_INT
-
-
-@njit(**JIT_OPTIONS, inline="always")
-def _dnormal(z: float, p: float) -> float:
-    """N*'(z) = p z^(p-1) for z > 0; 0 at z <= 0 (the convention N*'(0-) = 0)."""
-    out = 0.0
-    if z <= 0.0:
-        out = 0.0
-    elif p == 1.0:
-        out = 1.0
-    elif p == 1.5:
-        out = 1.5 * math.sqrt(z)
-    elif p == 2.0:
-        out = 2.0 * z
-    else:
-        out = p * z ** (p - 1.0)
-    return out
 
 
 @njit(**JIT_OPTIONS, inline="always")

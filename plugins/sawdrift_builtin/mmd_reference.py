@@ -14,17 +14,10 @@ J. Appl. Mech. 20, 327-344.
 
 from __future__ import annotations
 
+from sawdrift.profiles import normal_force
+from sawdrift.profiles import normal_stiffness as normal_slope
+
 Kink = tuple[float, float]
-
-
-def normal_force(z: float, p: float) -> float:
-    """N*(z) = z^p for z > 0, else 0."""
-    return z**p if z > 0.0 else 0.0
-
-
-def normal_slope(z: float, p: float) -> float:
-    """N*'(z) = p z^(p-1) for z > 0, and N*'(0-) = 0 (flat punch: point mass at z = 0)."""
-    return p * z ** (p - 1.0) if z > 0.0 else 0.0
 
 
 def segment_integral(z1: float, v1: float, z2: float, v2: float, p: float) -> float:
