@@ -277,15 +277,15 @@ class ValidationReport:
         Total wall time.
     """
 
-    results: list[CaseResult]
+    results: list[CaseResult] = field(repr=False)
     out: Path
     quick: bool
     seconds: float
 
     @property
     def passed(self) -> bool:
-        """True if no case failed or errored (expected deviations do not count)."""
-        return not any(r.failed for r in self.results)
+        """True if at least one case ran and none failed or errored (expected deviations do not count)."""
+        return bool(self.results) and not any(r.failed for r in self.results)
 
     def count(self, status: Status) -> int:
         """Number of results with ``status``."""
@@ -310,6 +310,13 @@ class ValidationReport:
             text += f" ({n_err} errors counted as failed)"
         return text + f", {self.seconds:.1f} s" + (" (quick)" if self.quick else "")
 
+    def summary_line(self) -> str:
+        """Same as :meth:`summary` (the line the CLI prints)."""
+        return self.summary()
+
+    def __str__(self) -> str:
+        return self.summary()
+
 
 # -- discovery and running ----------------------------------------------------------------------
 
@@ -322,7 +329,9 @@ def load_cases(cases_dir: Path | None = None) -> list[LoadedCase]:
     """
     cases_dir = Path(cases_dir) if cases_dir is not None else default_cases_dir()
     if not cases_dir.is_dir():
-        raise FileNotFoundError(f"validation cases folder {str(cases_dir)!r} does not exist")
+        from .errors import SawdriftError
+
+        raise SawdriftError(f"validation cases folder {str(cases_dir)!r} does not exist")
     loaded: list[LoadedCase] = []
     for path in sorted(cases_dir.glob("*.py")):
         if path.name.startswith("_"):
@@ -435,7 +444,12 @@ def validate(
     Returns
     -------
     ValidationReport
-        ``.passed`` is False if any case failed or errored.
+        ``.passed`` is False if any case failed or errored, or if no case was selected.
+
+    Raises
+    ------
+    SawdriftError
+        If ``cases_dir`` does not exist.
     """
     t0 = time.perf_counter()
     out = Path(out)
@@ -570,12 +584,39 @@ def masing_unloading(a: float, b1: float, b: np.ndarray | float, p: float = 1.5)
 
 def loop_area(a: float, q: float) -> float:
     """Energy dissipated per cycle between +-q N* (sphere, fixed a*), physics.md section 3."""
-    return 4.8 * a**2.5 * (1.0 - (1.0 - q) ** (5.0 / 3.0) - (5.0 * q / 6.0) * (1.0 + (1.0 - q) ** (2.0 / 3.0)))
+    s = 1.0 - q
+    return 4.8 * a**2.5 * (1.0 - s ** (5.0 / 3.0) - (5.0 * q / 6.0) * (1.0 + s ** (2.0 / 3.0)))
 
 
 def amplitude_for_force_ratio(a: float, q: float) -> float:
     """Displacement amplitude B at which virgin loading reaches T* = q N* (sphere)."""
     return a * (1.0 - (1.0 - q) ** (2.0 / 3.0))
+
+
+def prescribed(model: str, drive: Mapping[str, Any], *, profile: Mapping[str, Any] | None = None,
+               model_params: Mapping[str, Any] | None = None, engine: str = "compiled"):
+    """Drive ``model`` through a prescribed (a*, b*) history; return the (t, a, b, N, T) frame.
+
+    ``drive`` holds the fields of :class:`sawdrift.scene.Prescribed` (``kind`` is added).
+    """
+    from .runner import run
+    from .scene import Scene
+
+    scene = Scene(model=model, model_params=dict(model_params or {}),
+                  particle={"profile": dict(profile or {"shape": "sphere"})},
+                  drive={"kind": "prescribed", **drive})
+    return run(scene, engine=engine).trajectory  # type: ignore[arg-type]
+
+
+def mindlin_loop(model: str, a: float, amplitude: float, cycles: int = 1, samples: int = 2000,
+                 profile: Mapping[str, Any] | None = None):
+    """Load to a* = ``a`` at b* = 0, then cycle b* between +-``amplitude`` at fixed a*.
+
+    Returns the trajectory frame; vertex k of the path (0: origin, 1: (a, 0), 2: (a, B),
+    3: (a, -B), 4: (a, B), ...) is row ``k * samples``.
+    """
+    return prescribed(model, {"waveform": "mindlin_loop", "a_max": a, "b_amplitude": amplitude,
+                              "cycles": cycles, "samples_per_segment": samples}, profile=profile)
 
 
 # -- sweeps shared by the diagram cases --------------------------------------------------------
@@ -670,12 +711,15 @@ def write_json(report: ValidationReport, path: Path) -> None:
     path.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
 
 
+_SYMBOL = {"<=": "&le;", ">=": "&ge;"}
+
 _CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:24px;color:#222;
 max-width:1400px}
 h1{margin:0 0 4px 0;font-size:24px} h2{margin:28px 0 8px 0;font-size:18px;border-bottom:1px solid #ccc}
 .summary{font-size:18px;padding:10px 14px;border-radius:6px;margin:10px 0}
-.summary.ok{background:#e5f5e0;border:1px solid #31a354}.summary.bad{background:#fde0dd;border:1px solid #d62728}
+.summary.ok{background:#e5f5e0;border:1px solid #31a354}
+.summary.bad{background:#fde0dd;border:1px solid #d62728}
 .meta{color:#666;font-size:13px}
 table{border-collapse:collapse;width:100%;font-size:13px}
 th,td{border:1px solid #ddd;padding:4px 6px;vertical-align:top;text-align:left}
@@ -684,10 +728,10 @@ white-space:nowrap}
 .st{font-weight:bold;white-space:nowrap;padding:2px 6px;border-radius:4px;font-size:12px}
 .st-pass{background:#31a354;color:#fff}.st-fail{background:#d62728;color:#fff}
 .st-dev{background:#f0a30a;color:#222}.st-error{background:#67000d;color:#fff}
-.title{color:#444}.figs{display:flex;flex-wrap:wrap;gap:14px;margin-top:12px}
-figure{margin:0;border:1px solid #ddd;padding:6px;background:#fff}
-figure img{display:block;max-width:100%}
-figure.wide{flex-basis:100%} figcaption{font-size:12px;color:#444;margin-top:4px}
+.title{color:#444;max-width:360px}.figs{display:flex;flex-wrap:wrap;gap:14px;margin-top:12px}
+figure{margin:0;border:1px solid #ddd;padding:6px;background:#fff;display:table}
+figure img{display:block;max-width:calc(100vw - 80px);height:auto}
+figcaption{display:table-caption;caption-side:bottom;font-size:12px;color:#444;padding:4px 6px}
 """
 
 
@@ -712,20 +756,24 @@ def write_html(report: ValidationReport, path: Path) -> None:
         if not rows:
             continue
         parts.append(f"<h2>{esc(GROUPS.get(group, group))}</h2>")
-        parts.append("<table><tr><th>status</th><th>case</th><th>model</th><th>fact checked</th>"
+        parts.append("<table><tr><th>case</th><th>fact checked</th><th>model</th><th>status</th>"
                      "<th>value</th><th>tolerance</th><th>message</th><th>s</th></tr>")
-        for r in rows:
+        for k, r in enumerate(rows):
             cls, label = {
                 "pass": ("st-pass", "PASS"),
                 "fail": ("st-fail", "FAIL"),
                 "expected deviation": ("st-dev", "expected deviation"),
                 "error": ("st-error", "ERROR"),
             }[r.status or "error"]
+            first = k == 0 or rows[k - 1].case != r.case
+            span = sum(1 for x in rows if x.case == r.case)
+            shared_cells = f"<td rowspan='{span}'><b>{esc(r.case)}</b></td>" if first else ""
+            title_cell = f"<td class='title' rowspan='{span}'>{esc(r.title)}</td>" if first else ""
             parts.append(
-                f"<tr><td><span class='st {cls}'>{label}</span></td><td>{esc(r.case)}</td>"
-                f"<td>{esc(r.model or '')}</td><td class='title'>{esc(r.title)}</td>"
+                f"<tr>{shared_cells}{title_cell}<td>{esc(r.model or '')}</td>"
+                f"<td><span class='st {cls}'>{label}</span></td>"
                 f"<td class='num'>{esc(_fmt(r.value))}</td>"
-                f"<td class='num'>{esc(r.compare)} {esc(_fmt(r.tolerance))}</td>"
+                f"<td class='num'>{_SYMBOL[r.compare]} {esc(_fmt(r.tolerance))}</td>"
                 f"<td>{esc(r.message)}</td><td class='num'>{r.seconds:.2f}</td></tr>"
             )
         parts.append("</table>")
@@ -734,11 +782,9 @@ def write_html(report: ValidationReport, path: Path) -> None:
             parts.append("<div class='figs'>")
             for r in figs:
                 b64 = base64.b64encode(r.figure).decode("ascii")
-                wide = " class='wide'" if r.details.get("wide_figure") else ""
                 parts.append(
-                    f"<figure{wide}><img alt='{esc(r.name)}' src='data:image/png;base64,{b64}'>"
-                    f"<figcaption><b>{esc(r.name)}</b> ({esc(r.status)}): {esc(r.title)}"
-                    "</figcaption></figure>"
+                    f"<figure><img alt='{esc(r.name)}' src='data:image/png;base64,{b64}'>"
+                    f"<figcaption><b>{esc(r.name)}</b>: {esc(r.status)}</figcaption></figure>"
                 )
             parts.append("</div>")
     parts.append("</body></html>")
@@ -816,7 +862,9 @@ __all__ = [
     "load_cases",
     "loop_area",
     "masing_unloading",
+    "mindlin_loop",
     "point_prediction",
+    "prescribed",
     "point_scene",
     "regime_class",
     "regime_table",

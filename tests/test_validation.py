@@ -1,0 +1,139 @@
+"""The validation harness: the quick subset passes, and a deliberately broken model fails it."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from numba import njit
+
+import sawdrift as sd
+from sawdrift.contact import KernelPair
+from sawdrift.validation import Case, CaseResult, load_cases, validate
+from sawdrift_builtin import mmd_kernel
+from sawdrift_builtin.mmd import MemoryDiagramModel
+
+_mmd_force = mmd_kernel.force
+
+
+@njit
+def _flipped_force(fs, is_, pp, a, b, adot, bdot):
+    # the memory-diagram law with the sign of the friction force flipped
+    n, t = _mmd_force(fs, is_, pp, a, b, adot, bdot)
+    return n, -t
+
+
+class FlippedFriction(MemoryDiagramModel):
+    """``mmd`` whose compiled kernel returns (N*, -T*): friction pushes instead of resisting."""
+
+    name = "mmd_flipped_friction"
+    summary = "deliberately broken: mmd with the friction sign flipped (tests only)"
+    kernel = KernelPair(reset=mmd_kernel.reset, force=_flipped_force)
+
+
+@pytest.fixture
+def flipped_model():
+    sd.registry.register(FlippedFriction)
+    try:
+        yield FlippedFriction.name
+    finally:
+        sd.registry.unregister(FlippedFriction.name)
+
+
+def test_quick_subset_passes_and_writes_the_report(tmp_path):
+    report = validate(tmp_path, quick=True, progress=False)
+    failed = [(r.name, r.status, r.message) for r in report.results if r.failed]
+    assert report.passed, failed
+    assert report.results and all(r.status for r in report.results)
+    html = (tmp_path / "index.html").read_text()
+    assert "passed" in html and "data:image/png;base64," in html
+    data = json.loads((tmp_path / "results.json").read_text())
+    assert data["passed"] is True
+    assert data["counts"]["failed"] == 0
+    assert data["counts"]["total"] == len(report.results)
+    groups = {c["group"] for c in data["cases"]}
+    assert {"material_point", "mindlin", "convergence", "diagrams", "point_mass"} <= groups
+    # models that are not exact by design are shown as expected deviations, with their value
+    devs = [c for c in data["cases"] if c["status"] == "expected deviation"]
+    assert devs and all(c["value"] is not None and c["model"] for c in devs)
+    assert all(r.seconds >= 0 for r in report.results)
+
+
+def test_oracles_catch_a_flipped_friction_sign(tmp_path, flipped_model):
+    # the mindlin oracles and the kernel-against-reference check, run for the broken model only
+    report = validate(tmp_path, only=["mindlin", "kernel_vs_reference"], models=[flipped_model],
+                      progress=False)
+    assert not report.passed
+    by_case = {r.case: r for r in report.results}
+    assert set(by_case) == {"cm_monotonic", "cm_masing", "cm_loop_area", "cm_proportional",
+                            "cm_random_history", "kernel_vs_reference"}
+    for res in report.results:
+        assert res.model == flipped_model
+        assert res.status == "fail", (res.name, res.status, res.message)
+        assert res.value > res.tolerance
+    assert "FAIL" in (tmp_path / "index.html").read_text()
+
+
+def test_missing_model_and_broken_case_file_are_errors_not_crashes(tmp_path):
+    cases = tmp_path / "cases"
+    cases.mkdir()
+    (cases / "good.py").write_text(
+        "from sawdrift.validation import Case\n"
+        "CASE = Case(name='good', group='convergence', title='1 <= 2', tolerance=2.0, quick=True,\n"
+        "            models=('mmd', 'no_such_model'))\n"
+        "def run(model):\n"
+        "    return CASE.result(1.0, model=model, message='ok')\n"
+    )
+    (cases / "raises.py").write_text(
+        "from sawdrift.validation import Case\n"
+        "CASE = Case(name='raises', group='convergence', title='raises', tolerance=0.0, quick=True)\n"
+        "def run():\n"
+        "    raise RuntimeError('boom')\n"
+    )
+    (cases / "broken.py").write_text("this is not python\n")
+    (cases / "_helper.py").write_text("raise SystemExit('helpers are not cases')\n")
+    assert len(load_cases(cases)) == 3
+    report = validate(tmp_path / "out", quick=True, cases_dir=cases, progress=False)
+    status = {r.name: r.status for r in report.results}
+    assert status == {"good[mmd]": "pass", "good[no_such_model]": "error", "raises": "error",
+                      "broken": "error"}
+    assert "no_such_model" in report.get("good[no_such_model]").message
+    assert "boom" in report.get("raises").message
+    assert not report.passed
+    assert (tmp_path / "out" / "index.html").exists()
+    data = json.loads((tmp_path / "out" / "results.json").read_text())
+    assert data["counts"] == {"passed": 1, "failed": 3, "errors": 3, "expected_deviations": 0,
+                              "total": 4}
+
+
+def test_expected_deviation_is_reported_not_failed(tmp_path):
+    cases = tmp_path / "cases"
+    cases.mkdir()
+    (cases / "dev.py").write_text(
+        "from sawdrift.validation import Case\n"
+        "CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9, models=('mmd', 'jaeger'),\n"
+        "            expected_deviation=('jaeger',))\n"
+        "def run(model):\n"
+        "    return CASE.result(0.25, model=model)\n"
+    )
+    report = validate(tmp_path / "out", cases_dir=cases, progress=False)
+    assert {r.name: r.status for r in report.results} == {"dev[mmd]": "fail",
+                                                          "dev[jaeger]": "expected deviation"}
+    assert report.get("dev[jaeger]").value == 0.25
+    assert report.count("expected deviation") == 1 and not report.passed
+
+
+def test_case_result_comparisons():
+    le = Case(name="a", group="g", title="t", tolerance=1.0, model_tolerance={"mdr": 2.0})
+    ge = Case(name="b", group="g", title="t", tolerance=4, compare=">=")
+    assert le.result(1.0).passed and not le.result(1.5).passed and le.result(1.5, model="mdr").passed
+    assert not le.result(float("nan")).passed and not le.result(0.0, require=False).passed
+    assert ge.result(4).passed and not ge.result(3).passed
+    assert isinstance(ge.result(5), CaseResult)
+
+
+def test_default_cases_dir_is_the_repository_validation_folder():
+    from sawdrift.validation import default_cases_dir
+
+    assert default_cases_dir() == Path(__file__).resolve().parents[1] / "validation"

@@ -1,0 +1,36 @@
+"""Proportional loading from zero, b* = lambda a* with |lambda| <= 1, never slips: T* = lambda N*(a*).
+
+This is the Mindlin-Deresiewicz load-path result under a *varying* a*: strips enter contact
+with zero displacement. The ``jaeger`` model keeps its profile attached to the moving contact
+edge and gives N*(a*) - N*((1 - lambda) a*) instead (by design, see its module docstring).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult, prescribed
+
+CASE = Case(
+    name="cm_proportional",
+    group="mindlin",
+    title="Oblique loading from zero along b* = lambda a* (lambda = -0.5, 0.3, 0.7, 1; a* up to 1.5) "
+    "against T* = lambda N*(a*); value: max |T* - lambda N*| / N*(a*_max)",
+    tolerance=1e-9,
+    model_tolerance={"mdr": 1e-3},
+    expected_deviation=("jaeger",),
+    models=COMPLIANT_MODELS,
+    quick=True,
+)
+
+
+def run(model: str) -> CaseResult:
+    """Drive four proportional paths and compare T* with lambda N*."""
+    worst, parts = 0.0, []
+    for lam in (-0.5, 0.3, 0.7, 1.0):
+        tr = prescribed(model, {"waveform": "proportional", "a_max": 1.5, "slope": lam,
+                                "samples_per_segment": 1000})
+        err = np.abs(tr["T"].to_numpy() - lam * tr["N"].to_numpy()) / 1.5**1.5
+        worst = max(worst, float(err.max()))
+        parts.append(f"lambda = {lam}: {err.max():.2e}")
+    return CASE.result(worst, model=model, message="max error " + "; ".join(parts))
