@@ -1,0 +1,101 @@
+"""The performance study runs end to end in its quick form (no timing assertions: CI is noisy)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from sawdrift import bench
+
+
+def test_fit_order_recovers_a_power_law():
+    x = np.array([32, 64, 128, 256, 512], dtype=float)
+    assert bench.fit_order(x, 3.0 * x**-2.0) == pytest.approx(2.0)
+    # points under the floor are dropped; fewer than two usable points give NaN
+    assert math.isnan(bench.fit_order(x, np.full(5, 1e-15), floor=1e-12))
+
+
+def test_drifting_history_drifts_and_stays_mostly_in_contact():
+    a, b = bench.drifting_history(20_000, seed=1)
+    assert a.shape == b.shape == (20_000,)
+    assert np.all(np.isfinite(a)) and np.all(np.isfinite(b))
+    assert b[-1] > 100.0  # mean drift 0.01 per step
+    assert np.mean(a > 0.0) > 0.99
+
+
+def test_best_time_discards_a_warm_up_call():
+    calls = []
+    seconds, out = bench.best_time(lambda: calls.append(1) or len(calls), repeats=2)
+    assert len(calls) == 3 and out == 3 and seconds >= 0.0
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory):
+    out = tmp_path_factory.mktemp("wp")
+    frame = bench.work_precision(["mmd", "mdr", "material_point"], out, quick=True, progress=False)
+    return out, frame
+
+
+def test_work_precision_quick_writes_its_outputs(study):
+    out, frame = study
+    for name in ("work_precision.csv", "orders.csv", "summary.md", "work_precision_prescribed.png",
+                 "work_precision_wave.png"):
+        assert (out / name).stat().st_size > 0, name
+    assert list(frame.columns) == list(bench.COLUMNS)
+    assert set(frame["setting"]) == {"prescribed", "wave", "defaults"}
+    on_disk = pd.read_csv(out / "work_precision.csv")
+    assert len(on_disk) == len(frame)
+    summary = (out / "summary.md").read_text()
+    assert "## Recommendation" in summary and "observed order" in summary
+
+
+def test_work_precision_quick_numbers_are_finite(study):
+    _, frame = study
+    ran = frame[frame["regime"] != "non-finite"]
+    for col in ("wall_s", "ns_per_step", "error", "value", "reference"):
+        values = ran[col].astype(float)
+        assert np.all(np.isfinite(values)), col
+        assert np.all(values >= 0.0) or col in ("value", "reference"), col
+    # every ladder of the study is there
+    wave = frame[frame["setting"] == "wave"]
+    assert set(wave["model"]) == {"mmd", "mdr", "material_point"}
+    assert set(wave.loc[wave["model"] == "mmd", "order"].dropna()) == {1, 2, 3, 4}
+    assert (wave["ladder"] == "strips").any()
+    pre = frame[frame["setting"] == "prescribed"]
+    assert set(pre["model"]) == {"mmd", "mdr"}  # a rigid model has no contact history
+    # the compiled mmd kernel reproduces the exact reference to round-off on the random history
+    assert pre.loc[pre["model"] == "mmd", "error"].max() < 1e-10
+    # one default point per model on the step ladders, and mdr's default strip count
+    steps = wave[wave["ladder"] == "steps"]
+    assert sorted(steps.loc[steps["is_default"], "model"]) == ["material_point", "mdr", "mmd"]
+    assert wave.loc[wave["is_default"] & (wave["ladder"] == "strips"), "strips"].tolist() == [
+        bench._default_strips()
+    ]
+
+
+def test_observed_orders_table(study):
+    out, _ = study
+    orders = pd.read_csv(out / "orders.csv")
+    mmd = orders[(orders["setting"] == "wave") & (orders["model"] == "mmd")]
+    assert len(mmd) == 4
+    assert np.all(np.isfinite(mmd["observed_order"]))
+
+
+def test_speed_quick_reports_every_target(tmp_path, capsys):
+    path = tmp_path / "speed.json"
+    result = bench.speed(quick=True, progress=False, out=path)
+    printed = capsys.readouterr().out
+    names = {"sweep", "engines", "vs_material_point", "vs_mdr", "history_length"}
+    assert set(result["targets"]) == names
+    for target in result["targets"].values():
+        assert math.isfinite(target["measured"]) and target["measured"] >= 0.0
+        assert isinstance(target["passed"], bool)
+        assert ("[PASS] " + target["description"]) in printed or (
+            "[FAIL] " + target["description"]) in printed
+    details = result["targets"]["vs_mdr"]["details"]
+    assert math.isfinite(details["mdr_max_error"]) and details["mmd_max_error"] < 1e-10
+    assert json.loads(path.read_text())["targets"].keys() == names
