@@ -314,10 +314,12 @@ def bench_work_precision_cmd(
 def bench_speed_cmd(
     quick: Annotated[bool, typer.Option("--quick", help="small sizes (seconds)")] = False,
 ) -> None:
-    """Measure the performance targets and print each with PASS/FAIL."""
+    """Measure the performance targets and print each with PASS/FAIL; exit 1 if one fails."""
     from .bench import speed
 
-    speed(quick=quick)
+    result = speed(quick=quick)
+    if not result["all_passed"]:
+        raise typer.Exit(1)
 
 
 def main() -> None:
