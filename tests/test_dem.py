@@ -24,6 +24,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from sawdrift import ContactHistory, Profile, get_model
+from sawdrift.analytic import loop_area as mindlin_loop_area_sphere
 from sawdrift_builtin.hertz_mindlin_dem import (
     HertzMindlinDEM,
     HertzMindlinDEMParams,
@@ -45,11 +46,6 @@ def loop_area(model, a: float, amplitude: float, n: int = 20001) -> float:
     t = ContactHistory(model).drive(np.full_like(b, a), b)[1]
     cb, ct = b[100:], t[100:]
     return float(np.sum(0.5 * (ct[1:] + ct[:-1]) * np.diff(cb)))
-
-
-def mindlin_loop_area_sphere(a: float, q: float) -> float:
-    """W* = (24/5) a^(5/2) [1 - (1-q)^(5/3) - (5q/6)(1 + (1-q)^(2/3))] (physics.md section 3)."""
-    return 4.8 * a**2.5 * (1 - (1 - q) ** (5 / 3) - (5 * q / 6) * (1 + (1 - q) ** (2 / 3)))
 
 
 def dem_loop_area(a: float, p: float, amplitude: float) -> float:

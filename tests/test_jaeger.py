@@ -16,6 +16,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from sawdrift import ContactHistory, Profile, get_model
+from sawdrift.analytic import loop_area as mindlin_loop_area_sphere
 from sawdrift.errors import ModelNotFoundError
 from sawdrift_builtin.jaeger import Jaeger, JaegerParams, JaegerReference
 
@@ -141,11 +142,6 @@ def loop_area(model, a: float, amplitude: float, n: int = 20001) -> float:
     cycle_b = b[100:]
     cycle_t = t[100:]
     return float(np.sum(0.5 * (cycle_t[1:] + cycle_t[:-1]) * np.diff(cycle_b)))
-
-
-def mindlin_loop_area_sphere(a: float, q: float) -> float:
-    """W* = (24/5) a^(5/2) [1 - (1-q)^(5/3) - (5q/6)(1 + (1-q)^(2/3))] (physics.md section 3)."""
-    return 4.8 * a**2.5 * (1 - (1 - q) ** (5 / 3) - (5 * q / 6) * (1 + (1 - q) ** (2 / 3)))
 
 
 @pytest.mark.parametrize("q", [0.3, 0.7, 1.0])

@@ -9,18 +9,12 @@ import math
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
 
 import sawdrift as sd
+from sawdrift.analytic import heavy_sliding_v
 from tests.conftest import point_scene
 
 MU = 0.1
-
-
-def heavy_sliding_v(gz: float) -> float:
-    """V = cos(phi0) with 2 phi0 - pi = 2 Gz sin(phi0) (limit mu / Gx -> 0)."""
-    phi0 = brentq(lambda p: 2 * p - math.pi - 2 * gz * math.sin(p), 0.0, math.pi)
-    return math.cos(phi0)
 
 
 def test_heavy_sliding_formula_matches_quoted_values():

@@ -13,9 +13,9 @@ import time
 import numpy as np
 import pandas as pd
 import pytest
-from scipy.optimize import brentq
 
 import sawdrift as sd
+from sawdrift.analytic import point_prediction
 from sawdrift.errors import SceneError
 from sawdrift.sweep import journal_path, parse_axis
 
@@ -103,36 +103,6 @@ def test_kill_9_then_resume_equals_uninterrupted(tmp_path):
 # -- the material point's phase diagram against the analytic thresholds ----------------------
 
 MU = 0.1
-
-
-def point_prediction(gz: float, gx: float, mu: float = MU) -> str:
-    """Regime of the material point from closed-form thresholds (physics.md section 3).
-
-    * Gz > 1: contact lost;
-    * R = sqrt((Gx/mu)^2 + Gz^2) <= 1 (i.e. Gx <= mu sqrt(1 - Gz^2)): stick;
-    * otherwise the point slips. In psi = phi - delta (R cos delta = Gx/mu, R sin delta = Gz) a
-      slip starting from stick at psi1 = arcsin(1/R) ends where
-      R (cos psi1 - cos psi) = psi - psi1; the backward slip starts pi - 2 delta later, and the
-      two are mirror images (zero net drift) unless the first lasts that long (continuous
-      sliding, drift against the wave).
-    """
-    if gz > 1.0:
-        return "lost"
-    big_r = math.hypot(gx / mu, gz)
-    if big_r <= 1.0:
-        return "stick"
-    psi1 = math.asin(1.0 / big_r)
-    delta = math.atan2(gz, gx / mu)
-
-    def f(psi: float) -> float:
-        return big_r * (math.cos(psi1) - math.cos(psi)) - (psi - psi1)
-
-    lo = math.pi - psi1
-    hi = lo + 2.0 * math.pi
-    if f(hi) > 0.0:
-        return "drift_against"
-    psi2 = brentq(f, lo, hi)
-    return "drift_against" if psi2 - psi1 >= math.pi - 2.0 * delta else "stick"
 
 
 def _regime_class(regime: str) -> str:
