@@ -139,8 +139,10 @@ def _push(fs, is_, z, w, p):
     elif n >= 2:
         z1 = fs[r - RECORD]
         w1 = fs[r - RECORD + 1]
-        w_line = w1 + (w - w1) * ((fs[r] - z1) / (z - z1))
-        if abs(w_line - fs[r + 1]) <= COLLINEAR_RTOL * (abs(w1) + abs(w)):
+        # |w_line(z_top) - w_top| <= tol (|w1| + |w|), multiplied through by z - z1 > 0
+        # (no division on the hot path)
+        dev = (w1 - fs[r + 1]) * (z - z1) + (w - w1) * (fs[r] - z1)
+        if abs(dev) <= COLLINEAR_RTOL * (abs(w1) + abs(w)) * (z - z1):
             mode = 1
     if mode == 0:
         _write(fs, n - 1, fs[r], w, fs[r + 3], p)
