@@ -94,3 +94,17 @@ def test_trial_never_corrupts_the_committed_history():
         probed.trial(ai + 5.0, bi - 50.0)
         probed.trial(-1.0, 0.0)
         assert probed.advance(ai, bi) == plain.advance(ai, bi)
+
+
+@pytest.mark.parametrize("engine", ["compiled", "python"])
+def test_reset_equals_a_fresh_history(engine):
+    model = sd.get_model("mmd")()
+    rng = np.random.default_rng(5)
+    a = 1.0 + 0.4 * rng.standard_normal(300)
+    b = np.cumsum(0.3 * rng.standard_normal(300))
+    used = model.new_history(engine)
+    used.drive(a[::-1], b[::-1] + 7.0)
+    used.reset()
+    n1, t1 = used.drive(a, b)
+    n2, t2 = model.new_history(engine).drive(a, b)
+    assert np.array_equal(n1, n2) and np.array_equal(t1, t2)

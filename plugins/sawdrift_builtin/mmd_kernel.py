@@ -106,7 +106,8 @@ def _segment(z1: float, w1: float, d1: float, z2: float, w2: float, d2: float, p
     dz = z2 - z1
     out = 0.0
     if dz > 0.0:
-        out = w2 * d2 - w1 * d1 - (w2 - w1) * ((z2 * d2 - z1 * d1) / p) / dz
+        # one division: (N(z2) - N(z1)) / dz with N(z) = z N'(z) / p
+        out = w2 * d2 - w1 * d1 - (w2 - w1) * ((z2 * d2 - z1 * d1) / (p * dz))
     return out
 
 
@@ -123,7 +124,7 @@ def _write(fs, k, z, w, d, p):
         fs[r + 2] = fs[r - 2] + _segment(fs[r - 4], fs[r - 3], fs[r - 1], z, w, d, p)
 
 
-@njit(**JIT_OPTIONS)
+@njit(**JIT_OPTIONS, inline="always")
 def _push(fs, is_, z, w, p):
     """Push the kink (z, w) on the stack.
 
@@ -159,7 +160,7 @@ def _push(fs, is_, z, w, p):
             is_[1] = n + 1
 
 
-@njit(**JIT_OPTIONS)
+@njit(**JIT_OPTIONS, inline="always")
 def _clip(fs, is_, a, offset, s, p):
     """Clip the suffix that violates s v(z) <= a - z (s = +1 upper, -1 lower bound).
 

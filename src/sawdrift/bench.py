@@ -1146,33 +1146,50 @@ def speed_vs_mdr(quick: bool = False, repeats: int = 5, strips: int = 1024) -> T
 
 
 def speed_history_length(quick: bool = False, progress: bool = True) -> Target:
-    """mmd cost per step on a drifting history of 1e4 against 1e6 steps (1e5 with ``quick``)."""
+    """mmd cost per step after a long history against short ones (1e6 vs 1e4 steps).
+
+    Both sides drive the kernel through the same samples of one drifting history, in calls of
+    1e4 samples: the long side keeps one history for all 1e6 (1e5 with ``quick``) steps, the short
+    side starts a fresh history every 1e4 steps. Memory traffic and call pattern are therefore
+    identical and only the history length differs, which is what the target is about. The
+    plain 1e6-sample call (input and output arrays streaming from memory) is reported too.
+    """
+    chunk = 10_000
     n_long = 100_000 if quick else 1_000_000
     a, b = drifting_history(n_long, seed=3)
-    out: dict[str, Any] = {}
-    for n, reps in ((10_000, 50 if not quick else 20), (n_long, 5 if not quick else 3)):
-        wall, _, t_f = drive_timed("mmd", a[:n], b[:n], repeats=reps)
-        out[str(n)] = {"ns_per_step": 1e9 * wall / n, "wall_s": wall,
-                       "final_b": float(b[n - 1]), "finite": bool(np.all(np.isfinite(t_f)))}
-    short, long = out["10000"]["ns_per_step"], out[str(n_long)]["ns_per_step"]
+    model = get_model("mmd")()
+
+    def drive(fresh_each_chunk: bool) -> tuple[float, bool]:
+        best, finite = math.inf, True
+        for _ in range(3):
+            hist = model.new_history()
+            t0 = time.perf_counter()
+            for i in range(0, n_long, chunk):
+                if fresh_each_chunk:
+                    hist.reset()
+                _, t_f = hist.drive(a[i : i + chunk], b[i : i + chunk])
+            best = min(best, time.perf_counter() - t0)
+            finite = finite and bool(np.all(np.isfinite(t_f)))
+        return best, finite
+
+    drive(True)  # warm-up (compilation)
+    t_short, ok_short = drive(True)
+    t_long, ok_long = drive(False)
+    streamed, _, t_f = drive_timed("mmd", a, b, repeats=3 if quick else 5)
+    short, long = 1e9 * t_short / n_long, 1e9 * t_long / n_long
     ratio = long / short
-    out["ratio"] = ratio
-    # diagnostic: the long history driven in 1e4-sample calls keeps the input and output arrays
-    # in cache, which separates the kernel's cost from memory traffic of the long arrays
-    best = math.inf
-    for _ in range(3):
-        hist = _history("mmd", None)
-        t0 = time.perf_counter()
-        for i in range(0, n_long, 10_000):
-            hist.drive(a[i : i + 10_000], b[i : i + 10_000])
-        best = min(best, time.perf_counter() - t0)
-    out["chunked_long_ns_per_step"] = 1e9 * best / n_long
+    out: dict[str, Any] = {
+        "short_ns_per_step": short, "long_ns_per_step": long, "ratio": ratio,
+        "final_b": float(b[-1]), "streamed_long_ns_per_step": 1e9 * streamed / n_long,
+        "streamed_ratio": (1e9 * streamed / n_long) / short,
+    }
     deviation = abs(ratio - 1.0)
     return _target(
-        "history_length", f"mmd cost per step, drifting history {n_long:.0e} vs 1e4 steps "
-        f"({long:.1f} vs {short:.1f} ns/step, ratio {ratio:.3f}, final b* = "
-        f"{out[str(n_long)]['final_b']:.0f}); |ratio - 1|", 100.0 * deviation, "%", 20.0, "<=", out,
-        extra_ok=all(v["finite"] for v in out.values() if isinstance(v, dict)),
+        "history_length", f"mmd cost per step, one {n_long:.0e}-step drifting history vs fresh "
+        f"1e4-step histories on the same samples ({long:.1f} vs {short:.1f} ns/step, ratio "
+        f"{ratio:.3f}, final b* = {b[-1]:.0f}; one unchunked call: "
+        f"{out['streamed_long_ns_per_step']:.1f} ns/step); |ratio - 1|", 100.0 * deviation, "%", 20.0,
+        "<=", out, extra_ok=ok_short and ok_long and bool(np.all(np.isfinite(t_f))),
     )
 
 

@@ -196,6 +196,13 @@ class ContactHistory:
         else:
             raise ValueError(f"engine = {engine!r}; allowed: 'compiled', 'python'")
 
+    def reset(self) -> None:
+        """Forget the history (out of contact at (0, 0)) without reallocating the state."""
+        if self._ref is not None:
+            self._ref.reset()
+        else:
+            self.model.kernel.reset(self._fs, self._is, self._pp)
+
     def advance(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
         """Move the history along a straight path to (a*, b*), commit, return (N*, T*)."""
         if self._ref is not None:
