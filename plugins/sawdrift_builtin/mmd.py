@@ -63,6 +63,10 @@ class MemoryDiagramModel(ContactModel):
         """Sizes of ``fs`` and ``is_`` (layout in :mod:`sawdrift_builtin.mmd_kernel`)."""
         return mmd_kernel.state_sizes(self.params.max_memory_points)
 
+    def live_sizes(self, fs: np.ndarray, is_: np.ndarray) -> tuple[int, int]:
+        """The header and the stored memory points (the rest of the stack is free)."""
+        return mmd_kernel.HEADER + mmd_kernel.RECORD * int(is_[0]), is_.size
+
     def packed_params(self) -> np.ndarray:
         """``[p]``."""
         return np.array([self.profile.p], dtype=np.float64)

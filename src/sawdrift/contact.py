@@ -125,6 +125,13 @@ class ContactModel:
         """Sizes of the float64 and int64 state arrays the kernel works on."""
         raise NotImplementedError(f"model {self.name!r} has no kernel state")
 
+    def live_sizes(self, fs: np.ndarray, is_: np.ndarray) -> tuple[int, int]:
+        """How many leading entries of ``fs`` and ``is_`` hold the current history.
+
+        A copy (checkpoint, trial) needs only these; the default is everything.
+        """
+        return fs.size, is_.size
+
     def packed_params(self) -> np.ndarray:
         """Float64 vector of everything the kernel needs (profile exponent first, by convention)."""
         return np.array([self.profile.p], dtype=np.float64)
@@ -225,7 +232,13 @@ class ContactHistory:
             new._ref = _copy.deepcopy(self._ref)
         else:
             new._ref = None
-            new._fs, new._is, new._pp = self._fs.copy(), self._is.copy(), self._pp
+            # only the live part is copied: the rest of the capacity is never read before written
+            nf, ni = self.model.live_sizes(self._fs, self._is)
+            new._fs = np.empty_like(self._fs)
+            new._fs[:nf] = self._fs[:nf]
+            new._is = np.empty_like(self._is)
+            new._is[:ni] = self._is[:ni]
+            new._pp = self._pp
         return new
 
     def drive(self, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
