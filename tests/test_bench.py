@@ -46,7 +46,9 @@ def test_work_precision_quick_writes_its_outputs(study):
                  "work_precision_wave.png"):
         assert (out / name).stat().st_size > 0, name
     assert list(frame.columns) == list(bench.COLUMNS)
-    assert set(frame["setting"]) == {"prescribed", "wave", "defaults"}
+    assert set(frame["setting"]) == {"prescribed", "wave", "defaults", "long"}
+    long = frame[frame["setting"] == "long"]
+    assert set(long["order"]) == {3, 4} and np.isfinite(long["error"].astype(float)).all()
     on_disk = pd.read_csv(out / "work_precision.csv")
     assert len(on_disk) == len(frame)
     summary = (out / "summary.md").read_text()

@@ -170,10 +170,13 @@ class Numerics(BaseModel):
     model_config = _FROZEN
 
     order: Annotated[int, Field(ge=1, le=4)] = Field(
-        3,
+        4,
         description=(
-            "Adams-Bashforth order 1-4; the first order-1 steps use the lower orders (start-up "
-            "from rest at the static compression, where the derivative history is exact)"
+            "Adams-Bashforth order 1-4 (default 4: on the undamped normal oscillation its "
+            "amplitude error per step is O((h omega)^6), AB3's is (3/8)(h omega)^4, which over "
+            "thousands of periods changes the drift). The first order-1 steps use the lower "
+            "orders (start-up from rest at the static compression, where the derivative "
+            "history is exact)"
         ),
     )
     steps_per_period: Annotated[int, Field(ge=8, le=10_000_000)] | None = Field(
