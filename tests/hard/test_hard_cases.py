@@ -79,10 +79,16 @@ def test_finite_and_convergent(name):
     assert err[1] < err[0] or err[1] < 1e-9, err
 
 
-@pytest.mark.parametrize("name", sorted(n for n in CASES if not n.endswith("point")))
+# Left out: big_amplitude_point bounces (its impacts are impulses, outside a work integral of
+# forces); heavy_point slides with slip reversals inside steps, which the rigid scheme locates
+# exactly but this check's step-end samples cannot resolve (its residual, 2.4e-4, would measure
+# the check's quadrature, not the scheme, which is exact between events).
+@pytest.mark.parametrize(
+    "name", sorted(n for n in CASES if n not in {"big_amplitude_point", "heavy_point"})
+)
 def test_energy_error_bounded(name):
-    # compliant models: |Delta KE - work of the contact forces and gravity| relative to the
-    # total work stays small at the default step, and shrinks when the step is halved
+    # |Delta KE - work of the contact forces and gravity| relative to the total work stays
+    # small at the default step, and shrinks when the step is refined
     base = _scene(CASES[name])
     k = base.steps_per_period()
     rel = []
