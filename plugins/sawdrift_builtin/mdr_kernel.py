@@ -71,18 +71,25 @@ def state_sizes(strips: int) -> tuple[int, int]:
     return HEADER + 4 * strips, N_INT
 
 
+@njit(**JIT_OPTIONS, inline="always")
+def _cell(j, dz, p):
+    """Centroid c and weight m = dN*' of the cell [j dz, (j+1) dz]."""
+    e0 = j * dz
+    e1 = (j + 1) * dz
+    m = _dnormal(e1, p) - _dnormal(e0, p)
+    if m > 0.0:
+        # integral z dN*' over the cell, by parts: [z N*'] - [N*]
+        c = (e1 * _dnormal(e1, p) - e0 * _dnormal(e0, p) - (_normal(e1, p) - _normal(e0, p))) / m
+    else:
+        c = 0.5 * (e0 + e1)
+    return c, m
+
+
 @njit(**JIT_OPTIONS)
 def _grid(fs, nst, dz, p):
     """Fill centroids c_j and weights m_j of the cells [j dz, (j+1) dz]."""
     for j in range(nst):
-        e0 = j * dz
-        e1 = (j + 1) * dz
-        m = _dnormal(e1, p) - _dnormal(e0, p)
-        if m > 0.0:
-            # integral z dN*' over the cell, by parts: [z N*'] - [N*]
-            c = (e1 * _dnormal(e1, p) - e0 * _dnormal(e0, p) - (_normal(e1, p) - _normal(e0, p))) / m
-        else:
-            c = 0.5 * (e0 + e1)
+        c, m = _cell(j, dz, p)
         fs[HEADER + j] = c
         fs[HEADER + nst + j] = m
 
@@ -98,14 +105,7 @@ def _coarsen(fs, is_, a0, p):
     dz = 2.0 * fs[2]
     # new centroids into scratch first, to interpolate against the old ones
     for j in range(nst):
-        e0 = j * dz
-        e1 = (j + 1) * dz
-        m = _dnormal(e1, p) - _dnormal(e0, p)
-        if m > 0.0:
-            c = (e1 * _dnormal(e1, p) - e0 * _dnormal(e0, p) - (_normal(e1, p) - _normal(e0, p))) / m
-        else:
-            c = 0.5 * (e0 + e1)
-        fs[isc + j] = c
+        fs[isc + j] = _cell(j, dz, p)[0]
     k = 0
     n_new = 0
     for j in range(nst):
