@@ -41,9 +41,9 @@ P_FRICTION, P_DAMP, P_P, P_HORIZ, P_VERT, P_KRAMP = 8, 9, 10, 11, 12, 13
 N_PRM = 14
 
 # Layout of the statistics vector ``st``.
-S_LOST, S_AMIN, S_OUT, S_COUNT, S_BAD, S_BADSTEP, S_WORK_T, S_WORK_N = 0, 1, 2, 3, 4, 5, 6, 7
-S_LIFTS, S_PREVIN = 8, 9  # lift-offs counted (reset by the runner), and contact at the last step
-N_ST = 10
+S_LOST, S_AMIN, S_OUT, S_COUNT, S_BAD, S_BADSTEP = 0, 1, 2, 3, 4, 5
+S_LIFTS, S_PREVIN = 6, 7  # lift-offs counted (reset by the runner), and contact at the last step
+N_ST = 8
 
 # Columns of the trajectory record.
 REC_COLUMNS = ("t", "x", "vx", "y", "vy", "a", "b", "N", "T")
@@ -75,6 +75,23 @@ def surface(t: float, amp: float, r: float, t_ramp: float, horiz: float, vert: f
     return ux, uxd, uy, uyd
 
 
+@njit(cache=True)
+def record(rec, ctr, t, y, a, b, nf, tf):
+    """Append one trajectory row (columns :data:`REC_COLUMNS`) at ``rec[ctr[2]]`` if it fits."""
+    i = ctr[2]
+    if i < rec.shape[0]:
+        rec[i, 0] = t
+        rec[i, 1] = y[0]
+        rec[i, 2] = y[1]
+        rec[i, 3] = y[2]
+        rec[i, 4] = y[3]
+        rec[i, 5] = a
+        rec[i, 6] = b
+        rec[i, 7] = nf
+        rec[i, 8] = tf
+        ctr[2] = i + 1
+
+
 def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
     """Build the wave-scene loop with ``force`` bound in (compiled or not by the caller)."""
     ab = AB_COEFFS
@@ -94,7 +111,6 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
         horiz = prm[P_HORIZ]
         vert = prm[P_VERT]
         k_ramp = int(prm[P_KRAMP])
-        n_rec = rec.shape[0]
         for _ in range(n_steps):
             k = ctr[0]
             t = k * h
@@ -127,22 +143,8 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
                 if a < st[S_AMIN]:
                     st[S_AMIN] = a
                 st[S_COUNT] += 1.0
-                # work of the contact forces on the particle over one step (for energy checks)
-                st[S_WORK_T] += -mu * tf * y[1] * h
-                st[S_WORK_N] += -nf * y[3] * h
             if rec_every > 0 and k % rec_every == 0:
-                i = ctr[2]
-                if i < n_rec:
-                    rec[i, 0] = t
-                    rec[i, 1] = y[0]
-                    rec[i, 2] = y[1]
-                    rec[i, 3] = y[2]
-                    rec[i, 4] = y[3]
-                    rec[i, 5] = a
-                    rec[i, 6] = b
-                    rec[i, 7] = nf
-                    rec[i, 8] = tf
-                    ctr[2] = i + 1
+                record(rec, ctr, t, y, a, b, nf, tf)
             for j in range(3, 0, -1):
                 for c in range(4):
                     fh[j, c] = fh[j - 1, c]

@@ -40,6 +40,7 @@ from .integrators import (
     S_LOST,
     S_OUT,
     TWO_PI,
+    record,
 )
 
 #: Extra slots of the parameter vector used by the rigid scheme.
@@ -144,7 +145,6 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
     friction = prm[P_FRICTION] > 0.0
     k_ramp = int(prm[P_KRAMP])
     amp, r, t_ramp, horiz, vert = prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT]
-    n_rec = rec.shape[0]
     for _ in range(n_steps):
         k = ctr[0]
         t = k * h
@@ -294,18 +294,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 st[S_AMIN] = a
             st[S_COUNT] += 1.0
         if rec_every > 0 and (k + 1) % rec_every == 0:
-            i = ctr[2]
-            if i < n_rec:
-                rec[i, 0] = t_end
-                rec[i, 1] = y[0]
-                rec[i, 2] = y[1]
-                rec[i, 3] = y[2]
-                rec[i, 4] = y[3]
-                rec[i, 5] = a
-                rec[i, 6] = math.nan
-                rec[i, 7] = nf
-                rec[i, 8] = tf
-                ctr[2] = i + 1
+            record(rec, ctr, t_end, y, a, math.nan, nf, tf)
         ctr[0] = k + 1
         if not math.isfinite(y[0] + y[1] + y[2] + y[3]):
             st[S_BAD] = 1.0
