@@ -51,7 +51,7 @@ def run(
         Record the trajectory every this many steps (default: about 200 samples per period).
     """
     model = scene.model_instance()
-    plan = assemble(scene, engine)
+    plan = assemble(scene, engine, model)
     if plan.scheme == "prescribed":
         return _run_prescribed(scene, model, plan.engine)
     if plan.scheme == "impact":
@@ -70,7 +70,6 @@ class Assembly:
     engine: Engine
     integrate_x: bool
     tangential_law: bool
-    normal_law: str
     normal_damping: float
     horizontal_wave: bool
     vertical_wave: bool
@@ -80,12 +79,14 @@ class Assembly:
     outputs: tuple[str, ...]
 
 
-def assemble(scene: Scene, engine: Engine = "compiled") -> Assembly:
-    """Decide the scheme, the slots that are on, and the engine for ``scene``."""
+def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | None = None) -> Assembly:
+    """Decide the scheme, the slots that are on, and the engine for ``scene``.
+
+    ``model`` is the scene's model instance when the caller has already built it.
+    """
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
-    cls = scene.model_instance()
-    caps = cls.capabilities
+    caps = (model if model is not None else scene.model_instance()).capabilities
     eff = scene.effects
     drive = scene.drive
     if engine == "compiled" and not caps.compiled:
@@ -94,8 +95,7 @@ def assemble(scene: Scene, engine: Engine = "compiled") -> Assembly:
     kernel = f"{name}.kernel.force" if engine == "compiled" else f"{name}.reference().force"
     if isinstance(drive, Prescribed):
         return Assembly(
-            "prescribed", engine, False, True, f"{name} (a*^{scene.particle.profile.p:g})", 0.0,
-            False, False, 0.0,
+            "prescribed", engine, False, True, 0.0, False, False, 0.0,
             ("a*(k), b*(k) prescribed (" + drive.waveform + "); no dynamics",),
             (f"{kernel}(a*, b*) once per sample, committing the history",),
             ("N*(k)", "T*(k)", "dissipated work = sum of T* db*"),
@@ -147,8 +147,8 @@ def assemble(scene: Scene, engine: Engine = "compiled") -> Assembly:
               "periodicity", "liftoffs_per_period")
     )
     return Assembly(
-        scheme, engine, eff.friction, eff.friction and not caps.rigid, normal,
-        eff.normal_damping, horiz, vert, ramp, tuple(equations), tuple(calls), outputs,
+        scheme, engine, eff.friction, eff.friction and not caps.rigid, eff.normal_damping,
+        horiz, vert, ramp, tuple(equations), tuple(calls), outputs,
     )
 
 
@@ -172,7 +172,7 @@ class _Stepper:
         self.scene = scene
         wave = scene.drive
         amplitude = wave.amplitude if isinstance(wave, Wave) else 0.0
-        ramp = wave.ramp_periods if isinstance(wave, Wave) else 0.0
+        ramp = plan.ramp_periods
         engine = plan.engine
         self.k_per = scene.steps_per_period()
         self.h = 1.0 / self.k_per
@@ -322,18 +322,21 @@ def _run_wave(
     n_total = max(int(round(num.periods * k_per)), n_measure)
     n_max = max(n_total, int(round(num.max_periods * k_per)))
     stepper.advance(n_total - n_measure)
-    stepper.st[ig.S_LIFTS] = 0.0
-    dx, samples = _measure(stepper, n_periods)
     speed = 2.0 * math.pi * scene.horizontal_ratio * wave.amplitude
-    ratio = dx / n_periods / speed if speed > 0.0 else 0.0
+
+    def measure() -> tuple[float, float, list[np.ndarray]]:
+        # one measurement window: mean x*' over it, its drift ratio, the stroboscopic samples
+        stepper.st[ig.S_LIFTS] = 0.0
+        dx, samples = _measure(stepper, n_periods)
+        drift = dx / n_periods
+        return drift, (drift / speed if speed > 0.0 else 0.0), samples
+
+    drift, ratio, samples = measure()
     if num.settle:
         previous = math.inf
         while abs(ratio - previous) > num.settle_tolerance and stepper.step + n_measure <= n_max:
             previous = ratio
-            stepper.st[ig.S_LIFTS] = 0.0
-            dx, samples = _measure(stepper, n_periods)
-            ratio = dx / n_periods / speed if speed > 0.0 else 0.0
-    drift = dx / n_periods
+            drift, ratio, samples = measure()
     st = stepper.st
     lost = bool(st[ig.S_LOST] > 0.0)
     count = max(st[ig.S_COUNT], 1.0)
