@@ -274,13 +274,12 @@ def sweep(
     path = Path(table) if table is not None else None
     done = read_rows(path) if path is not None else {}
     todo: list[str] = []
-    seen: set[str] = set()
+    wanted: set[str] = set()
     for scene in scenes:
         cid = cell_id(scene)
-        if cid not in done and cid not in seen:
+        if cid not in done and cid not in wanted:
             todo.append(scene.model_dump_json())
-            seen.add(cid)
-    wanted = {cell_id(s) for s in scenes}
+        wanted.add(cid)
     workers = workers if workers is not None else (os.cpu_count() or 1)
     if workers < 1:
         raise SceneError(f"workers = {workers} must be >= 1")
@@ -317,7 +316,8 @@ def sweep(
             bar.close()
     frame = to_frame(rows.values())
     if path is not None:
-        everything = read_rows(path)
+        # keep the table's cells from other grids; ``done`` already holds table and journal
+        everything = dict(done)
         everything.update(rows)
         write_table(to_frame(everything.values()), path)
         if journal is not None and journal.exists():
