@@ -74,13 +74,11 @@ def scene_from_options(scene_file: Path | None, **options: Any) -> sd.Scene:
         value = options.get(key)
         if value is not None:
             sd.scene.set_dotted(data, dotted, value)
+    if base is not None and options.get("model") not in (None, base.model):
+        data["model_params"] = {}  # the file's parameters belong to the file's model
     params = options.get("params") or {}
     if params:
-        if options.get("model") is not None and base is not None and base.model != options["model"]:
-            data["model_params"] = {}
         data.setdefault("model_params", {}).update(params)
-    elif options.get("model") is not None and base is not None and base.model != options["model"]:
-        data["model_params"] = {}
     return sd.scene.build_scene(data, source=str(scene_file) if scene_file else None)
 
 
