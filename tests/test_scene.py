@@ -35,6 +35,7 @@ def test_scene_is_frozen():
         ({"material": {"nu": -1.0}}, r"material\.nu"),
         ({"material": {"mu": float("nan")}}, r"material\.mu"),
         ({"drive": {"amplitude": -0.1}}, r"drive\.amplitude"),
+        ({"drive": {"kind": "impact", "velocity": -1}}, r"^drive\.velocity = -1 is outside"),
         ({"numerics": {"order": 5}}, r"numerics\.order"),
         ({"particle": {"mass": 1}}, r"particle\.mass is not a known field"),
         ({"model": "material_point", "model_params": {"restitution": 2}}, r"restitution"),

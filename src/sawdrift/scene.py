@@ -383,11 +383,17 @@ def set_dotted(data: dict[str, Any], dotted: str, value: Any) -> None:
     node[keys[-1]] = value
 
 
+#: Tags of the drive union (the ``kind`` of each drive class).
+_DRIVE_KINDS = tuple(cls.model_fields["kind"].default for cls in (Wave, Prescribed, Impact))
+
+
 def format_validation_error(exc: ValidationError, source: str | None = None) -> str:
     """One line naming the first offending field, its value and what is allowed."""
     err = exc.errors()[0]
-    loc = ".".join(str(p) for p in err["loc"] if not str(p).startswith("function-"))
-    loc = loc.replace("drive.wave.", "drive.").replace("drive.prescribed.", "drive.")
+    parts = [str(p) for p in err["loc"] if not str(p).startswith("function-")]
+    if len(parts) > 1 and parts[0] == "drive" and parts[1] in _DRIVE_KINDS:
+        del parts[1]  # the union's tag is not a field the user wrote
+    loc = ".".join(parts)
     msg = err["msg"].removeprefix("Value error, ")
     where = f"{source}: " if source else ""
     if err["type"] == "missing":
@@ -396,7 +402,7 @@ def format_validation_error(exc: ValidationError, source: str | None = None) -> 
         return f"{where}{loc} is not a known field"
     if loc:
         value = err.get("input")
-        if isinstance(value, (int, float, str, bool)) and not isinstance(value, dict):
+        if isinstance(value, (int, float, str, bool)):
             return f"{where}{loc} = {value!r} {msg}" if msg.startswith("is ") else (
                 f"{where}{loc} = {value!r}: {msg}"
             )
@@ -405,12 +411,11 @@ def format_validation_error(exc: ValidationError, source: str | None = None) -> 
 
 
 def build_scene(data: dict[str, Any], source: str | None = None) -> Scene:
-    """Validate a nested dict into a Scene; errors become a one-line SceneError."""
-    from .errors import SawdriftError
+    """Validate a nested dict into a Scene; errors become a one-line SceneError.
 
+    A SawdriftError raised inside validation (an unknown model) passes through unchanged.
+    """
     try:
         return Scene.model_validate(data)
     except ValidationError as exc:
         raise SceneError(format_validation_error(exc, source)) from None
-    except SawdriftError:
-        raise
