@@ -217,6 +217,22 @@ class ContactHistory:
         n, t = self.model.kernel.force(self._fs, self._is, self._pp, a, b, adot, bdot)
         return float(n), float(t)
 
+    def kernel_call(self) -> tuple[Callable[..., tuple[float, float]], np.ndarray, np.ndarray, np.ndarray]:
+        """``(force, fs, is_, pp)``: this history behind the kernel's call signature.
+
+        An integrator loop calls ``force(fs, is_, pp, a, b, adot, bdot)`` and thereby advances
+        this history. For the python engine ``force`` drives the reference and the arrays are
+        placeholders.
+        """
+        if self._ref is None:
+            return self.model.kernel.force, self._fs, self._is, self._pp
+        ref = self._ref
+
+        def force(fs, is_, pp, a, b, adot, bdot):
+            return ref.force(a, b, adot, bdot)
+
+        return force, np.zeros(1), np.zeros(1, dtype=np.int64), np.zeros(1)
+
     def trial(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
         """The forces ``advance`` would return, computed on a copy: the history is unchanged."""
         clone = self.copy()

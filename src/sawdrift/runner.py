@@ -216,20 +216,10 @@ class _Stepper:
             self.y[2] = 1.0 if preload else 0.0
             compiled = engine == "compiled"
             if plan.tangential_law:
-                if compiled:
-                    nf, ni = model.state_sizes()
-                    self.fs = np.zeros(nf)
-                    self.is_ = np.zeros(ni, dtype=np.int64)
-                    self.pp = model.packed_params()
-                    model.kernel.reset(self.fs, self.is_, self.pp)
-                    force = model.kernel.force
-                else:
-                    self.fs = np.zeros(1)
-                    self.is_ = np.zeros(1, dtype=np.int64)
-                    self.pp = np.zeros(1)
-                    force = _reference_force(model)
+                history = ContactHistory(model, engine)
                 if preload:
-                    force(self.fs, self.is_, self.pp, 1.0, 0.0, 0.0, 0.0)
+                    history.advance(1.0, 0.0)
+                force, self.fs, self.is_, self.pp = history.kernel_call()
             else:
                 # Friction off: the tangential law is never called (not even compiled in).
                 self.fs = np.zeros(1)
@@ -479,13 +469,3 @@ def _run_impact(scene: Scene, model: ContactModel, plan: Assembly, trajectory: b
                "max_compression": float(tr["a"].max())},
     )
 
-
-def _reference_force(model: ContactModel):
-    """The model's pure-Python reference wrapped in the kernel's call signature."""
-    ref = model.reference()
-    ref.reset()
-
-    def force(fs, is_, pp, a, b, adot, bdot):
-        return ref.force(a, b, adot, bdot)
-
-    return force
