@@ -22,7 +22,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import sawdrift as sd  # noqa: E402
-from sawdrift.energy import energy_residual  # noqa: E402
+from sawdrift.dynamics.energy import energy_residual  # noqa: E402
 from tests.hard.test_hard_cases import CASES, _scene  # noqa: E402
 
 

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 import sawdrift as sd
+from sawdrift.contact.registry import PluginWarning, Registry
 from sawdrift.errors import PluginError
-from sawdrift.registry import PluginWarning, Registry
 
-# ``sawdrift.registry`` the attribute is the Registry instance; this is the module
-reg = importlib.import_module("sawdrift.registry")
+# ``sawdrift.contact.registry`` the attribute is the Registry instance; this is the module
+reg = importlib.import_module("sawdrift.contact.registry")
 
 
 class _FakeDist:

@@ -17,7 +17,7 @@ import pytest
 import sawdrift as sd
 from sawdrift.analytic import point_prediction
 from sawdrift.errors import SceneError
-from sawdrift.sweep import journal_path, parse_axis
+from sawdrift.study.sweep import journal_path, parse_axis
 
 
 def _values(frame: pd.DataFrame) -> pd.DataFrame:

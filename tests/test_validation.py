@@ -10,7 +10,7 @@ from numba import njit
 
 import sawdrift as sd
 from sawdrift.contact import KernelPair
-from sawdrift.validation import Case, CaseResult, load_cases, validate
+from sawdrift.report.validation import Case, CaseResult, load_cases, validate
 from sawdrift_builtin import mmd_kernel
 from sawdrift_builtin.mmd import MemoryDiagramModel
 
@@ -79,14 +79,14 @@ def test_missing_model_and_broken_case_file_are_errors_not_crashes(tmp_path):
     cases = tmp_path / "cases"
     cases.mkdir()
     (cases / "good.py").write_text(
-        "from sawdrift.validation import Case\n"
+        "from sawdrift.report.validation import Case\n"
         "CASE = Case(name='good', group='convergence', title='1 <= 2', tolerance=2.0, quick=True,\n"
         "            models=('mmd', 'no_such_model'))\n"
         "def run(model):\n"
         "    return CASE.result(1.0, model=model, message='ok')\n"
     )
     (cases / "raises.py").write_text(
-        "from sawdrift.validation import Case\n"
+        "from sawdrift.report.validation import Case\n"
         "CASE = Case(name='raises', group='convergence', title='raises', tolerance=0.0, quick=True)\n"
         "def run():\n"
         "    raise RuntimeError('boom')\n"
@@ -111,7 +111,7 @@ def test_expected_deviation_is_reported_not_failed(tmp_path):
     cases = tmp_path / "cases"
     cases.mkdir()
     (cases / "dev.py").write_text(
-        "from sawdrift.validation import Case\n"
+        "from sawdrift.report.validation import Case\n"
         "CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9, models=('mmd', 'jaeger'),\n"
         "            expected_deviation=('jaeger',))\n"
         "def run(model):\n"
@@ -134,6 +134,6 @@ def test_case_result_comparisons():
 
 
 def test_default_cases_dir_is_the_repository_validation_folder():
-    from sawdrift.validation import default_cases_dir
+    from sawdrift.report.validation import default_cases_dir
 
     assert default_cases_dir() == Path(__file__).resolve().parents[1] / "validation"

@@ -1,7 +1,7 @@
 """Regime diagrams of every model on one grid (paper Fig. 3), drawn side by side.
 
 15 x 15 cells, m* in [1e-3, 1e2], A* in [1e-2, 10], 40 periods, mu = 0.1, nu = 0.3, swept with
-:func:`sawdrift.sweep`. The case checks that every model's sweep completes with no error cell;
+:func:`sawdrift.study.sweep`. The case checks that every model's sweep completes with no error cell;
 the statements of the paper are checked by the other cases of this group on the same tables.
 """
 
@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.validation import DIAGRAM_GRID, DIAGRAM_MODELS, MU, NU, Case, CaseResult, regime_table
+from sawdrift.report.validation import DIAGRAM_GRID, DIAGRAM_MODELS, MU, NU, Case, CaseResult, regime_table
 
 CASE = Case(
     name="phase_diagrams",
@@ -55,7 +55,7 @@ def _figure(tables):
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
-    from sawdrift.diagrams import COLOURS, regime_grid
+    from sawdrift.report.diagrams import COLOURS, regime_grid
 
     names = list(COLOURS)
     fig, axes = plt.subplots(2, 3, figsize=(12.0, 7.8), sharex=True, sharey=True, layout="constrained")

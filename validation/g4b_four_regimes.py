@@ -3,7 +3,7 @@ drift, contact loss, drift with the wave, drift against the wave."""
 
 from __future__ import annotations
 
-from sawdrift.validation import Case, CaseResult, regime_class, regime_table
+from sawdrift.report.validation import Case, CaseResult, regime_class, regime_table
 
 FOUR = ("stick", "lost", "drift_with", "drift_against")
 

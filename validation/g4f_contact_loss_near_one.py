@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.validation import COMPLIANT_MODELS, MU, NU, Case, CaseResult
+from sawdrift.report.validation import COMPLIANT_MODELS, MU, NU, Case, CaseResult
 
 M_STAR = 100.0
 

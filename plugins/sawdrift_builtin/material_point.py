@@ -2,7 +2,7 @@
 
 Paper section 4: the particle cannot be strained and strains nothing, so a* = 0 in contact and
 the friction is Coulomb's law for concentrated forces. The runner integrates it with the
-unilateral-contact scheme of :mod:`sawdrift.rigid`.
+unilateral-contact scheme of :mod:`sawdrift.dynamics.rigid`.
 """
 
 from __future__ import annotations

@@ -14,8 +14,8 @@ J. Appl. Mech. 20, 327-344.
 
 from __future__ import annotations
 
-from sawdrift.profiles import normal_force
-from sawdrift.profiles import normal_stiffness as normal_slope
+from sawdrift.scene.profiles import normal_force
+from sawdrift.scene.profiles import normal_stiffness as normal_slope
 
 Kink = tuple[float, float]
 

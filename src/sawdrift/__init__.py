@@ -1,73 +1,94 @@
 """sawdrift: frictional contact models compared on a particle driven by a Rayleigh wave.
 
-The public API; the CLI uses nothing else.
+The public API; the CLI uses nothing else. Names are imported on first use, so that
+``import sawdrift`` (and ``sawdrift --help``) does not pay for numba, pandas or matplotlib.
+
+The package follows the pipeline::
+
+    scene/     Scene (normalized), profiles, the Rayleigh ratio
+    contact/   the contact-model interface, committed histories, the plugin registry
+    dynamics/  wave kinematics, one integration scheme per module, the runner
+    result/    Result, evidence, regimes
+    study/     sweeps and their resumable tables
+    report/    phase diagrams, comparisons, validation report, benchmarks
 """
 
-from . import regimes, scene
-from .contact import Capabilities, ContactHistory, ContactModel, KernelPair, NoParams
+from __future__ import annotations
+
+import importlib
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _dist_version
+from typing import Any
+
 from .errors import ModelNotFoundError, NonFiniteStateError, PluginError, SawdriftError, SceneError
 from .hookspecs import hookimpl
-from .profiles import Profile
-from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio, theta
-from .regimes import REGIMES, classify
-from .registry import get_model, registry
-from .result import SUMMARY_FIELDS, Result
-from .runner import Assembly, assemble, explain, prescribed_history, run
-from .scene import Effects, Impact, Material, Numerics, Particle, Prescribed, Scene, Wave
-from .sweep import parse_axis, sweep
 
-__version__ = "0.1.0"
+try:
+    __version__ = _dist_version("sawdrift")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree without metadata
+    __version__ = "0+unknown"
 
-_LAZY = {"plot_trajectory": "plots"}
+#: public name -> module (relative to the package) that defines it
+_LAZY: dict[str, str] = {
+    "Capabilities": "contact.base",
+    "ContactHistory": "contact.base",
+    "ContactModel": "contact.base",
+    "KernelPair": "contact.base",
+    "NoParams": "contact.base",
+    "Profile": "scene.profiles",
+    "rayleigh_ratio": "scene.rayleigh",
+    "rayleigh_speed_ratio": "scene.rayleigh",
+    "theta": "scene.rayleigh",
+    "REGIMES": "result.regimes",
+    "classify": "result.regimes",
+    "get_model": "contact.registry",
+    "registry": "contact.registry",
+    "SUMMARY_FIELDS": "result.result",
+    "Result": "result.result",
+    "Assembly": "dynamics.runner",
+    "assemble": "dynamics.runner",
+    "explain": "dynamics.runner",
+    "prescribed_history": "dynamics.runner",
+    "run": "dynamics.runner",
+    "Effects": "scene.schema",
+    "Impact": "scene.schema",
+    "Material": "scene.schema",
+    "Numerics": "scene.schema",
+    "Particle": "scene.schema",
+    "Prescribed": "scene.schema",
+    "Scene": "scene.schema",
+    "Wave": "scene.schema",
+    "parse_axis": "study.sweep",
+    "sweep": "study.sweep",
+    "plot_trajectory": "report.plots",
+}
+_SUBPACKAGES = ("scene", "contact", "dynamics", "result", "study", "report", "analytic")
 
 
-def __getattr__(name: str):
-    # matplotlib is imported only when a figure is asked for
+def __getattr__(name: str) -> Any:
     if name in _LAZY:
-        import importlib
-
-        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    if name == "regimes":
+        return importlib.import_module(".result.regimes", __name__)
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'sawdrift' has no attribute {name!r}")
 
 
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY) | set(_SUBPACKAGES))
+
+
 __all__ = [
-    "Assembly",
-    "Impact",
-    "assemble",
-    "explain",
-    "REGIMES",
-    "SUMMARY_FIELDS",
-    "Capabilities",
-    "ContactHistory",
-    "ContactModel",
-    "Effects",
-    "KernelPair",
-    "Material",
     "ModelNotFoundError",
-    "NoParams",
     "NonFiniteStateError",
-    "Numerics",
-    "Particle",
     "PluginError",
-    "Prescribed",
-    "Profile",
-    "Result",
     "SawdriftError",
-    "Scene",
     "SceneError",
-    "Wave",
-    "classify",
-    "get_model",
+    "__version__",
     "hookimpl",
-    "plot_trajectory",
-    "prescribed_history",
-    "rayleigh_ratio",
-    "rayleigh_speed_ratio",
     "regimes",
-    "registry",
-    "run",
-    "scene",
-    "sweep",
-    "parse_axis",
-    "theta",
+    *_LAZY,
 ]

@@ -217,7 +217,7 @@ def phase_diagram_cmd(
     model: Annotated[str | None, typer.Option("--model", help="model to draw")] = None,
 ) -> None:
     """Draw the regime phase diagram of one model over (A*, m*)."""
-    from .diagrams import plot_phase_diagram
+    from .report.diagrams import plot_phase_diagram
 
     frame = _load_table(table)
     path = plot_phase_diagram(frame, out, model)
@@ -231,7 +231,7 @@ def compare_cmd(
     out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
 ) -> None:
     """Side-by-side phase diagrams, the cells where models disagree, and an agreement table."""
-    from .diagrams import plot_compare
+    from .report.diagrams import plot_compare
 
     frame = _load_table(table)
     path, md = plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out)
@@ -250,7 +250,7 @@ def demo_cmd(
     The grid is the paper's Fig. 3 plane, m* in [1e-3, 1e2] and A* in [1e-2, 10], at mu = 0.1,
     nu = 0.3; the figures and the table go to OUT.
     """
-    from .diagrams import plot_compare, plot_phase_diagram
+    from .report.diagrams import plot_compare, plot_phase_diagram
 
     out.mkdir(parents=True, exist_ok=True)
     scene = sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
@@ -279,7 +279,7 @@ def validate_cmd(
     progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
 ) -> None:
     """Run the validation cases and write an HTML report; exit status 1 if any case fails."""
-    from .validation import validate
+    from .report.validation import validate
 
     report = validate(out, quick=quick, cases_dir=cases, progress=progress)
     typer.echo(report.summary_line() if hasattr(report, "summary_line") else str(report))
@@ -299,7 +299,7 @@ def bench_work_precision_cmd(
     quick: Annotated[bool, typer.Option("--quick", help="a short ladder (seconds)")] = False,
 ) -> None:
     """Error against wall time for every model, order and step (figures, CSV, observed order)."""
-    from .bench import work_precision
+    from .report.bench import work_precision
 
     names = [m.strip() for m in models.split(",")] if models else None
     for name in names or []:
@@ -313,7 +313,7 @@ def bench_speed_cmd(
     quick: Annotated[bool, typer.Option("--quick", help="small sizes (seconds)")] = False,
 ) -> None:
     """Measure the performance targets and print each with PASS/FAIL; exit 1 if one fails."""
-    from .bench import speed
+    from .report.bench import speed
 
     result = speed(quick=quick)
     if not result["all_passed"]:

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import sawdrift as sd
-from sawdrift.energy import energy_residual
+from sawdrift.dynamics.energy import energy_residual
 
 # name -> scene fields; each runs a short horizon (3 periods, 1 of ramp) for the step and
 # engine checks, where even a chaotic motion is still a smooth function of the step.

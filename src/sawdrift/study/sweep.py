@@ -25,9 +25,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .errors import SawdriftError, SceneError
-from .result import SUMMARY_FIELDS
-from .scene import Scene, build_scene, set_dotted
+from ..errors import SawdriftError, SceneError
+from ..result.result import SUMMARY_FIELDS
+from ..scene.schema import Scene, build_scene, set_dotted
 
 #: Columns of a sweep table, in order.
 TABLE_COLUMNS = ("cell_id", *SUMMARY_FIELDS, "periodicity", "liftoffs_per_period", "error")
@@ -105,7 +105,7 @@ def run_cell(scene_json: str, engine: str = "compiled") -> dict[str, Any]:
 
     A model that raises or returns NaN fails only its own cell.
     """
-    from .runner import run
+    from ..dynamics.runner import run
 
     scene = Scene.model_validate_json(scene_json)
     row: dict[str, Any] = {key: None for key in TABLE_COLUMNS}

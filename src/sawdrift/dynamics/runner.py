@@ -1,7 +1,7 @@
 """Run one scene: assemble only what its effects need, integrate, and summarize.
 
-Compliant models go through the Adams-Bashforth loop of :mod:`sawdrift.integrators`; rigid ones
-through the unilateral-contact scheme of :mod:`sawdrift.rigid`; a prescribed drive feeds a*(t*),
+Compliant models go through the Adams-Bashforth loop of :mod:`sawdrift.dynamics.adams_bashforth`; rigid ones
+through the unilateral-contact scheme of :mod:`sawdrift.dynamics.rigid`; a prescribed drive feeds a*(t*),
 b*(t*) straight into the contact law.
 """
 
@@ -16,13 +16,13 @@ import numpy as np
 import pandas as pd
 from numba import njit
 
-from . import integrators as ig
+from ..contact.base import ContactHistory, ContactModel
+from ..errors import NonFiniteStateError, SceneError
+from ..result.regimes import classify
+from ..result.result import Result
+from ..scene.schema import Impact, Prescribed, Scene, Wave
+from . import adams_bashforth as ig
 from . import rigid as rg
-from .contact import ContactHistory, ContactModel
-from .errors import NonFiniteStateError, SceneError
-from .regimes import classify
-from .result import Result
-from .scene import Impact, Prescribed, Scene, Wave
 
 Engine = Literal["compiled", "python"]
 
@@ -115,7 +115,7 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
                              "else m* x*'' = -mu N* sgn(x*' - u_x')")
         else:
             equations.append("x*'' = 0 (friction off: no tangential force)")
-        calls.append("closed-form N*(t), slip velocity and event bisection (sawdrift.rigid)")
+        calls.append("closed-form N*(t), slip velocity and event bisection (sawdrift.dynamics.rigid)")
     else:
         scheme = "impact" if isinstance(drive, Impact) else "adams-bashforth"
         normal = f"{name} normal law" if eff.friction else f"profile law N* = a*^{scene.particle.profile.p:g}"

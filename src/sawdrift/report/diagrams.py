@@ -1,6 +1,6 @@
 """Phase diagrams (paper Fig. 3) and side-by-side model comparison from a sweep table.
 
-Reads only the table (see :mod:`sawdrift.sweep`), never the runner.
+Reads only the table (see :mod:`sawdrift.study.sweep`), never the runner.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import pandas as pd  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
-from .errors import SceneError  # noqa: E402
+from ..errors import SceneError  # noqa: E402
 
 #: Regime colours, in legend order.
 COLOURS = {

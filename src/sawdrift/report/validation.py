@@ -329,7 +329,7 @@ def load_cases(cases_dir: Path | None = None) -> list[LoadedCase]:
     """
     cases_dir = Path(cases_dir) if cases_dir is not None else default_cases_dir()
     if not cases_dir.is_dir():
-        from .errors import SawdriftError
+        from ..errors import SawdriftError
 
         raise SawdriftError(f"validation cases folder {str(cases_dir)!r} does not exist")
     loaded: list[LoadedCase] = []
@@ -364,7 +364,7 @@ def run_case(loaded: LoadedCase, model: str | None = None, quick: bool = False) 
     Never raises: an exception inside the case, an import error, or a model that is not
     registered becomes ``status = "error"``.
     """
-    from .registry import registry
+    from ..contact.registry import registry
 
     case = loaded.case
     t0 = time.perf_counter()
@@ -512,7 +512,7 @@ def clear_shared() -> None:
 
 
 # -- closed forms live in sawdrift.analytic (re-exported here for the case files) -----------
-from .analytic import (  # noqa: E402, F401
+from ..analytic import (  # noqa: E402, F401
     amplitude_for_force_ratio,
     cattaneo_mindlin,
     heavy_sliding_v,
@@ -525,7 +525,7 @@ from .analytic import (  # noqa: E402, F401
 def point_scene(gz: float, gx: float | None = None, m_star: float = 0.1, mu: float = MU,
                 **numerics: Any):
     """A material-point wave scene with Gz = 4 pi^2 m* A* and (optionally) Gx = r Gz."""
-    from .scene import Scene
+    from ..scene.schema import Scene
 
     amp = gz / (4.0 * math.pi**2 * m_star)
     drive: dict[str, Any] = {"amplitude": amp}
@@ -541,8 +541,8 @@ def prescribed(model: str, drive: Mapping[str, Any], *, profile: Mapping[str, An
 
     ``drive`` holds the fields of :class:`sawdrift.scene.Prescribed` (``kind`` is added).
     """
-    from .runner import run
-    from .scene import Scene
+    from ..dynamics.runner import run
+    from ..scene.schema import Scene
 
     scene = Scene(model=model, model_params=dict(model_params or {}),
                   particle={"profile": dict(profile or {"shape": "sphere"})},
@@ -573,9 +573,9 @@ def regime_table(model: str):
     The registered built-in diagram models are swept together in one process pool; any other
     model (e.g. registered at run time, which worker processes may not see) runs serially.
     """
-    from .registry import registry
-    from .scene import Scene
-    from .sweep import sweep
+    from ..contact.registry import registry
+    from ..scene.schema import Scene
+    from ..study.sweep import sweep
 
     def one(names: list[str], workers: int | None):
         base = Scene(model=names[0], material={"mu": MU, "nu": NU},
@@ -594,7 +594,7 @@ def regime_table(model: str):
 
 def regime_class(regime: str) -> str:
     """``lost`` for the contact-loss regimes (hopping, bouncing), else the regime itself."""
-    from .regimes import CONTACT_LOST
+    from ..result.regimes import CONTACT_LOST
 
     return "lost" if regime in CONTACT_LOST else regime
 

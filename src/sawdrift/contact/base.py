@@ -36,7 +36,7 @@ from typing import Any, ClassVar, Protocol
 import numpy as np
 from pydantic import BaseModel, ConfigDict
 
-from .profiles import Profile
+from ..scene.profiles import Profile
 
 
 class NoParams(BaseModel):

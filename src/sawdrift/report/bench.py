@@ -43,12 +43,12 @@ from typing import Any, TypeVar
 import numpy as np
 import pandas as pd
 
-from .contact import ContactHistory
-from .errors import NonFiniteStateError, SceneError
-from .registry import get_model
-from .runner import prescribed_history, run
-from .scene import Numerics, Prescribed, Scene
-from .sweep import sweep
+from ..contact.base import ContactHistory
+from ..contact.registry import get_model
+from ..dynamics.runner import prescribed_history, run
+from ..errors import NonFiniteStateError, SceneError
+from ..scene.schema import Numerics, Prescribed, Scene
+from ..study.sweep import sweep
 
 T = TypeVar("T")
 

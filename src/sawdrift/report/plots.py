@@ -1,4 +1,4 @@
-"""Figures: trajectories of single runs (phase diagrams live in :mod:`sawdrift.diagrams`)."""
+"""Figures: trajectories of single runs (phase diagrams live in :mod:`sawdrift.report.diagrams`)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from .result import Result  # noqa: E402
+from ..result.result import Result  # noqa: E402
 
 
 def plot_trajectory(result: Result, path: str | Path) -> Path:

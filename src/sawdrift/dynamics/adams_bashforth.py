@@ -12,7 +12,7 @@ Equations (normalized, physics.md section 1)::
     m* y''  = 1 - N*(a*)                   a*          = y* - u_y(t*)
     u_x = -A* r R(t*) sin(2 pi t*)         u_y = A* R(t*) cos(2 pi t*)
 
-R(t*) = sin^2(pi t* / (2 T_ramp)) for t* < T_ramp, else 1.
+with the substrate kinematics and the ramp R(t*) of :mod:`sawdrift.dynamics.wave`.
 """
 
 from __future__ import annotations
@@ -23,6 +23,8 @@ from typing import Any
 
 import numpy as np
 from numba import njit
+
+from .wave import surface
 
 #: Adams-Bashforth coefficients, row k-1 for order k (Hairer, Norsett, Wanner, *Solving ODEs I*,
 #: section III.1, table 1.1), newest derivative first.
@@ -48,32 +50,6 @@ N_ST = 8
 # Columns of the trajectory record.
 REC_COLUMNS = ("t", "x", "vx", "y", "vy", "a", "b", "N", "T")
 N_REC = len(REC_COLUMNS)
-
-TWO_PI = 2.0 * math.pi
-
-
-@njit(cache=True)
-def ramp(t: float, t_ramp: float) -> tuple[float, float]:
-    """R(t*) = sin^2(pi t*/(2 T)) for t* < T, else 1, and its derivative (physics.md sec. 1)."""
-    if t_ramp <= 0.0 or t >= t_ramp:
-        return 1.0, 0.0
-    arg = 0.5 * math.pi * t / t_ramp
-    s = math.sin(arg)
-    return s * s, 0.5 * math.pi / t_ramp * math.sin(2.0 * arg)
-
-
-@njit(cache=True)
-def surface(t: float, amp: float, r: float, t_ramp: float, horiz: float, vert: float):
-    """Substrate displacement and velocity (u_x, u_x', u_y, u_y') of paper eq. 1 with the ramp."""
-    rr, rd = ramp(t, t_ramp)
-    s2 = math.sin(TWO_PI * t)
-    c2 = math.cos(TWO_PI * t)
-    ux = -amp * r * rr * s2 * horiz
-    uxd = -amp * r * (rd * s2 + rr * TWO_PI * c2) * horiz
-    uy = amp * rr * c2 * vert
-    uyd = amp * (rd * c2 - rr * TWO_PI * s2) * vert
-    return ux, uxd, uy, uyd
-
 
 @njit(cache=True)
 def record(rec, ctr, t, y, a, b, nf, tf):

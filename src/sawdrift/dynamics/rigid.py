@@ -21,7 +21,7 @@ import math
 
 from numba import njit
 
-from .integrators import (
+from .adams_bashforth import (
     P_A,
     P_FRICTION,
     P_H,
@@ -39,9 +39,9 @@ from .integrators import (
     S_LIFTS,
     S_LOST,
     S_OUT,
-    TWO_PI,
     record,
 )
+from .wave import kinematics
 
 #: Extra slots of the parameter vector used by the rigid scheme.
 P_RESTITUTION = 14
@@ -52,49 +52,24 @@ _BISECT = 60
 
 
 @njit(cache=True)
-def _kinematics(t, amp, r, t_ramp, horiz, vert):
-    """(u_x, u_x', u_x'', u_y, u_y', u_y'') of paper eq. 1 times R(t*) = sin^2(pi t*/(2T))."""
-    if t_ramp <= 0.0 or t >= t_ramp:
-        rr, rd, rdd = 1.0, 0.0, 0.0
-    else:
-        w = 0.5 * math.pi / t_ramp
-        s = math.sin(w * t)
-        rr = s * s
-        rd = w * math.sin(2.0 * w * t)
-        rdd = 2.0 * w * w * math.cos(2.0 * w * t)
-    s2 = math.sin(TWO_PI * t)
-    c2 = math.cos(TWO_PI * t)
-    k2 = TWO_PI * TWO_PI
-    ax = -amp * r * horiz
-    ay = amp * vert
-    ux = ax * rr * s2
-    uxd = ax * (rd * s2 + rr * TWO_PI * c2)
-    uxdd = ax * (rdd * s2 + 2.0 * rd * TWO_PI * c2 - rr * k2 * s2)
-    uy = ay * rr * c2
-    uyd = ay * (rd * c2 - rr * TWO_PI * s2)
-    uydd = ay * (rdd * c2 - 2.0 * rd * TWO_PI * s2 - rr * k2 * c2)
-    return ux, uxd, uxdd, uy, uyd, uydd
-
-
-@njit(cache=True)
 def _normal(t, prm):
     """N*(t) in permanent contact (1 - m* u_y'' with vertical inertia, else 1)."""
     if prm[P_VINERTIA] <= 0.0:
         return 1.0
-    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
     return 1.0 - prm[P_M] * k[5]
 
 
 @njit(cache=True)
 def _stick_margin(t, prm):
     """N* - |T_req| with T_req = -m* u_x''/mu: stick holds while this is >= 0."""
-    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
     return _normal(t, prm) - abs(prm[P_M] * k[2] / prm[P_MU])
 
 
 @njit(cache=True)
 def _t_req(t, prm):
-    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
     return -prm[P_M] * k[2] / prm[P_MU]
 
 
@@ -108,8 +83,8 @@ def _slip_state(t0, x0, v0, t, sigma, prm):
     c = prm[P_MU] * sigma / m
     dt = t - t0
     if prm[P_VINERTIA] > 0.0:
-        k0 = _kinematics(t0, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
-        k1 = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+        k0 = kinematics(t0, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+        k1 = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
         int_n = dt - m * (k1[4] - k0[4])
         int2_n = 0.5 * dt * dt - m * (k1[3] - k0[3] - k0[4] * dt)
     else:
@@ -120,7 +95,7 @@ def _slip_state(t0, x0, v0, t, sigma, prm):
 
 @njit(cache=True)
 def _slip_velocity(t0, x0, v0, t, sigma, prm):
-    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
     return _slip_state(t0, x0, v0, t, sigma, prm)[1] - k[1]
 
 
@@ -128,7 +103,7 @@ def _slip_velocity(t0, x0, v0, t, sigma, prm):
 def _gap(t0, y0, v0, t, prm):
     """a* = y* - u_y at t in flight from (t0, y0, v0): negative while separated."""
     dt = t - t0
-    k = _kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
     return y0 + v0 * dt + 0.5 * dt * dt / prm[P_M] - k[3]
 
 
@@ -175,7 +150,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 out_time += dt
                 y[0] += y[1] * dt
                 vy = y[3] + dt / m
-                kk = _kinematics(tc, amp, r, t_ramp, horiz, vert)
+                kk = kinematics(tc, amp, r, t_ramp, horiz, vert)
                 vn = vy - kk[4]
                 if vn < 0.0:
                     vn = 0.0
@@ -230,16 +205,16 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                             lo = mid
                         else:
                             hi = mid
-                    k0 = _kinematics(tau, amp, r, t_ramp, horiz, vert)
-                    k1 = _kinematics(hi, amp, r, t_ramp, horiz, vert)
+                    k0 = kinematics(tau, amp, r, t_ramp, horiz, vert)
+                    k1 = kinematics(hi, amp, r, t_ramp, horiz, vert)
                     y[0] += k1[0] - k0[0]
                     y[1] = k1[1]
                     ctr[3] = 0
                     ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
                     tau = hi
                     continue
-                k0 = _kinematics(tau, amp, r, t_ramp, horiz, vert)
-                k1 = _kinematics(seg_end, amp, r, t_ramp, horiz, vert)
+                k0 = kinematics(tau, amp, r, t_ramp, horiz, vert)
+                k1 = kinematics(seg_end, amp, r, t_ramp, horiz, vert)
                 y[0] += k1[0] - k0[0]
                 y[1] = k1[1]
             else:  # slip with sgn(s) = sigma
@@ -253,7 +228,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                         else:
                             hi = mid
                     xs, _vs = _slip_state(tau, y[0], y[1], hi, sigma, prm)
-                    k1 = _kinematics(hi, amp, r, t_ramp, horiz, vert)
+                    k1 = kinematics(hi, amp, r, t_ramp, horiz, vert)
                     y[0] = xs
                     y[1] = k1[1]
                     if _stick_margin(hi, prm) >= 0.0:
@@ -265,7 +240,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 xs, vs = _slip_state(tau, y[0], y[1], seg_end, sigma, prm)
                 y[0] = xs
                 y[1] = vs
-            kk = _kinematics(seg_end, amp, r, t_ramp, horiz, vert)
+            kk = kinematics(seg_end, amp, r, t_ramp, horiz, vert)
             y[2] = kk[3]
             y[3] = kk[4]
             tau = seg_end
@@ -273,7 +248,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 ctr[1] = 1
                 st[S_LIFTS] += 1.0
         # ---- bookkeeping at the end of the step ----
-        kk = _kinematics(t_end, amp, r, t_ramp, horiz, vert)
+        kk = kinematics(t_end, amp, r, t_ramp, horiz, vert)
         a = y[2] - kk[3] if ctr[1] == 1 else 0.0
         if ctr[1] == 1:
             nf = 0.0

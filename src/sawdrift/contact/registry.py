@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import pluggy
 
-from . import hookspecs
-from .contact import ContactModel
-from .errors import ModelNotFoundError, PluginError
+from .. import hookspecs
+from ..errors import ModelNotFoundError, PluginError
+from .base import ContactModel
 
 ENTRY_POINT_GROUP = "sawdrift.models"
 

@@ -23,7 +23,7 @@ from pydantic import (
     model_validator,
 )
 
-from .errors import SceneError
+from ..errors import SceneError
 from .profiles import Profile
 from .rayleigh import rayleigh_ratio, theta
 
@@ -249,7 +249,7 @@ class Scene(BaseModel):
 
     @model_validator(mode="after")
     def _model_schema(self) -> Scene:
-        from .registry import get_model
+        from ..contact.registry import get_model
 
         cls = get_model(self.model)
         params = cls.Params.model_validate(self.model_params)
@@ -296,7 +296,7 @@ class Scene(BaseModel):
 
     def model_instance(self):
         """The configured ContactModel instance."""
-        from .registry import get_model
+        from ..contact.registry import get_model
 
         cls = get_model(self.model)
         return cls(cls.Params.model_validate(self.model_params), self.particle.profile)
@@ -312,7 +312,7 @@ class Scene(BaseModel):
         """
         if self.numerics.steps_per_period is not None:
             return self.numerics.steps_per_period
-        from .registry import get_model
+        from ..contact.registry import get_model
 
         if get_model(self.model).capabilities.rigid:
             # no contact stiffness to resolve; events are located by bisection inside steps

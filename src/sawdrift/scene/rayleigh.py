@@ -16,7 +16,7 @@ from functools import lru_cache
 
 from scipy.optimize import brentq
 
-from .errors import SceneError
+from ..errors import SceneError
 
 
 def _check_nu(nu: float) -> None:

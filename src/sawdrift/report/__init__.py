@@ -1,0 +1,1 @@
+"""Reports read results and tables: phase diagrams, comparisons, validation, benchmarks."""

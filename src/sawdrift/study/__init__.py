@@ -1,0 +1,1 @@
+"""Studies over many scenes: sweeps on serial, process or dask executors, resumable tables."""
