@@ -23,4 +23,8 @@ class PluginError(SawdriftError, RuntimeError):
 
 
 class NonFiniteStateError(SawdriftError, FloatingPointError):
-    """The integrated state stopped being finite."""
+    """The integration could not go on: a non-finite state, or a step it cannot resolve.
+
+    The message names t*, the state and the cause (for example more events in one step than the
+    rigid scheme resolves), and what to change.
+    """

@@ -55,6 +55,14 @@ def tsuji_force(fs, is_, pp, a: float, b: float, adot: float, bdot: float):
     return max(n, 0.0), t
 
 
+@njit(cache=True)
+def tsuji_normal(fs, is_, pp, a: float, b: float, adot: float, bdot: float):  # noqa: ARG001
+    """(N*, 0): the damped normal force alone (the normal slot, used with friction off)."""
+    if a <= 0.0:
+        return 0.0, 0.0
+    return max(a ** pp[0] + pp[2] * a ** (0.5 * (pp[0] - 1.0)) * adot, 0.0), 0.0
+
+
 class HertzTsujiReference(HertzMindlinDEMReference):
     """Pure-Python reference: the DEM reference plus the clamped Tsuji dashpot."""
 
@@ -87,6 +95,10 @@ class HertzTsuji(HertzMindlinDEM):
     def packed_params(self) -> np.ndarray:
         """[p, rescale, damping]: the DEM kernel reads the first two."""
         return np.append(super().packed_params(), float(self.params.damping))
+
+    def normal_law(self):
+        """The clamped Tsuji normal law alone (kept when friction is off)."""
+        return tsuji_normal
 
     def reference(self) -> HertzTsujiReference:
         """A fresh pure-Python reference contact (empty history)."""

@@ -140,6 +140,18 @@ class ContactModel:
         """A fresh pure-Python reference contact (empty history)."""
         raise NotImplementedError(f"model {self.name!r} has no pure-Python reference")
 
+    def normal_law(self) -> Callable[..., tuple[float, float]]:
+        """The model's normal law alone, as a compiled kernel ``(fs, is_, pp, a, b, adot, bdot)``.
+
+        It returns ``(N*, 0)`` and keeps no history; the integrator calls it instead of the
+        tangential law when friction is off. The default is the profile's power law
+        (:func:`sawdrift.contact.normal.power_normal`); a model with its own normal physics (normal
+        damping, a tabulated law) overrides this. ``.py_func`` of the result is the python engine's.
+        """
+        from .normal import power_normal
+
+        return power_normal
+
     # -- shared -----------------------------------------------------------------------------
     @classmethod
     def describe(cls) -> dict[str, Any]:

@@ -24,6 +24,26 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from .evidence import (
+    BAD_NONFINITE,
+    EV_LANDING,
+    EV_LIFT_OFF,
+    EV_SLIP_END,
+    EV_SLIP_START,
+    EV_STICK_START,
+    S_AMIN,
+    S_BAD,
+    S_BADSTEP,
+    S_COUNT,
+    S_LIFTS,
+    S_LOST,
+    S_OUT,
+    S_PREVIN,
+    S_PREVSLIP,
+    S_SLIP,
+    SLIP_RTOL,
+    event,
+)
 from .wave import surface
 
 #: Adams-Bashforth coefficients, row k-1 for order k (Hairer, Norsett, Wanner, *Solving ODEs I*,
@@ -42,10 +62,7 @@ P_M, P_A, P_R, P_MU, P_THETA, P_RAMP, P_H, P_ORDER = 0, 1, 2, 3, 4, 5, 6, 7
 P_FRICTION, P_DAMP, P_P, P_HORIZ, P_VERT, P_KRAMP = 8, 9, 10, 11, 12, 13
 N_PRM = 14
 
-# Layout of the statistics vector ``st``.
-S_LOST, S_AMIN, S_OUT, S_COUNT, S_BAD, S_BADSTEP = 0, 1, 2, 3, 4, 5
-S_LIFTS, S_PREVIN = 6, 7  # lift-offs counted (reset by the runner), and contact at the last step
-N_ST = 8
+# The statistics vector ``st`` and its event log: see :mod:`sawdrift.dynamics.evidence`.
 
 # Columns of the trajectory record.
 REC_COLUMNS = ("t", "x", "vx", "y", "vy", "a", "b", "N", "T")
@@ -83,7 +100,6 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
         order = int(prm[P_ORDER])
         friction = prm[P_FRICTION] > 0.0
         damp = prm[P_DAMP]
-        p = prm[P_P]
         horiz = prm[P_HORIZ]
         vert = prm[P_VERT]
         k_ramp = int(prm[P_KRAMP])
@@ -98,8 +114,9 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
                 bdot = (y[1] - uxd) * scale_b
                 nf, tf = force(fs, is_, pp, a, b, adot, bdot)
             else:
+                # friction off: ``force`` is the model's normal law alone (its normal slot)
                 b = 0.0
-                nf = a**p if a > 0.0 else 0.0
+                nf, tf = force(fs, is_, pp, a, 0.0, adot, 0.0)
                 tf = 0.0
             if damp > 0.0 and a > 0.0:
                 nf += damp * adot
@@ -107,15 +124,32 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
                     nf = 0.0
             ax = -mu * tf / m
             ay = (1.0 - nf) / m
-            if a > 0.0:
-                st[S_PREVIN] = 1.0
-            elif st[S_PREVIN] > 0.0:
-                st[S_PREVIN] = 0.0
+            inside = a > 0.0
+            slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
+            was_in = st[S_PREVIN] > 0.0
+            was_slip = st[S_PREVSLIP] > 0.0
+            if inside and not was_in:
+                event(st, EV_LANDING, t, y, a)
+                event(st, EV_SLIP_START if slipping else EV_STICK_START, t, y, a)
+            elif was_in and not inside:
+                if was_slip:
+                    event(st, EV_SLIP_END, t, y, a)
+                event(st, EV_LIFT_OFF, t, y, a)
                 st[S_LIFTS] += 1.0
+            elif inside:
+                if slipping and not was_slip:
+                    event(st, EV_SLIP_START, t, y, a)
+                elif was_slip and not slipping:
+                    event(st, EV_SLIP_END, t, y, a)
+                    event(st, EV_STICK_START, t, y, a)
+            st[S_PREVIN] = 1.0 if inside else 0.0
+            st[S_PREVSLIP] = 1.0 if slipping else 0.0
             if k >= k_ramp:
-                if a <= 0.0:
+                if not inside:
                     st[S_LOST] = 1.0
                     st[S_OUT] += 1.0
+                if slipping:
+                    st[S_SLIP] += 1.0
                 if a < st[S_AMIN]:
                     st[S_AMIN] = a
                 st[S_COUNT] += 1.0
@@ -140,7 +174,7 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
                 ctr[1] += 1
             ctr[0] = k + 1
             if not (math.isfinite(y[0] + y[1] + y[2] + y[3]) and math.isfinite(nf + tf)):
-                st[S_BAD] = 1.0
+                st[S_BAD] = BAD_NONFINITE
                 st[S_BADSTEP] = k
                 return
 

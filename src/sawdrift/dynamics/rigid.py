@@ -32,6 +32,16 @@ from .adams_bashforth import (
     P_R,
     P_RAMP,
     P_VERT,
+    record,
+)
+from .evidence import (
+    BAD_EVENTS,
+    BAD_NONFINITE,
+    EV_LANDING,
+    EV_LIFT_OFF,
+    EV_SLIP_END,
+    EV_SLIP_START,
+    EV_STICK_START,
     S_AMIN,
     S_BAD,
     S_BADSTEP,
@@ -39,7 +49,8 @@ from .adams_bashforth import (
     S_LIFTS,
     S_LOST,
     S_OUT,
-    record,
+    S_SLIP,
+    event,
 )
 from .wave import kinematics
 
@@ -49,6 +60,10 @@ P_VINERTIA = 15
 N_PRM_RIGID = 16
 
 _BISECT = 60
+#: events (impacts, lift-offs, stick and slip changes) one step may hold before it is an error
+_MAX_EVENTS = 4096
+#: shortest rebound flight, in steps, before an inelastic collapse counts as landed
+_ZENO = 1e-6
 
 
 @njit(cache=True)
@@ -126,8 +141,9 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
         t_end = t + h
         tau = t
         out_time = 0.0
+        slip_time = 0.0
         guard = 0
-        while tau < t_end and guard < 64:
+        while tau < t_end and guard < _MAX_EVENTS:
             guard += 1
             if ctr[1] == 1:  # flight
                 if _gap(tau, y[2], y[3], t_end, prm) < 0.0:
@@ -160,8 +176,22 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     dv = min(abs(s), mu * (1.0 + e) * vn)
                     y[1] -= math.copysign(dv, s) if s != 0.0 else 0.0
                 tau = tc
-                if e * vn > 1e-9 and _normal(tc, prm) > 0.0:
+                event(st, EV_LANDING, tc, y, 0.0)
+                # Restitution applies to every impact, also where N* <= 0 would lift at once.
+                # An inelastic collapse (rebounds shrinking geometrically) ends in landing once
+                # the next flight 2 e vn m*/N* is shorter than _ZENO steps (the remaining flights
+                # sum to less than _ZENO h / (1 - e)), or once e vn is below the speed that the
+                # gap function resolves: its rounding error eps ~ 1e-14 (1 + A*) puts a floor
+                # sqrt(eps N*/m*) under located impact speeds; 10x that floor is kept.
+                n_imp = _normal(tc, prm)
+                ev_n = e * vn
+                if ev_n > 0.0 and (
+                    n_imp <= 0.0
+                    or (2.0 * ev_n * m > _ZENO * h * n_imp
+                        and ev_n * ev_n * m > 1e-12 * (1.0 + amp) * n_imp)
+                ):
                     y[3] = kk[4] - e * vn
+                    event(st, EV_LIFT_OFF, tc, y, 0.0)
                     st[S_LIFTS] += 1.0
                 else:
                     ctr[1] = 0
@@ -172,13 +202,18 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     elif abs(s) <= 1e-14 and _stick_margin(tc, prm) >= 0.0:
                         ctr[3] = 1
                         y[1] = kk[1]
+                        event(st, EV_STICK_START, tc, y, 0.0)
                     else:
                         ctr[3] = 0
                         ctr[4] = 1 if (s > 0.0 or (s == 0.0 and _t_req(tc, prm) > 0.0)) else -1
+                        event(st, EV_SLIP_START, tc, y, 0.0)
                 continue
             # ---- contact ----
             if _normal(tau, prm) < 0.0:
+                if friction and ctr[3] == 0:
+                    event(st, EV_SLIP_END, tau, y, 0.0)
                 ctr[1] = 1
+                event(st, EV_LIFT_OFF, tau, y, 0.0)
                 st[S_LIFTS] += 1.0
                 continue
             seg_end = t_end
@@ -212,6 +247,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     ctr[3] = 0
                     ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
                     tau = hi
+                    event(st, EV_SLIP_START, hi, y, 0.0)
                     continue
                 k0 = kinematics(tau, amp, r, t_ramp, horiz, vert)
                 k1 = kinematics(seg_end, amp, r, t_ramp, horiz, vert)
@@ -231,12 +267,16 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     k1 = kinematics(hi, amp, r, t_ramp, horiz, vert)
                     y[0] = xs
                     y[1] = k1[1]
+                    slip_time += hi - tau
                     if _stick_margin(hi, prm) >= 0.0:
                         ctr[3] = 1
+                        event(st, EV_SLIP_END, hi, y, 0.0)
+                        event(st, EV_STICK_START, hi, y, 0.0)
                     else:
                         ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
                     tau = hi
                     continue
+                slip_time += seg_end - tau
                 xs, vs = _slip_state(tau, y[0], y[1], seg_end, sigma, prm)
                 y[0] = xs
                 y[1] = vs
@@ -245,8 +285,16 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             y[3] = kk[4]
             tau = seg_end
             if lift:
+                if friction and ctr[3] == 0:
+                    event(st, EV_SLIP_END, seg_end, y, 0.0)
                 ctr[1] = 1
+                event(st, EV_LIFT_OFF, seg_end, y, 0.0)
                 st[S_LIFTS] += 1.0
+        if tau < t_end:
+            # more events in one step than the scheme resolves: never fall behind silently
+            st[S_BAD] = BAD_EVENTS
+            st[S_BADSTEP] = k
+            return
         # ---- bookkeeping at the end of the step ----
         kk = kinematics(t_end, amp, r, t_ramp, horiz, vert)
         a = y[2] - kk[3] if ctr[1] == 1 else 0.0
@@ -267,11 +315,12 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 st[S_OUT] += min(1.0, out_time / h) if out_time > 0.0 else 1.0
             if a < st[S_AMIN]:
                 st[S_AMIN] = a
+            st[S_SLIP] += slip_time / h
             st[S_COUNT] += 1.0
         if rec_every > 0 and (k + 1) % rec_every == 0:
             record(rec, ctr, t_end, y, a, math.nan, nf, tf)
         ctr[0] = k + 1
         if not math.isfinite(y[0] + y[1] + y[2] + y[3]):
-            st[S_BAD] = 1.0
+            st[S_BAD] = BAD_NONFINITE
             st[S_BADSTEP] = k
             return

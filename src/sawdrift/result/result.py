@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from typing import Any
 
 import pandas as pd
@@ -30,16 +30,33 @@ SUMMARY_FIELDS = (
     "min_compression",
     "steps",
     "wall_time_s",
+    "gross_slip_fraction",
+    "liftoffs_per_period",
+    "hop_period",
+    "liftoff_phase",
+    "liftoff_phase_spread",
+    "lyapunov",
+    "periodicity",
+    "version",
 )
+
+
+def _package_version() -> str:
+    from .. import __version__
+
+    return __version__
 
 
 @dataclass
 class Result:
-    """Summary of a run (see :data:`SUMMARY_FIELDS`) and, optionally, its trajectory.
+    """Summary of a run (see :data:`SUMMARY_FIELDS`) and, optionally, its trajectory and events.
 
     ``drift_velocity`` is the mean x*' over the last ``measure_periods`` whole periods
     (x* sampled at the same wave phase at both ends), ``drift_ratio`` that velocity over the
-    horizontal surface-speed amplitude 2 pi r A* (0 when A* = 0).
+    horizontal surface-speed amplitude 2 pi r A* (0 when A* = 0). Every piece of evidence
+    (contact loss, gross slip, lift-offs and their phases, the Lyapunov estimate, the events)
+    comes from that same window; see :mod:`sawdrift.result.regimes`. ``version`` is the sawdrift
+    version that computed it and ``scene`` the whole scene (provenance).
     """
 
     model: str
@@ -62,20 +79,34 @@ class Result:
     min_compression: float
     steps: int
     wall_time_s: float
+    gross_slip_fraction: float = math.nan
+    liftoffs_per_period: float = math.nan
+    hop_period: int = 0
+    liftoff_phase: float = math.nan
+    liftoff_phase_spread: float = math.nan
+    lyapunov: float = math.nan
+    periodicity: float = math.nan
+    version: str = field(default_factory=_package_version)
+    scene: dict[str, Any] = field(default_factory=dict, repr=False)
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
+    events: pd.DataFrame | None = field(default=None, repr=False)
     extra: dict[str, Any] = field(default_factory=dict, repr=False)
 
     def summary(self) -> dict[str, Any]:
-        """The summary fields as JSON-ready Python values (NaN becomes None)."""
-        data = asdict(self)
+        """The summary fields, the extras and the scene as JSON-ready values (NaN becomes None)."""
         out: dict[str, Any] = {}
         for key in SUMMARY_FIELDS:
-            value = data[key]
-            if isinstance(value, float) and not math.isfinite(value):
-                value = None
-            out[key] = value
+            out[key] = _plain(getattr(self, key))
         for key, value in self.extra.items():
-            if isinstance(value, float) and not math.isfinite(value):
-                value = None
-            out[key] = value
+            out[key] = _plain(value)
+        out["scene"] = self.scene
         return out
+
+
+def _plain(value: Any) -> Any:
+    """A JSON-ready scalar: numpy scalars become Python ones, non-finite floats None."""
+    if hasattr(value, "item") and not isinstance(value, (str, bytes)):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value

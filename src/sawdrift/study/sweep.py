@@ -30,7 +30,7 @@ from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, set_dotted
 
 #: Columns of a sweep table, in order.
-TABLE_COLUMNS = ("cell_id", *SUMMARY_FIELDS, "periodicity", "liftoffs_per_period", "error")
+TABLE_COLUMNS = ("cell_id", *SUMMARY_FIELDS, "error")
 
 
 def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:

@@ -1,0 +1,86 @@
+"""Evidence gathered by the integration loops: one statistics vector and an event log.
+
+Both schemes (compliant Adams-Bashforth and the rigid event scheme) write the same layout into
+one float64 vector ``st``: a fixed block of statistics, then an event buffer of rows
+``(t*, kind, x*, x*', y*, y*', a*)``. The runner clears the statistics and the buffer when the
+measurement window starts (:func:`open_window`), so every piece of evidence of a result (lift-offs,
+contact loss, gross slip, events) comes from the same window, after the transient.
+
+Event kinds (:data:`EVENT_KINDS`):
+
+* ``lift_off`` - contact is lost (a* turns <= 0); a bounce of the rigid point counts as landing
+  and lift-off at the same instant;
+* ``landing`` - contact is regained;
+* ``slip_start`` / ``slip_end`` - gross slip (the whole contact slides, |T*| = N*) begins / ends
+  while in contact; a lift-off during gross slip ends it first;
+* ``stick_start`` - a phase without gross slip begins in contact (after ``slip_end``, or at a
+  landing that does not slide).
+
+Gross slip of a compliant law is |T*| >= (1 - :data:`SLIP_RTOL`) N* with N* > 0: an exact law reaches
+|T*| = N* to rounding when the whole diagram slides (partial slip stays below it).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+# statistics block
+S_LOST, S_AMIN, S_OUT, S_COUNT, S_BAD, S_BADSTEP = 0, 1, 2, 3, 4, 5
+S_LIFTS, S_PREVIN = 6, 7  # lift-offs in the window; contact at the last step (1/0)
+S_SLIP, S_PREVSLIP = 8, 9  # steps (fraction-weighted) in gross slip; gross slip at the last step
+S_NEV, S_EVCAP = 10, 11  # events written, capacity of the buffer (rows)
+S_EVDROP = 12  # events not written because the buffer was full
+N_ST = 16
+
+#: bad-state causes written to ``st[S_BAD]``
+BAD_NONFINITE, BAD_EVENTS = 1.0, 2.0
+
+# event buffer
+EV_W = 7
+EVENT_KINDS = ("lift_off", "landing", "slip_start", "slip_end", "stick_start")
+EV_LIFT_OFF, EV_LANDING, EV_SLIP_START, EV_SLIP_END, EV_STICK_START = 0, 1, 2, 3, 4
+EVENT_COLUMNS = ("t", "kind", "x", "vx", "y", "vy", "a")
+
+#: relative tolerance of the gross-slip test |T*| >= (1 - SLIP_RTOL) N*
+SLIP_RTOL = 1e-6
+
+
+def new_stats(event_capacity: int) -> np.ndarray:
+    """A statistics vector with room for ``event_capacity`` events, in contact, window open."""
+    st = np.zeros(N_ST + EV_W * max(0, int(event_capacity)))
+    st[S_PREVIN] = 1.0
+    st[S_EVCAP] = max(0, int(event_capacity))
+    open_window(st)
+    return st
+
+
+def open_window(st: np.ndarray) -> None:
+    """Start the measurement window: clear every statistic and the event log (not the state)."""
+    for i in (S_LOST, S_OUT, S_COUNT, S_LIFTS, S_SLIP, S_NEV, S_EVDROP):
+        st[i] = 0.0
+    st[S_AMIN] = np.inf
+
+
+@njit(cache=True)
+def event(st, kind, t, y, a):
+    """Append one event row (see :data:`EVENT_COLUMNS`), or count it as dropped when full."""
+    i = int(st[S_NEV])
+    if i >= st[S_EVCAP]:
+        st[S_EVDROP] += 1.0
+        return
+    j = N_ST + EV_W * i
+    st[j] = t
+    st[j + 1] = kind
+    st[j + 2] = y[0]
+    st[j + 3] = y[1]
+    st[j + 4] = y[2]
+    st[j + 5] = y[3]
+    st[j + 6] = a
+    st[S_NEV] = i + 1.0
+
+
+def events(st: np.ndarray) -> np.ndarray:
+    """The events written since the window opened, as an (n, EV_W) array."""
+    n = int(st[S_NEV])
+    return st[N_ST : N_ST + EV_W * n].reshape(n, EV_W).copy()

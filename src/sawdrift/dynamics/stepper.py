@@ -1,0 +1,195 @@
+"""One integration of a wave or impact scene, advanced in segments, and its twin for Lyapunov.
+
+The :class:`Stepper` holds the whole state of a run (mechanical state, Adams-Bashforth derivative
+history, the contact history, the evidence vector) and advances it with the scheme the runner
+assembled: the compliant loop of :mod:`.adams_bashforth` or the rigid scheme of :mod:`.rigid`.
+:meth:`Stepper.twin` gives an independent copy, optionally perturbed, for the finite-time Lyapunov
+estimate of the regime evidence.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pandas as pd
+
+from ..contact.base import ContactHistory, ContactModel
+from ..errors import NonFiniteStateError
+from ..scene.schema import Scene, Wave
+from . import adams_bashforth as ig
+from . import evidence as ev
+from . import rigid as rg
+
+if TYPE_CHECKING:
+    from .runner import Assembly
+
+#: Trajectory samples recorded per wave period (at most).
+RECORDS_PER_PERIOD = 200
+
+#: Event rows kept per period of the measurement window (plus a fixed margin); more are counted
+#: as dropped, and the result says so.
+EVENTS_PER_PERIOD = 64
+
+
+class Stepper:
+    """One integration, advanced in segments so that the state can be read between them.
+
+    Parameters
+    ----------
+    scene, model, plan
+        The scene, its model instance and the runner's :class:`~sawdrift.dynamics.runner.Assembly`.
+    record
+        Record the trajectory (about :data:`RECORDS_PER_PERIOD` rows per period).
+    preload
+        Start at the static compression a* = 1 (wave scenes); an impact starts at a* = 0.
+    event_periods
+        Periods of the measurement window, which sizes the event buffer.
+    """
+
+    def __init__(
+        self,
+        scene: Scene,
+        model: ContactModel,
+        plan: Assembly,
+        record: bool,
+        preload: bool = True,
+        event_periods: int = 1,
+    ):
+        self.scene = scene
+        wave = scene.drive
+        amplitude = wave.amplitude if isinstance(wave, Wave) else 0.0
+        ramp = plan.ramp_periods
+        engine = plan.engine
+        self.k_per = scene.steps_per_period()
+        self.h = 1.0 / self.k_per
+        self.rigid = model.capabilities.rigid
+        eff = scene.effects
+        prm = np.zeros(rg.N_PRM_RIGID)
+        prm[ig.P_M] = scene.particle.m_star
+        prm[ig.P_A] = amplitude
+        prm[ig.P_R] = scene.horizontal_ratio if isinstance(wave, Wave) else 0.0
+        prm[ig.P_MU] = scene.material.mu
+        prm[ig.P_THETA] = scene.theta
+        prm[ig.P_RAMP] = ramp
+        prm[ig.P_H] = self.h
+        prm[ig.P_ORDER] = scene.numerics.order
+        prm[ig.P_FRICTION] = 1.0 if plan.integrate_x else 0.0
+        prm[ig.P_DAMP] = plan.normal_damping
+        prm[ig.P_P] = scene.particle.profile.p
+        prm[ig.P_HORIZ] = 1.0 if plan.horizontal_wave else 0.0
+        prm[ig.P_VERT] = 1.0 if plan.vertical_wave else 0.0
+        prm[ig.P_KRAMP] = math.ceil(ramp * self.k_per - 1e-9)
+        self.st = ev.new_stats(EVENTS_PER_PERIOD * max(1, event_periods) + 64)
+        self.y = np.zeros(4)
+        self.record = record
+        self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
+        self.rec_chunks: list[np.ndarray] = []
+        self.compiled = engine == "compiled"
+        self.history: ContactHistory | None = None
+        if self.rigid:
+            prm[rg.P_RESTITUTION] = float(model.params.restitution)
+            prm[rg.P_VINERTIA] = 1.0 if eff.vertical_inertia else 0.0
+            self.ctr = np.zeros(5, dtype=np.int64)
+            self.ctr[3] = 1  # starts stuck to the substrate at rest
+            self.prm = prm
+            # the python engine runs the same scheme uncompiled (its helpers stay compiled)
+            self.loop = rg.rigid_loop if self.compiled else rg.rigid_loop.py_func
+        else:
+            self.prm = prm[: ig.N_PRM]
+            self.ctr = np.zeros(3, dtype=np.int64)
+            self.fh = np.zeros((4, 4))
+            # a* = 1: static compression under M g (docs/physics.md); an impact starts at 0
+            self.y[2] = 1.0 if preload else 0.0
+            if plan.tangential_law:
+                self.history = ContactHistory(model, engine)
+                if preload:
+                    self.history.advance(1.0, 0.0)
+                self._bind_history()
+            else:
+                # Friction off: the tangential slot is empty and never called; the loop calls
+                # the model's normal law alone (its normal slot, e.g. with normal damping).
+                normal = model.normal_law()
+                self.fs = np.zeros(1)
+                self.is_ = np.zeros(1, dtype=np.int64)
+                self.pp = model.packed_params()
+                self.loop = ig.wave_loop(normal if self.compiled else normal.py_func, self.compiled)
+
+    def _bind_history(self) -> None:
+        assert self.history is not None
+        force, self.fs, self.is_, self.pp = self.history.kernel_call()
+        self.loop = ig.wave_loop(force, self.compiled)
+
+    @property
+    def step(self) -> int:
+        """Steps taken since t* = 0."""
+        return int(self.ctr[0])
+
+    def advance(self, n_steps: int) -> None:
+        """Advance ``n_steps`` steps; raise a one-line error if the scheme cannot go on."""
+        if n_steps <= 0:
+            return
+        n_rec = n_steps // self.rec_every + 2 if self.record else 0
+        rec = np.zeros((n_rec, ig.N_REC))
+        self.ctr[2] = 0
+        if self.rigid:
+            self.loop(self.y, self.ctr, self.prm, n_steps, rec, self.rec_every, self.st)
+        else:
+            self.loop(
+                self.y, self.fh, self.ctr, self.fs, self.is_, self.pp, self.prm, n_steps,
+                rec, self.rec_every, self.st,
+            )
+        if self.record:
+            self.rec_chunks.append(rec[: self.ctr[2]].copy())
+        if self.st[ev.S_BAD] > 0.0:
+            self._fail()
+
+    def _fail(self) -> None:
+        k = int(self.st[ev.S_BADSTEP])
+        m = self.scene.particle.m_star
+        state = (f"x* = {self.y[0]:.6g}, x*' = {self.y[1]:.6g}, y* = {self.y[2]:.6g}, "
+                 f"y*' = {self.y[3]:.6g}")
+        if self.st[ev.S_BAD] == ev.BAD_EVENTS:
+            raise NonFiniteStateError(
+                f"the rigid scheme met more than {rg._MAX_EVENTS} events (impacts, lift-offs, "
+                f"stick-slip changes) in the step at t* = {k * self.h:.6g} ({state}) and would "
+                "fall behind in time; try a larger --steps-per-period or a restitution below 1"
+            )
+        raise NonFiniteStateError(
+            f"non-finite state at t* = {k * self.h:.6g} (step {k}; {state}): the step "
+            f"1/{self.k_per} is likely too coarse for m* = {m:g}; try a larger "
+            "--steps-per-period or a lower Adams-Bashforth order"
+        )
+
+    def twin(self, dy: np.ndarray | None = None) -> Stepper:
+        """An independent copy of this integration (no trajectory recording), state + ``dy``."""
+        new = copy.copy(self)
+        new.y = self.y + (0.0 if dy is None else dy)
+        new.ctr = self.ctr.copy()
+        new.st = self.st.copy()
+        new.record = False
+        new.rec_every = 0
+        new.rec_chunks = []
+        if not self.rigid:
+            new.fh = self.fh.copy()
+            if self.history is not None:
+                new.history = self.history.copy()
+                new._bind_history()
+            else:
+                new.fs, new.is_ = self.fs.copy(), self.is_.copy()
+        return new
+
+    def trajectory(self) -> pd.DataFrame:
+        """The recorded rows (columns ``t, x, vx, y, vy, a, b, N, T``)."""
+        data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
+        return pd.DataFrame(data, columns=list(ig.REC_COLUMNS))
+
+    def events(self) -> pd.DataFrame:
+        """The events of the current window (see :mod:`sawdrift.dynamics.evidence`)."""
+        rows = ev.events(self.st)
+        frame = pd.DataFrame(rows, columns=list(ev.EVENT_COLUMNS))
+        kinds = np.asarray(ev.EVENT_KINDS)
+        frame["kind"] = pd.Categorical(kinds[rows[:, 1].astype(int)], categories=list(kinds))
+        return frame

@@ -1,0 +1,145 @@
+"""The measurement window: drift, and all the regime evidence, from one window after the transient.
+
+:func:`measure_window` opens the window on the stepper's evidence vector (every statistic and the
+event log start from zero there), advances whole periods, and reads the drift, the stroboscopic
+samples, contact loss, gross slip and lift-off synchrony. :func:`lyapunov` then replays the same
+window from a perturbed snapshot of its start, for runs that lost contact.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from ..errors import NonFiniteStateError
+from ..result.regimes import LYAPUNOV_D0, MIN_FLIGHT, Synchrony, lyapunov_estimate, synchrony
+from . import evidence as ev
+from .stepper import Stepper
+
+
+@dataclass
+class Window:
+    """What one measurement window saw (see :func:`measure_window`)."""
+
+    periods: int
+    t_start: float
+    drift: float
+    drift_ratio: float
+    samples: np.ndarray
+    contact_lost: bool
+    out_of_contact_fraction: float
+    min_compression: float
+    gross_slip_fraction: float
+    liftoffs_per_period: float
+    periodicity: float
+    sync: Synchrony
+    events: pd.DataFrame
+    events_dropped: int
+    snapshot: Stepper | None = field(default=None, repr=False)
+
+
+def state_scale(amp: float, r: float) -> np.ndarray:
+    """Natural sizes of (x*', y*, y*'): 2 pi r A*, 1 + A*, 2 pi (1 + A*)."""
+    return np.array([2 * math.pi * max(abs(r) * amp, 1e-12), 1.0 + amp, 2 * math.pi * (1.0 + amp)])
+
+
+def periodicity(samples: np.ndarray, scale: np.ndarray, last: int = 10) -> float:
+    """Largest scaled change of the stroboscopic state (x*', y*, y*') between consecutive periods.
+
+    A motion of period one gives 0; reported as evidence, not used to decide the regime.
+    """
+    if len(samples) < 2:
+        return math.inf
+    s = np.asarray(samples[-last - 1 :])
+    return float((np.abs(np.diff(s[:, 1:4], axis=0)) / scale).max())
+
+
+def hop_liftoffs(events: pd.DataFrame, t_end: float) -> np.ndarray:
+    """Times of the lift-offs whose flight lasts at least :data:`~sawdrift.result.regimes.MIN_FLIGHT`.
+
+    A flight ends at the next landing, or at ``t_end`` (the window's end) if none follows.
+    """
+    t = events["t"].to_numpy()
+    kind = events["kind"].to_numpy()
+    lifts = np.nonzero(kind == "lift_off")[0]
+    lands = np.nonzero(kind == "landing")[0]
+    keep = []
+    for i in lifts:
+        j = np.searchsorted(lands, i, side="right")
+        t_land = t[lands[j]] if j < lands.size else t_end
+        if t_land - t[i] >= MIN_FLIGHT:
+            keep.append(t[i])
+    return np.asarray(keep, dtype=float)
+
+
+def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarray) -> Window:
+    """Advance ``periods`` whole periods as the measurement window and read its evidence.
+
+    Parameters
+    ----------
+    stepper
+        The integration, at the start of the window.
+    periods
+        Window length in wave periods.
+    speed
+        Horizontal surface speed amplitude 2 pi r A* (the drift ratio's scale; 0: ratio 0).
+    scale
+        :func:`state_scale` of the scene, for the stroboscopic evidence and the twin's distance.
+    """
+    st = stepper.st
+    ev.open_window(st)
+    t_start = stepper.step * stepper.h
+    dy = np.array([0.0, 0.0, 0.0, LYAPUNOV_D0 * scale[2]])
+    snapshot = stepper.twin(dy)
+    x0 = stepper.y[0]
+    samples = np.empty((periods, 4))
+    for j in range(periods):
+        stepper.advance(stepper.k_per)
+        samples[j] = stepper.y
+    drift = (stepper.y[0] - x0) / periods
+    count = max(st[ev.S_COUNT], 1.0)
+    events = stepper.events()
+    lifts = hop_liftoffs(events, t_start + periods)
+    return Window(
+        periods=periods,
+        t_start=t_start,
+        drift=float(drift),
+        drift_ratio=float(drift / speed) if speed > 0.0 else 0.0,
+        samples=samples,
+        contact_lost=bool(st[ev.S_LOST] > 0.0),
+        out_of_contact_fraction=float(st[ev.S_OUT] / count),
+        min_compression=float(st[ev.S_AMIN]) if math.isfinite(st[ev.S_AMIN]) else math.nan,
+        gross_slip_fraction=float(st[ev.S_SLIP] / count),
+        liftoffs_per_period=float(st[ev.S_LIFTS]) / periods,
+        periodicity=periodicity(samples, scale),
+        sync=synchrony(lifts, t_start, periods),
+        events=events,
+        events_dropped=int(st[ev.S_EVDROP]),
+        snapshot=snapshot,
+    )
+
+
+def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
+    """Finite-time Lyapunov exponent (per period) of the window, and whether it shows chaos.
+
+    The window's snapshot (its start, perturbed by 1e-10 in scaled y*') is advanced period by
+    period; its scaled distance to the window's stroboscopic samples feeds
+    :func:`sawdrift.result.regimes.lyapunov_estimate`. Stops early once the growth shows chaos.
+    """
+    twin = window.snapshot
+    if twin is None:
+        return math.nan, False
+    distances = []
+    try:
+        for j in range(window.periods):
+            twin.advance(twin.k_per)
+            d = float(np.linalg.norm((twin.y[1:] - window.samples[j, 1:]) / scale))
+            distances.append(d)
+            if d >= 1e-3:
+                break
+    except NonFiniteStateError:
+        return math.nan, False
+    return lyapunov_estimate(np.asarray(distances))
