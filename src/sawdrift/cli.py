@@ -39,6 +39,8 @@ def _parse_param(items: list[str] | None) -> dict[str, Any]:
         if "=" not in item:
             _fail(f"--param {item!r} must look like NAME=VALUE")
         key, raw = item.split("=", 1)
+        if not key.strip():
+            _fail(f"--param {item!r} has no parameter name; it must look like NAME=VALUE")
         try:
             value: Any = json.loads(raw)
         except json.JSONDecodeError:
@@ -149,6 +151,8 @@ def run_cmd(
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
         result.trajectory.to_parquet(out / "trajectory.parquet", index=False)
+        if result.events is not None:
+            result.events.to_parquet(out / "events.parquet", index=False)
         sd.plot_trajectory(result, out / "trajectory.png")
         scene.to_toml(out / "scene.toml")
         (out / "result.json").write_text(json.dumps(summary, indent=2) + "\n")
@@ -158,7 +162,8 @@ def run_cmd(
     for key, value in summary.items():
         typer.echo(f"{key:>24}: {value}")
     if out is not None:
-        typer.echo(f"wrote {out}/trajectory.parquet, trajectory.png, scene.toml, result.json")
+        typer.echo(f"wrote {out}/trajectory.parquet, events.parquet, trajectory.png, scene.toml, "
+                   "result.json")
 
 
 def _load_table(path: Path):
@@ -166,6 +171,8 @@ def _load_table(path: Path):
 
     if not path.exists():
         _fail(f"table {str(path)!r} does not exist")
+    if path.is_dir():
+        _fail(f"table {str(path)!r} is a directory, not a Parquet file")
     try:
         return pd.read_parquet(path)
     except Exception as exc:  # noqa: BLE001
@@ -252,6 +259,8 @@ def demo_cmd(
     """
     from .report.diagrams import plot_compare, plot_phase_diagram
 
+    if n < 2:
+        _fail(f"--n = {n} must be at least 2 (grid points per axis)")
     out.mkdir(parents=True, exist_ok=True)
     scene = sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
     result = sd.run(scene, trajectory=True)
@@ -324,7 +333,9 @@ def main() -> None:
     """Console entry point: one-line errors and exit status 2 for user errors."""
     warnings.showwarning = _one_line_warnings
     try:
-        app(standalone_mode=False)
+        # standalone_mode=False makes click return a typer.Exit's code instead of raising it
+        code = app(standalone_mode=False)
+        sys.exit(code if isinstance(code, int) else 0)
     except typer.Exit as exc:
         sys.exit(exc.exit_code)
     except sd.SawdriftError as exc:
@@ -337,7 +348,9 @@ def main() -> None:
             sys.exit(exc.exit_code)
         if type(exc).__name__ == "Abort":
             sys.exit(130)
-        typer.echo(f"error: {type(exc).__name__}: {exc}".splitlines()[0], err=True)
+        text = str(exc).splitlines()[0] if str(exc) else "no details"
+        typer.echo(f"error: internal failure ({text}); please report it with the command line",
+                   err=True)
         sys.exit(1)
 
 

@@ -241,6 +241,8 @@ def _run_impact(scene: Scene, model: ContactModel, plan: Assembly, trajectory: b
     while stepper.step < n_max and not separated:
         stepper.advance(chunk)
         separated = bool(stepper.y[2] < 0.0 and stepper.step > 1)
+    if separated:
+        stepper.advance(1)  # records the first state out of contact (rows are taken before a step)
     tr = stepper.trajectory()
     rebound = math.nan
     duration = math.nan
@@ -249,7 +251,7 @@ def _run_impact(scene: Scene, model: ContactModel, plan: Assembly, trajectory: b
         k = int(np.nonzero((a[:-1] > 0.0) & (a[1:] <= 0.0))[0][-1])
         w = a[k] / (a[k] - a[k + 1])
         v_out = (1 - w) * tr["vy"].iloc[k] + w * tr["vy"].iloc[k + 1]
-        rebound = abs(v_out) / drive.velocity
+        rebound = float(abs(v_out) / drive.velocity)
         duration = float((k + w) * stepper.h)
     nan = math.nan
     return Result(

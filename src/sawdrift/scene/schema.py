@@ -252,7 +252,12 @@ class Scene(BaseModel):
         from ..contact.registry import get_model
 
         cls = get_model(self.model)
-        params = cls.Params.model_validate(self.model_params)
+        try:
+            params = cls.Params.model_validate(self.model_params)
+        except ValidationError as exc:
+            line = format_validation_error(exc)
+            known = ", ".join(cls.Params.model_fields) or "no parameters"
+            raise ValueError(f"model_params.{line} (model {self.model!r} takes: {known})") from None
         object.__setattr__(self, "model_params", params.model_dump())
         shape = self.particle.profile.shape
         if shape not in cls.capabilities.profiles:
@@ -351,9 +356,17 @@ class Scene(BaseModel):
         """Load a scene from a TOML file; a malformed file raises a one-line SceneError."""
         path = Path(path)
         try:
-            data = tomllib.loads(path.read_text())
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
         except FileNotFoundError:
             raise SceneError(f"scene file {str(path)!r} does not exist") from None
+        except IsADirectoryError:
+            raise SceneError(f"scene file {str(path)!r} is a directory, not a TOML file") from None
+        except PermissionError:
+            raise SceneError(f"scene file {str(path)!r} cannot be read (permission denied)") from None
+        except UnicodeDecodeError as exc:
+            raise SceneError(
+                f"scene file {str(path)!r} is not UTF-8 text (byte {exc.start}); save it as UTF-8 TOML"
+            ) from None
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"scene file {str(path)!r} is malformed TOML: {exc}") from None
         return build_scene(data, source=str(path))
@@ -407,6 +420,8 @@ def format_validation_error(exc: ValidationError, source: str | None = None) -> 
                 f"{where}{loc} = {value!r}: {msg}"
             )
         return f"{where}{loc}: {msg}"
+    if msg.startswith("model_params."):
+        return f"{where}{msg}"
     return f"{where}scene: {msg}"
 
 

@@ -30,7 +30,10 @@ from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, set_dotted
 
 #: Columns of a sweep table, in order.
-TABLE_COLUMNS = ("cell_id", *SUMMARY_FIELDS, "error")
+TABLE_COLUMNS = ("cell_id", "scene_id", *SUMMARY_FIELDS, "error")
+
+#: Parquet metadata keys of a sweep table (provenance).
+META_VERSION, META_BASE_SCENE = b"sawdrift_version", b"base_scene"
 
 
 def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
@@ -68,9 +71,34 @@ def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
     return values
 
 
-def cell_id(scene: Scene) -> str:
-    """Stable identifier of a cell: a hash of the whole validated scene."""
+def scene_id(scene: Scene) -> str:
+    """Identifier of a cell's scene alone: a hash of the whole validated scene."""
     return hashlib.sha1(scene.model_dump_json().encode()).hexdigest()[:16]
+
+
+def cell_id(scene: Scene) -> str:
+    """Identifier of a computed cell: a hash of the sawdrift version and the whole scene.
+
+    A table resumed after an upgrade recomputes its cells instead of mixing versions; the new
+    row then supersedes the old one of the same scene (see :func:`supersede`).
+    """
+    from .. import __version__
+
+    key = f"{__version__}\n{scene.model_dump_json()}"
+    return hashlib.sha1(key.encode()).hexdigest()[:16]
+
+
+def supersede(rows: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Keep, for every scene, only the row of the newest computation (current version first)."""
+    from .. import __version__
+
+    best: dict[str, dict[str, Any]] = {}
+    for row in rows:
+        key = row.get("scene_id") or row["cell_id"]
+        old = best.get(key)
+        if old is None or (row.get("version") == __version__ and old.get("version") != __version__):
+            best[key] = row
+    return list(best.values())
 
 
 def grid(
@@ -110,6 +138,7 @@ def run_cell(scene_json: str, engine: str = "compiled") -> dict[str, Any]:
     scene = Scene.model_validate_json(scene_json)
     row: dict[str, Any] = {key: None for key in TABLE_COLUMNS}
     row["cell_id"] = cell_id(scene)
+    row["scene_id"] = scene_id(scene)
     try:
         result = run(scene, engine=engine)  # type: ignore[arg-type]
         row.update(result.summary())
@@ -150,7 +179,9 @@ def read_rows(table: Path) -> dict[str, dict[str, Any]]:
         if "cell_id" not in frame.columns:
             raise SceneError(f"table {str(table)!r} is not a sawdrift sweep table (no cell_id column)")
         for rec in frame.to_dict(orient="records"):
-            rows[rec["cell_id"]] = _clean(rec)
+            rec = _clean(rec)
+            rec.setdefault("scene_id", None)
+            rows[rec["cell_id"]] = rec
     journal = journal_path(table)
     if journal.exists():
         with journal.open() as fh:
@@ -177,17 +208,43 @@ def _clean(rec: dict[str, Any]) -> dict[str, Any]:
 def to_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
     """Rows as a DataFrame with the table's columns, sorted by (model, m*, A*)."""
     frame = pd.DataFrame(list(rows), columns=list(TABLE_COLUMNS))
-    for col in ("error", "regime", "model", "engine", "profile", "cell_id"):
+    for col in ("error", "regime", "model", "engine", "profile", "cell_id", "scene_id", "version"):
         frame[col] = frame[col].astype("string")
     frame = frame.sort_values(["model", "m_star", "amplitude", "cell_id"], kind="stable")
     return frame.reset_index(drop=True)
 
 
-def write_table(frame: pd.DataFrame, table: Path) -> None:
-    """Write the Parquet table atomically (temporary file, then replace)."""
+def write_table(frame: pd.DataFrame, table: Path, base: Scene | None = None) -> None:
+    """Write the Parquet table atomically (temporary file, then replace).
+
+    The file's metadata records the sawdrift version (``sawdrift_version``) and the base scene
+    of the sweep as JSON (``base_scene``); :func:`table_metadata` reads them back.
+    """
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from .. import __version__
+
+    arrow = pa.Table.from_pandas(frame, preserve_index=False)
+    meta = dict(arrow.schema.metadata or {})
+    meta[META_VERSION] = __version__.encode()
+    meta[META_BASE_SCENE] = (base if base is not None else Scene()).model_dump_json().encode()
     tmp = table.with_name(f".{table.name}.{os.getpid()}.tmp")
-    frame.to_parquet(tmp, index=False)
+    pq.write_table(arrow.replace_schema_metadata(meta), tmp)
     os.replace(tmp, table)
+
+
+def table_metadata(table: str | Path) -> dict[str, Any]:
+    """The provenance of a sweep table: ``{"sawdrift_version": str, "base_scene": dict}``."""
+    import pyarrow.parquet as pq
+
+    meta = pq.read_schema(table).metadata or {}
+    out: dict[str, Any] = {"sawdrift_version": None, "base_scene": None}
+    if META_VERSION in meta:
+        out["sawdrift_version"] = meta[META_VERSION].decode()
+    if META_BASE_SCENE in meta:
+        out["base_scene"] = json.loads(meta[META_BASE_SCENE].decode())
+    return out
 
 
 # -- executors -------------------------------------------------------------------------------
@@ -319,7 +376,7 @@ def sweep(
         # keep the table's cells from other grids; ``done`` already holds table and journal
         everything = dict(done)
         everything.update(rows)
-        write_table(to_frame(everything.values()), path)
+        write_table(to_frame(supersede(everything.values())), path, base)
         if journal is not None and journal.exists():
             journal.unlink()
     return frame

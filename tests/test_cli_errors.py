@@ -1,0 +1,70 @@
+"""Every subcommand answers bad input with one plain line on stderr and exit status 2."""
+
+from __future__ import annotations
+
+import re
+import sys
+
+import pytest
+
+from sawdrift.cli import main
+
+# class names of Python exceptions must never reach the user
+_EXC_NAME = re.compile(r"\b[A-Z][A-Za-z]*(Error|Exception)\b|Traceback")
+
+
+@pytest.fixture
+def files(tmp_path):
+    (tmp_path / "malformed.toml").write_text('model = "mmd"\n[particle\n')
+    (tmp_path / "unknown.toml").write_text("[particle]\nmass = 3\n")
+    (tmp_path / "binary.toml").write_bytes(b"\xff\xfe\x00model")
+    (tmp_path / "bad.parquet").write_text("not parquet")
+    (tmp_path / "adir").mkdir()
+    return tmp_path
+
+
+CORPUS = [
+    "run --m-star -1",
+    "run --m-star abc",
+    "run --mu 0",
+    "run --nu 0.5",
+    "run --model nosuch",
+    "run --param unknown=1",
+    "run --param noeq",
+    "run --param =3",
+    "run --engine gpu",
+    "run --order 7",
+    "run --profile blob",
+    "run --periods 0",
+    "run {d}/malformed.toml",
+    "run {d}/unknown.toml",
+    "run {d}/binary.toml",
+    "run {d}/adir",
+    "run {d}/missing.toml",
+    "sweep -o {d}/t.parquet --m-star 1:2",
+    "sweep -o {d}/t.parquet --m-star 0:1:3",
+    "sweep -o {d}/t.parquet --model nosuch",
+    "sweep -o {d}/t.parquet --workers 0 --m-star 1 --amplitude 1",
+    "sweep -o {d}/bad.parquet --m-star 1 --amplitude 0.1 --workers 1",
+    "phase-diagram {d}/missing.parquet -o {d}/x.png",
+    "phase-diagram {d}/bad.parquet -o {d}/x.png",
+    "phase-diagram {d}/adir -o {d}/x.png",
+    "compare {d}/bad.parquet --models mmd -o {d}/x.png",
+    "compare {d}/missing.parquet --models mmd -o {d}/x.png",
+    "demo --n 1 -o {d}/demo",
+    "validate --cases {d}/nosuchdir -o {d}/v",
+    "bench work-precision --models nosuch",
+    "models --bogus",
+    "nosuchcommand",
+]
+
+
+@pytest.mark.parametrize("line", CORPUS)
+def test_bad_input_exits_2_with_one_plain_line(line, files, monkeypatch, capsys):
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *line.format(d=files).split()])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2, (line, err)
+    assert len(err) == 1 and err[0].startswith("error: "), err
+    assert not _EXC_NAME.search(err[0]), err[0]

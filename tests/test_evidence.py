@@ -1,0 +1,138 @@
+"""Regime evidence: one window, synchronous hopping, gross slip, chaos, events, rigid-scheme errors."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import sawdrift as sd
+from sawdrift.dynamics import rigid as rg
+from sawdrift.errors import NonFiniteStateError
+from sawdrift.result.regimes import lyapunov_estimate, synchrony
+
+
+@pytest.mark.parametrize("m_star, amplitude", [(0.3, 1.5), (10.0, 1.2), (3.0, 1.0)])
+def test_synchronous_jumping_is_hopping_with_one_liftoff_per_period(m_star, amplitude):
+    # The later paper's jumping regime: one rebound per period at a fixed phase, with drift.
+    r = sd.run(sd.Scene(model="mmd", particle={"m_star": m_star}, drive={"amplitude": amplitude},
+                        numerics={"periods": 200}))
+    assert r.regime == "hopping"
+    assert r.hop_period == 1
+    assert r.liftoffs_per_period == pytest.approx(1.0, abs=1e-12)
+    # phases repeat: circular spread below 5 % of the period
+    assert r.liftoff_phase_spread < 0.05
+    assert 0.0 <= r.liftoff_phase < 1.0
+    assert math.isfinite(r.drift_ratio) and abs(r.drift_ratio) > 0.05
+
+
+def _point_at_stick_bound(fraction: float, gz: float = 0.3, mu: float = 0.1) -> sd.Result:
+    # Gx = r Gz set to ``fraction`` of the closed-form stick bound mu sqrt(1 - Gz^2)
+    m = 0.1
+    gx = fraction * mu * math.sqrt(1.0 - gz**2)
+    scene = sd.Scene(model="material_point", material={"mu": mu}, particle={"m_star": m},
+                     drive={"amplitude": gz / (4 * math.pi**2 * m), "horizontal_ratio": gx / gz})
+    return sd.run(scene)
+
+
+def test_point_below_stick_bound_sticks_without_gross_slip():
+    r = _point_at_stick_bound(0.97)
+    assert r.regime == "stick"
+    assert r.gross_slip_fraction == 0.0
+
+
+def test_point_above_stick_bound_slips_with_zero_drift():
+    # the forward and backward slips cancel exactly (the forcing is odd under a half-period shift)
+    r = _point_at_stick_bound(1.03)
+    assert r.regime == "oscillating_slip"
+    assert r.gross_slip_fraction > 0.05
+    assert abs(r.drift_ratio) < 1e-12
+
+
+def test_transient_liftoff_is_not_evidence():
+    # an abrupt start (no ramp) lifts the particle off early; damping then settles it into
+    # permanent contact: the window after the transient must not report contact loss
+    scene = sd.Scene(model="mmd", particle={"m_star": 1.0},
+                     drive={"amplitude": 0.6, "ramp_periods": 0.0},
+                     effects={"normal_damping": 0.5}, numerics={"periods": 60})
+    r = sd.run(scene, trajectory=True)
+    early = r.trajectory[r.trajectory["t"] < 10.0]
+    assert (early["a"] <= 0.0).any(), "the scene should lift off in its transient"
+    assert not r.contact_lost
+    assert r.liftoffs_per_period == 0.0
+    assert r.regime in ("drift_with", "drift_against", "stick", "oscillating_slip")
+
+
+def test_events_agree_with_evidence_for_bouncing():
+    r = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.01}, drive={"amplitude": 5.0},
+                        numerics={"periods": 100}))
+    assert r.regime == "bouncing"
+    ev = r.events
+    lifts = int((ev["kind"] == "lift_off").sum())
+    lands = int((ev["kind"] == "landing").sum())
+    assert lifts == round(r.liftoffs_per_period * r.measure_periods) and lifts > 0
+    assert abs(lifts - lands) <= 1
+    t0 = r.periods - r.measure_periods
+    assert ev["t"].min() >= t0 - 1e-9 and ev["t"].max() <= r.periods + 1e-9
+
+
+def test_elastic_bouncing_point_is_chaotic_and_inelastic_hopping_is_not():
+    # The later paper: a material point with elastic rebounds (restitution 1) is chaotic.
+    elastic = sd.run(sd.Scene(model="material_point", model_params={"restitution": 1.0},
+                              particle={"m_star": 0.1}, drive={"amplitude": 1.0},
+                              numerics={"periods": 400}))
+    assert elastic.regime == "bouncing"
+    assert elastic.extra["chaotic"] is True
+    assert elastic.lyapunov > 0.05
+    plastic = sd.run(sd.Scene(model="material_point", model_params={"restitution": 0.0},
+                              particle={"m_star": 0.1}, drive={"amplitude": 0.5},
+                              numerics={"periods": 400}))
+    assert plastic.regime == "hopping"
+    assert plastic.extra["chaotic"] is False
+    assert plastic.lyapunov < 0.0
+
+
+def test_synchrony_finds_period_two_and_rejects_scattered_phases():
+    rng = np.random.default_rng(1)
+    period_two = 100.0 + np.arange(0, 40, 2) + 0.3 + rng.normal(0, 0.002, 20)
+    s = synchrony(period_two, 100.0, 40)
+    assert (s.hop_period, s.liftoffs_per_hop) == (2, 1)
+    assert s.phase == pytest.approx(0.3, abs=0.01)
+    scattered = 100.0 + np.arange(40) + rng.uniform(0, 1, 40)
+    assert synchrony(scattered, 100.0, 40).hop_period == 0
+
+
+def test_lyapunov_estimate_tells_exponential_from_linear_growth():
+    t = np.arange(1, 201)
+    lam, chaotic = lyapunov_estimate(1e-10 * np.exp(0.2 * t))
+    assert chaotic and lam == pytest.approx(0.2, rel=0.05)
+    lam, chaotic = lyapunov_estimate(1e-10 * (1 + 50 * t))
+    assert not chaotic and lam < 0.05
+
+
+def test_rigid_scheme_raises_instead_of_falling_behind(monkeypatch):
+    # the python engine reads the event cap at call time: a cap of 2 events per step must end
+    # the run with an error naming t*, never a silent state left behind in time
+    monkeypatch.setattr(rg, "_MAX_EVENTS", 2)
+    scene = sd.Scene(model="material_point", model_params={"restitution": 0.9},
+                     particle={"m_star": 0.1}, drive={"amplitude": 0.5}, numerics={"periods": 40})
+    with pytest.raises(NonFiniteStateError, match=r"events .* at t\* = "):
+        sd.run(scene, engine="python")
+
+
+def test_tsuji_damping_is_kept_with_friction_off():
+    # With friction off the integrator calls the model's own normal law (its normal slot):
+    # the Tsuji dashpot must still dissipate, and the elastic law must still rebound fully.
+    pytest.importorskip("sawdrift_tsuji")
+    base = dict(model="hertz_tsuji", particle={"m_star": 10.0},
+                drive={"kind": "impact", "velocity": 1.0})
+    off = sd.run(sd.Scene(**base, model_params={"damping": 0.5}, effects={"friction": False}))
+    on = sd.run(sd.Scene(**base, model_params={"damping": 0.5}))
+    assert 0.0 < off.extra["rebound_ratio"] < 0.9
+    assert on.extra["rebound_ratio"] == pytest.approx(off.extra["rebound_ratio"], rel=1e-9)
+    elastic = sd.run(sd.Scene(**base, model_params={"damping": 0.0}, effects={"friction": False}))
+    assert elastic.extra["rebound_ratio"] == pytest.approx(1.0, abs=1e-4)
+    import json
+
+    json.dumps(on.summary())  # no numpy scalars left in the summary
