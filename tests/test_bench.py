@@ -82,9 +82,18 @@ def test_work_precision_quick_numbers_are_finite(study):
 def test_observed_orders_table(study):
     out, _ = study
     orders = pd.read_csv(out / "orders.csv")
-    mmd = orders[(orders["setting"] == "wave") & (orders["model"] == "mmd")]
+    mmd = orders[(orders["setting"] == "wave") & (orders["model"] == "mmd")].sort_values("order")
     assert len(mmd) == 4
-    assert np.all(np.isfinite(mmd["observed_order"]))
+    observed = mmd["observed_order"].to_numpy()
+    # AB-k converges with order k on smooth stretches; the stick-slip and contact kinks of the
+    # history cap what a short ladder sees near 2.5: each order must reach min(k, 2) - 0.3, and
+    # orders 1 -> 2 -> 3 must improve
+    for k, q in zip((1, 2, 3, 4), observed, strict=True):
+        assert q >= min(k, 2) - 0.3, (k, q)
+    assert observed[0] < observed[1] < observed[2]
+    # MDR's strip discretization converges with order 2 (midpoint rule on the profile)
+    strips = orders[orders["ladder"] == "strips"]["observed_order"].to_numpy()
+    assert strips.size and np.all((strips > 1.5) & (strips < 2.5)), strips
 
 
 def test_speed_quick_reports_every_target(tmp_path, capsys):

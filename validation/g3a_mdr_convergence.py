@@ -1,7 +1,11 @@
 """MDR converges to the memory-diagram law as its strips are refined (physics.md section 2).
 
 ``mdr`` with N = 64, 256, 1024, 4096 strips and ``mmd`` are driven through the same random
-two-axis history; the error of ``mdr`` must fall with each refinement.
+two-axis history. The strips sit at the centroids of dN*', which integrates v exactly where it
+is linear; the error comes from the cells holding a kink of v or z = a*: O(dz^2) away from z = 0
+but O(dz^p) near it, where dN*' ~ z^(p-1) dz (see the mdr kernel). For the sphere (p = 3/2) the
+error must therefore fall at least like N^-1.4 at every refinement (measured: order 1.5, a ratio
+of about 1/8 per 4x refinement, not the 1/16 of a smooth O(N^-2) rule).
 """
 
 from __future__ import annotations
@@ -17,9 +21,9 @@ CASE = Case(
     name="mdr_to_mmd",
     group="convergence",
     title="mdr -> mmd on a random (a*, b*) history as strips are refined (N = 64, 256, 1024, 4096): "
-    "the error must fall at every step, at least halving per 4x refinement; "
-    "value: largest ratio e(4N) / e(N)",
-    tolerance=0.5,
+    "the centroid quadrature's error is O(dz^p) near z = 0, order 1.5 for the sphere; "
+    "required: at least order 1.4 at every refinement; value: largest ratio e(4N) / e(N)",
+    tolerance=4.0**-1.4,
     quick=True,
 )
 

@@ -64,6 +64,10 @@ _BISECT = 60
 _MAX_EVENTS = 4096
 #: shortest rebound flight, in steps, before an inelastic collapse counts as landed
 _ZENO = 1e-6
+#: A grazing dip of N* below zero by less than this is contact with N* = 0: the flight it would
+#: start rises less than ~1e-12 (|N*|^2 / (16 pi^2 m*)), below what the gap function resolves,
+#: and a lift-off and landing it cannot resolve would repeat without end.
+_GRAZE = 1e-6
 
 
 @njit(cache=True)
@@ -209,7 +213,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                         event(st, EV_SLIP_START, tc, y, 0.0)
                 continue
             # ---- contact ----
-            if _normal(tau, prm) < 0.0:
+            if _normal(tau, prm) < -_GRAZE:
                 if friction and ctr[3] == 0:
                     event(st, EV_SLIP_END, tau, y, 0.0)
                 ctr[1] = 1
@@ -218,11 +222,11 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 continue
             seg_end = t_end
             lift = False
-            if _normal(t_end, prm) < 0.0:
+            if _normal(t_end, prm) < -_GRAZE:
                 lo, hi = tau, t_end
                 for _i in range(_BISECT):
                     mid = 0.5 * (lo + hi)
-                    if _normal(mid, prm) >= 0.0:
+                    if _normal(mid, prm) >= -_GRAZE:
                         lo = mid
                     else:
                         hi = mid
@@ -302,7 +306,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             nf = 0.0
             tf = 0.0
         else:
-            nf = _normal(t_end, prm)
+            nf = max(_normal(t_end, prm), 0.0)
             if not friction:
                 tf = 0.0
             elif ctr[3] == 1:

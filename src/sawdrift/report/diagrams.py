@@ -22,6 +22,7 @@ from ..errors import SceneError  # noqa: E402
 #: Regime colours, in legend order.
 COLOURS = {
     "stick": "#9ecae1",
+    "oscillating_slip": "#fdd0a2",
     "drift_with": "#31a354",
     "drift_against": "#e6550d",
     "hopping": "#756bb1",
