@@ -71,6 +71,8 @@ def scene_from_options(scene_file: Path | None, **options: Any) -> sd.Scene:
         "normal_damping": "effects.normal_damping",
         "horizontal_wave": "effects.horizontal_wave",
         "vertical_wave": "effects.vertical_wave",
+        "rotation": "effects.rotation",
+        "gyration": "particle.gyration",
     }
     for key, dotted in mapping.items():
         value = options.get(key)
@@ -131,6 +133,12 @@ def run_cmd(
     normal_damping: Annotated[float | None, typer.Option("--normal-damping", help="viscous c >= 0")] = None,
     horizontal_wave: Annotated[bool | None, typer.Option("--horizontal-wave/--no-horizontal-wave")] = None,
     vertical_wave: Annotated[bool | None, typer.Option("--vertical-wave/--no-vertical-wave")] = None,
+    rotation: Annotated[
+        bool | None, typer.Option("--rotation/--no-rotation", help="the sphere may turn (rolling)")
+    ] = None,
+    gyration: Annotated[
+        float | None, typer.Option("--gyration", help="kappa = I/(m R^2) in (0, 1]; 0.4 solid sphere")
+    ] = None,
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
 ) -> None:
     """Run one scene and report its drift and motion regime."""
@@ -139,7 +147,8 @@ def run_cmd(
         horizontal_ratio=horizontal_ratio, periods=periods, steps_per_period=steps_per_period,
         order=order, settle=settle, profile=profile, params=_parse_param(param),
         friction=friction, vertical_inertia=vertical_inertia, normal_damping=normal_damping,
-        horizontal_wave=horizontal_wave, vertical_wave=vertical_wave,
+        horizontal_wave=horizontal_wave, vertical_wave=vertical_wave, rotation=rotation,
+        gyration=gyration,
     )
     if engine not in ("compiled", "python"):
         _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")

@@ -44,9 +44,14 @@ CASES = {
 }
 
 
-def _scene(fields: dict, periods: float = 3.0, steps: int | None = None) -> sd.Scene:
+ROTATION = (False, True)
+
+
+def _scene(fields: dict, periods: float = 3.0, steps: int | None = None,
+           rotation: bool = False) -> sd.Scene:
     data = {k: dict(v) if isinstance(v, dict) else v for k, v in fields.items()}
     data.setdefault("drive", {})["ramp_periods"] = 1.0
+    data.setdefault("effects", {})["rotation"] = rotation
     data["numerics"] = {"periods": periods, "measure_periods": 1, "steps_per_period": steps}
     return sd.Scene.model_validate(data)
 
@@ -60,11 +65,12 @@ def _run(scene: sd.Scene, engine: str = "compiled") -> sd.Result:
     return sd.run(scene, trajectory=True, engine=engine, record_every=1)
 
 
+@pytest.mark.parametrize("rotation", ROTATION)
 @pytest.mark.parametrize("name", sorted(CASES))
-def test_finite_and_convergent(name):
-    base = _scene(CASES[name])
+def test_finite_and_convergent(name, rotation):
+    base = _scene(CASES[name], rotation=rotation)
     k = base.steps_per_period()
-    results = [_run(_scene(CASES[name], steps=k * f)) for f in (1, 2, 8)]
+    results = [_run(_scene(CASES[name], steps=k * f, rotation=rotation)) for f in (1, 2, 8)]
     for res in results:
         assert np.isfinite(res.trajectory[["x", "vx", "y", "vy", "N", "T"]].to_numpy()).all()
         assert math.isfinite(res.drift_ratio)
@@ -86,23 +92,27 @@ def test_finite_and_convergent(name):
 @pytest.mark.parametrize(
     "name", sorted(n for n in CASES if n not in {"big_amplitude_point", "heavy_point"})
 )
-def test_energy_error_bounded(name):
+@pytest.mark.parametrize("rotation", ROTATION)
+def test_energy_error_bounded(name, rotation):
     # |Delta KE - work of the contact forces and gravity| relative to the total work stays
-    # small at the default step, and shrinks when the step is refined
-    base = _scene(CASES[name])
+    # small at the default step, and shrinks when the step is refined; with rotation the
+    # kinetic energy includes I phi'^2 / 2
+    base = _scene(CASES[name], rotation=rotation)
     k = base.steps_per_period()
     rel = []
     for f in (1, 4):
-        res = _run(_scene(CASES[name], steps=k * f))
-        resid, scale = energy_residual(res.trajectory, res.m_star, res.mu)
+        res = _run(_scene(CASES[name], steps=k * f, rotation=rotation))
+        kappa = base.particle.gyration if rotation else None
+        resid, scale = energy_residual(res.trajectory, res.m_star, res.mu, kappa)
         rel.append(resid / max(scale, 1e-300))
     assert rel[0] < 5e-3, rel
     assert rel[1] < rel[0] or rel[1] < 1e-10, rel
 
 
+@pytest.mark.parametrize("rotation", ROTATION)
 @pytest.mark.parametrize("name", sorted(CASES))
-def test_python_and_compiled_engines_agree(name):
-    scene = _scene(CASES[name], periods=1.5)
+def test_python_and_compiled_engines_agree(name, rotation):
+    scene = _scene(CASES[name], periods=1.5, rotation=rotation)
     fast, slow = _run(scene, "compiled"), _run(scene, "python")
     assert slow.engine == "python"
     a = fast.trajectory[["x", "vx", "y", "vy", "N", "T"]].to_numpy()

@@ -60,7 +60,9 @@ AB_COEFFS = np.array(
 # Layout of the parameter vector ``prm`` passed to the loops.
 P_M, P_A, P_R, P_MU, P_THETA, P_RAMP, P_H, P_ORDER = 0, 1, 2, 3, 4, 5, 6, 7
 P_FRICTION, P_DAMP, P_P, P_HORIZ, P_VERT, P_KRAMP = 8, 9, 10, 11, 12, 13
-N_PRM = 14
+#: rotation: c = 1 + 1/kappa with the sphere free to turn, 0 without rotation (see the loop)
+P_ROLL = 14
+N_PRM = 15
 
 # The statistics vector ``st`` and its event log: see :mod:`sawdrift.dynamics.evidence`.
 
@@ -103,6 +105,9 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
         horiz = prm[P_HORIZ]
         vert = prm[P_VERT]
         k_ramp = int(prm[P_KRAMP])
+        # Rotation (I = kappa m R^2): m x'' = -T and I phi'' = -R T, so from rest the contact
+        # point s = x + R phi moves as s = c x with c = 1 + 1/kappa (docs/physics.md, Rotation).
+        roll = prm[P_ROLL]
         for _ in range(n_steps):
             k = ctr[0]
             t = k * h
@@ -110,8 +115,12 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
             a = y[2] - uy
             adot = y[3] - uyd
             if friction:
-                b = (y[0] - ux) * scale_b
-                bdot = (y[1] - uxd) * scale_b
+                if roll > 0.0:
+                    b = (roll * y[0] - ux) * scale_b
+                    bdot = (roll * y[1] - uxd) * scale_b
+                else:
+                    b = (y[0] - ux) * scale_b
+                    bdot = (y[1] - uxd) * scale_b
                 nf, tf = force(fs, is_, pp, a, b, adot, bdot)
             else:
                 # friction off: ``force`` is the model's normal law alone (its normal slot)

@@ -31,6 +31,7 @@ from .adams_bashforth import (
     P_MU,
     P_R,
     P_RAMP,
+    P_ROLL,
     P_VERT,
     record,
 )
@@ -55,9 +56,9 @@ from .evidence import (
 from .wave import kinematics
 
 #: Extra slots of the parameter vector used by the rigid scheme.
-P_RESTITUTION = 14
-P_VINERTIA = 15
-N_PRM_RIGID = 16
+P_RESTITUTION = 15
+P_VINERTIA = 16
+N_PRM_RIGID = 17
 
 _BISECT = 60
 #: events (impacts, lift-offs, stick and slip changes) one step may hold before it is an error
@@ -68,6 +69,17 @@ _ZENO = 1e-6
 #: start rises less than ~1e-12 (|N*|^2 / (16 pi^2 m*)), below what the gap function resolves,
 #: and a lift-off and landing it cannot resolve would repeat without end.
 _GRAZE = 1e-6
+
+
+@njit(cache=True)
+def _tangential_mass(prm):
+    """m* of the tangential motion: m*/c for a rolling sphere (c = 1 + 1/kappa), else m*.
+
+    With rotation the state (x*, x*') of this scheme is the contact point s = x + R phi, which
+    moves like a particle of mass m kappa / (1 + kappa) (docs/physics.md, Rotation).
+    """
+    c = prm[P_ROLL]
+    return prm[P_M] / c if c > 0.0 else prm[P_M]
 
 
 @njit(cache=True)
@@ -83,13 +95,13 @@ def _normal(t, prm):
 def _stick_margin(t, prm):
     """N* - |T_req| with T_req = -m* u_x''/mu: stick holds while this is >= 0."""
     k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
-    return _normal(t, prm) - abs(prm[P_M] * k[2] / prm[P_MU])
+    return _normal(t, prm) - abs(_tangential_mass(prm) * k[2] / prm[P_MU])
 
 
 @njit(cache=True)
 def _t_req(t, prm):
     k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
-    return -prm[P_M] * k[2] / prm[P_MU]
+    return -_tangential_mass(prm) * k[2] / prm[P_MU]
 
 
 @njit(cache=True)
@@ -99,7 +111,7 @@ def _slip_state(t0, x0, v0, t, sigma, prm):
     In contact int N* dt = dt - m* (u_y'(t) - u_y'(t0)), so the slip motion has a closed form.
     """
     m = prm[P_M]
-    c = prm[P_MU] * sigma / m
+    c = prm[P_MU] * sigma / _tangential_mass(prm)
     dt = t - t0
     if prm[P_VINERTIA] > 0.0:
         k0 = kinematics(t0, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
@@ -176,8 +188,9 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     vn = 0.0
                 y[2] = kk[3]
                 if friction:
+                    # a tangential impulse J moves the contact point by J / (tangential mass)
                     s = y[1] - kk[1]
-                    dv = min(abs(s), mu * (1.0 + e) * vn)
+                    dv = min(abs(s), mu * (1.0 + e) * vn * m / _tangential_mass(prm))
                     y[1] -= math.copysign(dv, s) if s != 0.0 else 0.0
                 tau = tc
                 event(st, EV_LANDING, tc, y, 0.0)

@@ -108,7 +108,16 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         normal = "N* = 1 - m* u_y''" if eff.vertical_inertia else "N* = 1 (vertical inertia off)"
         equations.append("a* = 0 in contact; flight m* y*'' = 1 when N* < 0; impact with restitution")
         equations.append(normal)
-        if eff.friction:
+        if eff.friction and eff.rotation:
+            kappa = scene.particle.gyration
+            equations.append("rotation: I phi'' = -R T, I = kappa m R^2, kappa = "
+                             f"{kappa:.6g}: the contact point s = x + R phi = (1 + 1/kappa) x has "
+                             f"the mass m_s = m* kappa / (1 + kappa) = "
+                             f"{scene.particle.m_star * kappa / (1 + kappa):.6g}")
+            equations.append("Coulomb on the contact point: stick s*'' = u_x'' while "
+                             "|m_s u_x''/mu| <= N*, else m_s s*'' = -mu N* sgn(s*' - u_x'); "
+                             "centre x* = s* kappa / (1 + kappa)")
+        elif eff.friction:
             equations.append("Coulomb: stick x*'' = u_x'' while |m* u_x''/mu| <= N*, "
                              "else m* x*'' = -mu N* sgn(x*' - u_x')")
         else:
@@ -116,17 +125,26 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         calls.append("closed-form N*(t), slip velocity and event bisection (sawdrift.dynamics.rigid)")
     else:
         scheme = "impact" if isinstance(drive, Impact) else "adams-bashforth"
-        normal = f"{name} normal law" if eff.friction else f"profile law N* = a*^{scene.particle.profile.p:g}"
+        normal = f"{name} normal law" + ("" if eff.friction else " alone (its normal slot)")
         equations.append(f"m* y*'' = 1 - N*(a*), a* = y* - u_y; N* from the {normal}")
         if eff.normal_damping > 0.0:
             equations.append(f"N* += {eff.normal_damping:g} a*' while a* > 0 (viscous normal damping)")
         if eff.friction:
-            equations.append("m* x*'' = -mu T*(b*, a*), theta mu b* = x* - u_x")
+            equations.append("m* x*'' = -mu T*(b*, a*)" + (
+                " (x* the centre)" if eff.rotation else ", theta mu b* = x* - u_x"))
             calls.append(f"{kernel}(a*, b*, a*', b*') once per step, committing the history")
         else:
             equations.append("x* not integrated (friction off); the tangential law is never called")
         calls.append(f"Adams-Bashforth order {scene.numerics.order}, "
                      f"{scene.steps_per_period()} steps per period")
+    if eff.rotation and eff.friction and not caps.rigid:
+        kappa = scene.particle.gyration
+        c = 1.0 + 1.0 / kappa
+        equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
+                         f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x")
+        equations.append("theta mu b* = s* - u_x: the contact point moves like a mass "
+                         f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the centre "
+                         "keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
     if horiz:
         equations.append(f"u_x = -A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
                          f"r = {scene.horizontal_ratio:.6g}")
@@ -142,7 +160,8 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         ("rebound speed ratio", "contact duration", "max compression")
         if isinstance(drive, Impact)
         else ("drift_velocity", "drift_ratio", "regime", "contact_lost", "min_compression",
-              "periodicity", "liftoffs_per_period")
+              "gross_slip_fraction", "liftoffs_per_period", "hop_period", "lyapunov")
+        + (("spin_rate",) if eff.rotation else ())
     )
     return Assembly(
         scheme, engine, eff.friction, eff.friction and not caps.rigid, eff.normal_damping,
@@ -219,6 +238,7 @@ def _run_wave(
         liftoff_phase=sync.phase,
         liftoff_phase_spread=sync.spread,
         lyapunov=lyap,
+        spin_rate=win.drift / scene.particle.gyration if scene.effects.rotation else math.nan,
         periodicity=win.periodicity,
         scene=scene.model_dump(mode="json"),
         trajectory=stepper.trajectory() if trajectory else None,

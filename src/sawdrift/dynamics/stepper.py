@@ -82,6 +82,9 @@ class Stepper:
         prm[ig.P_HORIZ] = 1.0 if plan.horizontal_wave else 0.0
         prm[ig.P_VERT] = 1.0 if plan.vertical_wave else 0.0
         prm[ig.P_KRAMP] = math.ceil(ramp * self.k_per - 1e-9)
+        #: c = 1 + 1/kappa with rotation (contact point s = c x from rest), else 0: not computed
+        self.roll = 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0
+        prm[ig.P_ROLL] = self.roll
         self.st = ev.new_stats(EVENTS_PER_PERIOD * max(1, event_periods) + 64)
         self.y = np.zeros(4)
         self.record = record
@@ -181,9 +184,19 @@ class Stepper:
                 new.fs, new.is_ = self.fs.copy(), self.is_.copy()
         return new
 
+    def centre(self, x: float) -> float:
+        """The centre's x* (or x*') from this scheme's horizontal state.
+
+        The rigid scheme integrates the contact point s = c x of a rolling sphere; the compliant
+        loop integrates the centre itself.
+        """
+        return x / self.roll if (self.rigid and self.roll > 0.0) else x
+
     def trajectory(self) -> pd.DataFrame:
-        """The recorded rows (columns ``t, x, vx, y, vy, a, b, N, T``)."""
+        """The recorded rows (columns ``t, x, vx, y, vy, a, b, N, T``); x is the centre."""
         data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
+        if self.rigid and self.roll > 0.0:
+            data[:, 1:3] /= self.roll
         return pd.DataFrame(data, columns=list(ig.REC_COLUMNS))
 
     def events(self) -> pd.DataFrame:

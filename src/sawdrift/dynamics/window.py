@@ -99,7 +99,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     for j in range(periods):
         stepper.advance(stepper.k_per)
         samples[j] = stepper.y
-    drift = (stepper.y[0] - x0) / periods
+    drift = stepper.centre(stepper.y[0] - x0) / periods
     count = max(st[ev.S_COUNT], 1.0)
     events = stepper.events()
     lifts = hop_liftoffs(events, t_start + periods)

@@ -37,6 +37,7 @@ SUMMARY_FIELDS = (
     "liftoff_phase_spread",
     "lyapunov",
     "periodicity",
+    "spin_rate",
     "version",
 )
 
@@ -86,6 +87,7 @@ class Result:
     liftoff_phase_spread: float = math.nan
     lyapunov: float = math.nan
     periodicity: float = math.nan
+    spin_rate: float = math.nan
     version: str = field(default_factory=_package_version)
     scene: dict[str, Any] = field(default_factory=dict, repr=False)
     trajectory: pd.DataFrame | None = field(default=None, repr=False)

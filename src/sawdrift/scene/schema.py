@@ -85,6 +85,13 @@ class Particle(BaseModel):
         0.1, description="m* = a0 m f^2 / (M g) (paper eq. 4), > 0"
     )
     profile: Profile = Field(default_factory=Profile)
+    gyration: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = Field(
+        0.4,
+        description=(
+            "kappa = I / (m R^2), in (0, 1]: 2/5 solid sphere, 2/3 thin shell; used with "
+            "effects.rotation"
+        ),
+    )
     preload: NonNegative = Field(
         0.0,
         description=(
@@ -216,6 +223,13 @@ class Effects(BaseModel):
         0.0, description="viscous normal damping c: N* += c a*' while in contact"
     )
     horizontal_wave: bool = Field(True, description="the horizontal wave component u_x")
+    rotation: bool = Field(
+        False,
+        description=(
+            "the sphere turns: I phi'' = -R T with I = kappa m R^2 (particle.gyration); the "
+            "contact point then moves like a mass m kappa / (1 + kappa)"
+        ),
+    )
     vertical_wave: bool = Field(True, description="the vertical wave component u_y")
 
 
@@ -312,8 +326,9 @@ class Scene(BaseModel):
         For a rigid model the default is 256 (nothing stiff to resolve). Otherwise it resolves
         the contact's small-amplitude natural frequency
         omega = sqrt(k / m*) (per unit t*, physics.md section 1) with h omega <= 0.06, where
-        k = p a_ref^(p-1) max(1, 1/theta) bounds the normal and tangential stiffness at the
-        largest expected compression a_ref = 1 + 2 A*, and never goes below 128 per period.
+        k = p a_ref^(p-1) max(1, c/theta) bounds the normal and tangential stiffness at the
+        largest expected compression a_ref = 1 + 2 A* (c = 1 + 1/kappa with rotation, else 1),
+        and never goes below 128 per period.
         """
         if self.numerics.steps_per_period is not None:
             return self.numerics.steps_per_period
@@ -332,7 +347,10 @@ class Scene(BaseModel):
             a_ref = 1.0
             for _ in range(60):
                 a_ref = ((p + 1.0) * (energy + a_ref)) ** (1.0 / (p + 1.0))
-        k = p * a_ref ** (p - 1.0) * max(1.0, 1.0 / self.theta)
+        # a rolling contact point is lighter by c = 1 + 1/kappa: its tangential frequency is
+        # sqrt(c) higher
+        c = 1.0 + 1.0 / self.particle.gyration if self.effects.rotation else 1.0
+        k = p * a_ref ** (p - 1.0) * max(1.0, c / self.theta)
         omega = math.sqrt(k / self.particle.m_star)
         return int(min(10_000_000, max(128, math.ceil(omega / 0.06))))
 

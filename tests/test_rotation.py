@@ -1,0 +1,67 @@
+"""Rotation: a sphere free to turn (I = kappa m R^2)."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import pytest
+
+import sawdrift as sd
+from sawdrift.analytic import heavy_sliding_v
+from sawdrift.report.validation import MU, point_scene
+
+
+@pytest.mark.parametrize("kappa", [0.4, 2.0 / 3.0])
+def test_rigid_sphere_rolls_without_gross_slip_below_its_bound(kappa):
+    bound = (1.0 + 1.0 / kappa) * MU * math.sqrt(1.0 - 0.3**2)
+    on = {"effects.rotation": True, "particle.gyration": kappa}
+    below = sd.run(point_scene(0.3, 0.97 * bound).with_updates(**on))
+    above = sd.run(point_scene(0.3, 1.03 * bound).with_updates(**on))
+    assert below.gross_slip_fraction == 0.0 and below.regime == "stick"
+    assert above.gross_slip_fraction > 0.0
+    # without rotation the same forcing is 3.5 (2.5) times the point's bound: it slides
+    assert sd.run(point_scene(0.3, 0.97 * bound)).gross_slip_fraction > 0.5
+
+
+def _cli_json(*args: str) -> dict:
+    out = subprocess.run([sys.executable, "-m", "sawdrift", "run", "--model", "mmd", "--m-star",
+                          "0.1", "--amplitude", "0.316", "--json", *args],
+                         capture_output=True, text=True, check=True).stdout
+    return json.loads(out)
+
+
+def test_mmd_rotation_cli_and_no_rotation_equals_plain_run():
+    plain, off, on = _cli_json(), _cli_json("--no-rotation"), _cli_json("--rotation")
+    for key in ("drift_ratio", "drift_velocity", "regime", "gross_slip_fraction", "steps",
+                "min_compression", "liftoffs_per_period"):
+        assert off[key] == plain[key], key
+    assert plain["spin_rate"] is None
+    assert math.isfinite(on["drift_ratio"]) and on["spin_rate"] is not None
+    assert abs(on["drift_ratio"] - plain["drift_ratio"]) > 0.01
+    # no rolling resistance: R phi' = x*' / kappa exactly, so the mean spin is the drift / kappa
+    assert on["spin_rate"] == pytest.approx(on["drift_velocity"] / 0.4, rel=1e-12)
+
+
+def test_rolling_heavy_sliding_matches_closed_form():
+    # V = kappa / (1 + kappa) cos(phi0): the contact point slides like the point, the centre
+    # follows at kappa / (1 + kappa) of its speed
+    kappa, gz = 0.4, 0.5
+    c = 1.0 + 1.0 / kappa
+    scene = point_scene(gz, MU * c / 0.02, periods=40, measure_periods=10, settle=True,
+                        settle_tolerance=1e-6)
+    res = sd.run(scene.with_updates(**{"effects.rotation": True, "particle.gyration": kappa}))
+    assert res.drift_ratio == pytest.approx(heavy_sliding_v(gz) / c, rel=0.01)
+
+
+def test_explain_prints_rotation_and_kappa():
+    text = sd.explain(sd.Scene(effects={"rotation": True}, particle={"gyration": 0.5}))
+    assert "kappa = 0.5" in text and "I phi''" in text
+    assert "rotation" not in sd.explain(sd.Scene())
+
+
+def test_gyration_is_validated():
+    with pytest.raises(sd.SceneError, match="particle.gyration"):
+        sd.scene.build_scene({"particle": {"gyration": 1.5}})
