@@ -65,3 +65,24 @@ def test_explain_prints_rotation_and_kappa():
 def test_gyration_is_validated():
     with pytest.raises(sd.SceneError, match="particle.gyration"):
         sd.scene.build_scene({"particle": {"gyration": 1.5}})
+
+
+def test_rolling_resistance_spans_free_rolling_and_locked_rotation():
+    # mu_r -> 0: the rolling spring vanishes and the sphere rolls freely; mu_r -> infinity: the
+    # spring locks the rotation and the drift tends to the run without rotation
+    base = dict(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
+    plain = sd.run(sd.Scene(**base))
+    free = sd.run(sd.Scene(**base, effects={"rotation": True}))
+    weak = sd.run(sd.Scene(**base, effects={"rotation": True, "rolling_resistance": 1e-5}))
+    stiff = sd.run(sd.Scene(**base, effects={"rotation": True, "rolling_resistance": 30.0}))
+    assert weak.drift_ratio == pytest.approx(free.drift_ratio, abs=1e-4)
+    assert stiff.drift_ratio == pytest.approx(plain.drift_ratio, abs=2e-3)
+    assert abs(stiff.spin_rate) < 1e-5 < abs(free.spin_rate)
+
+
+def test_rolling_resistance_needs_rotation_and_a_compliant_model():
+    with pytest.raises(sd.SceneError, match="rolling_resistance"):
+        sd.scene.build_scene({"effects": {"rolling_resistance": 0.1}})
+    with pytest.raises(sd.SceneError, match="rigid"):
+        sd.scene.build_scene({"model": "material_point",
+                              "effects": {"rotation": True, "rolling_resistance": 0.1}})

@@ -73,6 +73,7 @@ def scene_from_options(scene_file: Path | None, **options: Any) -> sd.Scene:
         "vertical_wave": "effects.vertical_wave",
         "rotation": "effects.rotation",
         "gyration": "particle.gyration",
+        "rolling_resistance": "effects.rolling_resistance",
     }
     for key, dotted in mapping.items():
         value = options.get(key)
@@ -139,6 +140,10 @@ def run_cmd(
     gyration: Annotated[
         float | None, typer.Option("--gyration", help="kappa = I/(m R^2) in (0, 1]; 0.4 solid sphere")
     ] = None,
+    rolling_resistance: Annotated[
+        float | None,
+        typer.Option("--rolling-resistance", help="mu_r >= 0 of the rolling spring (with --rotation)"),
+    ] = None,
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
 ) -> None:
     """Run one scene and report its drift and motion regime."""
@@ -148,7 +153,7 @@ def run_cmd(
         order=order, settle=settle, profile=profile, params=_parse_param(param),
         friction=friction, vertical_inertia=vertical_inertia, normal_damping=normal_damping,
         horizontal_wave=horizontal_wave, vertical_wave=vertical_wave, rotation=rotation,
-        gyration=gyration,
+        gyration=gyration, rolling_resistance=rolling_resistance,
     )
     if engine not in ("compiled", "python"):
         _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")

@@ -62,7 +62,13 @@ P_M, P_A, P_R, P_MU, P_THETA, P_RAMP, P_H, P_ORDER = 0, 1, 2, 3, 4, 5, 6, 7
 P_FRICTION, P_DAMP, P_P, P_HORIZ, P_VERT, P_KRAMP = 8, 9, 10, 11, 12, 13
 #: rotation: c = 1 + 1/kappa with the sphere free to turn, 0 without rotation (see the loop)
 P_ROLL = 14
-N_PRM = 15
+#: rolling resistance mu_r (0: off) of the elastic-plastic rolling spring (see the loop)
+P_RR = 15
+N_PRM = 16
+
+#: State vector: x*, x*', y*, y*', then, with rolling resistance, psi = R phi / a0, psi' and the
+#: elastic rolling displacement psi_e of the spring.
+N_STATE = 7
 
 # The statistics vector ``st`` and its event log: see :mod:`sawdrift.dynamics.evidence`.
 
@@ -108,6 +114,15 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
         # Rotation (I = kappa m R^2): m x'' = -T and I phi'' = -R T, so from rest the contact
         # point s = x + R phi moves as s = c x with c = 1 + 1/kappa (docs/physics.md, Rotation).
         roll = prm[P_ROLL]
+        # Rolling resistance, an elastic-plastic rolling spring (EPSD type, Ai et al. 2011,
+        # Powder Technol. 206, 269-282, without its viscous term): per R and per M g the torque is
+        # m_r = -K_r psi_e, |m_r| <= mu_r N*, with K_r = 2.25 mu_r^2 dN*/da* (their k_r =
+        # 2.25 k_n mu_r^2 R^2); psi = R phi / a0 then obeys kappa m* psi'' = -mu T* + m_r.
+        rr = prm[P_RR]
+        resist = rr > 0.0 and roll > 0.0
+        kappa_m = m / (roll - 1.0) if roll > 0.0 else 0.0
+        p_exp = prm[P_P]
+        ncomp = 6 if resist else 4
         for _ in range(n_steps):
             k = ctr[0]
             t = k * h
@@ -115,7 +130,10 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
             a = y[2] - uy
             adot = y[3] - uyd
             if friction:
-                if roll > 0.0:
+                if resist:
+                    b = (y[0] + y[4] - ux) * scale_b
+                    bdot = (y[1] + y[5] - uxd) * scale_b
+                elif roll > 0.0:
                     b = (roll * y[0] - ux) * scale_b
                     bdot = (roll * y[1] - uxd) * scale_b
                 else:
@@ -165,20 +183,38 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
             if rec_every > 0 and k % rec_every == 0:
                 record(rec, ctr, t, y, a, b, nf, tf)
             for j in range(3, 0, -1):
-                for c in range(4):
+                for c in range(ncomp):
                     fh[j, c] = fh[j - 1, c]
             fh[0, 0] = y[1] if friction else 0.0
             fh[0, 1] = ax
             fh[0, 2] = y[3]
             fh[0, 3] = ay
+            if resist:
+                kr = 2.25 * rr * rr * p_exp * a ** (p_exp - 1.0) if a > 0.0 else 0.0
+                cap = rr * nf
+                mr = -kr * y[6]
+                if mr > cap:
+                    mr = cap
+                elif mr < -cap:
+                    mr = -cap
+                fh[0, 4] = y[5]
+                fh[0, 5] = (-mu * tf + mr) / kappa_m
+                psi_old = y[4]
             q = ctr[1] + 1
             if q > order:
                 q = order
-            for c in range(4):
+            for c in range(ncomp):
                 acc = 0.0
                 for j in range(q):
                     acc += ab[q - 1, j] * fh[j, c]
                 y[c] += h * acc
+            if resist:
+                # the spring takes the rotation increment, and slides (plastic) at its cap
+                y[6] += y[4] - psi_old
+                if kr > 0.0 and abs(kr * y[6]) > cap:
+                    y[6] = math.copysign(cap / kr, y[6])
+                elif kr == 0.0:
+                    y[6] = 0.0
             if ctr[1] < 4:
                 ctr[1] += 1
             ctr[0] = k + 1

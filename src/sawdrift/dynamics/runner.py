@@ -142,9 +142,16 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         c = 1.0 + 1.0 / kappa
         equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
                          f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x")
-        equations.append("theta mu b* = s* - u_x: the contact point moves like a mass "
-                         f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the centre "
-                         "keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
+        if eff.rolling_resistance > 0.0:
+            mu_r = eff.rolling_resistance
+            equations.append("rolling resistance (elastic-plastic spring, Ai et al. 2011): "
+                             "kappa m* psi'' = -mu T* + m_r, psi = R phi / a0, s* = x* + psi, "
+                             f"m_r = -2.25 mu_r^2 (dN*/da*) psi_e capped at mu_r N*, mu_r = {mu_r:g}")
+            equations.append("theta mu b* = s* - u_x; the centre keeps m* x*'' = -mu T*")
+        else:
+            equations.append("theta mu b* = s* - u_x: the contact point moves like a mass "
+                             f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the "
+                             "centre keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
     if horiz:
         equations.append(f"u_x = -A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
                          f"r = {scene.horizontal_ratio:.6g}")
@@ -238,7 +245,7 @@ def _run_wave(
         liftoff_phase=sync.phase,
         liftoff_phase_spread=sync.spread,
         lyapunov=lyap,
-        spin_rate=win.drift / scene.particle.gyration if scene.effects.rotation else math.nan,
+        spin_rate=win.spin_rate,
         periodicity=win.periodicity,
         scene=scene.model_dump(mode="json"),
         trajectory=stepper.trajectory() if trajectory else None,
@@ -254,7 +261,7 @@ def _run_impact(scene: Scene, model: ContactModel, plan: Assembly, trajectory: b
     t0 = time.perf_counter()
     stepper = Stepper(scene, model, plan, record=True, preload=False)
     stepper.rec_every = 1
-    stepper.y[:] = (0.0, drive.tangential_velocity, 0.0, drive.velocity)
+    stepper.y[:4] = (0.0, drive.tangential_velocity, 0.0, drive.velocity)
     chunk = max(8, stepper.k_per // 8)
     n_max = int(round(scene.numerics.periods * stepper.k_per))
     separated = False

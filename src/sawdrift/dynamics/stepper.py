@@ -85,8 +85,10 @@ class Stepper:
         #: c = 1 + 1/kappa with rotation (contact point s = c x from rest), else 0: not computed
         self.roll = 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0
         prm[ig.P_ROLL] = self.roll
+        prm[ig.P_RR] = eff.rolling_resistance if eff.rotation else 0.0
+        self.resist = prm[ig.P_RR] > 0.0
         self.st = ev.new_stats(EVENTS_PER_PERIOD * max(1, event_periods) + 64)
-        self.y = np.zeros(4)
+        self.y = np.zeros(ig.N_STATE)
         self.record = record
         self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
         self.rec_chunks: list[np.ndarray] = []
@@ -103,7 +105,7 @@ class Stepper:
         else:
             self.prm = prm[: ig.N_PRM]
             self.ctr = np.zeros(3, dtype=np.int64)
-            self.fh = np.zeros((4, 4))
+            self.fh = np.zeros((4, 6))
             # a* = 1: static compression under M g (docs/physics.md); an impact starts at 0
             self.y[2] = 1.0 if preload else 0.0
             if plan.tangential_law:
@@ -169,7 +171,9 @@ class Stepper:
     def twin(self, dy: np.ndarray | None = None) -> Stepper:
         """An independent copy of this integration (no trajectory recording), state + ``dy``."""
         new = copy.copy(self)
-        new.y = self.y + (0.0 if dy is None else dy)
+        new.y = self.y.copy()
+        if dy is not None:
+            new.y[: dy.size] += dy
         new.ctr = self.ctr.copy()
         new.st = self.st.copy()
         new.record = False

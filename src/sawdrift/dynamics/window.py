@@ -27,6 +27,7 @@ class Window:
     periods: int
     t_start: float
     drift: float
+    spin_rate: float
     drift_ratio: float
     samples: np.ndarray
     contact_lost: bool
@@ -94,12 +95,18 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     t_start = stepper.step * stepper.h
     dy = np.array([0.0, 0.0, 0.0, LYAPUNOV_D0 * scale[2]])
     snapshot = stepper.twin(dy)
-    x0 = stepper.y[0]
+    x0, psi0 = stepper.y[0], stepper.y[4]
     samples = np.empty((periods, 4))
     for j in range(periods):
         stepper.advance(stepper.k_per)
-        samples[j] = stepper.y
+        samples[j] = stepper.y[:4]
     drift = stepper.centre(stepper.y[0] - x0) / periods
+    if stepper.resist:
+        spin = (stepper.y[4] - psi0) / periods
+    elif stepper.roll > 0.0:
+        spin = drift * (stepper.roll - 1.0)  # R phi = x / kappa from rest
+    else:
+        spin = math.nan
     count = max(st[ev.S_COUNT], 1.0)
     events = stepper.events()
     lifts = hop_liftoffs(events, t_start + periods)
@@ -107,6 +114,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         periods=periods,
         t_start=t_start,
         drift=float(drift),
+        spin_rate=float(spin),
         drift_ratio=float(drift / speed) if speed > 0.0 else 0.0,
         samples=samples,
         contact_lost=bool(st[ev.S_LOST] > 0.0),
@@ -136,7 +144,7 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
     try:
         for j in range(window.periods):
             twin.advance(twin.k_per)
-            d = float(np.linalg.norm((twin.y[1:] - window.samples[j, 1:]) / scale))
+            d = float(np.linalg.norm((twin.y[1:4] - window.samples[j, 1:]) / scale))
             distances.append(d)
             if d >= 1e-3:
                 break

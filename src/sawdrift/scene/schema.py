@@ -223,6 +223,14 @@ class Effects(BaseModel):
         0.0, description="viscous normal damping c: N* += c a*' while in contact"
     )
     horizontal_wave: bool = Field(True, description="the horizontal wave component u_x")
+    rolling_resistance: NonNegative = Field(
+        0.0,
+        description=(
+            "rolling friction coefficient mu_r of an elastic-plastic rolling spring (needs "
+            "rotation and a compliant model; 0: off); physically mu_r ~ (contact radius)/R = "
+            "sqrt(a0/R) times a factor of order 1"
+        ),
+    )
     rotation: bool = Field(
         False,
         description=(
@@ -294,6 +302,11 @@ class Scene(BaseModel):
             raise ValueError(
                 f"effects.normal_damping needs a compliant model; {self.model!r} is rigid"
             )
+        if eff.rolling_resistance > 0.0 and (rigid or not eff.rotation):
+            raise ValueError(
+                "effects.rolling_resistance needs effects.rotation = true and a compliant model"
+                + (f"; {self.model!r} is rigid" if rigid else "")
+            )
         if isinstance(self.drive, Prescribed) and not eff.friction:
             raise ValueError("effects.friction = false leaves nothing to compute for a prescribed drive")
         _ = self.particle.profile.p
@@ -351,6 +364,10 @@ class Scene(BaseModel):
         # sqrt(c) higher
         c = 1.0 + 1.0 / self.particle.gyration if self.effects.rotation else 1.0
         k = p * a_ref ** (p - 1.0) * max(1.0, c / self.theta)
+        if self.effects.rotation and self.effects.rolling_resistance > 0.0:
+            # the rolling spring 2.25 mu_r^2 dN*/da* acts on the rotational inertia kappa m*
+            mu_r = self.effects.rolling_resistance
+            k = max(k, 2.25 * mu_r**2 * p * a_ref ** (p - 1.0) / self.particle.gyration)
         omega = math.sqrt(k / self.particle.m_star)
         return int(min(10_000_000, max(128, math.ceil(omega / 0.06))))
 
