@@ -17,6 +17,7 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from sawdrift.contact import Capabilities, ContactModel, KernelPair
 from sawdrift.hookspecs import hookimpl
+from sawdrift.scene.profiles import normal_force, normal_stiffness
 
 from . import mdr_kernel
 
@@ -35,7 +36,7 @@ class MdrParams(BaseModel):
     )
 
 
-def strip_grid(strips: int, dz: float, p: float) -> tuple[np.ndarray, np.ndarray]:
+def strip_grid(strips: int, dz: float, p) -> tuple[np.ndarray, np.ndarray]:
     """Centroids c_j and weights m_j of the cells [j dz, (j+1) dz] under the measure dN*'.
 
     m_j = N*'(e1) - N*'(e0) with N*'(0-) = 0; c_j = integral z dN*' / m_j = ([z N*'] - [N*]) / m_j
@@ -44,11 +45,20 @@ def strip_grid(strips: int, dz: float, p: float) -> tuple[np.ndarray, np.ndarray
     e0 = np.arange(strips, dtype=np.float64) * dz
     e1 = (np.arange(strips, dtype=np.float64) + 1.0) * dz
 
-    def dn(z: np.ndarray) -> np.ndarray:
-        return np.where(z > 0.0, p * np.where(z > 0.0, z, 1.0) ** (p - 1.0), 0.0)
+    if np.ndim(p) == 0:
 
-    def nn(z: np.ndarray) -> np.ndarray:
-        return np.where(z > 0.0, z, 0.0) ** p
+        def dn(z: np.ndarray) -> np.ndarray:
+            return np.where(z > 0.0, p * np.where(z > 0.0, z, 1.0) ** (p - 1.0), 0.0)
+
+        def nn(z: np.ndarray) -> np.ndarray:
+            return np.where(z > 0.0, z, 0.0) ** p
+    else:  # a normal-law descriptor (tabulated profile)
+
+        def dn(z: np.ndarray) -> np.ndarray:
+            return np.array([normal_stiffness(float(v), p) for v in z])
+
+        def nn(z: np.ndarray) -> np.ndarray:
+            return np.array([normal_force(float(v), p) for v in z])
 
     m = dn(e1) - dn(e0)
     moment = e1 * dn(e1) - e0 * dn(e0) - (nn(e1) - nn(e0))
@@ -70,7 +80,7 @@ class MdrReference:
     """
 
     def __init__(self, p: float, strips: int = 256, z_max: float = 2.0) -> None:
-        self.p = float(p)
+        self.p = float(p) if np.ndim(p) == 0 else np.asarray(p, dtype=float)
         self.strips = int(strips)
         self.z_max = float(z_max)
         self.reset()
@@ -145,7 +155,9 @@ class MdrModel(ContactModel):
         "converges to mmd"
     )
     Params: ClassVar[type[BaseModel]] = MdrParams
-    capabilities: ClassVar[Capabilities] = Capabilities()
+    capabilities: ClassVar[Capabilities] = Capabilities(
+        profiles=("sphere", "cone", "flat", "power", "table")
+    )
     kernel: ClassVar[KernelPair | None] = KernelPair(reset=mdr_kernel.reset, force=mdr_kernel.force)
 
     def state_sizes(self) -> tuple[int, int]:
@@ -153,14 +165,13 @@ class MdrModel(ContactModel):
         return mdr_kernel.state_sizes(self.params.strips)
 
     def packed_params(self) -> np.ndarray:
-        """``[p, strips, z_max]``."""
-        return np.array(
-            [self.profile.p, float(self.params.strips), self.params.z_max], dtype=np.float64
-        )
+        """``[strips, z_max, *law]`` with the profile's normal-law descriptor ``law``."""
+        return np.concatenate([[float(self.params.strips), self.params.z_max], self.profile.law()])
 
     def reference(self) -> MdrReference:
         """A fresh numpy MDR contact."""
-        return MdrReference(self.profile.p, self.params.strips, self.params.z_max)
+        law = self.profile.law()
+        return MdrReference(law[0] if law.size == 1 else law, self.params.strips, self.params.z_max)
 
 
 @hookimpl

@@ -47,16 +47,18 @@ dz, ``fs[3]``, ``fs[4]`` N*, T* of the last step, ``fs[5:8]`` reserved; then the
 ``is_`` (int64): ``is_[0]`` number of coarsenings of the current grid, ``is_[1]`` N,
 ``is_[2]`` number of strips in contact (c_j < a*), ``is_[3]`` reserved.
 
-``pp`` (float64): ``pp[0]`` = p, ``pp[1]`` = N, ``pp[2]`` = z_max.
+``pp`` (float64): ``pp[0]`` = N, ``pp[1]`` = z_max, then the profile's normal-law descriptor
+(:mod:`sawdrift.contact.normal`; ``[p]`` for a power law).
 """
 
 from __future__ import annotations
 
 from numba import njit
 
-from .normal_law import JIT_OPTIONS
-from .normal_law import dnormal as _dnormal
-from .normal_law import normal as _normal
+from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
+
+#: the normal-law descriptor starts at pp[LAW] (after N and z_max)
+LAW = 2
 
 HEADER = 8
 """Number of scalar slots at the start of ``fs``."""
@@ -72,30 +74,32 @@ def state_sizes(strips: int) -> tuple[int, int]:
 
 
 @njit(**JIT_OPTIONS, inline="always")
-def _cell(j, dz, p):
+def _cell(j, dz, pp):
     """Centroid c and weight m = dN*' of the cell [j dz, (j+1) dz]."""
     e0 = j * dz
     e1 = (j + 1) * dz
-    m = _dnormal(e1, p) - _dnormal(e0, p)
+    d0 = law_slope(e0, pp, LAW)
+    d1 = law_slope(e1, pp, LAW)
+    m = d1 - d0
     if m > 0.0:
         # integral z dN*' over the cell, by parts: [z N*'] - [N*]
-        c = (e1 * _dnormal(e1, p) - e0 * _dnormal(e0, p) - (_normal(e1, p) - _normal(e0, p))) / m
+        c = (e1 * d1 - e0 * d0 - (law_normal(e1, pp, LAW) - law_normal(e0, pp, LAW))) / m
     else:
         c = 0.5 * (e0 + e1)
     return c, m
 
 
 @njit(**JIT_OPTIONS)
-def _grid(fs, nst, dz, p):
+def _grid(fs, nst, dz, pp):
     """Fill centroids c_j and weights m_j of the cells [j dz, (j+1) dz]."""
     for j in range(nst):
-        c, m = _cell(j, dz, p)
+        c, m = _cell(j, dz, pp)
         fs[HEADER + j] = c
         fs[HEADER + nst + j] = m
 
 
 @njit(**JIT_OPTIONS)
-def _coarsen(fs, is_, a0, p):
+def _coarsen(fs, is_, a0, pp):
     """Merge cells in pairs (dz doubled); interpolate the diagram onto the new centroids."""
     nst = is_[1]
     n_in = is_[2]
@@ -105,7 +109,7 @@ def _coarsen(fs, is_, a0, p):
     dz = 2.0 * fs[2]
     # new centroids into scratch first, to interpolate against the old ones
     for j in range(nst):
-        fs[isc + j] = _cell(j, dz, p)[0]
+        fs[isc + j] = _cell(j, dz, pp)[0]
     k = 0
     n_new = 0
     for j in range(nst):
@@ -132,7 +136,7 @@ def _coarsen(fs, is_, a0, p):
     for j in range(nst):
         fs[iv + j] = fs[isc + j]
     fs[2] = dz
-    _grid(fs, nst, dz, p)
+    _grid(fs, nst, dz, pp)
     is_[0] += 1
     is_[2] = n_new
 
@@ -140,15 +144,14 @@ def _coarsen(fs, is_, a0, p):
 @njit(**JIT_OPTIONS)
 def reset(fs, is_, pp):
     """Empty history: out of contact at (a*, b*) = (0, 0), initial grid."""
-    p = pp[0]
-    nst = int(pp[1])
+    nst = int(pp[0])
     fs[:] = 0.0
-    fs[2] = pp[2] / nst
+    fs[2] = pp[1] / nst
     is_[0] = 0
     is_[1] = nst
     is_[2] = 0
     is_[3] = 0
-    _grid(fs, nst, fs[2], p)
+    _grid(fs, nst, fs[2], pp)
 
 
 @njit(**JIT_OPTIONS)
@@ -157,7 +160,6 @@ def force(fs, is_, pp, a, b, adot, bdot):
 
     ``adot`` and ``bdot`` are ignored (the law is rate independent).
     """
-    p = pp[0]
     nst = is_[1]
     ic = HEADER
     im = HEADER + nst
@@ -174,8 +176,8 @@ def force(fs, is_, pp, a, b, adot, bdot):
             fs[iv + j] = 0.0
         is_[2] = 0
         if is_[0] > 0:
-            fs[2] = pp[2] / nst
-            _grid(fs, nst, fs[2], p)
+            fs[2] = pp[1] / nst
+            _grid(fs, nst, fs[2], pp)
             is_[0] = 0
     else:
         if a0 <= 0.0:
@@ -184,7 +186,7 @@ def force(fs, is_, pp, a, b, adot, bdot):
                 b0 = b0 + (b - b0) * (-a0 / (a - a0))
             a0 = 0.0
         while a > nst * fs[2]:
-            _coarsen(fs, is_, a0, p)
+            _coarsen(fs, is_, a0, pp)
         db = b - b0
         n_old = is_[2]
         n_in = 0

@@ -56,7 +56,9 @@ class MemoryDiagramModel(ContactModel):
         "O(1) amortized per step"
     )
     Params: ClassVar[type[BaseModel]] = MemoryDiagramParams
-    capabilities: ClassVar[Capabilities] = Capabilities()
+    capabilities: ClassVar[Capabilities] = Capabilities(
+        profiles=("sphere", "cone", "flat", "power", "table")
+    )
     kernel: ClassVar[KernelPair | None] = KernelPair(reset=mmd_kernel.reset, force=mmd_kernel.force)
 
     def state_sizes(self) -> tuple[int, int]:
@@ -68,12 +70,13 @@ class MemoryDiagramModel(ContactModel):
         return mmd_kernel.HEADER + mmd_kernel.RECORD * int(is_[0]), is_.size
 
     def packed_params(self) -> np.ndarray:
-        """``[p]``."""
-        return np.array([self.profile.p], dtype=np.float64)
+        """The profile's normal-law descriptor (``[p]`` for a power law)."""
+        return self.profile.law()
 
     def reference(self) -> MemoryDiagramReference:
         """A fresh pure-Python memory-diagram contact."""
-        return MemoryDiagramReference(self.profile.p)
+        law = self.profile.law()
+        return MemoryDiagramReference(law[0] if law.size == 1 else law)
 
     @staticmethod
     def memory_points(history: ContactHistory) -> np.ndarray:

@@ -1,11 +1,12 @@
 """Compiled kernel of the Method of Memory Diagrams (MMD): amortized O(1) per step.
 
-Implements the normalized tangential law of ../shared/physics.md section 2 (Aleshin, Bou Matar
+Implements the normalized tangential law of docs/physics.md, "Contact laws" (Aleshin, Bou Matar
 and Van Den Abeele 2015, "Method of memory diagrams for mechanical frictional contacts subject
 to arbitrary 2D loading", Int. J. Solids Struct. 60-61, 84-95; the elementary partial-slip
-solutions are those of Mindlin & Deresiewicz 1953). The normal law is N*(a*) = a*^p, so
-N*'(z) = p z^(p-1) for z > 0 and, by convention, N*'(0-) = 0: the flat punch (p = 1) carries a
-point mass of dN*' at z = 0.
+solutions are those of Mindlin & Deresiewicz 1953). The normal law is the profile's, given by its
+descriptor in ``pp`` (:mod:`sawdrift.contact.normal`): a power law N*(a*) = a*^p, with
+N*'(z) = p z^(p-1) for z > 0 and, by convention, N*'(0-) = 0 (the flat punch, p = 1, carries a
+point mass of dN*' at z = 0), or a tabulated law.
 
 Memory diagram as a stack
 -------------------------
@@ -16,9 +17,9 @@ Each kink also keeps the prefix integral C_i = integral_[0, z_i] w dN*'(z), so
 
     T* = C_top + offset * N*'(a*)
 
-(the total measure of [0, a*] is N*'(a*), point mass included), and N*'(z_i), so that a push
-costs one power of the new level only (N*(z) = z N*'(z) / p). For a linear piece of w from
-(z1, w1) to (z2, w2) the Stieltjes integral is (physics.md section 2)
+(the total measure of [0, a*] is N*'(a*), point mass included), and N*'(z_i) and N*(z_i), so
+that a push costs one evaluation of the law at the new level only (for a power law one power:
+N*(z) = z N*'(z) / p). For a linear piece of w from (z1, w1) to (z2, w2) the Stieltjes integral is
 
     w2 N*'(z2) - w1 N*'(z1) - (w2 - w1) (N*(z2) - N*(z1)) / (z2 - z1).
 
@@ -53,16 +54,17 @@ State layout (sizes from :func:`state_sizes`)
 ``fs[2]``                 offset (v = w + offset)
 ``fs[3]``, ``fs[4]``      N*, T* of the last step (diagnostics)
 ``fs[5:8]``               reserved
-``fs[8 + 4i + 0]``        z_i, level of kink i (i = 0 at the bottom, z_0 = 0)
-``fs[8 + 4i + 1]``        w_i, value relative to the offset
-``fs[8 + 4i + 2]``        C_i, prefix integral of w dN*' over [0, z_i]
-``fs[8 + 4i + 3]``        N*'(z_i) (0 at z = 0)
+``fs[8 + 5i + 0]``        z_i, level of kink i (i = 0 at the bottom, z_0 = 0)
+``fs[8 + 5i + 1]``        w_i, value relative to the offset
+``fs[8 + 5i + 2]``        C_i, prefix integral of w dN*' over [0, z_i]
+``fs[8 + 5i + 3]``        N*'(z_i) (0 at z = 0)
+``fs[8 + 5i + 4]``        N*(z_i)
 ========================  ===================================================================
 
 ``is_`` (int64): ``is_[0]`` number of kinks (0 when out of contact), ``is_[1]`` high-water mark
 of the kink count, ``is_[2]`` number of re-bases, ``is_[3]`` capacity.
 
-``pp`` (float64): ``pp[0]`` = p.
+``pp`` (float64): the normal-law descriptor (``[p]`` for a power law).
 
 If the capacity is exceeded, :class:`MemoryCapacityError` is raised and the history is invalid.
 """
@@ -72,15 +74,13 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
 from sawdrift.errors import SawdriftError
-
-from .normal_law import JIT_OPTIONS
-from .normal_law import dnormal as _dnormal
 
 HEADER = 8
 """Number of scalar slots at the start of ``fs``."""
-RECORD = 4
-"""Float64 slots per kink: z, w, C, N*'(z)."""
+RECORD = 5
+"""Float64 slots per kink: z, w, C, N*'(z), N*(z)."""
 N_INT = 4
 """Size of ``is_``."""
 REBASE_LIMIT = 64.0
@@ -97,35 +97,49 @@ def state_sizes(max_memory_points: int) -> tuple[int, int]:
 
 
 @njit(**JIT_OPTIONS, inline="always")
-def _segment(z1: float, w1: float, d1: float, z2: float, w2: float, d2: float, p: float) -> float:
-    """Stieltjes integral of the linear piece (z1, w1)-(z2, w2) against dN*' (physics.md s. 2).
+def _segment(z1, w1, d1, n1, z2, w2, d2, n2) -> float:
+    """Stieltjes integral of the linear piece (z1, w1)-(z2, w2) against dN*' (docs/physics.md).
 
-    ``d1``, ``d2`` are N*'(z1), N*'(z2); N*(z) = z N*'(z) / p for a power law. A zero-length
-    piece contributes 0.
+    ``d1``, ``d2`` are N*'(z1), N*'(z2) and ``n1``, ``n2`` are N*(z1), N*(z2): by parts,
+    [w N*'] - (dw/dz) [N*]. A zero-length piece contributes 0.
     """
     dz = z2 - z1
     out = 0.0
     if dz > 0.0:
-        # one division: (N(z2) - N(z1)) / dz with N(z) = z N'(z) / p
-        out = w2 * d2 - w1 * d1 - (w2 - w1) * ((z2 * d2 - z1 * d1) / (p * dz))
+        out = w2 * d2 - w1 * d1 - (w2 - w1) * ((n2 - n1) / dz)
     return out
 
 
 @njit(**JIT_OPTIONS, inline="always")
-def _write(fs, k, z, w, d, p):
-    """Store kink (z, w, N*'(z) = d) in record slot k and its prefix integral from slot k - 1."""
-    r = HEADER + RECORD * k
-    fs[r] = z
-    fs[r + 1] = w
-    fs[r + 3] = d
-    if k == 0:
-        fs[r + 2] = 0.0
+def _normal_at(z, d, pp):
+    """N*(z) given N*'(z) = d: z d / p for a power law (no power taken), else the table."""
+    p = pp[0]
+    out = 0.0
+    if p > 0.0:
+        out = z * d / p
     else:
-        fs[r + 2] = fs[r - 2] + _segment(fs[r - 4], fs[r - 3], fs[r - 1], z, w, d, p)
+        out = law_normal(z, pp, 0)
+    return out
 
 
 @njit(**JIT_OPTIONS, inline="always")
-def _push(fs, is_, z, w, p):
+def _write(fs, k, z, w, d, pp):
+    """Store kink (z, w, N*'(z) = d, N*(z)) in record slot k and its prefix integral."""
+    r = HEADER + RECORD * k
+    nz = _normal_at(z, d, pp)
+    fs[r] = z
+    fs[r + 1] = w
+    fs[r + 3] = d
+    fs[r + 4] = nz
+    if k == 0:
+        fs[r + 2] = 0.0
+    else:
+        q = r - RECORD
+        fs[r + 2] = fs[q + 2] + _segment(fs[q], fs[q + 1], fs[q + 3], fs[q + 4], z, w, d, nz)
+
+
+@njit(**JIT_OPTIONS, inline="always")
+def _push(fs, is_, z, w, pp):
     """Push the kink (z, w) on the stack.
 
     A level not above the top only replaces the top's value (v is continuous, so the two agree
@@ -146,22 +160,22 @@ def _push(fs, is_, z, w, p):
         if abs(dev) <= COLLINEAR_RTOL * (abs(w1) + abs(w)) * (z - z1):
             mode = 1
     if mode == 0:
-        _write(fs, n - 1, fs[r], w, fs[r + 3], p)
+        _write(fs, n - 1, fs[r], w, fs[r + 3], pp)
     elif mode == 1:
-        _write(fs, n - 1, z, w, _dnormal(z, p), p)
+        _write(fs, n - 1, z, w, law_slope(z, pp, 0), pp)
     else:
         if n >= is_[3]:
             raise MemoryCapacityError(
                 "mmd: the memory diagram is full; raise the model parameter max_memory_points"
             )
-        _write(fs, n, z, w, _dnormal(z, p), p)
+        _write(fs, n, z, w, law_slope(z, pp, 0), pp)
         is_[0] = n + 1
         if n + 1 > is_[1]:
             is_[1] = n + 1
 
 
 @njit(**JIT_OPTIONS, inline="always")
-def _clip(fs, is_, a, offset, s, p):
+def _clip(fs, is_, a, offset, s, pp):
     """Clip the suffix that violates s v(z) <= a - z (s = +1 upper, -1 lower bound).
 
     Pops the violating kinks, pushes the crossing of the diagram with the bound and the end
@@ -182,7 +196,7 @@ def _clip(fs, is_, a, offset, s, p):
     is_[0] = n
     if n == 0:
         # the whole diagram slides: v = s (a - z) from z = 0
-        _push(fs, is_, 0.0, s * a - offset, p)
+        _push(fs, is_, 0.0, s * a - offset, pp)
     else:
         r = HEADER + RECORD * (n - 1)
         zj = fs[r]
@@ -190,18 +204,18 @@ def _clip(fs, is_, a, offset, s, p):
         if gj < 0.0:
             zx = zj + (zp - zj) * (-gj / (gp - gj))
             if zx > zj:
-                _push(fs, is_, zx, s * (a - zx) - offset, p)
-    _push(fs, is_, a, -offset, p)
+                _push(fs, is_, zx, s * (a - zx) - offset, pp)
+    _push(fs, is_, a, -offset, pp)
 
 
 @njit(**JIT_OPTIONS)
-def _rebase(fs, is_, p):
+def _rebase(fs, is_, pp):
     """Fold the offset into the stored values and recompute the prefix integrals."""
     offset = fs[2]
     for k in range(is_[0]):
         r = HEADER + RECORD * k
         fs[r + 1] += offset
-        _write(fs, k, fs[r], fs[r + 1], fs[r + 3], p)
+        _write(fs, k, fs[r], fs[r + 1], fs[r + 3], pp)
     fs[2] = 0.0
     is_[2] += 1
 
@@ -223,7 +237,6 @@ def force(fs, is_, pp, a, b, adot, bdot):
 
     ``adot`` and ``bdot`` are ignored (the law is rate independent).
     """
-    p = pp[0]
     a0 = fs[0]
     b0 = fs[1]
     fs[0] = a
@@ -242,7 +255,7 @@ def force(fs, is_, pp, a, b, adot, bdot):
             a0 = 0.0
             is_[0] = 0
             fs[2] = 0.0
-            _push(fs, is_, 0.0, 0.0, p)
+            _push(fs, is_, 0.0, 0.0, pp)
         offset = fs[2] + (b - b0)
         fs[2] = offset
         n = is_[0]
@@ -255,22 +268,22 @@ def force(fs, is_, pp, a, b, adot, bdot):
             z1 = fs[r - RECORD]
             w1 = fs[r - RECORD + 1]
             wa = w1 + (fs[r + 1] - w1) * ((a - z1) / (fs[r] - z1))
-            _write(fs, n - 1, a, wa, _dnormal(a, p), p)
+            _write(fs, n - 1, a, wa, law_slope(a, pp, 0), pp)
         r = HEADER + RECORD * (n - 1)
         vt = fs[r + 1] + offset
         slack = a - fs[r] if fs[r] < a else 0.0
         if vt > slack:
-            _clip(fs, is_, a, offset, 1.0, p)
+            _clip(fs, is_, a, offset, 1.0, pp)
         elif -vt > slack:
-            _clip(fs, is_, a, offset, -1.0, p)
+            _clip(fs, is_, a, offset, -1.0, pp)
         else:
-            _push(fs, is_, a, -offset, p)
+            _push(fs, is_, a, -offset, pp)
         if abs(offset) > REBASE_LIMIT * max(1.0, a):
-            _rebase(fs, is_, p)
+            _rebase(fs, is_, pp)
             offset = 0.0
         r = HEADER + RECORD * (is_[0] - 1)
         da = fs[r + 3]
-        nf = a * da / p
+        nf = fs[r + 4]
         t = fs[r + 2] + offset * da
     fs[3] = nf
     fs[4] = t

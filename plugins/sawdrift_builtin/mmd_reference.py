@@ -1,6 +1,6 @@
-"""Readable pure-Python reference of the Method of Memory Diagrams (physics.md section 2).
+"""Readable pure-Python reference of the Method of Memory Diagrams (docs/physics.md).
 
-Follows the four rules of physics.md literally on a list of kinks (z, v) of the piecewise-linear
+Follows the four rules of the memory diagram literally on a list of kinks (z, v) of the piecewise-linear
 strip displacement v(z), and recomputes T* by summing every segment at each call, O(kinks):
 clarity over speed. The compiled kernel (:mod:`sawdrift_builtin.mmd_kernel`) must agree with it.
 
@@ -13,6 +13,8 @@ J. Appl. Mech. 20, 327-344.
 """
 
 from __future__ import annotations
+
+import numpy as np
 
 from sawdrift.scene.profiles import normal_force
 from sawdrift.scene.profiles import normal_stiffness as normal_slope
@@ -104,8 +106,9 @@ class MemoryDiagramReference:
         Memory points (z, v) of the diagram, z ascending from 0 to a* (empty out of contact).
     """
 
-    def __init__(self, p: float) -> None:
-        self.p = float(p)
+    def __init__(self, p) -> None:
+        # an exponent p, or a normal-law descriptor (sawdrift.contact.normal) for a table
+        self.p = float(p) if np.ndim(p) == 0 else np.asarray(p, dtype=float)
         self.a = 0.0
         self.b = 0.0
         self.kinks: list[Kink] = []

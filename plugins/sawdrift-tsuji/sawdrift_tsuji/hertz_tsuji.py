@@ -98,7 +98,7 @@ class HertzTsuji(HertzMindlinDEM):
 
     def normal_law(self):
         """The clamped Tsuji normal law alone (kept when friction is off)."""
-        return tsuji_normal
+        return tsuji_normal, self.packed_params()
 
     def reference(self) -> HertzTsujiReference:
         """A fresh pure-Python reference contact (empty history)."""

@@ -133,24 +133,29 @@ class ContactModel:
         return fs.size, is_.size
 
     def packed_params(self) -> np.ndarray:
-        """Float64 vector of everything the kernel needs (profile exponent first, by convention)."""
-        return np.array([self.profile.p], dtype=np.float64)
+        """Float64 vector of everything the kernel needs.
+
+        The default is the profile's normal-law descriptor (:mod:`sawdrift.contact.normal`):
+        ``[p]`` for a power law, so the exponent comes first by convention.
+        """
+        return self.profile.law()
 
     def reference(self) -> ReferenceContact:
         """A fresh pure-Python reference contact (empty history)."""
         raise NotImplementedError(f"model {self.name!r} has no pure-Python reference")
 
-    def normal_law(self) -> Callable[..., tuple[float, float]]:
-        """The model's normal law alone, as a compiled kernel ``(fs, is_, pp, a, b, adot, bdot)``.
+    def normal_law(self) -> tuple[Callable[..., tuple[float, float]], np.ndarray]:
+        """The model's normal law alone: a compiled kernel and the ``pp`` it reads.
 
-        It returns ``(N*, 0)`` and keeps no history; the integrator calls it instead of the
-        tangential law when friction is off. The default is the profile's power law
-        (:func:`sawdrift.contact.normal.power_normal`); a model with its own normal physics (normal
+        The kernel has the signature ``(fs, is_, pp, a, b, adot, bdot)``, returns ``(N*, 0)`` and
+        keeps no history; the integrator calls it instead of the tangential law when friction
+        is off. The default is the profile's law
+        (:func:`sawdrift.contact.normal.profile_normal`); a model with its own normal physics (normal
         damping, a tabulated law) overrides this. ``.py_func`` of the result is the python engine's.
         """
-        from .normal import power_normal
+        from .normal import profile_normal
 
-        return power_normal
+        return profile_normal, self.profile.law()
 
     # -- shared -----------------------------------------------------------------------------
     @classmethod

@@ -116,10 +116,9 @@ class Stepper:
             else:
                 # Friction off: the tangential slot is empty and never called; the loop calls
                 # the model's normal law alone (its normal slot, e.g. with normal damping).
-                normal = model.normal_law()
+                normal, self.pp = model.normal_law()
                 self.fs = np.zeros(1)
                 self.is_ = np.zeros(1, dtype=np.int64)
-                self.pp = model.packed_params()
                 self.loop = ig.wave_loop(normal if self.compiled else normal.py_func, self.compiled)
 
     def _bind_history(self) -> None:

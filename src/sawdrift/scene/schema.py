@@ -404,6 +404,12 @@ class Scene(BaseModel):
             ) from None
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"scene file {str(path)!r} is malformed TOML: {exc}") from None
+        profile = data.get("particle", {}).get("profile") if isinstance(data.get("particle"), dict) else None
+        if isinstance(profile, dict) and isinstance(profile.get("file"), str):
+            # a table named in a scene file is found next to it
+            table = Path(profile["file"])
+            if not table.is_absolute():
+                profile["file"] = str(path.parent / table)
         return build_scene(data, source=str(path))
 
     def with_updates(self, **updates: Any) -> Scene:

@@ -1,0 +1,94 @@
+"""Tabulated normal laws: any profile whose N*(a*) is known, for the memory-diagram laws."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import sawdrift as sd
+
+
+def _table(path, a, n):
+    pd.DataFrame({"a": a, "N": n}).to_csv(path, index=False)
+    return str(path)
+
+
+@pytest.fixture
+def sphere_csv(tmp_path):
+    a = np.linspace(0.0, 6.0, 241)
+    return _table(tmp_path / "sphere.csv", a, a**1.5)
+
+
+@pytest.mark.parametrize("model", ["mmd", "mdr"])
+def test_tabulated_sphere_reproduces_the_analytic_sphere(model, sphere_csv):
+    ref = sd.run(sd.Scene(model=model))
+    tab = sd.run(sd.Scene(model=model, particle={"profile": {"shape": "table", "file": sphere_csv}}))
+    assert tab.regime == ref.regime
+    assert tab.drift_ratio == pytest.approx(ref.drift_ratio, rel=1e-3)
+
+
+def test_tabulated_cone_meets_the_general_monotonic_oracle(tmp_path):
+    # for any profile, monotonic loading from b* = 0 at fixed a*: T* = N*(a*) - N*(a* - b*);
+    # a table is exact up to its interpolation, whose error must fall at least like h^3 (PCHIP
+    # is third order where the law is smooth): >= 8x smaller on a 4x finer table
+    errors = []
+    for rows in (161, 641):
+        a = np.linspace(0.0, 4.0, rows)
+        path = _table(tmp_path / f"cone{rows}.csv", a, a**2)
+        scene = sd.Scene(model="mmd", particle={"profile": {"shape": "table", "file": path}},
+                         drive={"kind": "prescribed", "waveform": "samples",
+                                "a": [0.0, 1.5] + [1.5] * 50,
+                                "b": [0.0, 0.0] + list(np.linspace(0.03, 1.5, 50))})
+        tr = sd.run(scene).trajectory.iloc[2:]
+        want = 1.5**2 - (1.5 - tr["b"].to_numpy()) ** 2
+        errors.append(float(np.max(np.abs(tr["T"].to_numpy() - want))))
+    assert errors[0] < 1e-4
+    assert errors[1] < errors[0] / 8.0, errors
+
+
+def test_compiled_kernel_agrees_with_reference_on_a_table(sphere_csv):
+    prof = {"shape": "table", "file": sphere_csv}
+    model = sd.Scene(model="mmd", particle={"profile": prof}).model_instance()
+    rng = np.random.default_rng(3)
+    a = np.concatenate([[0.0], np.abs(np.cumsum(rng.normal(0, 0.2, 400))) - 0.1])
+    b = np.cumsum(rng.normal(0, 0.2, a.size))
+    fast = sd.ContactHistory(model, "compiled").drive(a, b)
+    slow = sd.ContactHistory(model, "python").drive(a, b)
+    assert np.allclose(fast[1], slow[1], atol=1e-10)
+
+
+@pytest.mark.parametrize(
+    "a, n, needle",
+    [
+        (np.linspace(0, 2, 20), 2 * np.linspace(0, 2, 20) ** 1.5, r"N\(1\) = 1\.99"),
+        (np.linspace(0, 2, 20), -np.linspace(0, 2, 20), "non-decreasing"),
+        (np.array([0.0, 0.5, 0.4, 2.0]), np.array([0.0, 0.3, 0.2, 2.8]), "strictly increase"),
+        (np.linspace(0, 0.9, 20), np.linspace(0, 0.9, 20), "cover a = 1"),
+    ],
+)
+def test_bad_tables_are_one_line_errors(tmp_path, a, n, needle):
+    path = _table(tmp_path / "bad.csv", a, n)
+    with pytest.raises(sd.SceneError, match=needle):
+        sd.scene.build_scene({"particle": {"profile": {"shape": "table", "file": path}}})
+
+
+def test_missing_table_and_unsupported_model(tmp_path, sphere_csv):
+    with pytest.raises(sd.SceneError, match="does not exist"):
+        sd.scene.build_scene({"particle": {"profile": {"shape": "table",
+                                                        "file": str(tmp_path / "no.csv")}}})
+    with pytest.raises(sd.SceneError, match="does not support profile 'table'"):
+        sd.scene.build_scene({"model": "jaeger",
+                              "particle": {"profile": {"shape": "table", "file": sphere_csv}}})
+
+
+def test_scene_file_finds_its_table_next_to_it(tmp_path, sphere_csv):
+    (tmp_path / "scene.toml").write_text(
+        '[particle]\nprofile = { shape = "table", file = "sphere.csv" }\n[numerics]\nperiods = 20\n')
+    out = subprocess.run([sys.executable, "-m", "sawdrift", "run", str(tmp_path / "scene.toml"),
+                          "--json"], capture_output=True, text=True, cwd="/")
+    assert out.returncode == 0, out.stderr
+    assert '"profile": "table"' in out.stdout
