@@ -37,6 +37,7 @@ CONE = Profile(shape="cone")
 FLAT = Profile(shape="flat")
 POWER = Profile(shape="power", exponent=2.7)
 RESCALE = HertzMindlinDEMParams(rescale=True)
+PLAIN = HertzMindlinDEMParams(rescale=False)  # LAMMPS mindlin/force
 
 
 def loop_area(model, a: float, amplitude: float, n: int = 20001) -> float:
@@ -84,7 +85,7 @@ def test_virgin_curve_is_elastic_then_capped() -> None:
     np.testing.assert_allclose(t, np.minimum(1.5 * a**0.5 * b, a**1.5), rtol=1e-14, atol=0)
 
 
-@pytest.mark.parametrize("params", [HertzMindlinDEMParams(), RESCALE], ids=["plain", "rescale"])
+@pytest.mark.parametrize("params", [PLAIN, RESCALE], ids=["plain", "rescale"])
 @pytest.mark.parametrize("engine", ["compiled", "python"])
 def test_coulomb_cap_holds_exactly(params: HertzMindlinDEMParams, engine: str) -> None:
     """|T*| <= N* holds bitwise on a rough history, and the cap is reached (|T*| = N*)."""
@@ -116,7 +117,7 @@ def test_oblique_loading_matches_mindlin_deresiewicz() -> None:
 def test_rescale_on_unloading(profile: Profile) -> None:
     """At fixed b*, unloading scales T* by k(a1)/k(a0) with rescale, and keeps it without."""
     p = profile.p
-    plain = ContactHistory(HertzMindlinDEM(profile=profile))
+    plain = ContactHistory(HertzMindlinDEM(params=PLAIN, profile=profile))
     scaled = ContactHistory(HertzMindlinDEM(params=RESCALE, profile=profile))
     for h in (plain, scaled):
         h.advance(1.0, 0.0)
@@ -153,7 +154,7 @@ def test_rescale_equals_lammps_update() -> None:
 # -- kernel protocol ------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("params", [HertzMindlinDEMParams(), RESCALE], ids=["plain", "rescale"])
+@pytest.mark.parametrize("params", [PLAIN, RESCALE], ids=["plain", "rescale"])
 @pytest.mark.parametrize("profile", [SPHERE, FLAT, POWER], ids=lambda p: str(p.p))
 def test_kernel_equals_reference(params: HertzMindlinDEMParams, profile: Profile) -> None:
     """Compiled kernel and pure-Python reference agree to 1e-12 on a varying-a* history."""
@@ -265,7 +266,10 @@ def test_registered_and_schema() -> None:
     """Found through its entry point; strict schema with a described ``rescale`` flag."""
     assert get_model("hertz_mindlin_dem") is HertzMindlinDEM
     desc = HertzMindlinDEM.describe()
-    assert desc["parameters"]["rescale"]["default"] is False
+    # the default is LAMMPS's passive mindlin_rescale/force; plain mindlin/force is declared
+    assert desc["parameters"]["rescale"]["default"] is True
+    assert HertzMindlinDEM(params=PLAIN).declared_deviations()[0][0] == "passivity"
+    assert HertzMindlinDEM().declared_deviations() == ()
     assert desc["parameters"]["rescale"]["description"]
     with pytest.raises(ValueError):
         HertzMindlinDEMParams(rescale=True, damping=1.0)  # type: ignore[call-arg]

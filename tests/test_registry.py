@@ -10,7 +10,6 @@ import pytest
 
 import sawdrift as sd
 from sawdrift.contact.registry import PluginWarning, Registry
-from sawdrift.errors import PluginError
 
 # ``sawdrift.contact.registry`` the attribute is the Registry instance; this is the module
 reg = importlib.import_module("sawdrift.contact.registry")
@@ -72,14 +71,21 @@ def test_broken_plugin_is_a_warning_naming_it(monkeypatch):
     assert "broken_model" in fresh.failed
 
 
-def test_two_distributions_claiming_one_name_is_an_error(monkeypatch):
+def test_a_duplicate_name_disables_only_the_duplicates(monkeypatch):
     class Clash(sd.ContactModel):
         name = "mmd"
         summary = "clash"
 
     fresh = _with_entry_points(monkeypatch, [_FakeEntryPoint("clash", "other-dist", lambda: _plugin(Clash))])
-    with pytest.raises(PluginError, match="claimed by two distributions: 'other-dist'.*'sawdrift'"):
-        fresh.names()
+    with pytest.warns(PluginWarning, match=r"'mmd' is claimed by .*'other-dist'.*'sawdrift'|"
+                                           r"'mmd' is claimed by .*'sawdrift'.*'other-dist'"):
+        names = fresh.names()
+    assert "mmd" not in names
+    # every other model keeps working
+    assert {"mdr", "jaeger", "material_point", "hertz_mindlin_dem"} <= set(names)
+    assert fresh.get("mdr").name == "mdr"
+    with pytest.raises(sd.ModelNotFoundError, match="unavailable: model name 'mmd' is claimed"):
+        fresh.get("mmd")
 
 
 def test_trial_never_corrupts_the_committed_history():

@@ -61,10 +61,11 @@ class HertzMindlinDEMParams(BaseModel):
     model_config = ConfigDict(frozen=True, extra="forbid")
 
     rescale: bool = Field(
-        False,
+        True,
         description=(
             "Scale the stored tangential force by k_t(new)/k_t(old) = N*'(a_new)/N*'(a_old) "
-            "when the contact shrinks (LAMMPS mindlin_rescale/force)."
+            "when the contact shrinks (LAMMPS mindlin_rescale/force): passive. false gives "
+            "LAMMPS mindlin/force, which can create energy on closed (a*, b*) cycles."
         ),
     )
 
@@ -188,13 +189,21 @@ class HertzMindlinDEM(ContactModel):
     name: ClassVar[str] = "hertz_mindlin_dem"
     summary: ClassVar[str] = (
         "DEM tangential spring (LAMMPS mindlin/force, LIGGGHTS tangential history): stiffness "
-        "N*'(a*), Coulomb cap |T*| <= N*, optional mindlin_rescale"
+        "N*'(a*), Coulomb cap |T*| <= N*, mindlin_rescale by default (passive)"
     )
     Params: ClassVar[type[BaseModel]] = HertzMindlinDEMParams
     capabilities: ClassVar[Capabilities] = Capabilities(
-        rigid=False, compiled=True, history=True, uses_velocity=False
+        rigid=False, compiled=True, history=True, uses_velocity=False, straight_path_exact=True
     )
     kernel: ClassVar[KernelPair] = KernelPair(reset=dem_reset, force=dem_force)
+
+    def declared_deviations(self) -> tuple[tuple[str, str], ...]:
+        """Without rescaling the spring keeps its force while a* falls: not passive."""
+        if self.params.rescale:
+            return ()
+        return (("passivity", "rescale = false (LAMMPS mindlin/force) keeps the stored force "
+                 "while a* falls, so closed (a*, b*) cycles can create energy; rescale = true "
+                 "(the default) is passive"),)
 
     def state_sizes(self) -> tuple[int, int]:
         """Float state: a*, b*, T*; no integer state (one unused slot)."""

@@ -337,7 +337,10 @@ class Jaeger(ContactModel):
     )
     Params: ClassVar[type[BaseModel]] = JaegerParams
     capabilities: ClassVar[Capabilities] = Capabilities(
-        rigid=False, compiled=True, history=True, uses_velocity=False
+        rigid=False, compiled=True, history=True, uses_velocity=False, straight_path_exact=True,
+        deviations=(("passivity", "the Masing memory is evaluated at the current a*, so closed "
+                     "(a*, b*) cycles with a* varying can create energy (rectangle (1,0)-(1,0.2)-"
+                     "(2,0.2)-(2,0): -0.0127 per cycle); exact and passive at constant a*"),),
     )
     kernel: ClassVar[KernelPair] = KernelPair(reset=jaeger_reset, force=jaeger_force)
 

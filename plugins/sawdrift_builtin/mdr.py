@@ -156,7 +156,7 @@ class MdrModel(ContactModel):
     )
     Params: ClassVar[type[BaseModel]] = MdrParams
     capabilities: ClassVar[Capabilities] = Capabilities(
-        profiles=("sphere", "cone", "flat", "power", "table")
+        profiles=("sphere", "cone", "flat", "power", "table"), straight_path_exact=True
     )
     kernel: ClassVar[KernelPair | None] = KernelPair(reset=mdr_kernel.reset, force=mdr_kernel.force)
 

@@ -57,7 +57,7 @@ class MemoryDiagramModel(ContactModel):
     )
     Params: ClassVar[type[BaseModel]] = MemoryDiagramParams
     capabilities: ClassVar[Capabilities] = Capabilities(
-        profiles=("sphere", "cone", "flat", "power", "table")
+        profiles=("sphere", "cone", "flat", "power", "table"), straight_path_exact=True
     )
     kernel: ClassVar[KernelPair | None] = KernelPair(reset=mmd_kernel.reset, force=mmd_kernel.force)
 

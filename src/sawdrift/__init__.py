@@ -61,6 +61,7 @@ _LAZY: dict[str, str] = {
     "parse_axis": "study.sweep",
     "sweep": "study.sweep",
     "plot_trajectory": "report.plots",
+    "check_model": "contact.conformance",
 }
 _SUBPACKAGES = ("scene", "contact", "dynamics", "result", "study", "report", "analytic")
 

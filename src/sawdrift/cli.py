@@ -105,6 +105,30 @@ def models_cmd(
     width = max((len(r["name"]) for r in rows), default=4)
     for r in rows:
         typer.echo(f"{r['name']:<{width}}  {r['summary']}  [{r['distribution']}]")
+        for check, reason in r["deviations"].items():
+            typer.echo(f"{'':<{width}}  declared deviation, {check}: {reason}")
+    for name, reason in sorted(sd.registry.failed.items()):
+        typer.echo(f"{name:<{width}}  unavailable: {reason}")
+
+
+@app.command("check-model")
+def check_model_cmd(
+    name: Annotated[str, typer.Argument(help="registered model name")],
+    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="machine-readable output")] = False,
+) -> None:
+    """Run the conformance suite on one model; exit status 1 if a check fails.
+
+    Checks: passivity (loop work >= 0 on closed (a*, b*) cycles, both orientations),
+    coulomb_bound, kernel_vs_reference, split_invariance, contact_loss_reset, replay. A failing
+    check that the model declares is reported as 'declared'.
+    """
+    from .contact.conformance import check_model
+
+    result = check_model(name, **_parse_param(param))
+    typer.echo(json.dumps(result.to_json()) if as_json else result.table())
+    if not result.passed:
+        raise typer.Exit(1)
 
 
 @app.command("run")

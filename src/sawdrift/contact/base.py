@@ -61,6 +61,13 @@ class Capabilities:
         True if the tangential force depends on the displacement history, not only on (a*, b*).
     uses_velocity
         True if the force depends on (adot, bdot) (e.g. viscous damping).
+    straight_path_exact
+        True if a straight move gives the same forces however it is split into steps (the
+        conformance suite then checks it).
+    deviations
+        Known departures from a conformance check, as ``(check name, one-line reason)`` pairs:
+        such a check is reported as ``declared`` instead of ``fail``, and listed by
+        ``sawdrift models``.
     """
 
     rigid: bool = False
@@ -68,6 +75,8 @@ class Capabilities:
     compiled: bool = True
     history: bool = True
     uses_velocity: bool = False
+    straight_path_exact: bool = False
+    deviations: tuple[tuple[str, str], ...] = ()
 
 
 class Kernel(Protocol):
@@ -157,6 +166,13 @@ class ContactModel:
 
         return profile_normal, self.profile.law()
 
+    def declared_deviations(self) -> tuple[tuple[str, str], ...]:
+        """Known conformance deviations of this configured model (default: the capabilities').
+
+        A model whose deviation depends on its parameters overrides this.
+        """
+        return self.capabilities.deviations
+
     # -- shared -----------------------------------------------------------------------------
     @classmethod
     def describe(cls) -> dict[str, Any]:
@@ -178,6 +194,7 @@ class ContactModel:
             "compiled": caps.compiled,
             "history": caps.history,
             "profiles": list(caps.profiles),
+            "deviations": {check: reason for check, reason in cls().declared_deviations()},
             "parameters": params,
         }
 

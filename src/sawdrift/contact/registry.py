@@ -43,6 +43,7 @@ class Registry:
         pm = pluggy.PluginManager(hookspecs.PROJECT)
         pm.add_hookspecs(hookspecs)
         models: dict[str, ModelEntry] = {}
+        clashes: dict[str, list[ModelEntry]] = {}
         for ep in sorted(im.entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
             dist = ep.dist.name if ep.dist is not None else "<unknown>"
             try:
@@ -66,14 +67,19 @@ class Registry:
                         f"plugin {ep.name!r} from {dist!r} returned {cls!r}, "
                         "which is not a named ContactModel subclass"
                     )
-                if name in models and models[name].cls is not cls:
-                    other = models[name]
-                    raise PluginError(
-                        f"model name {name!r} is claimed by two distributions: "
-                        f"{other.distribution!r} (entry point {other.entry_point!r}) and "
-                        f"{dist!r} (entry point {ep.name!r})"
-                    )
-                models[name] = ModelEntry(cls, dist, ep.name)
+                entry = ModelEntry(cls, dist, ep.name)
+                if name in clashes:
+                    clashes[name].append(entry)
+                elif name in models and models[name].cls is not cls:
+                    clashes[name] = [models.pop(name), entry]
+                else:
+                    models[name] = entry
+        for name, entries in clashes.items():
+            # a duplicate disables only the name it duplicates: every other model keeps working
+            who = " and ".join(f"{e.distribution!r} (entry point {e.entry_point!r})" for e in entries)
+            msg = f"model name {name!r} is claimed by {who}; neither is loaded"
+            self.failed[name] = msg
+            warnings.warn(f"sawdrift plugin conflict: {msg}", PluginWarning, stacklevel=3)
         return models
 
     @property
@@ -91,6 +97,8 @@ class Registry:
         try:
             return self.models[name].cls
         except KeyError:
+            if name in self.failed:
+                raise ModelNotFoundError(f"model = {name!r} is unavailable: {self.failed[name]}") from None
             known = ", ".join(self.names()) or "none"
             raise ModelNotFoundError(
                 f"model = {name!r} is not a registered contact model; known models: {known}"
