@@ -74,6 +74,8 @@ def scene_from_options(scene_file: Path | None, **options: Any) -> sd.Scene:
         "rotation": "effects.rotation",
         "gyration": "particle.gyration",
         "rolling_resistance": "effects.rolling_resistance",
+        "orbit": "drive.orbit",
+        "theta": "material.theta",
     }
     for key, dotted in mapping.items():
         value = options.get(key)
@@ -168,6 +170,12 @@ def run_cmd(
         float | None,
         typer.Option("--rolling-resistance", help="mu_r >= 0 of the rolling spring (with --rotation)"),
     ] = None,
+    orbit: Annotated[
+        str | None, typer.Option("--orbit", help="prograde (eq. 1 as printed) or retrograde")
+    ] = None,
+    theta: Annotated[
+        float | None, typer.Option("--theta", help="E*/(4 G*) of the contact; default from nu")
+    ] = None,
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
 ) -> None:
     """Run one scene and report its drift and motion regime."""
@@ -177,7 +185,7 @@ def run_cmd(
         order=order, settle=settle, profile=profile, params=_parse_param(param),
         friction=friction, vertical_inertia=vertical_inertia, normal_damping=normal_damping,
         horizontal_wave=horizontal_wave, vertical_wave=vertical_wave, rotation=rotation,
-        gyration=gyration, rolling_resistance=rolling_resistance,
+        gyration=gyration, rolling_resistance=rolling_resistance, orbit=orbit, theta=theta,
     )
     if engine not in ("compiled", "python"):
         _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
@@ -220,9 +228,21 @@ def _load_table(path: Path):
 @app.command("sweep")
 def sweep_cmd(
     out: Annotated[Path, typer.Option("-o", "--out", help="Parquet table (resumed if it exists)")],
-    model: Annotated[str, typer.Option("--model", help="model name(s), comma-separated")] = "mmd",
-    m_star: Annotated[str, typer.Option("--m-star", help="START:STOP:N (log) or a,b,c")] = "1e-3:1e2:11",
-    amplitude: Annotated[str, typer.Option("--amplitude", help="START:STOP:N (log) or a,b,c")] = "1e-2:10:11",
+    scene_arg: Annotated[Path | None, typer.Argument(help="base scene TOML (or use --scene)")] = None,
+    model: Annotated[str | None, typer.Option("--model", help="model name(s), comma-separated")] = None,
+    m_star: Annotated[
+        str | None, typer.Option("--m-star", help="START:STOP:N (log) or a,b,c; shorthand for an axis")
+    ] = None,
+    amplitude: Annotated[
+        str | None, typer.Option("--amplitude", help="START:STOP:N (log) or a,b,c; shorthand for an axis")
+    ] = None,
+    axis: Annotated[
+        list[str] | None,
+        typer.Option("--axis", help="FIELD=SPEC, repeatable: a dotted scene field (material.mu, "
+                     "device.amplitude, effects.rotation) and a,b,c | START:STOP:N (log) | "
+                     "lin:START:STOP:N; device values may carry units ('5 nm,10 nm')"),
+    ] = None,
+    settle: Annotated[bool, typer.Option("--settle", help="every cell runs until its drift settles")] = False,
     scene_file: Annotated[Path | None, typer.Option("--scene", help="base scene TOML")] = None,
     mu: Annotated[float | None, typer.Option("--mu")] = None,
     nu: Annotated[float | None, typer.Option("--nu")] = None,
@@ -237,16 +257,37 @@ def sweep_cmd(
     progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
     engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
 ) -> None:
-    """Run a (model, m*, A*) grid into a resumable Parquet table."""
-    models = [m.strip() for m in model.split(",") if m.strip()]
+    """Run a grid (models x axes) into a resumable Parquet table.
+
+    Without --axis the grid is the (m*, A*) plane, by default m* in [1e-3, 1e2] and A* in
+    [1e-2, 10] with 11 log-spaced values each.
+    """
+    if scene_arg is not None and scene_file is not None:
+        _fail("give the base scene either as an argument or with --scene, not both")
+    scene_file = scene_arg or scene_file
+    axes: dict[str, str] = {}
+    for item in axis or []:
+        field, sep, spec = item.partition("=")
+        if not sep or not field.strip() or not spec.strip():
+            _fail(f"--axis {item!r} must look like FIELD=SPEC (e.g. material.mu=0.05,0.1,0.2)")
+        axes[field.strip()] = spec.strip()
+    if not axes and m_star is None and amplitude is None:
+        m_star, amplitude = "1e-3:1e2:11", "1e-2:10:11"
+    base = scene_from_options(
+        scene_file, model=None, mu=mu, nu=nu, horizontal_ratio=horizontal_ratio,
+        periods=periods, steps_per_period=steps_per_period, order=order, profile=profile,
+        params=_parse_param(param), settle=True if settle else None,
+    )
+    models = [m.strip() for m in model.split(",") if m.strip()] if model else [base.model]
     for name in models:
         sd.get_model(name)
-    base = scene_from_options(
-        scene_file, model=models[0], mu=mu, nu=nu, horizontal_ratio=horizontal_ratio,
-        periods=periods, steps_per_period=steps_per_period, order=order, profile=profile,
-        params=_parse_param(param),
-    )
-    frame = sd.sweep(models, m_star, amplitude, base=base, table=out, workers=workers,
+    if models[0] != base.model:
+        base = scene_from_options(
+            scene_file, model=models[0], mu=mu, nu=nu, horizontal_ratio=horizontal_ratio,
+            periods=periods, steps_per_period=steps_per_period, order=order, profile=profile,
+            params=_parse_param(param), settle=True if settle else None,
+        )
+    frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out, workers=workers,
                      scheduler=scheduler, progress=progress, engine=engine)
     counts = frame.groupby(["model", "regime"]).size()
     for (name, regime), n in counts.items():
@@ -260,12 +301,14 @@ def phase_diagram_cmd(
     table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
     out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
     model: Annotated[str | None, typer.Option("--model", help="model to draw")] = None,
+    x: Annotated[str, typer.Option("--x", help="column on the horizontal axis")] = "amplitude",
+    y: Annotated[str, typer.Option("--y", help="column on the vertical axis")] = "m_star",
 ) -> None:
-    """Draw the regime phase diagram of one model over (A*, m*)."""
+    """Draw the regime phase diagram of one model over two swept axes (default A*, m*)."""
     from .report.diagrams import plot_phase_diagram
 
     frame = _load_table(table)
-    path = plot_phase_diagram(frame, out, model)
+    path = plot_phase_diagram(frame, out, model, x, y)
     typer.echo(f"wrote {path}")
 
 
@@ -274,12 +317,23 @@ def compare_cmd(
     table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
     models: Annotated[str, typer.Option("--models", help="comma-separated model names")],
     out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
+    by: Annotated[
+        str | None, typer.Option("--by", help="a swept column: one panel per model and value "
+                                 "(e.g. effects.rotation)")
+    ] = None,
+    x: Annotated[str, typer.Option("--x", help="column on the horizontal axis")] = "amplitude",
+    y: Annotated[str, typer.Option("--y", help="column on the vertical axis")] = "m_star",
 ) -> None:
-    """Side-by-side phase diagrams, the cells where models disagree, and an agreement table."""
+    """Side-by-side phase diagrams, the cells where they disagree, and an agreement table.
+
+    Compare models (--models a,b), or the values of a swept field for each model
+    (--by effects.rotation after a sweep with --axis effects.rotation=false,true).
+    """
     from .report.diagrams import plot_compare
 
     frame = _load_table(table)
-    path, md = plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out)
+    path, md = plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out, by,
+                            x, y)
     typer.echo(md)
     typer.echo(f"wrote {path} and {path.with_suffix('.md')}")
 

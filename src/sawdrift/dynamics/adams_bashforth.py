@@ -64,7 +64,10 @@ P_FRICTION, P_DAMP, P_P, P_HORIZ, P_VERT, P_KRAMP = 8, 9, 10, 11, 12, 13
 P_ROLL = 14
 #: rolling resistance mu_r (0: off) of the elastic-plastic rolling spring (see the loop)
 P_RR = 15
-N_PRM = 16
+#: horizontal inertia m*_x of the x* equation (m* itself, except in the reduced-inertia steady
+#: state method of sawdrift.dynamics.steady)
+P_MX = 16
+N_PRM = 17
 
 #: State vector: x*, x*', y*, y*', then, with rolling resistance, psi = R phi / a0, psi' and the
 #: elastic rolling displacement psi_e of the spring.
@@ -99,6 +102,7 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
 
     def loop(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
         m = prm[P_M]
+        mx = prm[P_MX]
         amp = prm[P_A]
         r = prm[P_R]
         mu = prm[P_MU]
@@ -149,7 +153,7 @@ def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
                 nf += damp * adot
                 if nf < 0.0:
                     nf = 0.0
-            ax = -mu * tf / m
+            ax = -mu * tf / mx
             ay = (1.0 - nf) / m
             inside = a > 0.0
             slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf

@@ -56,9 +56,9 @@ from .evidence import (
 from .wave import kinematics
 
 #: Extra slots of the parameter vector used by the rigid scheme.
-P_RESTITUTION = 16
-P_VINERTIA = 17
-N_PRM_RIGID = 18
+P_RESTITUTION = 17
+P_VINERTIA = 18
+N_PRM_RIGID = 19
 
 _BISECT = 60
 #: events (impacts, lift-offs, stick and slip changes) one step may hold before it is an error

@@ -20,6 +20,7 @@ from ..result.regimes import classify
 from ..result.result import Result
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from .prescribed import prescribed_history, run_prescribed
+from .steady import settle
 from .stepper import Stepper
 from .window import lyapunov, measure_window, state_scale
 
@@ -152,9 +153,16 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
             equations.append("theta mu b* = s* - u_x: the contact point moves like a mass "
                              f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the "
                              "centre keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
-    if horiz:
+    if horiz and drive.orbit == "retrograde":
+        equations.append(f"u_x = +A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
+                         f"r = {scene.horizontal_ratio:.6g} (retrograde orbit: at the crest the "
+                         "surface moves against the propagation direction, -x)")
+    elif horiz:
         equations.append(f"u_x = -A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
                          f"r = {scene.horizontal_ratio:.6g}")
+    if horiz and drive.orbit == "prograde":
+        equations.append("prograde orbit (eq. 1 as printed, y* into the substrate): at the crest "
+                         "the surface moves with the wave, +x")
     if vert:
         equations.append(f"u_y = A* R(t*) cos(2 pi t*), A* = {drive.amplitude:g}")
     if isinstance(drive, Wave) and not (horiz or vert):
@@ -184,6 +192,10 @@ def explain(scene: Scene, engine: Engine = "compiled") -> str:
     lines.append("calls:")
     lines += [f"  {c}" for c in plan.calls]
     lines.append("outputs: " + ", ".join(plan.outputs))
+    if scene.device is not None:
+        from ..scene.device import explain_device
+
+        lines += explain_device(scene.device, scene.material.mu)
     return "\n".join(lines)
 
 def _run_wave(
@@ -204,17 +216,26 @@ def _run_wave(
     stepper.advance(n_total - n_measure)
     speed = 2.0 * math.pi * scene.horizontal_ratio * wave.amplitude
     scale = state_scale(wave.amplitude, scene.horizontal_ratio)
-    win = measure_window(stepper, n_periods, speed, scale)
+    settling = None
     if num.settle:
-        previous = math.inf
-        while (abs(win.drift_ratio - previous) > num.settle_tolerance
-               and stepper.step + n_measure <= n_max):
-            previous = win.drift_ratio
-            win = measure_window(stepper, n_periods, speed, scale)
+        win, settling = settle(stepper, scene, speed, scale, n_periods, n_max)
+    else:
+        win = measure_window(stepper, n_periods, speed, scale)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     sync = win.sync
     hop_period = sync.hop_period if not chaotic else 0
     extra = {"chaotic": chaotic, "events_dropped": win.events_dropped}
+    if settling is not None:
+        extra.update(settled=settling.settled, settle_method=settling.method,
+                     settle_periods=settling.periods, t90_periods=settling.t90_periods,
+                     horizontal_inertia=settling.horizontal_inertia)
+    regime = classify(win.contact_lost, win.drift_ratio, num.drift_tolerance,
+                      gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
+    if scene.device is not None:
+        from ..scene.device import device_outputs
+
+        extra.update(device_outputs(scene.device, win.drift, regime,
+                                    settling.t90_periods if settling is not None else None))
     if sync.hop_period:
         extra["liftoffs_per_hop"] = sync.liftoffs_per_hop
     return Result(
@@ -229,11 +250,11 @@ def _run_wave(
         steps_per_period=k_per,
         periods=stepper.step / k_per,
         ramp_periods=wave.ramp_periods,
-        measure_periods=n_periods,
+        measure_periods=win.periods,
         drift_velocity=win.drift,
         drift_ratio=win.drift_ratio,
-        regime=classify(win.contact_lost, win.drift_ratio, num.drift_tolerance,
-                        gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period),
+        regime=regime,
+        orbit=wave.orbit,
         contact_lost=win.contact_lost,
         out_of_contact_fraction=win.out_of_contact_fraction,
         min_compression=win.min_compression,

@@ -69,6 +69,7 @@ class Stepper:
         eff = scene.effects
         prm = np.zeros(rg.N_PRM_RIGID)
         prm[ig.P_M] = scene.particle.m_star
+        prm[ig.P_MX] = scene.particle.m_star
         prm[ig.P_A] = amplitude
         prm[ig.P_R] = scene.horizontal_ratio if isinstance(wave, Wave) else 0.0
         prm[ig.P_MU] = scene.material.mu
@@ -79,7 +80,9 @@ class Stepper:
         prm[ig.P_FRICTION] = 1.0 if plan.integrate_x else 0.0
         prm[ig.P_DAMP] = plan.normal_damping
         prm[ig.P_P] = scene.particle.profile.p
-        prm[ig.P_HORIZ] = 1.0 if plan.horizontal_wave else 0.0
+        # the retrograde orbit is the mirror x -> -x of eq. 1 (sawdrift.dynamics.wave)
+        orbit = -1.0 if isinstance(wave, Wave) and wave.orbit == "retrograde" else 1.0
+        prm[ig.P_HORIZ] = orbit if plan.horizontal_wave else 0.0
         prm[ig.P_VERT] = 1.0 if plan.vertical_wave else 0.0
         prm[ig.P_KRAMP] = math.ceil(ramp * self.k_per - 1e-9)
         #: c = 1 + 1/kappa with rotation (contact point s = c x from rest), else 0: not computed

@@ -44,30 +44,50 @@ def _edges(values: np.ndarray) -> np.ndarray:
     return 10.0 ** np.concatenate([[first], mids, [last]])
 
 
-def regime_grid(table: pd.DataFrame, model: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(A* values, m* values, regime codes [m*, A*]) of one model; missing cells are -1."""
+def select(table: pd.DataFrame, model: str, where: dict | None = None) -> pd.DataFrame:
+    """The rows of ``model`` (and of the column values in ``where``); a one-line error if none."""
     sub = table[table["model"] == model]
     if sub.empty:
         known = ", ".join(sorted(table["model"].dropna().unique()))
         raise SceneError(f"model {model!r} is not in the table; it holds: {known}")
-    amps = np.sort(sub["amplitude"].unique())
-    masses = np.sort(sub["m_star"].unique())
-    codes = np.full((masses.size, amps.size), -1, dtype=int)
-    ia = {v: i for i, v in enumerate(amps)}
-    im = {v: i for i, v in enumerate(masses)}
-    for m, a, regime in zip(sub["m_star"], sub["amplitude"], sub["regime"], strict=True):
-        codes[im[m], ia[a]] = _ORDER.index(regime) if regime in COLOURS else _ORDER.index("error")
-    return amps, masses, codes
+    for column, value in (where or {}).items():
+        if column not in sub.columns:
+            raise SceneError(f"column {column!r} is not in the table (sweep it with --axis)")
+        sub = sub[sub[column] == value]
+    return sub
 
 
-def _draw(ax, amps, masses, codes, title: str) -> None:
+def regime_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = "m_star",
+                where: dict | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(x values, y values, regime codes [y, x]) of one model; missing cells are -1.
+
+    ``x`` and ``y`` are any two swept columns (default A* and m*); ``where`` fixes other columns.
+    """
+    sub = select(table, model, where)
+    for column in (x, y):
+        if column not in sub.columns:
+            raise SceneError(f"axis {column!r} is not a column of the table")
+    xs = np.sort(sub[x].unique())
+    ys = np.sort(sub[y].unique())
+    codes = np.full((ys.size, xs.size), -1, dtype=int)
+    ix = {v: i for i, v in enumerate(xs)}
+    iy = {v: i for i, v in enumerate(ys)}
+    for vy, vx, regime in zip(sub[y], sub[x], sub["regime"], strict=True):
+        codes[iy[vy], ix[vx]] = _ORDER.index(regime) if regime in COLOURS else _ORDER.index("error")
+    return xs, ys, codes
+
+
+_LABELS = {"amplitude": "A*", "m_star": "m*"}
+
+
+def _draw(ax, amps, masses, codes, title: str, x: str = "amplitude", y: str = "m_star") -> None:
     cmap = ListedColormap(["white", *COLOURS.values()])
     ax.pcolormesh(_edges(amps), _edges(masses), codes + 1, cmap=cmap, vmin=0, vmax=len(COLOURS),
                   shading="flat", edgecolors="none")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("A*")
-    ax.set_ylabel("m*")
+    ax.set_xlabel(_LABELS.get(x, x))
+    ax.set_ylabel(_LABELS.get(y, y))
     ax.set_title(title, fontsize=10)
 
 
@@ -83,16 +103,17 @@ def _material_label(table: pd.DataFrame) -> str:
     return f"mu = {mu}, nu = {nu}"
 
 
-def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None = None) -> Path:
-    """Regimes over (A*, m*) on log axes, one colour per regime (paper Fig. 3)."""
+def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None = None,
+                       x: str = "amplitude", y: str = "m_star") -> Path:
+    """Regimes over two swept axes (default A*, m*) on log axes, one colour per regime (Fig. 3)."""
     models = sorted(table["model"].dropna().unique())
     if model is None:
         if len(models) != 1:
             raise SceneError(f"the table holds several models ({', '.join(models)}); choose one with --model")
         model = models[0]
-    amps, masses, codes = regime_grid(table, model)
+    amps, masses, codes = regime_grid(table, model, x, y)
     fig, ax = plt.subplots(figsize=(6.4, 5.6), layout="constrained")
-    _draw(ax, amps, masses, codes, f"{model}: {_material_label(table)}")
+    _draw(ax, amps, masses, codes, f"{model}: {_material_label(table)}", x, y)
     _legend(fig, [codes])
     path = Path(path)
     fig.savefig(path, dpi=120)
@@ -100,16 +121,15 @@ def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None 
     return path
 
 
-def agreement_table(table: pd.DataFrame, models: list[str]) -> pd.DataFrame:
-    """Fraction of shared cells where each pair of models finds the same regime."""
-    pivot = table.pivot_table(index=["m_star", "amplitude"], columns="model", values="regime",
-                              aggfunc="first")
+def agreement_from_grids(labels: list[str], codes: list[np.ndarray]) -> pd.DataFrame:
+    """Agreement of every pair of panels over the cells both computed."""
     rows = []
-    for a, b in combinations(models, 2):
-        both = pivot[[a, b]].dropna()
-        same = int((both[a] == both[b]).sum())
-        rows.append({"model_a": a, "model_b": b, "cells": len(both), "same_regime": same,
-                     "agreement": same / len(both) if len(both) else float("nan")})
+    for (la, ca), (lb, cb) in combinations(list(zip(labels, codes, strict=True)), 2):
+        both = (ca >= 0) & (cb >= 0)
+        same = int(np.sum((ca == cb) & both))
+        n = int(both.sum())
+        rows.append({"model_a": la, "model_b": lb, "cells": n, "same_regime": same,
+                     "agreement": same / n if n else float("nan")})
     return pd.DataFrame(rows)
 
 
@@ -121,25 +141,38 @@ def agreement_markdown(frame: pd.DataFrame) -> str:
     return "\n".join(lines) + "\n"
 
 
-def plot_compare(table: pd.DataFrame, models: list[str], path: str | Path) -> tuple[Path, str]:
+def variants(table: pd.DataFrame, models: list[str], by: str | None) -> list[tuple[str, str, dict]]:
+    """(label, model, fixed columns) of each panel: one per model, or per model and value of ``by``."""
+    if by is None:
+        return [(m, m, {}) for m in models]
+    if by not in table.columns:
+        raise SceneError(f"--by {by!r} is not a column of the table (sweep it with --axis)")
+    values = sorted(table[by].dropna().unique().tolist())
+    return [(f"{m}, {by} = {v}", m, {by: v}) for m in models for v in values]
+
+
+def plot_compare(table: pd.DataFrame, models: list[str], path: str | Path, by: str | None = None,
+                 x: str = "amplitude", y: str = "m_star") -> tuple[Path, str]:
     """Side-by-side phase diagrams on shared axes plus a panel of disagreeing cells.
 
-    Returns the figure path and the markdown agreement table (also written next to the figure
-    as ``<name>.md``).
+    ``by`` names a swept column (e.g. ``effects.rotation``): then every model gets one panel per
+    value of it. Returns the figure path and the markdown agreement table (also written next to
+    the figure as ``<name>.md``).
     """
-    if len(models) < 2:
-        raise SceneError("--models must name at least two models to compare")
-    grids = [regime_grid(table, m) for m in models]
+    panels = variants(table, models, by)
+    if len(panels) < 2:
+        raise SceneError("compare needs at least two panels: two models, or a --by column")
+    grids = [regime_grid(table, m, x, y, where) for _, m, where in panels]
     amps, masses = grids[0][0], grids[0][1]
-    for m, (a2, m2, _) in zip(models, grids, strict=True):
+    for (label, _, _), (a2, m2, _) in zip(panels, grids, strict=True):
         if a2.shape != amps.shape or m2.shape != masses.shape or not (
             np.allclose(a2, amps) and np.allclose(m2, masses)
         ):
-            raise SceneError(f"model {m!r} was swept on a different grid; compare needs shared axes")
-    fig, axes = plt.subplots(1, len(models) + 1, figsize=(4.6 * (len(models) + 1), 4.8),
+            raise SceneError(f"{label!r} was swept on a different grid; compare needs shared axes")
+    fig, axes = plt.subplots(1, len(panels) + 1, figsize=(4.6 * (len(panels) + 1), 4.8),
                              sharex=True, sharey=True, layout="constrained")
-    for ax, model, (_, _, codes) in zip(axes, models, grids, strict=False):
-        _draw(ax, amps, masses, codes, model)
+    for ax, (label, _, _), (_, _, codes) in zip(axes, panels, grids, strict=False):
+        _draw(ax, amps, masses, codes, label, x, y)
     stack = np.stack([g[2] for g in grids])
     differ = np.any(stack != stack[0], axis=0)
     missing = np.any(stack < 0, axis=0)
@@ -150,13 +183,13 @@ def plot_compare(table: pd.DataFrame, models: list[str], path: str | Path) -> tu
                   shading="flat")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("A*")
+    ax.set_xlabel(_LABELS.get(x, x))
     ax.set_title(f"cells where they disagree ({int(differ.sum())} of {differ.size})", fontsize=10)
     _legend(fig, [g[2] for g in grids])
-    fig.suptitle(f"{' vs '.join(models)}: {_material_label(table)}")
+    fig.suptitle(f"{' vs '.join(p[0] for p in panels)}: {_material_label(table)}")
     path = Path(path)
     fig.savefig(path, dpi=110)
     plt.close(fig)
-    md = agreement_markdown(agreement_table(table, models))
+    md = agreement_markdown(agreement_from_grids([p[0] for p in panels], [g[2] for g in grids]))
     path.with_suffix(".md").write_text(md)
     return path, md

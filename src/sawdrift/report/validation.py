@@ -48,6 +48,7 @@ GROUPS: dict[str, str] = {
     "convergence": "3. Numerical cross-checks: mdr to mmd, kernels against references, Rayleigh ratio",
     "diagrams": "4. Regime diagrams and the paper's statements",
     "point_mass": "5. The later paper's point-mass claim",
+    "device": "6. Physical units: conversion, orbit mirror, dimensional consistency",
     "conformance": "7. Conformance of every installed model: passivity, Coulomb bound, kernels",
     "rotation": "8. Rotation: a finite sphere that can roll",
 }

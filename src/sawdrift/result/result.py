@@ -17,6 +17,7 @@ SUMMARY_FIELDS = (
     "mu",
     "nu",
     "horizontal_ratio",
+    "orbit",
     "profile",
     "steps_per_period",
     "periods",
@@ -80,6 +81,7 @@ class Result:
     min_compression: float
     steps: int
     wall_time_s: float
+    orbit: str = "prograde"
     gross_slip_fraction: float = math.nan
     liftoffs_per_period: float = math.nan
     hop_period: int = 0

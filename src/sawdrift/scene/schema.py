@@ -24,6 +24,7 @@ from pydantic import (
 )
 
 from ..errors import SceneError
+from .device import Device, apply_device
 from .profiles import Profile
 from .rayleigh import rayleigh_ratio, theta
 
@@ -64,7 +65,7 @@ _FROZEN = ConfigDict(frozen=True, extra="forbid")
 
 
 class Material(BaseModel):
-    """Friction coefficient and Poisson's ratio (identical materials, paper section 3)."""
+    """Friction coefficient, Poisson's ratio and, for two materials, the contact's theta."""
 
     model_config = _FROZEN
 
@@ -72,7 +73,14 @@ class Material(BaseModel):
         0.1, description="Coulomb friction coefficient mu, in (0, 10]"
     )
     nu: Annotated[float, bounded(-1.0, 0.5, lo_open=True, hi_open=True)] = Field(
-        0.3, description="Poisson's ratio nu, in (-1, 0.5)"
+        0.3, description="Poisson's ratio nu, in (-1, 0.5) (the substrate's, for r(nu))"
+    )
+    theta: Annotated[float, bounded(0.0, 10.0, lo_open=True)] | None = Field(
+        None,
+        description=(
+            "theta = E*/(4 G*) of the contact, in (0, 10]; default (2 - nu)/(2 (1 - nu)) for "
+            "identical materials"
+        ),
     )
 
 
@@ -114,6 +122,14 @@ class Wave(BaseModel):
     )
     ramp_periods: Annotated[float, bounded(0.0, 1e6)] = Field(
         5.0, description="length of the smooth ramp R(t*) = sin^2(pi t* / (2 T_ramp)), periods"
+    )
+    orbit: Literal["prograde", "retrograde"] = Field(
+        "prograde",
+        description=(
+            "prograde: eq. 1 as printed with y* into the substrate (the crest moves with the "
+            "wave, the paper's figures); retrograde: a Rayleigh wave on an isotropic half-space "
+            "(the mirror x -> -x: every drift changes sign)"
+        ),
     )
 
 
@@ -268,6 +284,10 @@ class Scene(BaseModel):
     ] = Field(default_factory=Wave)
     numerics: Numerics = Field(default_factory=Numerics)
     effects: Effects = Field(default_factory=Effects)
+    device: Device | None = Field(
+        None, description="physical units; when given, m*, A*, theta, mu, nu, r and the orbit "
+        "are derived from it (sawdrift.scene.device)"
+    )
 
     @model_validator(mode="after")
     def _model_schema(self) -> Scene:
@@ -315,7 +335,9 @@ class Scene(BaseModel):
     # -- derived quantities -----------------------------------------------------------------
     @property
     def theta(self) -> float:
-        """theta = (2 - nu) / (2 (1 - nu))."""
+        """theta: the material's, or (2 - nu) / (2 (1 - nu)) for identical materials."""
+        if self.material.theta is not None:
+            return self.material.theta
         return theta(self.material.nu)
 
     @property
@@ -471,6 +493,10 @@ def build_scene(data: dict[str, Any], source: str | None = None) -> Scene:
 
     A SawdriftError raised inside validation (an unknown model) passes through unchanged.
     """
+    try:
+        data = apply_device(data)
+    except SceneError as exc:
+        raise SceneError(f"{source}: {exc}" if source else str(exc)) from None
     try:
         return Scene.model_validate(data)
     except ValidationError as exc:

@@ -14,6 +14,7 @@ cluster (``scheduler=ADDRESS``). All run the same cell function, so they give id
 from __future__ import annotations
 
 import hashlib
+import itertools
 import json
 import math
 import os
@@ -34,6 +35,42 @@ TABLE_COLUMNS = ("cell_id", "scene_id", *SUMMARY_FIELDS, "error")
 
 #: Parquet metadata keys of a sweep table (provenance).
 META_VERSION, META_BASE_SCENE = b"sawdrift_version", b"base_scene"
+
+
+def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
+    """Values of one ``--axis FIELD=SPEC``: numbers, booleans, or strings with units.
+
+    ``START:STOP:N`` gives N log-spaced numbers, ``lin:START:STOP:N`` N evenly spaced ones; a comma
+    list gives its items: numbers, ``true``/``false``, or quantities with units ("5 nm") that the
+    scene's device block converts.
+    """
+    if not isinstance(spec, str):
+        return list(spec)
+    if spec.startswith("lin:"):
+        parts = spec.split(":")[1:]
+        try:
+            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
+            if len(parts) != 3 or not 1 <= n <= 100_000:
+                raise ValueError
+        except (ValueError, IndexError):
+            raise SceneError(f"{name} = {spec!r} must be lin:START:STOP:N with 1 <= N <= 100000") from None
+        return np.linspace(start, stop, n).tolist()
+    if ":" in spec:
+        return parse_axis(spec, name).tolist()
+    out: list[Any] = []
+    for item in (v.strip() for v in spec.split(",")):
+        if not item:
+            continue
+        if item.lower() in ("true", "false"):
+            out.append(item.lower() == "true")
+            continue
+        try:
+            out.append(float(item))
+        except ValueError:
+            out.append(item)
+    if not out:
+        raise SceneError(f"{name} = {spec!r} must hold at least one value")
+    return out
 
 
 def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
@@ -103,29 +140,47 @@ def supersede(rows: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
 
 def grid(
     models: Sequence[str],
-    m_star: Iterable[float],
-    amplitude: Iterable[float],
+    m_star: Iterable[float] | None = None,
+    amplitude: Iterable[float] | None = None,
     base: Scene | None = None,
     overrides: dict[str, Any] | None = None,
+    axes: dict[str, Sequence[Any]] | None = None,
 ) -> list[Scene]:
-    """The scenes of a (model, m*, A*) grid, all other fields from ``base`` and ``overrides``."""
+    """The scenes of a grid: models x m* x A* x every other axis (a dotted scene field each).
+
+    All other fields come from ``base`` and ``overrides``.
+    """
     data = base.model_dump(exclude_none=True) if base is not None else {}
     for dotted, value in (overrides or {}).items():
         set_dotted(data, dotted, value)
-    m_values = [float(v) for v in m_star]
-    a_values = [float(v) for v in amplitude]
+    all_axes: dict[str, list[Any]] = {}
+    if m_star is not None:
+        all_axes["particle.m_star"] = [float(v) for v in m_star]
+    if amplitude is not None:
+        all_axes["drive.amplitude"] = [float(v) for v in amplitude]
+    for field, values in (axes or {}).items():
+        all_axes[field] = list(values)
     scenes = []
     for model in models:
         per_model = dict(data, model=model)
         if base is not None and model != base.model:
             per_model["model_params"] = {}
-        for m in m_values:
-            for a in a_values:
-                cell = json.loads(json.dumps(per_model))
-                set_dotted(cell, "particle.m_star", m)
-                set_dotted(cell, "drive.amplitude", a)
-                scenes.append(build_scene(cell))
+        for combo in itertools.product(*all_axes.values()):
+            cell = json.loads(json.dumps(per_model))
+            for field, value in zip(all_axes, combo, strict=True):
+                set_dotted(cell, field, value)
+            scenes.append(build_scene(cell))
     return scenes
+
+
+def get_dotted(data: dict[str, Any], dotted: str) -> Any:
+    """``data["a"]["b"]`` for ``dotted = "a.b"`` (None where a level is missing)."""
+    node: Any = data
+    for key in dotted.split("."):
+        if not isinstance(node, dict):
+            return None
+        node = node.get(key)
+    return node
 
 
 def run_cell(scene_json: str, engine: str = "compiled") -> dict[str, Any]:
@@ -206,8 +261,10 @@ def _clean(rec: dict[str, Any]) -> dict[str, Any]:
 
 
 def to_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
-    """Rows as a DataFrame with the table's columns, sorted by (model, m*, A*)."""
-    frame = pd.DataFrame(list(rows), columns=list(TABLE_COLUMNS))
+    """Rows as a DataFrame with the table's columns (and any swept-field columns), sorted."""
+    rows = list(rows)
+    extra = sorted({k for r in rows for k in r} - set(TABLE_COLUMNS))
+    frame = pd.DataFrame(rows, columns=[*TABLE_COLUMNS, *extra])
     for col in ("error", "regime", "model", "engine", "profile", "cell_id", "scene_id", "version"):
         frame[col] = frame[col].astype("string")
     frame = frame.sort_values(["model", "m_star", "amplitude", "cell_id"], kind="stable")
@@ -287,9 +344,10 @@ def _dask(cells: list[str], workers: int, scheduler: Any, engine: str) -> Iterat
 
 def sweep(
     models: str | Sequence[str],
-    m_star: str | Sequence[float],
-    amplitude: str | Sequence[float],
+    m_star: str | Sequence[float] | None = None,
+    amplitude: str | Sequence[float] | None = None,
     *,
+    axes: dict[str, str | Sequence[Any]] | None = None,
     base: Scene | None = None,
     overrides: dict[str, Any] | None = None,
     table: str | Path | None = None,
@@ -306,7 +364,12 @@ def sweep(
     models
         Model names (a list or a comma-separated string).
     m_star, amplitude
-        Axes: ``"START:STOP:N"`` (log-spaced, ends included), ``"a,b,c"``, or a sequence.
+        Axes: ``"START:STOP:N"`` (log-spaced, ends included), ``"a,b,c"``, or a sequence; None
+        keeps the base scene's value.
+    axes
+        More axes, ``{dotted scene field: spec}`` (see :func:`parse_values`), e.g.
+        ``{"material.mu": "0.05,0.1,0.2", "device.amplitude": "5 nm,10 nm"}``. Every swept field
+        becomes a column of the table (device fields in SI units).
     base, overrides
         The scene every cell starts from, and dotted-path overrides (``{"material.mu": 0.2}``).
     table
@@ -327,7 +390,12 @@ def sweep(
     names = [m.strip() for m in models.split(",")] if isinstance(models, str) else list(models)
     if not names or any(not n for n in names):
         raise SceneError(f"models = {models!r} must name at least one model")
-    scenes = grid(names, parse_axis(m_star, "m_star"), parse_axis(amplitude, "amplitude"), base, overrides)
+    extra_axes = {field: parse_values(spec, field) for field, spec in (axes or {}).items()}
+    scenes = grid(names, None if m_star is None else parse_axis(m_star, "m_star"),
+                  None if amplitude is None else parse_axis(amplitude, "amplitude"), base,
+                  overrides, extra_axes)
+    # the swept fields' values of each cell, as the validated scene holds them (SI for devices)
+    columns = {cell_id(s): {f: get_dotted(s.model_dump(), f) for f in extra_axes} for s in scenes}
     path = Path(table) if table is not None else None
     done = read_rows(path) if path is not None else {}
     todo: list[str] = []
@@ -358,6 +426,7 @@ def sweep(
     fh = journal.open("a") if journal is not None and todo else None
     try:
         for row in executor(todo, workers, scheduler, engine):
+            row.update(columns.get(row["cell_id"], {}))
             rows[row["cell_id"]] = row
             if fh is not None:
                 fh.write(json.dumps(row) + "\n")
