@@ -2,7 +2,7 @@
 
 Facts checked: Mindlin's (1949) initial stiffness, the exact Coulomb cap, the LAMMPS
 ``mindlin_rescale`` rule, path exactness, and the departure of its hysteresis loop from the
-Mindlin & Deresiewicz (1953) / Masing loop of ../shared/physics.md section 3.
+Mindlin & Deresiewicz (1953) / Masing loop of docs/physics.md.
 
 Loop comparison. At fixed a* both laws are driven through the same displacement cycle
 b* = B -> -B -> B, with B = B_q the amplitude at which the Mindlin law reaches +-q N*
@@ -215,7 +215,7 @@ def test_contact_loss_and_reentry() -> None:
 def test_loop_departure_from_mindlin_sphere(q: float, departure: float) -> None:
     """Measured (W_DEM - W_M)/W_M at the Mindlin amplitude B_q (sphere): -1, -1, +2/3 (to 1e-6).
 
-    The Masing loop is measured on the ``jaeger`` model and checked against physics.md's W*; the
+    The Masing loop is measured on the ``jaeger`` model and checked against docs/physics.md's W*; the
     DEM loop is checked against the elastic-perfectly-plastic area 4 N* (B - N*/k)^+.
     """
     a = 1.0

@@ -1,8 +1,8 @@
 """Tests of the ``jaeger`` model: Cattaneo-Mindlin / Jaeger closed form with Masing memory.
 
-Oracles: the closed forms of ../shared/physics.md section 3 (Cattaneo 1938, Mindlin 1949,
+Oracles: the closed forms of docs/physics.md (Cattaneo 1938, Mindlin 1949,
 Mindlin & Deresiewicz 1953, Jaeger 1998 J. Tribol. 120) and an independent exact memory diagram
-at fixed a* (piecewise-linear strip displacement, physics.md section 2), written below without
+at fixed a* (piecewise-linear strip displacement, docs/physics.md), written below without
 any Masing logic.
 """
 
@@ -29,7 +29,7 @@ def nstar(x: float, p: float) -> float:
 
 
 class FixedAMemoryDiagram:
-    """Exact memory diagram at fixed a* (physics.md section 2, steps 3-4 only).
+    """Exact memory diagram at fixed a* (docs/physics.md, steps 3-4 only).
 
     v(u) is held as a piecewise-linear function of the distance u = a* - z from the edge;
     a tangential step shifts it and clips it to |v| <= u, inserting the crossing points.
@@ -95,7 +95,7 @@ def histories(model: Jaeger, engine: str, a: np.ndarray, b: np.ndarray) -> np.nd
     return ContactHistory(model, engine).drive(a, b)[1]
 
 
-# -- closed forms of physics.md section 3 -------------------------------------------------------
+# -- closed forms of docs/physics.md -------------------------------------------------------
 
 
 @pytest.mark.parametrize("engine", ["compiled", "python"])
@@ -110,7 +110,7 @@ def test_monotonic_sphere_matches_cattaneo_mindlin(engine: str, a: float) -> Non
 
 @pytest.mark.parametrize("name", ["cone", "flat", "p2.7"])
 def test_monotonic_general_profile(name: str) -> None:
-    """For a power-law profile T* = N*(a*) - N*(a* - b*) (physics.md section 3); to 1e-13."""
+    """For a power-law profile T* = N*(a*) - N*(a* - b*) (docs/physics.md); to 1e-13."""
     p = PROFILES[name].p
     a = 1.3
     b = np.linspace(0.0, 1.2 * a, 241)
@@ -146,7 +146,7 @@ def loop_area(model, a: float, amplitude: float, n: int = 20001) -> float:
 
 @pytest.mark.parametrize("q", [0.3, 0.7, 1.0])
 def test_loop_area_sphere(q: float) -> None:
-    """Cycling between +-q N* dissipates W* of physics.md section 3 (quadrature to 2e-7 rel)."""
+    """Cycling between +-q N* dissipates W* of docs/physics.md (quadrature to 2e-7 rel)."""
     a = 1.0
     amplitude = a * (1.0 - (1.0 - q) ** (2.0 / 3.0))  # virgin T*(B) = q N*
     w = loop_area(Jaeger(), a, amplitude)
@@ -159,7 +159,7 @@ def test_loop_area_general_profile(name: str, q: float) -> None:
     """Masing loop of a power law: W* = 8 G(B) - 4 B g(B), g(x) = N*(a) - N*(a - x), G' = g.
 
     B = a [1 - (1 - q)^(1/p)] is the amplitude where g(B) = q N*(a); G(B) = N*(a) B -
-    [a^(p+1) - (a - B)^(p+1)] / (p + 1). For the sphere this reduces to physics.md's W*.
+    [a^(p+1) - (a - B)^(p+1)] / (p + 1). For the sphere this reduces to docs/physics.md's W*.
     """
     p = PROFILES[name].p
     a = 0.8
@@ -173,7 +173,7 @@ def test_loop_area_general_profile(name: str, q: float) -> None:
 def test_oblique_nonslip_limit_is_not_reproduced_as_documented() -> None:
     """Documented approximation: oblique loading b* = lambda a* gives N(a) - N((1-lambda) a).
 
-    The exact Mindlin-Deresiewicz value is lambda N*(a*) (physics.md section 3); the Jaeger law
+    The exact Mindlin-Deresiewicz value is lambda N*(a*) (docs/physics.md); the Jaeger law
     treats the first step as tangential loading at the final a*.
     """
     lam, a = 0.5, 1.0

@@ -1,4 +1,4 @@
-"""The rigid material point against the analytic results of physics.md section 3.
+"""The rigid material point against the analytic results of docs/physics.md.
 
 Gz = 4 pi^2 m* A*, Gx = r Gz; mu = 0.1 throughout.
 """
@@ -98,7 +98,7 @@ def test_never_drifts_with_the_wave_on_a_grid():
 
 
 def test_vertical_inertia_off_gives_constant_normal_force():
-    # The later paper's assumption N* = 1 (physics.md section 4): with it, the point's drift in
+    # The later paper's assumption N* = 1 (docs/physics.md): with it, the point's drift in
     # permanent contact vanishes; with eq. 5 as written it drifts against the wave.
     gz = 0.5
     kwargs = dict(particle={"m_star": 0.1}, drive={"amplitude": gz / (4 * math.pi**2 * 0.1),

@@ -1,6 +1,6 @@
 """The ``mmd`` contact model (Method of Memory Diagrams, Aleshin et al. 2015, IJSS 60-61).
 
-Oracles: physics.md section 3 (Mindlin & Deresiewicz 1953 monotonic and Masing unloading curves,
+Oracles: docs/physics.md (Mindlin & Deresiewicz 1953 monotonic and Masing unloading curves,
 loop area, proportional loading, general profiles); plus exactness of the straight-path rule,
 kernel == readable reference, and precision and bounded memory over a long drifting history.
 """

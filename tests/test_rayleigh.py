@@ -1,4 +1,4 @@
-"""Rayleigh-wave ratios against the values of physics.md section 3."""
+"""Rayleigh-wave ratios against the values of docs/physics.md."""
 
 import math
 
@@ -12,7 +12,7 @@ from sawdrift.errors import SceneError
     ("nu", "expected"), [(0.20, 0.704932), (0.25, 0.681250), (0.30, 0.656264), (0.40, 0.602488)]
 )
 def test_rayleigh_ratio_matches_reference_values(nu, expected):
-    # physics.md quotes six decimals: agreement to rounding (5e-7) and better than 1e-6
+    # docs/physics.md quotes six decimals: agreement to rounding (5e-7) and better than 1e-6
     assert abs(rayleigh_ratio(nu) - expected) <= 1e-6
 
 

@@ -1,7 +1,7 @@
 """Masing unloading and reloading at fixed a*: the doubled virgin curve from each turning point.
 
 Load to a* = 1, b* to B = 0.6 (partial slip), then back to -B and forward to +B again.
-Unloading: T* = T1 - 2 [N*(a*) - N*(a* - (B - b*)/2)] (physics.md section 3 for the sphere);
+Unloading: T* = T1 - 2 [N*(a*) - N*(a* - (B - b*)/2)] (docs/physics.md for the sphere);
 reloading is its mirror image, T* = -T1 + 2 [N*(a*) - N*(a* - (b* + B)/2)].
 """
 

@@ -1,6 +1,6 @@
 """A random two-axis history (a* and b* both varying, contact lost and regained) against the
 exact memory-diagram law, evaluated by the pure-Python reference of ``mmd``
-(physics.md section 2, Aleshin et al. 2015).
+(docs/physics.md, Aleshin et al. 2015).
 
 ``jaeger`` is exact only at constant a* and ``hertz_mindlin_dem`` has no partial slip: both
 deviate by design on such a history.

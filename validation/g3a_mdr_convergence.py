@@ -1,4 +1,4 @@
-"""MDR converges to the memory-diagram law as its strips are refined (physics.md section 2).
+"""MDR converges to the memory-diagram law as its strips are refined (docs/physics.md).
 
 ``mdr`` with N = 64, 256, 1024, 4096 strips and ``mmd`` are driven through the same random
 two-axis history. The strips sit at the centroids of dN*', which integrates v exactly where it

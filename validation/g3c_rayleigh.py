@@ -1,11 +1,11 @@
-"""The Rayleigh ratio r(nu) of horizontal to vertical surface amplitude (physics.md section 3)."""
+"""The Rayleigh ratio r(nu) of horizontal to vertical surface amplitude (docs/physics.md)."""
 
 from __future__ import annotations
 
 import sawdrift as sd
 from sawdrift.report.validation import Case, CaseResult
 
-#: Independently checked values quoted in physics.md (six decimals).
+#: Independently checked values quoted in docs/physics.md (six decimals).
 R_VALUES = {0.20: 0.704932, 0.25: 0.681250, 0.30: 0.656264, 0.40: 0.602488}
 SPEED_RATIO_03 = 0.927413
 
@@ -13,7 +13,7 @@ CASE = Case(
     name="rayleigh_ratio",
     group="convergence",
     title="r(nu) at nu = 0.2, 0.25, 0.3, 0.4 and c_R/c_S at nu = 0.3 against the six-decimal values "
-    "of physics.md; value: max absolute difference",
+    "of docs/physics.md; value: max absolute difference",
     tolerance=1e-6,
     quick=True,
 )

@@ -1,4 +1,4 @@
-"""A material point never drifts with the wave (paper section 5; physics.md section 3)."""
+"""A material point never drifts with the wave (paper section 5; docs/physics.md)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The material point's whole diagram against its closed-form thresholds (physics.md section 3).
+"""The material point's whole diagram against its closed-form thresholds (docs/physics.md).
 
 Each cell's regime is predicted by :func:`sawdrift.report.validation.point_prediction` (contact lost
 iff Gz > 1; stick iff the slips do not merge; else drift against the wave). Cells next to a

@@ -1,6 +1,6 @@
 """The later paper's claim (Terzi et al., arXiv 2511.21528): a point mass in permanent contact
 does not drift. It holds when the point's normal force is constant, N* = 1 (vertical inertia
-switched off); physics.md section 4.
+switched off); docs/physics.md.
 
 Scene: Gz = 0.5 (permanent contact), mu/Gx = 0.05 (sliding), m* = 0.1, 100 periods.
 """

@@ -1,6 +1,6 @@
 """With paper eq. 5 as written (vertical inertia on), the same point mass in permanent contact
 drifts against the wave: N* = 1 + Gz cos(phi) modulates friction over the period
-(physics.md section 4). Same scene as ``point_mass_no_drift``.
+(docs/physics.md). Same scene as ``point_mass_no_drift``.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 This is the "Hertz-Mindlin (no-slip)" contact of DEM codes (LAMMPS ``pair granular ... tangential
 mindlin/force`` and ``mindlin_rescale/force``; LIGGGHTS ``tangential history``; Thornton et al.
-2013, Powder Technol. 233, 30-46, eq. 18). In the normalized variables of ../shared/physics.md:
+2013, Powder Technol. 233, 30-46, eq. 18). In the normalized variables of docs/physics.md:
 
     dT* = k_t(a*) db*,   k_t(a*) = N*'(a*) = p a*^(p-1)   (Mindlin 1949 initial stiffness),
     |T*| <= N*(a*) = a*^p,  a spring that would exceed the cap is reset onto it.

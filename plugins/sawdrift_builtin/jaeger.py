@@ -3,7 +3,7 @@
 At a fixed contact size a* the tangential history of a power-law profile has a closed form
 (Cattaneo 1938, Mindlin 1949, Mindlin & Deresiewicz 1953; for any axisymmetric profile by the
 superposition principle of Jaeger 1998, J. Tribol. 120, 677-684). In the memory-diagram (MDR)
-picture of ../shared/physics.md section 2, write the strip displacement as a function of the
+picture of docs/physics.md, write the strip displacement as a function of the
 distance u = a* - z from the contact edge. At fixed a* every profile v(u) reachable from an
 unloaded contact is a zig-zag: slope s = +-1 (the current direction of motion) on [0, c], then
 alternating slopes on [c, C_{n-1}], [C_{n-1}, C_{n-2}], ..., [C_1, C_0], and flat (a stuck core)
@@ -18,7 +18,7 @@ with N*(x) = x^p for x > 0 and 0 otherwise. The breakpoints are the Masing memor
   Mindlin; for the sphere a*^(3/2) - (a* - b*)^(3/2));
 * a reversal at b_k pushes the current extent on the stack and starts a branch with c = |b* -
   b_k| / 2: T* = T_k - 2 s [N*(a*) - N*(a* - |b* - b_k| / 2)] (Masing's doubled virgin curve; for
-  the sphere the unloading formula of physics.md section 3);
+  the sphere the unloading formula of docs/physics.md);
 * a branch that grows back to the enclosing breakpoint (c = C_{n-1}, i.e. b* re-crosses the
   previous turning point) erases both turning points and continues on the enclosing branch
   (memory wipe-out, Mindlin & Deresiewicz 1953);

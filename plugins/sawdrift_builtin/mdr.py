@@ -1,6 +1,6 @@
 """Contact model ``mdr``: Popov's Method of Dimensionality Reduction with N discrete strips.
 
-The memory-diagram rules of physics.md section 2 applied to a fixed grid of strips (MDR springs)
+The memory-diagram rules of docs/physics.md applied to a fixed grid of strips (MDR springs)
 instead of an exact piecewise-linear diagram: Popov & Hess (2015), "Method of Dimensionality
 Reduction in Contact Mechanics and Friction", Springer; its continuous limit is the Method of Memory
 Diagrams (Aleshin et al. 2015, Int. J. Solids Struct. 60-61) of model ``mmd``, which it

@@ -1,6 +1,6 @@
 """Compiled kernel of the ``mdr`` model: Popov's Method of Dimensionality Reduction on N strips.
 
-The same rule set as the memory diagram (physics.md section 2) applied strip by strip on a fixed
+The same rule set as the memory diagram (docs/physics.md) applied strip by strip on a fixed
 grid: Popov & Hess (2015), "Method of Dimensionality Reduction in Contact Mechanics and
 Friction", Springer (tangential contact with the springs' local Coulomb limits); the continuous
 limit is the Method of Memory Diagrams of Aleshin et al. (2015), Int. J. Solids Struct. 60-61.

@@ -1,6 +1,6 @@
 """Contact model ``mmd``: the Method of Memory Diagrams, exact for any loading history.
 
-The tangential law of physics.md section 2: the contact is indexed by the level z in [0, a*] of
+The tangential law of docs/physics.md: the contact is indexed by the level z in [0, a*] of
 the equivalent 1-D profile; each strip carries a displacement v(z) with |v(z)| <= a* - z, and
 
     N* = a*^p,        T* = integral_[0, a*] v(z) dN*'(z).

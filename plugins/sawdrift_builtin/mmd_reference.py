@@ -23,7 +23,7 @@ Kink = tuple[float, float]
 
 
 def segment_integral(z1: float, v1: float, z2: float, v2: float, p: float) -> float:
-    """integral_(z1, z2] v dN*' for v linear from (z1, v1) to (z2, v2) (physics.md section 2).
+    """integral_(z1, z2] v dN*' for v linear from (z1, v1) to (z2, v2) (docs/physics.md).
 
     Integration by parts: [v N*'] from z1 to z2 minus (dv/dz) [N*(z2) - N*(z1)]. A segment
     starting at z1 = 0 uses N*'(0-) = 0, so it includes the point mass of a flat punch.

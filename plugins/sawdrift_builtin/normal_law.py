@@ -1,6 +1,6 @@
 """The power-law normal contact law N*(a*) = a*^p, compiled for the kernels.
 
-Hertz (1882) for the sphere (p = 3/2), cone p = 2, flat punch p = 1 (physics.md section 2). The
+Hertz (1882) for the sphere (p = 3/2), cone p = 2, flat punch p = 1 (docs/physics.md). The
 pure-Python twin is :mod:`sawdrift.scene.profiles`.
 """
 

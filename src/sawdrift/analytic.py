@@ -1,4 +1,4 @@
-"""Closed-form results used as oracles (../shared/physics.md section 3).
+"""Closed-form results used as oracles (docs/physics.md).
 
 Material point (Verma & DasGupta 2013), with Gz = 4 pi^2 m* A* and Gx = r Gz; and the
 Cattaneo-Mindlin / Masing laws of a power-law profile at fixed a* (Mindlin & Deresiewicz 1953).
@@ -58,7 +58,7 @@ def cattaneo_mindlin(a: float, b: np.ndarray | float, p: float = 1.5) -> np.ndar
 def masing_unloading(a: float, b1: float, b: np.ndarray | float, p: float = 1.5) -> np.ndarray:
     """Unloading from the turning point (b1, T1) of virgin loading, fixed a* (Masing's rule).
 
-    T* = T1 - 2 [N*(a*) - N*(a* - (b1 - b*)/2)]; for the sphere this is physics.md's
+    T* = T1 - 2 [N*(a*) - N*(a* - (b1 - b*)/2)]; for the sphere this is docs/physics.md's
     T1 - 2 a*^(3/2) [1 - (1 - (b1 - b*)/(2 a*))^(3/2)].
     """
     b = np.asarray(b, dtype=float)
@@ -67,7 +67,7 @@ def masing_unloading(a: float, b1: float, b: np.ndarray | float, p: float = 1.5)
 
 
 def loop_area(a: float, q: float) -> float:
-    """Energy dissipated per cycle between +-q N* (sphere, fixed a*), physics.md section 3."""
+    """Energy dissipated per cycle between +-q N* (sphere, fixed a*), docs/physics.md."""
     s = 1.0 - q
     return 4.8 * a**2.5 * (1.0 - s ** (5.0 / 3.0) - (5.0 * q / 6.0) * (1.0 + s ** (2.0 / 3.0)))
 

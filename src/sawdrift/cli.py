@@ -206,7 +206,8 @@ def run_cmd(
         typer.echo(json.dumps(summary))
         return
     for key, value in summary.items():
-        typer.echo(f"{key:>24}: {value}")
+        if key != "scene":  # the whole scene is in --json and in -o DIR/scene.toml
+            typer.echo(f"{key:>24}: {value}")
     if out is not None:
         typer.echo(f"wrote {out}/trajectory.parquet, events.parquet, trajectory.png, scene.toml, "
                    "result.json")
@@ -368,6 +369,20 @@ def demo_cmd(
     path, md = plot_compare(frame, ["material_point", "mmd"], out / "compare.png")
     typer.echo(md)
     typer.echo(f"wrote {table}, phase_material_point.png, phase_mmd.png, {path.name} in {out}")
+    from .report.fig2 import plot_fig2
+
+    fig2 = plot_fig2(out / "fig2_regimes.png")
+    typer.echo(f"wrote {fig2.name}: the four regimes' trajectories (the paper's Fig. 2)")
+    # rolling: the same plane with the sphere free to turn (kappa = 2/5), side by side
+    rot_table = out / "rotation_table.parquet"
+    m_rot = max(2, (n + 1) // 2)
+    rot = sd.sweep(["material_point", "mmd"], f"1e-3:1e2:{m_rot}", f"1e-2:10:{m_rot}",
+                   axes={"effects.rotation": "false,true"}, base=sd.Scene(numerics={"periods": 40}),
+                   table=rot_table, workers=workers)
+    rpath, rmd = plot_compare(rot, ["material_point", "mmd"], out / "rotation_compare.png",
+                              by="effects.rotation")
+    typer.echo(rmd)
+    typer.echo(f"wrote {rot_table.name}, {rpath.name}: rotation off and on, side by side")
 
 
 @app.command("validate")

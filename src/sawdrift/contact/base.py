@@ -1,6 +1,6 @@
 """The contact-model interface every plugin implements.
 
-A contact model turns the contact displacements (a*, b*) of ../shared/physics.md into the
+A contact model turns the contact displacements (a*, b*) of docs/physics.md into the
 normalized forces (N*, T*) and owns whatever history that takes. Two kinds exist:
 
 * **compliant** models (``capabilities.rigid = False``) give (N*, T*) from (a*, b*) and their
@@ -150,8 +150,15 @@ class ContactModel:
         return self.profile.law()
 
     def reference(self) -> ReferenceContact:
-        """A fresh pure-Python reference contact (empty history)."""
-        raise NotImplementedError(f"model {self.name!r} has no pure-Python reference")
+        """A fresh pure-Python reference contact (empty history).
+
+        The default runs the kernel's own Python code uncompiled (``py_func`` of ``reset`` and
+        ``force``) on fresh state arrays; a model with a separate readable implementation
+        overrides this.
+        """
+        if self.kernel is None:
+            raise NotImplementedError(f"model {self.name!r} has no pure-Python reference")
+        return KernelReference(self)
 
     def normal_law(self) -> tuple[Callable[..., tuple[float, float]], np.ndarray]:
         """The model's normal law alone: a compiled kernel and the ``pp`` it reads.
@@ -201,6 +208,28 @@ class ContactModel:
     def new_history(self, engine: str = "compiled") -> ContactHistory:
         """A committed contact history driven through this model (see :class:`ContactHistory`)."""
         return ContactHistory(self, engine)
+
+
+class KernelReference:
+    """The pure-Python engine of a kernel: its ``py_func`` run on its own state arrays."""
+
+    def __init__(self, model: ContactModel) -> None:
+        nf, ni = model.state_sizes()
+        self._reset = getattr(model.kernel.reset, "py_func", model.kernel.reset)
+        self._force = getattr(model.kernel.force, "py_func", model.kernel.force)
+        self.fs = np.zeros(nf, dtype=np.float64)
+        self.is_ = np.zeros(ni, dtype=np.int64)
+        self.pp = model.packed_params()
+        self.reset()
+
+    def reset(self) -> None:
+        """Empty history."""
+        self._reset(self.fs, self.is_, self.pp)
+
+    def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
+        """Advance along a straight path to (a*, b*), commit, return (N*, T*)."""
+        n, t = self._force(self.fs, self.is_, self.pp, a, b, adot, bdot)
+        return float(n), float(t)
 
 
 class ContactHistory:

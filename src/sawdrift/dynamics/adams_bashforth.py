@@ -6,7 +6,7 @@ python engine runs it as it is with the model's pure-Python reference. Per step 
 plus one call of the contact law, allocates nothing, and evaluates the (history-dependent) force
 exactly once, at the committed state: Adams-Bashforth needs no trial evaluations.
 
-Equations (normalized, physics.md section 1)::
+Equations (normalized, docs/physics.md)::
 
     m* x''  = -mu T*(b*, a*)              theta mu b* = x* - u_x(t*)
     m* y''  = 1 - N*(a*)                   a*          = y* - u_y(t*)

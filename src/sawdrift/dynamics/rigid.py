@@ -1,7 +1,7 @@
 """Time stepping for a rigid material point: unilateral contact with Coulomb friction.
 
 Paper section 4 (after Verma and DasGupta, Phys. Rev. E 88, 052915, 2013), normalized as in
-../shared/physics.md section 2: a* = 0 while in contact, and then
+docs/physics.md: a* = 0 while in contact, and then
 
     N*(t*) = 1 - m* u_y''(t*)          (N* = 1 with the vertical inertia switched off)
     stick:  x*'' = u_x''   while |T_req| = |m* u_x''| / mu <= N*

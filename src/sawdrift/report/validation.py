@@ -16,7 +16,7 @@ registered, is reported as an *error* and counts as a failure; it never stops th
 A case whose model is marked as not exact by design reports its deviation as an *expected
 deviation*: shown with its value, not counted as a failure.
 
-The module also holds the closed-form oracles the cases share (../shared/physics.md section 3).
+The module also holds the closed-form oracles the cases share (docs/physics.md).
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ COMPLIANT_MODELS: tuple[str, ...] = ("mmd", "mdr", "jaeger", "hertz_mindlin_dem"
 #: The models drawn in the regime diagrams.
 DIAGRAM_MODELS: tuple[str, ...] = ("material_point", *COMPLIANT_MODELS)
 
-#: Friction coefficient and Poisson's ratio of the paper's figures (physics.md section 4).
+#: Friction coefficient and Poisson's ratio of the paper's figures (docs/physics.md).
 MU = 0.1
 NU = 0.3
 
@@ -692,7 +692,7 @@ def write_html(report: ValidationReport, path: Path) -> None:
         f"<div class='meta'>sawdrift {esc(env['sawdrift'])}, Python {esc(env['python'])}, "
         f"numpy {esc(env['numpy'])}, numba {esc(env['numba'])}; {esc(env['date'])}; "
         f"{'quick subset' if report.quick else 'full run'}; mu = {MU}, nu = {NU} unless stated. "
-        "Oracles: ../shared/physics.md.</div>",
+        "Oracles: docs/physics.md.</div>",
         f"<div class='summary {'ok' if report.passed else 'bad'}'><b>{esc(report.summary())}</b></div>",
     ]
     groups = list(GROUPS) + sorted({r.group for r in report.results} - set(GROUPS))

@@ -1,6 +1,6 @@
 """Rayleigh surface wave: velocity ratio and the horizontal-to-vertical amplitude ratio r(nu).
 
-The Rayleigh equation in the form used in ../shared/physics.md section 3:
+The Rayleigh equation in the form used in docs/physics.md:
 
     (2 - eta)^2 = 4 sqrt(1 - eta) sqrt(1 - k^2 eta),   k^2 = (1 - 2 nu) / (2 (1 - nu)),
 
@@ -51,7 +51,7 @@ def rayleigh_speed_ratio(nu: float) -> float:
 def rayleigh_ratio(nu: float) -> float:
     """Return r(nu), horizontal over vertical surface displacement amplitude of a Rayleigh wave.
 
-    r = (2 - eta) / (2 sqrt(1 - k^2 eta)) (physics.md section 3); r(0.3) = 0.656264.
+    r = (2 - eta) / (2 sqrt(1 - k^2 eta)) (docs/physics.md); r(0.3) = 0.656264.
     """
     eta = eta_rayleigh(nu)
     k2 = (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu))

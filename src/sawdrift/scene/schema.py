@@ -1,6 +1,6 @@
 """The Scene: one whole experiment as a frozen, validated pydantic model (TOML in and out).
 
-All quantities are the normalized ones of ../shared/physics.md (paper eq. 4-5): t* = f t, one
+All quantities are the normalized ones of docs/physics.md (paper eq. 4-5): t* = f t, one
 wave period is one unit of t*; m* = a0 m f^2 / (M g); A* = A_y / a0.
 """
 
@@ -110,7 +110,7 @@ class Particle(BaseModel):
 
 
 class Wave(BaseModel):
-    """Rayleigh wave drive (paper eq. 1 with the ramp R(t*) of physics.md section 1)."""
+    """Rayleigh wave drive (paper eq. 1 with the ramp R(t*) of docs/physics.md)."""
 
     model_config = _FROZEN
 
@@ -213,9 +213,6 @@ class Numerics(BaseModel):
     )
     drift_tolerance: Annotated[float, bounded(0.0, 1.0)] = Field(
         1e-3, description="|drift_ratio| below this is 'stick' (no steady drift)"
-    )
-    periodic_tolerance: Annotated[float, bounded(0.0, 1.0)] = Field(
-        1e-3, description="stroboscopic change below which a hopping motion counts as periodic"
     )
     settle: bool = Field(
         False, description="run on, in chunks of measure_periods, until the drift has settled"
@@ -360,7 +357,7 @@ class Scene(BaseModel):
 
         For a rigid model the default is 256 (nothing stiff to resolve). Otherwise it resolves
         the contact's small-amplitude natural frequency
-        omega = sqrt(k / m*) (per unit t*, physics.md section 1) with h omega <= 0.06, where
+        omega = sqrt(k / m*) (per unit t*, docs/physics.md) with h omega <= 0.06, where
         k = p a_ref^(p-1) max(1, c/theta) bounds the normal and tangential stiffness at the
         largest expected compression a_ref = 1 + 2 A* (c = 1 + 1/kappa with rotation, else 1),
         and never goes below 128 per period.

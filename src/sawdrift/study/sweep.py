@@ -420,9 +420,9 @@ def sweep(
         path.parent.mkdir(parents=True, exist_ok=True)
     bar = None
     if progress and todo:
-        from tqdm import tqdm
+        from .progress import progress as make_progress
 
-        bar = tqdm(total=len(wanted), initial=len(rows), unit="cell", desc="sweep", dynamic_ncols=True)
+        bar = make_progress(len(wanted), "sweep", "cell", initial=len(rows))
     fh = journal.open("a") if journal is not None and todo else None
     try:
         for row in executor(todo, workers, scheduler, engine):
