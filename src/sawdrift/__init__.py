@@ -62,6 +62,8 @@ _LAZY: dict[str, str] = {
     "sweep": "study.sweep",
     "plot_trajectory": "report.plots",
     "check_model": "contact.conformance",
+    "load_grid": "study.export",
+    "to_dataset": "study.export",
 }
 _SUBPACKAGES = ("scene", "contact", "dynamics", "result", "study", "report", "analytic")
 

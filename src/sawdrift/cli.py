@@ -339,6 +339,20 @@ def compare_cmd(
     typer.echo(f"wrote {path} and {path.with_suffix('.md')}")
 
 
+@app.command("export")
+def export_cmd(
+    table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="grid file: .nc (netCDF) or .zarr")],
+) -> None:
+    """Export a sweep table to a gridded dataset (xarray; CF regime flags; provenance in attrs)."""
+    from .study.export import write_grid
+
+    _load_table(table)  # one-line errors for a missing or unreadable table
+    ds = write_grid(table, out)
+    dims = ", ".join(f"{d} ({n})" for d, n in ds.sizes.items())
+    typer.echo(f"wrote {out}: dimensions {dims}; variables {', '.join(ds.data_vars)}")
+
+
 @app.command("demo")
 def demo_cmd(
     out: Annotated[Path, typer.Option("-o", "--out", help="output folder")] = Path("sawdrift_out"),

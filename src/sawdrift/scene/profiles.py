@@ -29,7 +29,7 @@ def _table_law(path: str, mtime_ns: int) -> tuple[float, ...]:  # noqa: ARG001 -
 class Profile(BaseModel):
     """Axisymmetric profile of the particle, given by its normal law.
 
-    Parameters
+    Attributes
     ----------
     shape
         ``sphere`` (p = 3/2), ``cone`` (p = 2), ``flat`` (flat punch, p = 1), ``power`` (give

@@ -1,0 +1,121 @@
+"""Sweep tables as gridded datasets: xarray, netCDF (CF conventions), zarr.
+
+A sweep table has one row per cell. :func:`to_dataset` turns it into an ``xarray.Dataset`` whose
+dimensions are the swept fields (the columns that vary across cells: m_star, amplitude, every
+``--axis`` field, and model when the table holds several), with
+
+* ``regime`` as an integer variable carrying CF ``flag_values`` / ``flag_meanings`` (-1: no cell);
+* the drift (``drift_ratio``, ``drift_velocity``) and the evidence of each cell as variables;
+* the provenance in ``attrs``: ``sawdrift_version``, ``base_scene`` (the sweep's base scene as
+  JSON, when the table's metadata has it) and ``Conventions = "CF-1.8"``.
+
+:func:`load_grid` reads a file written by :func:`write_grid` (``.nc`` or ``.zarr``) back.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from ..errors import SceneError
+from ..result.regimes import REGIMES
+
+#: per-cell variables exported when present
+VARIABLES = (
+    "drift_ratio", "drift_velocity", "gross_slip_fraction", "liftoffs_per_period", "hop_period",
+    "liftoff_phase", "liftoff_phase_spread", "lyapunov", "periodicity", "out_of_contact_fraction",
+    "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s",
+)
+
+#: columns that identify a cell, never dimensions or variables
+_IDS = ("cell_id", "scene_id", "error", "version", "engine", "regime")
+
+#: regime codes: flag_values are 0..n-1 in the order of sawdrift.result.regimes.REGIMES
+REGIME_FLAGS = (*REGIMES, "error")
+
+
+def dimensions(table: pd.DataFrame) -> list[str]:
+    """The swept columns: the candidate axes that take more than one value."""
+    candidates = ["model", "m_star", "amplitude", *[c for c in table.columns if "." in c]]
+    return [c for c in candidates if c in table.columns and table[c].nunique(dropna=True) > 1]
+
+
+def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
+    """The table as an ``xarray.Dataset`` over its swept fields (see the module docstring)."""
+    import xarray as xr
+
+    dims = dimensions(table)
+    if not dims:
+        raise SceneError("the table has no swept field (every cell has the same m*, A* and axes)")
+    frame = table.copy()
+    frame["regime_code"] = [REGIME_FLAGS.index(r) if r in REGIME_FLAGS else REGIME_FLAGS.index("error")
+                            for r in frame["regime"]]
+    keep = ["regime_code", *[v for v in VARIABLES if v in frame.columns]]
+    indexed = frame.set_index(dims)[keep]
+    if indexed.index.has_duplicates:
+        raise SceneError("the table holds two cells for one point of its swept fields")
+    ds = xr.Dataset.from_dataframe(indexed)
+    for name in list(ds.data_vars):
+        if ds[name].dtype == bool or ds[name].dtype == object:
+            ds[name] = ds[name].astype(float)
+    codes = ds["regime_code"].fillna(-1).astype(np.int16)
+    ds = ds.drop_vars("regime_code")
+    ds["regime"] = codes
+    ds["regime"].attrs.update(
+        long_name="motion regime",
+        flag_values=np.arange(len(REGIME_FLAGS), dtype=np.int16),
+        flag_meanings=" ".join(REGIME_FLAGS),
+        comment="-1: no cell at this point of the grid",
+    )
+    ds["drift_ratio"].attrs.update(long_name="mean x*' / (2 pi r A*) over the measurement window")
+    names = {"m_star": "m* = a0 m f^2 / (M g)", "amplitude": "A* = A_y / a0"}
+    for dim in dims:
+        if dim in names:
+            ds[dim].attrs["long_name"] = names[dim]
+    meta = metadata or {}
+    ds.attrs.update(
+        Conventions="CF-1.8",
+        title="sawdrift sweep",
+        sawdrift_version=str(meta.get("sawdrift_version") or _versions(table)),
+        base_scene=json.dumps(meta["base_scene"]) if meta.get("base_scene") else "",
+    )
+    return ds
+
+
+def _versions(table: pd.DataFrame) -> str:
+    return ", ".join(sorted(str(v) for v in table.get("version", pd.Series(dtype=str)).dropna().unique()))
+
+
+def write_grid(table_path: str | Path, out: str | Path):
+    """Export a sweep table (Parquet) to ``out`` (``.nc``, or ``.zarr`` where zarr is installed)."""
+    from .sweep import table_metadata
+
+    table_path, out = Path(table_path), Path(out)
+    ds = to_dataset(pd.read_parquet(table_path), table_metadata(table_path))
+    if out.suffix == ".zarr":
+        try:
+            import zarr  # noqa: F401
+        except ImportError:
+            raise SceneError("writing .zarr needs zarr: pip install zarr (or write .nc)") from None
+        ds.to_zarr(out, mode="w")
+    elif out.suffix == ".nc":
+        ds.to_netcdf(out)
+    else:
+        raise SceneError(f"-o {str(out)!r}: the output must end in .nc or .zarr")
+    return ds
+
+
+def load_grid(path: str | Path):
+    """Open a grid written by :func:`write_grid` (``.nc`` or ``.zarr``) as an ``xarray.Dataset``."""
+    import xarray as xr
+
+    path = Path(path)
+    if not path.exists():
+        raise SceneError(f"grid {str(path)!r} does not exist")
+    if path.suffix == ".zarr":
+        return xr.open_zarr(path)
+    return xr.load_dataset(path)
