@@ -18,6 +18,7 @@ with the substrate kinematics and the ramp R(t*) of :mod:`sawdrift.dynamics.wave
 from __future__ import annotations
 
 import math
+import types
 from collections.abc import Callable
 from typing import Any
 
@@ -96,149 +97,167 @@ def record(rec, ctr, t, y, a, b, nf, tf):
         ctr[2] = i + 1
 
 
-def _wave_loop_source(force: Callable[..., Any]) -> Callable[..., None]:
-    """Build the wave-scene loop with ``force`` bound in (compiled or not by the caller)."""
-    ab = AB_COEFFS
+#: The loop body reads ``force`` (the kernel) and ``ab`` as globals, bound per kernel in the
+#: generated module (loop_cache) or the python engine's function (_python_loop); the values here
+#: only name them.
+force: Callable[..., Any] | None = None
+ab = AB_COEFFS
 
-    def loop(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
-        m = prm[P_M]
-        mx = prm[P_MX]
-        amp = prm[P_A]
-        r = prm[P_R]
-        mu = prm[P_MU]
-        scale_b = 1.0 / (prm[P_THETA] * mu)
-        t_ramp = prm[P_RAMP]
-        h = prm[P_H]
-        order = int(prm[P_ORDER])
-        friction = prm[P_FRICTION] > 0.0
-        damp = prm[P_DAMP]
-        horiz = prm[P_HORIZ]
-        vert = prm[P_VERT]
-        k_ramp = int(prm[P_KRAMP])
-        # Rotation (I = kappa m R^2): m x'' = -T and I phi'' = -R T, so from rest the contact
-        # point s = x + R phi moves as s = c x with c = 1 + 1/kappa (docs/physics.md, Rotation).
-        roll = prm[P_ROLL]
-        # Rolling resistance, an elastic-plastic rolling spring (EPSD type, Ai et al. 2011,
-        # Powder Technol. 206, 269-282, without its viscous term): per R and per M g the torque is
-        # m_r = -K_r psi_e, |m_r| <= mu_r N*, with K_r = 2.25 mu_r^2 dN*/da* (their k_r =
-        # 2.25 k_n mu_r^2 R^2); psi = R phi / a0 then obeys kappa m* psi'' = -mu T* + m_r.
-        rr = prm[P_RR]
-        resist = rr > 0.0 and roll > 0.0
-        kappa_m = m / (roll - 1.0) if roll > 0.0 else 0.0
-        p_exp = prm[P_P]
-        ncomp = 6 if resist else 4
-        for _ in range(n_steps):
-            k = ctr[0]
-            t = k * h
-            ux, uxd, uy, uyd = surface(t, amp, r, t_ramp, horiz, vert)
-            a = y[2] - uy
-            adot = y[3] - uyd
-            if friction:
-                if resist:
-                    b = (y[0] + y[4] - ux) * scale_b
-                    bdot = (y[1] + y[5] - uxd) * scale_b
-                elif roll > 0.0:
-                    b = (roll * y[0] - ux) * scale_b
-                    bdot = (roll * y[1] - uxd) * scale_b
-                else:
-                    b = (y[0] - ux) * scale_b
-                    bdot = (y[1] - uxd) * scale_b
-                nf, tf = force(fs, is_, pp, a, b, adot, bdot)
+
+def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
+    """One wave-scene integration segment; ``force`` and ``ab`` are globals bound per kernel."""
+    m = prm[P_M]
+    mx = prm[P_MX]
+    amp = prm[P_A]
+    r = prm[P_R]
+    mu = prm[P_MU]
+    scale_b = 1.0 / (prm[P_THETA] * mu)
+    t_ramp = prm[P_RAMP]
+    h = prm[P_H]
+    order = int(prm[P_ORDER])
+    friction = prm[P_FRICTION] > 0.0
+    damp = prm[P_DAMP]
+    horiz = prm[P_HORIZ]
+    vert = prm[P_VERT]
+    k_ramp = int(prm[P_KRAMP])
+    # Rotation (I = kappa m R^2): m x'' = -T and I phi'' = -R T, so from rest the contact
+    # point s = x + R phi moves as s = c x with c = 1 + 1/kappa (docs/physics.md, Rotation).
+    roll = prm[P_ROLL]
+    # Rolling resistance, an elastic-plastic rolling spring (EPSD type, Ai et al. 2011,
+    # Powder Technol. 206, 269-282, without its viscous term): per R and per M g the torque is
+    # m_r = -K_r psi_e, |m_r| <= mu_r N*, with K_r = 2.25 mu_r^2 dN*/da* (their k_r =
+    # 2.25 k_n mu_r^2 R^2); psi = R phi / a0 then obeys kappa m* psi'' = -mu T* + m_r.
+    rr = prm[P_RR]
+    resist = rr > 0.0 and roll > 0.0
+    kappa_m = m / (roll - 1.0) if roll > 0.0 else 0.0
+    p_exp = prm[P_P]
+    ncomp = 6 if resist else 4
+    for _ in range(n_steps):
+        k = ctr[0]
+        t = k * h
+        ux, uxd, uy, uyd = surface(t, amp, r, t_ramp, horiz, vert)
+        a = y[2] - uy
+        adot = y[3] - uyd
+        if friction:
+            if resist:
+                b = (y[0] + y[4] - ux) * scale_b
+                bdot = (y[1] + y[5] - uxd) * scale_b
+            elif roll > 0.0:
+                b = (roll * y[0] - ux) * scale_b
+                bdot = (roll * y[1] - uxd) * scale_b
             else:
-                # friction off: ``force`` is the model's normal law alone (its normal slot)
-                b = 0.0
-                nf, tf = force(fs, is_, pp, a, 0.0, adot, 0.0)
-                tf = 0.0
-            if damp > 0.0 and a > 0.0:
-                nf += damp * adot
-                if nf < 0.0:
-                    nf = 0.0
-            ax = -mu * tf / mx
-            ay = (1.0 - nf) / m
-            inside = a > 0.0
-            slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
-            was_in = st[S_PREVIN] > 0.0
-            was_slip = st[S_PREVSLIP] > 0.0
-            if inside and not was_in:
-                event(st, EV_LANDING, t, y, a)
-                event(st, EV_SLIP_START if slipping else EV_STICK_START, t, y, a)
-            elif was_in and not inside:
-                if was_slip:
-                    event(st, EV_SLIP_END, t, y, a)
-                event(st, EV_LIFT_OFF, t, y, a)
-                st[S_LIFTS] += 1.0
-            elif inside:
-                if slipping and not was_slip:
-                    event(st, EV_SLIP_START, t, y, a)
-                elif was_slip and not slipping:
-                    event(st, EV_SLIP_END, t, y, a)
-                    event(st, EV_STICK_START, t, y, a)
-            st[S_PREVIN] = 1.0 if inside else 0.0
-            st[S_PREVSLIP] = 1.0 if slipping else 0.0
-            if k >= k_ramp:
-                if not inside:
-                    st[S_LOST] = 1.0
-                    st[S_OUT] += 1.0
-                if slipping:
-                    st[S_SLIP] += 1.0
-                if a < st[S_AMIN]:
-                    st[S_AMIN] = a
-                st[S_COUNT] += 1.0
-            if rec_every > 0 and k % rec_every == 0:
-                record(rec, ctr, t, y, a, b, nf, tf)
-            for j in range(3, 0, -1):
-                for c in range(ncomp):
-                    fh[j, c] = fh[j - 1, c]
-            fh[0, 0] = y[1] if friction else 0.0
-            fh[0, 1] = ax
-            fh[0, 2] = y[3]
-            fh[0, 3] = ay
-            if resist:
-                kr = 2.25 * rr * rr * p_exp * a ** (p_exp - 1.0) if a > 0.0 else 0.0
-                cap = rr * nf
-                mr = -kr * y[6]
-                if mr > cap:
-                    mr = cap
-                elif mr < -cap:
-                    mr = -cap
-                fh[0, 4] = y[5]
-                fh[0, 5] = (-mu * tf + mr) / kappa_m
-                psi_old = y[4]
-            q = ctr[1] + 1
-            if q > order:
-                q = order
+                b = (y[0] - ux) * scale_b
+                bdot = (y[1] - uxd) * scale_b
+            nf, tf = force(fs, is_, pp, a, b, adot, bdot)
+        else:
+            # friction off: ``force`` is the model's normal law alone (its normal slot)
+            b = 0.0
+            nf, tf = force(fs, is_, pp, a, 0.0, adot, 0.0)
+            tf = 0.0
+        if damp > 0.0 and a > 0.0:
+            nf += damp * adot
+            if nf < 0.0:
+                nf = 0.0
+        ax = -mu * tf / mx
+        ay = (1.0 - nf) / m
+        inside = a > 0.0
+        slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
+        was_in = st[S_PREVIN] > 0.0
+        was_slip = st[S_PREVSLIP] > 0.0
+        if inside and not was_in:
+            event(st, EV_LANDING, t, y, a)
+            event(st, EV_SLIP_START if slipping else EV_STICK_START, t, y, a)
+        elif was_in and not inside:
+            if was_slip:
+                event(st, EV_SLIP_END, t, y, a)
+            event(st, EV_LIFT_OFF, t, y, a)
+            st[S_LIFTS] += 1.0
+        elif inside:
+            if slipping and not was_slip:
+                event(st, EV_SLIP_START, t, y, a)
+            elif was_slip and not slipping:
+                event(st, EV_SLIP_END, t, y, a)
+                event(st, EV_STICK_START, t, y, a)
+        st[S_PREVIN] = 1.0 if inside else 0.0
+        st[S_PREVSLIP] = 1.0 if slipping else 0.0
+        if k >= k_ramp:
+            if not inside:
+                st[S_LOST] = 1.0
+                st[S_OUT] += 1.0
+            if slipping:
+                st[S_SLIP] += 1.0
+            if a < st[S_AMIN]:
+                st[S_AMIN] = a
+            st[S_COUNT] += 1.0
+        if rec_every > 0 and k % rec_every == 0:
+            record(rec, ctr, t, y, a, b, nf, tf)
+        for j in range(3, 0, -1):
             for c in range(ncomp):
-                acc = 0.0
-                for j in range(q):
-                    acc += ab[q - 1, j] * fh[j, c]
-                y[c] += h * acc
-            if resist:
-                # the spring takes the rotation increment, and slides (plastic) at its cap
-                y[6] += y[4] - psi_old
-                if kr > 0.0 and abs(kr * y[6]) > cap:
-                    y[6] = math.copysign(cap / kr, y[6])
-                elif kr == 0.0:
-                    y[6] = 0.0
-            if ctr[1] < 4:
-                ctr[1] += 1
-            ctr[0] = k + 1
-            if not (math.isfinite(y[0] + y[1] + y[2] + y[3]) and math.isfinite(nf + tf)):
-                st[S_BAD] = BAD_NONFINITE
-                st[S_BADSTEP] = k
-                return
-
-    return loop
+                fh[j, c] = fh[j - 1, c]
+        fh[0, 0] = y[1] if friction else 0.0
+        fh[0, 1] = ax
+        fh[0, 2] = y[3]
+        fh[0, 3] = ay
+        if resist:
+            kr = 2.25 * rr * rr * p_exp * a ** (p_exp - 1.0) if a > 0.0 else 0.0
+            cap = rr * nf
+            mr = -kr * y[6]
+            if mr > cap:
+                mr = cap
+            elif mr < -cap:
+                mr = -cap
+            fh[0, 4] = y[5]
+            fh[0, 5] = (-mu * tf + mr) / kappa_m
+            psi_old = y[4]
+        q = ctr[1] + 1
+        if q > order:
+            q = order
+        for c in range(ncomp):
+            acc = 0.0
+            for j in range(q):
+                acc += ab[q - 1, j] * fh[j, c]
+            y[c] += h * acc
+        if resist:
+            # the spring takes the rotation increment, and slides (plastic) at its cap
+            y[6] += y[4] - psi_old
+            if kr > 0.0 and abs(kr * y[6]) > cap:
+                y[6] = math.copysign(cap / kr, y[6])
+            elif kr == 0.0:
+                y[6] = 0.0
+        if ctr[1] < 4:
+            ctr[1] += 1
+        ctr[0] = k + 1
+        if not (math.isfinite(y[0] + y[1] + y[2] + y[3]) and math.isfinite(nf + tf)):
+            st[S_BAD] = BAD_NONFINITE
+            st[S_BADSTEP] = k
+            return
 
 
 _COMPILED: dict[Any, Callable[..., None]] = {}
 
 
+def _python_loop(force: Callable[..., Any]) -> Callable[..., None]:
+    """The loop body run as plain Python with ``force`` bound in (the python engine)."""
+    scope = dict(globals(), force=force, ab=AB_COEFFS)
+    return types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body")
+
+
 def wave_loop(force: Callable[..., Any], compiled: bool) -> Callable[..., None]:
-    """The wave-scene loop for a given force function (compiled loops are cached per kernel)."""
+    """The wave-scene loop for a given force function.
+
+    The compiled loop is cached on disk across processes (see :mod:`.loop_cache`): it is
+    generated, once per kernel, as a small module that imports the kernel by name, so that numba's
+    ``cache=True`` applies; a kernel that cannot be imported by name (defined in ``__main__`` or a
+    notebook) is compiled in memory instead. Compiled loops are also cached per process.
+    """
     if not compiled:
-        return _wave_loop_source(force)
+        return _python_loop(force)
     fn = _COMPILED.get(force)
     if fn is None:
-        fn = njit(_wave_loop_source(force))
+        from .loop_cache import cached_loop
+
+        fn = cached_loop(force)
+        if fn is None:
+            fn = njit(_python_loop(force))
         _COMPILED[force] = fn
     return fn

@@ -11,7 +11,6 @@ import math
 import time
 
 import numpy as np
-import pandas as pd
 
 from ..contact.base import ContactHistory, ContactModel
 from ..errors import NonFiniteStateError
@@ -63,6 +62,8 @@ def run_prescribed(scene: Scene, model: ContactModel, engine: str) -> Result:
             f"model {scene.model!r} returned a non-finite force at sample {k} "
             f"(a* = {a[k]:.6g}, b* = {b[k]:.6g})"
         )
+    import pandas as pd
+
     # dissipated work: the integral of T* db*, trapezoidal over the sampled path
     work = float(np.sum(0.5 * (t_f[1:] + t_f[:-1]) * np.diff(b))) if a.size > 1 else 0.0
     frame = pd.DataFrame({"t": np.arange(a.size, dtype=float), "a": a, "b": b, "N": n_f, "T": t_f})

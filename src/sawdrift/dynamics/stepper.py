@@ -14,7 +14,6 @@ import math
 from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..contact.base import ContactHistory, ContactModel
 from ..errors import NonFiniteStateError
@@ -24,6 +23,8 @@ from . import evidence as ev
 from . import rigid as rg
 
 if TYPE_CHECKING:
+    import pandas as pd
+
     from .runner import Assembly
 
 #: Trajectory samples recorded per wave period (at most).
@@ -129,6 +130,20 @@ class Stepper:
         force, self.fs, self.is_, self.pp = self.history.kernel_call()
         self.loop = ig.wave_loop(force, self.compiled)
 
+    def warm_up(self) -> float:
+        """Compile (or load from the disk cache) the loop with a call of zero steps; seconds."""
+        import time
+
+        t0 = time.perf_counter()
+        rec = np.zeros((0, ig.N_REC))
+        st = self.st.copy()
+        if self.rigid:
+            self.loop(self.y.copy(), self.ctr.copy(), self.prm, 0, rec, 0, st)
+        else:
+            self.loop(self.y.copy(), self.fh.copy(), self.ctr.copy(), self.fs, self.is_, self.pp,
+                      self.prm, 0, rec, 0, st)
+        return time.perf_counter() - t0
+
     @property
     def step(self) -> int:
         """Steps taken since t* = 0."""
@@ -200,15 +215,10 @@ class Stepper:
 
     def trajectory(self) -> pd.DataFrame:
         """The recorded rows (columns ``t, x, vx, y, vy, a, b, N, T``); x is the centre."""
+        import pandas as pd
+
         data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
         if self.rigid and self.roll > 0.0:
             data[:, 1:3] /= self.roll
         return pd.DataFrame(data, columns=list(ig.REC_COLUMNS))
 
-    def events(self) -> pd.DataFrame:
-        """The events of the current window (see :mod:`sawdrift.dynamics.evidence`)."""
-        rows = ev.events(self.st)
-        frame = pd.DataFrame(rows, columns=list(ev.EVENT_COLUMNS))
-        kinds = np.asarray(ev.EVENT_KINDS)
-        frame["kind"] = pd.Categorical(kinds[rows[:, 1].astype(int)], categories=list(kinds))
-        return frame

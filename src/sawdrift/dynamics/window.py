@@ -12,7 +12,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import pandas as pd
 
 from ..errors import NonFiniteStateError
 from ..result.regimes import LYAPUNOV_D0, MIN_FLIGHT, Synchrony, lyapunov_estimate, synchrony
@@ -37,7 +36,7 @@ class Window:
     liftoffs_per_period: float
     periodicity: float
     sync: Synchrony
-    events: pd.DataFrame
+    events: np.ndarray  # rows (t*, kind code, x*, x*', y*, y*', a*), see dynamics.evidence
     events_dropped: int
     snapshot: Stepper | None = field(default=None, repr=False)
 
@@ -58,15 +57,15 @@ def periodicity(samples: np.ndarray, scale: np.ndarray, last: int = 10) -> float
     return float((np.abs(np.diff(s[:, 1:4], axis=0)) / scale).max())
 
 
-def hop_liftoffs(events: pd.DataFrame, t_end: float) -> np.ndarray:
+def hop_liftoffs(events: np.ndarray, t_end: float) -> np.ndarray:
     """Times of the lift-offs whose flight lasts at least :data:`~sawdrift.result.regimes.MIN_FLIGHT`.
 
     A flight ends at the next landing, or at ``t_end`` (the window's end) if none follows.
     """
-    t = events["t"].to_numpy()
-    kind = events["kind"].to_numpy()
-    lifts = np.nonzero(kind == "lift_off")[0]
-    lands = np.nonzero(kind == "landing")[0]
+    t = events[:, 0]
+    kind = events[:, 1]
+    lifts = np.nonzero(kind == ev.EV_LIFT_OFF)[0]
+    lands = np.nonzero(kind == ev.EV_LANDING)[0]
     keep = []
     for i in lifts:
         j = np.searchsorted(lands, i, side="right")
@@ -108,7 +107,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     else:
         spin = math.nan
     count = max(st[ev.S_COUNT], 1.0)
-    events = stepper.events()
+    events = ev.events(st)
     lifts = hop_liftoffs(events, t_start + periods)
     return Window(
         periods=periods,

@@ -4,9 +4,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import pandas as pd
+import numpy as np
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 #: Summary fields written by ``sawdrift run --json`` and by sweeps, in this order.
 SUMMARY_FIELDS = (
@@ -93,8 +96,27 @@ class Result:
     version: str = field(default_factory=_package_version)
     scene: dict[str, Any] = field(default_factory=dict, repr=False)
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
-    events: pd.DataFrame | None = field(default=None, repr=False)
+    event_rows: np.ndarray | None = field(default=None, repr=False)
     extra: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    @property
+    def events(self) -> pd.DataFrame | None:
+        """The measurement window's events as a DataFrame (columns t, kind, x, vx, y, vy, a).
+
+        Kinds: lift_off, landing, slip_start, slip_end, stick_start
+        (:mod:`sawdrift.dynamics.evidence`); None for runs without a window.
+        """
+        if self.event_rows is None:
+            return None
+        import pandas as pd
+
+        from ..dynamics.evidence import EVENT_COLUMNS, EVENT_KINDS
+
+        rows = self.event_rows
+        frame = pd.DataFrame(rows, columns=list(EVENT_COLUMNS))
+        kinds = np.asarray(EVENT_KINDS)
+        frame["kind"] = pd.Categorical(kinds[rows[:, 1].astype(int)], categories=list(kinds))
+        return frame
 
     def summary(self) -> dict[str, Any]:
         """The summary fields, the extras and the scene as JSON-ready values (NaN becomes None)."""

@@ -14,8 +14,6 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from scipy.optimize import brentq
-
 from ..errors import SceneError
 
 
@@ -36,11 +34,19 @@ def eta_rayleigh(nu: float) -> float:
 
     The cubic eta^3 - 8 eta^2 + (24 - 16 k^2) eta - 16 (1 - k^2) = 0 follows from squaring the
     Rayleigh equation (Achenbach, *Wave Propagation in Elastic Solids*, 1973, eq. 5.2.7). It is
-    negative at eta = 0 and positive (= 1) at eta = 1, so brentq on [0, 1] finds the root.
+    negative at eta = 0 and positive (= 1) at eta = 1, so bisection on [0, 1] finds the root (to
+    the last bit: 60 halvings; plain Python, so that importing sawdrift does not import scipy).
     """
     _check_nu(nu)
     k2 = (1.0 - 2.0 * nu) / (2.0 * (1.0 - nu))
-    return brentq(_rayleigh_residual, 0.0, 1.0, args=(k2,), xtol=1e-15, rtol=1e-15, maxiter=200)
+    lo, hi = 0.0, 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if _rayleigh_residual(mid, k2) < 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
 
 
 def rayleigh_speed_ratio(nu: float) -> float:
