@@ -244,6 +244,12 @@ def sweep_cmd(
                      "lin:START:STOP:N; device values may carry units ('5 nm,10 nm')"),
     ] = None,
     settle: Annotated[bool, typer.Option("--settle", help="every cell runs until its drift settles")] = False,
+    adaptive: Annotated[
+        bool, typer.Option("--adaptive", help="refine only where neighbouring cells disagree in regime "
+                           "(m*, A* ranges from --m-star/--amplitude START:STOP:BASE)")
+    ] = False,
+    budget: Annotated[int, typer.Option("--budget", help="adaptive: most cells computed")] = 2000,
+    levels: Annotated[int, typer.Option("--levels", help="adaptive: halvings of a boundary cell")] = 3,
     scene_file: Annotated[Path | None, typer.Option("--scene", help="base scene TOML")] = None,
     mu: Annotated[float | None, typer.Option("--mu")] = None,
     nu: Annotated[float | None, typer.Option("--nu")] = None,
@@ -288,8 +294,21 @@ def sweep_cmd(
             periods=periods, steps_per_period=steps_per_period, order=order, profile=profile,
             params=_parse_param(param), settle=True if settle else None,
         )
-    frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out, workers=workers,
-                     scheduler=scheduler, progress=progress, engine=engine)
+    if adaptive:
+        from .study.adaptive import adaptive_sweep
+
+        if axes or len(models) != 1:
+            _fail("--adaptive works on the (m*, A*) plane of one model: no --axis, one --model")
+        m_axis = sd.parse_axis(m_star or "1e-3:1e2:21", "m_star")
+        a_axis = sd.parse_axis(amplitude or "1e-2:10:21", "amplitude")
+        if m_axis.size != a_axis.size or m_axis.size < 2:
+            _fail("--adaptive needs --m-star and --amplitude as START:STOP:N with the same N >= 2")
+        frame = adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
+                               budget=budget, base=int(m_axis.size), levels=levels, scene=base,
+                               table=out, workers=workers, scheduler=scheduler, progress=progress)
+    else:
+        frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
+                         workers=workers, scheduler=scheduler, progress=progress, engine=engine)
     counts = frame.groupby(["model", "regime"]).size()
     for (name, regime), n in counts.items():
         typer.echo(f"{name:>20} {regime:>14}: {n}")
@@ -304,12 +323,19 @@ def phase_diagram_cmd(
     model: Annotated[str | None, typer.Option("--model", help="model to draw")] = None,
     x: Annotated[str, typer.Option("--x", help="column on the horizontal axis")] = "amplitude",
     y: Annotated[str, typer.Option("--y", help="column on the vertical axis")] = "m_star",
+    drift: Annotated[
+        bool, typer.Option("--drift", help="regimes beside the drift ratio, boundaries drawn over it "
+                           "(uniform or adaptive tables)")
+    ] = False,
 ) -> None:
     """Draw the regime phase diagram of one model over two swept axes (default A*, m*)."""
-    from .report.diagrams import plot_phase_diagram
+    from .report.diagrams import plot_drift_map, plot_phase_diagram
 
     frame = _load_table(table)
-    path = plot_phase_diagram(frame, out, model, x, y)
+    if drift:
+        path = plot_drift_map(frame, out, model, x, y)
+    else:
+        path = plot_phase_diagram(frame, out, model, x, y)
     typer.echo(f"wrote {path}")
 
 

@@ -141,6 +141,57 @@ def agreement_markdown(frame: pd.DataFrame) -> str:
     return "\n".join(lines) + "\n"
 
 
+def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = None,
+                   x: str = "amplitude", y: str = "m_star") -> Path:
+    """The regime map and, beside it, the drift ratio coloured on a diverging scale.
+
+    Works for uniform and scattered (adaptive) tables alike: each point's cell is the region of
+    the log-log plane nearest to it (Voronoi cells, drawn with ``tripcolor``'s flat shading on a
+    fine grid). Regime boundaries (where the regime changes between neighbouring points of that
+    grid) are drawn over the drift map.
+    """
+    from matplotlib.colors import TwoSlopeNorm
+    from scipy.spatial import cKDTree
+
+    models = sorted(table["model"].dropna().unique())
+    model = model or (models[0] if len(models) == 1 else None)
+    if model is None:
+        raise SceneError(f"the table holds several models ({', '.join(models)}); choose one with --model")
+    sub = select(table, model)
+    lx, ly = np.log10(sub[x].to_numpy(float)), np.log10(sub[y].to_numpy(float))
+    gx = np.linspace(lx.min(), lx.max(), 400)
+    gy = np.linspace(ly.min(), ly.max(), 400)
+    mx, my = np.meshgrid(gx, gy)
+    _, idx = cKDTree(np.column_stack([lx, ly])).query(np.column_stack([mx.ravel(), my.ravel()]))
+    codes = np.array([_ORDER.index(r) if r in COLOURS else _ORDER.index("error")
+                      for r in sub["regime"]])[idx].reshape(mx.shape)
+    drift = sub["drift_ratio"].to_numpy(float)[idx].reshape(mx.shape)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11.5, 5.0), layout="constrained")
+    ext = [10 ** gx[0], 10 ** gx[-1], 10 ** gy[0], 10 ** gy[-1]]
+    ax1.pcolormesh(10**gx, 10**gy, codes + 1, cmap=ListedColormap(["white", *COLOURS.values()]),
+                   vmin=0, vmax=len(COLOURS), shading="auto")
+    lim = max(float(np.nanmax(np.abs(drift))), 1e-6)
+    mesh = ax2.pcolormesh(10**gx, 10**gy, drift, cmap="RdBu_r",
+                          norm=TwoSlopeNorm(vcenter=0.0, vmin=-lim, vmax=lim), shading="auto")
+    ax2.contour(10**gx, 10**gy, codes, levels=np.arange(len(COLOURS)) + 0.5, colors="k",
+                linewidths=0.7)
+    fig.colorbar(mesh, ax=ax2, label="drift ratio <x*'> / (2 pi r A*)")
+    for ax, title in ((ax1, f"{model}: regimes"), (ax2, f"{model}: drift ratio, regime boundaries")):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlim(ext[0], ext[1])
+        ax.set_ylim(ext[2], ext[3])
+        ax.set_xlabel(_LABELS.get(x, x))
+        ax.set_ylabel(_LABELS.get(y, y))
+        ax.set_title(title, fontsize=10)
+    ax1.plot(10**lx, 10**ly, ",", color="k", alpha=0.3)
+    _legend(fig, [np.unique(codes)])
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def variants(table: pd.DataFrame, models: list[str], by: str | None) -> list[tuple[str, str, dict]]:
     """(label, model, fixed columns) of each panel: one per model, or per model and value of ``by``."""
     if by is None:

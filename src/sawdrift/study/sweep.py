@@ -348,6 +348,7 @@ def sweep(
     amplitude: str | Sequence[float] | None = None,
     *,
     axes: dict[str, str | Sequence[Any]] | None = None,
+    points: Sequence[tuple[float, float]] | None = None,
     base: Scene | None = None,
     overrides: dict[str, Any] | None = None,
     table: str | Path | None = None,
@@ -370,6 +371,8 @@ def sweep(
         More axes, ``{dotted scene field: spec}`` (see :func:`parse_values`), e.g.
         ``{"material.mu": "0.05,0.1,0.2", "device.amplitude": "5 nm,10 nm"}``. Every swept field
         becomes a column of the table (device fields in SI units).
+    points
+        Instead of a grid: explicit (m*, A*) cells (used by the adaptive sweep).
     base, overrides
         The scene every cell starts from, and dotted-path overrides (``{"material.mu": 0.2}``).
     table
@@ -391,9 +394,13 @@ def sweep(
     if not names or any(not n for n in names):
         raise SceneError(f"models = {models!r} must name at least one model")
     extra_axes = {field: parse_values(spec, field) for field, spec in (axes or {}).items()}
-    scenes = grid(names, None if m_star is None else parse_axis(m_star, "m_star"),
-                  None if amplitude is None else parse_axis(amplitude, "amplitude"), base,
-                  overrides, extra_axes)
+    if points is not None:
+        scenes = [s for m, a in points
+                  for s in grid(names, [m], [a], base, overrides, extra_axes)]
+    else:
+        scenes = grid(names, None if m_star is None else parse_axis(m_star, "m_star"),
+                      None if amplitude is None else parse_axis(amplitude, "amplitude"), base,
+                      overrides, extra_axes)
     # the swept fields' values of each cell, as the validated scene holds them (SI for devices)
     columns = {cell_id(s): {f: get_dotted(s.model_dump(), f) for f in extra_axes} for s in scenes}
     path = Path(table) if table is not None else None

@@ -1,0 +1,63 @@
+"""Adaptive phase diagram against a uniform 161 x 161 grid (mmd, the whole plane).
+
+The uniform reference: mmd over m* in [1e-3, 1e4] and A* in [1e-2, 10], 161 x 161 log-spaced
+cells, default numerics (computed once into benchmarks/data/uniform_161.parquet, resumable; about
+a minute on 2 cores). The adaptive diagram: a 21 x 21 base grid refined three times where
+neighbouring cells disagree in regime (sawdrift.study.adaptive), with a budget of 15 % of the
+uniform grid's cells. Target: misclassified area (the fraction of the uniform grid's cells whose
+regime the adaptive map gets wrong) below 1 %. Writes benchmarks/results/adaptive.json.
+
+    python benchmarks/bench_adaptive.py
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import pandas as pd
+
+import sawdrift as sd
+from sawdrift.study.adaptive import adaptive_sweep, misclassified_area
+
+HERE = Path(__file__).parent
+M_RANGE, A_RANGE, N = (1e-3, 1e4), (1e-2, 10.0), 161
+BUDGET = int(0.15 * N * N)
+
+
+def uniform() -> tuple[pd.DataFrame, float]:
+    """The 161 x 161 reference table (computed or resumed) and the seconds it took now."""
+    path = HERE / "data" / "uniform_161.parquet"
+    path.parent.mkdir(exist_ok=True)
+    t0 = time.perf_counter()
+    frame = sd.sweep(["mmd"], f"{M_RANGE[0]}:{M_RANGE[1]}:{N}", f"{A_RANGE[0]}:{A_RANGE[1]}:{N}",
+                     table=path, progress=True)
+    return frame, time.perf_counter() - t0
+
+
+def main() -> None:
+    """Compare and store."""
+    ref, t_ref = uniform()
+    t0 = time.perf_counter()
+    points = adaptive_sweep("mmd", M_RANGE, A_RANGE, budget=BUDGET, base=21, levels=3)
+    t_ad = time.perf_counter() - t0
+    err = misclassified_area(points, ref)
+    n_run = int((~points["inferred"]).sum())
+    share = n_run / (N * N)
+    ok = err < 0.01 and share <= 0.15
+    print(f"uniform {N} x {N}: {len(ref)} cells ({t_ref:.1f} s this run); adaptive: {n_run} "
+          f"cells run = {share:.1%} of the grid ({len(points) - n_run} more inferred), {t_ad:.1f} s; "
+          f"misclassified area {err:.2%}: "
+          f"{'PASS' if ok else 'FAIL'}")
+    out = HERE / "results"
+    out.mkdir(exist_ok=True)
+    (out / "adaptive.json").write_text(json.dumps(
+        {"uniform_cells": len(ref), "adaptive_cells": n_run, "share": share,
+         "misclassified_area": err, "adaptive_s": t_ad, "passed": ok}, indent=2) + "\n")
+    if not ok:
+        raise SystemExit(1)
+
+
+if __name__ == "__main__":
+    main()
