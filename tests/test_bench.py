@@ -100,7 +100,8 @@ def test_speed_quick_reports_every_target(tmp_path, capsys):
     path = tmp_path / "speed.json"
     result = bench.speed(quick=True, progress=False, out=path)
     printed = capsys.readouterr().out
-    names = {"sweep", "engines", "vs_material_point", "vs_mdr", "history_length"}
+    names = {"sweep", "engines", "vs_material_point", "vs_mdr", "history_length", "steady",
+             "adaptive", "cold_help", "cold_models", "cold_run"}
     assert set(result["targets"]) == names
     for target in result["targets"].values():
         assert math.isfinite(target["measured"]) and target["measured"] >= 0.0
