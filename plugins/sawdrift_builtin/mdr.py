@@ -19,8 +19,6 @@ from sawdrift.contact import Capabilities, ContactModel, KernelPair
 from sawdrift.hookspecs import hookimpl
 from sawdrift.scene.profiles import normal_force, normal_stiffness
 
-from . import mdr_kernel
-
 
 class MdrParams(BaseModel):
     """Parameters of the ``mdr`` model."""
@@ -158,10 +156,12 @@ class MdrModel(ContactModel):
     capabilities: ClassVar[Capabilities] = Capabilities(
         profiles=("sphere", "cone", "flat", "power", "table"), straight_path_exact=True
     )
-    kernel: ClassVar[KernelPair | None] = KernelPair(reset=mdr_kernel.reset, force=mdr_kernel.force)
+    kernel: ClassVar[KernelPair | None] = KernelPair.lazy("sawdrift_builtin.mdr_kernel")
 
     def state_sizes(self) -> tuple[int, int]:
         """Sizes of ``fs`` and ``is_`` (layout in :mod:`sawdrift_builtin.mdr_kernel`)."""
+        from . import mdr_kernel
+
         return mdr_kernel.state_sizes(self.params.strips)
 
     def packed_params(self) -> np.ndarray:

@@ -23,7 +23,6 @@ from pydantic import BaseModel, ConfigDict, Field
 from sawdrift.contact import Capabilities, ContactHistory, ContactModel, KernelPair
 from sawdrift.hookspecs import hookimpl
 
-from . import mmd_kernel
 from .mmd_reference import MemoryDiagramReference
 
 
@@ -59,14 +58,18 @@ class MemoryDiagramModel(ContactModel):
     capabilities: ClassVar[Capabilities] = Capabilities(
         profiles=("sphere", "cone", "flat", "power", "table"), straight_path_exact=True
     )
-    kernel: ClassVar[KernelPair | None] = KernelPair(reset=mmd_kernel.reset, force=mmd_kernel.force)
+    kernel: ClassVar[KernelPair | None] = KernelPair.lazy("sawdrift_builtin.mmd_kernel")
 
     def state_sizes(self) -> tuple[int, int]:
         """Sizes of ``fs`` and ``is_`` (layout in :mod:`sawdrift_builtin.mmd_kernel`)."""
+        from . import mmd_kernel
+
         return mmd_kernel.state_sizes(self.params.max_memory_points)
 
     def live_sizes(self, fs: np.ndarray, is_: np.ndarray) -> tuple[int, int]:
         """The header and the stored memory points (the rest of the stack is free)."""
+        from . import mmd_kernel
+
         return mmd_kernel.HEADER + mmd_kernel.RECORD * int(is_[0]), is_.size
 
     def packed_params(self) -> np.ndarray:
@@ -83,6 +86,8 @@ class MemoryDiagramModel(ContactModel):
         """The committed memory points of ``history`` as a (k, 2) array of (z, v)."""
         if history._ref is not None:
             return np.array(history._ref.kinks, dtype=np.float64).reshape(-1, 2)
+        from . import mmd_kernel
+
         return mmd_kernel.memory_points(history._fs, history._is)
 
 

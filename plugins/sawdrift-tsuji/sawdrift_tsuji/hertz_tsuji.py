@@ -22,7 +22,6 @@ from __future__ import annotations
 from typing import ClassVar
 
 import numpy as np
-from numba import njit
 from pydantic import BaseModel, Field
 
 from sawdrift import Capabilities, KernelPair, hookimpl
@@ -30,8 +29,6 @@ from sawdrift_builtin.hertz_mindlin_dem import (
     HertzMindlinDEM,
     HertzMindlinDEMParams,
     HertzMindlinDEMReference,
-    dem_force,
-    dem_reset,
 )
 
 
@@ -43,24 +40,6 @@ class HertzTsujiParams(HertzMindlinDEMParams):
         ge=0.0,
         description="Normalized Tsuji dashpot c in N* = a*^p + c a*^((p-1)/2) a*' (0: elastic).",
     )
-
-
-@njit(cache=True)
-def tsuji_force(fs, is_, pp, a: float, b: float, adot: float, bdot: float):
-    """(N*, T*): the DEM kernel's elastic normal force and tangential force, plus the dashpot."""
-    n_el, t = dem_force(fs, is_, pp, a, b, adot, bdot)
-    if a <= 0.0:
-        return 0.0, 0.0
-    n = n_el + pp[2] * a ** (0.5 * (pp[0] - 1.0)) * adot
-    return max(n, 0.0), t
-
-
-@njit(cache=True)
-def tsuji_normal(fs, is_, pp, a: float, b: float, adot: float, bdot: float):  # noqa: ARG001
-    """(N*, 0): the damped normal force alone (the normal slot, used with friction off)."""
-    if a <= 0.0:
-        return 0.0, 0.0
-    return max(a ** pp[0] + pp[2] * a ** (0.5 * (pp[0] - 1.0)) * adot, 0.0), 0.0
 
 
 class HertzTsujiReference(HertzMindlinDEMReference):
@@ -90,7 +69,7 @@ class HertzTsuji(HertzMindlinDEM):
     )
     Params: ClassVar[type[BaseModel]] = HertzTsujiParams
     capabilities: ClassVar[Capabilities] = Capabilities(uses_velocity=True)
-    kernel: ClassVar[KernelPair] = KernelPair(reset=dem_reset, force=tsuji_force)
+    kernel: ClassVar[KernelPair] = KernelPair.lazy("sawdrift_tsuji.kernel", "dem_reset", "tsuji_force")
 
     def packed_params(self) -> np.ndarray:
         """[p, rescale, damping]: the DEM kernel reads the first two."""
@@ -98,6 +77,8 @@ class HertzTsuji(HertzMindlinDEM):
 
     def normal_law(self):
         """The clamped Tsuji normal law alone (kept when friction is off)."""
+        from .kernel import tsuji_normal
+
         return tsuji_normal, self.packed_params()
 
     def reference(self) -> HertzTsujiReference:

@@ -93,6 +93,33 @@ class KernelPair:
     reset: Any
     force: Any
 
+    @staticmethod
+    def lazy(module: str, reset: str = "reset", force: str = "force") -> LazyKernelPair:
+        """A pair imported from ``module`` on first use (so that listing models needs no numba)."""
+        return LazyKernelPair(module, reset, force)
+
+
+class LazyKernelPair:
+    """A :class:`KernelPair` whose functions are imported from their module on first access."""
+
+    def __init__(self, module: str, reset: str, force: str) -> None:
+        self.module, self._names = module, (reset, force)
+
+    def _load(self, which: int) -> Any:
+        import importlib
+
+        return getattr(importlib.import_module(self.module), self._names[which])
+
+    @property
+    def reset(self) -> Any:
+        """The compiled ``reset`` function."""
+        return self._load(0)
+
+    @property
+    def force(self) -> Any:
+        """The compiled ``force`` function."""
+        return self._load(1)
+
 
 class ReferenceContact(Protocol):
     """Readable pure-Python implementation of a compliant model's contact law."""
