@@ -104,12 +104,9 @@ class Conformance:
 
 
 def _polyline(vertices: list[tuple[float, float]], per_side: int = SIDE) -> tuple[np.ndarray, np.ndarray]:
-    a, b = [vertices[0][0]], [vertices[0][1]]
-    for (a0, b0), (a1, b1) in zip(vertices[:-1], vertices[1:], strict=True):
-        s = np.arange(1, per_side + 1) / per_side
-        a.extend(a0 + (a1 - a0) * s)
-        b.extend(b0 + (b1 - b0) * s)
-    return np.asarray(a), np.asarray(b)
+    from ..dynamics.prescribed import polyline
+
+    return polyline(vertices, per_side)
 
 
 def cycles() -> dict[str, list[tuple[float, float]]]:

@@ -18,17 +18,21 @@ from ..result.result import Result
 from ..scene.schema import Prescribed, Scene
 
 
+def polyline(vertices: list[tuple[float, float]], per_side: int) -> tuple[np.ndarray, np.ndarray]:
+    """Samples a*(k), b*(k) along straight sides through ``vertices``, ``per_side`` per side."""
+    av, bv = [vertices[0][0]], [vertices[0][1]]
+    s = np.arange(1, per_side + 1) / per_side
+    for (a0, b0), (a1, b1) in zip(vertices[:-1], vertices[1:], strict=True):
+        av.extend(a0 + (a1 - a0) * s)
+        bv.extend(b0 + (b1 - b0) * s)
+    return np.asarray(av), np.asarray(bv)
+
+
 def prescribed_history(drive: Prescribed) -> tuple[np.ndarray, np.ndarray]:
     """The sampled a*(k), b*(k) of a prescribed drive (see :class:`~sawdrift.scene.Prescribed`)."""
-    n = drive.samples_per_segment
 
     def path(vertices: list[tuple[float, float]]) -> tuple[np.ndarray, np.ndarray]:
-        av, bv = [vertices[0][0]], [vertices[0][1]]
-        for (a0, b0), (a1, b1) in zip(vertices[:-1], vertices[1:], strict=True):
-            s = np.arange(1, n + 1) / n
-            av.extend(a0 + (a1 - a0) * s)
-            bv.extend(b0 + (b1 - b0) * s)
-        return np.asarray(av), np.asarray(bv)
+        return polyline(vertices, drive.samples_per_segment)
 
     if drive.waveform == "samples":
         return np.asarray(drive.a, dtype=float), np.asarray(drive.b, dtype=float)
