@@ -21,13 +21,9 @@ The module also holds the closed-form oracles the cases share (docs/physics.md).
 
 from __future__ import annotations
 
-import base64
 import fnmatch
-import html
 import importlib.util
 import inspect
-import io
-import json
 import math
 import platform
 import sys
@@ -488,254 +484,6 @@ def validate(
     return report
 
 
-# -- values shared between cases of one run ----------------------------------------------------
-
-_SHARED: dict[Any, Any] = {}
-
-
-def shared(key: Any, compute: Callable[[], Any]) -> Any:
-    """``compute()`` once per :func:`validate` call for ``key`` (sweeps, reference histories).
-
-    An exception is cached too and raised again for every case that asks for the same key.
-    """
-    if key not in _SHARED:
-        try:
-            _SHARED[key] = (True, compute())
-        except Exception as exc:  # noqa: BLE001 - re-raised below, for each asking case
-            _SHARED[key] = (False, exc)
-    ok, value = _SHARED[key]
-    if not ok:
-        raise value
-    return value
-
-
-def clear_shared() -> None:
-    """Forget the shared values (at the start and end of :func:`validate`)."""
-    _SHARED.clear()
-
-
-# -- closed forms live in sawdrift.analytic (re-exported here for the case files) -----------
-from ..analytic import (  # noqa: E402, F401
-    amplitude_for_force_ratio,
-    cattaneo_mindlin,
-    heavy_sliding_v,
-    loop_area,
-    masing_unloading,
-    point_prediction,
-)
-
-
-def point_scene(gz: float, gx: float | None = None, m_star: float = 0.1, mu: float = MU,
-                **numerics: Any):
-    """A material-point wave scene with Gz = 4 pi^2 m* A* and (optionally) Gx = r Gz."""
-    from ..scene.schema import Scene
-
-    amp = gz / (4.0 * math.pi**2 * m_star)
-    drive: dict[str, Any] = {"amplitude": amp}
-    if gx is not None:
-        drive["horizontal_ratio"] = gx / gz
-    return Scene(model="material_point", material={"mu": mu, "nu": NU}, particle={"m_star": m_star},
-                 drive=drive, numerics=numerics)
-
-
-def prescribed(model: str, drive: Mapping[str, Any], *, profile: Mapping[str, Any] | None = None,
-               model_params: Mapping[str, Any] | None = None, engine: str = "compiled"):
-    """Drive ``model`` through a prescribed (a*, b*) history; return the (t, a, b, N, T) frame.
-
-    ``drive`` holds the fields of :class:`sawdrift.scene.Prescribed` (``kind`` is added).
-    """
-    from ..dynamics.runner import run
-    from ..scene.schema import Scene
-
-    scene = Scene(model=model, model_params=dict(model_params or {}),
-                  particle={"profile": dict(profile or {"shape": "sphere"})},
-                  drive={"kind": "prescribed", **drive})
-    return run(scene, engine=engine).trajectory  # type: ignore[arg-type]
-
-
-def mindlin_loop(model: str, a: float, amplitude: float, cycles: int = 1, samples: int = 2000,
-                 profile: Mapping[str, Any] | None = None):
-    """Load to a* = ``a`` at b* = 0, then cycle b* between +-``amplitude`` at fixed a*.
-
-    Returns the trajectory frame; vertex k of the path (0: origin, 1: (a, 0), 2: (a, B),
-    3: (a, -B), 4: (a, B), ...) is row ``k * samples``.
-    """
-    return prescribed(model, {"waveform": "mindlin_loop", "a_max": a, "b_amplitude": amplitude,
-                              "cycles": cycles, "samples_per_segment": samples}, profile=profile)
-
-
-# -- sweeps shared by the diagram cases --------------------------------------------------------
-
-#: Regime-diagram grid: 15 x 15 log-spaced cells, m* in [1e-3, 1e2], A* in [1e-2, 10], 40 periods.
-DIAGRAM_GRID = {"m_star": "1e-3:1e2:15", "amplitude": "1e-2:10:15", "periods": 40.0}
-
-
-def regime_table(model: str):
-    """The regime-diagram sweep table (pandas) of ``model`` on :data:`DIAGRAM_GRID` (shared).
-
-    The registered built-in diagram models are swept together in one process pool; any other
-    model (e.g. registered at run time, which worker processes may not see) runs serially.
-    """
-    from ..contact.registry import registry
-    from ..scene.schema import Scene
-    from ..study.sweep import sweep
-
-    def one(names: list[str], workers: int | None):
-        base = Scene(model=names[0], material={"mu": MU, "nu": NU},
-                     numerics={"periods": DIAGRAM_GRID["periods"]})
-        return sweep(names, DIAGRAM_GRID["m_star"], DIAGRAM_GRID["amplitude"], base=base,
-                     progress=False, workers=workers)
-
-    builtin = [m for m in DIAGRAM_MODELS
-               if m in registry.models and registry.models[m].distribution != "<runtime>"]
-    if model in builtin:
-        table = shared(("sweep", tuple(builtin)), lambda: one(builtin, None))
-    else:
-        table = shared(("sweep", model), lambda: one([model], 1))
-    return table[table["model"] == model].reset_index(drop=True)
-
-
-def regime_class(regime: str) -> str:
-    """``lost`` for the contact-loss regimes (hopping, bouncing), else the regime itself."""
-    from ..result.regimes import CONTACT_LOST
-
-    return "lost" if regime in CONTACT_LOST else regime
-
-
-# -- report writers ----------------------------------------------------------------------------
-
-
-def _write_figures(report: ValidationReport) -> None:
-    fig_dir = report.out / "figures"
-    for res in report.results:
-        if res.figure is None:
-            continue
-        try:
-            png = figure_png(res.figure)
-        except Exception as exc:  # noqa: BLE001 - a broken figure must not lose the report
-            res.message += f" (figure failed: {_one_line(exc)})"
-            res.figure = None
-            continue
-        fig_dir.mkdir(exist_ok=True)
-        slug = "".join(c if c.isalnum() or c in "-_" else "_" for c in res.name)
-        (fig_dir / f"{slug}.png").write_bytes(png)
-        res.figure = png
-        res.figure_file = f"figures/{slug}.png"
-
-
-def figure_png(figure: Any, dpi: int = 96) -> bytes:
-    """PNG bytes of a matplotlib figure (closed afterwards) or of PNG bytes as given."""
-    if isinstance(figure, bytes | bytearray):
-        return bytes(figure)
-    import matplotlib.pyplot as plt
-
-    buf = io.BytesIO()
-    figure.savefig(buf, format="png", dpi=dpi)
-    plt.close(figure)
-    return buf.getvalue()
-
-
-def write_json(report: ValidationReport, path: Path) -> None:
-    """Write ``results.json``: summary, environment and one record per result."""
-    data = {
-        "passed": report.passed,
-        "summary": report.summary(),
-        "counts": {
-            "passed": report.count("pass"),
-            "failed": report.count("fail") + report.count("error"),
-            "errors": report.count("error"),
-            "expected_deviations": report.count("expected deviation"),
-            "total": len(report.results),
-        },
-        "quick": report.quick,
-        "seconds": round(report.seconds, 3),
-        "environment": _environment(),
-        "groups": GROUPS,
-        "cases": [r.to_json() for r in report.results],
-    }
-    path.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
-
-
-_SYMBOL = {"<=": "&le;", ">=": "&ge;"}
-
-_CSS = """
-body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:24px;color:#222;
-max-width:1400px}
-h1{margin:0 0 4px 0;font-size:24px} h2{margin:28px 0 8px 0;font-size:18px;border-bottom:1px solid #ccc}
-.summary{font-size:18px;padding:10px 14px;border-radius:6px;margin:10px 0}
-.summary.ok{background:#e5f5e0;border:1px solid #31a354}
-.summary.bad{background:#fde0dd;border:1px solid #d62728}
-.meta{color:#666;font-size:13px}
-table{border-collapse:collapse;width:100%;font-size:13px}
-th,td{border:1px solid #ddd;padding:4px 6px;vertical-align:top;text-align:left}
-th{background:#f3f3f3} td.num{text-align:right;font-family:ui-monospace,Menlo,Consolas,monospace;
-white-space:nowrap}
-.st{font-weight:bold;white-space:nowrap;padding:2px 6px;border-radius:4px;font-size:12px}
-.st-pass{background:#31a354;color:#fff}.st-fail{background:#d62728;color:#fff}
-.st-dev{background:#f0a30a;color:#222}.st-error{background:#67000d;color:#fff}
-.title{color:#444;max-width:360px}.figs{display:flex;flex-wrap:wrap;gap:14px;margin-top:12px}
-figure{margin:0;border:1px solid #ddd;padding:6px;background:#fff;display:table}
-figure img{display:block;max-width:calc(100vw - 80px);height:auto}
-figcaption{display:table-caption;caption-side:bottom;font-size:12px;color:#444;padding:4px 6px}
-"""
-
-
-def write_html(report: ValidationReport, path: Path) -> None:
-    """Write the self-contained ``index.html`` (figures inline as base64 PNG)."""
-    esc = html.escape
-    env = _environment()
-    parts = [
-        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
-        "<title>sawdrift validation</title>",
-        f"<style>{_CSS}</style></head><body>",
-        "<h1>sawdrift validation report</h1>",
-        f"<div class='meta'>sawdrift {esc(env['sawdrift'])}, Python {esc(env['python'])}, "
-        f"numpy {esc(env['numpy'])}, numba {esc(env['numba'])}; {esc(env['date'])}; "
-        f"{'quick subset' if report.quick else 'full run'}; mu = {MU}, nu = {NU} unless stated. "
-        "Oracles: docs/physics.md.</div>",
-        f"<div class='summary {'ok' if report.passed else 'bad'}'><b>{esc(report.summary())}</b></div>",
-    ]
-    groups = list(GROUPS) + sorted({r.group for r in report.results} - set(GROUPS))
-    for group in groups:
-        rows = [r for r in report.results if r.group == group]
-        if not rows:
-            continue
-        parts.append(f"<h2>{esc(GROUPS.get(group, group))}</h2>")
-        parts.append("<table><tr><th>case</th><th>fact checked</th><th>model</th><th>status</th>"
-                     "<th>value</th><th>tolerance</th><th>message</th><th>s</th></tr>")
-        for k, r in enumerate(rows):
-            cls, label = {
-                "pass": ("st-pass", "PASS"),
-                "fail": ("st-fail", "FAIL"),
-                "expected deviation": ("st-dev", "expected deviation"),
-                "error": ("st-error", "ERROR"),
-            }[r.status or "error"]
-            first = k == 0 or rows[k - 1].case != r.case
-            span = sum(1 for x in rows if x.case == r.case)
-            shared_cells = f"<td rowspan='{span}'><b>{esc(r.case)}</b></td>" if first else ""
-            title_cell = f"<td class='title' rowspan='{span}'>{esc(r.title)}</td>" if first else ""
-            parts.append(
-                f"<tr>{shared_cells}{title_cell}<td>{esc(r.model or '')}</td>"
-                f"<td><span class='st {cls}'>{label}</span></td>"
-                f"<td class='num'>{esc(_fmt(r.value))}</td>"
-                f"<td class='num'>{_SYMBOL[r.compare]} {esc(_fmt(r.tolerance))}</td>"
-                f"<td>{esc(r.message)}</td><td class='num'>{r.seconds:.2f}</td></tr>"
-            )
-        parts.append("</table>")
-        figs = [r for r in rows if isinstance(r.figure, bytes)]
-        if figs:
-            parts.append("<div class='figs'>")
-            for r in figs:
-                b64 = base64.b64encode(r.figure).decode("ascii")
-                parts.append(
-                    f"<figure><img alt='{esc(r.name)}' src='data:image/png;base64,{b64}'>"
-                    f"<figcaption><b>{esc(r.name)}</b>: {esc(r.status)}</figcaption></figure>"
-                )
-            parts.append("</div>")
-    parts.append("</body></html>")
-    path.write_text("\n".join(parts))
-
-
 # -- small helpers -----------------------------------------------------------------------------
 
 
@@ -788,6 +536,26 @@ def _environment() -> dict[str, str]:
         "date": datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
     }
 
+
+# the case files' helpers and the report writers live in their own modules; re-exported here so
+# that a case file needs one import
+from .validation_cases import (  # noqa: E402, F401
+    DIAGRAM_GRID,
+    amplitude_for_force_ratio,
+    cattaneo_mindlin,
+    clear_shared,
+    heavy_sliding_v,
+    loop_area,
+    masing_unloading,
+    mindlin_loop,
+    point_prediction,
+    point_scene,
+    prescribed,
+    regime_class,
+    regime_table,
+    shared,
+)
+from .validation_html import _write_figures, figure_png, write_html, write_json  # noqa: E402, F401
 
 __all__ = [
     "COMPLIANT_MODELS",

@@ -1,0 +1,145 @@
+"""Writers of the validation report: figures, results.json and the HTML page."""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import json
+from pathlib import Path
+from typing import Any
+
+from .validation import GROUPS, MU, NU, ValidationReport, _environment, _fmt, _one_line
+
+# -- report writers ----------------------------------------------------------------------------
+
+
+def _write_figures(report: ValidationReport) -> None:
+    fig_dir = report.out / "figures"
+    for res in report.results:
+        if res.figure is None:
+            continue
+        try:
+            png = figure_png(res.figure)
+        except Exception as exc:  # noqa: BLE001 - a broken figure must not lose the report
+            res.message += f" (figure failed: {_one_line(exc)})"
+            res.figure = None
+            continue
+        fig_dir.mkdir(exist_ok=True)
+        slug = "".join(c if c.isalnum() or c in "-_" else "_" for c in res.name)
+        (fig_dir / f"{slug}.png").write_bytes(png)
+        res.figure = png
+        res.figure_file = f"figures/{slug}.png"
+
+
+def figure_png(figure: Any, dpi: int = 96) -> bytes:
+    """PNG bytes of a matplotlib figure (closed afterwards) or of PNG bytes as given."""
+    if isinstance(figure, bytes | bytearray):
+        return bytes(figure)
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    figure.savefig(buf, format="png", dpi=dpi)
+    plt.close(figure)
+    return buf.getvalue()
+
+
+def write_json(report: ValidationReport, path: Path) -> None:
+    """Write ``results.json``: summary, environment and one record per result."""
+    data = {
+        "passed": report.passed,
+        "summary": report.summary(),
+        "counts": {
+            "passed": report.count("pass"),
+            "failed": report.count("fail") + report.count("error"),
+            "errors": report.count("error"),
+            "expected_deviations": report.count("expected deviation"),
+            "total": len(report.results),
+        },
+        "quick": report.quick,
+        "seconds": round(report.seconds, 3),
+        "environment": _environment(),
+        "groups": GROUPS,
+        "cases": [r.to_json() for r in report.results],
+    }
+    path.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
+
+
+_SYMBOL = {"<=": "&le;", ">=": "&ge;"}
+
+_CSS = """
+body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:24px;color:#222;
+max-width:1400px}
+h1{margin:0 0 4px 0;font-size:24px} h2{margin:28px 0 8px 0;font-size:18px;border-bottom:1px solid #ccc}
+.summary{font-size:18px;padding:10px 14px;border-radius:6px;margin:10px 0}
+.summary.ok{background:#e5f5e0;border:1px solid #31a354}
+.summary.bad{background:#fde0dd;border:1px solid #d62728}
+.meta{color:#666;font-size:13px}
+table{border-collapse:collapse;width:100%;font-size:13px}
+th,td{border:1px solid #ddd;padding:4px 6px;vertical-align:top;text-align:left}
+th{background:#f3f3f3} td.num{text-align:right;font-family:ui-monospace,Menlo,Consolas,monospace;
+white-space:nowrap}
+.st{font-weight:bold;white-space:nowrap;padding:2px 6px;border-radius:4px;font-size:12px}
+.st-pass{background:#31a354;color:#fff}.st-fail{background:#d62728;color:#fff}
+.st-dev{background:#f0a30a;color:#222}.st-error{background:#67000d;color:#fff}
+.title{color:#444;max-width:360px}.figs{display:flex;flex-wrap:wrap;gap:14px;margin-top:12px}
+figure{margin:0;border:1px solid #ddd;padding:6px;background:#fff;display:table}
+figure img{display:block;max-width:calc(100vw - 80px);height:auto}
+figcaption{display:table-caption;caption-side:bottom;font-size:12px;color:#444;padding:4px 6px}
+"""
+
+
+def write_html(report: ValidationReport, path: Path) -> None:
+    """Write the self-contained ``index.html`` (figures inline as base64 PNG)."""
+    esc = html.escape
+    env = _environment()
+    parts = [
+        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
+        "<title>sawdrift validation</title>",
+        f"<style>{_CSS}</style></head><body>",
+        "<h1>sawdrift validation report</h1>",
+        f"<div class='meta'>sawdrift {esc(env['sawdrift'])}, Python {esc(env['python'])}, "
+        f"numpy {esc(env['numpy'])}, numba {esc(env['numba'])}; {esc(env['date'])}; "
+        f"{'quick subset' if report.quick else 'full run'}; mu = {MU}, nu = {NU} unless stated. "
+        "Oracles: docs/physics.md.</div>",
+        f"<div class='summary {'ok' if report.passed else 'bad'}'><b>{esc(report.summary())}</b></div>",
+    ]
+    groups = list(GROUPS) + sorted({r.group for r in report.results} - set(GROUPS))
+    for group in groups:
+        rows = [r for r in report.results if r.group == group]
+        if not rows:
+            continue
+        parts.append(f"<h2>{esc(GROUPS.get(group, group))}</h2>")
+        parts.append("<table><tr><th>case</th><th>fact checked</th><th>model</th><th>status</th>"
+                     "<th>value</th><th>tolerance</th><th>message</th><th>s</th></tr>")
+        for k, r in enumerate(rows):
+            cls, label = {
+                "pass": ("st-pass", "PASS"),
+                "fail": ("st-fail", "FAIL"),
+                "expected deviation": ("st-dev", "expected deviation"),
+                "error": ("st-error", "ERROR"),
+            }[r.status or "error"]
+            first = k == 0 or rows[k - 1].case != r.case
+            span = sum(1 for x in rows if x.case == r.case)
+            shared_cells = f"<td rowspan='{span}'><b>{esc(r.case)}</b></td>" if first else ""
+            title_cell = f"<td class='title' rowspan='{span}'>{esc(r.title)}</td>" if first else ""
+            parts.append(
+                f"<tr>{shared_cells}{title_cell}<td>{esc(r.model or '')}</td>"
+                f"<td><span class='st {cls}'>{label}</span></td>"
+                f"<td class='num'>{esc(_fmt(r.value))}</td>"
+                f"<td class='num'>{_SYMBOL[r.compare]} {esc(_fmt(r.tolerance))}</td>"
+                f"<td>{esc(r.message)}</td><td class='num'>{r.seconds:.2f}</td></tr>"
+            )
+        parts.append("</table>")
+        figs = [r for r in rows if isinstance(r.figure, bytes)]
+        if figs:
+            parts.append("<div class='figs'>")
+            for r in figs:
+                b64 = base64.b64encode(r.figure).decode("ascii")
+                parts.append(
+                    f"<figure><img alt='{esc(r.name)}' src='data:image/png;base64,{b64}'>"
+                    f"<figcaption><b>{esc(r.name)}</b>: {esc(r.status)}</figcaption></figure>"
+                )
+            parts.append("</div>")
+    parts.append("</body></html>")
+    path.write_text("\n".join(parts))
