@@ -390,39 +390,11 @@ def demo_cmd(
     The grid is the paper's Fig. 3 plane, m* in [1e-3, 1e2] and A* in [1e-2, 10], at mu = 0.1,
     nu = 0.3; the figures and the table go to OUT.
     """
-    from .report.diagrams import plot_compare, plot_phase_diagram
+    from .report.demo import demo
 
     if n < 2:
         _fail(f"--n = {n} must be at least 2 (grid points per axis)")
-    out.mkdir(parents=True, exist_ok=True)
-    scene = sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
-    result = sd.run(scene, trajectory=True)
-    sd.plot_trajectory(result, out / "default_scene.png")
-    scene.to_toml(out / "default_scene.toml")
-    typer.echo(f"default scene (mmd, m* = 0.1, A* = 0.316): {result.regime}, "
-               f"drift ratio {result.drift_ratio:.4f}; wrote {out / 'default_scene.png'}")
-    table = out / "phase_table.parquet"
-    frame = sd.sweep(["material_point", "mmd"], f"1e-3:1e2:{n}", f"1e-2:10:{n}",
-                     base=sd.Scene(numerics={"periods": 40}), table=table, workers=workers)
-    for name in ("material_point", "mmd"):
-        plot_phase_diagram(frame, out / f"phase_{name}.png", name)
-    path, md = plot_compare(frame, ["material_point", "mmd"], out / "compare.png")
-    typer.echo(md)
-    typer.echo(f"wrote {table}, phase_material_point.png, phase_mmd.png, {path.name} in {out}")
-    from .report.fig2 import plot_fig2
-
-    fig2 = plot_fig2(out / "fig2_regimes.png")
-    typer.echo(f"wrote {fig2.name}: the four regimes' trajectories (the paper's Fig. 2)")
-    # rolling: the same plane with the sphere free to turn (kappa = 2/5), side by side
-    rot_table = out / "rotation_table.parquet"
-    m_rot = max(2, (n + 1) // 2)
-    rot = sd.sweep(["material_point", "mmd"], f"1e-3:1e2:{m_rot}", f"1e-2:10:{m_rot}",
-                   axes={"effects.rotation": "false,true"}, base=sd.Scene(numerics={"periods": 40}),
-                   table=rot_table, workers=workers)
-    rpath, rmd = plot_compare(rot, ["material_point", "mmd"], out / "rotation_compare.png",
-                              by="effects.rotation")
-    typer.echo(rmd)
-    typer.echo(f"wrote {rot_table.name}, {rpath.name}: rotation off and on, side by side")
+    demo(out, n, workers, echo=typer.echo)
 
 
 @app.command("validate")

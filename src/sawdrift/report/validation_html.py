@@ -9,7 +9,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from .validation import GROUPS, MU, NU, ValidationReport, _environment, _fmt, _one_line
+from .validation_api import GROUPS, MU, NU, ValidationReport, _environment, _fmt, _one_line
 
 # -- report writers ----------------------------------------------------------------------------
 

@@ -1,0 +1,344 @@
+"""The validation case API: a case declares one fact (Case) and returns its result (CaseResult)."""
+
+from __future__ import annotations
+
+import math
+import platform
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+
+#: Case groups, in report order: key -> heading.
+GROUPS: dict[str, str] = {
+    "material_point": "1. Material point against the analytic results",
+    "mindlin": "2. Cattaneo-Mindlin, Masing, loop area and proportional loading, every compliant model",
+    "convergence": "3. Numerical cross-checks: mdr to mmd, kernels against references, Rayleigh ratio",
+    "diagrams": "4. Regime diagrams and the paper's statements",
+    "point_mass": "5. The later paper's point-mass claim",
+    "device": "6. Physical units: conversion, orbit mirror, dimensional consistency",
+    "conformance": "7. Conformance of every installed model: passivity, Coulomb bound, kernels",
+    "rotation": "8. Rotation: a finite sphere that can roll",
+}
+
+#: The compliant models the oracle cases run for by default.
+COMPLIANT_MODELS: tuple[str, ...] = ("mmd", "mdr", "jaeger", "hertz_mindlin_dem")
+
+#: The models drawn in the regime diagrams.
+DIAGRAM_MODELS: tuple[str, ...] = ("material_point", *COMPLIANT_MODELS)
+
+#: Friction coefficient and Poisson's ratio of the paper's figures (docs/physics.md).
+MU = 0.1
+NU = 0.3
+
+Status = Literal["pass", "fail", "expected deviation", "error"]
+Compare = Literal["<=", ">="]
+
+
+def default_cases_dir() -> Path:
+    """The ``validation/`` folder at the repository root (next to ``src/``)."""
+    import sawdrift
+
+    return Path(sawdrift.__file__).resolve().parents[2] / "validation"
+
+# -- the case API ------------------------------------------------------------------------------
+
+
+@dataclass
+class CaseResult:
+    """The outcome of one case (for one model).
+
+    A case's ``run`` fills the measured part (normally through :meth:`Case.result`); the harness
+    fills the identity and the status.
+
+    Attributes
+    ----------
+    value
+        The measured metric (an error, a count, a ratio), NaN if it could not be measured.
+    tolerance
+        The bound the value is compared with.
+    passed
+        True if the fact holds: ``value`` within ``tolerance`` and every side condition met.
+    message
+        One or two sentences: what was measured, the numbers behind the value.
+    figure
+        Optional matplotlib ``Figure`` or PNG bytes (the harness converts and closes it).
+    compare
+        ``"<="`` (pass if value <= tolerance) or ``">="``.
+    details
+        Extra JSON-ready numbers written to ``results.json``.
+    case, group, title, model
+        Identity of the case (filled by the harness).
+    status
+        ``"pass"``, ``"fail"``, ``"expected deviation"`` or ``"error"`` (filled by the harness).
+    expected_deviation
+        True if the model is marked as not exact by design for this case.
+    seconds
+        Wall time of the case.
+    figure_file
+        Path of the written PNG relative to the report folder, if any.
+    """
+
+    value: float
+    tolerance: float
+    passed: bool
+    message: str = ""
+    figure: Any = field(default=None, repr=False)
+    compare: Compare = "<="
+    details: dict[str, Any] = field(default_factory=dict)
+    case: str = ""
+    group: str = ""
+    title: str = ""
+    model: str | None = None
+    status: Status | Literal[""] = ""
+    expected_deviation: bool = False
+    seconds: float = 0.0
+    figure_file: str | None = None
+
+    @property
+    def name(self) -> str:
+        """``case[model]`` for a model-parametrized case, else ``case``."""
+        return f"{self.case}[{self.model}]" if self.model else self.case
+
+    @property
+    def failed(self) -> bool:
+        """True if this result counts as a failure (``fail`` or ``error``)."""
+        return self.status in ("fail", "error")
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-ready summary (non-finite numbers become None)."""
+        return {
+            "name": self.name,
+            "case": self.case,
+            "group": self.group,
+            "title": self.title,
+            "model": self.model,
+            "status": self.status,
+            "passed": self.passed,
+            "expected_deviation": self.expected_deviation,
+            "value": _finite(self.value),
+            "compare": self.compare,
+            "tolerance": _finite(self.tolerance),
+            "message": self.message,
+            "seconds": round(self.seconds, 4),
+            "figure": self.figure_file,
+            "details": _jsonable(self.details),
+        }
+
+
+@dataclass(frozen=True)
+class Case:
+    """Declaration of one validation case (the ``CASE`` of a case file).
+
+    Parameters
+    ----------
+    name
+        Short identifier, unique in the cases folder (e.g. ``"cm_monotonic"``).
+    group
+        One of :data:`GROUPS` (unknown groups are reported last).
+    title
+        The fact asserted, in one sentence, with its oracle.
+    tolerance
+        Bound on the case's value; see ``compare``.
+    quick
+        True if the case belongs to the ``--quick`` subset (CI).
+    models
+        Run once per model name, calling ``run(model=...)``; empty for a model-free case.
+    model_tolerance
+        Per-model tolerances overriding ``tolerance`` (e.g. a discretized model).
+    expected_deviation
+        True, or the model names, for which the fact does not hold by design: a miss is reported
+        as an expected deviation with its value, not as a failure.
+    compare
+        ``"<="``: pass if value <= tolerance; ``">="``: pass if value >= tolerance.
+    """
+
+    name: str
+    group: str
+    title: str
+    tolerance: float
+    quick: bool = False
+    models: tuple[str, ...] = ()
+    model_tolerance: Mapping[str, float] = field(default_factory=dict)
+    expected_deviation: bool | tuple[str, ...] = False
+    compare: Compare = "<="
+
+    def tolerance_for(self, model: str | None) -> float:
+        """The tolerance that applies to ``model``."""
+        if model is not None and model in self.model_tolerance:
+            return float(self.model_tolerance[model])
+        return float(self.tolerance)
+
+    def deviation_expected(self, model: str | None) -> bool:
+        """True if ``model`` is marked as not exact by design for this case."""
+        if isinstance(self.expected_deviation, bool):
+            return self.expected_deviation
+        return model is not None and model in self.expected_deviation
+
+    def within(self, value: float, model: str | None = None) -> bool:
+        """True if ``value`` satisfies the tolerance for ``model`` (NaN never does)."""
+        tol = self.tolerance_for(model)
+        if math.isnan(value):
+            return False
+        return value <= tol if self.compare == "<=" else value >= tol
+
+    def result(
+        self,
+        value: float,
+        *,
+        model: str | None = None,
+        message: str = "",
+        figure: Any = None,
+        require: bool = True,
+        details: Mapping[str, Any] | None = None,
+    ) -> CaseResult:
+        """Build the :class:`CaseResult`: passed = value within tolerance and ``require``.
+
+        Parameters
+        ----------
+        value
+            The measured metric.
+        model
+            The model this result is for (selects the tolerance).
+        message
+            What was measured.
+        figure
+            Optional matplotlib figure or PNG bytes.
+        require
+            Side conditions of the fact (all must hold), e.g. "contact is kept at Gz = 0.98".
+        details
+            Extra numbers for ``results.json``.
+        """
+        value = float(value)
+        return CaseResult(
+            value=value,
+            tolerance=self.tolerance_for(model),
+            passed=bool(require) and self.within(value, model),
+            message=message,
+            figure=figure,
+            compare=self.compare,
+            details=dict(details or {}),
+        )
+
+
+@dataclass
+class LoadedCase:
+    """A case file after import: its declaration and its run function (or the import error)."""
+
+    path: Path
+    case: Case
+    run: Callable[..., CaseResult] | None
+    error: str | None = None
+
+
+@dataclass
+class ValidationReport:
+    """All results of one :func:`validate` call.
+
+    Attributes
+    ----------
+    results
+        One :class:`CaseResult` per (case, model), in report order.
+    out
+        The report folder.
+    quick
+        True for the ``--quick`` subset.
+    seconds
+        Total wall time.
+    """
+
+    results: list[CaseResult] = field(repr=False)
+    out: Path
+    quick: bool
+    seconds: float
+
+    @property
+    def passed(self) -> bool:
+        """True if at least one case ran and none failed or errored (expected deviations do not count)."""
+        return bool(self.results) and not any(r.failed for r in self.results)
+
+    def count(self, status: Status) -> int:
+        """Number of results with ``status``."""
+        return sum(r.status == status for r in self.results)
+
+    def get(self, name: str) -> CaseResult:
+        """The result called ``name`` (``case`` or ``case[model]``)."""
+        for r in self.results:
+            if r.name == name:
+                return r
+        raise KeyError(name)
+
+    def summary(self) -> str:
+        """One line: N passed, M failed, K expected deviations (and errors among the failures)."""
+        n_err = self.count("error")
+        failed = self.count("fail") + n_err
+        text = (
+            f"{'PASS' if self.passed else 'FAIL'}: {self.count('pass')} passed, {failed} failed, "
+            f"{self.count('expected deviation')} expected deviations"
+        )
+        if n_err:
+            text += f" ({n_err} errors counted as failed)"
+        return text + f", {self.seconds:.1f} s" + (" (quick)" if self.quick else "")
+
+    def summary_line(self) -> str:
+        """Same as :meth:`summary` (the line the CLI prints)."""
+        return self.summary()
+
+    def __str__(self) -> str:
+        return self.summary()
+
+
+# -- small helpers -----------------------------------------------------------------------------
+
+
+def _fmt(value: float) -> str:
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "n/a"
+    if value == 0:
+        return "0"
+    if isinstance(value, int) or (float(value).is_integer() and abs(value) < 1e6):
+        return f"{int(value)}"
+    return f"{value:.3g}"
+
+
+def _finite(value: float) -> float | None:
+    return float(value) if value is not None and math.isfinite(value) else None
+
+
+def _jsonable(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return _jsonable(obj.tolist())
+    if isinstance(obj, np.generic):
+        obj = obj.item()
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, bool | int | str) or obj is None:
+        return obj
+    return str(obj)
+
+
+def _one_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return f"{type(exc).__name__}: {text[0] if text else ''}"
+
+
+def _environment() -> dict[str, str]:
+    import numba
+
+    import sawdrift
+
+    return {
+        "sawdrift": sawdrift.__version__,
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "numba": numba.__version__,
+        "platform": platform.platform(),
+        "date": datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"),
+    }
