@@ -114,3 +114,18 @@ def test_reset_equals_a_fresh_history(engine):
     n1, t1 = used.drive(a, b)
     n2, t2 = model.new_history(engine).drive(a, b)
     assert np.array_equal(n1, n2) and np.array_equal(t1, t2)
+
+
+def test_a_model_for_another_kernel_interface_is_skipped_with_a_warning(monkeypatch):
+    class Future(sd.ContactModel):
+        name = "future_model"
+        summary = "written for a later kernel protocol"
+        kernel_interface = 99
+
+    fresh = _with_entry_points(monkeypatch, [_FakeEntryPoint("future", "future-dist",
+                                                             lambda: _plugin(Future))])
+    with pytest.warns(PluginWarning, match="kernel interface 99"):
+        names = fresh.names()
+    assert "future_model" not in names and "mmd" in names
+    with pytest.raises(sd.ModelNotFoundError, match="unavailable: model 'future_model' is written"):
+        fresh.get("future_model")

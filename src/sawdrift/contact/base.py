@@ -38,6 +38,11 @@ from pydantic import BaseModel, ConfigDict
 
 from ..scene.profiles import Profile
 
+#: Version of the kernel protocol (the signatures and the trial/commit rule in the module
+#: docstring). A change that breaks compiled plugins raises it; models declare the version they
+#: were written for in ``ContactModel.kernel_interface``.
+KERNEL_INTERFACE = 1
+
 
 class NoParams(BaseModel):
     """Parameter schema of a model that takes none."""
@@ -151,6 +156,9 @@ class ContactModel:
     Params: ClassVar[type[BaseModel]] = NoParams
     capabilities: ClassVar[Capabilities] = Capabilities()
     kernel: ClassVar[KernelPair | None] = None
+    #: The kernel protocol version the model was written for (see :data:`KERNEL_INTERFACE`);
+    #: the registry refuses a model written for another one, with a warning naming it.
+    kernel_interface: ClassVar[int] = 1
 
     def __init__(self, params: BaseModel | None = None, profile: Profile | None = None) -> None:
         self.params = params if params is not None else self.Params()

@@ -14,7 +14,7 @@ import pluggy
 
 from .. import hookspecs
 from ..errors import ModelNotFoundError, PluginError
-from .base import ContactModel
+from .base import KERNEL_INTERFACE, ContactModel
 
 ENTRY_POINT_GROUP = "sawdrift.models"
 
@@ -67,6 +67,14 @@ class Registry:
                         f"plugin {ep.name!r} from {dist!r} returned {cls!r}, "
                         "which is not a named ContactModel subclass"
                     )
+                version = getattr(cls, "kernel_interface", None)
+                if version != KERNEL_INTERFACE:
+                    msg = (f"model {name!r} is written for kernel interface {version!r}; this "
+                           f"sawdrift has {KERNEL_INTERFACE}")
+                    self.failed[name] = msg
+                    warnings.warn(f"sawdrift plugin {ep.name!r} from distribution {dist!r}: {msg}; "
+                                  "it is skipped", PluginWarning, stacklevel=3)
+                    continue
                 entry = ModelEntry(cls, dist, ep.name)
                 if name in clashes:
                     clashes[name].append(entry)
