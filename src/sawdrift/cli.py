@@ -280,20 +280,15 @@ def sweep_cmd(
         axes[field.strip()] = spec.strip()
     if not axes and m_star is None and amplitude is None:
         m_star, amplitude = "1e-3:1e2:11", "1e-2:10:11"
-    base = scene_from_options(
-        scene_file, model=None, mu=mu, nu=nu, horizontal_ratio=horizontal_ratio,
-        periods=periods, steps_per_period=steps_per_period, order=order, profile=profile,
-        params=_parse_param(param), settle=True if settle else None,
-    )
-    models = [m.strip() for m in model.split(",") if m.strip()] if model else [base.model]
-    for name in models:
+    named = [m.strip() for m in model.split(",") if m.strip()] if model else []
+    for name in named:
         sd.get_model(name)
-    if models[0] != base.model:
-        base = scene_from_options(
-            scene_file, model=models[0], mu=mu, nu=nu, horizontal_ratio=horizontal_ratio,
-            periods=periods, steps_per_period=steps_per_period, order=order, profile=profile,
-            params=_parse_param(param), settle=True if settle else None,
-        )
+    base = scene_from_options(
+        scene_file, model=named[0] if named else None, mu=mu, nu=nu,
+        horizontal_ratio=horizontal_ratio, periods=periods, steps_per_period=steps_per_period,
+        order=order, profile=profile, params=_parse_param(param), settle=True if settle else None,
+    )
+    models = named or [base.model]
     if adaptive:
         from .study.adaptive import adaptive_sweep
 
