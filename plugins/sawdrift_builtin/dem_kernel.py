@@ -6,11 +6,11 @@ functions, imported on first use.
 
 from __future__ import annotations
 
-import math  # noqa: F401
+import math
 
 from numba import njit
 
-from .hertz_mindlin_dem import _A, _B, _T  # noqa: F401
+from .hertz_mindlin_dem import _A, _B, _T
 
 
 @njit(cache=True)

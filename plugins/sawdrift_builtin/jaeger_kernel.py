@@ -6,13 +6,13 @@ its numba functions, imported on first use.
 
 from __future__ import annotations
 
-import math  # noqa: F401
+import math
 
-import numpy as np  # noqa: F401
 from numba import njit
 
-from .jaeger import _A, _B, _DIR, _MEM, _N, _REF  # noqa: F401
-from .normal_law import normal as _nstar  # noqa: F401
+from sawdrift.contact.normal import power_law as _nstar
+
+from .jaeger import _A, _B, _DIR, _MEM, _N, _REF
 
 # --------------------------------------------------------------------------------------------
 # compiled kernel

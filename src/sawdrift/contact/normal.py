@@ -66,6 +66,15 @@ def _hermite(z: float, law, off: int, derivative: bool) -> float:
 
 
 @njit(**JIT_OPTIONS, inline="always")
+def power_law(z: float, p: float) -> float:
+    """N*(z) = z^p for z > 0, else 0: the power law with a scalar exponent."""
+    out = 0.0
+    if z > 0.0:
+        out = z**p
+    return out
+
+
+@njit(**JIT_OPTIONS, inline="always")
 def law_normal(z: float, law, off: int) -> float:
     """N*(z) of the descriptor ``law[off:]``; 0 for z <= 0."""
     out = 0.0

@@ -8,10 +8,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .bench import (  # noqa: F401 - the study configuration and helpers
+from .bench import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
-    T,
     fit_order,
 )
 

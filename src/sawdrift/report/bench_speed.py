@@ -18,7 +18,7 @@ import numpy as np
 from ..contact.registry import get_model
 from ..dynamics.runner import run
 from ..study.sweep import sweep
-from .bench import (  # noqa: F401 - the study configuration and helpers
+from .bench import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
     _history,

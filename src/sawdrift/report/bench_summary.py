@@ -11,11 +11,10 @@ import numpy as np
 import pandas as pd
 
 from ..scene.schema import Numerics
-from .bench import (  # noqa: F401 - the study configuration and helpers
+from .bench import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
     StudyConfig,
-    T,
     _is_rigid,
     _wave_scene,
     fit_order,

@@ -9,7 +9,7 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from .validation_api import DIAGRAM_MODELS, MU, NU  # noqa: F401
+from .validation_api import DIAGRAM_MODELS, MU, NU
 
 # -- values shared between cases of one run ----------------------------------------------------
 

@@ -31,9 +31,6 @@ VARIABLES = (
     "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s",
 )
 
-#: columns that identify a cell, never dimensions or variables
-_IDS = ("cell_id", "scene_id", "error", "version", "engine", "regime")
-
 #: regime codes: flag_values are 0..n-1 in the order of sawdrift.result.regimes.REGIMES
 REGIME_FLAGS = (*REGIMES, "error")
 

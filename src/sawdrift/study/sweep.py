@@ -401,14 +401,17 @@ def sweep(
         scenes = grid(names, None if m_star is None else parse_axis(m_star, "m_star"),
                       None if amplitude is None else parse_axis(amplitude, "amplitude"), base,
                       overrides, extra_axes)
-    # the swept fields' values of each cell, as the validated scene holds them (SI for devices)
-    columns = {cell_id(s): {f: get_dotted(s.model_dump(), f) for f in extra_axes} for s in scenes}
     path = Path(table) if table is not None else None
     done = read_rows(path) if path is not None else {}
     todo: list[str] = []
     wanted: set[str] = set()
+    # the swept fields' values of each cell, as the validated scene holds them (SI for devices)
+    columns: dict[str, dict[str, Any]] = {}
     for scene in scenes:
         cid = cell_id(scene)
+        if extra_axes:
+            dumped = scene.model_dump()
+            columns[cid] = {f: get_dotted(dumped, f) for f in extra_axes}
         if cid not in done and cid not in wanted:
             todo.append(scene.model_dump_json())
         wanted.add(cid)
