@@ -179,6 +179,9 @@ def run_cmd(
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
 ) -> None:
     """Run one scene and report its drift and motion regime."""
+    from ._startup import defer_unused_numpy_submodules
+
+    defer_unused_numpy_submodules()
     scene = scene_from_options(
         scene_file, model=model, m_star=m_star, amplitude=amplitude, mu=mu, nu=nu,
         horizontal_ratio=horizontal_ratio, periods=periods, steps_per_period=steps_per_period,
