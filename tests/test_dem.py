@@ -25,11 +25,8 @@ from hypothesis import strategies as st
 
 from sawdrift import ContactHistory, Profile, get_model
 from sawdrift.analytic import loop_area as mindlin_loop_area_sphere
-from sawdrift_builtin.hertz_mindlin_dem import (
-    HertzMindlinDEM,
-    HertzMindlinDEMParams,
-    HertzMindlinDEMReference,
-)
+from sawdrift.contact.slots import SlotReference
+from sawdrift_builtin.hertz_mindlin_dem import HertzMindlinDEM, HertzMindlinDEMParams
 from sawdrift_builtin.jaeger import Jaeger
 
 SPHERE = Profile()
@@ -273,6 +270,6 @@ def test_registered_and_schema() -> None:
     assert desc["parameters"]["rescale"]["description"]
     with pytest.raises(ValueError):
         HertzMindlinDEMParams(rescale=True, damping=1.0)  # type: ignore[call-arg]
-    np.testing.assert_array_equal(HertzMindlinDEM(params=RESCALE).packed_params(), [1.5, 1.0])
-    ref = HertzMindlinDEM(profile=CONE).reference()
-    assert isinstance(ref, HertzMindlinDEMReference) and ref.stiffness(2.0) == 4.0
+    # slots layout: [start of tp, start of dp, normal-law descriptor (p), tp (rescale flag)]
+    np.testing.assert_array_equal(HertzMindlinDEM(params=RESCALE).packed_params(), [3, 4, 1.5, 1.0])
+    assert isinstance(HertzMindlinDEM(profile=CONE).reference(), SlotReference)

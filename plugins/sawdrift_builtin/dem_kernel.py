@@ -1,7 +1,7 @@
-"""Compiled kernel of the ``hertz_mindlin_dem`` model (the DEM incremental Mindlin spring).
+"""Compiled tangential step of the ``hertz_mindlin_dem`` law (the DEM incremental Mindlin spring).
 
-The law is described in :mod:`sawdrift_builtin.hertz_mindlin_dem`; this module holds its numba
-functions, imported on first use.
+The law is described in :mod:`sawdrift_builtin.hertz_mindlin_dem`; the framework's slots
+(:mod:`sawdrift.contact.slots`) own contact entry, loss and the normal force. Imported on first use.
 """
 
 from __future__ import annotations
@@ -10,64 +10,40 @@ import math
 
 from numba import njit
 
-from .hertz_mindlin_dem import _A, _B, _T
+from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
 
 
-@njit(cache=True)
-def _secant_slope(a0: float, a1: float, p: float) -> float:
-    """[N*(a1) - N*(a0)] / (a1 - a0) without cancellation (both a > 0; N*'(a) when equal)."""
+@njit(**JIT_OPTIONS)
+def secant_slope(law, a0: float, a1: float) -> float:
+    """[N*(a1) - N*(a0)] / (a1 - a0) along the path (N*'(a0) when equal; a0 >= 0, a1 > 0).
+
+    For a power law the difference is formed without cancellation (expm1/log1p).
+    """
     h = a1 - a0
     if h == 0.0:
-        return p * a0 ** (p - 1.0)
-    return a0**p * math.expm1(p * math.log1p(h / a0)) / h
-
-
-@njit(cache=True)
-def dem_tangential_update(
-    t0: float, a0: float, b0: float, a1: float, b1: float, p: float, rescale: bool
-) -> float:
-    """T* at the end of the straight path (a0, b0) -> (a1, b1), both a > 0, from T* = t0."""
-    n1 = a1**p
-    if rescale and a1 < a0 and p != 1.0:
-        k0 = p * a0 ** (p - 1.0)
-        k1 = p * a1 ** (p - 1.0)
-        t = t0 * (k1 / k0) + k1 * (b1 - b0)
-    else:
-        t = t0 + (b1 - b0) * _secant_slope(a0, a1, p)
-    if t > n1:
-        return n1
-    if t < -n1:
-        return -n1
-    return t
-
-
-@njit(cache=True)
-def dem_reset(fs, is_, pp) -> None:
-    """Empty history, out of contact at (a*, b*) = (0, 0)."""
-    fs[:] = 0.0
-
-
-@njit(cache=True)
-def dem_force(fs, is_, pp, a: float, b: float, adot: float, bdot: float):
-    """Advance along the straight path from the committed (a*, b*) to (a, b), commit, (N*, T*)."""
-    p = pp[0]
-    rescale = pp[1] != 0.0
-    a0 = fs[_A]
-    b0 = fs[_B]
-    t0 = fs[_T]
-    fs[_A] = a
-    fs[_B] = b
-    if a <= 0.0:
-        fs[_T] = 0.0
-        return 0.0, 0.0
-    n1 = a**p
+        return law_slope(a0, law, 0)
     if a0 <= 0.0:
-        # enters contact at a* = 0 with T* = 0; integral k_t db* = lambda N*(a) with lambda = db/da
-        t = (b - b0) / (a - a0) * n1
-        t = min(max(t, -n1), n1)
+        return law_normal(a1, law, 0) / a1
+    p = law[0]
+    if p > 0.0:
+        return a0**p * math.expm1(p * math.log1p(h / a0)) / h
+    return (law_normal(a1, law, 0) - law_normal(a0, law, 0)) / h
+
+
+@njit(**JIT_OPTIONS)
+def dem_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float) -> float:
+    """T* at the end of the straight path (a0, b0) -> (a, b) from the stored T* = ts[0]."""
+    n = law_normal(a, law, 0)
+    if tp[0] != 0.0 and 0.0 < a < a0:
+        # mindlin_rescale: the stored force shrinks with the stiffness
+        k0 = law_slope(a0, law, 0)
+        k1 = law_slope(a, law, 0)
+        t = ts[0] * (k1 / k0) + k1 * (b - b0)
     else:
-        t = dem_tangential_update(t0, a0, b0, a, b, p, rescale)
-    fs[_T] = t
-    return n1, t
-
-
+        t = ts[0] + (b - b0) * secant_slope(law, a0, a)
+    if t > n:
+        t = n
+    elif t < -n:
+        t = -n
+    ts[0] = t
+    return t

@@ -47,11 +47,9 @@ from typing import ClassVar
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
 
-from sawdrift.contact import Capabilities, ContactModel, KernelPair
+from sawdrift.contact import Capabilities
+from sawdrift.contact.slots import LazyFunction, TangentialLaw
 from sawdrift.hookspecs import hookimpl
-
-# float state layout: committed a*, committed b*, stored tangential force T*
-_A, _B, _T = 0, 1, 2
 
 
 class HertzMindlinDEMParams(BaseModel):
@@ -69,59 +67,38 @@ class HertzMindlinDEMParams(BaseModel):
     )
 
 
-class HertzMindlinDEMReference:
-    """Pure-Python DEM Hertz-Mindlin contact (incremental spring, Coulomb cap, optional rescale).
+def reference_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float) -> float:
+    """Readable pure-Python tangential step (power laws; the python engine's reference).
 
-    Parameters
-    ----------
-    p
-        Exponent of the normal law N*(a*) = a*^p.
-    rescale
-        Scale the stored force by N*'(a_new)/N*'(a_old) when a* decreases.
+    ``law[0]`` is the exponent p of N* = a*^p, ``tp[0]`` the rescale flag.
     """
+    p = float(law[0])
 
-    def __init__(self, p: float, rescale: bool = False) -> None:
-        self.p = p
-        self.rescale = rescale
-        self.reset()
+    def stiffness(x: float) -> float:  # Mindlin's initial stiffness k_t = N*'(a*)
+        return p * x ** (p - 1.0)
 
-    def reset(self) -> None:
-        """Forget all history: out of contact at (a*, b*) = (0, 0)."""
-        self.a = 0.0
-        self.b = 0.0
-        self.t = 0.0
-
-    def stiffness(self, a: float) -> float:
-        """Mindlin's initial tangential stiffness k_t = N*'(a*) = p a*^(p-1)."""
-        return self.p * a ** (self.p - 1.0)
-
-    def force(
-        self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0
-    ) -> tuple[float, float]:
-        """Advance along a straight path to (a*, b*), commit, and return (N*, T*)."""
-        a, b = float(a), float(b)
-        a0, b0, t0 = self.a, self.b, self.t
-        self.a, self.b = a, b
-        if a <= 0.0:
-            self.t = 0.0
-            return 0.0, 0.0
-        n = a**self.p
-        if a0 <= 0.0:
-            t = (b - b0) / (a - a0) * n
-        elif self.rescale and a < a0:
-            k0, k1 = self.stiffness(a0), self.stiffness(a)
-            t = t0 * k1 / k0 + k1 * (b - b0)
-        elif a == a0:
-            t = t0 + self.stiffness(a) * (b - b0)
-        else:
-            # integral of N*'(a) db along the line: (db/da) [N*(a) - N*(a0)], free of cancellation
-            h = a - a0
-            t = t0 + (b - b0) * a0**self.p * math.expm1(self.p * math.log1p(h / a0)) / h
-        self.t = min(max(t, -n), n)
-        return n, self.t
+    n = a**p
+    if tp[0] != 0.0 and a < a0:
+        t = ts[0] * stiffness(a) / stiffness(a0) + stiffness(a) * (b - b0)
+    elif a == a0:
+        t = ts[0] + stiffness(a) * (b - b0)
+    elif a0 <= 0.0:
+        # a new contact: integral of N*'(a) db along the line from a* = 0 is (db/da) N*(a)
+        t = (b - b0) / a * n
+    else:
+        # integral of N*'(a) db along the line: (db/da) [N*(a) - N*(a0)], free of cancellation
+        h = a - a0
+        t = ts[0] + (b - b0) * a0**p * math.expm1(p * math.log1p(h / a0)) / h
+    ts[0] = min(max(t, -n), n)
+    return ts[0]
 
 
-class HertzMindlinDEM(ContactModel):
+def reference_reset(ts, is_, law, tp) -> None:
+    """Empty history: no stored force."""
+    ts[:] = 0.0
+
+
+class HertzMindlinDEM(TangentialLaw):
     """Incremental Hertz-Mindlin spring with a Coulomb cap, as in DEM codes (module docstring).
 
     Mindlin (1949) initial stiffness, no partial slip; compare with Mindlin & Deresiewicz (1953).
@@ -134,9 +111,10 @@ class HertzMindlinDEM(ContactModel):
     )
     Params: ClassVar[type[BaseModel]] = HertzMindlinDEMParams
     capabilities: ClassVar[Capabilities] = Capabilities(
-        rigid=False, compiled=True, history=True, uses_velocity=False, straight_path_exact=True
+        rigid=False, compiled=True, history=True, uses_velocity=False, straight_path_exact=True,
+        profiles=("sphere", "cone", "flat", "power", "table"),
     )
-    kernel: ClassVar[KernelPair] = KernelPair.lazy("sawdrift_builtin.dem_kernel", "dem_reset", "dem_force")
+    step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.dem_kernel", "dem_step")
 
     def declared_deviations(self) -> tuple[tuple[str, str], ...]:
         """Without rescaling the spring keeps its force while a* falls: not passive."""
@@ -146,29 +124,22 @@ class HertzMindlinDEM(ContactModel):
                  "while a* falls, so closed (a*, b*) cycles can create energy; rescale = true "
                  "(the default) is passive"),)
 
-    def state_sizes(self) -> tuple[int, int]:
-        """Float state: a*, b*, T*; no integer state (one unused slot)."""
-        return 3, 1
+    def tangential_sizes(self) -> tuple[int, int]:
+        """Float state: the stored T*; no integer state."""
+        return 1, 0
 
-    def packed_params(self) -> np.ndarray:
-        """[p, rescale (0 or 1)]."""
-        return np.array([self.profile.p, 1.0 if self.params.rescale else 0.0], dtype=np.float64)
+    def tangential_params(self) -> np.ndarray:
+        """[rescale (0 or 1)]."""
+        return np.array([1.0 if self.params.rescale else 0.0], dtype=np.float64)
 
-    def reference(self) -> HertzMindlinDEMReference:
-        """A fresh pure-Python reference contact (empty history)."""
-        return HertzMindlinDEMReference(self.profile.p, bool(self.params.rescale))
-
-
-def __getattr__(name: str):
-    # the compiled functions live in dem_kernel (imported on first use: listing models needs no numba)
-    if name in ("dem_reset", "dem_force", "dem_tangential_update"):
-        from . import dem_kernel
-
-        return getattr(dem_kernel, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    def reference_step(self):
+        """The readable step for power laws; a table runs the kernel's own Python code."""
+        if self.profile.law()[0] > 0.0:
+            return reference_step, reference_reset
+        return None
 
 
 @hookimpl
-def sawdrift_contact_models() -> list[type[ContactModel]]:
+def sawdrift_contact_models() -> list[type[TangentialLaw]]:
     """Register the ``hertz_mindlin_dem`` model."""
     return [HertzMindlinDEM]

@@ -1,0 +1,350 @@
+"""Contact slots: a contact composed of a normal law, an optional normal damping and a tangential law.
+
+In the style of LAMMPS ``pair granular`` (a contact built from sub-models in fixed slots), a
+compliant contact here is
+
+* the **normal slot**: the profile's elastic law N*(a*) (power law or table,
+  :mod:`sawdrift.contact.normal`), owned by the framework;
+* the **normal-damping slot** (optional, :class:`NormalDamping`): one compiled function that turns
+  the elastic N* into the total normal force, e.g. Tsuji's dashpot; empty means "not computed";
+* the **tangential slot** (:class:`TangentialLaw`): one class and one compiled ``step`` function.
+
+The framework owns what every law used to repeat: the committed (a*, b*), contact entry (a fresh
+history that starts where the straight path crosses a* = 0), contact loss (the tangential
+history is reset once, on the step that leaves contact), the normal force, and the state layout.
+From the slots it generates the contact protocol of :mod:`sawdrift.contact.base`
+(``reset``/``force``), so the integrators, the conformance suite and the python engine see an
+ordinary contact model. The generated module is written to the cache folder of
+:mod:`sawdrift.dynamics.loop_cache` and compiled with numba's on-disk cache.
+
+Tangential step protocol (numba ``@njit`` functions)::
+
+    step(ts, is_, law, tp, a0, b0, a, b)  -> T*     # straight path (a0, b0) -> (a, b), commit
+    reset(ts, is_, law, tp)               -> None   # optional; default: zero ts and is_
+
+``ts`` (float64) and ``is_`` (int64) are the law's own state (sizes from
+:meth:`TangentialLaw.tangential_sizes`), ``law`` is the normal-law descriptor (read it with
+:func:`~sawdrift.contact.normal.law_normal` / :func:`~sawdrift.contact.normal.law_slope`) and ``tp``
+the law's parameters (:meth:`TangentialLaw.tangential_params`). ``step`` is only called in
+contact (a > 0); ``a0 = 0`` exactly when the contact is new and the history has just been reset.
+
+Damping protocol: ``damp(dp, law, a, adot, n_elastic) -> N*`` with ``dp`` from
+:meth:`NormalDamping.packed`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import importlib.util
+import inspect
+import os
+import sys
+import textwrap
+from typing import Any, ClassVar
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, create_model
+
+from .base import ContactModel, KernelPair, NoParams
+
+#: Float entries the framework keeps in front of the law's state: committed a*, committed b*,
+#: and 1.0 while the tangential history belongs to a contact (0.0: fresh).
+HEADER = 3
+
+
+class LazyFunction:
+    """A compiled function named by module and attribute, imported on first use."""
+
+    def __init__(self, module: str, name: str) -> None:
+        self.module, self.name = module, name
+
+    def load(self) -> Any:
+        """The function itself."""
+        return getattr(importlib.import_module(self.module), self.name)
+
+
+def _load(func: Any) -> Any:
+    return func.load() if isinstance(func, LazyFunction) else func
+
+
+# -- the composition: one source, compiled for the kernel and run plainly for the python engine --
+
+
+def contact_reset(fs, is_, pp):
+    """Empty history, out of contact at (a*, b*) = (0, 0)."""
+    it = int(pp[0])
+    fs[0] = 0.0
+    fs[1] = 0.0
+    fs[2] = 0.0
+    tangential_reset(fs[HEADER:], is_, pp[2:it], pp[it:int(pp[1])])  # noqa: F821
+
+
+def contact_force(fs, is_, pp, a, b, adot, bdot):
+    """Advance along the straight path from the committed (a*, b*) to (a, b), commit, (N*, T*)."""
+    it = int(pp[0])
+    idp = int(pp[1])
+    a0 = fs[0]
+    b0 = fs[1]
+    fs[0] = a
+    fs[1] = b
+    if not a > 0.0:
+        if fs[2] != 0.0:
+            # contact lost: the tangential history is forgotten, once
+            tangential_reset(fs[HEADER:], is_, pp[2:it], pp[it:idp])  # noqa: F821
+            fs[2] = 0.0
+        return 0.0, 0.0
+    if fs[2] == 0.0:
+        # a fresh contact starts where the straight path crosses a* = 0
+        if a0 < 0.0:
+            b0 = b0 + (b - b0) * (-a0 / (a - a0))
+        a0 = 0.0
+        fs[2] = 1.0
+    t = tangential_step(fs[HEADER:], is_, pp[2:it], pp[it:idp], a0, b0, a, b)  # noqa: F821
+    n = normal_damping(pp[idp:], pp[2:it], a, adot, law_normal(a, pp, 2))  # noqa: F821
+    return n, t
+
+
+def contact_normal(fs, is_, pp, a, b, adot, bdot):
+    """(N*, 0): the normal and normal-damping slots alone (friction off); no history."""
+    if not a > 0.0:
+        return 0.0, 0.0
+    it = int(pp[0])
+    return normal_damping(pp[int(pp[1]):], pp[2:it], a, adot, law_normal(a, pp, 2)), 0.0  # noqa: F821
+
+
+_TEMPLATES = (contact_reset, contact_force, contact_normal)
+
+
+def _origin(func: Any) -> tuple[str, str] | None:
+    """(module, name) under which a compiled function can be imported again, or None."""
+    py = getattr(func, "py_func", func)
+    module, name = getattr(py, "__module__", None), getattr(py, "__name__", "")
+    if module in (None, "__main__") or "<" in name:
+        return None
+    try:
+        if getattr(importlib.import_module(module), name, None) is not func:
+            return None
+    except Exception:  # noqa: BLE001 - not importable by name
+        return None
+    return module, name
+
+
+def _body() -> str:
+    return "\n\n".join(textwrap.dedent(inspect.getsource(f)) for f in _TEMPLATES)
+
+
+def _compiled_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
+    """The generated, disk-cached module's namespace (or an in-memory compilation)."""
+    from numba import njit
+
+    from ..dynamics.loop_cache import cache_dir
+    from .normal import JIT_OPTIONS
+
+    origins = [_origin(f) for f in (step, reset, damp)]
+    if all(o is not None for o in origins):
+        from .. import __version__
+
+        imports = "\n".join(
+            f"from {mod} import {name} as {alias}  # noqa: F401"
+            for (mod, name), alias in zip(origins, ("tangential_step", "tangential_reset",
+                                                    "normal_damping"), strict=True)
+        )
+        decorated = _body().replace("\ndef ", "\n@njit(**JIT_OPTIONS)\ndef ")
+        source = (
+            '"""Generated by sawdrift: a contact composed of slots. Do not edit."""\n'
+            "from numba import njit\n\n"
+            "from sawdrift.contact.normal import JIT_OPTIONS, law_normal  # noqa: F401\n"
+            "from sawdrift.contact.slots import HEADER  # noqa: F401\n"
+            f"{imports}\n\n\n@njit(**JIT_OPTIONS)\n{decorated}\n"
+        )
+        digest = hashlib.sha1(f"{__version__}\n{source}".encode()).hexdigest()[:16]
+        modname = f"sawdrift_contact_{digest}"
+        if modname in sys.modules:
+            return vars(sys.modules[modname])
+        folder = cache_dir()
+        path = folder / f"{modname}.py"
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            if not path.exists() or path.read_text() != source:
+                tmp = path.with_suffix(f".{os.getpid()}.tmp")
+                tmp.write_text(source)
+                os.replace(tmp, path)
+            spec = importlib.util.spec_from_file_location(modname, path)
+            module = importlib.util.module_from_spec(spec)
+            sys.modules[modname] = module  # numba's cache and the wave loop import it by name
+            spec.loader.exec_module(module)
+            return vars(module)
+        except Exception:  # noqa: BLE001 - an unwritable cache: compile in memory instead
+            sys.modules.pop(modname, None)
+    from .normal import law_normal
+
+    ns: dict[str, Any] = {"HEADER": HEADER, "law_normal": law_normal, "tangential_step": step,
+                          "tangential_reset": reset, "normal_damping": damp}
+    exec(compile(_body(), "<sawdrift contact slots>", "exec"), ns)  # noqa: S102
+    for f in _TEMPLATES:
+        ns[f.__name__] = njit(**JIT_OPTIONS)(ns[f.__name__])
+    return ns
+
+
+def _python_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
+    """The same composition run as plain Python (the python engine)."""
+    from .normal import law_normal
+
+    ns: dict[str, Any] = {"HEADER": HEADER, "law_normal": law_normal.py_func,
+                          "tangential_step": step, "tangential_reset": reset,
+                          "normal_damping": damp}
+    exec(compile(_body(), "<sawdrift contact slots (python)>", "exec"), ns)  # noqa: S102
+    return ns
+
+
+_COMPOSED: dict[tuple[Any, ...], dict[str, Any]] = {}
+
+
+def _py(func: Any) -> Any:
+    return getattr(func, "py_func", func)
+
+
+class NormalDamping:
+    """Base class of a normal-damping slot: one compiled ``damp`` function and its parameters.
+
+    ``damp(dp, law, a, adot, n_elastic) -> N*`` receives the elastic normal force of the normal
+    slot and returns the total one (clamping at 0 is the damping law's choice).
+    """
+
+    name: ClassVar[str]
+    Params: ClassVar[type[BaseModel]] = NoParams
+    damp: ClassVar[Any]
+
+    @classmethod
+    def packed(cls, params: BaseModel) -> np.ndarray:
+        """The float64 vector ``dp`` that ``damp`` reads (default: the fields, in order)."""
+        return np.array([float(v) for v in params.model_dump().values()], dtype=np.float64)
+
+
+class TangentialLaw(ContactModel):
+    """A contact model given as a tangential law in the tangential slot (module docstring).
+
+    Subclasses set ``name``, ``summary``, ``capabilities``, optionally ``Params``, and ``step``
+    (a numba function, or a :class:`LazyFunction`); optionally ``reset_state``, ``damping`` (a
+    :class:`NormalDamping` subclass), and override :meth:`tangential_sizes` /
+    :meth:`tangential_params`. The contact protocol (``kernel``, ``state_sizes``,
+    ``packed_params``, ``normal_law``, ``reference``) is generated from the slots.
+    """
+
+    step: ClassVar[Any]
+    reset_state: ClassVar[Any] = None
+    damping: ClassVar[type[NormalDamping] | None] = None
+
+    # -- what a law provides ---------------------------------------------------------------
+    def tangential_sizes(self) -> tuple[int, int]:
+        """Sizes of the law's own float64 and int64 state (default: one of each)."""
+        return 1, 1
+
+    def tangential_params(self) -> np.ndarray:
+        """The law's parameter vector ``tp`` (default: empty)."""
+        return np.zeros(0, dtype=np.float64)
+
+    def reference_step(self) -> tuple[Any, Any] | None:
+        """Optional readable pure-Python ``(step, reset)`` pair for the python engine."""
+        return None
+
+    # -- what the framework derives ----------------------------------------------------------
+    def _functions(self) -> tuple[Any, Any, Any]:
+        step = _load(self.step)
+        reset = _load(self.reset_state) if self.reset_state is not None else None
+        damp = _load(self.damping.damp) if self.damping is not None else None
+        if reset is None or damp is None:
+            from . import slot_kernels
+
+            reset = reset if reset is not None else slot_kernels.zero_reset
+            damp = damp if damp is not None else slot_kernels.no_damping
+        return step, reset, damp
+
+    def _compiled(self) -> dict[str, Any]:
+        key = self._functions()
+        ns = _COMPOSED.get(key)
+        if ns is None:
+            ns = _COMPOSED[key] = _compiled_namespace(*key)
+        return ns
+
+    @property
+    def kernel(self) -> KernelPair:  # type: ignore[override]
+        """The contact protocol generated from the slots."""
+        pair = self.__dict__.get("_kernel_pair")
+        if pair is None:
+            ns = self._compiled()
+            pair = self.__dict__["_kernel_pair"] = KernelPair(ns["contact_reset"], ns["contact_force"])
+        return pair
+
+    def state_sizes(self) -> tuple[int, int]:
+        """The framework's header plus the law's own state."""
+        nf, ni = self.tangential_sizes()
+        return HEADER + int(nf), max(int(ni), 1)
+
+    def damping_params(self) -> np.ndarray:
+        """``dp`` of the normal-damping slot (empty if the slot is empty)."""
+        if self.damping is None:
+            return np.zeros(0, dtype=np.float64)
+        fields = self.damping.Params.model_fields
+        values = self.damping.Params(**{k: getattr(self.params, k) for k in fields})
+        return self.damping.packed(values)
+
+    def packed_params(self) -> np.ndarray:
+        """``[start of tp, start of dp, law descriptor..., tp..., dp...]``."""
+        law = np.asarray(self.profile.law(), dtype=np.float64)
+        tp = np.asarray(self.tangential_params(), dtype=np.float64)
+        dp = self.damping_params()
+        it = 2 + law.size
+        return np.concatenate([[float(it), float(it + tp.size)], law, tp, dp])
+
+    def normal_law(self):
+        """The normal and normal-damping slots alone (used when friction is off)."""
+        return self._compiled()["contact_normal"], self.packed_params()
+
+    def reference(self) -> SlotReference:
+        """The slots composed in plain Python (the law's readable step if it has one)."""
+        return SlotReference(self)
+
+    @classmethod
+    def with_damping(cls, damping: type[NormalDamping], name: str, summary: str) -> type[TangentialLaw]:
+        """This law with ``damping`` in the normal-damping slot, as a new model ``name``.
+
+        Its parameters are the law's and the damping's together.
+        """
+        fields = {k: (f.annotation, f) for k, f in cls.Params.model_fields.items()}
+        fields.update({k: (f.annotation, f) for k, f in damping.Params.model_fields.items()})
+        params = create_model(f"{name}_params", __config__=ConfigDict(frozen=True, extra="forbid"),
+                              **fields)  # type: ignore[call-overload]
+        from dataclasses import replace
+
+        caps = replace(cls.capabilities, uses_velocity=True)
+        return type(name, (cls,), {"name": name, "summary": summary, "Params": params,
+                                   "damping": damping, "capabilities": caps,
+                                   "__module__": damping.__module__})
+
+
+class SlotReference:
+    """The python engine of a :class:`TangentialLaw`: the composition source run uncompiled."""
+
+    def __init__(self, model: TangentialLaw) -> None:
+        step, reset, damp = model._functions()
+        readable = model.reference_step()
+        if readable is not None:
+            step, reset = readable
+        ns = _python_namespace(_py(step), _py(reset), _py(damp))
+        self._reset, self._force = ns["contact_reset"], ns["contact_force"]
+        nf, ni = model.state_sizes()
+        self.fs = np.zeros(nf, dtype=np.float64)
+        self.is_ = np.zeros(ni, dtype=np.int64)
+        self.pp = model.packed_params()
+        self.reset()
+
+    def reset(self) -> None:
+        """Empty history."""
+        self._reset(self.fs, self.is_, self.pp)
+
+    def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
+        """Advance along a straight path to (a*, b*), commit, return (N*, T*)."""
+        n, t = self._force(self.fs, self.is_, self.pp, float(a), float(b), float(adot), float(bdot))
+        return float(n), float(t)
