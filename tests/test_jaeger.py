@@ -24,6 +24,16 @@ PROFILES = {"sphere": Profile(), "cone": Profile(shape="cone"), "flat": Profile(
 PROFILES["p2.7"] = Profile(shape="power", exponent=2.7)
 
 
+def reference(p: float, capacity: int = 64):
+    """The python engine of a Jaeger contact with N* = a*^p: the framework's slots around the
+    readable :class:`JaegerReference` (reachable as ``.readable``)."""
+    model = Jaeger(params=JaegerParams(memory_capacity=capacity),
+                   profile=Profile(shape="power", exponent=p))
+    ref = model.reference()
+    assert isinstance(ref.readable, JaegerReference)
+    return ref
+
+
 def nstar(x: float, p: float) -> float:
     return x**p if x > 0.0 else 0.0
 
@@ -224,7 +234,7 @@ def test_constant_a_equals_exact_memory_diagram(name: str) -> None:
     steps[150:200] *= 0.1  # small nested loops
     b = np.concatenate([[0.0], steps])
     oracle = FixedAMemoryDiagram(a, p)
-    ref = JaegerReference(p)
+    ref = reference(p)
     compiled = ContactHistory(Jaeger(profile=PROFILES[name]))
     u = np.linspace(0.0, a, 97)
     for bk in b:
@@ -233,9 +243,9 @@ def test_constant_a_equals_exact_memory_diagram(name: str) -> None:
         _, t_kernel = compiled.advance(a, bk)
         assert t_ref == pytest.approx(t_oracle, abs=1e-12)
         assert t_kernel == pytest.approx(t_oracle, abs=1e-12)
-        np.testing.assert_allclose(jaeger_profile(ref, bk, u), oracle.profile(u), atol=1e-12)
+        np.testing.assert_allclose(jaeger_profile(ref.readable, bk, u), oracle.profile(u), atol=1e-12)
         # fixed structure at constant a*: breakpoints strictly nested inside the contact
-        mem = ref.breakpoints
+        mem = ref.readable.breakpoints
         assert all(x > y for x, y in zip(mem, mem[1:], strict=False))
         assert not mem or mem[0] <= a
         assert abs(t_ref) <= a**p
@@ -356,15 +366,15 @@ def test_velocities_are_ignored() -> None:
 def test_memory_overflow_error_is_bounded() -> None:
     """Overflow drops the closest interior pair: |dT*| <= 2 N*'(a*) x that gap (1e-14 slack)."""
     a, p, cap = 1.0, 1.5, 6
-    small = JaegerReference(p, capacity=cap)
-    large = JaegerReference(p, capacity=256)
+    small = reference(p, capacity=cap)
+    large = reference(p, capacity=256)
     for ref in (small, large):
         ref.force(a, 0.0)
     b, amplitude, sign = 0.0, 0.9, 1.0
     overflowed = 0
     for _ in range(20):
         b += sign * amplitude
-        before = list(small.breakpoints)
+        before = list(small.readable.breakpoints)
         t_small = small.force(a, b)[1]
         t_large = large.force(a, b)[1]
         if len(before) == cap:
@@ -375,8 +385,8 @@ def test_memory_overflow_error_is_bounded() -> None:
                 bound = 2.0 * p * a ** (p - 1.0) * gap
                 assert abs(t_small - t_large) <= bound + 1e-14
                 assert abs(t_small - t_large) > 0.0
-        assert len(small.breakpoints) <= cap
-        mem = small.breakpoints
+        assert len(small.readable.breakpoints) <= cap
+        mem = small.readable.breakpoints
         assert all(x > y for x, y in zip(mem, mem[1:], strict=False))
         sign = -sign
         amplitude *= 0.8
@@ -385,7 +395,7 @@ def test_memory_overflow_error_is_bounded() -> None:
     model = Jaeger(params=JaegerParams(memory_capacity=cap))
     amps = 0.9 * 0.8 ** np.arange(20)
     bs = np.concatenate([[0.0], np.cumsum(amps * (-1.0) ** np.arange(20))])
-    ref = JaegerReference(p, capacity=cap)
+    ref = reference(p, capacity=cap)
     t_ref = [ref.force(a, x)[1] for x in bs]
     t_kernel = ContactHistory(model).drive(np.full_like(bs, a), bs)[1]
     np.testing.assert_allclose(t_kernel, t_ref, atol=1e-13)
@@ -401,6 +411,9 @@ def test_registered_and_schema() -> None:
         JaegerParams(memory_capacity=2)
     with pytest.raises(ValueError):
         JaegerParams(unknown=1)  # type: ignore[call-arg]
-    assert Jaeger().state_sizes() == (67, 2)
-    assert Jaeger(profile=PROFILES["cone"]).packed_params()[0] == 2.0
-    assert math.isclose(Jaeger().packed_params()[0], 1.5)
+    # the slot's own state: branch reference + 64 breakpoints; the framework adds a*, b*, a flag
+    assert Jaeger().tangential_sizes() == (65, 2)
+    assert Jaeger().state_sizes() == (68, 2)
+    # the kernel reads the exponent from the normal-law descriptor, after two offsets
+    assert Jaeger(profile=PROFILES["cone"]).packed_params()[2] == 2.0
+    assert math.isclose(Jaeger().packed_params()[2], 1.5)

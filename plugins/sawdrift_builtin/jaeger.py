@@ -61,14 +61,14 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
 
-from sawdrift.contact import Capabilities, ContactModel, KernelPair
+from sawdrift.contact import Capabilities
+from sawdrift.contact.slots import LazyFunction, TangentialLaw
 from sawdrift.hookspecs import hookimpl
 
-# float state layout: previous a*, previous b*, reference point of the current branch, breakpoints
-_A, _B, _REF, _MEM = 0, 1, 2, 3
+# float state layout of the tangential slot: reference point of the current branch, breakpoints
+_REF, _MEM = 0, 1
 # int state layout: number of stored breakpoints, current direction of motion (+1 or -1)
 _N, _DIR = 0, 1
 
@@ -90,7 +90,7 @@ class JaegerParams(BaseModel):
 
 
 class JaegerReference:
-    """Pure-Python Jaeger / Masing contact: the same rules as the kernel, written plainly.
+    """Pure-Python Jaeger / Masing tangential step: the same rules as the kernel, written plainly.
 
     Parameters
     ----------
@@ -106,9 +106,7 @@ class JaegerReference:
         self.reset()
 
     def reset(self) -> None:
-        """Forget all history: out of contact at (a*, b*) = (0, 0)."""
-        self.a = 0.0
-        self.b = 0.0
+        """Forget all history: a virgin branch loading in +b."""
         self.ref = 0.0  # origin o of the virgin curve, or the last turning point b_k
         self.direction = 1
         self.breakpoints: list[float] = []  # C_0 > C_1 > ... (outermost first)
@@ -162,28 +160,15 @@ class JaegerReference:
             u_prev = u_k
         return t
 
-    def force(
-        self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0
-    ) -> tuple[float, float]:
-        """Advance along a straight path to (a*, b*), commit, and return (N*, T*)."""
-        a, b = float(a), float(b)
-        a0, b0 = self.a, self.b
-        self.a, self.b = a, b
-        if a <= 0.0:
-            self.breakpoints = []
-            self.direction = 1
-            self.ref = b
-            return 0.0, 0.0
-        if a0 <= 0.0:
-            b0 = b0 + (b - b0) * (a0 / (a0 - a))
-            self.breakpoints = []
-            self.direction = 1
+    def step(self, a0: float, b0: float, a: float, b: float) -> float:
+        """T* at the end of the straight path (a0, b0) -> (a, b); a0 = 0 starts a virgin contact."""
+        if a0 == 0.0:
             self.ref = b0
         self._move(a, b0, b)
-        return a**self.p, self.tangential(a, b)
+        return self.tangential(a, b)
 
 
-class Jaeger(ContactModel):
+class Jaeger(TangentialLaw):
     """Closed-form Cattaneo-Mindlin / Jaeger superposition with Masing memory (see module doc).
 
     Exact at constant contact size a*; with varying a* it evaluates the turning-point memory at
@@ -203,24 +188,22 @@ class Jaeger(ContactModel):
                      "(a*, b*) cycles with a* varying can create energy (rectangle (1,0)-(1,0.2)-"
                      "(2,0.2)-(2,0): -0.0127 per cycle); exact and passive at constant a*"),),
     )
-    kernel: ClassVar[KernelPair] = KernelPair.lazy(
-        "sawdrift_builtin.jaeger_kernel", "jaeger_reset", "jaeger_force"
-    )
+    step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.jaeger_kernel", "jaeger_step")
+    reset_state: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.jaeger_kernel", "jaeger_reset")
 
-    def state_sizes(self) -> tuple[int, int]:
-        """Float state: a*, b*, branch reference and the breakpoints; int state: count, direction."""
+    def tangential_sizes(self) -> tuple[int, int]:
+        """Float state: branch reference and the breakpoints; int state: count, direction.
+
+        The capacity is carried by the size of the float state.
+        """
         return _MEM + int(self.params.memory_capacity), 2
 
-    def packed_params(self) -> np.ndarray:
-        """[p]: the capacity is carried by the size of the float state."""
-        return np.array([self.profile.p], dtype=np.float64)
-
-    def reference(self) -> JaegerReference:
-        """A fresh pure-Python reference contact (empty history)."""
+    def reference_step(self) -> JaegerReference:
+        """The readable step (a fresh :class:`JaegerReference`) for the python engine."""
         return JaegerReference(self.profile.p, int(self.params.memory_capacity))
 
 
 @hookimpl
-def sawdrift_contact_models() -> list[type[ContactModel]]:
+def sawdrift_contact_models() -> list[type[TangentialLaw]]:
     """Register the ``jaeger`` model."""
     return [Jaeger]

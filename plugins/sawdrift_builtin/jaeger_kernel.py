@@ -12,7 +12,7 @@ from numba import njit
 
 from sawdrift.contact.normal import power_law as _nstar
 
-from .jaeger import _A, _B, _DIR, _MEM, _N, _REF
+from .jaeger import _DIR, _MEM, _N, _REF
 
 # --------------------------------------------------------------------------------------------
 # compiled kernel
@@ -113,39 +113,18 @@ def _tangential_force(fs, is_, p: float, a: float, b: float) -> float:
 
 
 @njit(cache=True)
-def jaeger_reset(fs, is_, pp) -> None:
-    """Empty history, out of contact at (a*, b*) = (0, 0)."""
-    fs[:] = 0.0
+def jaeger_reset(ts, is_, law, tp) -> None:
+    """Empty history: no breakpoints, virgin branch loading in +b."""
+    ts[:] = 0.0
     is_[_N] = 0
     is_[_DIR] = 1
 
 
 @njit(cache=True)
-def jaeger_force(fs, is_, pp, a: float, b: float, adot: float, bdot: float):
-    """Advance along the straight path from the committed (a*, b*) to (a, b), commit, (N*, T*)."""
-    p = pp[0]
-    a0 = fs[_A]
-    b0 = fs[_B]
-    fs[_A] = a
-    fs[_B] = b
-    if a <= 0.0:
-        is_[_N] = 0
-        is_[_DIR] = 1
-        fs[_REF] = b
-        return 0.0, 0.0
-    if a0 <= 0.0:
-        # the straight path enters contact at a* = 0: a virgin contact from the entry point
-        b0 = b0 + (b - b0) * (a0 / (a0 - a))
-        is_[_N] = 0
-        is_[_DIR] = 1
-        fs[_REF] = b0
-    _move_tangential(fs, is_, a, b0, b)
-    t = _tangential_force(fs, is_, p, a, b)
-    return a**p, t
-
-
-# --------------------------------------------------------------------------------------------
-# readable reference
-# --------------------------------------------------------------------------------------------
-
+def jaeger_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float) -> float:
+    """T* at the end of the straight path (a0, b0) -> (a, b); a0 = 0 starts a virgin contact."""
+    if a0 == 0.0:
+        ts[_REF] = b0  # the virgin curve starts at the contact's entry point
+    _move_tangential(ts, is_, a, b0, b)
+    return _tangential_force(ts, is_, law[0], a, b)
 

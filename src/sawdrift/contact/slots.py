@@ -245,8 +245,13 @@ class TangentialLaw(ContactModel):
         """The law's parameter vector ``tp`` (default: empty)."""
         return np.zeros(0, dtype=np.float64)
 
-    def reference_step(self) -> tuple[Any, Any] | None:
-        """Optional readable pure-Python ``(step, reset)`` pair for the python engine."""
+    def reference_step(self) -> Any:
+        """Optional readable pure-Python step for the python engine.
+
+        Either a ``(step, reset)`` pair of functions with the slot signatures, or an object with
+        ``reset()`` and ``step(a0, b0, a, b) -> T*`` (it then keeps its state itself). The default,
+        None, runs the kernel's own Python code uncompiled.
+        """
         return None
 
     # -- what the framework derives ----------------------------------------------------------
@@ -330,7 +335,17 @@ class SlotReference:
     def __init__(self, model: TangentialLaw) -> None:
         step, reset, damp = model._functions()
         readable = model.reference_step()
-        if readable is not None:
+        #: the law's readable reference, when it is an object with ``reset()`` and ``step()``
+        self.readable = readable if hasattr(readable, "step") else None
+        if self.readable is not None:
+            obj = self.readable
+
+            def step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signature
+                return obj.step(float(a0), float(b0), float(a), float(b))
+
+            def reset(ts, is_, law, tp):  # noqa: ARG001
+                obj.reset()
+        elif readable is not None:
             step, reset = readable
         ns = _python_namespace(_py(step), _py(reset), _py(damp))
         self._reset, self._force = ns["contact_reset"], ns["contact_force"]
