@@ -1,44 +1,34 @@
-"""A tangential law as a plugin: one class and one kernel (docs/plugins.md).
+"""A tangential law as a plugin: one class and one kernel function (docs/plugins.md).
 
 An elastic spring of Mindlin's initial stiffness dN*/da*, capped by Coulomb's law, rescaled when
-the contact shrinks (which keeps it passive), forgetting everything when contact is lost.
+the contact shrinks (which keeps it passive). The framework owns the rest: the normal force, the
+committed (a*, b*), contact entry (a new contact arrives with a0 = 0 and a zeroed state) and
+contact loss.
 """
 
 from numba import njit
 
-from sawdrift import Capabilities, ContactModel, KernelPair, hookimpl
+from sawdrift import Capabilities, hookimpl
+from sawdrift.contact.normal import law_normal, law_slope
+from sawdrift.contact.slots import TangentialLaw
 
 
 @njit(cache=True)
-def reset(fs, is_, pp):
-    fs[:] = 0.0  # committed a*, committed b*, stored T*
+def spring_step(ts, is_, law, tp, a0, b0, a, b):
+    t = ts[0]  # the stored T*, the law's only state
+    k = law_slope(a, law, 0)  # Mindlin's stiffness N*'(a*) of the scene's normal law
+    if a < a0:
+        t *= k / law_slope(a0, law, 0)  # the stiffness shrinks with the contact
+    n = law_normal(a, law, 0)
+    ts[0] = t = min(max(t + k * (b - b0), -n), n)
+    return t
 
 
-@njit(cache=True)
-def force(fs, is_, pp, a, b, adot, bdot):
-    a0, b0, t = fs[0], fs[1], fs[2]
-    fs[0], fs[1] = a, b
-    if a <= 0.0:  # contact lost: nothing remembered
-        fs[2] = 0.0
-        return 0.0, 0.0
-    p = pp[0]  # the profile's exponent: N* = a*^p
-    if a0 <= 0.0:
-        t = 0.0
-    elif a < a0:
-        t *= (a / a0) ** (p - 1.0)  # the stiffness shrinks with the contact
-    n = a**p
-    fs[2] = t = min(max(t + p * a ** (p - 1.0) * (b - b0), -n), n)
-    return n, t
-
-
-class CoulombSpring(ContactModel):
+class CoulombSpring(TangentialLaw):
     name = "coulomb_spring"
     summary = "Mindlin-stiffness spring with a Coulomb cap (plugin guide example)"
-    capabilities = Capabilities(straight_path_exact=False)
-    kernel = KernelPair(reset=reset, force=force)
-
-    def state_sizes(self):
-        return 3, 1
+    capabilities = Capabilities(profiles=("sphere", "cone", "flat", "power", "table"))
+    step = spring_step
 
 
 @hookimpl

@@ -256,9 +256,10 @@ class TangentialLaw(ContactModel):
 
     # -- what the framework derives ----------------------------------------------------------
     def _functions(self) -> tuple[Any, Any, Any]:
-        step = _load(self.step)
-        reset = _load(self.reset_state) if self.reset_state is not None else None
-        damp = _load(self.damping.damp) if self.damping is not None else None
+        cls = type(self)  # class access: a numba function would bind as a method on an instance
+        step = _load(cls.step)
+        reset = _load(cls.reset_state) if cls.reset_state is not None else None
+        damp = _load(cls.damping.damp) if cls.damping is not None else None
         if reset is None or damp is None:
             from . import slot_kernels
 
