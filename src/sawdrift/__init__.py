@@ -64,13 +64,23 @@ _LAZY: dict[str, str] = {
     "check_model": "contact.conformance",
     "load_grid": "study.export",
     "to_dataset": "study.export",
+    "write_grid": "study.export",
+    "adaptive_sweep": "study.adaptive",
+    "plot_phase_diagram": "report.diagrams",
+    "plot_drift_map": "report.diagrams",
+    "plot_compare": "report.diagrams",
+    "demo": "report.demo",
+    "validate": "report.validation",
+    "work_precision": "report.bench",
+    "bench_speed": "report.bench:speed",
 }
 _SUBPACKAGES = ("scene", "contact", "dynamics", "result", "study", "report", "analytic")
 
 
 def __getattr__(name: str) -> Any:
     if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        module, _, attr = _LAZY[name].partition(":")
+        value = getattr(importlib.import_module(f".{module}", __name__), attr or name)
         globals()[name] = value
         return value
     if name == "regimes":

@@ -125,9 +125,7 @@ def check_model_cmd(
     coulomb_bound, kernel_vs_reference, split_invariance, contact_loss_reset, replay. A failing
     check that the model declares is reported as 'declared'.
     """
-    from .contact.conformance import check_model
-
-    result = check_model(name, **_parse_param(param))
+    result = sd.check_model(name, **_parse_param(param))
     typer.echo(json.dumps(result.to_json()) if as_json else result.table())
     if not result.passed:
         raise typer.Exit(1)
@@ -293,15 +291,13 @@ def sweep_cmd(
     )
     models = named or [base.model]
     if adaptive:
-        from .study.adaptive import adaptive_sweep
-
         if axes or len(models) != 1:
             _fail("--adaptive works on the (m*, A*) plane of one model: no --axis, one --model")
         m_axis = sd.parse_axis(m_star or "1e-3:1e2:21", "m_star")
         a_axis = sd.parse_axis(amplitude or "1e-2:10:21", "amplitude")
         if m_axis.size != a_axis.size or m_axis.size < 2:
             _fail("--adaptive needs --m-star and --amplitude as START:STOP:N with the same N >= 2")
-        frame = adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
+        frame = sd.adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
                                budget=budget, base=int(m_axis.size), levels=levels, scene=base,
                                table=out, workers=workers, scheduler=scheduler, progress=progress)
     else:
@@ -327,13 +323,11 @@ def phase_diagram_cmd(
     ] = False,
 ) -> None:
     """Draw the regime phase diagram of one model over two swept axes (default A*, m*)."""
-    from .report.diagrams import plot_drift_map, plot_phase_diagram
-
     frame = _load_table(table)
     if drift:
-        path = plot_drift_map(frame, out, model, x, y)
+        path = sd.plot_drift_map(frame, out, model, x, y)
     else:
-        path = plot_phase_diagram(frame, out, model, x, y)
+        path = sd.plot_phase_diagram(frame, out, model, x, y)
     typer.echo(f"wrote {path}")
 
 
@@ -354,10 +348,8 @@ def compare_cmd(
     Compare models (--models a,b), or the values of a swept field for each model
     (--by effects.rotation after a sweep with --axis effects.rotation=false,true).
     """
-    from .report.diagrams import plot_compare
-
     frame = _load_table(table)
-    path, md = plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out, by,
+    path, md = sd.plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out, by,
                             x, y)
     typer.echo(md)
     typer.echo(f"wrote {path} and {path.with_suffix('.md')}")
@@ -369,10 +361,8 @@ def export_cmd(
     out: Annotated[Path, typer.Option("-o", "--out", help="grid file: .nc (netCDF) or .zarr")],
 ) -> None:
     """Export a sweep table to a gridded dataset (xarray; CF regime flags; provenance in attrs)."""
-    from .study.export import write_grid
-
     _load_table(table)  # one-line errors for a missing or unreadable table
-    ds = write_grid(table, out)
+    ds = sd.write_grid(table, out)
     dims = ", ".join(f"{d} ({n})" for d, n in ds.sizes.items())
     typer.echo(f"wrote {out}: dimensions {dims}; variables {', '.join(ds.data_vars)}")
 
@@ -388,11 +378,9 @@ def demo_cmd(
     The grid is the paper's Fig. 3 plane, m* in [1e-3, 1e2] and A* in [1e-2, 10], at mu = 0.1,
     nu = 0.3; the figures and the table go to OUT.
     """
-    from .report.demo import demo
-
     if n < 2:
         _fail(f"--n = {n} must be at least 2 (grid points per axis)")
-    demo(out, n, workers, echo=typer.echo)
+    sd.demo(out, n, workers, echo=typer.echo)
 
 
 @app.command("validate")
@@ -405,9 +393,7 @@ def validate_cmd(
     progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
 ) -> None:
     """Run the validation cases and write an HTML report; exit status 1 if any case fails."""
-    from .report.validation import validate
-
-    report = validate(out, quick=quick, cases_dir=cases, progress=progress)
+    report = sd.validate(out, quick=quick, cases_dir=cases, progress=progress)
     typer.echo(report.summary_line() if hasattr(report, "summary_line") else str(report))
     typer.echo(f"wrote {out / 'index.html'} and {out / 'results.json'}")
     if not report.passed:
@@ -425,12 +411,10 @@ def bench_work_precision_cmd(
     quick: Annotated[bool, typer.Option("--quick", help="a short ladder (seconds)")] = False,
 ) -> None:
     """Error against wall time for every model, order and step (figures, CSV, observed order)."""
-    from .report.bench import work_precision
-
     names = [m.strip() for m in models.split(",")] if models else None
     for name in names or []:
         sd.get_model(name)
-    work_precision(names, out, quick=quick)
+    sd.work_precision(names, out, quick=quick)
     typer.echo(f"wrote {out}")
 
 
@@ -439,9 +423,7 @@ def bench_speed_cmd(
     quick: Annotated[bool, typer.Option("--quick", help="small sizes (seconds)")] = False,
 ) -> None:
     """Measure the performance targets and print each with PASS/FAIL; exit 1 if one fails."""
-    from .report.bench import speed
-
-    result = speed(quick=quick)
+    result = sd.bench_speed(quick=quick)
     if not result["all_passed"]:
         raise typer.Exit(1)
 
