@@ -21,6 +21,7 @@ from .bench import (
 )
 from .bench_figures import _order_or_none, _orders
 from .bench_study import converged_cells
+from .texts import text
 
 # -- observed orders and the summary ---------------------------------------------------------------
 
@@ -73,189 +74,138 @@ def cheapest(frame: pd.DataFrame, model: str, tol: float) -> pd.Series | None:
 
 def summary_markdown(frame: pd.DataFrame, orders: pd.DataFrame, cfg: StudyConfig,
                      quick: bool = False) -> str:
-    """The markdown summary of a work-precision study, with data-driven recommendations."""
-    default_order = Numerics().order
+    """The markdown summary of a work-precision study, with data-driven recommendations.
+
+    The prose comes from ``report/text/work_precision.toml``; this function fills it in.
+    """
+    T = text("work_precision")
+    h = T["head"]
     lines = [
-        "# sawdrift work-precision study" + (" (quick)" if quick else ""),
-        "",
-        f"Machine: {os.cpu_count()} cores, {platform.processor() or platform.machine()}, "
-        f"Python {platform.python_version()}. Timings: best of {cfg.repeats} after one discarded "
-        "warm-up call (numba compilation excluded).",
-        "",
-        f"Current default: Adams-Bashforth order {default_order}, steps per period "
-        "max(128, ceil(omega / 0.06)), omega = sqrt(k / m*).",
-        "",
+        h["title"].format(quick=" (quick)" if quick else ""), "",
+        h["machine"].format(cores=os.cpu_count(), cpu=platform.processor() or platform.machine(),
+                            python=platform.python_version(), repeats=cfg.repeats), "",
+        h["defaults"].format(order=Numerics().order), "",
     ]
     pre = frame[frame["setting"] == "prescribed"]
     if not pre.empty:
-        n_samples = int(pre["steps"].max())
-        lines += [
-            "## (a) Contact law alone: prescribed random history",
-            "",
-            f"Seeded random (a*, b*) walk, {cfg.cycles * 10} straight segments, a* crossing zero; "
-            "error = max |T* - T*_mmd| at the path's vertices (the same points for every "
-            "sampling) against the pure-Python memory-diagram reference (the exact law). Longest "
-            f"sampling: {n_samples} samples.",
-            "",
-            "| model | ladder | samples/segment | strips | max error | rms error | ns/sample |",
-            "|---|---|---|---|---|---|---|",
-        ]
+        t = T["prescribed"]
+        lines += [t["heading"], "", t["intro"].format(segments=cfg.cycles * 10,
+                                                      samples=int(pre["steps"].max())), "",
+                  t["table"]]
         for _, r in pre.iterrows():
-            lines.append(
-                f"| {r['model']} | {r['ladder']} | {int(r['samples_per_segment'])} | "
-                f"{'' if pd.isna(r['strips']) else int(r['strips'])} | {_fmt(r['error'])} | "
-                f"{_fmt(r['error_rms'])} | {_fmt(r['ns_per_step'], '.0f')} |"
-            )
-        lines += [
-            "",
-            "All laws are exact along each straight segment, so the sampling of the path changes "
-            "the cost but not the error: the error of mmd is round-off, that of jaeger and "
-            "hertz_mindlin_dem is their model error (a different law), that of mdr its strip "
-            "discretization.",
-            "",
-        ]
+            lines.append(t["row"].format(
+                model=r["model"], ladder=r["ladder"], samples=int(r["samples_per_segment"]),
+                strips="" if pd.isna(r["strips"]) else int(r["strips"]), error=_fmt(r["error"]),
+                rms=_fmt(r["error_rms"]), ns=_fmt(r["ns_per_step"], ".0f")))
+        lines += ["", t["outro"], ""]
     wave = frame[frame["setting"] == "wave"]
     if not wave.empty:
-        lines += [
-            "## (b) Wave scene",
-            "",
-            f"m* = {WAVE_M_STAR:g}, A* = {WAVE_AMPLITUDE:g}, {cfg.periods:g} periods (5-period ramp). "
-            f"Reference: order 4 at {cfg.reference_steps[1]} steps per period; its uncertainty is "
-            f"the change from {cfg.reference_steps[0]}.",
-            "",
-            "| model | reference drift ratio | reference uncertainty | regime | model error vs mmd |",
-            "|---|---|---|---|---|",
-        ]
-        for model, g in wave[wave["ladder"] == "steps"].groupby("model", sort=False):
-            r = g.iloc[0]
-            lines.append(f"| {model} | {_fmt(r['reference'], '.8f')} | "
-                         f"{_fmt(r['reference_uncertainty'])} | {r['reference_regime']} | "
-                         f"{_fmt(r['model_error_vs_mmd'])} |")
-        lines += [
-            "",
-            "Observed order (fit of log error vs log steps per period, four finest points above "
-            "10x the reference uncertainty), and the error at 128 and 512 steps per period:",
-            "",
-            "| model | order | observed order | error @128 | error @512 | wall @128 (ms) |",
-            "|---|---|---|---|---|---|",
-        ]
-        for _, o in orders[(orders["setting"] == "wave") & (orders["ladder"] == "steps")].iterrows():
-            g = wave[(wave["model"] == o["model"]) & (wave["ladder"] == "steps")]
-            want = _order_or_none(o["order"])
-            g = g[_orders(g["order"]).map(lambda v, want=want: v == want)]
-
-            def at(spp: int, col: str, g: pd.DataFrame = g) -> Any:
-                hit = g[g["steps_per_period"] == spp]
-                return hit[col].iloc[0] if not hit.empty else math.nan
-
-            order_txt = "event scheme" if pd.isna(o["order"]) else str(int(o["order"]))
-            observed = _fmt(o["observed_order"], ".2f")
-            if observed == "n/a" and float(g["error"].max()) <= 1e-9:
-                observed = "none (round-off at every step)"
-            lines.append(f"| {o['model']} | {order_txt} | {observed} | "
-                         f"{_fmt(at(128, 'error'))} | {_fmt(at(512, 'error'))} | "
-                         f"{_fmt(1e3 * float(at(128, 'wall_s')), '.2f')} |")
-        dflt = wave[wave["is_default"].astype(bool) & (wave["ladder"] == "steps")]
-        if not dflt.empty:
-            lines += ["", "At the current defaults:", ""]
-            for _, r in dflt.iterrows():
-                lines.append(
-                    f"- {r['model']}: {int(r['steps_per_period'])} steps per period, drift ratio "
-                    f"{_fmt(r['value'], '.6f')}, error {_fmt(r['error'])} "
-                    f"(relative {_fmt(r['rel_error'])}), {_fmt(1e3 * float(r['wall_s']), '.2f')} ms, "
-                    f"{_fmt(r['ns_per_step'], '.0f')} ns/step"
-                )
-        strips = wave[wave["ladder"] == "strips"]
-        if not strips.empty:
-            lines += [
-                "",
-                "mdr strip count at the default numerics (error vs mmd with identical numerics):",
-                "",
-                "| strips | drift ratio | error vs mmd | ns/step |",
-                "|---|---|---|---|",
-            ]
-            for _, r in strips.sort_values("strips").iterrows():
-                lines.append(f"| {int(r['strips'])} | {_fmt(r['value'], '.8f')} | {_fmt(r['error'])} | "
-                             f"{_fmt(r['ns_per_step'], '.0f')} |")
-        for tol in (1e-4, 1e-6):
-            best = cheapest(frame, "mmd", tol)
-            if best is not None:
-                lines.append("")
-                lines.append(
-                    f"Cheapest mmd run with error <= {tol:g}: order {int(best['order'])}, "
-                    f"{int(best['steps_per_period'])} steps per period, "
-                    f"{_fmt(1e3 * float(best['wall_s']), '.2f')} ms (error {_fmt(best['error'])})."
-                )
-        lines.append("")
+        lines += _wave_section(T["wave"], frame, wave, orders, cfg)
     grid = frame[frame["setting"] == "defaults"]
     if not grid.empty:
-        lines += [
-            "## (c) Current defaults over the (m*, A*) plane",
-            "",
-            f"{cfg.grid} x {cfg.grid} log grid, m* in [1e-3, 1e2], A* in [1e-2, 10], "
-            f"{cfg.periods:g} periods, drift ratio at the default numerics, at half and at twice "
-            f"the default steps, against order 4 at {cfg.grid_refine[1]}x the default steps "
-            f"(reference uncertainty: the change from {cfg.grid_refine[0]}x). A cell is "
-            "*chaotic* when its references differ by more than max(1e-6, error / 10), or when "
-            "its error exceeds 1e-4 without converging (half the steps does not give 1.5x the "
-            "error): irregular bouncing, where any change of step changes the 60-period drift "
-            "ratio by O(1). All other cells are *resolved*.",
-            "",
-            "| model | cells | resolved | max error (resolved) | worst resolved cell (m*, A*, "
-            "rel. error) | median error | max error, half steps | max error, 2x steps | "
-            "max error (all cells) | regime changes (all cells) |",
-            "|---|---|---|---|---|---|---|---|---|---|",
-        ]
+        t = T["plane"]
+        lines += [t["heading"], "", t["intro"].format(n=cfg.grid, periods=cfg.periods,
+                                                      fine=cfg.grid_refine[1],
+                                                      coarse=cfg.grid_refine[0]), "", t["table"]]
         for model, g in grid.groupby("model", sort=False):
             ok = converged_cells(g) & np.isfinite(g["error"].astype(float))
             good = g[ok]
-            changes = int((g["regime"] != g["reference_regime"]).sum())
             if not good.empty:
                 w = good.loc[good["error"].astype(float).idxmax()]
                 worst = f"{w['m_star']:.3g}, {w['amplitude']:.3g}, {_fmt(w['rel_error'])}"
             else:
                 worst = "n/a"
-            lines.append(
-                f"| {model} | {len(g)} | {int(ok.sum())} | {_fmt(good['error'].max())} | {worst} | "
-                f"{_fmt(good['error'].median())} | {_fmt(good['error_half_default'].max())} | "
-                f"{_fmt(good['error_double_default'].max())} | {_fmt(g['error'].max())} | "
-                f"{changes} |"
-            )
-        lines += ["", "Chaotic cells (m*, A*):", ""]
+            lines.append(t["row"].format(
+                model=model, cells=len(g), resolved=int(ok.sum()), max_error=_fmt(good["error"].max()),
+                worst=worst, median=_fmt(good["error"].median()),
+                half=_fmt(good["error_half_default"].max()),
+                double=_fmt(good["error_double_default"].max()), all_max=_fmt(g["error"].max()),
+                changes=int((g["regime"] != g["reference_regime"]).sum())))
+        lines += ["", t["chaotic_intro"], ""]
         for model, g in grid.groupby("model", sort=False):
             bad = g[~converged_cells(g)]
             cells = ", ".join(f"({float(r['m_star']):.3g}, {float(r['amplitude']):.3g})"
                               for _, r in bad.iterrows())
-            lines.append(f"- {model}: {cells or 'none'}")
+            lines.append(t["chaotic_row"].format(model=model, cells=cells or "none"))
         lines.append("")
     long = frame[frame["setting"] == "long"]
     if not long.empty:
-        lines += [
-            f"## (d) Long runs: {float(long['periods'].iloc[0]):g} periods at the default step",
-            "",
-            "Ramp of 1 period (a large free normal oscillation), m* = 0.1, A* = 0.3; reference: "
-            "order 4 at 8x the default steps.",
-            "",
-            "| model | case | order | steps/period | drift ratio | reference | error |",
-            "|---|---|---|---|---|---|---|",
-        ]
+        t = T["long"]
+        lines += [t["heading"].format(periods=float(long["periods"].iloc[0])), "", t["intro"], "",
+                  t["table"]]
         for _, r in long.iterrows():
-            lines.append(
-                f"| {r['model']} | {r['note']} | {int(r['order'])} | {int(r['steps_per_period'])} | "
-                f"{float(r['value']):.6f} | {float(r['reference']):.6f} | {_fmt(r['error'])} |"
-            )
+            lines.append(t["row"].format(
+                model=r["model"], case=r["note"], order=int(r["order"]),
+                steps=int(r["steps_per_period"]), value=float(r["value"]),
+                reference=float(r["reference"]), error=_fmt(r["error"])))
         lines.append("")
     lines += recommendations(frame, orders)
     return "\n".join(lines) + "\n"
 
 
+def _wave_section(t: dict[str, str], frame: pd.DataFrame, wave: pd.DataFrame, orders: pd.DataFrame,
+                  cfg: StudyConfig) -> list[str]:
+    """Section (b) of the summary: the wave scene's references, orders and defaults."""
+    lines = [t["heading"], "", t["intro"].format(m_star=WAVE_M_STAR, amplitude=WAVE_AMPLITUDE,
+                                                 periods=cfg.periods, fine=cfg.reference_steps[1],
+                                                 coarse=cfg.reference_steps[0]), "", t["table"]]
+    for model, g in wave[wave["ladder"] == "steps"].groupby("model", sort=False):
+        r = g.iloc[0]
+        lines.append(t["row"].format(model=model, reference=_fmt(r["reference"], ".8f"),
+                                     uncertainty=_fmt(r["reference_uncertainty"]),
+                                     regime=r["reference_regime"],
+                                     vs_mmd=_fmt(r["model_error_vs_mmd"])))
+    lines += ["", t["orders_intro"], "", t["orders_table"]]
+    for _, o in orders[(orders["setting"] == "wave") & (orders["ladder"] == "steps")].iterrows():
+        g = wave[(wave["model"] == o["model"]) & (wave["ladder"] == "steps")]
+        want = _order_or_none(o["order"])
+        g = g[_orders(g["order"]).map(lambda v, want=want: v == want)]
+
+        def at(spp: int, col: str, g: pd.DataFrame = g) -> Any:
+            hit = g[g["steps_per_period"] == spp]
+            return hit[col].iloc[0] if not hit.empty else math.nan
+
+        observed = _fmt(o["observed_order"], ".2f")
+        if observed == "n/a" and float(g["error"].max()) <= 1e-9:
+            observed = t["round_off"]
+        lines.append(t["orders_row"].format(
+            model=o["model"], order=t["event_scheme"] if pd.isna(o["order"]) else str(int(o["order"])),
+            observed=observed, e128=_fmt(at(128, "error")), e512=_fmt(at(512, "error")),
+            wall=_fmt(1e3 * float(at(128, "wall_s")), ".2f")))
+    dflt = wave[wave["is_default"].astype(bool) & (wave["ladder"] == "steps")]
+    if not dflt.empty:
+        lines += ["", t["defaults_intro"], ""]
+        for _, r in dflt.iterrows():
+            lines.append(t["defaults_row"].format(
+                model=r["model"], steps=int(r["steps_per_period"]), value=_fmt(r["value"], ".6f"),
+                error=_fmt(r["error"]), rel=_fmt(r["rel_error"]),
+                ms=_fmt(1e3 * float(r["wall_s"]), ".2f"), ns=_fmt(r["ns_per_step"], ".0f")))
+    strips = wave[wave["ladder"] == "strips"]
+    if not strips.empty:
+        lines += ["", t["strips_intro"], "", t["strips_table"]]
+        for _, r in strips.sort_values("strips").iterrows():
+            lines.append(t["strips_row"].format(strips=int(r["strips"]), value=_fmt(r["value"], ".8f"),
+                                                error=_fmt(r["error"]),
+                                                ns=_fmt(r["ns_per_step"], ".0f")))
+    for tol in (1e-4, 1e-6):
+        best = cheapest(frame, "mmd", tol)
+        if best is not None:
+            lines += ["", t["cheapest"].format(tol=tol, order=int(best["order"]),
+                                               steps=int(best["steps_per_period"]),
+                                               ms=_fmt(1e3 * float(best["wall_s"]), ".2f"),
+                                               error=_fmt(best["error"]))]
+    lines.append("")
+    return lines
+
+
 def recommendations(frame: pd.DataFrame, orders: pd.DataFrame) -> list[str]:
     """Data-driven recommendation lines (markdown) on the default order and step count."""
-    out = ["## Recommendation", ""]
+    t = text("work_precision")["recommend"]
+    out = [t["heading"], ""]
     wave = frame[(frame["setting"] == "wave") & (frame["ladder"] == "steps")]
     mmd = wave[wave["model"] == "mmd"]
     if mmd.empty:
-        out.append("- (mmd not in this study: no recommendation on the integrator defaults.)")
+        out.append(t["no_mmd"])
         return out
     default_order = Numerics().order
     dflt = mmd[mmd["is_default"].astype(bool)]
@@ -265,17 +215,11 @@ def recommendations(frame: pd.DataFrame, orders: pd.DataFrame) -> list[str]:
         if not g.empty:
             by_order[order] = float(g["error"].iloc[0])
     if by_order:
-        txt = ", ".join(f"AB{k} {_fmt(v)}" for k, v in by_order.items())
-        out.append(f"- mmd drift-ratio error at 128 steps per period, by order: {txt}.")
+        out.append(t["by_order"].format(orders=", ".join(f"AB{k} {_fmt(v)}" for k, v in by_order.items())))
     if not dflt.empty:
         e = float(dflt["error"].iloc[0])
-        out.append(
-            f"- At the defaults the wave-scene error is {_fmt(e)} in drift ratio, "
-            f"{'far ' if e < 1e-4 else ''}below the 1e-3 stick tolerance of the regime classifier."
-            if e < 1e-3 else
-            f"- At the defaults the wave-scene error is {_fmt(e)} in drift ratio, ABOVE the 1e-3 "
-            "stick tolerance: increase the default steps per period."
-        )
+        out.append(t["default_ok"].format(error=_fmt(e), far="far " if e < 1e-4 else "")
+                   if e < 1e-3 else t["default_bad"].format(error=_fmt(e)))
     grid = frame[(frame["setting"] == "defaults") & (frame["model"] == "mmd")]
     if not grid.empty:
         ok = converged_cells(grid) & np.isfinite(grid["error"].astype(float))
@@ -283,79 +227,52 @@ def recommendations(frame: pd.DataFrame, orders: pd.DataFrame) -> list[str]:
         if not good.empty:
             w = good.loc[good["error"].astype(float).idxmax()]
             changes = int((grid["regime"] != grid["reference_regime"]).sum())
-            dbl = float(good["error_double_default"].max())
-            out.append(
-                f"- Over the (m*, A*) plane, mmd at the defaults: median error "
-                f"{_fmt(good['error'].median())}, worst resolved cell {_fmt(w['error'])} "
-                f"(relative {_fmt(w['rel_error'])}) at m* = {w['m_star']:.3g}, "
-                f"A* = {w['amplitude']:.3g} ({int(w['steps_per_period'])} steps per period, regime "
-                f"{w['regime']}); {changes} regime changes in {len(grid)} cells; "
-                f"{int((~ok).sum())} chaotic cells. Twice the default steps would bring the worst "
-                f"resolved error to {_fmt(dbl)} at twice the cost."
-            )
+            out.append(t["plane"].format(
+                median=_fmt(good["error"].median()), worst=_fmt(w["error"]), rel=_fmt(w["rel_error"]),
+                m_star=w["m_star"], amplitude=w["amplitude"], steps=int(w["steps_per_period"]),
+                regime=w["regime"], changes=changes, cells=len(grid), chaotic=int((~ok).sum()),
+                double=_fmt(float(good["error_double_default"].max()))))
             verdict = float(w["rel_error"]) if math.isfinite(float(w["rel_error"])) else math.inf
             if verdict <= 1e-2 and changes == 0:
-                out.append(
-                    "- The step default is adequate: every resolved cell is within "
-                    f"{_fmt(100 * verdict, '.2g')} % of its converged drift ratio and no regime "
-                    "changes; keep max(128, ceil(omega / 0.06))."
-                )
+                out.append(t["step_ok"].format(percent=_fmt(100 * verdict, ".2g")))
             else:
-                out.append(
-                    "- The step default is too coarse somewhere in the plane (relative error "
-                    f"{_fmt(verdict)} or regime changes): tighten it (e.g. h omega <= 0.03 or a "
-                    "floor of 256 steps per period)."
-                )
+                out.append(t["step_bad"].format(rel=_fmt(verdict)))
     rows = orders[(orders["setting"] == "wave") & (orders["model"] == "mmd")]
     hi = rows[rows["order"].map(lambda o: o is not None and not pd.isna(o) and int(o) >= 3)]
     if not hi.empty:
-        obs = ", ".join(f"AB{int(r['order'])} {_fmt(r['observed_order'], '.2f')}"
-                        for _, r in hi.iterrows())
-        out.append(
-            f"- Observed orders of AB3/AB4 on mmd: {obs}. The contact law is not smooth in time "
-            "(stick-slip transitions, turning points, contact loss), which caps the observed "
-            "order at about 2 for every model (table above)."
-        )
+        out.append(t["high_orders"].format(orders=", ".join(
+            f"AB{int(r['order'])} {_fmt(r['observed_order'], '.2f')}" for _, r in hi.iterrows())))
     long = frame[frame["setting"] == "long"]
     if not long.empty:
         err = long.groupby("order")["error"].max()
         e3, e4 = float(err.get(3, math.nan)), float(err.get(4, math.nan))
-        periods = float(long["periods"].iloc[0])
         best = 4 if e4 <= e3 else 3
-        out.append(
-            f"- Long runs ({periods:g} periods, table (d)): largest drift-ratio error at the default "
-            f"step AB3 {_fmt(e3)}, AB4 {_fmt(e4)}. The normal oscillation is undamped and AB3 "
-            "damps it numerically ((3/8)(h omega)^4 per step), AB4 only at O((h omega)^6): "
-            f"order {best} is the better default"
-            + (" (it is the default)." if best == default_order else f" (the default is {default_order}).")
-        )
+        which = (t["long_is_default"] if best == default_order
+                 else t["long_not_default"].format(order=default_order))
+        out.append(t["long"].format(periods=float(long["periods"].iloc[0]), e3=_fmt(e3), e4=_fmt(e4),
+                                    best=best, which=which))
     ab3 = by_order.get(3, math.nan)
     ab2 = by_order.get(2, math.nan)
     if math.isfinite(ab3) and math.isfinite(ab2):
-        out.append(f"- At 60 periods: AB3 error {_fmt(ab3)} vs AB2 {_fmt(ab2)} at equal cost; "
-                   "never use AB1 or AB2.")
+        out.append(t["low_orders"].format(ab3=_fmt(ab3), ab2=_fmt(ab2)))
     strips = frame[(frame["setting"] == "wave") & (frame["ladder"] == "strips")]
     dflt_strips = strips[strips["is_default"].astype(bool)]
     if not dflt_strips.empty and not dflt.empty:
         e_s = float(dflt_strips["error"].iloc[0])
         e_t = float(dflt["error"].iloc[0])
-        out.append(
-            f"- mdr: at its default {int(dflt_strips['strips'].iloc[0])} strips the strip error in "
-            f"drift ratio is {_fmt(e_s)}, {'below' if e_s < e_t else 'ABOVE'} the time-step error "
-            f"{_fmt(e_t)} at the default step: "
-            + ("the strip default is adequate." if e_s < e_t else "raise the strip default.")
-        )
+        below = e_s < e_t
+        out.append(t["strips"].format(
+            strips=int(dflt_strips["strips"].iloc[0]), e_s=_fmt(e_s), e_t=_fmt(e_t),
+            relation=t["strips_below"] if below else t["strips_above"],
+            verdict=t["strips_ok"] if below else t["strips_raise"]))
     for model in frame.loc[frame["setting"] == "wave", "model"].unique():
         if not _is_rigid(str(model)):
             continue
         g = frame[(frame["model"] == model) & (frame["setting"].isin(["wave", "defaults"]))]
         w = g[g["setting"] == "wave"]
-        out.append(
-            f"- {model}: the event scheme's error does not depend on the step (wave ladder "
-            f"{int(w['steps_per_period'].min())}-{int(w['steps_per_period'].max())} steps per "
-            f"period: max error {_fmt(w['error'].max())}; over the plane: max "
-            f"{_fmt(g.loc[g['setting'] == 'defaults', 'error'].max())}), so its default of "
-            f"{int(_wave_scene(str(model)).steps_per_period())} steps per period only bounds the "
-            "length of events missed inside one step; keep it (its cost is negligible)."
-        )
+        out.append(t["rigid"].format(
+            model=model, lo=int(w["steps_per_period"].min()), hi=int(w["steps_per_period"].max()),
+            wave_max=_fmt(w["error"].max()),
+            plane_max=_fmt(g.loc[g["setting"] == "defaults", "error"].max()),
+            steps=int(_wave_scene(str(model)).steps_per_period())))
     return out

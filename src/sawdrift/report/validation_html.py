@@ -9,6 +9,7 @@ import json
 from pathlib import Path
 from typing import Any
 
+from .texts import asset
 from .validation_api import GROUPS, MU, NU, ValidationReport, _environment, _fmt, _one_line
 
 # -- report writers ----------------------------------------------------------------------------
@@ -67,28 +68,6 @@ def write_json(report: ValidationReport, path: Path) -> None:
 
 _SYMBOL = {"<=": "&le;", ">=": "&ge;"}
 
-_CSS = """
-body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:24px;color:#222;
-max-width:1400px}
-h1{margin:0 0 4px 0;font-size:24px} h2{margin:28px 0 8px 0;font-size:18px;border-bottom:1px solid #ccc}
-.summary{font-size:18px;padding:10px 14px;border-radius:6px;margin:10px 0}
-.summary.ok{background:#e5f5e0;border:1px solid #31a354}
-.summary.bad{background:#fde0dd;border:1px solid #d62728}
-.meta{color:#666;font-size:13px}
-table{border-collapse:collapse;width:100%;font-size:13px}
-th,td{border:1px solid #ddd;padding:4px 6px;vertical-align:top;text-align:left}
-th{background:#f3f3f3} td.num{text-align:right;font-family:ui-monospace,Menlo,Consolas,monospace;
-white-space:nowrap}
-.st{font-weight:bold;white-space:nowrap;padding:2px 6px;border-radius:4px;font-size:12px}
-.st-pass{background:#31a354;color:#fff}.st-fail{background:#d62728;color:#fff}
-.st-dev{background:#f0a30a;color:#222}.st-error{background:#67000d;color:#fff}
-.title{color:#444;max-width:360px}.figs{display:flex;flex-wrap:wrap;gap:14px;margin-top:12px}
-figure{margin:0;border:1px solid #ddd;padding:6px;background:#fff;display:table}
-figure img{display:block;max-width:calc(100vw - 80px);height:auto}
-figcaption{display:table-caption;caption-side:bottom;font-size:12px;color:#444;padding:4px 6px}
-"""
-
-
 def write_html(report: ValidationReport, path: Path) -> None:
     """Write the self-contained ``index.html`` (figures inline as base64 PNG)."""
     esc = html.escape
@@ -96,7 +75,7 @@ def write_html(report: ValidationReport, path: Path) -> None:
     parts = [
         "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
         "<title>sawdrift validation</title>",
-        f"<style>{_CSS}</style></head><body>",
+        f"<style>{asset('validation.css')}</style></head><body>",
         "<h1>sawdrift validation report</h1>",
         f"<div class='meta'>sawdrift {esc(env['sawdrift'])}, Python {esc(env['python'])}, "
         f"numpy {esc(env['numpy'])}, numba {esc(env['numba'])}; {esc(env['date'])}; "
