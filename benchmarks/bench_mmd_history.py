@@ -22,6 +22,7 @@ import numpy as np
 from numba import njit
 
 from sawdrift import ContactHistory
+from sawdrift_builtin import mmd_kernel
 from sawdrift_builtin.mmd import MemoryDiagramModel
 
 
@@ -40,14 +41,10 @@ def random_history(n: int, seed: int = 2024) -> tuple[np.ndarray, np.ndarray]:
     return a, b
 
 
-_KERNEL = MemoryDiagramModel().kernel  # the compiled contact: the slots around mmd's step
-_force = _KERNEL.force
-
-
 @njit
 def _run(fs, is_, pp, a, b, n_out, t_out):
     for k in range(a.size):
-        n_out[k], t_out[k] = _force(fs, is_, pp, a[k], b[k], 0.0, 0.0)
+        n_out[k], t_out[k] = mmd_kernel.force(fs, is_, pp, a[k], b[k], 0.0, 0.0)
 
 
 def kernel_ns_per_step(n: int, batch: int, repeats: int = 7) -> tuple[float, int]:
@@ -69,7 +66,7 @@ def kernel_ns_per_step(n: int, batch: int, repeats: int = 7) -> tuple[float, int
     for _ in range(repeats):
         t0 = time.perf_counter()
         for _ in range(batch):
-            _KERNEL.reset(fs, is_, pp)
+            mmd_kernel.reset(fs, is_, pp)
             _run(fs, is_, pp, a, b, n_out, t_out)
         best = min(best, time.perf_counter() - t0)
     return 1e9 * best / (n * batch), int(is_[1])

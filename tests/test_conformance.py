@@ -75,7 +75,7 @@ def _anti_friction(fs, is_, pp, a, b, adot, bdot):
 
 class _Broken(MMD):
     name = "test_broken"
-    kernel = KernelPair(reset=MMD().kernel.reset, force=_anti_friction)
+    kernel = KernelPair(reset=MMD.kernel.reset, force=_anti_friction)
 
     def reference(self):
         class Ref:

@@ -29,7 +29,7 @@ def _nan_force(fs, is_, pp, a, b, adot, bdot):
 
 class _Raising(MMD):
     name = "test_raising"
-    kernel = KernelPair(reset=MMD().kernel.reset, force=_raising_force)
+    kernel = KernelPair(reset=MMD.kernel.reset, force=_raising_force)
 
     def reference(self):
         class Ref:
@@ -44,7 +44,7 @@ class _Raising(MMD):
 
 class _NaN(MMD):
     name = "test_nan"
-    kernel = KernelPair(reset=MMD().kernel.reset, force=_nan_force)
+    kernel = KernelPair(reset=MMD.kernel.reset, force=_nan_force)
 
 
 @pytest.fixture

@@ -9,25 +9,27 @@ import pytest
 from numba import njit
 
 import sawdrift as sd
+from sawdrift.contact import KernelPair
 from sawdrift.report.validation import Case, CaseResult, load_cases, validate
 from sawdrift_builtin import mmd_kernel
 from sawdrift_builtin.mmd import MemoryDiagramModel
 
-_mmd_step = mmd_kernel.step
+_mmd_force = mmd_kernel.force
 
 
 @njit
-def _flipped_step(ts, is_, law, tp, a0, b0, a, b):
+def _flipped_force(fs, is_, pp, a, b, adot, bdot):
     # the memory-diagram law with the sign of the friction force flipped
-    return -_mmd_step(ts, is_, law, tp, a0, b0, a, b)
+    n, t = _mmd_force(fs, is_, pp, a, b, adot, bdot)
+    return n, -t
 
 
 class FlippedFriction(MemoryDiagramModel):
-    """``mmd`` whose tangential step returns -T*: friction pushes instead of resisting."""
+    """``mmd`` whose compiled kernel returns (N*, -T*): friction pushes instead of resisting."""
 
     name = "mmd_flipped_friction"
     summary = "deliberately broken: mmd with the friction sign flipped (tests only)"
-    step = _flipped_step  # the readable reference (inherited) keeps the right sign
+    kernel = KernelPair(reset=mmd_kernel.reset, force=_flipped_force)
 
 
 @pytest.fixture

@@ -72,14 +72,12 @@ def reference_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float) -
 
     ``law[0]`` is the exponent p of N* = a*^p, ``tp[0]`` the rescale flag.
     """
-    from sawdrift.contact.normal import law_normal  # (numba: not imported to list the models)
-
     p = float(law[0])
 
     def stiffness(x: float) -> float:  # Mindlin's initial stiffness k_t = N*'(a*)
         return p * x ** (p - 1.0)
 
-    n = law_normal(a, law, 0)  # the framework's normal force: the cap uses the same rounding
+    n = a**p
     if tp[0] != 0.0 and a < a0:
         t = ts[0] * stiffness(a) / stiffness(a0) + stiffness(a) * (b - b0)
     elif a == a0:

@@ -20,8 +20,7 @@ from typing import ClassVar
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
 
-from sawdrift.contact import Capabilities, ContactHistory
-from sawdrift.contact.slots import HEADER, LazyFunction, TangentialLaw
+from sawdrift.contact import Capabilities, ContactHistory, ContactModel, KernelPair
 from sawdrift.hookspecs import hookimpl
 
 from .mmd_reference import MemoryDiagramReference
@@ -39,7 +38,7 @@ class MemoryDiagramParams(BaseModel):
     )
 
 
-class MemoryDiagramModel(TangentialLaw):
+class MemoryDiagramModel(ContactModel):
     """Memory-diagram contact (Aleshin et al. 2015), exact for piecewise-linear histories.
 
     Parameters
@@ -59,23 +58,26 @@ class MemoryDiagramModel(TangentialLaw):
     capabilities: ClassVar[Capabilities] = Capabilities(
         profiles=("sphere", "cone", "flat", "power", "table"), straight_path_exact=True
     )
-    step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.mmd_kernel", "step")
-    reset_state: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.mmd_kernel", "reset")
+    kernel: ClassVar[KernelPair | None] = KernelPair.lazy("sawdrift_builtin.mmd_kernel")
 
-    def tangential_sizes(self) -> tuple[int, int]:
-        """Sizes of the diagram's state (layout in :mod:`sawdrift_builtin.mmd_kernel`)."""
+    def state_sizes(self) -> tuple[int, int]:
+        """Sizes of ``fs`` and ``is_`` (layout in :mod:`sawdrift_builtin.mmd_kernel`)."""
         from . import mmd_kernel
 
         return mmd_kernel.state_sizes(self.params.max_memory_points)
 
     def live_sizes(self, fs: np.ndarray, is_: np.ndarray) -> tuple[int, int]:
-        """The headers and the stored memory points (the rest of the stack is free)."""
+        """The header and the stored memory points (the rest of the stack is free)."""
         from . import mmd_kernel
 
-        return HEADER + mmd_kernel.HEADER + mmd_kernel.RECORD * int(is_[0]), is_.size
+        return mmd_kernel.HEADER + mmd_kernel.RECORD * int(is_[0]), is_.size
 
-    def reference_step(self) -> MemoryDiagramReference:
-        """The readable memory-diagram reference, driven through its ``step``."""
+    def packed_params(self) -> np.ndarray:
+        """The profile's normal-law descriptor (``[p]`` for a power law)."""
+        return self.profile.law()
+
+    def reference(self) -> MemoryDiagramReference:
+        """A fresh pure-Python memory-diagram contact."""
         law = self.profile.law()
         return MemoryDiagramReference(law[0] if law.size == 1 else law)
 
@@ -83,13 +85,13 @@ class MemoryDiagramModel(TangentialLaw):
     def memory_points(history: ContactHistory) -> np.ndarray:
         """The committed memory points of ``history`` as a (k, 2) array of (z, v)."""
         if history._ref is not None:
-            return np.array(history._ref.readable.kinks, dtype=np.float64).reshape(-1, 2)
+            return np.array(history._ref.kinks, dtype=np.float64).reshape(-1, 2)
         from . import mmd_kernel
 
-        return mmd_kernel.memory_points(history._fs[HEADER:], history._is)
+        return mmd_kernel.memory_points(history._fs, history._is)
 
 
 @hookimpl
-def sawdrift_contact_models() -> list[type[TangentialLaw]]:
+def sawdrift_contact_models() -> list[type[ContactModel]]:
     """Register the ``mmd`` model."""
     return [MemoryDiagramModel]

@@ -46,26 +46,25 @@ by more than 2 a*, which the bounds forbid, so the O(kinks) re-base is amortized
 
 State layout (sizes from :func:`state_sizes`)
 ---------------------------------------------
-This is the law's own state in the tangential slot (:mod:`sawdrift.contact.slots`): the framework
-keeps the committed (a*, b*), contact entry and loss in front of it. ``ts`` (float64), capacity
-``cap = (ts.size - HEADER) // RECORD``:
+``fs`` (float64), capacity ``cap = (fs.size - HEADER) // RECORD``:
 
 ========================  ===================================================================
-``ts[0]``, ``ts[1]``      a*, b* at the end of the last step (diagnostics)
-``ts[2]``                 offset (v = w + offset)
-``ts[3]``, ``ts[4]``      N*, T* of the last step (diagnostics)
-``ts[5:8]``               reserved
-``ts[8 + 5i + 0]``        z_i, level of kink i (i = 0 at the bottom, z_0 = 0)
-``ts[8 + 5i + 1]``        w_i, value relative to the offset
-``ts[8 + 5i + 2]``        C_i, prefix integral of w dN*' over [0, z_i]
-``ts[8 + 5i + 3]``        N*'(z_i) (0 at z = 0)
-``ts[8 + 5i + 4]``        N*(z_i)
+``fs[0]``                 committed a*
+``fs[1]``                 committed b*
+``fs[2]``                 offset (v = w + offset)
+``fs[3]``, ``fs[4]``      N*, T* of the last step (diagnostics)
+``fs[5:8]``               reserved
+``fs[8 + 5i + 0]``        z_i, level of kink i (i = 0 at the bottom, z_0 = 0)
+``fs[8 + 5i + 1]``        w_i, value relative to the offset
+``fs[8 + 5i + 2]``        C_i, prefix integral of w dN*' over [0, z_i]
+``fs[8 + 5i + 3]``        N*'(z_i) (0 at z = 0)
+``fs[8 + 5i + 4]``        N*(z_i)
 ========================  ===================================================================
 
 ``is_`` (int64): ``is_[0]`` number of kinks (0 when out of contact), ``is_[1]`` high-water mark
 of the kink count, ``is_[2]`` number of re-bases, ``is_[3]`` capacity.
 
-``law`` (float64): the normal-law descriptor (``[p]`` for a power law).
+``pp`` (float64): the normal-law descriptor (``[p]`` for a power law).
 
 If the capacity is exceeded, :class:`MemoryCapacityError` is raised and the history is invalid.
 """
@@ -222,61 +221,77 @@ def _rebase(fs, is_, pp):
 
 
 @njit(**JIT_OPTIONS)
-def reset(ts, is_, law, tp):
-    """Empty history: no memory points (the framework calls this on contact loss)."""
+def reset(fs, is_, pp):
+    """Empty history: out of contact at (a*, b*) = (0, 0)."""
     for i in range(HEADER):
-        ts[i] = 0.0
+        fs[i] = 0.0
     is_[0] = 0
     is_[1] = 0
     is_[2] = 0
-    is_[3] = (ts.shape[0] - HEADER) // RECORD
+    is_[3] = (fs.shape[0] - HEADER) // RECORD
 
 
 @njit(**JIT_OPTIONS)
-def step(ts, is_, law, tp, a0, b0, a, b):
-    """Advance the diagram along the straight path (a0, b0) -> (a, b), commit, return T*.
+def force(fs, is_, pp, a, b, adot, bdot):
+    """Advance along the straight path to (a*, b*), commit, return (N*, T*).
 
-    ``a0 = 0`` is a new contact (the framework has just reset the state): it starts from the
-    point diagram at z = 0. The normal force is the framework's (the same law, N*(a*)).
+    ``adot`` and ``bdot`` are ignored (the law is rate independent).
     """
-    ts[0] = a
-    ts[1] = b
-    if a0 == 0.0:
-        _push(ts, is_, 0.0, 0.0, law)
-    offset = ts[2] + (b - b0)
-    ts[2] = offset
-    n = is_[0]
-    if a < a0:
-        # strips z >= a leave contact: pop them, re-set the top at z = a by interpolation
-        while n >= 2 and ts[HEADER + RECORD * (n - 2)] >= a:
-            n -= 1
-        is_[0] = n
-        r = HEADER + RECORD * (n - 1)
-        z1 = ts[r - RECORD]
-        w1 = ts[r - RECORD + 1]
-        wa = w1 + (ts[r + 1] - w1) * ((a - z1) / (ts[r] - z1))
-        _write(ts, n - 1, a, wa, law_slope(a, law, 0), law)
-    r = HEADER + RECORD * (n - 1)
-    vt = ts[r + 1] + offset
-    slack = a - ts[r] if ts[r] < a else 0.0
-    if vt > slack:
-        _clip(ts, is_, a, offset, 1.0, law)
-    elif -vt > slack:
-        _clip(ts, is_, a, offset, -1.0, law)
+    a0 = fs[0]
+    b0 = fs[1]
+    fs[0] = a
+    fs[1] = b
+    nf = 0.0
+    t = 0.0
+    if not a > 0.0:
+        # contact lost: the memory is erased, the next contact starts clean
+        is_[0] = 0
+        fs[2] = 0.0
     else:
-        _push(ts, is_, a, -offset, law)
-    if abs(offset) > REBASE_LIMIT * max(1.0, a):
-        _rebase(ts, is_, law)
-        offset = 0.0
-    r = HEADER + RECORD * (is_[0] - 1)
-    t = ts[r + 2] + offset * ts[r + 3]
-    ts[3] = ts[r + 4]
-    ts[4] = t
-    return t
+        if a0 <= 0.0:
+            # the straight path enters contact where a* crosses 0: start there, point diagram
+            if a0 < 0.0:
+                b0 = b0 + (b - b0) * (-a0 / (a - a0))
+            a0 = 0.0
+            is_[0] = 0
+            fs[2] = 0.0
+            _push(fs, is_, 0.0, 0.0, pp)
+        offset = fs[2] + (b - b0)
+        fs[2] = offset
+        n = is_[0]
+        if a < a0:
+            # strips z >= a leave contact: pop them, re-set the top at z = a by interpolation
+            while n >= 2 and fs[HEADER + RECORD * (n - 2)] >= a:
+                n -= 1
+            is_[0] = n
+            r = HEADER + RECORD * (n - 1)
+            z1 = fs[r - RECORD]
+            w1 = fs[r - RECORD + 1]
+            wa = w1 + (fs[r + 1] - w1) * ((a - z1) / (fs[r] - z1))
+            _write(fs, n - 1, a, wa, law_slope(a, pp, 0), pp)
+        r = HEADER + RECORD * (n - 1)
+        vt = fs[r + 1] + offset
+        slack = a - fs[r] if fs[r] < a else 0.0
+        if vt > slack:
+            _clip(fs, is_, a, offset, 1.0, pp)
+        elif -vt > slack:
+            _clip(fs, is_, a, offset, -1.0, pp)
+        else:
+            _push(fs, is_, a, -offset, pp)
+        if abs(offset) > REBASE_LIMIT * max(1.0, a):
+            _rebase(fs, is_, pp)
+            offset = 0.0
+        r = HEADER + RECORD * (is_[0] - 1)
+        da = fs[r + 3]
+        nf = fs[r + 4]
+        t = fs[r + 2] + offset * da
+    fs[3] = nf
+    fs[4] = t
+    return nf, t
 
 
-def memory_points(ts: np.ndarray, is_: np.ndarray) -> np.ndarray:
-    """The stored kinks of the law's state ``ts`` as a (k, 2) array of (z, v), bottom first."""
+def memory_points(fs: np.ndarray, is_: np.ndarray) -> np.ndarray:
+    """The stored kinks as a (k, 2) array of (z, v), bottom (z = 0) first."""
     n = int(is_[0])
-    rec = ts[HEADER : HEADER + RECORD * n].reshape(n, RECORD)
-    return np.column_stack([rec[:, 0], rec[:, 1] + ts[2]])
+    rec = fs[HEADER : HEADER + RECORD * n].reshape(n, RECORD)
+    return np.column_stack([rec[:, 0], rec[:, 1] + fs[2]])

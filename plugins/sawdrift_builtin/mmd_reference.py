@@ -143,20 +143,13 @@ class MemoryDiagramReference:
             self.kinks = []
             return 0.0, 0.0
         if a0 <= 0.0:
-            # a fresh contact starts where the straight path crosses a* = 0
+            # a fresh contact starts where the straight path crosses a* = 0, from a point diagram
             if a0 < 0.0:
                 b0 = b0 + (b - b0) * (-a0) / (a - a0)
             a0 = 0.0
-        return normal_force(a, self.p), self.step(a0, b0, a, b)
-
-    def step(self, a0: float, b0: float, a: float, b: float) -> float:
-        """The four rules along the straight path (a0, b0) -> (a, b), a > 0; commit; T*.
-
-        ``a0 = 0`` starts a new contact from the point diagram at z = 0. This is the tangential
-        slot's form (:mod:`sawdrift.contact.slots`); :meth:`force` adds contact entry and loss.
-        """
-        self.a, self.b = a, b
-        kinks: list[Kink] = [(0.0, 0.0)] if a0 == 0.0 else list(self.kinks)
+            kinks: list[Kink] = [(0.0, 0.0)]
+        else:
+            kinks = list(self.kinks)
         db = b - b0
         # rule 1: strips with z >= a* leave contact and are forgotten
         if a < a0:
@@ -171,4 +164,4 @@ class MemoryDiagramReference:
         kinks = _clip_to_bound(kinks, a, 1.0)
         kinks = _clip_to_bound(kinks, a, -1.0)
         self.kinks = kinks
-        return tangential_force(kinks, self.p)
+        return normal_force(a, self.p), tangential_force(kinks, self.p)

@@ -70,7 +70,7 @@ def power_law(z: float, p: float) -> float:
     """N*(z) = z^p for z > 0, else 0: the power law with a scalar exponent."""
     out = 0.0
     if z > 0.0:
-        out = z * math.sqrt(z) if p == 1.5 else z**p  # rounded exactly as law_normal
+        out = z**p
     return out
 
 
@@ -80,13 +80,7 @@ def law_normal(z: float, law, off: int) -> float:
     out = 0.0
     if z > 0.0:
         p = law[off]
-        if p == 1.5:
-            out = z * math.sqrt(z)  # Hertz: a square root is several times cheaper than a power
-        elif p == 1.0:
-            out = z
-        elif p == 2.0:
-            out = z * z
-        elif p > 0.0:
+        if p > 0.0:
             out = z**p
         else:
             out = _hermite(z, law, off, False)
