@@ -13,9 +13,9 @@ the contact-radius ratio, i.e. by k_t(new)/k_t(old) for a Hertz contact; here ge
 k_t = N*'(a*) for every profile): while a* decreases, dT* = k_t db* + T* d ln k_t. Loading never
 rescales.
 
-Straight-path exactness. ``force`` integrates the law exactly along the straight path from the
-committed (a*, b*) (the kernel protocol of sawdrift.contact), which makes the result independent
-of how a straight move is split:
+Straight-path exactness. The step (:func:`sawdrift_builtin.dem_kernel.dem_step`, the tangential
+slot of :mod:`sawdrift.contact.slots`) integrates the law exactly along the straight path from the
+committed (a*, b*), which makes the result independent of how a straight move is split:
 
 * without rescaling, the elastic increment is integral k_t db* = (db*/da*) [N*(a1) - N*(a0)]
   (= k_t db* at fixed a*); a path that reaches the cap stays on it (the elastic rate points out

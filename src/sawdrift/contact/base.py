@@ -104,26 +104,35 @@ class KernelPair:
         return LazyKernelPair(module, reset, force)
 
 
+class LazyFunction:
+    """A compiled function named by module and attribute, imported on first use."""
+
+    def __init__(self, module: str, name: str) -> None:
+        self.module, self.name = module, name
+
+    def load(self) -> Any:
+        """The function itself."""
+        import importlib
+
+        return getattr(importlib.import_module(self.module), self.name)
+
+
 class LazyKernelPair:
     """A :class:`KernelPair` whose functions are imported from their module on first access."""
 
     def __init__(self, module: str, reset: str, force: str) -> None:
-        self.module, self._names = module, (reset, force)
-
-    def _load(self, which: int) -> Any:
-        import importlib
-
-        return getattr(importlib.import_module(self.module), self._names[which])
+        self.module = module
+        self._reset, self._force = LazyFunction(module, reset), LazyFunction(module, force)
 
     @property
     def reset(self) -> Any:
         """The compiled ``reset`` function."""
-        return self._load(0)
+        return self._reset.load()
 
     @property
     def force(self) -> Any:
         """The compiled ``force`` function."""
-        return self._load(1)
+        return self._force.load()
 
 
 class ReferenceContact(Protocol):
@@ -246,12 +255,18 @@ class ContactModel:
 
 
 class KernelReference:
-    """The pure-Python engine of a kernel: its ``py_func`` run on its own state arrays."""
+    """The pure-Python engine of a kernel: its ``py_func`` run on its own state arrays.
 
-    def __init__(self, model: ContactModel) -> None:
+    ``reset`` and ``force`` default to the model's kernel functions (uncompiled); a caller with
+    other Python functions of the same signatures passes them (the contact slots do).
+    """
+
+    def __init__(self, model: ContactModel, reset: Any = None, force: Any = None) -> None:
         nf, ni = model.state_sizes()
-        self._reset = getattr(model.kernel.reset, "py_func", model.kernel.reset)
-        self._force = getattr(model.kernel.force, "py_func", model.kernel.force)
+        if reset is None or force is None:
+            reset = getattr(model.kernel.reset, "py_func", model.kernel.reset)
+            force = getattr(model.kernel.force, "py_func", model.kernel.force)
+        self._reset, self._force = reset, force
         self.fs = np.zeros(nf, dtype=np.float64)
         self.is_ = np.zeros(ni, dtype=np.int64)
         self.pp = model.packed_params()
@@ -263,7 +278,7 @@ class KernelReference:
 
     def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
         """Advance along a straight path to (a*, b*), commit, return (N*, T*)."""
-        n, t = self._force(self.fs, self.is_, self.pp, a, b, adot, bdot)
+        n, t = self._force(self.fs, self.is_, self.pp, float(a), float(b), float(adot), float(bdot))
         return float(n), float(t)
 
 

@@ -34,34 +34,18 @@ Damping protocol: ``damp(dp, law, a, adot, n_elastic) -> N*`` with ``dp`` from
 
 from __future__ import annotations
 
-import hashlib
-import importlib
-import importlib.util
 import inspect
-import os
-import sys
 import textwrap
 from typing import Any, ClassVar
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, create_model
 
-from .base import ContactModel, KernelPair, NoParams
+from .base import ContactModel, KernelPair, KernelReference, LazyFunction, NoParams
 
 #: Float entries the framework keeps in front of the law's state: committed a*, committed b*,
 #: and 1.0 while the tangential history belongs to a contact (0.0: fresh).
 HEADER = 3
-
-
-class LazyFunction:
-    """A compiled function named by module and attribute, imported on first use."""
-
-    def __init__(self, module: str, name: str) -> None:
-        self.module, self.name = module, name
-
-    def load(self) -> Any:
-        """The function itself."""
-        return getattr(importlib.import_module(self.module), self.name)
 
 
 def _load(func: Any) -> Any:
@@ -116,35 +100,27 @@ def contact_normal(fs, is_, pp, a, b, adot, bdot):
 _TEMPLATES = (contact_reset, contact_force, contact_normal)
 
 
-def _origin(func: Any) -> tuple[str, str] | None:
-    """(module, name) under which a compiled function can be imported again, or None."""
-    py = getattr(func, "py_func", func)
-    module, name = getattr(py, "__module__", None), getattr(py, "__name__", "")
-    if module in (None, "__main__") or "<" in name:
-        return None
-    try:
-        if getattr(importlib.import_module(module), name, None) is not func:
-            return None
-    except Exception:  # noqa: BLE001 - not importable by name
-        return None
-    return module, name
-
-
 def _body() -> str:
     return "\n\n".join(textwrap.dedent(inspect.getsource(f)) for f in _TEMPLATES)
+
+
+def _namespace(step: Any, reset: Any, damp: Any, law_normal: Any, label: str) -> dict[str, Any]:
+    """The composition source run in a namespace bound to the given slot functions."""
+    ns: dict[str, Any] = {"HEADER": HEADER, "law_normal": law_normal, "tangential_step": step,
+                          "tangential_reset": reset, "normal_damping": damp}
+    exec(compile(_body(), f"<sawdrift contact slots{label}>", "exec"), ns)  # noqa: S102
+    return ns
 
 
 def _compiled_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
     """The generated, disk-cached module's namespace (or an in-memory compilation)."""
     from numba import njit
 
-    from ..dynamics.loop_cache import cache_dir
-    from .normal import JIT_OPTIONS
+    from ..dynamics.loop_cache import importable_origin, load_generated
+    from .normal import JIT_OPTIONS, law_normal
 
-    origins = [_origin(f) for f in (step, reset, damp)]
+    origins = [importable_origin(f) for f in (step, reset, damp)]
     if all(o is not None for o in origins):
-        from .. import __version__
-
         imports = "\n".join(
             f"from {mod} import {name} as {alias}  # noqa: F401"
             for (mod, name), alias in zip(origins, ("tangential_step", "tangential_reset",
@@ -158,30 +134,12 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
             "from sawdrift.contact.slots import HEADER  # noqa: F401\n"
             f"{imports}\n\n\n@njit(**JIT_OPTIONS)\n{decorated}\n"
         )
-        digest = hashlib.sha1(f"{__version__}\n{source}".encode()).hexdigest()[:16]
-        modname = f"sawdrift_contact_{digest}"
-        if modname in sys.modules:
-            return vars(sys.modules[modname])
-        folder = cache_dir()
-        path = folder / f"{modname}.py"
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-            if not path.exists() or path.read_text() != source:
-                tmp = path.with_suffix(f".{os.getpid()}.tmp")
-                tmp.write_text(source)
-                os.replace(tmp, path)
-            spec = importlib.util.spec_from_file_location(modname, path)
-            module = importlib.util.module_from_spec(spec)
-            sys.modules[modname] = module  # numba's cache and the wave loop import it by name
-            spec.loader.exec_module(module)
+        # the wave loop's generated module imports this one by name
+        module = load_generated("sawdrift_contact_", source)
+        if module is not None:
             return vars(module)
-        except Exception:  # noqa: BLE001 - an unwritable cache: compile in memory instead
-            sys.modules.pop(modname, None)
-    from .normal import law_normal
-
-    ns: dict[str, Any] = {"HEADER": HEADER, "law_normal": law_normal, "tangential_step": step,
-                          "tangential_reset": reset, "normal_damping": damp}
-    exec(compile(_body(), "<sawdrift contact slots>", "exec"), ns)  # noqa: S102
+    # not importable by name, or an unwritable cache: compile in memory instead
+    ns = _namespace(step, reset, damp, law_normal, "")
     for f in _TEMPLATES:
         ns[f.__name__] = njit(**JIT_OPTIONS)(ns[f.__name__])
     return ns
@@ -191,11 +149,7 @@ def _python_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
     """The same composition run as plain Python (the python engine)."""
     from .normal import law_normal
 
-    ns: dict[str, Any] = {"HEADER": HEADER, "law_normal": law_normal.py_func,
-                          "tangential_step": step, "tangential_reset": reset,
-                          "normal_damping": damp}
-    exec(compile(_body(), "<sawdrift contact slots (python)>", "exec"), ns)  # noqa: S102
-    return ns
+    return _namespace(step, reset, damp, law_normal.py_func, " (python)")
 
 
 _COMPOSED: dict[tuple[Any, ...], dict[str, Any]] = {}
@@ -330,7 +284,7 @@ class TangentialLaw(ContactModel):
                                    "__module__": damping.__module__})
 
 
-class SlotReference:
+class SlotReference(KernelReference):
     """The python engine of a :class:`TangentialLaw`: the composition source run uncompiled."""
 
     def __init__(self, model: TangentialLaw) -> None:
@@ -349,18 +303,4 @@ class SlotReference:
         elif readable is not None:
             step, reset = readable
         ns = _python_namespace(_py(step), _py(reset), _py(damp))
-        self._reset, self._force = ns["contact_reset"], ns["contact_force"]
-        nf, ni = model.state_sizes()
-        self.fs = np.zeros(nf, dtype=np.float64)
-        self.is_ = np.zeros(ni, dtype=np.int64)
-        self.pp = model.packed_params()
-        self.reset()
-
-    def reset(self) -> None:
-        """Empty history."""
-        self._reset(self.fs, self.is_, self.pp)
-
-    def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
-        """Advance along a straight path to (a*, b*), commit, return (N*, T*)."""
-        n, t = self._force(self.fs, self.is_, self.pp, float(a), float(b), float(adot), float(bdot))
-        return float(n), float(t)
+        super().__init__(model, ns["contact_reset"], ns["contact_force"])

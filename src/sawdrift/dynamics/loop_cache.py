@@ -23,6 +23,7 @@ import inspect
 import os
 import sys
 import textwrap
+import types
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -37,7 +38,11 @@ def cache_dir() -> Path:
     return Path(base) / "sawdrift"
 
 
-def _kernel_origin(force: Any) -> tuple[str, str] | None:
+def importable_origin(force: Any) -> tuple[str, str] | None:
+    """``(module, name)`` under which a compiled function can be imported again, or None.
+
+    A generated module can only bind functions it can import by name.
+    """
     func = getattr(force, "py_func", None)
     if func is None:
         return None
@@ -69,18 +74,19 @@ def _source(module: str, name: str) -> str:
     )
 
 
-def cached_loop(force: Any) -> Callable[..., None] | None:
-    """The disk-cached compiled loop for the kernel ``force``, or None if it cannot be cached."""
-    origin = _kernel_origin(force)
-    if origin is None:
-        return None
+def load_generated(prefix: str, source: str) -> types.ModuleType | None:
+    """Write ``source`` to the cache folder as a module and import it (numba then caches it).
+
+    The name is ``prefix`` plus a hash of the sawdrift version and the source, so a change of
+    either generates a new module; a module already imported is returned as it is. None if the
+    folder cannot be written or the module does not load (the caller compiles in memory).
+    """
     from .. import __version__
 
-    source = _source(*origin)
     digest = hashlib.sha1(f"{__version__}\n{source}".encode()).hexdigest()[:16]
-    modname = f"sawdrift_loop_{digest}"
+    modname = f"{prefix}{digest}"
     if modname in sys.modules:
-        return sys.modules[modname].wave_loop_body
+        return sys.modules[modname]
     folder = cache_dir()
     path = folder / f"{modname}.py"
     try:
@@ -99,4 +105,13 @@ def cached_loop(force: Any) -> Callable[..., None] | None:
     except Exception:  # noqa: BLE001 - a broken cache file must not break a run
         sys.modules.pop(modname, None)
         return None
-    return module.wave_loop_body
+    return module
+
+
+def cached_loop(force: Any) -> Callable[..., None] | None:
+    """The disk-cached compiled loop for the kernel ``force``, or None if it cannot be cached."""
+    origin = importable_origin(force)
+    if origin is None:
+        return None
+    module = load_generated("sawdrift_loop_", _source(*origin))
+    return None if module is None else module.wave_loop_body
