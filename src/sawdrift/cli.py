@@ -16,6 +16,8 @@ import typer
 
 import sawdrift as sd
 
+from ._startup import fast_start
+
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
@@ -125,6 +127,7 @@ def check_model_cmd(
     coulomb_bound, kernel_vs_reference, split_invariance, contact_loss_reset, replay. A failing
     check that the model declares is reported as 'declared'.
     """
+    fast_start()
     result = sd.check_model(name, **_parse_param(param))
     typer.echo(json.dumps(result.to_json()) if as_json else result.table())
     if not result.passed:
@@ -177,9 +180,7 @@ def run_cmd(
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
 ) -> None:
     """Run one scene and report its drift and motion regime."""
-    from ._startup import defer_unused_numpy_submodules
-
-    defer_unused_numpy_submodules()
+    fast_start()
     scene = scene_from_options(
         scene_file, model=model, m_star=m_star, amplitude=amplitude, mu=mu, nu=nu,
         horizontal_ratio=horizontal_ratio, periods=periods, steps_per_period=steps_per_period,
@@ -282,6 +283,7 @@ def sweep_cmd(
     if not axes and m_star is None and amplitude is None:
         m_star, amplitude = "1e-3:1e2:11", "1e-2:10:11"
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
+    fast_start()
     for name in named:
         sd.get_model(name)
     base = scene_from_options(
@@ -380,6 +382,7 @@ def demo_cmd(
     """
     if n < 2:
         _fail(f"--n = {n} must be at least 2 (grid points per axis)")
+    fast_start()
     sd.demo(out, n, workers, echo=typer.echo)
 
 
@@ -393,6 +396,7 @@ def validate_cmd(
     progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
 ) -> None:
     """Run the validation cases and write an HTML report; exit status 1 if any case fails."""
+    fast_start()
     report = sd.validate(out, quick=quick, cases_dir=cases, progress=progress)
     typer.echo(report.summary_line() if hasattr(report, "summary_line") else str(report))
     typer.echo(f"wrote {out / 'index.html'} and {out / 'results.json'}")
