@@ -20,7 +20,7 @@ from ..result.regimes import classify
 from ..result.result import Result
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from .prescribed import prescribed_history, run_prescribed
-from .steady import settle
+from .steady import assess_fixed, settle
 from .stepper import Stepper
 from .window import lyapunov, measure_window, state_scale
 
@@ -175,7 +175,7 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         ("rebound speed ratio", "contact duration", "max compression")
         if isinstance(drive, Impact)
         else ("drift_velocity", "drift_ratio", "regime", "contact_lost", "min_compression",
-              "gross_slip_fraction", "liftoffs_per_period", "hop_period", "lyapunov")
+              "gross_slip_fraction", "liftoffs_per_period", "hop_period", "lyapunov", "settled")
         + (("spin_rate",) if eff.rotation else ())
     )
     return Assembly(
@@ -230,6 +230,11 @@ def _run_wave(
         extra.update(settled=settling.settled, settle_method=settling.method,
                      settle_periods=settling.periods, t90_periods=settling.t90_periods,
                      horizontal_inertia=settling.horizontal_inertia)
+    else:
+        fixed = assess_fixed(win, speed, num.settle_tolerance, scene.particle.m_star,
+                             scene.material.mu, stepper.step / k_per, chaotic)
+        extra.update(settled=fixed.settled, settle_method=fixed.method,
+                     settle_periods=fixed.periods)
     regime = classify(win.contact_lost, win.drift_ratio, num.drift_tolerance,
                       gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
     if scene.device is not None:

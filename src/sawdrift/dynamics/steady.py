@@ -22,6 +22,11 @@ m* / mu periods to reach its steady drift (docs/physics.md, "Heavy particles"). 
 
 The time to reach 90 % of the steady speed is read from the windows and scaled back by
 m* / m*_x (the relaxation rate is inversely proportional to the horizontal inertia).
+
+A run of fixed length (``numerics.settle`` off) is assessed after the fact by
+:func:`assess_fixed` (a periodic orbit, sticking, or a change between the thirds of its window
+small against the relaxation time m* / mu), so every result says whether its drift is the
+steady one.
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import adams_bashforth as ig
+from .evidence import EV_LANDING
 from .stepper import Stepper
 from .window import Window, measure_window
 
@@ -90,6 +96,8 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
         win = measure_window(stepper, w, speed, scale)
         values.append(win.drift_ratio)
         ends.append(stepper.step / stepper.k_per)
+        if in_flight(win):
+            continue  # one flight longer than the window: its constant drift says nothing
         if len(values) >= 3 and _converged(values[-3:], tol):
             settled = True
             break
@@ -100,6 +108,11 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     info = Settling(settled, "reduced_inertia" if m_x < m else "windows", m_x, w,
                     (stepper.step - start) / stepper.k_per, t90, tuple(values))
     return win, info
+
+
+def in_flight(win: Window) -> bool:
+    """The whole window was one flight: out of contact throughout, without a lift-off in it."""
+    return win.out_of_contact_fraction >= 1.0 and win.liftoffs_per_period == 0.0
 
 
 def _converged(v: list[float], tol: float) -> bool:
@@ -123,3 +136,61 @@ def _t90(values: list[float], ends: list[float]) -> float:
         if v / final >= 0.9:
             return t
     return ends[-1]
+
+#: relaxation times a drifting run must last before its window change is believed (see below)
+APPROACH_TIMES = 3.0
+
+
+def assess_fixed(win: Window, speed: float, tol: float, m_star: float, mu: float,
+                 periods_run: float, chaotic: bool = False) -> Settling:
+    """Whether a fixed-length run ended at its steady drift (``method = "fixed"``).
+
+    A run is steady when one of these holds:
+
+    1. its stroboscopic state (x*', y*, y*') repeats after some periods (``win.orbit_period``,
+       see :func:`~sawdrift.dynamics.window.orbit_period`): the motion is on a periodic orbit,
+       and the drift of a periodic orbit is its steady drift;
+    2. it sticks: no gross slip and no contact loss in the window (a bounded tangential
+       displacement, drift zero);
+    3. its drift ratio changed by d between the last two thirds (n periods each, whole orbits
+       if the motion is periodic) of the window,
+       and the distance still to go, estimated as |d| max(1, tau / n) with the relaxation time
+       tau = m* / mu, is at most ``tol``, and the run lasted at least
+       :data:`APPROACH_TIMES` tau. The horizontal velocity changes by at most of order mu / m*
+       per period (the period-averaged normal force is the weight, so the averaged friction is
+       at most mu times it, in contact or in impacts alike); a heavy particle on its slow
+       approach changes little per window, and this bound keeps that from passing for steady.
+
+    In cases 1 and 3 the drift reported for the whole window must also agree with its last third
+    within ``tol`` (an early part of the window still on the transient would bias it), and if the
+    particle flies, each of the last two thirds must contain a landing (a flight spanning both
+    would show a constant drift that says nothing). A chaotic window, or one spent in a single
+    flight, is never steady. Otherwise this is deliberately conservative: a run it
+    calls unsettled may be steady, which ``numerics.settle`` then confirms.
+    """
+    unit = max(win.orbit_period, 1)
+    parts = (win.periods // unit) // 3
+    n = parts * unit
+    start = win.periods - 3 * n
+    values: tuple[float, ...] = ()
+    if parts > 0:
+        x = win.positions
+        dx = [(x[start + (k + 1) * n] - x[start + k * n]) / n for k in range(3)]
+        values = tuple(float(v / speed) if speed > 0.0 else 0.0 for v in dx)
+    if not values or chaotic or in_flight(win):
+        return Settling(False, "fixed", math.nan, win.periods, periods_run, math.nan, values)
+    if win.gross_slip_fraction == 0.0 and not win.contact_lost:
+        return Settling(True, "fixed", math.nan, win.periods, periods_run, math.nan, values)
+    repeats = win.orbit_period > 0
+    tau = m_star / mu if mu > 0.0 else 0.0
+    remaining = abs(values[2] - values[1]) * max(1.0, tau / n)
+    changes = remaining <= tol and periods_run >= APPROACH_TIMES * tau
+    # the reported drift spans the whole window: its early part must not still be transient
+    consistent = abs(win.drift_ratio - values[2]) <= tol
+    if win.contact_lost:  # each compared third must hold a landing, not one long flight
+        t0 = win.t_start + start
+        lands = win.events[win.events[:, 1] == EV_LANDING, 0] if win.events.size else np.zeros(0)
+        consistent = consistent and all(
+            np.any((lands >= t0 + k * n) & (lands < t0 + (k + 1) * n)) for k in (1, 2))
+    ok = (repeats or changes) and consistent
+    return Settling(bool(ok), "fixed", math.nan, win.periods, periods_run, math.nan, values)

@@ -38,6 +38,8 @@ class Window:
     sync: Synchrony
     events: np.ndarray  # rows (t*, kind code, x*, x*', y*, y*', a*), see dynamics.evidence
     events_dropped: int
+    orbit_period: int = 0
+    positions: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)  # centre x*
     snapshot: Stepper | None = field(default=None, repr=False)
 
 
@@ -55,6 +57,27 @@ def periodicity(samples: np.ndarray, scale: np.ndarray, last: int = 10) -> float
         return math.inf
     s = np.asarray(samples[-last - 1 :])
     return float((np.abs(np.diff(s[:, 1:4], axis=0)) / scale).max())
+
+
+#: scaled stroboscopic change below which the state counts as repeating (round-off level)
+PERIODIC_TOL = 1e-8
+
+
+def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = 12, last: int = 8) -> int:
+    """Smallest p <= ``longest`` after which the stroboscopic state (x*', y*, y*') repeats.
+
+    The state at the ends of the last ``last`` periods must equal the state p periods earlier to
+    :data:`PERIODIC_TOL` (scaled by :func:`state_scale`); 0 if no such p (not periodic, or not
+    yet). The equations are autonomous at the stroboscopic times, so a repeating state is a
+    periodic orbit: the drift over whole multiples of p is the steady drift.
+    """
+    s = np.asarray(samples)[:, 1:4] / scale
+    for p in range(1, longest + 1):
+        if s.shape[0] < p + last:
+            return 0
+        if float(np.abs(s[-last:] - s[-last - p : -p]).max()) <= PERIODIC_TOL:
+            return p
+    return 0
 
 
 def hop_liftoffs(events: np.ndarray, t_end: float) -> np.ndarray:
@@ -100,6 +123,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         stepper.advance(stepper.k_per)
         samples[j] = stepper.y[:4]
     drift = stepper.centre(stepper.y[0] - x0) / periods
+    positions = np.array([stepper.centre(x) for x in (x0, *samples[:, 0])])
     if stepper.resist:
         spin = (stepper.y[4] - psi0) / periods
     elif stepper.roll > 0.0:
@@ -109,6 +133,12 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     count = max(st[ev.S_COUNT], 1.0)
     events = ev.events(st)
     lifts = hop_liftoffs(events, t_start + periods)
+    orbit = orbit_period(samples, scale)
+    whole = (periods // orbit) * orbit if orbit > 1 else periods
+    if 0 < whole < periods:
+        # a periodic orbit of several periods: its drift over whole orbits only, or the part of
+        # an orbit left over would bias it (by up to one period's jump / periods)
+        drift = stepper.centre(stepper.y[0] - samples[periods - whole - 1, 0]) / whole
     return Window(
         periods=periods,
         t_start=t_start,
@@ -125,6 +155,8 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         sync=synchrony(lifts, t_start, periods),
         events=events,
         events_dropped=int(st[ev.S_EVDROP]),
+        orbit_period=orbit,
+        positions=positions,
         snapshot=snapshot,
     )
 

@@ -31,7 +31,7 @@ from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, set_dotted
 
 #: Columns of a sweep table, in order.
-TABLE_COLUMNS = ("cell_id", "scene_id", *SUMMARY_FIELDS, "error")
+TABLE_COLUMNS = ("cell_id", "scene_id", *SUMMARY_FIELDS, "settled", "settle_periods", "error")
 
 #: Parquet metadata keys of a sweep table (provenance).
 META_VERSION, META_BASE_SCENE = b"sawdrift_version", b"base_scene"

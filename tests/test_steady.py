@@ -1,0 +1,80 @@
+"""Steady drift: every result says whether its drift is the steady one, and says it correctly.
+
+The reference for "steady" is always a brute-force run many relaxation times long (the
+horizontal velocity relaxes over of order m*/mu periods), never a number from the code itself.
+"""
+
+from __future__ import annotations
+
+import sawdrift as sd
+
+
+def scene(model: str, m: float, a: float, mu: float, **numerics) -> sd.Scene:
+    return sd.Scene(model=model, particle={"m_star": m}, material={"mu": mu},
+                    drive={"amplitude": a}, numerics=numerics)
+
+
+def brute(model: str, m: float, a: float, mu: float, periods: int) -> sd.Result:
+    """A long plain run measured over its last 30 %."""
+    return sd.run(scene(model, m, a, mu, periods=periods, measure_periods=int(0.3 * periods),
+                        max_periods=periods))
+
+
+def test_settle_matches_a_brute_force_run_of_many_approach_times():
+    """mmd, m* = 300, A* = 0.7, mu = 0.3: --settle within 1 % of a 42000-period run (40 m*/mu)."""
+    ref = brute("mmd", 300.0, 0.7, 0.3, int(40 * 300 / 0.3) + 2000)
+    res = sd.run(scene("mmd", 300.0, 0.7, 0.3, settle=True, max_periods=1e6))
+    assert res.extra["settled"] is True
+    assert res.extra["settle_method"] == "reduced_inertia"
+    assert abs(res.drift_ratio - ref.drift_ratio) <= 0.01 * abs(ref.drift_ratio)
+    assert ref.drift_ratio > 0.2  # a real drift, not a cell without one
+
+
+def test_a_short_run_of_a_heavy_particle_is_reported_as_not_settled():
+    """m* = 100, A* = 0.3: 60 periods are far from the steady drift, and the result says so."""
+    short = sd.run(scene("mmd", 100.0, 0.3, 0.1))
+    steady = sd.run(scene("mmd", 100.0, 0.3, 0.1, settle=True, max_periods=1e5))
+    assert abs(short.drift_ratio - steady.drift_ratio) > 0.1  # the short run is transient
+    assert short.extra["settled"] is False
+    assert short.extra["settle_method"] == "fixed" and short.extra["settle_periods"] == 60.0
+    assert steady.extra["settled"] is True
+
+
+def test_a_light_particle_is_settled_after_the_default_run():
+    """m* = 0.1, A* = 0.316: the 60-period drift is the steady one (to 1e-3) and is flagged so."""
+    short = sd.run(scene("mmd", 0.1, 0.316, 0.1))
+    ref = brute("mmd", 0.1, 0.316, 0.1, 2000)
+    assert short.extra["settled"] is True
+    assert abs(short.drift_ratio - ref.drift_ratio) <= 1e-3
+
+
+def test_a_flight_longer_than_the_window_is_not_taken_for_steady():
+    """Rigid point, m* = 30, A* = 4, mu = 0.1: one impact launches a flight of about 220 periods.
+
+    During it the drift is constant, which a change-between-windows test would call settled.
+    The 60-period run must not be flagged settled, and --settle must go on to the drift of a
+    20000-period run (within 1e-3), not stop inside the flight.
+    """
+    short = sd.run(scene("material_point", 30.0, 4.0, 0.1))
+    assert short.out_of_contact_fraction == 1.0 and short.liftoffs_per_period == 0.0
+    assert short.extra["settled"] is False
+    ref = brute("material_point", 30.0, 4.0, 0.1, 20000)
+    res = sd.run(scene("material_point", 30.0, 4.0, 0.1, settle=True, max_periods=1e5))
+    assert res.extra["settled"] is True
+    assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-3
+    assert abs(short.drift_ratio - ref.drift_ratio) > 0.05  # the flight's drift was not steady
+
+
+def test_the_drift_of_a_period_two_hop_is_measured_over_whole_hops():
+    """Rigid point, m* = 0.3, A* = 0.6, mu = 0.3 hops every second period.
+
+    Windows of an odd and an even number of periods must give the same drift (to 1e-6) as a
+    long run: a leftover half hop would bias a 27-period window by about a hop's jump / 27.
+    """
+    ref = brute("material_point", 0.3, 0.6, 0.3, 2000)
+    assert ref.hop_period == 2
+    for window in (27, 28):
+        res = sd.run(scene("material_point", 0.3, 0.6, 0.3, periods=400, measure_periods=window))
+        assert res.hop_period == 2
+        assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-6, window
+        assert res.extra["settled"] is True
