@@ -158,6 +158,10 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     if model is None:
         raise SceneError(f"the table holds several models ({', '.join(models)}); choose one with --model")
     sub = select(table, model)
+    for col in (x, y):
+        if sub[col].nunique() < 2:
+            raise SceneError(f"the drift map needs at least two values of {col!r}; the table has "
+                             f"{sub[col].nunique()} for model {model!r}")
     lx, ly = np.log10(sub[x].to_numpy(float)), np.log10(sub[y].to_numpy(float))
     gx = np.linspace(lx.min(), lx.max(), 400)
     gy = np.linspace(ly.min(), ly.max(), 400)
@@ -176,7 +180,16 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     ax2.contour(10**gx, 10**gy, codes, levels=np.arange(len(COLOURS)) + 0.5, colors="k",
                 linewidths=0.7)
     fig.colorbar(mesh, ax=ax2, label="drift ratio <x*'> / (2 pi r A*)")
-    for ax, title in ((ax1, f"{model}: regimes"), (ax2, f"{model}: drift ratio, regime boundaries")):
+    title2 = f"{model}: drift ratio, regime boundaries"
+    if "settled" in sub.columns and sub["settled"].notna().any():
+        # cells whose drift is still on its approach (Result.extra["settled"] false) are hatched
+        unsettled = (sub["settled"].astype("boolean").fillna(True) == False).to_numpy(bool)  # noqa: E712
+        mask = unsettled[idx].reshape(mx.shape)
+        if mask.any():
+            ax2.contourf(10**gx, 10**gy, mask.astype(float), levels=[0.5, 1.5], colors="none",
+                         hatches=["////"])
+            title2 += f"; hatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
+    for ax, title in ((ax1, f"{model}: regimes"), (ax2, title2)):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlim(ext[0], ext[1])
