@@ -22,6 +22,7 @@ GROUPS: dict[str, str] = {
     "device": "6. Physical units: conversion, orbit mirror, dimensional consistency",
     "conformance": "7. Conformance of every installed model: passivity, Coulomb bound, kernels",
     "rotation": "8. Rotation: a finite sphere that can roll",
+    "steady": "9. Steady drift: the settle method and the settled flag against brute-force runs",
 }
 
 #: The compliant models the oracle cases run for by default.
