@@ -41,6 +41,18 @@ def test_run_json_is_one_object_and_deterministic():
     assert a == b
 
 
+def test_an_unsettled_run_says_so_on_stderr():
+    """m* = 100, A* = 0.3 is transient after 60 periods: settled False and a one-line note;
+    with --settle it settles and no note is printed."""
+    args = ("run", "--model", "mmd", "--m-star", "100", "--amplitude", "0.3")
+    short = cli(*args, check=True)
+    assert "settled: False" in short.stdout
+    notes = short.stderr.strip().splitlines()
+    assert len(notes) == 1 and "m*/mu = 1000" in notes[0] and "--settle" in notes[0]
+    settled = cli(*args, "--settle", check=True)
+    assert "settled: True" in settled.stdout and settled.stderr.strip() == ""
+
+
 def test_run_writes_parquet_and_png(tmp_path):
     cli("run", "--model", "material_point", "--periods", "10", "-o", str(tmp_path), check=True)
     frame = pd.read_parquet(tmp_path / "trajectory.parquet")

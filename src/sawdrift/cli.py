@@ -210,9 +210,25 @@ def run_cmd(
     for key, value in summary.items():
         if key != "scene":  # the whole scene is in --json and in -o DIR/scene.toml
             typer.echo(f"{key:>24}: {value}")
+    if summary.get("settled") is False:
+        typer.echo(_unsettled_note(summary, scene.particle.m_star / scene.material.mu), err=True)
     if out is not None:
         typer.echo(f"wrote {out}/trajectory.parquet, events.parquet, trajectory.png, scene.toml, "
                    "result.json")
+
+
+def _unsettled_note(summary: dict[str, Any], tau: float) -> str:
+    """One line on why a run's drift is not the steady one, and what to do about it."""
+    fix = ("raise --periods or use --settle" if summary.get("settle_method") == "fixed"
+           else "raise numerics.max_periods")
+    periods = summary["periods"]
+    if summary.get("chaotic"):
+        return (f"note: the motion is chaotic (lyapunov > 0): the drift is an average over the "
+                f"window, not a steady value; {fix} for a longer average")
+    if 3.0 * tau > periods:
+        return (f"note: the drift has not settled after {periods:g} periods (a heavy particle "
+                f"needs of order m*/mu = {tau:g} periods); {fix}")
+    return f"note: the drift still changed within the measuring window; {fix}"
 
 
 def _load_table(path: Path):

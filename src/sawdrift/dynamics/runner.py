@@ -20,7 +20,7 @@ from ..result.regimes import classify
 from ..result.result import Result
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from .prescribed import prescribed_history, run_prescribed
-from .steady import assess_fixed, settle
+from .steady import assess_fixed, default_max_periods, settle
 from .stepper import Stepper
 from .window import lyapunov, measure_window, state_scale
 
@@ -213,7 +213,10 @@ def _run_wave(
     k_per = stepper.k_per
     n_measure = n_periods * k_per
     n_total = max(int(round(num.periods * k_per)), n_measure)
-    n_max = max(n_total, int(round(num.max_periods * k_per)))
+    cap = num.max_periods
+    if cap is None:
+        cap = default_max_periods(scene.particle.m_star, scene.material.mu, stepper.rigid, n_periods)
+    n_max = max(n_total, int(round(cap * k_per)))
     stepper.advance(n_total - n_measure)
     speed = 2.0 * math.pi * scene.horizontal_ratio * wave.amplitude
     scale = state_scale(wave.amplitude, scene.horizontal_ratio)

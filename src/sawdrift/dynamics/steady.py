@@ -75,6 +75,18 @@ def window_length(m_star: float, m_x: float, mu: float, minimum: int) -> int:
     return max(int(minimum), int(math.ceil(0.1 * m_x / mu)), int(math.ceil(3.0 * vertical)))
 
 
+def default_max_periods(m_star: float, mu: float, rigid: bool, minimum_window: int) -> float:
+    """The settle cap when ``numerics.max_periods`` is not given.
+
+    max(5000, 50 m*_x / mu + 20 windows): the approach takes about 1.4 to 2.1 m*_x / mu periods
+    to 90 % (``benchmarks/bench_steady.py``), so 50 of them leave the settle test room to work on
+    any cell that settles at all, and a light particle keeps the old cap of 5000 periods.
+    """
+    m_x = horizontal_inertia(m_star, rigid)
+    tau = m_x / mu if mu > 0.0 else 0.0
+    return max(5000.0, 50.0 * tau + 20.0 * window_length(m_star, m_x, mu, minimum_window))
+
+
 def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
            max_steps: int) -> tuple[Window, Settling]:
     """Measure windows until the drift has settled (see the module docstring)."""

@@ -218,7 +218,10 @@ class Numerics(BaseModel):
         False, description="run on, in chunks of measure_periods, until the drift has settled"
     )
     settle_tolerance: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = 1e-3
-    max_periods: Annotated[float, bounded(1.0, 1e7)] = 5000.0
+    max_periods: Annotated[float, bounded(1.0, 1e7)] | None = Field(
+        None, description="settle: stop after this many periods even if not settled; default "
+        "max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method"
+    )
 
 
 class Effects(BaseModel):
