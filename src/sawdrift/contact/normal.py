@@ -28,6 +28,10 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
+from .._codegen import align_branches
+
+align_branches()  # before anything is compiled: every kernel imports its options from here
+
 JIT_OPTIONS = {"cache": True, "_nrt": False}
 """numba options of the kernel helpers: they never allocate, and without the runtime's reference
 counting a step is several times faster."""

@@ -77,13 +77,16 @@ def _source(module: str, name: str) -> str:
 def load_generated(prefix: str, source: str) -> types.ModuleType | None:
     """Write ``source`` to the cache folder as a module and import it (numba then caches it).
 
-    The name is ``prefix`` plus a hash of the sawdrift version and the source, so a change of
-    either generates a new module; a module already imported is returned as it is. None if the
-    folder cannot be written or the module does not load (the caller compiles in memory).
+    The name is ``prefix`` plus a hash of the sawdrift version, the code layout setting
+    (:mod:`sawdrift._codegen`) and the source, so a change of any generates a new module; a
+    module already imported is returned as it is. None if the folder cannot be written or the
+    module does not load (the caller compiles in memory).
     """
     from .. import __version__
+    from .._codegen import align_branches
 
-    digest = hashlib.sha1(f"{__version__}\n{source}".encode()).hexdigest()[:16]
+    tag = align_branches()  # the code layout setting is part of what the cache holds
+    digest = hashlib.sha1(f"{__version__}\n{tag}\n{source}".encode()).hexdigest()[:16]
     modname = f"{prefix}{digest}"
     if modname in sys.modules:
         return sys.modules[modname]

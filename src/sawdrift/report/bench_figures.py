@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .bench import (
+from .bench_core import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
     fit_order,

@@ -14,7 +14,7 @@ from ..contact.registry import get_model
 from ..dynamics.runner import run
 from ..errors import NonFiniteStateError
 from ..scene.schema import Numerics, Scene
-from .bench import (
+from .bench_core import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
     StudyConfig,

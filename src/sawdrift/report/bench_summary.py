@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from ..scene.schema import Numerics
-from .bench import (
+from .bench_core import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
     StudyConfig,
