@@ -8,7 +8,7 @@ from pathlib import Path
 from ..dynamics.runner import run
 from ..scene.schema import Scene
 from ..study.sweep import sweep
-from .diagrams import plot_compare, plot_phase_diagram
+from .diagrams import plot_compare, plot_drift_map, plot_phase_diagram
 from .fig2 import plot_fig2
 from .plots import plot_trajectory
 
@@ -19,8 +19,8 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
 
     The default scene (mmd, m* = 0.1, A* = 0.316), the phase diagrams of the material point and
     mmd over m* in [1e-3, 1e2] and A* in [1e-2, 10] (n x n cells, 40 periods, mu = 0.1,
-    nu = 0.3) and their comparison, the four regimes' trajectories (Fig. 2), and the same plane
-    with rotation off and on ((n + 1)/2 cells per axis).
+    nu = 0.3), their comparison and mmd's drift map, the four regimes' trajectories (Fig. 2),
+    and the same plane with rotation off and on ((n + 1)/2 cells per axis).
     """
     out.mkdir(parents=True, exist_ok=True)
     scene = Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
@@ -37,6 +37,12 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     path, md = plot_compare(frame, ["material_point", "mmd"], out / "compare.png")
     echo(md)
     echo(f"wrote {table}, phase_material_point.png, phase_mmd.png, {path.name} in {out}")
+    drift = plot_drift_map(frame, out / "drift_mmd.png", "mmd")
+    mmd = frame[frame["model"] == "mmd"]
+    unsettled = int((mmd["settled"].astype("boolean") == False).sum())  # noqa: E712
+    echo(f"wrote {drift.name}: mmd's drift ratio under its regime boundaries; {unsettled} of "
+         f"{len(mmd)} cells (hatched) have not reached their steady drift in 40 periods "
+         "(`sawdrift sweep --settle` runs each cell to it)")
     fig2 = plot_fig2(out / "fig2_regimes.png")
     echo(f"wrote {fig2.name}: the four regimes' trajectories (the paper's Fig. 2)")
     # rolling: the same plane with the sphere free to turn (kappa = 2/5), side by side
