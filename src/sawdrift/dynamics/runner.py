@@ -228,7 +228,8 @@ def _run_wave(
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     sync = win.sync
     hop_period = sync.hop_period if not chaotic else 0
-    extra = {"chaotic": chaotic, "events_dropped": win.events_dropped, "compile_s": compile_s}
+    extra = {"chaotic": chaotic, "events_dropped": win.events_dropped, "compile_s": compile_s,
+             "orbit_period": win.orbit_period}
     if settling is not None:
         extra.update(settled=settling.settled, settle_method=settling.method,
                      settle_periods=settling.periods, t90_periods=settling.t90_periods,
