@@ -174,12 +174,16 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     ext = [10 ** gx[0], 10 ** gx[-1], 10 ** gy[0], 10 ** gy[-1]]
     ax1.pcolormesh(10**gx, 10**gy, codes + 1, cmap=ListedColormap(["white", *COLOURS.values()]),
                    vmin=0, vmax=len(COLOURS), shading="auto")
-    lim = max(float(np.nanmax(np.abs(drift))), 1e-6)
+    # the scale stops at the surface speed (|ratio| = 1): a few chaotic cells far beyond it (long
+    # flights after a violent launch) would otherwise wash out every other cell; they saturate
+    peak = max(float(np.nanmax(np.abs(drift))), 1e-6)
+    lim = min(peak, 1.0)
     mesh = ax2.pcolormesh(10**gx, 10**gy, drift, cmap="RdBu_r",
                           norm=TwoSlopeNorm(vcenter=0.0, vmin=-lim, vmax=lim), shading="auto")
     ax2.contour(10**gx, 10**gy, codes, levels=np.arange(len(COLOURS)) + 0.5, colors="k",
                 linewidths=0.7)
-    fig.colorbar(mesh, ax=ax2, label="drift ratio <x*'> / (2 pi r A*)")
+    fig.colorbar(mesh, ax=ax2, label="drift ratio <x*'> / (2 pi r A*)",
+                 extend="both" if peak > lim else "neither")
     title2 = f"{model}: drift ratio, regime boundaries"
     if "settled" in sub.columns and sub["settled"].notna().any():
         # cells whose drift is still on its approach (Result.extra["settled"] false) are hatched
