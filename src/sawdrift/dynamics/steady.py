@@ -78,9 +78,10 @@ def window_length(m_star: float, m_x: float, mu: float, minimum: int) -> int:
 def default_max_periods(m_star: float, mu: float, rigid: bool, minimum_window: int) -> float:
     """The settle cap when ``numerics.max_periods`` is not given.
 
-    max(5000, 50 m*_x / mu + 20 windows): the approach takes about 1.4 to 2.1 m*_x / mu periods
-    to 90 % (``benchmarks/bench_steady.py``), so 50 of them leave the settle test room to work on
-    any cell that settles at all, and a light particle keeps the old cap of 5000 periods.
+    max(5000, 50 m*_x / mu + 20 windows). The time to 90 % of the steady drift, read at window
+    ends, was 2.7 to 7.7 m*/mu on eight cells of ``benchmarks/bench_steady.py`` (m* = 30 to 3000,
+    scaled back from the reduced inertia), so the cap is at least six such times plus room for
+    the settle test's windows; a light particle keeps the old cap of 5000 periods.
     """
     m_x = horizontal_inertia(m_star, rigid)
     tau = m_x / mu if mu > 0.0 else 0.0
