@@ -12,8 +12,8 @@ m* / mu periods to reach its steady drift (docs/physics.md, "Heavy particles"). 
    ``m*_x x*'' = -mu T*`` with m*_x = min(m*, :data:`HEAVY_MASS`) and the full m* in the normal
    equation: the fixed point is the same, the approach is m* / m*_x times shorter. With m*_x =
    100 the fast motion is still heavy (the velocity changes by mu/100 of the relative sliding
-   speed per period); measured against brute-force runs of 19 to 29 approach times the drift
-   agrees within 0.3 % (benchmarks/bench_steady.py).
+   speed per period); measured against brute-force runs of 40 m*/mu + 2000 periods the drift
+   agrees within 0.7 % on 12 cells with m* = 30 to 3000 (benchmarks/bench_steady.py).
 2. **A criterion that follows the approach.** The drift is measured in windows of W periods, W
    growing with m*_x / mu. Successive window means v1, v2, v3 of a relaxation approach
    v_inf + c q^k; the remaining distance is estimated by Aitken's extrapolation,
