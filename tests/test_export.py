@@ -41,6 +41,8 @@ def test_export_of_a_3x3_sweep_has_the_axes_and_cf_flags(table, tmp_path):
         assert flags[code] == r.regime
         got = frame[(frame.m_star == r.m_star) & (frame.amplitude == r.amplitude)]["drift_ratio"]
         assert np.isclose(got.item(), r.drift_ratio)
+        settled = frame[(frame.m_star == r.m_star) & (frame.amplitude == r.amplitude)]["settled"]
+        assert settled.item() == float(r.settled)
     assert ds.attrs["sawdrift_version"] == sd.__version__
     assert json.loads(ds.attrs["base_scene"])["numerics"]["periods"] == 20
 

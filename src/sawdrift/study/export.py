@@ -28,7 +28,8 @@ from ..result.regimes import REGIMES
 VARIABLES = (
     "drift_ratio", "drift_velocity", "gross_slip_fraction", "liftoffs_per_period", "hop_period",
     "liftoff_phase", "liftoff_phase_spread", "lyapunov", "periodicity", "out_of_contact_fraction",
-    "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s",
+    "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s", "settled",
+    "settle_periods",
 )
 
 #: regime codes: flag_values are 0..n-1 in the order of sawdrift.result.regimes.REGIMES
@@ -69,6 +70,9 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
         comment="-1: no cell at this point of the grid",
     )
     ds["drift_ratio"].attrs.update(long_name="mean x*' / (2 pi r A*) over the measurement window")
+    if "settled" in ds:
+        ds["settled"].attrs.update(long_name="1 if the drift is the steady one, 0 if still on "
+                                   "its approach (NaN: no cell)")
     names = {"m_star": "m* = a0 m f^2 / (M g)", "amplitude": "A* = A_y / a0"}
     for dim in dims:
         if dim in names:
