@@ -230,22 +230,20 @@ def _run_wave(
     hop_period = sync.hop_period if not chaotic else 0
     extra = {"chaotic": chaotic, "events_dropped": win.events_dropped, "compile_s": compile_s,
              "orbit_period": win.orbit_period}
-    if settling is not None:
-        extra.update(settled=settling.settled, settle_method=settling.method,
-                     settle_periods=settling.periods, t90_periods=settling.t90_periods,
-                     horizontal_inertia=settling.horizontal_inertia)
-    else:
-        fixed = assess_fixed(win, speed, num.settle_tolerance, scene.particle.m_star,
-                             scene.material.mu, stepper.step / k_per, chaotic)
-        extra.update(settled=fixed.settled, settle_method=fixed.method,
-                     settle_periods=fixed.periods)
+    if settling is None:
+        settling = assess_fixed(win, speed, num.settle_tolerance, scene.particle.m_star,
+                                scene.material.mu, stepper.step / k_per, chaotic)
+    extra.update(settled=settling.settled, settle_method=settling.method,
+                 settle_periods=settling.periods)
+    t90 = settling.t90_periods if num.settle else None
+    if num.settle:
+        extra.update(t90_periods=t90, horizontal_inertia=settling.horizontal_inertia)
     regime = classify(win.contact_lost, win.drift_ratio, num.drift_tolerance,
                       gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
     if scene.device is not None:
         from ..scene.device import device_outputs
 
-        extra.update(device_outputs(scene.device, win.drift, regime,
-                                    settling.t90_periods if settling is not None else None))
+        extra.update(device_outputs(scene.device, win.drift, regime, t90))
     if sync.hop_period:
         extra["liftoffs_per_hop"] = sync.liftoffs_per_hop
     return Result(

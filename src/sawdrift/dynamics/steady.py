@@ -185,25 +185,29 @@ def assess_fixed(win: Window, speed: float, tol: float, m_star: float, mu: float
     parts = (win.periods // unit) // 3
     n = parts * unit
     start = win.periods - 3 * n
-    values: tuple[float, ...] = ()
-    if parts > 0:
-        x = win.positions
-        dx = [(x[start + (k + 1) * n] - x[start + k * n]) / n for k in range(3)]
-        values = tuple(float(v / speed) if speed > 0.0 else 0.0 for v in dx)
-    if not values or chaotic or in_flight(win):
-        return Settling(False, "fixed", math.nan, win.periods, periods_run, math.nan, values)
-    if win.gross_slip_fraction == 0.0 and not win.contact_lost:
-        return Settling(True, "fixed", math.nan, win.periods, periods_run, math.nan, values)
-    repeats = win.orbit_period > 0
+    x = win.positions
+    values = tuple(float((x[start + (k + 1) * n] - x[start + k * n]) / n / speed)
+                   if speed > 0.0 else 0.0 for k in range(3)) if parts > 0 else ()
+    ok = bool(values) and not chaotic and not in_flight(win) and (
+        (win.gross_slip_fraction == 0.0 and not win.contact_lost)
+        or _steady_thirds(win, values, n, start, tol, m_star, mu, periods_run))
+    return Settling(ok, "fixed", math.nan, win.periods, periods_run, math.nan, values)
+
+
+def _steady_thirds(win: Window, values: tuple[float, ...], n: int, start: int, tol: float,
+                   m_star: float, mu: float, periods_run: float) -> bool:
+    """Cases 1 and 3 of :func:`assess_fixed`, with the window's consistency checks."""
     tau = m_star / mu if mu > 0.0 else 0.0
     remaining = abs(values[2] - values[1]) * max(1.0, tau / n)
     changes = remaining <= tol and periods_run >= APPROACH_TIMES * tau
+    if not (win.orbit_period > 0 or changes):
+        return False
     # the reported drift spans the whole window: its early part must not still be transient
-    consistent = abs(win.drift_ratio - values[2]) <= tol
-    if win.contact_lost:  # each compared third must hold a landing, not one long flight
-        t0 = win.t_start + start
-        lands = win.events[win.events[:, 1] == EV_LANDING, 0] if win.events.size else np.zeros(0)
-        consistent = consistent and all(
-            np.any((lands >= t0 + k * n) & (lands < t0 + (k + 1) * n)) for k in (1, 2))
-    ok = (repeats or changes) and consistent
-    return Settling(bool(ok), "fixed", math.nan, win.periods, periods_run, math.nan, values)
+    if abs(win.drift_ratio - values[2]) > tol:
+        return False
+    if not win.contact_lost:
+        return True
+    # each compared third must hold a landing, not one long flight
+    t0 = win.t_start + start
+    lands = win.events[win.events[:, 1] == EV_LANDING, 0] if win.events.size else np.zeros(0)
+    return all(bool(np.any((lands >= t0 + k * n) & (lands < t0 + (k + 1) * n))) for k in (1, 2))

@@ -38,8 +38,8 @@ class Window:
     sync: Synchrony
     events: np.ndarray  # rows (t*, kind code, x*, x*', y*, y*', a*), see dynamics.evidence
     events_dropped: int
-    orbit_period: int = 0
-    positions: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)  # centre x*
+    orbit_period: int  # see orbit_period(); 0: not periodic
+    positions: np.ndarray = field(repr=False)  # centre x* at the start and at each period's end
     snapshot: Stepper | None = field(default=None, repr=False)
 
 
@@ -122,23 +122,22 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     for j in range(periods):
         stepper.advance(stepper.k_per)
         samples[j] = stepper.y[:4]
-    drift = stepper.centre(stepper.y[0] - x0) / periods
     positions = np.array([stepper.centre(x) for x in (x0, *samples[:, 0])])
     if stepper.resist:
         spin = (stepper.y[4] - psi0) / periods
     elif stepper.roll > 0.0:
-        spin = drift * (stepper.roll - 1.0)  # R phi = x / kappa from rest
+        # R phi = x / kappa from rest
+        spin = (positions[-1] - positions[0]) / periods * (stepper.roll - 1.0)
     else:
         spin = math.nan
     count = max(st[ev.S_COUNT], 1.0)
     events = ev.events(st)
     lifts = hop_liftoffs(events, t_start + periods)
     orbit = orbit_period(samples, scale)
+    # a periodic orbit of several periods: its drift over whole orbits only, or the part of an
+    # orbit left over would bias it (by up to one period's jump / periods)
     whole = (periods // orbit) * orbit if orbit > 1 else periods
-    if 0 < whole < periods:
-        # a periodic orbit of several periods: its drift over whole orbits only, or the part of
-        # an orbit left over would bias it (by up to one period's jump / periods)
-        drift = stepper.centre(stepper.y[0] - samples[periods - whole - 1, 0]) / whole
+    drift = (positions[-1] - positions[periods - whole]) / whole
     return Window(
         periods=periods,
         t_start=t_start,

@@ -8,7 +8,7 @@ from pathlib import Path
 from ..dynamics.runner import run
 from ..scene.schema import Scene
 from ..study.sweep import sweep
-from .diagrams import plot_compare, plot_drift_map, plot_phase_diagram
+from .diagrams import plot_compare, plot_drift_map, plot_phase_diagram, unsettled_cells
 from .fig2 import plot_fig2
 from .plots import plot_trajectory
 
@@ -39,7 +39,7 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     echo(f"wrote {table}, phase_material_point.png, phase_mmd.png, {path.name} in {out}")
     drift = plot_drift_map(frame, out / "drift_mmd.png", "mmd")
     mmd = frame[frame["model"] == "mmd"]
-    unsettled = int((mmd["settled"].astype("boolean") == False).sum())  # noqa: E712
+    unsettled = int(unsettled_cells(mmd).sum())
     echo(f"wrote {drift.name}: mmd's drift ratio under its regime boundaries; {unsettled} of "
          f"{len(mmd)} cells (hatched) have not reached their steady drift in 40 periods "
          "(`sawdrift sweep --settle` runs each cell to it)")

@@ -141,6 +141,13 @@ def agreement_markdown(frame: pd.DataFrame) -> str:
     return "\n".join(lines) + "\n"
 
 
+def unsettled_cells(table: pd.DataFrame) -> np.ndarray:
+    """True for each row whose drift has not settled (``settled`` false; a missing value is not)."""
+    if "settled" not in table.columns:
+        return np.zeros(len(table), dtype=bool)
+    return (table["settled"].astype("boolean").fillna(True) == False).to_numpy(bool)  # noqa: E712
+
+
 def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = None,
                    x: str = "amplitude", y: str = "m_star") -> Path:
     """The regime map and, beside it, the drift ratio coloured on a diverging scale.
@@ -185,14 +192,13 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     fig.colorbar(mesh, ax=ax2, label="drift ratio <x*'> / (2 pi r A*)",
                  extend="both" if peak > lim else "neither")
     title2 = f"{model}: drift ratio, regime boundaries"
-    if "settled" in sub.columns and sub["settled"].notna().any():
-        # cells whose drift is still on its approach (Result.extra["settled"] false) are hatched
-        unsettled = (sub["settled"].astype("boolean").fillna(True) == False).to_numpy(bool)  # noqa: E712
-        mask = unsettled[idx].reshape(mx.shape)
-        if mask.any():
-            ax2.contourf(10**gx, 10**gy, mask.astype(float), levels=[0.5, 1.5], colors="none",
-                         hatches=["////"])
-            title2 += f"; hatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
+    # cells whose drift is still on its approach (Result.extra["settled"] false) are hatched
+    unsettled = unsettled_cells(sub)
+    mask = unsettled[idx].reshape(mx.shape)
+    if mask.any():
+        ax2.contourf(10**gx, 10**gy, mask.astype(float), levels=[0.5, 1.5], colors="none",
+                     hatches=["////"])
+        title2 += f"; hatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
     for ax, title in ((ax1, f"{model}: regimes"), (ax2, title2)):
         ax.set_xscale("log")
         ax.set_yscale("log")
