@@ -116,9 +116,15 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
     """The generated, disk-cached module's namespace (or an in-memory compilation)."""
     from numba import njit
 
-    from ..dynamics.loop_cache import importable_origin, load_generated
+    from ..dynamics.loop_cache import importable_origin, load_generated, refresh_stale_caches, walk_code
     from .normal import JIT_OPTIONS, law_normal
 
+    # the code of every slot function and of all they call keys the module (an edited law
+    # compiles anew), and numba's own caches of those functions are brought in line with it
+    slots = {"HEADER": HEADER, "law_normal": law_normal, "tangential_step": step,
+             "tangential_reset": reset, "normal_damping": damp}
+    walk, code = walk_code([step, reset, damp], slots, _TEMPLATES)
+    refresh_stale_caches(walk)
     origins = [importable_origin(f) for f in (step, reset, damp)]
     if all(o is not None for o in origins):
         imports = "\n".join(
@@ -135,7 +141,7 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
             f"{imports}\n\n\n@njit(**JIT_OPTIONS)\n{decorated}\n"
         )
         # the wave loop's generated module imports this one by name
-        module = load_generated("sawdrift_contact_", source)
+        module = load_generated("sawdrift_contact_", source, code)
         if module is not None:
             return vars(module)
     # not importable by name, or an unwritable cache: compile in memory instead
