@@ -1,13 +1,17 @@
-"""Provenance: a run and a sweep table name the sawdrift version and the whole scene."""
+"""Provenance: a run and a sweep table name the sawdrift version, the code and the whole scene."""
 
 from __future__ import annotations
 
 import importlib.metadata as im
 import json
+import os
+import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import pandas as pd
+import pytest
 
 import sawdrift as sd
 from sawdrift.study import sweep as sw
@@ -22,25 +26,122 @@ def test_run_json_has_version_from_metadata_and_the_scene():
     assert sd.Scene.model_validate(data["scene"]).particle.m_star == 0.2
 
 
-def test_table_metadata_names_version_and_base_scene(tmp_path):
+def test_table_metadata_names_version_code_and_base_scene(tmp_path):
     table = tmp_path / "t.parquet"
     base = sd.Scene(material={"mu": 0.2}, numerics={"periods": 20})
     sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False)
     meta = sw.table_metadata(table)
     assert meta["sawdrift_version"] == im.version("sawdrift")
     assert meta["base_scene"]["material"]["mu"] == 0.2
-    assert set(pd.read_parquet(table)["version"]) == {im.version("sawdrift")}
+    stored = pd.read_parquet(table)
+    assert set(stored["version"]) == {im.version("sawdrift")}
+    code = sd.code_hash(["mmd"])
+    assert len(code) == 12 and meta["code_hash"] == code and set(stored["code_hash"]) == {code}
 
 
-def test_resuming_after_an_upgrade_recomputes_and_supersedes(tmp_path, monkeypatch):
+def test_code_hash_follows_the_source_not_git(tmp_path):
+    """The same source gives the same hash from a copy outside git; one edited byte changes it."""
+    from sawdrift.study import provenance
+
+    here = provenance.code_hash(["mmd"])
+    pkg = Path(sd.__file__).resolve().parent
+    copy = tmp_path / "site" / "sawdrift"
+    shutil.copytree(pkg, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    code = "import sawdrift; print(sawdrift.__file__); print(sawdrift.code_hash(['mmd']))"
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(copy.parent), *sys.path])}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                         cwd=tmp_path, check=True).stdout.split()
+    assert out[0].startswith(str(copy)) and out[1] == here
+    with (copy / "study" / "axes.py").open("a") as fh:
+        fh.write("# an edit\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                         cwd=tmp_path, check=True).stdout.split()
+    assert out[1] != here
+
+
+def _as_other_code(monkeypatch, models=("mmd",)):
+    """Make this process's code hash of ``models`` another one, as after an edit of the source."""
+    from sawdrift.study import provenance
+
+    monkeypatch.setitem(provenance._CODES, tuple(sorted(models)), "0123456789ab")
+
+
+def test_resuming_a_table_of_other_code_is_refused_unless_forced(tmp_path, monkeypatch):
     table = tmp_path / "t.parquet"
     kw = dict(base=sd.Scene(numerics={"periods": 20}), table=table, workers=1, progress=False)
-    monkeypatch.setattr(sd, "__version__", "0.0.1-old")
-    old = sd.sweep(["mmd"], "0.1", "0.1,0.2", **kw)
-    monkeypatch.setattr(sd, "__version__", "9.9.9-new")
+    with monkeypatch.context() as m:
+        _as_other_code(m)
+        old = sd.sweep(["mmd"], "0.1", "0.1,0.2", **kw)
+    assert set(old["code_hash"]) == {"0123456789ab"}
     computed = []
-    new = sd.sweep(["mmd"], "0.1", "0.1,0.2", on_row=computed.append, **kw)
-    assert len(computed) == 2, "cells of another version must be recomputed"
-    assert set(old["cell_id"]).isdisjoint(new["cell_id"])
+    with pytest.raises(sd.SawdriftError, match="2 rows computed by other code") as err:
+        sd.sweep(["mmd"], "0.1", "0.1,0.2,0.4", on_row=computed.append, **kw)
+    assert "\n" not in str(err.value) and "0123456789ab" in str(err.value)
+    assert "--force" in str(err.value) and computed == []
+    assert len(pd.read_parquet(table)) == 2  # the table is left as it was
+    # forced: the two cells the table holds keep their rows, the new one is computed by this code
+    mixed = sd.sweep(["mmd"], "0.1", "0.1,0.2,0.4", on_row=computed.append, force=True, **kw)
+    assert [r["amplitude"] for r in computed] == [0.4]
+    by_a = dict(zip(mixed["amplitude"], mixed["code_hash"], strict=True))
+    assert by_a == {0.1: "0123456789ab", 0.2: "0123456789ab", 0.4: sd.code_hash(["mmd"])}
     stored = pd.read_parquet(table)
-    assert len(stored) == 2 and set(stored["version"]) == {"9.9.9-new"}
+    assert len(stored) == 3 and set(stored["code_hash"]) == set(by_a.values())
+
+
+def test_cell_id_names_the_code(monkeypatch):
+    scene = sd.Scene(numerics={"periods": 20})
+    now = sw.cell_id(scene)
+    _as_other_code(monkeypatch)
+    assert sw.cell_id(scene) != now
+
+
+def test_the_command_line_refuses_a_table_of_other_code_in_one_line(tmp_path, monkeypatch):
+    table = tmp_path / "t.parquet"
+    with monkeypatch.context() as m:
+        _as_other_code(m)
+        sd.sweep(["mmd"], "0.1", "0.1", base=sd.Scene(model="mmd", numerics={"periods": 20}),
+                 table=table, workers=1, progress=False)
+    run = subprocess.run([sys.executable, "-m", "sawdrift", "sweep", "--model", "mmd", "--m-star",
+                          "0.1", "--amplitude", "0.1,0.2", "--periods", "20", "--workers", "1",
+                          "--no-progress", "-o", str(table)], capture_output=True, text=True)
+    assert run.returncode == 2, run.stderr[-600:]
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: table") and "other code" in lines[0]
+
+
+def test_two_base_scenes_do_not_merge_silently(tmp_path):
+    table = tmp_path / "t.parquet"
+    kw = dict(table=table, workers=1, progress=False)
+    sd.sweep(["mmd"], "0.1", "0.1", base=sd.Scene(material={"mu": 0.2}, numerics={"periods": 20}), **kw)
+    other = sd.Scene(material={"mu": 0.1}, numerics={"periods": 20})
+    with pytest.raises(sd.SawdriftError, match=r"another base scene \(material\.mu: table 0\.2, "
+                       r"this sweep 0\.1\)"):
+        sd.sweep(["mmd"], "0.1", "0.2", base=other, **kw)
+    assert len(pd.read_parquet(table)) == 1
+    # the same base, extended: accepted; another model over the same base: accepted too
+    sd.sweep(["mmd", "material_point"], "0.1", "0.1,0.2",
+             base=sd.Scene(material={"mu": 0.2}, numerics={"periods": 20}), **kw)
+    mixed = sd.sweep(["mmd"], "0.1", "0.3", base=other, force=True, **kw)
+    assert mixed["mu"].tolist() == [0.1]
+    assert len(pd.read_parquet(table)) == 5
+
+
+def test_an_interrupted_journal_keeps_its_base_scene(tmp_path):
+    """Before the table exists, the journal's header names the base scene the rows belong to."""
+    table = tmp_path / "t.parquet"
+    base = sd.Scene(material={"mu": 0.2}, numerics={"periods": 20})
+
+    def stop(row):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False,
+                 on_row=stop)
+    assert not table.exists() and len(sw.read_rows(table)) == 1
+    with pytest.raises(sd.SawdriftError, match=r"material\.mu: table 0\.2, this sweep 0\.3"):
+        sd.sweep(["mmd"], "0.1", "0.1,0.2", base=sd.Scene(material={"mu": 0.3},
+                 numerics={"periods": 20}), table=table, workers=1, progress=False)
+    computed = []
+    sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False,
+             on_row=computed.append)
+    assert len(computed) == 1 and len(pd.read_parquet(table)) == 2

@@ -81,13 +81,13 @@ def test_kill_9_then_resume_equals_uninterrupted(tmp_path):
     journal = journal_path(table)
     deadline = time.time() + 120
     while time.time() < deadline:
-        if journal.exists() and len(journal.read_text().splitlines()) >= 12:
+        if journal.exists() and len(journal.read_text().splitlines()) >= 13:  # header + 12 rows
             break
         time.sleep(0.05)
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait()
-    before = [json.loads(line)["cell_id"] for line in journal.read_text().splitlines()
-              if line.endswith("}")]
+    lines = [json.loads(line) for line in journal.read_text().splitlines() if line.endswith("}")]
+    before = [rec["cell_id"] for rec in lines if "cell_id" in rec]
     assert 12 <= len(before) < 36, "the kill must land halfway"
     assert not table.exists()
     subprocess.run([sys.executable, "-m", "sawdrift", *args, "-o", str(table)], check=True,
@@ -159,3 +159,18 @@ def test_sweep_table_says_which_cells_have_settled(tmp_path):
     assert bool(heavy.settled) and heavy.drift_ratio > 0.15 > 0.01 > by_m[100.0].drift_ratio
     png = sd.plot_drift_map(pd.read_parquet(tmp_path / "plain.parquet"), tmp_path / "d.png")
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_sweep_rows_carry_events_dropped_as_the_run_reports_it(tmp_path):
+    """Every row has ``events_dropped``, an integer equal to what the run of that scene reports."""
+    base = sd.Scene(model="mmd", numerics={"periods": 20})
+    frame = sd.sweep("mmd", "0.1,3", "0.1,1.2", base=base, table=tmp_path / "t.parquet",
+                     workers=1, progress=False)
+    stored = pd.read_parquet(tmp_path / "t.parquet")
+    assert stored["events_dropped"].dtype.kind == "i" and len(stored) == 4
+    for row in frame.itertuples():
+        scene = sd.Scene(model="mmd", particle={"m_star": row.m_star},
+                         drive={"amplitude": row.amplitude}, numerics={"periods": 20})
+        result = sd.run(scene)
+        want = getattr(result, "events_dropped", result.extra.get("events_dropped", 0))
+        assert row.events_dropped == want and isinstance(row.events_dropped, int | np.integer)

@@ -60,6 +60,7 @@ _LAZY: dict[str, str] = {
     "Wave": "scene.schema",
     "parse_axis": "study.sweep",
     "sweep": "study.sweep",
+    "code_hash": "study.provenance",
     "plot_trajectory": "report.plots",
     "check_model": "contact.conformance",
     "load_grid": "study.export",

@@ -6,7 +6,8 @@ dimensions are the swept fields (the columns that vary across cells: m_star, amp
 
 * ``regime`` as an integer variable carrying CF ``flag_values`` / ``flag_meanings`` (-1: no cell);
 * the drift (``drift_ratio``, ``drift_velocity``) and the evidence of each cell as variables;
-* the provenance in ``attrs``: ``sawdrift_version``, ``base_scene`` (the sweep's base scene as
+* the provenance in ``attrs``: ``sawdrift_version``, ``sawdrift_code`` (the code hash, see
+  :mod:`sawdrift.study.provenance`), ``base_scene`` (the sweep's base scene as
   JSON, when the table's metadata has it) and ``Conventions = "CF-1.8"``.
 
 :func:`load_grid` reads a file written by :func:`write_grid` (``.nc`` or ``.zarr``) back.
@@ -29,7 +30,7 @@ VARIABLES = (
     "drift_ratio", "drift_velocity", "gross_slip_fraction", "liftoffs_per_period", "hop_period",
     "liftoff_phase", "liftoff_phase_spread", "lyapunov", "periodicity", "out_of_contact_fraction",
     "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s", "settled",
-    "settle_periods",
+    "settle_periods", "events_dropped",
 )
 
 #: regime codes: flag_values are 0..n-1 in the order of sawdrift.result.regimes.REGIMES
@@ -82,9 +83,14 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
         Conventions="CF-1.8",
         title="sawdrift sweep",
         sawdrift_version=str(meta.get("sawdrift_version") or _versions(table)),
+        sawdrift_code=str(meta.get("code_hash") or _codes(table)),
         base_scene=json.dumps(meta["base_scene"]) if meta.get("base_scene") else "",
     )
     return ds
+
+
+def _codes(table: pd.DataFrame) -> str:
+    return ", ".join(sorted(str(v) for v in table.get("code_hash", pd.Series(dtype=str)).dropna().unique()))
 
 
 def _versions(table: pd.DataFrame) -> str:

@@ -29,83 +29,17 @@ import pandas as pd
 from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, set_dotted
+from .axes import parse_axis, parse_values
+from .provenance import check_resume, code_hash
 
-#: Columns of a sweep table, in order.
-TABLE_COLUMNS = ("cell_id", "scene_id", *SUMMARY_FIELDS, "settled", "settle_periods", "error")
+#: Columns of a sweep table, in order: ``events_dropped`` counts the events the run could not log
+#: (its evidence is then incomplete), ``code_hash`` names the code that computed the row
+#: (:func:`sawdrift.study.provenance.code_hash`).
+TABLE_COLUMNS = tuple(dict.fromkeys(("cell_id", "scene_id", *SUMMARY_FIELDS, "settled",
+                                     "settle_periods", "events_dropped", "code_hash", "error")))
 
 #: Parquet metadata keys of a sweep table (provenance).
-META_VERSION, META_BASE_SCENE = b"sawdrift_version", b"base_scene"
-
-
-def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
-    """Values of one ``--axis FIELD=SPEC``: numbers, booleans, or strings with units.
-
-    ``START:STOP:N`` gives N log-spaced numbers, ``lin:START:STOP:N`` N evenly spaced ones; a comma
-    list gives its items: numbers, ``true``/``false``, or quantities with units ("5 nm") that the
-    scene's device block converts.
-    """
-    if not isinstance(spec, str):
-        return list(spec)
-    if spec.startswith("lin:"):
-        parts = spec.split(":")[1:]
-        try:
-            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
-            if len(parts) != 3 or not 1 <= n <= 100_000:
-                raise ValueError
-        except (ValueError, IndexError):
-            raise SceneError(f"{name} = {spec!r} must be lin:START:STOP:N with 1 <= N <= 100000") from None
-        return np.linspace(start, stop, n).tolist()
-    if ":" in spec:
-        return parse_axis(spec, name).tolist()
-    out: list[Any] = []
-    for item in (v.strip() for v in spec.split(",")):
-        if not item:
-            continue
-        if item.lower() in ("true", "false"):
-            out.append(item.lower() == "true")
-            continue
-        try:
-            out.append(float(item))
-        except ValueError:
-            out.append(item)
-    if not out:
-        raise SceneError(f"{name} = {spec!r} must hold at least one value")
-    return out
-
-
-def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
-    """Grid values from ``START:STOP:N`` (N log-spaced values, ends included) or ``a,b,c``.
-
-    Raises
-    ------
-    SceneError
-        With one line naming ``name`` when the specification is malformed.
-    """
-    if not isinstance(spec, str):
-        values = np.asarray(list(spec), dtype=float)
-    elif ":" in spec:
-        parts = spec.split(":")
-        if len(parts) != 3:
-            raise SceneError(f"{name} = {spec!r} must be START:STOP:N (N log-spaced values)")
-        try:
-            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
-        except ValueError:
-            raise SceneError(
-                f"{name} = {spec!r} must be START:STOP:N with numbers START, STOP > 0 and an integer N"
-            ) from None
-        if not (start > 0 and stop > 0 and math.isfinite(start) and math.isfinite(stop)):
-            raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis")
-        if not 1 <= n <= 100_000:
-            raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
-        values = np.geomspace(start, stop, n) if n > 1 else np.array([start])
-    else:
-        try:
-            values = np.array([float(v) for v in spec.split(",") if v.strip()], dtype=float)
-        except ValueError:
-            raise SceneError(f"{name} = {spec!r} must be START:STOP:N or a comma list of numbers") from None
-    if values.size == 0 or not np.all(np.isfinite(values)):
-        raise SceneError(f"{name} = {spec!r} must hold at least one finite value")
-    return values
+META_VERSION, META_BASE_SCENE, META_CODE = b"sawdrift_version", b"base_scene", b"sawdrift_code"
 
 
 def scene_id(scene: Scene) -> str:
@@ -114,26 +48,28 @@ def scene_id(scene: Scene) -> str:
 
 
 def cell_id(scene: Scene) -> str:
-    """Identifier of a computed cell: a hash of the sawdrift version and the whole scene.
+    """Identifier of a computed cell: a hash of the sawdrift version, the code and the whole scene.
 
-    A table resumed after an upgrade recomputes its cells instead of mixing versions; the new
-    row then supersedes the old one of the same scene (see :func:`supersede`).
+    The code is :func:`~sawdrift.study.provenance.code_hash` of the scene's model (sawdrift's
+    source and the model's plugin): a cell computed by other code has another identifier.
     """
     from .. import __version__
 
-    key = f"{__version__}\n{scene.model_dump_json()}"
+    key = f"{__version__}\n{code_hash([scene.model])}\n{scene.model_dump_json()}"
     return hashlib.sha1(key.encode()).hexdigest()[:16]
 
 
 def supersede(rows: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Keep, for every scene, only the row of the newest computation (current version first)."""
-    from .. import __version__
+    """Keep, for every scene, only one row: the one computed by the current code if there is one."""
+
+    def current(row: dict[str, Any]) -> bool:
+        return row.get("code_hash") == code_hash([str(row.get("model"))])
 
     best: dict[str, dict[str, Any]] = {}
     for row in rows:
         key = row.get("scene_id") or row["cell_id"]
         old = best.get(key)
-        if old is None or (row.get("version") == __version__ and old.get("version") != __version__):
+        if old is None or (current(row) and not current(old)):
             best[key] = row
     return list(best.values())
 
@@ -194,9 +130,12 @@ def run_cell(scene_json: str, engine: str = "compiled") -> dict[str, Any]:
     row: dict[str, Any] = {key: None for key in TABLE_COLUMNS}
     row["cell_id"] = cell_id(scene)
     row["scene_id"] = scene_id(scene)
+    row["code_hash"] = code_hash([scene.model])
     try:
         result = run(scene, engine=engine)  # type: ignore[arg-type]
         row.update(result.summary())
+        row["events_dropped"] = int(getattr(result, "events_dropped",
+                                            result.extra.get("events_dropped", 0)))
         row["error"] = None
     except Exception as exc:  # noqa: BLE001 - recorded in the table, the sweep goes on
         kind = "" if isinstance(exc, SawdriftError) else f"{type(exc).__name__}: "
@@ -222,7 +161,10 @@ def journal_path(table: Path) -> Path:
 
 
 def read_rows(table: Path) -> dict[str, dict[str, Any]]:
-    """Rows already finished: from the Parquet table and the journal, by cell id."""
+    """Rows already finished: from the Parquet table and the journal, by cell id.
+
+    The journal's first line is its header (the sweep's base scene, see :func:`sweep`), not a row.
+    """
     rows: dict[str, dict[str, Any]] = {}
     if table.exists():
         try:
@@ -245,7 +187,8 @@ def read_rows(table: Path) -> dict[str, dict[str, Any]]:
                     rec = json.loads(line)
                 except json.JSONDecodeError:
                     continue  # a line cut by a kill mid-write: that cell is simply recomputed
-                rows[rec["cell_id"]] = rec
+                if "cell_id" in rec:
+                    rows[rec["cell_id"]] = rec
     return rows
 
 
@@ -265,17 +208,20 @@ def to_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
     rows = list(rows)
     extra = sorted({k for r in rows for k in r} - set(TABLE_COLUMNS))
     frame = pd.DataFrame(rows, columns=[*TABLE_COLUMNS, *extra])
-    for col in ("error", "regime", "model", "engine", "profile", "cell_id", "scene_id", "version"):
+    for col in ("error", "regime", "model", "engine", "profile", "cell_id", "scene_id", "version",
+                "code_hash"):
         frame[col] = frame[col].astype("string")
     frame = frame.sort_values(["model", "m_star", "amplitude", "cell_id"], kind="stable")
     return frame.reset_index(drop=True)
 
 
-def write_table(frame: pd.DataFrame, table: Path, base: Scene | None = None) -> None:
+def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] | None = None) -> None:
     """Write the Parquet table atomically (temporary file, then replace).
 
-    The file's metadata records the sawdrift version (``sawdrift_version``) and the base scene
-    of the sweep as JSON (``base_scene``); :func:`table_metadata` reads them back.
+    The file's metadata records the sawdrift version (``sawdrift_version``), the code hash of
+    the table's models now (``sawdrift_code``, see :mod:`sawdrift.study.provenance`; each row
+    also names its own) and the base scene of the sweep as JSON (``base_scene``);
+    :func:`table_metadata` reads them back.
     """
     import pyarrow as pa
     import pyarrow.parquet as pq
@@ -285,23 +231,57 @@ def write_table(frame: pd.DataFrame, table: Path, base: Scene | None = None) -> 
     arrow = pa.Table.from_pandas(frame, preserve_index=False)
     meta = dict(arrow.schema.metadata or {})
     meta[META_VERSION] = __version__.encode()
-    meta[META_BASE_SCENE] = (base if base is not None else Scene()).model_dump_json().encode()
+    meta[META_CODE] = code_hash(str(m) for m in frame["model"].dropna().unique()).encode()
+    if not isinstance(base, dict):
+        base = json.loads((base if base is not None else Scene()).model_dump_json())
+    meta[META_BASE_SCENE] = json.dumps(base).encode()
     tmp = table.with_name(f".{table.name}.{os.getpid()}.tmp")
     pq.write_table(arrow.replace_schema_metadata(meta), tmp)
     os.replace(tmp, table)
 
 
 def table_metadata(table: str | Path) -> dict[str, Any]:
-    """The provenance of a sweep table: ``{"sawdrift_version": str, "base_scene": dict}``."""
+    """The provenance of a sweep table: ``{"sawdrift_version", "code_hash", "base_scene"}``.
+
+    A key the table does not record (a table written before it existed) is None.
+    """
     import pyarrow.parquet as pq
 
     meta = pq.read_schema(table).metadata or {}
-    out: dict[str, Any] = {"sawdrift_version": None, "base_scene": None}
+    out: dict[str, Any] = {"sawdrift_version": None, "code_hash": None, "base_scene": None}
     if META_VERSION in meta:
         out["sawdrift_version"] = meta[META_VERSION].decode()
+    if META_CODE in meta:
+        out["code_hash"] = meta[META_CODE].decode()
     if META_BASE_SCENE in meta:
         out["base_scene"] = json.loads(meta[META_BASE_SCENE].decode())
     return out
+
+
+def _base_json(base: Scene | None, overrides: dict[str, Any] | None) -> dict[str, Any]:
+    """The scene every cell of a sweep starts from (``base`` with ``overrides``), as JSON data."""
+    scene = base if base is not None else Scene()
+    if overrides:
+        data = scene.model_dump(exclude_none=True)
+        for dotted, value in overrides.items():
+            set_dotted(data, dotted, value)
+        scene = build_scene(data)
+    return json.loads(scene.model_dump_json())
+
+
+def _stored_base(table: Path) -> dict[str, Any] | None:
+    """The base scene a table was swept from: its metadata's, else its journal's header."""
+    if table.exists():
+        return table_metadata(table)["base_scene"]
+    journal = journal_path(table)
+    if journal.exists():
+        with journal.open() as fh:
+            try:
+                first = json.loads(fh.readline())
+            except json.JSONDecodeError:
+                return None
+        return first.get("base_scene") if "cell_id" not in first else None
+    return None
 
 
 # -- executors -------------------------------------------------------------------------------
@@ -357,6 +337,7 @@ def sweep(
     progress: bool = True,
     engine: str = "compiled",
     on_row: Callable[[dict[str, Any]], None] | None = None,
+    force: bool = False,
 ) -> pd.DataFrame:
     """Run a (model, m*, A*) grid and return one row per cell as a DataFrame.
 
@@ -376,7 +357,10 @@ def sweep(
     base, overrides
         The scene every cell starts from, and dotted-path overrides (``{"material.mu": 0.2}``).
     table
-        Parquet file. Finished cells already in it (or in its journal) are not recomputed.
+        Parquet file. Finished cells already in it (or in its journal) are not recomputed. A
+        table whose rows were computed by other code (another sawdrift source or model plugin,
+        :mod:`sawdrift.study.provenance`), or swept from another base scene, is refused with a
+        :class:`~sawdrift.study.provenance.TableProvenanceError` unless ``force``.
     workers
         1 runs serially; K > 1 uses K local processes; default: all cores.
     scheduler
@@ -387,6 +371,9 @@ def sweep(
         ``"compiled"`` (numba) or ``"python"`` (reference implementations).
     on_row
         Called with each finished row (in completion order).
+    force
+        Add to a table of other code or another base scene anyway: a cell whose scene the table
+        already holds keeps its row, whatever code computed it (each row names its code).
     """
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
@@ -403,12 +390,19 @@ def sweep(
                       overrides, extra_axes)
     path = Path(table) if table is not None else None
     done = read_rows(path) if path is not None else {}
+    swept_from = _base_json(base, overrides)
+    if path is not None:
+        check_resume(path, done.values(), _stored_base(path), swept_from, force)
+    # with force, a scene the table holds keeps its row, whatever code computed it
+    held = {r["scene_id"]: cid for cid, r in done.items() if r.get("scene_id")} if force else {}
     todo: list[str] = []
     wanted: set[str] = set()
     # the swept fields' values of each cell, as the validated scene holds them (SI for devices)
     columns: dict[str, dict[str, Any]] = {}
     for scene in scenes:
         cid = cell_id(scene)
+        if cid not in done and held:
+            cid = held.get(scene_id(scene), cid)
         if extra_axes:
             dumped = scene.model_dump()
             columns[cid] = {f: get_dotted(dumped, f) for f in extra_axes}
@@ -433,7 +427,12 @@ def sweep(
         from .progress import progress as make_progress
 
         bar = make_progress(len(wanted), "sweep", "cell", initial=len(rows))
-    fh = journal.open("a") if journal is not None and todo else None
+    fh = None
+    if journal is not None and todo:
+        header = not journal.exists()
+        fh = journal.open("a")
+        if header:  # what the rows belong to, until the table's metadata records it
+            fh.write(json.dumps({"base_scene": swept_from}) + "\n")
     try:
         for row in executor(todo, workers, scheduler, engine):
             row.update(columns.get(row["cell_id"], {}))
@@ -455,7 +454,7 @@ def sweep(
         # keep the table's cells from other grids; ``done`` already holds table and journal
         everything = dict(done)
         everything.update(rows)
-        write_table(to_frame(supersede(everything.values())), path, base)
+        write_table(to_frame(supersede(everything.values())), path, swept_from)
         if journal is not None and journal.exists():
             journal.unlink()
     return frame
