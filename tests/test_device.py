@@ -6,12 +6,15 @@ import json
 import math
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 import pandas as pd
 import pytest
 
 import sawdrift as sd
+from sawdrift.errors import SceneError
+from sawdrift.scene import build_scene
 from sawdrift.scene.device import Device, normalized
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -62,8 +65,13 @@ def test_motor_settles_and_drifts_against_propagation():
     d = json.loads(out.stdout)
     assert d["orbit"] == "retrograde" and d["settled"] is True
     assert d["direction"] == "against" and d["drift_speed_m_s"] < 0.0
-    n = d["normalized"]
-    assert d["drift_speed_m_s"] == pytest.approx(d["drift_velocity"] * n["a0_m"] * 9.6e6, rel=1e-12)
+    # the speed against two computations that use nothing of the device conversion: the drift
+    # ratio times the horizontal surface-speed amplitude 2 pi r A_y f (drift_ratio = x*' /
+    # (2 pi r A*), docs/physics.md), and x*' a0 f with a0 from the Hertz formula by hand
+    surface_speed = 2 * math.pi * 0.68 * 10e-9 * 9.6e6
+    assert d["drift_speed_m_s"] == pytest.approx(d["drift_ratio"] * surface_speed, rel=1e-9)
+    a0 = _hand(0.5e-3, 7850, 210e9, 0.3, 170e9, 0.25, 9.6e6, 10e-9, 7.35e-3)["a0_m"]
+    assert d["drift_speed_m_s"] == pytest.approx(d["drift_velocity"] * a0 * 9.6e6, rel=1e-9)
     assert d["t90_s"] > 0.0
 
 
@@ -136,3 +144,141 @@ def test_explain_names_time_scales_and_limits():
     assert "a0 < 1 nm" in text and "natural frequency" in text and "approach" in text
     motor = _cli("run", str(MOTOR), "--explain").stdout
     assert "retrograde orbit" in motor and "a0 < 1 nm" not in motor
+
+
+# --- the rule for device scenes: device fields override, derived fields are errors ----------
+
+#: each derived scene field, a value other than the motor's, and the device field to name
+DERIVED_CASES = [
+    ("particle.m_star", 5.0, "device.particle (radius, density or mass)"),
+    ("drive.amplitude", 1.0, "set device.amplitude instead"),
+    ("material.mu", 0.3, "set device.friction instead"),
+    ("material.nu", 0.2, "set device.substrate.poisson instead"),
+    ("material.theta", 1.0, "device.substrate youngs_modulus and poisson"),
+    ("drive.horizontal_ratio", 0.5, "set device.horizontal_ratio instead"),
+    ("drive.orbit", "prograde", "set device.orbit instead"),
+    ("particle.profile.shape", "cone", "set device.particle.shape"),
+    ("particle.preload", 1.0, "set device.preload"),
+]
+
+
+def _motor_dict() -> dict:
+    return tomllib.loads(MOTOR.read_text())
+
+
+@pytest.mark.parametrize("field, value, needle", DERIVED_CASES)
+def test_a_derived_field_on_a_device_scene_is_an_error_naming_the_device_field(field, value,
+                                                                               needle):
+    motor = sd.Scene.from_toml(MOTOR)
+    for attempt in (lambda: motor.with_updates(**{field: value}),
+                    lambda: sd.scene.apply_overrides(_motor_dict(), {field: value})):
+        with pytest.raises(SceneError, match="a device scene derives") as info:
+            attempt()
+        assert needle in str(info.value) and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("option, value, device_field", [
+    ("--m-star", "5", "device.particle"), ("--mu", "0.3", "device.friction"),
+    ("--amplitude", "1", "device.amplitude"), ("--orbit", "prograde", "device.orbit")])
+def test_cli_values_on_a_device_scene_fail_in_one_line(option, value, device_field):
+    out = _cli("run", str(MOTOR), option, value, "--json")
+    assert out.returncode == 2, out.stdout[:200]
+    err = out.stderr.strip().splitlines()
+    assert len(err) == 1 and device_field in err[0] and "derives" in err[0], err
+
+
+def test_device_fields_override_in_device_units_and_equal_values_pass():
+    motor = sd.Scene.from_toml(MOTOR)
+    half = build_scene(sd.scene.apply_overrides(_motor_dict(), {"device.amplitude": "5 nm"}))
+    assert half.drive.amplitude == pytest.approx(motor.drive.amplitude / 2, rel=1e-12)
+    assert half.particle.m_star == motor.particle.m_star
+    heavier = motor.with_updates(**{"device.preload": "14.7 mN"})
+    want = _hand(0.5e-3, 7850, 210e9, 0.3, 170e9, 0.25, 9.6e6, 10e-9, 14.7e-3)
+    assert heavier.particle.m_star == pytest.approx(want["m_star"], rel=1e-12)
+    assert heavier.drive.amplitude == pytest.approx(want["amplitude"], rel=1e-12)
+    # repeating the device's own value is no conflict (a scene saved in full reloads)
+    assert motor.with_updates(**{"drive.orbit": "retrograde"}) == motor
+    full = dict(_motor_dict(), particle={"m_star": motor.particle.m_star},
+                material={"mu": 0.2, "theta": motor.theta})
+    assert build_scene(full) == motor
+
+
+def test_every_path_to_a_scene_applies_the_device():
+    data = _motor_dict()
+    want = _hand(0.5e-3, 7850, 210e9, 0.3, 170e9, 0.25, 9.6e6, 10e-9, 7.35e-3)
+    from_file = sd.Scene.from_toml(MOTOR)
+    for scene in (sd.Scene(**data), sd.Scene.model_validate(data),
+                  sd.Scene.model_validate_json(json.dumps(data)),
+                  sd.Scene.model_validate_json(from_file.model_dump_json())):
+        assert scene.particle.m_star == pytest.approx(want["m_star"], rel=1e-12)
+        assert scene.drive.amplitude == pytest.approx(want["amplitude"], rel=1e-12)
+        assert scene.theta == pytest.approx(want["theta"], rel=1e-12)
+        assert (scene.material.mu, scene.material.nu, scene.drive.orbit) == (0.2, 0.25,
+                                                                              "retrograde")
+        assert scene == from_file
+    with pytest.raises(ValueError, match="set device.friction"):
+        sd.Scene(**dict(data, material={"mu": 0.5}))
+
+
+def test_a_sweep_over_m_star_on_a_device_scene_fails_instead_of_collapsing():
+    base = sd.Scene.from_toml(MOTOR).with_updates(**{"numerics.settle": False,
+                                                     "numerics.periods": 20})
+    with pytest.raises(SceneError, match=r"particle\.m_star = 1: a device scene derives"):
+        sd.sweep(["mmd"], axes={"particle.m_star": "1:100:6"}, base=base, workers=1,
+                 progress=False)
+    for m_star in (1.0, 10.0, 100.0):
+        with pytest.raises(SceneError, match="device.particle"):
+            base.with_updates(**{"particle.m_star": m_star})
+
+
+def test_a_device_scene_is_written_without_its_derived_fields(tmp_path):
+    motor = sd.Scene.from_toml(MOTOR)
+    dumped = motor.model_dump()
+    assert "m_star" not in dumped["particle"] and "amplitude" not in dumped["drive"]
+    assert "mu" not in dumped["material"]
+    path = tmp_path / "motor.toml"
+    motor.to_toml(path)
+    assert sd.Scene.from_toml(path) == motor
+    assert f"particle.m_star = {motor.particle.m_star:.6g}" in path.read_text().splitlines()[0]
+
+
+def _sneddon_device(**particle) -> dict:
+    return {"frequency": "1 MHz", "amplitude": "10 nm", "friction": 0.2, "preload": "5 mN",
+            "particle": {"youngs_modulus": "400 GPa", "poisson": 0.2, **particle},
+            "substrate": {"youngs_modulus": "70 GPa", "poisson": 0.17}}
+
+
+def test_cone_and_flat_punch_use_their_own_contact_mechanics():
+    # Sneddon (1965) for a rigid punch on a half-space of modulus E*, written out here:
+    # cone of half-angle alpha N = (2/pi) E* tan(alpha) d^2, flat punch of radius R N = 2 E* R d
+    e_star = 1 / ((1 - 0.2**2) / 400e9 + (1 - 0.17**2) / 70e9)
+    m, alpha, R = 2e-6, math.radians(75.0), 0.1e-3
+    w = m * 9.81 + 5e-3
+    a0_cone = math.sqrt(math.pi * w / (2 * e_star * math.tan(alpha)))
+    a0_flat = w / (2 * e_star * R)
+    sphere = normalized(Device.model_validate(_sneddon_device(radius=R, mass=m)))["a0_m"]
+    for particle, a0, p in ((dict(shape="cone", half_angle="75 deg", mass="2 mg"), a0_cone, 2.0),
+                            (dict(shape="flat", radius="0.1 mm", mass="2 mg"), a0_flat, 1.0)):
+        scene = build_scene({"model": "mmd", "device": _sneddon_device(**particle)})
+        assert normalized(scene.device)["a0_m"] == pytest.approx(a0, rel=1e-12)
+        assert scene.particle.m_star == pytest.approx(a0 * m * 1e6**2 / w, rel=1e-12)
+        assert scene.drive.amplitude == pytest.approx(10e-9 / a0, rel=1e-12)
+        assert scene.particle.profile.p == p
+        assert abs(a0 / sphere - 1) > 0.5  # not the sphere's a0 under another name
+
+
+@pytest.mark.parametrize("particle, scene_extra, needle", [
+    (dict(shape="cone", mass="2 mg"), {}, "half_angle is required for a cone"),
+    (dict(shape="cone", half_angle="75 deg", density=7850), {}, "needs its mass"),
+    (dict(shape="cone", half_angle=80, mass="2 mg"), {}, "outside (0, 90) deg"),
+    (dict(shape="flat", mass="2 mg"), {}, "radius is required for a flat"),
+    (dict(radius="0.1 mm", mass="2 mg"), {"particle": {"profile": {"shape": "cone"}}},
+     "set device.particle.shape"),
+    (dict(radius="0.1 mm", mass="2 mg"),
+     {"particle": {"profile": {"shape": "power", "exponent": 1.8}}}, "set device.particle.shape"),
+    (dict(radius="0.1 mm", mass="2 mg"), {"drive": {"kind": "impact"}}, "driven by its wave"),
+])
+def test_a_device_profile_that_cannot_be_converted_is_refused(particle, scene_extra, needle):
+    with pytest.raises(SceneError) as info:
+        build_scene({"model": "mmd", "device": _sneddon_device(**particle), **scene_extra})
+    assert needle in str(info.value) and "\n" not in str(info.value)

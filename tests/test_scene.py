@@ -82,3 +82,33 @@ def test_with_updates_validates():
     assert s.with_updates(**{"particle.m_star": 2.0}).particle.m_star == 2.0
     with pytest.raises(SceneError, match="particle.m_star"):
         s.with_updates(**{"particle.m_star": -2.0})
+
+
+def test_gyration_without_rotation_is_an_error_naming_both_fields():
+    for make in (lambda: build_scene({"particle": {"gyration": 0.5}}),
+                 lambda: sd.Scene().with_updates(**{"particle.gyration": 2 / 3})):
+        with pytest.raises(SceneError, match=r"particle\.gyration = 0\.\d+ .*effects\.rotation"):
+            make()
+    on = build_scene({"particle": {"gyration": 0.5}, "effects": {"rotation": True}})
+    assert on.particle.gyration == 0.5
+    assert build_scene({"effects": {"rotation": False}}).particle.gyration == 0.4
+
+
+def test_a_rigid_model_with_rotation_is_labelled_a_rigid_sphere():
+    point = sd.Scene(model="material_point")
+    assert point.body == "rigid point"
+    spun = point.with_updates(**{"effects.rotation": True, "particle.gyration": 2 / 3})
+    assert spun.body == "rigid sphere, turning, kappa = 0.666667"
+    assert sd.Scene(model="mmd").body == "compliant sphere (N* = a*^p, p = 1.5), not turning"
+
+
+def test_schema_module_is_split_below_500_lines_and_keeps_its_imports():
+    from pathlib import Path
+
+    from sawdrift.scene import schema
+
+    names = ("Effects", "Impact", "Material", "Numerics", "Particle", "Prescribed", "Scene",
+             "Wave", "build_scene", "format_validation_error", "set_dotted")
+    assert all(hasattr(schema, name) for name in names)  # what other modules import from it
+    for module in Path(schema.__file__).parent.glob("*.py"):
+        assert len(module.read_text().splitlines()) < 500, module.name

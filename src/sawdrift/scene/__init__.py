@@ -1,5 +1,6 @@
 """The Scene: one whole experiment, validated and frozen (TOML in and out)."""
 
+from .overrides import DERIVED, apply_overrides
 from .profiles import Profile
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio, theta
 from .schema import (
@@ -13,11 +14,12 @@ from .schema import (
     Wave,
     build_scene,
     format_validation_error,
+    get_dotted,
     set_dotted,
 )
 
 __all__ = [
-    "Effects", "Impact", "Material", "Numerics", "Particle", "Prescribed", "Profile", "Scene",
-    "Wave", "build_scene", "format_validation_error", "rayleigh_ratio", "rayleigh_speed_ratio",
-    "set_dotted", "theta",
+    "DERIVED", "Effects", "Impact", "Material", "Numerics", "Particle", "Prescribed", "Profile",
+    "Scene", "Wave", "apply_overrides", "build_scene", "format_validation_error", "get_dotted",
+    "rayleigh_ratio", "rayleigh_speed_ratio", "set_dotted", "theta",
 ]

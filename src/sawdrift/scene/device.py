@@ -1,21 +1,40 @@
 """Real devices in physical units, converted in this one module to the normalized scene.
 
-A device is a particle (radius, density or mass, Young's modulus, Poisson's ratio) on a substrate
-(Young's modulus, Poisson's ratio) carrying a Rayleigh wave (frequency, vertical amplitude,
-orbit), with friction, gravity and an optional preload. Values are strings with units parsed by
-pint ("9.6 MHz", "10 nm", "0.5 mm", "7.35 mN", "210 GPa", "7850 kg/m^3"); bare numbers are SI.
+A device is a particle (shape, size, density or mass, Young's modulus, Poisson's ratio) on a
+substrate (Young's modulus, Poisson's ratio) carrying a Rayleigh wave (frequency, vertical
+amplitude, orbit), with friction, gravity and an optional preload. Values are strings with units
+parsed by pint ("9.6 MHz", "10 nm", "0.5 mm", "7.35 mN", "210 GPa", "7850 kg/m^3", "80 deg");
+bare numbers are SI (an angle in radians).
 
-Conversion (docs/physics.md, "Physical units and two materials")::
+Conversion (docs/physics.md, "Physical units and two materials"; docs/devices.md)::
 
     1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2          1/G* = (2 - nu1)/G1 + (2 - nu2)/G2
     G_i = E_i / (2 (1 + nu_i))                       M g = m g + F_ext
-    a0 = (9 (M g)^2 / (16 R E*^2))^(1/3)             (Hertz: the compression under M g)
+    a0: the compression under M g of the particle's profile (see below)
     m* = a0 m f^2 / (M g)      A* = A_y / a0      theta = E* / (4 G*)      r = r(nu2) by default
 
-theta belongs to the contact (two materials), r to the substrate's wave. A normalized speed
-x*' is x*' a0 f in m/s, a normalized time t* is t*/f in s. x points along the propagation
+The static compression a0 solves N(a0) = M g with the profile's elastic normal law N(delta)
+(all three in Sneddon 1965, "The relation between load and penetration in the axisymmetric
+Boussinesq problem for a punch of arbitrary profile", Int. J. Eng. Sci. 3, 47-57; also K. L.
+Johnson, Contact Mechanics, 1985, chapters 3-5)::
+
+    sphere of radius R (Hertz 1882):      N = (4/3) E* R^(1/2) delta^(3/2)
+                                          a0 = (9 (M g)^2 / (16 R E*^2))^(1/3)
+    cone of half-angle alpha (Sneddon):   N = (2/pi) E* tan(alpha) delta^2
+                                          a0 = (pi M g / (2 E* tan(alpha)))^(1/2)
+    flat punch of radius R (Boussinesq):  N = 2 E* R delta
+                                          a0 = M g / (2 E* R)
+
+so that N / (M g) = (delta / a0)^p with p = 3/2, 2, 1: the normalized laws of
+:mod:`sawdrift.scene.profiles`. A power-law or tabulated profile has no dimensional law here and
+is refused. theta belongs to the contact (two materials; the ratio of tangential to normal
+stiffness 4 G*/E* holds for every axisymmetric profile), r to the substrate's wave. A normalized
+speed x*' is x*' a0 f in m/s, a normalized time t* is t*/f in s. x points along the propagation
 direction; the device default orbit is the retrograde one of a Rayleigh wave on an isotropic
 half-space (the mirror of eq. 1 as printed).
+
+Which scene fields a device derives, and the error for setting one, live in
+:mod:`sawdrift.scene.overrides`.
 """
 
 from __future__ import annotations
@@ -26,12 +45,10 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
-from ..errors import SceneError
-
 _FROZEN = ConfigDict(frozen=True, extra="forbid")
 
 #: expected dimension of each kind of quantity, with an example for error messages
-_UNITS = {
+UNITS = {
     "length": ("[length]", "m", "'10 nm'"),
     "frequency": ("1 / [time]", "Hz", "'9.6 MHz'"),
     "force": ("[mass] * [length] / [time] ** 2", "N", "'7.35 mN'"),
@@ -39,7 +56,13 @@ _UNITS = {
     "density": ("[mass] / [length] ** 3", "kg/m^3", "'7850 kg/m^3'"),
     "mass": ("[mass]", "kg", "'4.1 mg'"),
     "acceleration": ("[length] / [time] ** 2", "m/s^2", "'9.81 m/s^2'"),
+    "angle": ("", "rad", "'80 deg'"),
 }
+
+#: the kind of quantity of each device field, for messages about a missing one
+FIELD_KIND = {"frequency": "frequency", "amplitude": "length", "radius": "length",
+              "youngs_modulus": "pressure", "density": "density", "mass": "mass",
+              "gravity": "acceleration", "preload": "force", "half_angle": "angle"}
 
 
 @lru_cache(maxsize=1)
@@ -52,10 +75,10 @@ def _registry():
 def to_si(value: Any, kind: str) -> float:
     """The SI magnitude of ``value`` (a number, or a string with units) of dimension ``kind``.
 
-    Raises ValueError with a plain message when the string is not a quantity or has another
-    dimension.
+    An angle is returned in radians (a bare number is taken as radians). Raises ValueError with a
+    plain message when the string is not a quantity or has another dimension.
     """
-    dims, unit, example = _UNITS[kind]
+    dims, unit, example = UNITS[kind]
     if isinstance(value, bool):
         raise ValueError(f"is not a {kind}: give one in {unit}, e.g. {example}")
     if isinstance(value, (int, float)):
@@ -66,7 +89,12 @@ def to_si(value: Any, kind: str) -> float:
             q = ureg.Quantity(str(value).strip())
         except Exception:  # noqa: BLE001 - pint raises several kinds for a bad string
             raise ValueError(f"is not a quantity: give a {kind} in {unit}, e.g. {example}") from None
-        if q.dimensionless:
+        if kind == "angle":
+            if not q.dimensionless:
+                raise ValueError(f"is not an angle (wrong dimension): give one in deg or rad, "
+                                 f"e.g. {example}")
+            out = float(q.to("radian").magnitude)
+        elif q.dimensionless:
             out = float(q.magnitude)
         else:
             if q.dimensionality != ureg.Quantity(1, unit).dimensionality:
@@ -83,16 +111,19 @@ def _quantity(kind: str, positive: bool = True, allow_zero: bool = False):
         out = to_si(value, kind)
         if positive and (out < 0.0 or (out == 0.0 and not allow_zero)):
             bound = ">= 0" if allow_zero else "> 0"
-            raise ValueError(f"is not {bound}: a {kind} in {_UNITS[kind][1]} must be {bound}")
+            raise ValueError(f"is not {bound}: a {kind} in {UNITS[kind][1]} must be {bound}")
         return out
 
     return BeforeValidator(check)
 
 
-#: the kind of quantity of each device field, for messages about a missing one
-_FIELD_KIND = {"frequency": "frequency", "amplitude": "length", "radius": "length",
-               "youngs_modulus": "pressure", "density": "density", "mass": "mass",
-               "gravity": "acceleration", "preload": "force"}
+def _half_angle(value: Any) -> float:
+    out = to_si(value, "angle")
+    if not 0.0 < out < 0.5 * math.pi:
+        raise ValueError("is outside (0, 90) deg: the angle between the cone's axis and its "
+                         "surface, e.g. '80 deg' (a bare number is in radians)")
+    return out
+
 
 Length = Annotated[float, _quantity("length")]
 Pressure = Annotated[float, _quantity("pressure")]
@@ -100,28 +131,55 @@ Poisson = Annotated[float, Field(gt=-1.0, lt=0.5)]
 
 
 class DeviceParticle(BaseModel):
-    """The particle of a device: a sphere of radius R, density or mass, elastic constants."""
+    """The particle of a device: its contact shape, size, density or mass, elastic constants.
+
+    ``shape`` sets the profile of the contact and so the law N(delta) that gives a0 (see the
+    module text): a ``sphere`` of ``radius`` R (mass from ``density`` or ``mass``), a ``cone`` of
+    ``half_angle`` alpha, a ``flat`` punch of ``radius`` R. A cone or a punch is not a sphere, so
+    its ``mass`` must be given (``density`` would give the mass of a sphere).
+    """
 
     model_config = _FROZEN
 
-    radius: Length = Field(description="sphere radius R")
+    shape: Literal["sphere", "cone", "flat"] = Field(
+        "sphere", description="contact profile: sphere (Hertz), cone (Sneddon), flat punch")
+    radius: Length | None = Field(None, description="sphere radius R, or the flat punch's radius")
+    half_angle: Annotated[float, BeforeValidator(_half_angle)] | None = Field(
+        None, description="cone only: half-angle alpha between axis and surface, (0, 90) deg")
     density: Annotated[float, _quantity("density")] | None = Field(None, description="or mass")
     mass: Annotated[float, _quantity("mass")] | None = Field(None, description="or density")
     youngs_modulus: Pressure = Field(description="E1")
     poisson: Poisson = Field(description="nu1, in (-1, 0.5)")
 
     @model_validator(mode="after")
-    def _one_of_density_or_mass(self) -> DeviceParticle:
+    def _geometry(self) -> DeviceParticle:
+        shape = self.shape
+        if shape in ("sphere", "flat") and self.radius is None:
+            what = "the sphere's radius" if shape == "sphere" else "the punch's radius"
+            raise ValueError(f"radius is required for a {shape}: {what}, a length in m, "
+                             "e.g. '0.5 mm'")
+        if shape == "cone":
+            if self.half_angle is None:
+                raise ValueError("half_angle is required for a cone: the angle between its axis "
+                                 "and its surface, e.g. '80 deg'")
+            if self.radius is not None:
+                raise ValueError("radius is not used by a cone (its a0 depends on half_angle "
+                                 "only); remove it")
+        elif self.half_angle is not None:
+            raise ValueError(f"half_angle applies to a cone only, not to a {shape}; remove it")
+        if shape != "sphere" and self.density is not None:
+            raise ValueError(f"density gives the mass of a sphere (4/3 pi R^3 rho); a {shape} "
+                             "particle needs its mass, e.g. mass = '4.1 mg'")
         if (self.density is None) == (self.mass is None):
             raise ValueError("give exactly one of density (kg/m^3) or mass (kg)")
         return self
 
     @property
     def mass_kg(self) -> float:
-        """m: the given mass, or density x 4/3 pi R^3."""
+        """m: the given mass, or density x 4/3 pi R^3 for a sphere."""
         if self.mass is not None:
             return self.mass
-        return float(self.density) * 4.0 / 3.0 * math.pi * self.radius**3
+        return float(self.density) * 4.0 / 3.0 * math.pi * float(self.radius) ** 3
 
 
 class DeviceSubstrate(BaseModel):
@@ -160,6 +218,33 @@ class Device(BaseModel):
         return self
 
 
+def static_compression(shape: str, load: float, e_star: float, radius: float | None = None,
+                       half_angle: float | None = None) -> tuple[float, float]:
+    """(a0, contact radius) of a profile pressed by ``load`` onto a half-space of modulus E*.
+
+    Solves N(a0) = load with the profile's elastic normal law (SI units throughout), as given
+    for all three by Sneddon (1965, Int. J. Eng. Sci. 3, 47-57) for a rigid punch on a half-space
+    of modulus E* (two elastic bodies: 1/E* sums both, Johnson 1985 chapter 4):
+
+    * sphere (paraboloid), radius R (Hertz 1882): N = (4/3) E* R^(1/2) delta^(3/2),
+      a0 = (9 N^2 / (16 R E*^2))^(1/3), contact radius sqrt(R a0);
+    * cone, half-angle alpha between axis and surface: N = (2/pi) E* tan(alpha) delta^2,
+      a0 = (pi N / (2 E* tan(alpha)))^(1/2), contact radius (2/pi) a0 tan(alpha);
+    * flat-ended cylindrical punch, radius R (Boussinesq 1885): N = 2 E* R delta,
+      a0 = N / (2 E* R), contact radius R.
+    """
+    if shape == "sphere":
+        a0 = (9.0 * load**2 / (16.0 * float(radius) * e_star**2)) ** (1.0 / 3.0)
+        return a0, math.sqrt(float(radius) * a0)
+    if shape == "cone":
+        tan_alpha = math.tan(float(half_angle))
+        a0 = math.sqrt(math.pi * load / (2.0 * e_star * tan_alpha))
+        return a0, 2.0 / math.pi * a0 * tan_alpha
+    if shape == "flat":
+        return load / (2.0 * e_star * float(radius)), float(radius)
+    raise ValueError(f"no dimensional normal law for a {shape!r} profile")
+
+
 def normalized(device: Device) -> dict[str, float]:
     """The normalized quantities of ``device`` and the scales that convert back."""
     from .rayleigh import rayleigh_ratio
@@ -171,7 +256,7 @@ def normalized(device: Device) -> dict[str, float]:
     g_star = 1.0 / ((2 - p.poisson) / g1 + (2 - s.poisson) / g2)
     m = p.mass_kg
     weight = m * device.gravity + device.preload
-    a0 = (9.0 * weight**2 / (16.0 * p.radius * e_star**2)) ** (1.0 / 3.0)
+    a0, contact = static_compression(p.shape, weight, e_star, p.radius, p.half_angle)
     f = device.frequency
     r = device.horizontal_ratio if device.horizontal_ratio is not None else rayleigh_ratio(s.poisson)
     return {
@@ -185,43 +270,12 @@ def normalized(device: Device) -> dict[str, float]:
         "weight_n": weight,
         "e_star_pa": e_star,
         "g_star_pa": g_star,
-        "contact_radius_m": math.sqrt(p.radius * a0),
+        "contact_radius_m": contact,
     }
 
 
-def apply_device(data: dict[str, Any]) -> dict[str, Any]:
-    """Fill the normalized fields of a scene dict from its ``device`` block (if any).
-
-    The device is the source of truth: m*, A*, theta, mu, r and the orbit are derived from it,
-    and nu is the substrate's. Raises SceneError naming the device field on bad input.
-    """
-    block = data.get("device")
-    if block is None:
-        return data
-    from pydantic import ValidationError
-
-    from .schema import format_validation_error, set_dotted
-
-    try:
-        device = block if isinstance(block, Device) else Device.model_validate(block)
-    except ValidationError as exc:
-        line = format_validation_error(exc)
-        leaf = line.split(" ")[0].rsplit(".", 1)[-1]
-        if line.endswith("is required") and leaf in _FIELD_KIND:
-            _, unit, example = _UNITS[_FIELD_KIND[leaf]]
-            line += f": a {_FIELD_KIND[leaf]} in {unit}, e.g. {example}"
-        raise SceneError(f"device.{line}" if not line.startswith("scene:") else line) from None
-    norm = normalized(device)
-    out = dict(data)
-    out["device"] = device.model_dump()
-    set_dotted(out, "particle.m_star", norm["m_star"])
-    set_dotted(out, "drive.amplitude", norm["amplitude"])
-    set_dotted(out, "drive.horizontal_ratio", norm["horizontal_ratio"])
-    set_dotted(out, "drive.orbit", device.orbit)
-    set_dotted(out, "material.mu", device.friction)
-    set_dotted(out, "material.nu", device.substrate.poisson)
-    set_dotted(out, "material.theta", norm["theta"])
-    return out
+#: exponent p of N / (M g) = (delta / a0)^p of each device shape (sawdrift.scene.profiles)
+SHAPE_EXPONENT = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}
 
 
 def device_outputs(device: Device, drift_velocity: float, regime: str,
@@ -243,19 +297,21 @@ def explain_device(device: Device, mu: float) -> list[str]:
     """Derived quantities with units, time scales, and where the scene leaves the model."""
     n = normalized(device)
     f = n["frequency_hz"]
+    part = device.particle
+    law = {"sphere": "Hertz sphere", "cone": "Sneddon cone", "flat": "Boussinesq flat punch"}
     lines = [
         "device (physical units):",
         f"  particle mass m = {n['mass_kg']:.4g} kg, load M g = m g + F_ext = {n['weight_n']:.4g} N",
         f"  E* = {n['e_star_pa']:.4g} Pa, G* = {n['g_star_pa']:.4g} Pa, theta = E*/(4 G*) = "
         f"{n['theta']:.6g}",
-        f"  static compression a0 = {n['a0_m']:.4g} m, contact radius sqrt(R a0) = "
+        f"  static compression a0 = {n['a0_m']:.4g} m ({law[part.shape]}), contact radius "
         f"{n['contact_radius_m']:.4g} m",
         f"  m* = {n['m_star']:.6g}, A* = {n['amplitude']:.6g}, r = {n['horizontal_ratio']:.6g}, "
         f"orbit {device.orbit}",
         f"  speed scale a0 f = {n['a0_m'] * f:.4g} m/s, time scale 1/f = {1 / f:.4g} s",
     ]
-    # small-amplitude normal natural frequency: omega^2 = N*'(1)/m* = 1.5/m* per unit t*
-    f_n = math.sqrt(1.5 / n["m_star"]) / (2 * math.pi) * f
+    # small-amplitude normal natural frequency: omega^2 = N*'(1)/m* = p/m* per unit t*
+    f_n = math.sqrt(SHAPE_EXPONENT[part.shape] / n["m_star"]) / (2 * math.pi) * f
     lines.append(f"  contact (normal) natural frequency {f_n:.4g} Hz = {f_n / f:.4g} f")
     approach = n["m_star"] / mu
     lines.append(f"  expected approach to the steady drift ~ m*/mu = {approach:.4g} periods = "
@@ -263,8 +319,11 @@ def explain_device(device: Device, mu: float) -> list[str]:
     if n["a0_m"] < 1e-9:
         lines.append("  WARNING: a0 < 1 nm: adhesion and roughness, not gravity and preload, then "
                      "set the contact; the model's assumptions do not hold")
-    if n["contact_radius_m"] > 0.1 * device.particle.radius:
+    if part.shape == "sphere" and n["contact_radius_m"] > 0.1 * float(part.radius):
         lines.append("  WARNING: contact radius above 0.1 R: beyond Hertz's small-strain theory")
+    if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
+        lines.append("  WARNING: half-angle below 60 deg: Sneddon's small-slope solution "
+                     "underestimates the contact radius (by 27 % at 42 deg)")
     if n["amplitude"] > 1.0:
         lines.append("  note: A* > 1: the substrate moves further than the static compression; "
                      "expect contact loss for a heavy particle")

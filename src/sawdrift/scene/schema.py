@@ -1,7 +1,10 @@
 """The Scene: one whole experiment as a frozen, validated pydantic model (TOML in and out).
 
 All quantities are the normalized ones of docs/physics.md (paper eq. 4-5): t* = f t, one
-wave period is one unit of t*; m* = a0 m f^2 / (M g); A* = A_y / a0.
+wave period is one unit of t*; m* = a0 m f^2 / (M g); A* = A_y / a0. The parts (material,
+particle, drives, numerics, effects) are in :mod:`sawdrift.scene.parts`; a ``[device]`` table in
+physical units is converted by :mod:`sawdrift.scene.device` under the rule of
+:mod:`sawdrift.scene.overrides`, on every path that makes a Scene.
 """
 
 from __future__ import annotations
@@ -9,252 +12,46 @@ from __future__ import annotations
 import math
 import tomllib
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any
 
 import tomli_w
 from pydantic import (
-    AfterValidator,
     BaseModel,
-    ConfigDict,
     Discriminator,
     Field,
+    SerializerFunctionWrapHandler,
     Tag,
     ValidationError,
+    model_serializer,
     model_validator,
 )
 
 from ..errors import SceneError
-from .device import Device, apply_device
-from .profiles import Profile
+from .device import Device
+from .overrides import DERIVED, apply_device, apply_overrides, strip_derived
+from .parts import (
+    FROZEN,
+    Effects,
+    Impact,
+    Material,
+    NonNegative,
+    Numerics,
+    Particle,
+    Positive,
+    Prescribed,
+    Wave,
+    bounded,
+    format_validation_error,
+    get_dotted,
+    set_dotted,
+)
 from .rayleigh import rayleigh_ratio, theta
 
-
-def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
-    left = ("(" if lo_open else "[") + ("-inf" if lo is None else f"{lo:g}")
-    right = "inf)" if hi is None else f"{hi:g}" + (")" if hi_open else "]")
-    return f"{left}, {right}"
-
-
-def bounded(
-    lo: float | None = None,
-    hi: float | None = None,
-    *,
-    lo_open: bool = False,
-    hi_open: bool = False,
-) -> AfterValidator:
-    """A validator that rejects NaN, infinities and values outside an interval, naming it."""
-    text = _interval(lo, hi, lo_open, hi_open)
-
-    def check(value: float) -> float:
-        ok = math.isfinite(value)
-        if ok and lo is not None:
-            ok = value > lo if lo_open else value >= lo
-        if ok and hi is not None:
-            ok = value < hi if hi_open else value <= hi
-        if not ok:
-            raise ValueError(f"is outside the allowed range {text}")
-        return value
-
-    return AfterValidator(check)
-
-
-Positive = Annotated[float, bounded(0.0, None, lo_open=True)]
-NonNegative = Annotated[float, bounded(0.0, None)]
-
-_FROZEN = ConfigDict(frozen=True, extra="forbid")
-
-
-class Material(BaseModel):
-    """Friction coefficient, Poisson's ratio and, for two materials, the contact's theta."""
-
-    model_config = _FROZEN
-
-    mu: Annotated[float, bounded(0.0, 10.0, lo_open=True)] = Field(
-        0.1, description="Coulomb friction coefficient mu, in (0, 10]"
-    )
-    nu: Annotated[float, bounded(-1.0, 0.5, lo_open=True, hi_open=True)] = Field(
-        0.3, description="Poisson's ratio nu, in (-1, 0.5) (the substrate's, for r(nu))"
-    )
-    theta: Annotated[float, bounded(0.0, 10.0, lo_open=True)] | None = Field(
-        None,
-        description=(
-            "theta = E*/(4 G*) of the contact, in (0, 10]; default (2 - nu)/(2 (1 - nu)) for "
-            "identical materials"
-        ),
-    )
-
-
-class Particle(BaseModel):
-    """The particle: normalized mass, profile, and optional external preload."""
-
-    model_config = _FROZEN
-
-    m_star: Positive = Field(
-        0.1, description="m* = a0 m f^2 / (M g) (paper eq. 4), > 0"
-    )
-    profile: Profile = Field(default_factory=Profile)
-    gyration: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = Field(
-        0.4,
-        description=(
-            "kappa = I / (m R^2), in (0, 1]: 2/5 solid sphere, 2/3 thin shell; used with "
-            "effects.rotation"
-        ),
-    )
-    preload: NonNegative = Field(
-        0.0,
-        description=(
-            "F_ext / (m g). It enters the normalized equations only through M = m + F_ext/g in "
-            "m*; kept for conversion from dimensional inputs"
-        ),
-    )
-
-
-class Wave(BaseModel):
-    """Rayleigh wave drive (paper eq. 1 with the ramp R(t*) of docs/physics.md)."""
-
-    model_config = _FROZEN
-
-    kind: Literal["wave"] = "wave"
-    amplitude: NonNegative = Field(0.316, description="A* = A_y / a0, >= 0")
-    horizontal_ratio: Annotated[float, bounded(0.0, 100.0)] | None = Field(
-        None,
-        description="r = horizontal / vertical surface amplitude; default r(nu) (Rayleigh eq.)",
-    )
-    ramp_periods: Annotated[float, bounded(0.0, 1e6)] = Field(
-        5.0, description="length of the smooth ramp R(t*) = sin^2(pi t* / (2 T_ramp)), periods"
-    )
-    orbit: Literal["prograde", "retrograde"] = Field(
-        "prograde",
-        description=(
-            "prograde: eq. 1 as printed with y* into the substrate (the crest moves with the "
-            "wave, the paper's figures); retrograde: a Rayleigh wave on an isotropic half-space "
-            "(the mirror x -> -x: every drift changes sign)"
-        ),
-    )
-
-
-class Prescribed(BaseModel):
-    """A prescribed contact history a*(t*), b*(t*): the contact law alone, no dynamics.
-
-    Either sampled arrays (``waveform = "samples"`` with ``a`` and ``b``) or a built-in waveform:
-
-    * ``mindlin_loop``: load to a* = ``a_max`` at b* = 0, then cycle b* between
-      +-``b_amplitude`` for ``cycles`` cycles at constant a*;
-    * ``proportional``: b* = ``slope`` a* from zero up to ``a_max``;
-    * ``random``: a random piecewise-linear walk in (a*, b*) (seeded), a* crossing zero.
-    """
-
-    model_config = _FROZEN
-
-    kind: Literal["prescribed"] = "prescribed"
-    waveform: Literal["samples", "mindlin_loop", "proportional", "random"] = "mindlin_loop"
-    a: list[float] | None = None
-    b: list[float] | None = None
-    a_max: Positive = 1.0
-    b_amplitude: NonNegative = 0.5
-    slope: Annotated[float, bounded(-10.0, 10.0)] = 0.5
-    cycles: Annotated[int, Field(ge=1, le=100000)] = 2
-    samples_per_segment: Annotated[int, Field(ge=1, le=1_000_000)] = 200
-    seed: int = 0
-
-    @model_validator(mode="after")
-    def _samples_given(self) -> Prescribed:
-        if self.waveform == "samples":
-            if self.a is None or self.b is None:
-                raise ValueError("waveform 'samples' needs both 'a' and 'b' arrays")
-            if len(self.a) != len(self.b) or len(self.a) < 1:
-                raise ValueError("'a' and 'b' must be non-empty and of equal length")
-            if not all(math.isfinite(v) for v in [*self.a, *self.b]):
-                raise ValueError("'a' and 'b' must be finite")
-        return self
-
-
-class Impact(BaseModel):
-    """A free normal impact: the particle touches the substrate (a* = 0) moving into it.
-
-    The substrate is at rest (no wave); the run ends when contact is lost again. The result
-    carries the rebound speed ratio |a*'_out| / |a*'_in| (1 for an elastic, undamped contact).
-    """
-
-    model_config = _FROZEN
-
-    kind: Literal["impact"] = "impact"
-    velocity: Annotated[float, bounded(0.0, 1e3, lo_open=True)] = Field(
-        1.0, description="approach speed a*' at first touch, > 0"
-    )
-    tangential_velocity: Annotated[float, bounded(-1e3, 1e3)] = Field(
-        0.0, description="tangential speed x*' at first touch"
-    )
-
-
-class Numerics(BaseModel):
-    """Integrator and measurement settings."""
-
-    model_config = _FROZEN
-
-    order: Annotated[int, Field(ge=1, le=4)] = Field(
-        4,
-        description=(
-            "Adams-Bashforth order 1-4 (default 4: on the undamped normal oscillation its "
-            "amplitude error per step is O((h omega)^6), AB3's is (3/8)(h omega)^4, which over "
-            "thousands of periods changes the drift). The first order-1 steps use the lower "
-            "orders (start-up from rest at the static compression, where the derivative "
-            "history is exact)"
-        ),
-    )
-    steps_per_period: Annotated[int, Field(ge=8, le=10_000_000)] | None = Field(
-        None, description="steps per wave period; default resolves sqrt(1.5/m*) and the wave"
-    )
-    periods: Annotated[float, bounded(0.0, 1e7, lo_open=True)] = Field(
-        60.0, description="simulated periods (with settle: the minimum)"
-    )
-    measure_periods: Annotated[int, Field(ge=1)] | None = Field(
-        None, description="whole periods at the end over which the drift is measured"
-    )
-    drift_tolerance: Annotated[float, bounded(0.0, 1.0)] = Field(
-        1e-3, description="|drift_ratio| below this is 'stick' (no steady drift)"
-    )
-    settle: bool = Field(
-        False, description="run on, in chunks of measure_periods, until the drift has settled"
-    )
-    settle_tolerance: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = 1e-3
-    max_periods: Annotated[float, bounded(1.0, 1e7)] | None = Field(
-        None, description="settle: stop after this many periods even if not settled; default "
-        "max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method"
-    )
-
-
-class Effects(BaseModel):
-    """Which physics is on (LAMMPS-style slots; an off slot is never computed)."""
-
-    model_config = _FROZEN
-
-    friction: bool = Field(
-        True, description="tangential friction; off: x* is not integrated, no tangential law"
-    )
-    vertical_inertia: bool = Field(
-        True, description="rigid point only: off gives N* = 1 (no vertical inertia)"
-    )
-    normal_damping: NonNegative = Field(
-        0.0, description="viscous normal damping c: N* += c a*' while in contact"
-    )
-    horizontal_wave: bool = Field(True, description="the horizontal wave component u_x")
-    rolling_resistance: NonNegative = Field(
-        0.0,
-        description=(
-            "rolling friction coefficient mu_r of an elastic-plastic rolling spring (needs "
-            "rotation and a compliant model; 0: off); physically mu_r ~ (contact radius)/R = "
-            "sqrt(a0/R) times a factor of order 1"
-        ),
-    )
-    rotation: bool = Field(
-        False,
-        description=(
-            "the sphere turns: I phi'' = -R T with I = kappa m R^2 (particle.gyration); the "
-            "contact point then moves like a mass m kappa / (1 + kappa)"
-        ),
-    )
-    vertical_wave: bool = Field(True, description="the vertical wave component u_y")
+__all__ = [
+    "Effects", "Impact", "Material", "NonNegative", "Numerics", "Particle", "Positive",
+    "Prescribed", "Scene", "Wave", "apply_overrides", "bounded", "build_scene",
+    "format_validation_error", "get_dotted", "set_dotted",
+]
 
 
 def _drive_kind(value: Any) -> str:
@@ -270,7 +67,7 @@ class Scene(BaseModel):
     The model's parameters are validated by the model's own ``Params`` schema.
     """
 
-    model_config = _FROZEN
+    model_config = FROZEN
 
     model: str = "mmd"
     model_params: dict[str, Any] = Field(default_factory=dict)
@@ -285,9 +82,27 @@ class Scene(BaseModel):
     numerics: Numerics = Field(default_factory=Numerics)
     effects: Effects = Field(default_factory=Effects)
     device: Device | None = Field(
-        None, description="physical units; when given, m*, A*, theta, mu, nu, r and the orbit "
-        "are derived from it (sawdrift.scene.device)"
+        None, description="physical units; when given, m*, A*, theta, mu, nu, r, the orbit and "
+        "the profile are derived from it (sawdrift.scene.device; the rule in "
+        "sawdrift.scene.overrides)"
     )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _device_conversion(cls, data: Any) -> Any:
+        # every path (Scene(**data), model_validate, build_scene) converts the device alike
+        if isinstance(data, dict) and data.get("device") is not None:
+            return apply_device(data)
+        return data
+
+    @model_serializer(mode="wrap")
+    def _without_derived(self, handler: SerializerFunctionWrapHandler) -> Any:
+        # a device scene is written without the fields its device derives (they come back,
+        # from the device, on validation): a copy with new device fields has no stale ones
+        out = handler(self)
+        if self.device is not None and isinstance(out, dict):
+            strip_derived(out)
+        return out
 
     @model_validator(mode="after")
     def _model_schema(self) -> Scene:
@@ -327,6 +142,12 @@ class Scene(BaseModel):
                 "effects.rolling_resistance needs effects.rotation = true and a compliant model"
                 + (f"; {self.model!r} is rigid" if rigid else "")
             )
+        kappa = self.particle.gyration
+        if not eff.rotation and kappa != Particle.model_fields["gyration"].default:
+            raise ValueError(
+                f"particle.gyration = {kappa:g} is used only with effects.rotation = true; turn "
+                "the rotation on or leave particle.gyration at its default 0.4"
+            )
         if isinstance(self.drive, Prescribed) and not eff.friction:
             raise ValueError("effects.friction = false leaves nothing to compute for a prescribed drive")
         _ = self.particle.profile.p
@@ -347,6 +168,23 @@ class Scene(BaseModel):
         if isinstance(drive, Wave) and drive.horizontal_ratio is not None:
             return drive.horizontal_ratio
         return rayleigh_ratio(self.material.nu)
+
+    @property
+    def body(self) -> str:
+        """What the particle is, in a few words: a rigid model with rotation is a rigid sphere.
+
+        ``rigid point`` (a rigid model, not turning), ``rigid sphere turning, kappa = ...``,
+        or the compliant profile (``sphere``, ``cone``, ...), turning or not.
+        """
+        from ..contact.registry import get_model
+
+        kappa = self.particle.gyration
+        turning = f"turning, kappa = {kappa:g}" if self.effects.rotation else "not turning"
+        if get_model(self.model).capabilities.rigid:
+            return f"rigid sphere, {turning}" if self.effects.rotation else "rigid point"
+        profile = self.particle.profile
+        shape = "flat punch" if profile.shape == "flat" else profile.shape
+        return f"compliant {shape} (N* = a*^p, p = {profile.p:g}), {turning}"
 
     def model_instance(self):
         """The configured ContactModel instance."""
@@ -402,8 +240,14 @@ class Scene(BaseModel):
 
     # -- I/O ----------------------------------------------------------------------------------
     def to_toml(self, path: str | Path | None = None) -> str:
-        """Serialize to TOML (None values are omitted); write to ``path`` if given."""
+        """Serialize to TOML (None values are omitted); write to ``path`` if given.
+
+        A device scene is written without the fields its device derives; a comment line at the
+        top shows their values.
+        """
         text = tomli_w.dumps(_drop_none(self.model_dump(mode="json")))
+        if self.device is not None:
+            text = _derived_comment(self) + text
         if path is not None:
             Path(path).write_text(text)
         return text
@@ -435,11 +279,25 @@ class Scene(BaseModel):
         return build_scene(data, source=str(path))
 
     def with_updates(self, **updates: Any) -> Scene:
-        """A copy with dotted-path updates, validated: ``with_updates(**{"particle.m_star": 2})``."""
-        data = self.model_dump()
-        for dotted, value in updates.items():
-            set_dotted(data, dotted, value)
-        return build_scene(data)
+        """A copy with dotted-path updates, validated: ``with_updates(**{"particle.m_star": 2})``.
+
+        Applied by :func:`sawdrift.scene.apply_overrides`: on a device scene a derived field
+        (``particle.m_star``, ...) is a SceneError naming the device field to set instead.
+        """
+        return build_scene(apply_overrides(self, updates))
+
+
+
+
+def _derived_comment(scene: Scene) -> str:
+    """A TOML comment line with the values a device scene's device derives."""
+    shown = []
+    for field in DERIVED:
+        value = getattr(getattr(scene, field.split(".")[0]), field.split(".")[1])
+        if field == "particle.profile":
+            value = value.shape
+        shown.append(f"{field} = {value:.6g}" if isinstance(value, float) else f"{field} = {value}")
+    return "# derived from [device]: " + ", ".join(shown) + "\n"
 
 
 def _drop_none(obj: Any) -> Any:
@@ -450,48 +308,11 @@ def _drop_none(obj: Any) -> Any:
     return obj
 
 
-def set_dotted(data: dict[str, Any], dotted: str, value: Any) -> None:
-    """Set ``data["a"]["b"] = value`` for ``dotted = "a.b"``, creating levels as needed."""
-    keys = dotted.split(".")
-    node = data
-    for key in keys[:-1]:
-        node = node.setdefault(key, {})
-    node[keys[-1]] = value
-
-
-#: Tags of the drive union (the ``kind`` of each drive class).
-_DRIVE_KINDS = tuple(cls.model_fields["kind"].default for cls in (Wave, Prescribed, Impact))
-
-
-def format_validation_error(exc: ValidationError, source: str | None = None) -> str:
-    """One line naming the first offending field, its value and what is allowed."""
-    err = exc.errors()[0]
-    parts = [str(p) for p in err["loc"] if not str(p).startswith("function-")]
-    if len(parts) > 1 and parts[0] == "drive" and parts[1] in _DRIVE_KINDS:
-        del parts[1]  # the union's tag is not a field the user wrote
-    loc = ".".join(parts)
-    msg = err["msg"].removeprefix("Value error, ")
-    where = f"{source}: " if source else ""
-    if err["type"] == "missing":
-        return f"{where}{loc} is required"
-    if err["type"] == "extra_forbidden":
-        return f"{where}{loc} is not a known field"
-    if loc:
-        value = err.get("input")
-        if isinstance(value, (int, float, str, bool)):
-            return f"{where}{loc} = {value!r} {msg}" if msg.startswith("is ") else (
-                f"{where}{loc} = {value!r}: {msg}"
-            )
-        return f"{where}{loc}: {msg}"
-    if msg.startswith("model_params."):
-        return f"{where}{msg}"
-    return f"{where}scene: {msg}"
-
-
 def build_scene(data: dict[str, Any], source: str | None = None) -> Scene:
     """Validate a nested dict into a Scene; errors become a one-line SceneError.
 
-    A SawdriftError raised inside validation (an unknown model) passes through unchanged.
+    A ``device`` table is converted by the rule of :mod:`sawdrift.scene.overrides`. A
+    SawdriftError raised inside validation (an unknown model) passes through unchanged.
     """
     try:
         data = apply_device(data)

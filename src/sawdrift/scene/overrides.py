@@ -1,0 +1,214 @@
+"""The one rule for a scene with a ``[device]`` table, and the one way to override scene fields.
+
+A device (``sawdrift.scene.device``) is the source of truth for the normalized fields it
+derives: ``particle.m_star``, ``particle.profile``, ``particle.preload``, ``drive.amplitude``,
+``drive.horizontal_ratio``, ``drive.orbit``, ``material.mu``, ``material.nu`` and
+``material.theta`` (:data:`DERIVED`). On a device scene:
+
+* device fields override in device units (``device.amplitude = "5 nm"``, a sweep axis over
+  ``device.preload``): every derived field is computed again from the device;
+* a derived field given with another value than the device's is an error, one line naming the
+  device field to set instead; the same value (a saved scene written out in full) is accepted;
+* a device scene dumps (``model_dump``, TOML, JSON) without its derived fields, so a copy with
+  new device fields never carries stale ones.
+
+Every path applies this rule through :func:`apply_device`: :func:`sawdrift.scene.build_scene`,
+``Scene(**data)`` and ``Scene.model_validate`` (a before-validator), ``Scene.with_updates``, and
+:func:`apply_overrides`, the function the command line and the sweeps call to set dotted fields.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+
+from ..errors import SceneError
+from .device import FIELD_KIND, UNITS, Device, normalized
+from .parts import format_validation_error, get_dotted, set_dotted
+from .profiles import Profile
+
+#: Each scene field a device derives, and the device fields that set it.
+DERIVED: dict[str, str] = {
+    "particle.m_star": "device.particle (radius, density or mass), device.frequency, "
+                       "device.gravity or device.preload",
+    "particle.profile": "device.particle.shape (sphere, cone with device.particle.half_angle, "
+                        "flat)",
+    "particle.preload": "device.preload (it enters m* through M g = m g + F_ext)",
+    "drive.amplitude": "device.amplitude",
+    "drive.horizontal_ratio": "device.horizontal_ratio",
+    "drive.orbit": "device.orbit",
+    "material.mu": "device.friction",
+    "material.nu": "device.substrate.poisson",
+    "material.theta": "device.particle and device.substrate youngs_modulus and poisson",
+}
+
+#: The sections of a scene that hold derived fields.
+_SECTIONS = ("particle", "drive", "material")
+
+
+def derived_values(device: Device) -> dict[str, Any]:
+    """The value of every :data:`DERIVED` field for ``device`` (docs/devices.md)."""
+    norm = normalized(device)
+    return {
+        "particle.m_star": norm["m_star"],
+        "particle.profile": {"shape": device.particle.shape},
+        "particle.preload": 0.0,
+        "drive.amplitude": norm["amplitude"],
+        "drive.horizontal_ratio": norm["horizontal_ratio"],
+        "drive.orbit": device.orbit,
+        "material.mu": device.friction,
+        "material.nu": device.substrate.poisson,
+        "material.theta": norm["theta"],
+    }
+
+
+def _same(given: Any, derived: Any, field: str) -> bool:
+    if field == "particle.profile":
+        try:
+            return Profile.model_validate(given) == Profile.model_validate(derived)
+        except (ValidationError, TypeError):
+            return False
+    if isinstance(derived, float):
+        return (isinstance(given, (int, float)) and not isinstance(given, bool)
+                and math.isclose(float(given), derived, rel_tol=1e-12, abs_tol=0.0))
+    return given == derived
+
+
+def _shown(value: Any) -> str:
+    if isinstance(value, dict) and set(value) == {"shape"}:
+        return f"shape {value['shape']!r}"
+    return f"{value:.6g}" if isinstance(value, float) else repr(value)
+
+
+def derived_error(field: str, value: Any, derived: Any) -> SceneError:
+    """The one-line error for a derived ``field`` given as ``value`` on a device scene."""
+    given = value.model_dump(exclude_none=True) if isinstance(value, BaseModel) else value
+    return SceneError(f"{field} = {_shown(given)}: a device scene derives {field} from its "
+                      f"[device] table (here {_shown(derived)}); set {DERIVED[field]} instead")
+
+
+def _plain(value: Any) -> Any:
+    """A deep copy of a scene section as plain dicts (a model gives the fields it was given)."""
+    if isinstance(value, BaseModel):
+        out = value.model_dump(exclude_unset=True)
+        if "kind" in type(value).model_fields:
+            out["kind"] = value.kind  # type: ignore[attr-defined]
+        return out
+    return copy.deepcopy(value)
+
+
+def validate_device(block: Any) -> Device:
+    """The validated Device of a ``[device]`` table; bad input is one line naming the field."""
+    if isinstance(block, Device):
+        return block
+    try:
+        return Device.model_validate(block)
+    except ValidationError as exc:
+        line = format_validation_error(exc)
+        leaf = line.split(" ")[0].rsplit(".", 1)[-1]
+        if line.endswith("is required") and leaf in FIELD_KIND:
+            _, unit, example = UNITS[FIELD_KIND[leaf]]
+            line += f": a {FIELD_KIND[leaf]} in {unit}, e.g. {example}"
+        raise SceneError(f"device.{line}" if not line.startswith("scene:") else line) from None
+
+
+def apply_device(data: Mapping[str, Any]) -> dict[str, Any]:
+    """Fill the derived fields of a scene dict from its ``device`` table (if it has one).
+
+    Returns a new dict (``data`` is not changed); without a device, ``data`` itself.
+
+    Raises
+    ------
+    SceneError
+        One line: a bad device field (naming it and its unit), a drive other than the wave, or
+        a derived field given with another value than the device's (naming the device field to
+        set instead).
+    """
+    block = data.get("device")
+    if block is None:
+        return data  # type: ignore[return-value]
+    device = validate_device(block)
+    out = {key: (_plain(value) if key in _SECTIONS else value) for key, value in data.items()}
+    for section in _SECTIONS:
+        if out.get(section) is None:
+            out[section] = {}
+        elif not isinstance(out[section], dict):
+            raise SceneError(f"{section} must be a table of fields, not {out[section]!r}")
+    kind = out["drive"].get("kind", "wave")
+    if kind != "wave":
+        raise SceneError(f"drive.kind = {kind!r}: a device scene is driven by its wave; remove "
+                         "the [device] table for a prescribed or impact drive")
+    values = derived_values(device)
+    for field, derived in values.items():
+        given = get_dotted(out, field)
+        if given is not None and not _same(given, derived, field):
+            raise derived_error(field, given, derived)
+    out["device"] = device.model_dump()
+    for field, derived in values.items():
+        set_dotted(out, field, copy.deepcopy(derived))
+    return out
+
+
+def strip_derived(data: dict[str, Any]) -> dict[str, Any]:
+    """Remove every derived field from a device scene's dict, in place; returns ``data``."""
+    for field in DERIVED:
+        section, _, leaf = field.partition(".")
+        node = data.get(section)
+        if isinstance(node, dict):
+            node.pop(leaf, None)
+    return data
+
+
+def apply_overrides(data: Mapping[str, Any] | BaseModel,
+                    overrides: Mapping[str, Any]) -> dict[str, Any]:
+    """A scene dict with dotted-path ``overrides`` set, by the rule for device scenes.
+
+    This is the one function the command line and the sweeps use to set scene fields:
+    ``apply_overrides(scene_dict, {"particle.m_star": 2.0, "device.amplitude": "5 nm"})``.
+    Validate the result with :func:`sawdrift.scene.build_scene`.
+
+    Parameters
+    ----------
+    data
+        A scene as a nested dict (TOML, ``model_dump``) or a Scene; it is not changed.
+    overrides
+        Dotted field paths and their values; None values are skipped. On a device scene a
+        derived field may only repeat the device's value (``drive.orbit = "retrograde"`` on a
+        retrograde device); any other value is an error.
+
+    Returns
+    -------
+    dict
+        A new nested dict. For a device scene its derived fields are left out (they are derived
+        again, from the possibly new device fields, when the dict is validated).
+
+    Raises
+    ------
+    SceneError
+        One line naming the field: on a device scene (one with a ``device`` table, in ``data``
+        or among the overrides) a derived field set to another value than the device derives
+        names the device field to set instead; a bad device field names its unit.
+    """
+    if isinstance(data, BaseModel):
+        out: dict[str, Any] = data.model_dump(exclude_none=True)
+    else:
+        out = {key: _plain(value) for key, value in data.items()}
+    if out.get("device") is not None:
+        # check the given scene against its own device, then drop what the device derives: the
+        # overrides may change the device
+        out = strip_derived(apply_device(out))
+    for key, value in overrides.items():
+        if value is None:
+            continue
+        try:
+            set_dotted(out, key, value)
+        except (AttributeError, TypeError):
+            raise SceneError(f"{key} is not a known field: {key.rsplit('.', 1)[0]} is not a "
+                             "table") from None
+    if out.get("device") is not None:
+        out = strip_derived(apply_device(out))  # an overridden derived field must agree
+    return out
