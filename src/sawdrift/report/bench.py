@@ -72,7 +72,7 @@ def work_precision(models: str | Sequence[str] | None, out_dir: str | Path, quic
     quick
         Short ladders and runs (seconds, for CI) instead of the full study (minutes).
     progress
-        tqdm progress bars on stderr.
+        progress on stderr: tqdm bars on a terminal, plain lines in a log.
     config
         Explicit ladders (overrides ``quick``).
     defaults_check

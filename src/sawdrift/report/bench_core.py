@@ -171,10 +171,10 @@ def fit_order(x: Iterable[float], err: Iterable[float], floor: float = 0.0,
 
 
 def _progress(total: int, desc: str, enabled: bool):
-    from tqdm import tqdm
+    """A progress counter: a tqdm bar on a terminal, plain lines in a log (``study.progress``)."""
+    from ..study.progress import counter
 
-    return tqdm(total=total, desc=desc, unit="run", dynamic_ncols=True, disable=not enabled,
-                leave=False)
+    return counter(total, desc, "run", enabled=enabled, leave=False)
 
 
 def _wave_scene(model: str, *, order: int | None = None, steps_per_period: int | None = None,

@@ -212,7 +212,8 @@ def speed(quick: bool = False, *, progress: bool = True, out: str | Path | None 
         Small variants (seconds, for CI): a 9 x 9 sweep, shorter runs, 1e5 instead of 1e6 steps.
         The limits are those of the full targets, so a quick PASS is only a smoke test.
     progress
-        tqdm progress bars (the sweep, and the list of targets).
+        progress on stderr (the sweep, and the list of targets): tqdm bars on a terminal,
+        plain lines in a log.
     out
         Also write the result as JSON to this path.
     report
@@ -224,8 +225,7 @@ def speed(quick: bool = False, *, progress: bool = True, out: str | Path | None 
         ``{"quick", "machine", "targets": {name: {...}}, "all_passed"}``; every target has
         ``measured``, ``unit``, ``limit``, ``comparison``, ``passed`` and ``details``.
     """
-    from tqdm import tqdm
-
+    from ..study.progress import counter
     from . import speed_more
 
     # the sweep goes first: its worker processes are forked from this one, so it must not
@@ -241,13 +241,13 @@ def speed(quick: bool = False, *, progress: bool = True, out: str | Path | None 
         ("cold_start", lambda: speed_more.speed_cold_start(quick)),
     ]
     targets: dict[str, Target] = {}
-    bar = tqdm(steps, desc="speed targets", unit="target", disable=not progress, leave=False,
-               dynamic_ncols=True)
-    for name, fn in bar:
+    bar = counter(len(steps), "speed targets", "target", enabled=progress, leave=False)
+    for name, fn in steps:
         bar.set_postfix_str(name)
         got = fn()
         for t in got if isinstance(got, list) else [got]:
             targets[t.name if isinstance(got, list) else name] = t
+        bar.update(1)
     bar.close()
     import numba
 
