@@ -44,7 +44,7 @@ def main() -> int:
         traj = sd.run(short, trajectory=True, record_every=1)
         resid, scale = energy_residual(traj.trajectory, traj.m_star, traj.mu)
         slow = sd.run(short, trajectory=True, record_every=1, engine="python")
-        cols = ["x", "vx", "y", "vy", "N", "T"]
+        cols = ["x", "vx", "y", "vy", "N_star", "T_star"]
         diff = float(np.max(np.abs(traj.trajectory[cols].to_numpy() - slow.trajectory[cols].to_numpy())))
         ok = finite and diff < 1e-6 * max(1.0, float(np.abs(traj.trajectory[cols].to_numpy()).max()))
         bad += not ok

@@ -62,21 +62,21 @@ def main() -> None:
         # a cell without steady drift (|V| below the drift tolerance) has no relative error
         close = rel <= 0.01 or max(abs(ref), abs(res.drift_ratio)) <= DRIFT_TOL
         converged = ref_rel <= 0.002 or max(abs(ref), abs(half)) <= DRIFT_TOL
-        ok = close and converged and res.extra["settled"] and res.wall_time_s <= 1.5
+        ok = close and converged and res.settled and res.wall_time_s <= 1.5
         rows.append(dict(m_star=m, amplitude=a, mu=mu, brute_periods=periods, brute=ref,
                          brute_half=half, reference_rel_change=ref_rel,
                          brute_wall_s=t_ref, settled=res.drift_ratio,
-                         settled_flag=res.extra["settled"], settle_periods=res.extra["settle_periods"],
+                         settled_flag=res.settled, settle_periods=res.settle_periods,
                          settle_wall_s=res.wall_time_s, rel_error=rel, passed=bool(ok)))
         print(f"m* = {m:6g}  A* = {a:4g}  mu = {mu:3g}: brute ({periods} periods, {t_ref:6.2f} s) "
               f"{ref:+.5f} (half as long: {ref_rel:.1e}); settled {res.drift_ratio:+.5f} "
-              f"({res.extra['settle_periods']:.0f} periods, "
-              f"{res.wall_time_s:.3f} s, settled = {res.extra['settled']}): "
+              f"({res.settle_periods:.0f} periods, "
+              f"{res.wall_time_s:.3f} s, settled = {res.settled}): "
               f"rel. error {rel:.2e} {'PASS' if ok else 'FAIL'}", flush=True)
     light = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316},
                             numerics={"settle": True}))
     plain = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316}))
-    print(f"light m* = 0.1: settled {light.drift_ratio:.6f} ({light.extra['settle_method']}), "
+    print(f"light m* = 0.1: settled {light.drift_ratio:.6f} ({light.settle_method}), "
           f"plain 60 periods {plain.drift_ratio:.6f}")
     out = Path(__file__).parent / "results"
     out.mkdir(exist_ok=True)

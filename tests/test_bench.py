@@ -104,10 +104,15 @@ def test_speed_quick_reports_every_target(tmp_path, capsys):
              "adaptive", "cold_help", "cold_models", "cold_run"}
     assert set(result["targets"]) == names
     for target in result["targets"].values():
-        assert math.isfinite(target["measured"]) and target["measured"] >= 0.0
-        assert isinstance(target["passed"], bool)
-        assert ("[PASS] " + target["description"]) in printed or (
-            "[FAIL] " + target["description"]) in printed
+        measured, limit = target["measured"], target["limit"]
+        assert math.isfinite(measured) and measured >= 0.0
+        # the verdict follows from the measured value and the limit (timings vary on a shared
+        # machine, so which verdict it is is not asserted), and the printed line says that verdict
+        within = {"<=": measured <= limit, "<": measured < limit, ">=": measured >= limit}[
+            target["comparison"]]
+        assert target["passed"] is False or within, target
+        tag = "[PASS] " if target["passed"] else "[FAIL] "
+        assert f"{tag}{target['description']}: {measured:.4g}" in printed, target["name"]
     details = result["targets"]["vs_mdr"]["details"]
     assert math.isfinite(details["mdr_max_error"]) and details["mmd_max_error"] < 1e-10
     assert json.loads(path.read_text())["targets"].keys() == names

@@ -56,7 +56,7 @@ def test_an_unsettled_run_says_so_on_stderr():
 def test_run_writes_parquet_and_png(tmp_path):
     cli("run", "--model", "material_point", "--periods", "10", "-o", str(tmp_path), check=True)
     frame = pd.read_parquet(tmp_path / "trajectory.parquet")
-    assert {"t", "x", "a", "N", "T"} <= set(frame.columns)
+    assert {"t", "x", "a", "N_star", "T_star"} <= set(frame.columns)
     assert frame["t"].iloc[-1] == pytest.approx(10.0, abs=0.01)
     assert (tmp_path / "trajectory.png").stat().st_size > 10_000
 
@@ -134,4 +134,4 @@ def test_prescribed_history_from_a_scene_file(tmp_path):
     # minus the Mindlin corners; its area must exceed the q = 1 Mindlin loop, 0.8 a*^(5/2)
     assert row["regime"] == "prescribed" and row["dissipated_work"] > 0.8
     frame = pd.read_parquet(tmp_path / "out" / "trajectory.parquet")
-    assert (frame["T"].abs() <= frame["N"] + 1e-12).all()
+    assert (frame["T_star"].abs() <= frame["N_star"] + 1e-12).all()

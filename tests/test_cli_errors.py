@@ -52,6 +52,15 @@ CORPUS = [
     "compare {d}/bad.parquet --models mmd -o {d}/x.png",
     "compare {d}/missing.parquet --models mmd -o {d}/x.png",
     "demo --n 1 -o {d}/demo",
+    "demo --n 100000 -o {d}/demo",
+    "run -o /proc/sawdrift_out",
+    "run -o {d}/malformed.toml",
+    "sweep -o /proc/sawdrift.parquet --m-star 1 --amplitude 1",
+    "sweep -o {d}/adir --m-star 1 --amplitude 1",
+    "validate -o /proc/sawdrift_report --quick",
+    "export {d}/bad.parquet -o /proc/x.nc",
+    "run --model mdr --param strips=100000000",
+    "run --model mmd --param max_memory_points=1000000000000",
     "validate --cases {d}/nosuchdir -o {d}/v",
     "bench work-precision --models nosuch",
     "models --bogus",
@@ -68,3 +77,21 @@ def test_bad_input_exits_2_with_one_plain_line(line, files, monkeypatch, capsys)
     assert exc.value.code == 2, (line, err)
     assert len(err) == 1 and err[0].startswith("error: "), err
     assert not _EXC_NAME.search(err[0]), err[0]
+
+
+def test_an_internal_failure_is_not_confused_with_a_failed_check(monkeypatch, capsys):
+    # exit 1 means "a check failed" (check-model, validate, bench); a bug gets its own status
+    import sawdrift as sd
+    from sawdrift.cli import INTERNAL_FAILURE
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(sd, "run", broken)
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "run"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert INTERNAL_FAILURE not in (0, 1, 2)
+    assert exc.value.code == INTERNAL_FAILURE
+    assert len(err) == 1 and "internal failure (boom)" in err[0]

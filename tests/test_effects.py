@@ -61,7 +61,7 @@ def test_raising_tangential_law_is_never_called_with_friction_off(faulty_models,
     off = sd.Scene(model="test_raising", effects={"friction": False}, numerics={"periods": 10})
     res = sd.run(off, engine=engine, trajectory=True)
     assert np.isfinite(res.trajectory["y"]).all()
-    assert (res.trajectory["T"] == 0.0).all() and (res.trajectory["x"] == 0.0).all()
+    assert (res.trajectory["T_star"] == 0.0).all() and (res.trajectory["x"] == 0.0).all()
     with pytest.raises(RuntimeError, match="tangential law called"):
         sd.run(off.with_updates(**{"effects.friction": True}), engine=engine)
 
@@ -155,3 +155,23 @@ def test_wave_components_switch_independently():
     horizontal_only = sd.run(sd.Scene(model="mmd", effects={"vertical_wave": False},
                                       numerics={"periods": 20}), trajectory=True)
     assert np.abs(horizontal_only.trajectory["a"] - 1.0).max() < 1e-12
+
+
+@pytest.mark.parametrize(("model", "extra"), [
+    ("mmd", {"effects": {"normal_damping": 0.5}}),
+    ("jaeger", {"effects": {"normal_damping": 0.5}}),
+    ("hertz_tsuji", {"model_params": {"damping": 0.5}}),
+])
+def test_coulomb_bound_holds_for_the_total_normal_force_with_damping(model, extra):
+    # a dashpot lowers N* while the contact unloads; the friction force may not exceed it
+    scene = sd.Scene(model=model, particle={"m_star": 0.1}, drive={"amplitude": 1.5},
+                     numerics={"periods": 20}, **extra)
+    tr = sd.run(scene, trajectory=True, record_every=1).trajectory
+    assert float((tr["T_star"].abs() - tr["N_star"]).max()) <= 1e-12
+    assert float(tr["N_star"].min()) >= 0.0
+
+
+def test_normal_damping_does_not_stack_on_a_damping_slot():
+    scene = sd.Scene(model="hertz_tsuji", effects={"normal_damping": 0.1})
+    with pytest.raises(sd.SceneError, match="normal-damping slot"):
+        sd.run(scene)

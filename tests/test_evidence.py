@@ -61,7 +61,10 @@ def test_transient_liftoff_is_not_evidence():
     assert (early["a"] <= 0.0).any(), "the scene should lift off in its transient"
     assert not r.contact_lost
     assert r.liftoffs_per_period == 0.0
-    assert r.regime in ("drift_with", "drift_against", "stick", "oscillating_slip")
+    # the regime is the one of a run long enough for the transient not to matter
+    long = sd.run(scene.with_updates(**{"numerics.periods": 1000}))
+    assert long.regime == "drift_with" and not long.contact_lost
+    assert r.regime == long.regime
 
 
 def test_events_agree_with_evidence_for_bouncing():
@@ -83,13 +86,13 @@ def test_elastic_bouncing_point_is_chaotic_and_inelastic_hopping_is_not():
                               particle={"m_star": 0.1}, drive={"amplitude": 1.0},
                               numerics={"periods": 400}))
     assert elastic.regime == "bouncing"
-    assert elastic.extra["chaotic"] is True
+    assert elastic.chaotic is True
     assert elastic.lyapunov > 0.05
     plastic = sd.run(sd.Scene(model="material_point", model_params={"restitution": 0.0},
                               particle={"m_star": 0.1}, drive={"amplitude": 0.5},
                               numerics={"periods": 400}))
     assert plastic.regime == "hopping"
-    assert plastic.extra["chaotic"] is False
+    assert plastic.chaotic is False
     assert plastic.lyapunov < 0.0
 
 

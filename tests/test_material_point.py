@@ -36,7 +36,7 @@ def test_no_slip_below_stick_bound(gz):
     gx = 0.97 * MU * math.sqrt(1 - gz**2)
     res = sd.run(point_scene(gz, gx), trajectory=True)
     tr = res.trajectory[res.trajectory.t > res.ramp_periods]
-    assert (tr["T"].abs() < tr["N"]).all()
+    assert (tr["T_star"].abs() < tr["N_star"]).all()
     assert abs(res.drift_ratio) < 1e-12
     assert res.regime == "stick"
 
@@ -50,7 +50,7 @@ def test_slip_above_stick_bound(gz):
     gx = 1.03 * MU * math.sqrt(1 - gz**2)
     res = sd.run(point_scene(gz, gx), trajectory=True)
     tr = res.trajectory[res.trajectory.t > res.ramp_periods]
-    slipping = np.isclose(tr["T"].abs(), tr["N"], rtol=1e-12) & (tr["N"] > 0)
+    slipping = np.isclose(tr["T_star"].abs(), tr["N_star"], rtol=1e-12) & (tr["N_star"] > 0)
     assert slipping.mean() > 0.01
     assert abs(res.drift_ratio) < 1e-9
 
@@ -109,4 +109,4 @@ def test_vertical_inertia_off_gives_constant_normal_force():
     assert on.drift_ratio < -0.1
     # the start-up transient decays exponentially; after 100 periods it is below 1e-6
     assert abs(off.drift_ratio) < 1e-6
-    assert np.allclose(off.trajectory["N"], 1.0, atol=1e-15)
+    assert np.allclose(off.trajectory["N_star"], 1.0, atol=1e-15)

@@ -45,7 +45,7 @@ def test_tabulated_cone_meets_the_general_monotonic_oracle(tmp_path):
                                 "b": [0.0, 0.0] + list(np.linspace(0.03, 1.5, 50))})
         tr = sd.run(scene).trajectory.iloc[2:]
         want = 1.5**2 - (1.5 - tr["b"].to_numpy()) ** 2
-        errors.append(float(np.max(np.abs(tr["T"].to_numpy() - want))))
+        errors.append(float(np.max(np.abs(tr["T_star"].to_numpy() - want))))
     assert errors[0] < 1e-4
     assert errors[1] < errors[0] / 8.0, errors
 

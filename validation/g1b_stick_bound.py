@@ -31,8 +31,9 @@ def run() -> CaseResult:
     for gz in (0.3, 0.6, 0.9):
         res = sd.run(point_scene(gz, FRACTION * MU * math.sqrt(1.0 - gz * gz)), trajectory=True)
         tr = res.trajectory[res.trajectory.t > res.ramp_periods]
-        peak = float((tr["T"].abs() / tr["N"]).max())
+        peak = float((tr["T_star"].abs() / tr["N_star"]).max())
         worst = max(worst, abs(peak - FRACTION))
-        ok &= res.regime == "stick" and abs(res.drift_ratio) < 1e-12 and bool((tr["T"].abs() < tr["N"]).all())
+        below = bool((tr["T_star"].abs() < tr["N_star"]).all())
+        ok &= res.regime == "stick" and abs(res.drift_ratio) < 1e-12 and below
         parts.append(f"Gz = {gz}: max|T*|/N* = {peak:.5f}, V = {res.drift_ratio:.1e}, {res.regime}")
     return CASE.result(worst, require=ok, message="; ".join(parts))

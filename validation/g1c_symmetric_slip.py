@@ -30,7 +30,8 @@ def run() -> CaseResult:
     for gz in (0.3, 0.6, 0.9):
         res = sd.run(point_scene(gz, 1.03 * MU * math.sqrt(1.0 - gz * gz)), trajectory=True)
         tr = res.trajectory[res.trajectory.t > res.ramp_periods]
-        slipping = float((np.isclose(tr["T"].abs(), tr["N"], rtol=1e-12) & (tr["N"] > 0)).mean())
+        n_f = tr["N_star"]
+        slipping = float((np.isclose(tr["T_star"].abs(), n_f, rtol=1e-12) & (n_f > 0)).mean())
         worst = max(worst, abs(res.drift_ratio))
         ok &= slipping > 0.01
         parts.append(f"Gz = {gz}: slipping {slipping:.1%} of the time, V = {res.drift_ratio:.1e}")

@@ -32,7 +32,7 @@ def run(model: str) -> CaseResult:
     for shape, p in (("sphere", 1.5), ("cone", 2.0)):
         tr = mindlin_loop(model, 1.0, 1.2, cycles=1, samples=N_SEG, profile={"shape": shape})
         seg = tr.iloc[N_SEG : 2 * N_SEG + 1]
-        err = np.abs(seg["T"].to_numpy() - cattaneo_mindlin(1.0, seg["b"].to_numpy(), p)) / 1.0**p
+        err = np.abs(seg["T_star"].to_numpy() - cattaneo_mindlin(1.0, seg["b"].to_numpy(), p)) / 1.0**p
         worst = max(worst, float(err.max()))
         parts.append(f"{shape}: max error {err.max():.2e} at b* = {seg['b'].iloc[int(err.argmax())]:.3f}")
     return CASE.result(worst, model=model, message="; ".join(parts))

@@ -33,8 +33,8 @@ def run(model: str) -> CaseResult:
     tr = mindlin_loop(model, 1.0, B, cycles=1, samples=N_SEG)
     down = tr.iloc[2 * N_SEG : 3 * N_SEG + 1]
     up = tr.iloc[3 * N_SEG : 4 * N_SEG + 1]
-    e_down = np.abs(down["T"].to_numpy() - masing_unloading(1.0, B, down["b"].to_numpy()))
-    e_up = np.abs(up["T"].to_numpy() + masing_unloading(1.0, B, -up["b"].to_numpy()))
+    e_down = np.abs(down["T_star"].to_numpy() - masing_unloading(1.0, B, down["b"].to_numpy()))
+    e_up = np.abs(up["T_star"].to_numpy() + masing_unloading(1.0, B, -up["b"].to_numpy()))
     return CASE.result(
         float(max(e_down.max(), e_up.max())),
         model=model,

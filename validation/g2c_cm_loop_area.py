@@ -42,7 +42,7 @@ def run(model: str) -> CaseResult:
         big_b = amplitude_for_force_ratio(1.0, q)
         tr = mindlin_loop(model, 1.0, big_b, cycles=2, samples=N_SEG)
         cyc = tr.iloc[3 * N_SEG : 5 * N_SEG + 1]
-        b, t = cyc["b"].to_numpy(), cyc["T"].to_numpy()
+        b, t = cyc["b"].to_numpy(), cyc["T_star"].to_numpy()
         work = float(np.sum(0.5 * (t[1:] + t[:-1]) * np.diff(b)))
         want = loop_area(1.0, q)
         rel = abs(work / want - 1.0)

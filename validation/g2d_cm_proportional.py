@@ -30,7 +30,7 @@ def run(model: str) -> CaseResult:
     for lam in (-0.5, 0.3, 0.7, 1.0):
         tr = prescribed(model, {"waveform": "proportional", "a_max": 1.5, "slope": lam,
                                 "samples_per_segment": 1000})
-        err = np.abs(tr["T"].to_numpy() - lam * tr["N"].to_numpy()) / 1.5**1.5
+        err = np.abs(tr["T_star"].to_numpy() - lam * tr["N_star"].to_numpy()) / 1.5**1.5
         worst = max(worst, float(err.max()))
         parts.append(f"lambda = {lam}: {err.max():.2e}")
     return CASE.result(worst, model=model, message="max error " + "; ".join(parts))

@@ -31,9 +31,9 @@ def run(model: str) -> CaseResult:
     """Drive the model and the reference through the same history."""
     ref = shared("mmd-python-random", lambda: prescribed("mmd", DRIVE, engine="python"))
     got = prescribed(model, DRIVE)
-    scale = float(ref["N"].max())
-    err_t = np.abs(got["T"].to_numpy() - ref["T"].to_numpy()) / scale
-    err_n = np.abs(got["N"].to_numpy() - ref["N"].to_numpy()) / scale
+    scale = float(ref["N_star"].max())
+    err_t = np.abs(got["T_star"].to_numpy() - ref["T_star"].to_numpy()) / scale
+    err_n = np.abs(got["N_star"].to_numpy() - ref["N_star"].to_numpy()) / scale
     k = int(err_t.argmax())
     return CASE.result(
         float(max(err_t.max(), err_n.max())),

@@ -31,11 +31,11 @@ CASE = Case(
 def run() -> CaseResult:
     """Measure max |T*_mdr - T*_mmd| / max N* for each N."""
     ref = prescribed("mmd", DRIVE)
-    scale = float(ref["N"].max())
+    scale = float(ref["N_star"].max())
     errors = []
     for n in STRIPS:
         got = prescribed("mdr", DRIVE, model_params={"strips": n})
-        errors.append(float(np.abs(got["T"].to_numpy() - ref["T"].to_numpy()).max()) / scale)
+        errors.append(float(np.abs(got["T_star"].to_numpy() - ref["T_star"].to_numpy()).max()) / scale)
     err = np.array(errors)
     ratios = err[1:] / err[:-1]
     order = float(np.log(err[0] / err[-1]) / np.log(STRIPS[-1] / STRIPS[0]))

@@ -44,7 +44,7 @@ def run() -> CaseResult:
     """Run with inertia off (and on, for the figure)."""
     off = sd.run(scene(False), trajectory=True)
     on = sd.run(scene(True), trajectory=True)
-    n_const = bool(np.allclose(off.trajectory["N"], 1.0, atol=1e-12))
+    n_const = bool(np.allclose(off.trajectory["N_star"], 1.0, atol=1e-12))
     return CASE.result(
         abs(off.drift_ratio),
         require=n_const and not off.contact_lost,

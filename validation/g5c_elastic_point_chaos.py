@@ -40,8 +40,8 @@ def run() -> CaseResult:
     """Lyapunov evidence for elastic and plastic rebounds."""
     elastic = {a: _run(1.0, a) for a in AMPLITUDES}
     plastic = _run(0.0, 0.5)
-    chaotic = all(r.extra["chaotic"] and r.regime == "bouncing" for r in elastic.values())
-    regular = (not plastic.extra["chaotic"]) and plastic.regime == "hopping"
+    chaotic = all(r.chaotic and r.regime == "bouncing" for r in elastic.values())
+    regular = (not plastic.chaotic) and plastic.regime == "hopping"
     lam = min(r.lyapunov for r in elastic.values())
     return CASE.result(
         lam,

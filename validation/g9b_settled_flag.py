@@ -34,10 +34,10 @@ def run(quick: bool = False) -> CaseResult:  # noqa: ARG001 - the case is not in
         ref = sd.run(scene.with_updates(**{"numerics.settle": True, "numerics.max_periods": 1e5}))
         close = abs(plain.drift_ratio - ref.drift_ratio) <= 2e-3
         n += 1
-        flagged += bool(plain.extra["settled"])
-        if plain.extra["settled"] and not close:
+        flagged += bool(plain.settled)
+        if plain.settled and not close:
             wrong.append(f"{model} m* {m:g} A* {a:g}")
-        missed += (not plain.extra["settled"]) and close
+        missed += (not plain.settled) and close
     return CASE.result(
         len(wrong),
         require=flagged >= 10 and flagged < n,

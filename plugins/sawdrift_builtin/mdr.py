@@ -25,10 +25,12 @@ class MdrParams(BaseModel):
 
     model_config = ConfigDict(frozen=True, extra="forbid")
 
-    strips: int = Field(256, ge=2, description="number of strips (MDR springs) on the grid")
+    strips: int = Field(256, ge=2, le=65536,
+                        description="number of strips (MDR springs) on the grid, 2 to 65536")
     z_max: float = Field(
         2.0,
         gt=0.0,
+        le=1e6,
         description="initial extent of the strip grid in a*; it doubles (cells merged in pairs) "
         "when a* exceeds it",
     )

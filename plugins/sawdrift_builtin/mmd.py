@@ -34,7 +34,8 @@ class MemoryDiagramParams(BaseModel):
     max_memory_points: int = Field(
         65536,
         ge=16,
-        description="capacity of the memory diagram (kinks); exceeding it raises an error",
+        le=10_000_000,
+        description="capacity of the memory diagram (kinks), 16 to 1e7; exceeding it raises an error",
     )
 
 

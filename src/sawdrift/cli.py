@@ -1,7 +1,9 @@
 """The ``sawdrift`` command line: a thin layer over the public Python API.
 
-Every user error (bad field, unknown model, malformed TOML or grid, broken plugin) ends in one line
-on stderr and exit status 2, never a traceback.
+Every user error (bad field, unknown model, malformed TOML or grid, broken plugin, an output path
+that cannot be written) ends in one line on stderr and exit status 2, never a traceback. Exit
+status 1 means a check failed (check-model, validate, bench speed); an internal failure (a bug:
+please report it) exits with :data:`INTERNAL_FAILURE`.
 """
 
 from __future__ import annotations
@@ -26,6 +28,10 @@ app = typer.Typer(
 )
 
 
+#: exit status of an unexpected internal failure (1 is a failed check, 2 bad input)
+INTERNAL_FAILURE = 3
+
+
 def _fail(message: str, code: int = 2) -> None:
     typer.echo(f"error: {message}", err=True)
     raise typer.Exit(code)
@@ -33,6 +39,29 @@ def _fail(message: str, code: int = 2) -> None:
 
 def _one_line_warnings(message, category, filename, lineno, file=None, line=None):  # noqa: ARG001
     sys.stderr.write(f"warning: {message}\n")
+
+
+def _writable(path: Path, option: str = "-o", folder: bool = True) -> Path:
+    """Check before any work that ``path`` (a folder, or a file's folder) can be written.
+
+    A run or a sweep must not compute for minutes and then lose its results to a bad path.
+    """
+    import os
+    import tempfile
+
+    where = path if folder else path.parent
+    if not folder and path.is_dir():
+        _fail(f"{option} {str(path)!r} is a directory; give a file name")
+    if folder and path.exists() and not path.is_dir():
+        _fail(f"{option} {str(path)!r} exists and is not a folder")
+    try:
+        where.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=where, prefix=".sawdrift-probe-")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        _fail(f"{option} {str(path)!r} cannot be written ({exc.strerror or exc})")
+    return path
 
 
 def _parse_param(items: list[str] | None) -> dict[str, Any]:
@@ -194,6 +223,8 @@ def run_cmd(
     if explain:
         typer.echo(sd.explain(scene, engine))  # type: ignore[arg-type]
         return
+    if out is not None:
+        _writable(out)
     result = sd.run(scene, trajectory=out is not None, engine=engine)  # type: ignore[arg-type]
     summary = result.summary()
     if out is not None:
@@ -289,6 +320,7 @@ def sweep_cmd(
     """
     if scene_arg is not None and scene_file is not None:
         _fail("give the base scene either as an argument or with --scene, not both")
+    _writable(out, folder=False)
     scene_file = scene_arg or scene_file
     axes: dict[str, str] = {}
     for item in axis or []:
@@ -342,6 +374,7 @@ def phase_diagram_cmd(
 ) -> None:
     """Draw the regime phase diagram of one model over two swept axes (default A*, m*)."""
     frame = _load_table(table)
+    _writable(out, folder=False)
     if drift:
         path = sd.plot_drift_map(frame, out, model, x, y)
     else:
@@ -367,6 +400,7 @@ def compare_cmd(
     (--by effects.rotation after a sweep with --axis effects.rotation=false,true).
     """
     frame = _load_table(table)
+    _writable(out, folder=False)
     path, md = sd.plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out, by,
                             x, y)
     typer.echo(md)
@@ -380,6 +414,7 @@ def export_cmd(
 ) -> None:
     """Export a sweep table to a gridded dataset (xarray; CF regime flags; provenance in attrs)."""
     _load_table(table)  # one-line errors for a missing or unreadable table
+    _writable(out.parent if out.suffix == ".zarr" else out, folder=out.suffix == ".zarr")
     ds = sd.write_grid(table, out)
     dims = ", ".join(f"{d} ({n})" for d, n in ds.sizes.items())
     typer.echo(f"wrote {out}: dimensions {dims}; variables {', '.join(ds.data_vars)}")
@@ -396,8 +431,9 @@ def demo_cmd(
     The grid is the paper's Fig. 3 plane, m* in [1e-3, 1e2] and A* in [1e-2, 10], at mu = 0.1,
     nu = 0.3; the figures and the table go to OUT.
     """
-    if n < 2:
-        _fail(f"--n = {n} must be at least 2 (grid points per axis)")
+    if not 2 <= n <= 401:
+        _fail(f"--n = {n} is not allowed; use 2 to 401 grid points per axis")
+    _writable(out)
     fast_start()
     sd.demo(out, n, workers, echo=typer.echo)
 
@@ -412,6 +448,7 @@ def validate_cmd(
     progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
 ) -> None:
     """Run the validation cases and write an HTML report; exit status 1 if any case fails."""
+    _writable(out)
     fast_start()
     report = sd.validate(out, quick=quick, cases_dir=cases, progress=progress)
     typer.echo(report.summary_line() if hasattr(report, "summary_line") else str(report))
@@ -434,6 +471,7 @@ def bench_work_precision_cmd(
     names = [m.strip() for m in models.split(",")] if models else None
     for name in names or []:
         sd.get_model(name)
+    _writable(out)
     sd.work_precision(names, out, quick=quick)
     typer.echo(f"wrote {out}")
 
@@ -460,6 +498,11 @@ def main() -> None:
     except sd.SawdriftError as exc:
         typer.echo(f"error: {exc}", err=True)
         sys.exit(2)
+    except OSError as exc:
+        # a path given on the command line (or a folder it names) cannot be read or written
+        name = f" {str(exc.filename)!r}" if exc.filename else ""
+        typer.echo(f"error: cannot use{name}: {exc.strerror or exc}", err=True)
+        sys.exit(2)
     except Exception as exc:  # noqa: BLE001 - usage errors and anything unexpected
         # typer vendors click: its usage errors carry format_message() and an exit code
         if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):
@@ -470,7 +513,7 @@ def main() -> None:
         text = str(exc).splitlines()[0] if str(exc) else "no details"
         typer.echo(f"error: internal failure ({text}); please report it with the command line",
                    err=True)
-        sys.exit(1)
+        sys.exit(INTERNAL_FAILURE)
 
 
 if __name__ == "__main__":

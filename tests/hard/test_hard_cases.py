@@ -72,7 +72,7 @@ def test_finite_and_convergent(name, rotation):
     k = base.steps_per_period()
     results = [_run(_scene(CASES[name], steps=k * f, rotation=rotation)) for f in (1, 2, 8)]
     for res in results:
-        assert np.isfinite(res.trajectory[["x", "vx", "y", "vy", "N", "T"]].to_numpy()).all()
+        assert np.isfinite(res.trajectory[["x", "vx", "y", "vy", "N_star", "T_star"]].to_numpy()).all()
         assert math.isfinite(res.drift_ratio)
     ref = _state(results[-1])
     # each component scaled by its size over the run (a final value may sit near zero)
@@ -115,8 +115,8 @@ def test_python_and_compiled_engines_agree(name, rotation):
     scene = _scene(CASES[name], periods=1.5, rotation=rotation)
     fast, slow = _run(scene, "compiled"), _run(scene, "python")
     assert slow.engine == "python"
-    a = fast.trajectory[["x", "vx", "y", "vy", "N", "T"]].to_numpy()
-    b = slow.trajectory[["x", "vx", "y", "vy", "N", "T"]].to_numpy()
+    a = fast.trajectory[["x", "vx", "y", "vy", "N_star", "T_star"]].to_numpy()
+    b = slow.trajectory[["x", "vx", "y", "vy", "N_star", "T_star"]].to_numpy()
     assert a.shape == b.shape
     assert np.allclose(a, b, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(a).max())))
 

@@ -29,6 +29,7 @@ from .evidence import (
     BAD_NONFINITE,
     EV_LANDING,
     EV_LIFT_OFF,
+    EV_MARGIN,
     EV_SLIP_END,
     EV_SLIP_START,
     EV_STICK_START,
@@ -44,6 +45,7 @@ from .evidence import (
     S_SLIP,
     SLIP_RTOL,
     event,
+    log_full,
 )
 from .wave import surface
 
@@ -74,10 +76,17 @@ N_PRM = 17
 #: elastic rolling displacement psi_e of the spring.
 N_STATE = 7
 
+#: Damping ratio eta_r of the rolling spring's viscous term (Ai, Chen, Rotter and Ooi 2011, Powder
+#: Technol. 206, 269-282, eq. 15 and their recommended eta_r = 0.3): C_r = 2 eta_r sqrt(I_r K_r),
+#: acting while the spring is elastic (their f = 0 at full mobilization).
+ROLL_DAMPING = 0.3
+
 # The statistics vector ``st`` and its event log: see :mod:`sawdrift.dynamics.evidence`.
 
-# Columns of the trajectory record.
-REC_COLUMNS = ("t", "x", "vx", "y", "vy", "a", "b", "N", "T")
+# Columns of the trajectory record: N_star and T_star are N* and T* (T* would shadow a
+# DataFrame's transpose ``.T``); psi = R phi / a0 and spin = psi' are the rolling angle and its
+# rate (kept in the table only when the sphere may turn).
+REC_COLUMNS = ("t", "x", "vx", "y", "vy", "a", "b", "N_star", "T_star", "psi", "spin")
 N_REC = len(REC_COLUMNS)
 
 @njit(cache=True)
@@ -94,6 +103,8 @@ def record(rec, ctr, t, y, a, b, nf, tf):
         rec[i, 6] = b
         rec[i, 7] = nf
         rec[i, 8] = tf
+        rec[i, 9] = y[4]
+        rec[i, 10] = y[5]
         ctr[2] = i + 1
 
 
@@ -123,13 +134,16 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
     # Rotation (I = kappa m R^2): m x'' = -T and I phi'' = -R T, so from rest the contact
     # point s = x + R phi moves as s = c x with c = 1 + 1/kappa (docs/physics.md, Rotation).
     roll = prm[P_ROLL]
-    # Rolling resistance, an elastic-plastic rolling spring (EPSD type, Ai et al. 2011,
-    # Powder Technol. 206, 269-282, without its viscous term): per R and per M g the torque is
-    # m_r = -K_r psi_e, |m_r| <= mu_r N*, with K_r = 2.25 mu_r^2 dN*/da* (their k_r =
-    # 2.25 k_n mu_r^2 R^2); psi = R phi / a0 then obeys kappa m* psi'' = -mu T* + m_r.
+    # Rolling resistance, an elastic-plastic rolling spring with its viscous term (EPSD type,
+    # Ai et al. 2011, Powder Technol. 206, 269-282): per R and per M g the torque is
+    # m_r = -K_r psi_e - C_r psi', |K_r psi_e| <= mu_r N*, with K_r = 2.25 mu_r^2 dN*/da* (their
+    # k_r = 2.25 k_n mu_r^2 R^2) and C_r = 2 eta_r sqrt(kappa m* K_r) while the spring is
+    # elastic (0 at full mobilization); psi = R phi / a0 obeys kappa m* psi'' = -mu T* + m_r.
+    # The rotational inertia follows the horizontal one (m*_x, reduced only by steady.settle),
+    # so both relax together.
     rr = prm[P_RR]
     resist = rr > 0.0 and roll > 0.0
-    kappa_m = m / (roll - 1.0) if roll > 0.0 else 0.0
+    kappa_m = mx / (roll - 1.0) if roll > 0.0 else 0.0
     p_exp = prm[P_P]
     ncomp = 6 if resist else 4
     for _ in range(n_steps):
@@ -158,6 +172,12 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
             nf += damp * adot
             if nf < 0.0:
                 nf = 0.0
+            # the Coulomb bound holds for the total normal force, damping included (as in DEM
+            # codes); the contact history is left as the law committed it
+            if tf > nf:
+                tf = nf
+            elif tf < -nf:
+                tf = -nf
         ax = -mu * tf / mx
         ay = (1.0 - nf) / m
         inside = a > 0.0
@@ -206,6 +226,8 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
                 mr = cap
             elif mr < -cap:
                 mr = -cap
+            elif kr > 0.0:
+                mr -= 2.0 * ROLL_DAMPING * math.sqrt(kappa_m * kr) * y[5]
             fh[0, 4] = y[5]
             fh[0, 5] = (-mu * tf + mr) / kappa_m
             psi_old = y[4]
@@ -231,6 +253,8 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
             st[S_BAD] = BAD_NONFINITE
             st[S_BADSTEP] = k
             return
+        if log_full(st, EV_MARGIN):
+            return  # the stepper grows the event log and goes on from the next step
 
 
 _COMPILED: dict[Any, Callable[..., None]] = {}

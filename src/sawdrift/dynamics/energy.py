@@ -38,7 +38,7 @@ def energy_residual(
     t = trajectory["t"].to_numpy()
     vx = trajectory["vx"].to_numpy()
     vy = trajectory["vy"].to_numpy()
-    power = -mu * trajectory["T"].to_numpy() * c * vx + (1.0 - trajectory["N"].to_numpy()) * vy
+    power = -mu * trajectory["T_star"].to_numpy() * c * vx + (1.0 - trajectory["N_star"].to_numpy()) * vy
     dt = np.diff(t)
     work = np.concatenate([[0.0], np.cumsum(0.5 * (power[1:] + power[:-1]) * dt)])
     kinetic = 0.5 * m_star * (c * vx**2 + vy**2)

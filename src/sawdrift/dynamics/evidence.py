@@ -33,6 +33,11 @@ S_NEV, S_EVCAP = 10, 11  # events written, capacity of the buffer (rows)
 S_EVDROP = 12  # events not written because the buffer was full
 N_ST = 16
 
+#: Rows an integration step may still need in the event log: the loops return after a step that
+#: leaves less room than this (compliant loop: at most 3 events a step), and the stepper grows the
+#: log and goes on, so a long window never loses an event (see Stepper.advance).
+EV_MARGIN = 8
+
 #: bad-state causes written to ``st[S_BAD]``
 BAD_NONFINITE, BAD_EVENTS = 1.0, 2.0
 
@@ -53,6 +58,26 @@ def new_stats(event_capacity: int) -> np.ndarray:
     st[S_EVCAP] = max(0, int(event_capacity))
     open_window(st)
     return st
+
+
+def grown(st: np.ndarray, minimum_free: int) -> np.ndarray:
+    """A copy of ``st`` whose event log has twice the room (and at least ``minimum_free`` free rows).
+
+    The statistics and the events written so far are kept.
+    """
+    cap = int(st[S_EVCAP])
+    used = int(st[S_NEV])
+    new_cap = max(2 * cap, used + int(minimum_free), 64)
+    out = np.zeros(N_ST + EV_W * new_cap)
+    out[: st.size] = st
+    out[S_EVCAP] = new_cap
+    return out
+
+
+@njit(cache=True)
+def log_full(st, margin):
+    """True when the event log has fewer than ``margin`` free rows (the loop then returns)."""
+    return st[S_NEV] + margin > st[S_EVCAP]
 
 
 def open_window(st: np.ndarray) -> None:

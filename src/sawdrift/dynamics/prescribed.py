@@ -70,7 +70,7 @@ def run_prescribed(scene: Scene, model: ContactModel, engine: str) -> Result:
 
     # dissipated work: the integral of T* db*, trapezoidal over the sampled path
     work = float(np.sum(0.5 * (t_f[1:] + t_f[:-1]) * np.diff(b))) if a.size > 1 else 0.0
-    frame = pd.DataFrame({"t": np.arange(a.size, dtype=float), "a": a, "b": b, "N": n_f, "T": t_f})
+    frame = pd.DataFrame({"t": np.arange(a.size, dtype=float), "a": a, "b": b, "N_star": n_f, "T_star": t_f})
     nan = math.nan
     return Result(
         model=scene.model,

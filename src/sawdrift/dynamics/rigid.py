@@ -52,6 +52,7 @@ from .evidence import (
     S_OUT,
     S_SLIP,
     event,
+    log_full,
 )
 from .wave import kinematics
 
@@ -63,6 +64,9 @@ N_PRM_RIGID = 19
 _BISECT = 60
 #: events (impacts, lift-offs, stick and slip changes) one step may hold before it is an error
 _MAX_EVENTS = 4096
+#: free rows of the event log a step may need (up to three events per resolved event), below
+#: which the loop returns and the stepper grows the log (see Stepper.advance)
+EV_MARGIN_RIGID = 3 * _MAX_EVENTS + 8
 #: shortest rebound flight, in steps, before an inelastic collapse counts as landed
 _ZENO = 1e-6
 #: A grazing dip of N* below zero by less than this is contact with N* = 0: the flight it would
@@ -341,3 +345,5 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             st[S_BAD] = BAD_NONFINITE
             st[S_BADSTEP] = k
             return
+        if log_full(st, EV_MARGIN_RIGID):
+            return  # the stepper grows the event log and goes on from the next step

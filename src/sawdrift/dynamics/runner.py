@@ -20,7 +20,14 @@ from ..result.regimes import classify
 from ..result.result import Result
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from .prescribed import prescribed_history, run_prescribed
-from .steady import assess_fixed, default_max_periods, settle
+from .steady import (
+    assess_fixed,
+    default_max_periods,
+    horizontal_inertia,
+    relaxation_periods,
+    rolling_frequency,
+    settle,
+)
 from .stepper import Stepper
 from .window import lyapunov, measure_window, state_scale
 
@@ -85,7 +92,9 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     """
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
-    caps = (model if model is not None else scene.model_instance()).capabilities
+    if model is None:
+        model = scene.model_instance()
+    caps = model.capabilities
     eff = scene.effects
     drive = scene.drive
     if engine == "compiled" and not caps.compiled:
@@ -104,6 +113,13 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     ramp = drive.ramp_periods if isinstance(drive, Wave) else 0.0
     equations: list[str] = []
     calls: list[str] = []
+    slot = getattr(type(model), "damping", None)
+    if slot is not None and eff.normal_damping > 0.0:
+        raise SceneError(
+            f"effects.normal_damping = {eff.normal_damping:g} would stack a second normal damping "
+            f"on model {name!r}, which has its own normal-damping slot ({slot.name!r}); use one: "
+            "set effects.normal_damping = 0, or pick a model without a damping slot"
+        )
     if caps.rigid:
         scheme = "rigid"
         normal = "N* = 1 - m* u_y''" if eff.vertical_inertia else "N* = 1 (vertical inertia off)"
@@ -129,7 +145,12 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         normal = f"{name} normal law" + ("" if eff.friction else " alone (its normal slot)")
         equations.append(f"m* y*'' = 1 - N*(a*), a* = y* - u_y; N* from the {normal}")
         if eff.normal_damping > 0.0:
-            equations.append(f"N* += {eff.normal_damping:g} a*' while a* > 0 (viscous normal damping)")
+            equations.append(f"N* += {eff.normal_damping:g} a*' while a* > 0, N* >= 0 (viscous "
+                             "normal damping); |T*| <= N*, the total normal force")
+        elif slot is not None:
+            equations.append(f"N* from the normal-damping slot {slot.name!r} "
+                             f"({slot.__doc__.strip().splitlines()[0] if slot.__doc__ else ''}); "
+                             "|T*| <= N*, the total normal force")
         if eff.friction:
             equations.append("m* x*'' = -mu T*(b*, a*)" + (
                 " (x* the centre)" if eff.rotation else ", theta mu b* = x* - u_x"))
@@ -213,12 +234,15 @@ def _run_wave(
     k_per = stepper.k_per
     n_measure = n_periods * k_per
     n_total = max(int(round(num.periods * k_per)), n_measure)
+    speed = 2.0 * math.pi * scene.horizontal_ratio * wave.amplitude
+    m_star = scene.particle.m_star
     cap = num.max_periods
     if cap is None:
-        cap = default_max_periods(scene.particle.m_star, scene.material.mu, stepper.rigid, n_periods)
+        m_x = horizontal_inertia(m_star, stepper.rigid) if num.settle else m_star
+        cap = default_max_periods(m_star, relaxation_periods(scene, m_x, speed), stepper.rigid,
+                                  n_periods, rolling_frequency(scene, m_x))
     n_max = max(n_total, int(round(cap * k_per)))
     stepper.advance(n_total - n_measure)
-    speed = 2.0 * math.pi * scene.horizontal_ratio * wave.amplitude
     scale = state_scale(wave.amplitude, scene.horizontal_ratio)
     settling = None
     if num.settle:
@@ -228,24 +252,18 @@ def _run_wave(
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     sync = win.sync
     hop_period = sync.hop_period if not chaotic else 0
-    extra = {"chaotic": chaotic, "events_dropped": win.events_dropped, "compile_s": compile_s,
-             "orbit_period": win.orbit_period}
     if settling is None:
-        settling = assess_fixed(win, speed, num.settle_tolerance, scene.particle.m_star,
-                                scene.material.mu, stepper.step / k_per, chaotic)
-    extra.update(settled=settling.settled, settle_method=settling.method,
-                 settle_periods=settling.periods)
-    t90 = settling.t90_periods if num.settle else None
-    if num.settle:
-        extra.update(t90_periods=t90, horizontal_inertia=settling.horizontal_inertia)
+        settling = assess_fixed(win, speed, num.settle_tolerance,
+                                relaxation_periods(scene, m_star, speed), stepper.step / k_per,
+                                chaotic)
+    t90 = settling.t90_periods if num.settle else math.nan
     regime = classify(win.contact_lost, win.drift_ratio, num.drift_tolerance,
                       gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
+    extra: dict[str, object] = {}
     if scene.device is not None:
         from ..scene.device import device_outputs
 
-        extra.update(device_outputs(scene.device, win.drift, regime, t90))
-    if sync.hop_period:
-        extra["liftoffs_per_hop"] = sync.liftoffs_per_hop
+        extra.update(device_outputs(scene.device, win.drift, regime, t90 if num.settle else None))
     return Result(
         model=scene.model,
         engine=plan.engine,
@@ -279,6 +297,16 @@ def _run_wave(
         scene=scene.model_dump(mode="json"),
         trajectory=stepper.trajectory() if trajectory else None,
         event_rows=win.events,
+        chaotic=chaotic,
+        events_dropped=win.events_dropped,
+        compile_s=compile_s,
+        orbit_period=win.orbit_period,
+        settled=settling.settled,
+        settle_method=settling.method,
+        settle_periods=settling.periods,
+        t90_periods=t90,
+        horizontal_inertia=settling.horizontal_inertia if num.settle else math.nan,
+        liftoffs_per_hop=sync.liftoffs_per_hop if sync.hop_period else math.nan,
         extra=extra,
     )
 

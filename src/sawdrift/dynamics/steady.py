@@ -59,33 +59,76 @@ class Settling:
 
 
 def horizontal_inertia(m_star: float, rigid: bool) -> float:
-    """m*_x of the reduced-inertia method: min(m*, HEAVY_MASS) for compliant models."""
+    """m*_x of the reduced-inertia method: min(m*, HEAVY_MASS) for compliant models.
+
+    A rigid point keeps m*: its stick condition |m* u_x''| <= mu N* contains the horizontal
+    inertia itself, so reducing it would change where the point sticks.
+    """
     return m_star if rigid else min(m_star, HEAVY_MASS)
 
 
-def window_length(m_star: float, m_x: float, mu: float, minimum: int) -> int:
+def relaxation_periods(scene, m_x: float, speed: float) -> float:
+    """Periods the drift needs to relax to its steady value, tau (0: nothing to relax).
+
+    Friction changes the horizontal velocity by at most mu / m*_x per period (the period-averaged
+    normal force is the weight), and the velocities at stake are of the order of the horizontal
+    surface speed U = 2 pi r A*: the approach takes of order U m*_x / mu periods. For U >= 1 the
+    scale is m*_x / mu, measured on ``benchmarks/bench_steady.py`` (time to 90 % of the steady drift
+    2.7 to 7.7 m*/mu on cells with U = 1.0 to 2.9); below, tau = U m*_x / mu, so a heavy particle
+    shaken by a tiny wave is not run for m*/mu periods it does not need.
+
+    With rolling resistance the rolling spring has a free mode of frequency
+    omega_r = sqrt(K_r / (kappa m*_x)) (K_r = 2.25 mu_r^2 N*'(1)), damped by the spring's viscous
+    term at the ratio eta_r (:data:`~sawdrift.dynamics.adams_bashforth.ROLL_DAMPING`): it decays
+    in 1 / (eta_r omega_r) periods, and tau is at least that.
+    """
+    mu = scene.material.mu
+    tau = m_x / mu * min(1.0, speed) if mu > 0.0 else 0.0
+    omega = rolling_frequency(scene, m_x)
+    if omega > 0.0:
+        tau = max(tau, 1.0 / (ig.ROLL_DAMPING * omega))
+    return tau
+
+
+def rolling_frequency(scene, m_x: float) -> float:
+    """omega_r = sqrt(K_r / (kappa m*_x)) of the rolling spring at a* = 1 (rad per period), or 0."""
+    eff = scene.effects
+    if not (eff.rotation and eff.rolling_resistance > 0.0):
+        return 0.0
+    k_r = 2.25 * eff.rolling_resistance**2 * scene.particle.profile.p
+    return math.sqrt(k_r / (scene.particle.gyration * m_x))
+
+
+def window_length(m_star: float, tau: float, minimum: int, rigid: bool = False,
+                  rolling: float = 0.0) -> int:
     """Periods per settle window, at least ``minimum``.
 
-    A tenth of the relaxation time m*_x / mu, and at least three periods of the free vertical
-    oscillation 2 pi sqrt(m* / N*'(1)) = 2 pi sqrt(m* / 1.5) (in wave periods), which never decays
-    (the normal equation has no damping) and modulates the friction: a window shorter than it
-    would see that modulation as a change of the drift.
+    A tenth of the relaxation time ``tau`` (:func:`relaxation_periods`); for a compliant contact
+    at least three periods of the free vertical oscillation 2 pi sqrt(m* / N*'(1)) =
+    2 pi sqrt(m* / 1.5) (in wave periods), which never decays (the normal equation has no
+    damping) and modulates the friction: a window shorter than it would see that modulation as a
+    change of the drift (a rigid point has no such oscillation); and with rolling resistance at
+    least one period 2 pi / omega_r of the rolling spring's damped mode (``rolling`` = omega_r),
+    which modulates the drift in the same way while it decays.
     """
-    vertical = 2.0 * math.pi * math.sqrt(m_star / 1.5) if m_star > 1.0 else 0.0
-    return max(int(minimum), int(math.ceil(0.1 * m_x / mu)), int(math.ceil(3.0 * vertical)))
+    vertical = 2.0 * math.pi * math.sqrt(m_star / 1.5) if (m_star > 1.0 and not rigid) else 0.0
+    roll = 2.0 * math.pi / rolling if rolling > 0.0 else 0.0
+    return max(int(minimum), int(math.ceil(0.1 * tau)), int(math.ceil(3.0 * vertical)),
+               int(math.ceil(roll)))
 
 
-def default_max_periods(m_star: float, mu: float, rigid: bool, minimum_window: int) -> float:
+def default_max_periods(m_star: float, tau: float, rigid: bool, minimum_window: int,
+                        rolling: float = 0.0) -> float:
     """The settle cap when ``numerics.max_periods`` is not given.
 
-    max(5000, 50 m*_x / mu + 20 windows). The time to 90 % of the steady drift, read at window
-    ends, was 2.7 to 7.7 m*/mu on eight cells of ``benchmarks/bench_steady.py`` (m* = 30 to 3000,
-    scaled back from the reduced inertia), so the cap is at least six such times plus room for
-    the settle test's windows; a light particle keeps the old cap of 5000 periods.
+    max(5000, 50 tau + 20 windows), tau from :func:`relaxation_periods` at the integrated inertia.
+    The time to 90 % of the steady drift, read at window ends, was 2.7 to 7.7 m*/mu on eight
+    cells of ``benchmarks/bench_steady.py`` (m* = 30 to 3000, scaled back from the reduced
+    inertia), so the cap is at least six such times plus room for the settle test's windows; a
+    light particle keeps the old cap of 5000 periods.
     """
-    m_x = horizontal_inertia(m_star, rigid)
-    tau = m_x / mu if mu > 0.0 else 0.0
-    return max(5000.0, 50.0 * tau + 20.0 * window_length(m_star, m_x, mu, minimum_window))
+    return max(5000.0, 50.0 * tau
+               + 20.0 * window_length(m_star, tau, minimum_window, rigid, rolling))
 
 
 def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
@@ -95,8 +138,9 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     m = scene.particle.m_star
     m_x = horizontal_inertia(m, stepper.rigid)
     if not stepper.rigid:
-        stepper.prm[ig.P_MX] = m_x
-    w = window_length(m, m_x, scene.material.mu, minimum_window)
+        stepper.prm[ig.P_MX] = m_x  # the rotational inertia kappa m*_x follows (see the loop)
+    w = window_length(m, relaxation_periods(scene, m_x, speed), minimum_window, stepper.rigid,
+                      rolling_frequency(scene, m_x))
     tol = num.settle_tolerance
     start = stepper.step
     values: list[float] = []
@@ -154,8 +198,8 @@ def _t90(values: list[float], ends: list[float]) -> float:
 APPROACH_TIMES = 3.0
 
 
-def assess_fixed(win: Window, speed: float, tol: float, m_star: float, mu: float,
-                 periods_run: float, chaotic: bool = False) -> Settling:
+def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run: float,
+                 chaotic: bool = False) -> Settling:
     """Whether a fixed-length run ended at its steady drift (``method = "fixed"``).
 
     A run is steady when one of these holds:
@@ -168,7 +212,7 @@ def assess_fixed(win: Window, speed: float, tol: float, m_star: float, mu: float
     3. its drift ratio changed by d between the last two thirds (n periods each, whole orbits
        if the motion is periodic) of the window,
        and the distance still to go, estimated as |d| max(1, tau / n) with the relaxation time
-       tau = m* / mu, is at most ``tol``, and the run lasted at least
+       ``tau`` (:func:`relaxation_periods`), is at most ``tol``, and the run lasted at least
        :data:`APPROACH_TIMES` tau. The horizontal velocity changes by at most of order mu / m*
        per period (the period-averaged normal force is the weight, so the averaged friction is
        at most mu times it, in contact or in impacts alike); a heavy particle on its slow
@@ -190,14 +234,13 @@ def assess_fixed(win: Window, speed: float, tol: float, m_star: float, mu: float
                    if speed > 0.0 else 0.0 for k in range(3)) if parts > 0 else ()
     ok = bool(values) and not chaotic and not in_flight(win) and (
         (win.gross_slip_fraction == 0.0 and not win.contact_lost)
-        or _steady_thirds(win, values, n, start, tol, m_star, mu, periods_run))
+        or _steady_thirds(win, values, n, start, tol, tau, periods_run))
     return Settling(ok, "fixed", math.nan, win.periods, periods_run, math.nan, values)
 
 
 def _steady_thirds(win: Window, values: tuple[float, ...], n: int, start: int, tol: float,
-                   m_star: float, mu: float, periods_run: float) -> bool:
+                   tau: float, periods_run: float) -> bool:
     """Cases 1 and 3 of :func:`assess_fixed`, with the window's consistency checks."""
-    tau = m_star / mu if mu > 0.0 else 0.0
     remaining = abs(values[2] - values[1]) * max(1.0, tau / n)
     changes = remaining <= tol and periods_run >= APPROACH_TIMES * tau
     if not (win.orbit_period > 0 or changes):

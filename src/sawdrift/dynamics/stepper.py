@@ -30,9 +30,12 @@ if TYPE_CHECKING:
 #: Trajectory samples recorded per wave period (at most).
 RECORDS_PER_PERIOD = 200
 
-#: Event rows kept per period of the measurement window (plus a fixed margin); more are counted
-#: as dropped, and the result says so.
+#: Event rows reserved per period of the measurement window at the start; the log grows (doubling)
+#: whenever a loop finds it nearly full, so no event is ever dropped (see :meth:`Stepper.advance`).
 EVENTS_PER_PERIOD = 64
+
+#: Most event rows one window may hold (7 floats a row: 280 MB); more is an error, not a silent cut.
+MAX_EVENT_ROWS = 5_000_000
 
 
 class Stepper:
@@ -91,7 +94,9 @@ class Stepper:
         prm[ig.P_ROLL] = self.roll
         prm[ig.P_RR] = eff.rolling_resistance if eff.rotation else 0.0
         self.resist = prm[ig.P_RR] > 0.0
-        self.st = ev.new_stats(EVENTS_PER_PERIOD * max(1, event_periods) + 64)
+        self.ev_margin = rg.EV_MARGIN_RIGID if self.rigid else ev.EV_MARGIN
+        self.st = ev.new_stats(max(EVENTS_PER_PERIOD * max(1, event_periods) + 64,
+                                   2 * self.ev_margin))
         self.y = np.zeros(ig.N_STATE)
         self.record = record
         self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
@@ -150,23 +155,42 @@ class Stepper:
         return int(self.ctr[0])
 
     def advance(self, n_steps: int) -> None:
-        """Advance ``n_steps`` steps; raise a one-line error if the scheme cannot go on."""
-        if n_steps <= 0:
-            return
-        n_rec = n_steps // self.rec_every + 2 if self.record else 0
-        rec = np.zeros((n_rec, ig.N_REC))
-        self.ctr[2] = 0
-        if self.rigid:
-            self.loop(self.y, self.ctr, self.prm, n_steps, rec, self.rec_every, self.st)
-        else:
-            self.loop(
-                self.y, self.fh, self.ctr, self.fs, self.is_, self.pp, self.prm, n_steps,
-                rec, self.rec_every, self.st,
-            )
-        if self.record:
-            self.rec_chunks.append(rec[: self.ctr[2]].copy())
-        if self.st[ev.S_BAD] > 0.0:
-            self._fail()
+        """Advance ``n_steps`` steps; raise a one-line error if the scheme cannot go on.
+
+        The loops return early when the event log is nearly full; the log is then grown and the
+        integration goes on, so every event of a window of any length is kept.
+        """
+        target = self.step + max(0, int(n_steps))
+        while self.step < target:
+            n = target - self.step
+            n_rec = n // self.rec_every + 2 if self.record else 0
+            rec = np.zeros((n_rec, ig.N_REC))
+            self.ctr[2] = 0
+            if self.rigid:
+                self.loop(self.y, self.ctr, self.prm, n, rec, self.rec_every, self.st)
+            else:
+                self.loop(
+                    self.y, self.fh, self.ctr, self.fs, self.is_, self.pp, self.prm, n,
+                    rec, self.rec_every, self.st,
+                )
+            if self.record:
+                self.rec_chunks.append(rec[: self.ctr[2]].copy())
+            if self.st[ev.S_BAD] > 0.0:
+                self._fail()
+            if self.st[ev.S_EVDROP] > 0.0:
+                raise NonFiniteStateError(
+                    f"{int(self.st[ev.S_EVDROP])} events (lift-offs, landings, slip changes) "
+                    f"did not fit in one step's room of the event log near t* = "
+                    f"{self.step * self.h:.6g}; the regime evidence would be incomplete"
+                )
+            if ev.log_full(self.st, self.ev_margin):
+                if self.st[ev.S_EVCAP] >= MAX_EVENT_ROWS:
+                    raise NonFiniteStateError(
+                        f"more than {MAX_EVENT_ROWS} events in one measuring window (t* = "
+                        f"{self.step * self.h:.6g}): the motion chatters; shorten the window "
+                        "(--periods, numerics.measure_periods) or refine --steps-per-period"
+                    )
+                self.st = ev.grown(self.st, 2 * self.ev_margin)
 
     def _fail(self) -> None:
         k = int(self.st[ev.S_BADSTEP])
@@ -214,11 +238,24 @@ class Stepper:
         return x / self.roll if (self.rigid and self.roll > 0.0) else x
 
     def trajectory(self) -> pd.DataFrame:
-        """The recorded rows (columns ``t, x, vx, y, vy, a, b, N, T``); x is the centre."""
+        """The recorded rows (columns ``t, x, vx, y, vy, a, b, N_star, T_star``); x is the centre.
+
+        With rotation also ``psi`` = R phi / a0 (the rolling angle in units of a0, from rest) and
+        ``spin`` = psi' (R phi' / a0 per unit t*).
+        """
         import pandas as pd
 
         data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
         if self.rigid and self.roll > 0.0:
+            # the rigid scheme integrates the contact point s = c x = x + R phi / a0
+            data[:, 9:11] = data[:, 1:3] * (1.0 - 1.0 / self.roll)
             data[:, 1:3] /= self.roll
-        return pd.DataFrame(data, columns=list(ig.REC_COLUMNS))
+        elif self.roll > 0.0 and not self.resist:
+            # from rest R phi = x / kappa = (c - 1) x (docs/physics.md, Rotation)
+            data[:, 9:11] = data[:, 1:3] * (self.roll - 1.0)
+        columns = list(ig.REC_COLUMNS)
+        if self.roll <= 0.0:
+            data = data[:, :9]
+            columns = columns[:9]
+        return pd.DataFrame(data, columns=columns)
 

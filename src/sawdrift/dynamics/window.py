@@ -112,8 +112,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     scale
         :func:`state_scale` of the scene, for the stroboscopic evidence and the twin's distance.
     """
-    st = stepper.st
-    ev.open_window(st)
+    ev.open_window(stepper.st)
     t_start = stepper.step * stepper.h
     dy = np.array([0.0, 0.0, 0.0, LYAPUNOV_D0 * scale[2]])
     snapshot = stepper.twin(dy)
@@ -130,6 +129,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         spin = (positions[-1] - positions[0]) / periods * (stepper.roll - 1.0)
     else:
         spin = math.nan
+    st = stepper.st  # read after the window: the stepper may have grown its event log
     count = max(st[ev.S_COUNT], 1.0)
     events = ev.events(st)
     lifts = hop_liftoffs(events, t_start + periods)

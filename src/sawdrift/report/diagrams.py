@@ -192,7 +192,7 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     fig.colorbar(mesh, ax=ax2, label="drift ratio <x*'> / (2 pi r A*)",
                  extend="both" if peak > lim else "neither")
     title2 = f"{model}: drift ratio, regime boundaries"
-    # cells whose drift is still on its approach (Result.extra["settled"] false) are hatched
+    # cells whose drift is still on its approach (Result.settled false) are hatched
     unsettled = unsettled_cells(sub)
     mask = unsettled[idx].reshape(mx.shape)
     if mask.any():

@@ -23,8 +23,8 @@ def plot_trajectory(result: Result, path: str | Path) -> Path:
     series = [
         ("x", "x*  (particle position)"),
         ("a", "a*  (normal contact displacement)"),
-        ("N", "N*  (normal force)"),
-        ("T", "T*  (friction force)"),
+        ("N_star", "N*  (normal force)"),
+        ("T_star", "T*  (friction force)"),
     ]
     for ax, (col, label) in zip(axes, series, strict=True):
         ax.plot(tr["t"], tr[col], lw=0.8)
@@ -48,14 +48,14 @@ def _plot_prescribed(result: Result, path: Path) -> Path:
     """a*, b*, N*, T* against the sample index, and the T*(b*) hysteresis loop."""
     tr = result.trajectory
     fig, axes = plt.subplots(2, 2, figsize=(10, 7), constrained_layout=True)
-    for ax, col, label in zip(axes.flat[:3], ("a", "b", "N"), ("a*", "b*", "N*"), strict=True):
+    for ax, col, label in zip(axes.flat[:3], ("a", "b", "N_star"), ("a*", "b*", "N*"), strict=True):
         ax.plot(tr["t"], tr[col], lw=0.8)
         ax.set_ylabel(label)
         ax.set_xlabel("sample")
         ax.grid(alpha=0.3)
     ax = axes.flat[3]
-    ax.plot(tr["b"], tr["T"], lw=0.8, label="T*")
-    n_max = float(tr["N"].max())
+    ax.plot(tr["b"], tr["T_star"], lw=0.8, label="T*")
+    n_max = float(tr["N_star"].max())
     ax.axhline(n_max, lw=0.6, ls="--", color="0.5", label="max N* (Coulomb limit)")
     ax.axhline(-n_max, lw=0.6, ls="--", color="0.5")
     ax.set_xlabel("b*")

@@ -53,10 +53,10 @@ def speed_steady(quick: bool = False) -> Target:
     run(scene.with_updates(**{"numerics.settle": False, "numerics.periods": 2}))  # compile
     res = run(scene)
     return _target("steady", f"--settle, mmd, m* = {m:g}, A* = 0.7, mu = 0.1: run time "
-                   f"(settled = {res.extra['settled']}, drift ratio {res.drift_ratio:.4f}, "
-                   f"{res.extra['settle_periods']:.0f} periods)", res.wall_time_s, "s", 1.5, "<=",
-                   {"drift_ratio": res.drift_ratio, "periods": res.extra["settle_periods"]},
-                   extra_ok=bool(res.extra["settled"]))
+                   f"(settled = {res.settled}, drift ratio {res.drift_ratio:.4f}, "
+                   f"{res.settle_periods:.0f} periods)", res.wall_time_s, "s", 1.5, "<=",
+                   {"drift_ratio": res.drift_ratio, "periods": res.settle_periods},
+                   extra_ok=bool(res.settled))
 
 
 def speed_adaptive(quick: bool = False, progress: bool = True) -> Target:

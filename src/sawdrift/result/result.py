@@ -46,6 +46,22 @@ SUMMARY_FIELDS = (
 )
 
 
+#: Typed evidence beside the summary fields (also written by ``run --json``; None where a field
+#: does not apply, e.g. ``t90_periods`` of a fixed-length run).
+EVIDENCE_FIELDS = (
+    "chaotic",
+    "events_dropped",
+    "compile_s",
+    "orbit_period",
+    "settled",
+    "settle_method",
+    "settle_periods",
+    "t90_periods",
+    "horizontal_inertia",
+    "liftoffs_per_hop",
+)
+
+
 def _package_version() -> str:
     from .. import __version__
 
@@ -94,6 +110,26 @@ class Result:
     periodicity: float = math.nan
     spin_rate: float = math.nan
     version: str = field(default_factory=_package_version)
+    #: the window's motion is chaotic (largest Lyapunov exponent > 0, see result.regimes)
+    chaotic: bool = False
+    #: events that did not fit the event log: always 0 (a run that would drop one fails instead)
+    events_dropped: int = 0
+    #: seconds spent compiling or loading the compiled loop, apart from wall_time_s
+    compile_s: float = math.nan
+    #: p when the stroboscopic state repeats after p periods (a periodic orbit), else 0
+    orbit_period: int = 0
+    #: whether the reported drift is the steady one (see dynamics.steady)
+    settled: bool | None = None
+    #: how ``settled`` was decided: "fixed", "windows" or "reduced_inertia"
+    settle_method: str | None = None
+    #: periods after which the drift was assessed (settle runs: periods spent settling)
+    settle_periods: float = math.nan
+    #: settle runs: periods to reach 90 % of the steady drift (full inertia)
+    t90_periods: float = math.nan
+    #: settle runs: the horizontal (and rotational) inertia m*_x that was integrated
+    horizontal_inertia: float = math.nan
+    #: hopping: lift-offs in one hop period
+    liftoffs_per_hop: float = math.nan
     scene: dict[str, Any] = field(default_factory=dict, repr=False)
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
     event_rows: np.ndarray | None = field(default=None, repr=False)
@@ -118,10 +154,22 @@ class Result:
         frame["kind"] = pd.Categorical(kinds[rows[:, 1].astype(int)], categories=list(kinds))
         return frame
 
+    def __getattr__(self, name: str) -> Any:
+        # model- or drive-specific outputs (impact rebound, device units) live in ``extra``
+        if name.startswith("__") or name == "extra":
+            raise AttributeError(name)
+        try:
+            return self.extra[name]
+        except KeyError:
+            raise AttributeError(f"Result has no field {name!r}") from None
+
     def summary(self) -> dict[str, Any]:
-        """The summary fields, the extras and the scene as JSON-ready values (NaN becomes None)."""
+        """The summary fields, the evidence, the extras and the scene as JSON-ready values.
+
+        NaN becomes None.
+        """
         out: dict[str, Any] = {}
-        for key in SUMMARY_FIELDS:
+        for key in SUMMARY_FIELDS + EVIDENCE_FIELDS:
             out[key] = _plain(getattr(self, key))
         for key, value in self.extra.items():
             out[key] = _plain(value)
