@@ -135,3 +135,19 @@ def test_prescribed_history_from_a_scene_file(tmp_path):
     assert row["regime"] == "prescribed" and row["dissipated_work"] > 0.8
     frame = pd.read_parquet(tmp_path / "out" / "trajectory.parquet")
     assert (frame["T_star"].abs() <= frame["N_star"] + 1e-12).all()
+
+
+def test_an_axis_sweeps_over_the_default_plane(tmp_path):
+    # README: `sweep --axis effects.rotation=false,true` compares rotation off and on over the
+    # (m*, A*) plane; the axis multiplies the default 11 x 11 plane instead of replacing it
+    out = tmp_path / "rot.parquet"
+    cli("sweep", "--model", "material_point", "--axis", "effects.rotation=false,true",
+        "--workers", "1", "--no-progress", "-o", str(out), check=True)
+    frame = pd.read_parquet(out)
+    assert len(frame) == 2 * 11 * 11
+    assert frame["m_star"].nunique() == 11 and frame["amplitude"].nunique() == 11
+    # an axis over m* replaces the default m* axis only
+    out2 = tmp_path / "mu.parquet"
+    cli("sweep", "--model", "material_point", "--axis", "particle.m_star=0.1,1",
+        "--amplitude", "0.1,1,2", "--workers", "1", "--no-progress", "-o", str(out2), check=True)
+    assert len(pd.read_parquet(out2)) == 2 * 3

@@ -315,8 +315,9 @@ def sweep_cmd(
 ) -> None:
     """Run a grid (models x axes) into a resumable Parquet table.
 
-    Without --axis the grid is the (m*, A*) plane, by default m* in [1e-3, 1e2] and A* in
-    [1e-2, 10] with 11 log-spaced values each.
+    The grid is the (m*, A*) plane, by default m* in [1e-3, 1e2] and A* in [1e-2, 10] with 11
+    log-spaced values each, times every --axis; an axis over particle.m_star or drive.amplitude
+    replaces that default. A device scene has no default plane: give its axes (device.*).
     """
     if scene_arg is not None and scene_file is not None:
         _fail("give the base scene either as an argument or with --scene, not both")
@@ -328,8 +329,6 @@ def sweep_cmd(
         if not sep or not field.strip() or not spec.strip():
             _fail(f"--axis {item!r} must look like FIELD=SPEC (e.g. material.mu=0.05,0.1,0.2)")
         axes[field.strip()] = spec.strip()
-    if not axes and m_star is None and amplitude is None:
-        m_star, amplitude = "1e-3:1e2:11", "1e-2:10:11"
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
     fast_start()
     for name in named:
@@ -351,6 +350,13 @@ def sweep_cmd(
                                budget=budget, base=int(m_axis.size), levels=levels, scene=base,
                                table=out, workers=workers, scheduler=scheduler, progress=progress)
     else:
+        if base.device is None:
+            # the (m*, A*) plane unless an axis replaces it: --axis effects.rotation=false,true
+            # alone sweeps rotation over the whole default plane, not over one cell
+            if m_star is None and "particle.m_star" not in axes:
+                m_star = "1e-3:1e2:11"
+            if amplitude is None and "drive.amplitude" not in axes:
+                amplitude = "1e-2:10:11"
         frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
                          workers=workers, scheduler=scheduler, progress=progress, engine=engine)
     counts = frame.groupby(["model", "regime"]).size()
