@@ -86,6 +86,12 @@ def contact_force(fs, is_, pp, a, b, adot, bdot):
         fs[2] = 1.0
     t = tangential_step(fs[HEADER:], is_, pp[2:it], pp[it:idp], a0, b0, a, b)  # noqa: F821
     n = normal_damping(pp[idp:], pp[2:it], a, adot, law_normal(a, pp, 2))  # noqa: F821
+    # the Coulomb bound holds for the total normal force, damping included (as in DEM codes);
+    # the law's committed history is left as it is
+    if t > n:
+        t = n
+    elif t < -n:
+        t = -n
     return n, t
 
 
