@@ -110,3 +110,20 @@ def test_vertical_inertia_off_gives_constant_normal_force():
     # the start-up transient decays exponentially; after 100 periods it is below 1e-6
     assert abs(off.drift_ratio) < 1e-6
     assert np.allclose(off.trajectory["N_star"], 1.0, atol=1e-15)
+
+
+@pytest.mark.parametrize(("gamma", "period"), [(3.6, 1), (3.9, 2), (4.6, 2)])
+def test_vertical_vibration_is_the_inelastic_bouncing_ball(gamma, period):
+    # r = 0, restitution 0: the completely inelastic bouncing ball (Mehta and Luck 1990). Its
+    # period-1 orbit doubles at Gamma = sqrt(4 + pi^2) = 3.724, so 3.6 repeats every period and
+    # 3.9 and 4.6 every second one; nothing moves horizontally and nothing may slip
+    m = 0.1
+    scene = sd.Scene(model="material_point", particle={"m_star": m},
+                     drive={"amplitude": gamma / (4 * math.pi**2 * m), "horizontal_ratio": 0.0},
+                     numerics={"periods": 200})
+    res = sd.run(scene, trajectory=True)
+    assert res.orbit_period == period
+    assert res.liftoffs_per_period > 0.0 and res.settled is True
+    kinds = res.events["kind"].value_counts()
+    assert kinds["slip_start"] == 0 and kinds["slip_end"] == 0
+    assert (res.trajectory["x"] == 0.0).all() and (res.trajectory["vx"] == 0.0).all()

@@ -38,7 +38,7 @@ CASE = Case(
 
 def frequency(rotation: bool, kappa: float) -> tuple[float, float]:
     """(measured, predicted) angular frequency of the free tangential oscillation."""
-    scene = sd.Scene(model="mmd", particle={"m_star": M_STAR, "gyration": kappa},
+    scene = sd.Scene(model="mmd", particle={"m_star": M_STAR, **({"gyration": kappa} if rotation else {})},
                      drive={"amplitude": 0.0, "ramp_periods": 0.0},
                      effects={"rotation": rotation}, numerics={"steps_per_period": 2048})
     model = scene.model_instance()

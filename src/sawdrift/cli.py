@@ -108,10 +108,9 @@ def scene_from_options(scene_file: Path | None, **options: Any) -> sd.Scene:
         "orbit": "drive.orbit",
         "theta": "material.theta",
     }
-    for key, dotted in mapping.items():
-        value = options.get(key)
-        if value is not None:
-            sd.scene.set_dotted(data, dotted, value)
+    # one rule for every path: on a device scene a derived (normalized) field is an error
+    # naming the device field to set instead (sawdrift.scene.apply_overrides)
+    data = sd.scene.apply_overrides(data, {dotted: options.get(key) for key, dotted in mapping.items()})
     if base is not None and options.get("model") not in (None, base.model):
         data["model_params"] = {}  # the file's parameters belong to the file's model
     params = options.get("params") or {}
@@ -194,7 +193,8 @@ def run_cmd(
         bool | None, typer.Option("--rotation/--no-rotation", help="the sphere may turn (rolling)")
     ] = None,
     gyration: Annotated[
-        float | None, typer.Option("--gyration", help="kappa = I/(m R^2) in (0, 1]; 0.4 solid sphere")
+        float | None, typer.Option("--gyration", help="kappa = I/(m R^2) in (0, 1]; 0.4 solid sphere; "
+                                   "needs --rotation")
     ] = None,
     rolling_resistance: Annotated[
         float | None,

@@ -103,6 +103,16 @@ def _stick_margin(t, prm):
 
 
 @njit(cache=True)
+def _sticks(t, prm):
+    """Stick holds: |T_req| <= N*, or nothing pulls the point along (T_req = 0, e.g. r = 0).
+
+    The second case matters where N* <= 0 (the point is about to lift): with no horizontal
+    forcing there is nothing to slip, and no slip may be logged or integrated.
+    """
+    return _stick_margin(t, prm) >= 0.0 or _t_req(t, prm) == 0.0
+
+
+@njit(cache=True)
 def _t_req(t, prm):
     k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
     return -_tangential_mass(prm) * k[2] / prm[P_MU]
@@ -220,7 +230,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     s = y[1] - kk[1]
                     if not friction:
                         ctr[3] = 0
-                    elif abs(s) <= 1e-14 and _stick_margin(tc, prm) >= 0.0:
+                    elif abs(s) <= 1e-14 and _sticks(tc, prm):
                         ctr[3] = 1
                         y[1] = kk[1]
                         event(st, EV_STICK_START, tc, y, 0.0)
@@ -253,11 +263,11 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 dt = seg_end - tau
                 y[0] += y[1] * dt
             elif ctr[3] == 1:  # stick: follows the substrate
-                if _stick_margin(seg_end, prm) < 0.0:
+                if not _sticks(seg_end, prm):
                     lo, hi = tau, seg_end
                     for _i in range(_BISECT):
                         mid = 0.5 * (lo + hi)
-                        if _stick_margin(mid, prm) >= 0.0:
+                        if _sticks(mid, prm):
                             lo = mid
                         else:
                             hi = mid
@@ -289,7 +299,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     y[0] = xs
                     y[1] = k1[1]
                     slip_time += hi - tau
-                    if _stick_margin(hi, prm) >= 0.0:
+                    if _sticks(hi, prm):
                         ctr[3] = 1
                         event(st, EV_SLIP_END, hi, y, 0.0)
                         event(st, EV_STICK_START, hi, y, 0.0)

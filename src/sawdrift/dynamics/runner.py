@@ -208,7 +208,8 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
 def explain(scene: Scene, engine: Engine = "compiled") -> str:
     """A readable description of the system :func:`run` assembles for ``scene``."""
     plan = assemble(scene, engine)
-    lines = [f"model {scene.model!r}, scheme {plan.scheme}, engine {plan.engine}", "equations:"]
+    lines = [f"model {scene.model!r} ({scene.body}), scheme {plan.scheme}, engine {plan.engine}",
+             "equations:"]
     lines += [f"  {eq}" for eq in plan.equations]
     lines.append("calls:")
     lines += [f"  {c}" for c in plan.calls]
