@@ -65,7 +65,10 @@ class Capabilities:
     history
         True if the tangential force depends on the displacement history, not only on (a*, b*).
     uses_velocity
-        True if the force depends on (adot, bdot) (e.g. viscous damping).
+        True if the forces may depend on the velocities (a*', b*') (e.g. viscous damping).
+        False is a promise the conformance suite holds the model to (check
+        ``velocity_independence``: the same history driven with and without velocities gives the
+        same forces); every check drives real, finite-difference velocities either way.
     straight_path_exact
         True if a straight move gives the same forces however it is split into steps (the
         conformance suite then checks it).
@@ -370,35 +373,45 @@ class ContactHistory:
             new._pp = self._pp
         return new
 
-    def drive(self, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Advance through sampled histories a*(k), b*(k); return arrays N*(k), T*(k)."""
+    def drive(self, a: np.ndarray, b: np.ndarray, adot: np.ndarray | None = None,
+              bdot: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Advance through sampled histories a*(k), b*(k); return arrays N*(k), T*(k).
+
+        ``adot``, ``bdot`` are the velocities a*'(k), b*'(k) passed with each step (default:
+        zero, a quasi-static drive).
+        """
         a = np.asarray(a, dtype=np.float64)
         b = np.asarray(b, dtype=np.float64)
+        adot = np.zeros_like(a) if adot is None else np.asarray(adot, dtype=np.float64)
+        bdot = np.zeros_like(a) if bdot is None else np.asarray(bdot, dtype=np.float64)
+        if not a.shape == b.shape == adot.shape == bdot.shape:
+            raise ValueError("a, b, adot and bdot must have the same length")
         n_out = np.empty_like(a)
         t_out = np.empty_like(a)
         if self._ref is None:
-            _drive_compiled(self.model.kernel.force, self._fs, self._is, self._pp, a, b, n_out, t_out)
+            _drive_compiled(self.model.kernel.force, self._fs, self._is, self._pp, a, b, adot, bdot,
+                            n_out, t_out)
         else:
             for k in range(a.size):
-                n_out[k], t_out[k] = self._ref.force(a[k], b[k], 0.0, 0.0)
+                n_out[k], t_out[k] = self._ref.force(a[k], b[k], adot[k], bdot[k])
         return n_out, t_out
 
 
 _DRIVERS: dict[Any, Callable[..., None]] = {}
 
 
-def _drive_compiled(force, fs, is_, pp, a, b, n_out, t_out) -> None:
+def _drive_compiled(force, fs, is_, pp, a, b, adot, bdot, n_out, t_out) -> None:
     """Run a kernel over a sampled history inside one compiled loop (one per kernel, cached)."""
     fn = _DRIVERS.get(force)
     if fn is None:
         from numba import njit
 
-        def loop(fs, is_, pp, a, b, n_out, t_out):
+        def loop(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
             for k in range(a.size):
-                n, t = force(fs, is_, pp, a[k], b[k], 0.0, 0.0)
+                n, t = force(fs, is_, pp, a[k], b[k], adot[k], bdot[k])
                 n_out[k] = n
                 t_out[k] = t
 
         fn = njit(loop)
         _DRIVERS[force] = fn
-    fn(fs, is_, pp, a, b, n_out, t_out)
+    fn(fs, is_, pp, a, b, adot, bdot, n_out, t_out)

@@ -8,58 +8,90 @@ Each check returns a value, the tolerance it is held to and a status:
   (``Capabilities.deviations``, a one-line reason per check), so a comparison shows it, never
   hides it;
 * ``skipped`` - the check does not apply (a rigid model has no displacement law; split
-  invariance is checked only for laws that claim exactness on straight paths).
+  invariance is checked only for laws that claim exactness on straight paths; velocity
+  independence only for laws that declare ``uses_velocity = False``).
+
+Every check runs once per profile the model declares (``Capabilities.profiles``: the sphere,
+cone and flat punch, a power law of exponent :data:`POWER_EXPONENT` for ``power``, and the
+tabulated law :func:`table_law` for ``table``), or for the one profile asked for.
+
+Paths are sampled straight sides, each side traversed in unit time t*, so the velocities
+(a*', b*') passed with every step are the backward differences of the samples (a side's length
+per unit time). Random histories come in two sizes: a* up to 3 and a* up to :data:`LARGE_A`.
 
 Checks (docs/physics.md, "Passivity" and "Contact laws"):
 
+``normalization``
+    N* = N / (M g) and a* = a / a0 with a0 the static compression under M g, so a quasi-static
+    loading from 0 to a* = 1 gives N* = 1; value |N*(1) - 1|, tolerance 1e-6 (as a profile
+    table's N(1)).
 ``passivity``
-    The normal law is elastic, so over a closed path in (a*, b*) a passive contact dissipates:
-    the loop work W = closed integral of T* db* is >= 0 for every cycle, in both orientations.
-    Five cycle shapes with a* varying (rectangle, diamond, ellipse, a cycle into full sliding,
-    a cycle through contact loss), each driven ten times round after a straight approach from
-    (0, 0); the value is the most negative loop work of a single cycle. Tolerance: 1e-6 of the
-    cycle's gross work sum |T*| |db*| (the trapezoidal rule on 400 samples per side).
+    Over a closed path in (a*, b*) a passive contact does no net work on the particle: the loop
+    work W = closed integral of (N* da* + T* db*) is >= 0 for every cycle, in both orientations,
+    at the cycle's velocities (so a normal damping that adds energy fails, and an elastic normal
+    law contributes zero). Seven cycle shapes (a pure normal loading/unloading, rectangle,
+    diamond, ellipse, a cycle into full sliding, a cycle through contact loss, a rectangle at
+    a* from 5 to 15), each driven ten times round after a straight approach from (0, 0); the
+    value is the most negative loop work of a single cycle (the trapezoidal rule on 400 samples
+    per side). Tolerance: 1e-6 of the cycle's gross work sum (|N*| |da*| + |T*| |db*|) plus the
+    rule's error estimate, sum (|da*| |d2 N*| + |db*| |d2 T*|) / 12 with d2 the second
+    differences (an elastic normal law's work is zero up to that error).
 ``coulomb_bound``
     |T*| <= N* on random histories with contact loss; value: max (|T*| - N*), tolerance
     1e-9 (1 + max N*).
 ``kernel_vs_reference``
-    The compiled kernel and the pure-Python reference agree on random histories; value:
-    max |T*_compiled - T*_python| / (1 + max N*), tolerance 1e-9.
+    The compiled kernel and the pure-Python reference give the same (N*, T*) on random
+    histories, velocities included; value: max(|dN*|, |dT*|) / (1 + max N*), tolerance 1e-9.
+``velocity_independence``
+    A model declaring ``uses_velocity = False`` gives the same (N*, T*) whether a random history
+    is driven with its velocities or with zero velocities; value: max(|dN*|, |dT*|), tolerance 0.
 ``split_invariance``
-    For a law exact on straight paths: one step equals the same straight segment cut into
-    7 sub-steps; value: max |dT*| / (1 + max N*), tolerance 1e-9.
+    For a law exact on straight paths: one step equals the same straight segment, at the same
+    velocity, cut into 7 sub-steps; value: max(|dN*|, |dT*|) / (1 + max N*), tolerance 1e-9.
 ``contact_loss_reset``
-    After contact is lost (a* <= 0), a new contact behaves as a fresh history; value: max |dT*|
-    against a fresh history driven over the same path, tolerance 1e-12.
+    After contact is lost (a* <= 0), a new contact behaves as a fresh history; value:
+    max(|dN*|, |dT*|) against a fresh history driven over the same path, tolerance 1e-12.
 ``replay``
     A copy of a history (:meth:`ContactHistory.copy`) replays the rest of the path exactly;
-    value: max |dT*|, tolerance 0.
+    value: max(|dN*|, |dT*|), tolerance 0.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+import pathlib
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import asdict, dataclass, replace
 from typing import Any
 
 import numpy as np
 
 from ..errors import SceneError
+from ..scene.profiles import Profile
 from .base import ContactHistory, ContactModel
 
 #: samples per straight side of a cycle
 SIDE = 400
+#: largest a* of the large random histories (the small ones stop at 3)
+LARGE_A = 20.0
+#: exponent of the representative ``power`` profile
+POWER_EXPONENT = 2.5
+#: order in which a check's statuses over several profiles are reported (the worst first)
+_SEVERITY = {"fail": 0, "declared": 1, "pass": 2, "skipped": 3}
 
 
 @dataclass(frozen=True)
 class Check:
-    """One conformance check of one model."""
+    """One conformance check of one model on one profile."""
 
     name: str
     status: str
     value: float
     tolerance: float
     detail: str
+    profile: str = ""
 
     def to_json(self) -> dict[str, Any]:
         """JSON-ready dict (non-finite floats become None)."""
@@ -72,41 +104,95 @@ class Check:
 
 @dataclass(frozen=True)
 class Conformance:
-    """The result of :func:`check_model`."""
+    """The result of :func:`check_model`: every check on every profile checked."""
 
     model: str
     checks: tuple[Check, ...]
+    #: the normal law of each profile checked, ``(profile, "sphere N* = a*^1.5")`` pairs
+    laws: tuple[tuple[str, str], ...] = ()
 
     @property
     def passed(self) -> bool:
         """True if no check failed (declared and skipped checks do not fail)."""
         return all(c.status != "fail" for c in self.checks)
 
-    def get(self, name: str) -> Check:
-        """The check called ``name``."""
-        return next(c for c in self.checks if c.name == name)
+    @property
+    def failures(self) -> tuple[Check, ...]:
+        """The checks that failed."""
+        return tuple(c for c in self.checks if c.status == "fail")
+
+    @property
+    def profiles(self) -> tuple[str, ...]:
+        """The profiles checked, in order."""
+        return tuple(dict.fromkeys(c.profile for c in self.checks))
+
+    def get(self, name: str, profile: str | None = None) -> Check:
+        """The check called ``name`` on ``profile``; without a profile, its worst result.
+
+        Worst means the first of ``fail``, ``declared``, ``pass``, ``skipped`` over the profiles
+        (the first profile among equals).
+        """
+        found = [c for c in self.checks if c.name == name and profile in (None, c.profile)]
+        if not found:
+            raise KeyError(f"no check {name!r}" + (f" on profile {profile!r}" if profile else ""))
+        return min(found, key=lambda c: _SEVERITY[c.status])
 
     def to_json(self) -> dict[str, Any]:
-        """``{"model": ..., "checks": [{"name", "status", "value", "tolerance", "detail"}]}``."""
-        return {"model": self.model, "checks": [c.to_json() for c in self.checks]}
+        """``{"model", "profiles", "checks": [{"name", "profile", "status", "value", ...}]}``."""
+        return {"model": self.model, "profiles": dict(self.laws),
+                "checks": [c.to_json() for c in self.checks]}
 
     def table(self) -> str:
-        """A readable table, one line per check."""
+        """A readable table, one line per check and profile."""
         rows = [f"model {self.model!r}: {'PASS' if self.passed else 'FAIL'}"]
+        if self.laws:
+            rows.append("  profiles: " + "; ".join(law for _, law in self.laws))
+        width = max((len(c.profile) for c in self.checks), default=6)
         for c in self.checks:
             val = "-" if not math.isfinite(c.value) else f"{c.value:.3g}"
             tol = "-" if not math.isfinite(c.tolerance) else f"{c.tolerance:.3g}"
-            rows.append(f"  {c.name:<20} {c.status:<9} value {val:>10}  tolerance {tol:>9}  {c.detail}")
+            rows.append(f"  {c.profile:<{width}}  {c.name:<21} {c.status:<9} value {val:>10}  "
+                        f"tolerance {tol:>9}  {c.detail}")
         return "\n".join(rows)
 
 
 # -- paths -------------------------------------------------------------------------------------
 
 
-def _polyline(vertices: list[tuple[float, float]], per_side: int = SIDE) -> tuple[np.ndarray, np.ndarray]:
+@dataclass(frozen=True)
+class Path:
+    """A sampled (a*, b*) history with the velocities passed at each step.
+
+    Each straight side is traversed in unit time, ``dt`` = 1 / samples per side; the
+    velocities are the backward differences (x_k - x_(k-1)) / dt, the velocity of the straight
+    step that ends at sample k (the first sample is at rest).
+    """
+
+    a: np.ndarray
+    b: np.ndarray
+    adot: np.ndarray
+    bdot: np.ndarray
+    dt: float
+
+    def __getitem__(self, sl: slice) -> Path:
+        return Path(self.a[sl], self.b[sl], self.adot[sl], self.bdot[sl], self.dt)
+
+    def still(self) -> Path:
+        """The same samples at zero velocity (a quasi-static drive)."""
+        return Path(self.a, self.b, np.zeros_like(self.a), np.zeros_like(self.b), self.dt)
+
+    def drive(self, history: ContactHistory) -> tuple[np.ndarray, np.ndarray]:
+        """Advance ``history`` through the samples; N*(k), T*(k)."""
+        return history.drive(self.a, self.b, self.adot, self.bdot)
+
+
+def path(vertices: list[tuple[float, float]], per_side: int = SIDE) -> Path:
+    """The straight sides through ``vertices``, ``per_side`` samples each, in unit time each."""
     from ..dynamics.prescribed import polyline
 
-    return polyline(vertices, per_side)
+    a, b = polyline(vertices, per_side)
+    return Path(a, b, np.diff(a, prepend=a[0]) * per_side, np.diff(b, prepend=b[0]) * per_side,
+                1.0 / per_side)
 
 
 def cycles() -> dict[str, list[tuple[float, float]]]:
@@ -114,52 +200,137 @@ def cycles() -> dict[str, list[tuple[float, float]]]:
     theta = np.linspace(0.0, 2.0 * np.pi, 17)
     ellipse = [(1.5 + 0.5 * math.cos(t), 0.3 * math.sin(t)) for t in theta]
     return {
+        "normal": [(0.5, 0.0), (2.5, 0.0), (0.5, 0.0)],
         "rectangle": [(1.0, 0.0), (1.0, 0.2), (2.0, 0.2), (2.0, 0.0), (1.0, 0.0)],
         "diamond": [(1.5, -0.3), (2.0, 0.0), (1.5, 0.3), (1.0, 0.0), (1.5, -0.3)],
         "ellipse": ellipse,
         "full_slip": [(1.0, 0.0), (1.0, 3.0), (2.0, 3.0), (2.0, -3.0), (1.0, -3.0), (1.0, 0.0)],
         "contact_loss": [(1.0, 0.0), (1.0, 0.5), (-0.2, 0.5), (-0.2, -0.5), (1.5, -0.5),
                          (1.0, 0.0)],
+        "large": [(5.0, 0.0), (5.0, 1.5), (15.0, 1.5), (15.0, 0.0), (5.0, 0.0)],
     }
+
+
+def loop_work_parts(model: ContactModel, vertices: list[tuple[float, float]], laps: int = 10,
+                    engine: str = "compiled") -> tuple[np.ndarray, ...]:
+    """Normal and tangential loop work of each lap, its gross work and its quadrature error.
+
+    Trapezoidal sums of N* da* and T* db* over each lap (the cycle driven at its velocities
+    after a straight approach from (0, 0)), of |N*| |da*| + |T*| |db*|, and the rule's error
+    estimate, sum of |da*| |d2 N*| / 12 + |db*| |d2 T*| / 12 (its local error h^3 f'' / 12, f''
+    from the second differences d2).
+    """
+    start = vertices[0]
+    approach, lap = path([(0.0, 0.0), start]), path(vertices)
+    n0, per = approach.a.size - 1, lap.a.size - 1
+    full = Path(*(np.concatenate([x, *[y[1:]] * laps]) for x, y in
+                  ((approach.a, lap.a), (approach.b, lap.b), (approach.adot, lap.adot),
+                   (approach.bdot, lap.bdot))), lap.dt)
+    n, t = full.drive(ContactHistory(model, engine))
+    out = np.empty((4, laps))
+    for k in range(laps):
+        sl = slice(n0 + k * per, n0 + (k + 1) * per + 1)
+        da, db = np.diff(full.a[sl]), np.diff(full.b[sl])
+        n_mid, t_mid = 0.5 * (n[sl][1:] + n[sl][:-1]), 0.5 * (t[sl][1:] + t[sl][:-1])
+        quad = (np.sum(np.abs(da[1:] * np.diff(n[sl], 2))) + np.sum(np.abs(db[1:] * np.diff(t[sl], 2))))
+        out[:, k] = (np.sum(n_mid * da), np.sum(t_mid * db),
+                     np.sum(np.abs(n_mid * da)) + np.sum(np.abs(t_mid * db)), quad / 12.0)
+    return out[0], out[1], out[2], out[3]
 
 
 def loop_works(model: ContactModel, vertices: list[tuple[float, float]], laps: int = 10,
                engine: str = "compiled") -> tuple[np.ndarray, np.ndarray]:
-    """Loop work sum of T* db* (trapezoidal) of each lap, and each lap's gross work sum |T*||db*|."""
-    start = vertices[0]
-    approach = _polyline([(0.0, 0.0), start])
-    lap_a, lap_b = _polyline(vertices)
-    a = np.concatenate([approach[0], *[lap_a[1:]] * laps])
-    b = np.concatenate([approach[1], *[lap_b[1:]] * laps])
-    _, t = ContactHistory(model, engine).drive(a, b)
-    n0 = approach[0].size - 1
-    per = lap_a.size - 1
-    works, gross = np.empty(laps), np.empty(laps)
-    for k in range(laps):
-        sl = slice(n0 + k * per, n0 + (k + 1) * per + 1)
-        tb, db = t[sl], np.diff(b[sl])
-        mid = 0.5 * (tb[1:] + tb[:-1])
-        works[k] = float(np.sum(mid * db))
-        gross[k] = float(np.sum(np.abs(mid) * np.abs(db)))
-    return works, gross
+    """Loop work (closed integral of N* da* + T* db*) of each lap, and each lap's gross work."""
+    normal, tangential, gross, _ = loop_work_parts(model, vertices, laps, engine)
+    return normal + tangential, gross
 
 
-def random_history(seed: int, n: int = 600) -> tuple[np.ndarray, np.ndarray]:
-    """A random piecewise-linear (a*, b*) walk that loses and regains contact."""
+def random_history(seed: int, n: int = 600, a_max: float = 3.0) -> Path:
+    """A random piecewise-linear (a*, b*) walk that loses and regains contact and reaches a_max.
+
+    40 sides; a* walks in [-0.4, 3] and b* freely, both then scaled by a_max / 3.
+    """
     rng = np.random.default_rng(seed)
     av = np.clip(np.cumsum(rng.normal(0.0, 0.25, 40)) + 1.0, -0.4, 3.0)
+    av[int(np.argmax(av))] = 3.0
     bv = np.cumsum(rng.normal(0.0, 0.4, 40))
-    return _polyline([(0.0, 0.0), *zip(av.tolist(), bv.tolist(), strict=True)], n // 40)
+    s = a_max / 3.0
+    av = np.clip(av * s, -0.4, a_max)
+    return path([(0.0, 0.0), *zip(av.tolist(), (bv * s).tolist(), strict=True)], n // 40)
+
+
+def histories(seeds: range | list[int]) -> list[Path]:
+    """Random histories of each seed, one reaching a* = 3 and one reaching :data:`LARGE_A`."""
+    return [random_history(s, a_max=a_max) for s in seeds for a_max in (3.0, LARGE_A)]
+
+
+# -- profiles ----------------------------------------------------------------------------------
+
+
+def table_law(a: np.ndarray) -> np.ndarray:
+    """The representative tabulated normal law, N* = (a*^1.5 + a*^2) / 2 (N*(1) = 1)."""
+    return 0.5 * (a**1.5 + a**2)
+
+
+@contextmanager
+def profiles_for(shapes: tuple[str, ...]) -> Iterator[dict[str, Profile]]:
+    """A representative :class:`Profile` of each shape (a table is written to a temporary file).
+
+    ``power`` gets the exponent :data:`POWER_EXPONENT`; ``table`` the law :func:`table_law`
+    on a* in [0, 25] (it covers the large histories).
+    """
+    with tempfile.TemporaryDirectory(prefix="sawdrift-conformance-") as tmp:
+        out: dict[str, Profile] = {}
+        for shape in shapes:
+            if shape == "power":
+                out[shape] = Profile(shape="power", exponent=POWER_EXPONENT)
+            elif shape == "table":
+                file = pathlib.Path(tmp) / "table_law.csv"
+                a = np.linspace(0.0, 25.0, 501)
+                rows = "\n".join(f"{x!r},{y!r}" for x, y in zip(a.tolist(), table_law(a).tolist(),
+                                                               strict=True))
+                file.write_text("a,N\n" + rows + "\n", encoding="utf-8")
+                out[shape] = Profile(shape="table", file=str(file))
+            else:
+                out[shape] = Profile(shape=shape)
+        yield out
+
+
+def describe_profile(profile: Profile, representative: bool) -> str:
+    """One phrase naming the normal law a profile gives, N*(a*)."""
+    if profile.shape == "table":
+        return ("table N* = (a*^1.5 + a*^2)/2" if representative
+                else f"table {pathlib.Path(profile.file or '').name}")
+    return f"{profile.shape} N* = a*^{profile.p:g}"
 
 
 # -- checks ------------------------------------------------------------------------------------
 
 
-def _status(name: str, ok: bool, model: ContactModel) -> tuple[str, str]:
-    if ok:
-        return "pass", ""
-    reason = dict(model.declared_deviations()).get(name)
-    return ("declared", reason) if reason else ("fail", "")
+def _check(model: ContactModel, name: str, ok: bool, value: float, tol: float, detail: str) -> Check:
+    """``pass`` if ok, else ``declared`` (with the model's reason) or ``fail``."""
+    reason = "" if ok else dict(model.declared_deviations()).get(name, "")
+    status = "pass" if ok else ("declared" if reason else "fail")
+    return Check(name, status, value, tol, detail + (f"; {reason}" if reason else ""))
+
+
+def _engine(model: ContactModel) -> str:
+    """The engine the dynamics runs the model with: the kernel if it has one."""
+    return "compiled" if model.kernel is not None else "python"
+
+
+def _diff(f1: tuple[np.ndarray, np.ndarray], f2: tuple[np.ndarray, np.ndarray]) -> float:
+    """max(|dN*|, |dT*|) between two force histories."""
+    return float(max(np.max(np.abs(f1[0] - f2[0])), np.max(np.abs(f1[1] - f2[1]))))
+
+
+def _normalization(model: ContactModel) -> Check:
+    p = path([(0.0, 0.0), (1.0, 0.0)], 100).still()
+    n, _ = p.drive(ContactHistory(model, _engine(model)))
+    err = abs(float(n[-1]) - 1.0)
+    return _check(model, "normalization", err <= 1e-6, err, 1e-6,
+                  f"N*(1) = {float(n[-1]):.9g} after a quasi-static loading from 0; must be 1 "
+                  "(N* = N/(M g), a0 the static compression)")
 
 
 def _passivity(model: ContactModel) -> Check:
@@ -167,105 +338,129 @@ def _passivity(model: ContactModel) -> Check:
     ok = True
     for shape, verts in cycles().items():
         for orient, vv in (("forward", verts), ("reverse", verts[::-1])):
-            works, gross = loop_works(model, vv)
-            tol = 1e-6 * gross + 1e-12
+            normal, tangential, gross, quad = loop_work_parts(model, vv, engine=_engine(model))
+            works, tol = normal + tangential, 1e-6 * gross + quad + 1e-12
             ok &= bool(np.all(works >= -tol))
             k = int(np.argmin(works))
             if works[k] < worst:
-                worst, worst_where, tol_at_worst = float(works[k]), f"{shape} {orient}", float(tol[k])
-    status, reason = _status("passivity", ok, model)
-    detail = (f"most negative loop work {worst:.3g} ({worst_where}); passes if >= -tolerance"
-              + (f"; {reason}" if reason else ""))
-    return Check("passivity", status, worst, tol_at_worst, detail)
+                worst, tol_at_worst = float(works[k]), float(tol[k])
+                worst_where = (f"{shape} {orient}: normal {normal[k]:.3g}, tangential "
+                               f"{tangential[k]:.3g}")
+    return _check(model, "passivity", ok, worst, tol_at_worst,
+                  f"most negative loop work of N* da* + T* db* {worst:.3g} ({worst_where}); "
+                  "passes if >= -tolerance")
 
 
 def _coulomb(model: ContactModel) -> Check:
     excess, n_max = -math.inf, 0.0
-    for seed in range(3):
-        a, b = random_history(seed)
-        n, t = ContactHistory(model).drive(a, b)
+    for p in histories(range(3)):
+        n, t = p.drive(ContactHistory(model, _engine(model)))
         excess = max(excess, float(np.max(np.abs(t) - n)))
         n_max = max(n_max, float(n.max()))
     tol = 1e-9 * (1.0 + n_max)
-    status, reason = _status("coulomb_bound", excess <= tol, model)
-    return Check("coulomb_bound", status, excess, tol, "max (|T*| - N*) on 3 random histories"
-                 + (f"; {reason}" if reason else ""))
+    return _check(model, "coulomb_bound", excess <= tol, excess, tol,
+                  f"max (|T*| - N*) on 6 random histories up to a* = {LARGE_A:g}")
 
 
 def _kernel_vs_reference(model: ContactModel) -> Check:
     if model.kernel is None:
         return Check("kernel_vs_reference", "skipped", math.nan, math.nan, "no compiled kernel")
     err = 0.0
-    for seed in range(3):
-        a, b = random_history(seed + 10)
-        nc, tc = ContactHistory(model, "compiled").drive(a, b)
-        npy, tpy = ContactHistory(model, "python").drive(a, b)
-        err = max(err, float(np.max(np.abs(tc - tpy)) / (1.0 + nc.max())))
-    status, reason = _status("kernel_vs_reference", err <= 1e-9, model)
-    return Check("kernel_vs_reference", status, err, 1e-9, "3 random histories with contact loss"
-                 + (f"; {reason}" if reason else ""))
+    for p in histories(range(10, 13)):
+        compiled = p.drive(ContactHistory(model, "compiled"))
+        python = p.drive(ContactHistory(model, "python"))
+        err = max(err, _diff(compiled, python) / (1.0 + float(compiled[0].max())))
+    return _check(model, "kernel_vs_reference", err <= 1e-9, err, 1e-9,
+                  f"(N*, T*) on 6 random histories with contact loss, up to a* = {LARGE_A:g}, "
+                  "with their velocities")
+
+
+def _velocity_independence(model: ContactModel) -> Check:
+    if model.capabilities.uses_velocity:
+        return Check("velocity_independence", "skipped", math.nan, math.nan,
+                     "the model declares uses_velocity; every check drives real velocities")
+    err = 0.0
+    for p in histories(range(40, 42)):
+        moving = p.drive(ContactHistory(model, _engine(model)))
+        still = p.still().drive(ContactHistory(model, _engine(model)))
+        err = max(err, _diff(moving, still))
+    return _check(model, "velocity_independence", err == 0.0, err, 0.0,
+                  "uses_velocity = False: 4 random histories driven with and without velocities")
 
 
 def _split(model: ContactModel) -> Check:
     if not model.capabilities.straight_path_exact:
         return Check("split_invariance", "skipped", math.nan, math.nan,
                      "the model does not claim exactness on straight paths")
-    a, b = random_history(21, 200)
     k = 7
     s = np.arange(1, k + 1) / k
-    fine_a = np.concatenate([[a[0]], *[a[i] + (a[i + 1] - a[i]) * s for i in range(a.size - 1)]])
-    fine_b = np.concatenate([[b[0]], *[b[i] + (b[i + 1] - b[i]) * s for i in range(b.size - 1)]])
-    n1, t1 = ContactHistory(model).drive(a, b)
-    _, t7 = ContactHistory(model).drive(fine_a, fine_b)
-    err = float(np.max(np.abs(t1 - t7[::k])) / (1.0 + n1.max()))
-    status, reason = _status("split_invariance", err <= 1e-9, model)
-    return Check("split_invariance", status, err, 1e-9, f"every step cut into {k} sub-steps"
-                 + (f"; {reason}" if reason else ""))
+    err = 0.0
+    for p in histories([21]):
+        a, b = p.a, p.b
+        fine = Path(
+            np.concatenate([[a[0]], *[a[i] + (a[i + 1] - a[i]) * s for i in range(a.size - 1)]]),
+            np.concatenate([[b[0]], *[b[i] + (b[i + 1] - b[i]) * s for i in range(b.size - 1)]]),
+            np.concatenate([p.adot[:1], np.repeat(p.adot[1:], k)]),
+            np.concatenate([p.bdot[:1], np.repeat(p.bdot[1:], k)]), p.dt / k)
+        one = p.drive(ContactHistory(model, _engine(model)))
+        n7, t7 = fine.drive(ContactHistory(model, _engine(model)))
+        err = max(err, _diff(one, (n7[::k], t7[::k])) / (1.0 + float(one[0].max())))
+    return _check(model, "split_invariance", err <= 1e-9, err, 1e-9,
+                  f"every step cut into {k} sub-steps at its velocity, 2 random histories")
 
 
 def _contact_loss(model: ContactModel) -> Check:
-    a1, b1 = _polyline([(0.0, 0.0), (1.5, 0.4), (1.0, -0.6), (2.0, 0.3), (-0.1, 0.5)], 50)
-    a2, b2 = _polyline([(-0.1, 0.5), (0.0, 0.7), (1.2, 1.4), (0.8, 0.2), (1.6, 0.9)], 50)
-    used = ContactHistory(model)
-    used.drive(a1, b1)
-    _, t_used = used.drive(a2[1:], b2[1:])
-    fresh = ContactHistory(model)
-    fresh.drive(np.array([0.0]), np.array([0.7]))
-    _, t_fresh = fresh.drive(a2[2:], b2[2:])
-    err = float(np.max(np.abs(t_used[1:] - t_fresh)))
-    status, reason = _status("contact_loss_reset", err <= 1e-12, model)
-    return Check("contact_loss_reset", status, err, 1e-12, "re-contact after a* <= 0 vs a fresh history"
-                 + (f"; {reason}" if reason else ""))
+    p1 = path([(0.0, 0.0), (1.5, 0.4), (1.0, -0.6), (2.0, 0.3), (-0.1, 0.5)], 50)
+    p2 = path([(-0.1, 0.5), (0.0, 0.7), (1.2, 1.4), (0.8, 0.2), (1.6, 0.9)], 50)
+    used = ContactHistory(model, _engine(model))
+    p1.drive(used)
+    n_used, t_used = p2[1:].drive(used)
+    fresh = ContactHistory(model, _engine(model))
+    p2[1:2].still().drive(fresh)
+    n_fresh, t_fresh = p2[2:].drive(fresh)
+    err = _diff((n_used[1:], t_used[1:]), (n_fresh, t_fresh))
+    return _check(model, "contact_loss_reset", err <= 1e-12, err, 1e-12,
+                  "re-contact after a* <= 0 vs a fresh history")
 
 
 def _replay(model: ContactModel) -> Check:
-    a, b = random_history(31)
-    half = a.size // 2
-    h = ContactHistory(model)
-    h.drive(a[:half], b[:half])
-    twin = h.copy()
-    _, t1 = h.drive(a[half:], b[half:])
-    _, t2 = twin.drive(a[half:], b[half:])
-    err = float(np.max(np.abs(t1 - t2)))
-    status, reason = _status("replay", err == 0.0, model)
-    return Check("replay", status, err, 0.0, "a copy replays the second half of a random history"
-                 + (f"; {reason}" if reason else ""))
+    err = 0.0
+    for p in histories([31]):
+        half = p.a.size // 2
+        h = ContactHistory(model, _engine(model))
+        p[:half].drive(h)
+        twin = h.copy()
+        err = max(err, _diff(p[half:].drive(h), p[half:].drive(twin)))
+    return _check(model, "replay", err == 0.0, err, 0.0,
+                  "a copy replays the second half of 2 random histories")
 
 
-CHECKS = (_passivity, _coulomb, _kernel_vs_reference, _split, _contact_loss, _replay)
-CHECK_NAMES = ("passivity", "coulomb_bound", "kernel_vs_reference", "split_invariance",
-               "contact_loss_reset", "replay")
+CHECKS = (_normalization, _passivity, _coulomb, _kernel_vs_reference, _velocity_independence,
+          _split, _contact_loss, _replay)
+CHECK_NAMES = ("normalization", "passivity", "coulomb_bound", "kernel_vs_reference",
+               "velocity_independence", "split_invariance", "contact_loss_reset", "replay")
 
 
-def check_model(name: str, **params: Any) -> Conformance:
+def check_model(name: str, profile: str | Profile | None = None, **params: Any) -> Conformance:
     """Run the conformance suite on the registered model ``name`` with parameters ``params``.
+
+    Parameters
+    ----------
+    name
+        A registered model.
+    profile
+        One profile to check: a shape the model declares (``"sphere"``, ``"cone"``, ``"flat"``,
+        ``"power"`` (exponent :data:`POWER_EXPONENT`), ``"table"`` (:func:`table_law`)) or a
+        :class:`Profile`. Default: every profile in ``capabilities.profiles``.
+    **params
+        The model's parameters.
 
     Raises
     ------
     ModelNotFoundError
         If no model has that name.
     SceneError
-        If a parameter is unknown or out of range (one line naming it).
+        If a parameter or the profile is unknown or out of range (one line naming it).
     """
     from pydantic import ValidationError
 
@@ -274,11 +469,25 @@ def check_model(name: str, **params: Any) -> Conformance:
 
     cls = get_model(name)
     try:
-        model = cls(cls.Params.model_validate(params))
+        model_params = cls.Params.model_validate(params)
     except ValidationError as exc:
         raise SceneError("model_params." + format_validation_error(exc)) from None
+    declared = cls.capabilities.profiles
+    shape = profile.shape if isinstance(profile, Profile) else profile
+    if shape is not None and shape not in declared:
+        raise SceneError(f"profile = {shape!r} is not declared by model {name!r}; "
+                         f"allowed: {', '.join(declared)}")
     if cls.capabilities.rigid:
-        skipped = tuple(Check(n, "skipped", math.nan, math.nan, "rigid model: no displacement law")
-                        for n in CHECK_NAMES)
-        return Conformance(name, skipped)
-    return Conformance(name, tuple(check(model) for check in CHECKS))
+        return Conformance(name, tuple(
+            Check(n, "skipped", math.nan, math.nan, "rigid model: no displacement law", "all")
+            for n in CHECK_NAMES))
+    checks: list[Check] = []
+    laws: list[tuple[str, str]] = []
+    with profiles_for(declared if shape is None else (shape,)) as built:
+        if isinstance(profile, Profile):
+            built = {profile.shape: profile}
+        for label, prof in built.items():
+            model = cls(model_params, prof)
+            laws.append((label, describe_profile(prof, not isinstance(profile, Profile))))
+            checks.extend(replace(check(model), profile=label) for check in CHECKS)
+    return Conformance(name, tuple(checks), tuple(laws))
