@@ -117,12 +117,17 @@ class HertzMindlinDEM(TangentialLaw):
     step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.dem_kernel", "dem_step")
 
     def declared_deviations(self) -> tuple[tuple[str, str], ...]:
-        """Without rescaling the spring keeps its force while a* falls: not passive."""
-        if self.params.rescale:
-            return ()
-        return (("passivity", "rescale = false (LAMMPS mindlin/force) keeps the stored force "
-                 "while a* falls, so closed (a*, b*) cycles can create energy; rescale = true "
-                 "(the default) is passive"),)
+        """Without rescaling: not passive. With it, on a tabulated law: split-dependent at the cap."""
+        out: tuple[tuple[str, str], ...] = ()
+        if not self.params.rescale:
+            out += (("passivity", "rescale = false (LAMMPS mindlin/force) keeps the stored force "
+                     "while a* falls, so closed (a*, b*) cycles can create energy; rescale = true "
+                     "(the default) is passive"),)
+        elif self.profile.shape == "table":
+            out += (("split_invariance", "a step that leaves the Coulomb cap while unloading is "
+                     "resolved at its end, exact only where N*/N*' is linear in a* (power laws): "
+                     "up to 3e-5 (1 + N*) on a tabulated law"),)
+        return out
 
     def tangential_sizes(self) -> tuple[int, int]:
         """Float state: the stored T*; no integer state."""

@@ -147,16 +147,22 @@ def models_cmd(
 def check_model_cmd(
     name: Annotated[str, typer.Argument(help="registered model name")],
     param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    profile: Annotated[
+        str | None,
+        typer.Option("--profile", help="one declared profile: sphere, cone, flat, power (p = 2.5) or "
+                     "table; default: every profile the model declares"),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="machine-readable output")] = False,
 ) -> None:
     """Run the conformance suite on one model; exit status 1 if a check fails.
 
-    Checks: passivity (loop work >= 0 on closed (a*, b*) cycles, both orientations),
-    coulomb_bound, kernel_vs_reference, split_invariance, contact_loss_reset, replay. A failing
-    check that the model declares is reported as 'declared'.
+    Checks, on every declared profile: normalization (N*(1) = 1), passivity (loop work of
+    N* da* + T* db* >= 0 on closed (a*, b*) cycles, both orientations), coulomb_bound,
+    kernel_vs_reference, velocity_independence, split_invariance, contact_loss_reset, replay.
+    A failing check that the model declares is reported as 'declared'.
     """
     fast_start()
-    result = sd.check_model(name, **_parse_param(param))
+    result = sd.check_model(name, profile=profile, **_parse_param(param))
     typer.echo(json.dumps(result.to_json()) if as_json else result.table())
     if not result.passed:
         raise typer.Exit(1)

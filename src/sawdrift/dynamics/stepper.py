@@ -21,6 +21,7 @@ from ..scene.schema import Scene, Wave
 from . import adams_bashforth as ig
 from . import evidence as ev
 from . import rigid as rg
+from .wave import surface
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -208,6 +209,65 @@ class Stepper:
             f"1/{self.k_per} is likely too coarse for m* = {m:g}; try a larger "
             "--steps-per-period or a lower Adams-Bashforth order"
         )
+
+    def continued(self, scene: Scene, model: ContactModel | None = None) -> Stepper:
+        """A stepper for ``scene`` that starts from this one's state (warm start, continuation).
+
+        The mechanical state, the contact history and the time carry over; the parameters are
+        ``scene``'s. Use it between whole periods, after the ramp, for a scene of the same model
+        and contact state layout (a parameter continuation: amplitude, m*, mu, ...). If the step
+        changes, the Adams-Bashforth history restarts at order 1.
+        """
+        from .runner import assemble
+
+        if scene.model != self.scene.model:
+            raise ValueError(f"a continuation keeps the contact model ({self.scene.model!r}); "
+                             f"got {scene.model!r}")
+        model = model if model is not None else scene.model_instance()
+        engine = "compiled" if self.compiled else "python"
+        new = Stepper(scene, model, assemble(scene, engine, model), record=False,
+                      event_periods=max(1, int(self.st[ev.S_EVCAP]) // EVENTS_PER_PERIOD))
+        if self.rigid != new.rigid:
+            raise ValueError("a continuation keeps the scheme (rigid or compliant)")
+        t = self.step * self.h
+        new.y = self.y.copy()
+        new.ctr = self.ctr.copy()
+        new.ctr[0] = int(round(t * new.k_per))
+        if self.rigid:
+            return new
+        if new.k_per == self.k_per:
+            new.fh = self.fh.copy()
+        else:
+            new.ctr[1] = 0  # derivatives of another step: Adams-Bashforth starts again
+        if self.history is None or new.history is None:
+            return new
+        old = self.scene
+        same = (old.model_params == scene.model_params and old.particle.profile == scene.particle.profile
+                and old.theta * old.material.mu == scene.theta * scene.material.mu)
+        if same:
+            # b* = (x* - u_x) / (theta mu) keeps its scale: the memory carries over exactly
+            new.history = self.history.copy()
+            new._bind_history()
+        else:
+            # another scale of b* or another law layout: a fresh contact at the present (a*, b*)
+            a, b = new.displacements()
+            if a > 0.0:
+                new.history.advance(a, b)
+        return new
+
+    def displacements(self) -> tuple[float, float]:
+        """(a*, b*) of the present state, as the compliant loop computes them."""
+        prm = self.prm
+        ux, _, uy, _ = surface(self.step * self.h, prm[ig.P_A], prm[ig.P_R], prm[ig.P_RAMP],
+                               prm[ig.P_HORIZ], prm[ig.P_VERT])
+        y = self.y
+        if self.resist:
+            s = y[0] + y[4]
+        elif self.roll > 0.0:
+            s = self.roll * y[0]
+        else:
+            s = y[0]
+        return float(y[2] - uy), float((s - ux) / (prm[ig.P_THETA] * prm[ig.P_MU]))
 
     def twin(self, dy: np.ndarray | None = None) -> Stepper:
         """An independent copy of this integration (no trajectory recording), state + ``dy``."""
