@@ -1,27 +1,39 @@
-"""Adaptive phase diagrams: refine only where neighbouring cells disagree in regime.
+"""Adaptive phase diagrams: refine only where the regime changes, probing every cell first.
 
-The plane (log10 A*, log10 m*) is covered by a base grid of ``base`` x ``base`` points. A square
-cell between four neighbouring points whose regimes differ straddles a regime boundary; it is
-split in four by computing its centre and the midpoints of the edges whose two ends disagree (an
-edge whose ends agree gets their regime at its midpoint without a run: *inferred*), down to
-``levels`` halvings. Every
-point therefore lies on the uniform grid of (base - 1) 2^levels + 1 points per axis (161 for the
-defaults 21 and 3), and the adaptive map at any node of that grid is the regime of the nearest
-computed point in the log-log plane. Cells are refined coarsest first, until the budget of
-computed points is spent or no cell straddles a boundary.
+The plane (log10 m*, log10 A*) is covered by a base grid of ``base`` x ``base`` points; every
+point lies on the uniform grid of (base - 1) 2^levels + 1 points per axis (161 for the defaults 21
+and 3). A square cell of that grid is *probed* with a nine-point stencil: its four corners, its
+centre (always computed, so that an island inside a cell whose corners agree is seen) and its four
+edge midpoints (computed where the edge's two ends disagree; where they agree the midpoint gets
+their regime without a run: *inferred*). A cell whose nine points do not all agree is split into
+its four quarters, which are probed in turn, down to cells of two fine spacings (whose stencil
+reaches the fine grid); a quarter's corners that were inferred are computed before it is probed.
+Cells are probed coarsest first, until the budget of computed points is spent or no cell
+disagrees.
 
-Computed points go through :func:`sawdrift.study.sweep.sweep` (same executors, same resumable
-table and journal), round by round: an interrupted adaptive sweep, run again with the same
-arguments, recomputes only what is missing.
+Inferred points are checked: a deterministic sample of them (a share ``verify``, chosen by a hash
+of the grid position) is computed as well, and a wrong guess replaces the inferred regime, which
+makes every cell that has the point in its stencil disagree, so those cells are split, also cells
+probed in an earlier round.
 
-``misclassified_area`` measures it against a uniform map: the fraction of the uniform grid's
-nodes (each the same area of the log-log plane) where the adaptive map's regime differs.
+What this guarantees: every feature of the diagram that contains a point of the base grid or a
+centre of a base cell (a lattice of half the base spacing along the diagonals) is found and its
+boundary followed down to the fine grid, as far as the budget goes; a feature thinner than that
+lattice is found only if a sampled inferred point falls in it. The adaptive map at any node of the
+fine grid is the regime of the nearest computed or inferred point in the log-log plane
+(:func:`regime_map`); :func:`misclassified_area` measures it against a uniform map.
+
+Computed points go through :func:`sawdrift.study.sweep.sweep` (same executors, engines, resumable
+table and journal), one call per round: an interrupted adaptive sweep, run again with the same
+arguments, recomputes only what is missing. The table holds the computed points only; the
+returned frame holds those and the inferred ones (column ``inferred``). For tests of the method,
+``regime_of`` replaces the runs by a function of (m*, A*).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
@@ -30,9 +42,143 @@ import pandas as pd
 
 from ..errors import SceneError
 
+Key = tuple[int, int]
+Cell = tuple[int, int, int]  # lower-left corner (i, j) and size s, in fine-grid spacings
 
-def _key(i: int, j: int) -> tuple[int, int]:
-    return int(i), int(j)
+
+def stencil(cell: Cell) -> tuple[list[Key], Key, list[tuple[Key, Key, Key]]]:
+    """A cell's corners, its centre, and its edges as ``(midpoint, end, end)``."""
+    i, j, s = cell
+    h = s // 2
+    corners = [(i, j), (i + s, j), (i, j + s), (i + s, j + s)]
+    edges = [((i + h, j), (i, j), (i + s, j)), ((i, j + h), (i, j), (i, j + s)),
+             ((i + s, j + h), (i + s, j), (i + s, j + s)),
+             ((i + h, j + s), (i, j + s), (i + s, j + s))]
+    return corners, (i + h, j + h), edges
+
+
+def sampled(key: Key, share: float) -> bool:
+    """Whether an inferred point is among the verified sample (a fixed hash of its position)."""
+    if share <= 0.0:
+        return False
+    i, j = key
+    return ((i * 73856093) ^ (j * 19349663)) % 997 < share * 997
+
+
+class Refinement:
+    """The state of an adaptive diagram: computed and inferred regimes on the fine grid.
+
+    Parameters
+    ----------
+    fine, step
+        Points per axis of the fine grid, and the base grid's spacing in fine spacings.
+    evaluate
+        Computes the regimes of a list of grid points (one round), ``{key: regime}``.
+    budget
+        Most points computed.
+    verify
+        Share of inferred points that are computed to check the inference.
+    """
+
+    def __init__(self, fine: int, step: int, evaluate: Callable[[list[Key]], dict[Key, str]],
+                 budget: int, verify: float) -> None:
+        self.fine, self.step, self.evaluate = fine, step, evaluate
+        self.budget, self.verify = budget, verify
+        self.computed: dict[Key, str] = {}
+        self.inferred: dict[Key, str] = {}
+        self.wrong_guesses = 0
+
+    def regime(self, key: Key) -> str | None:
+        """The computed regime of a point, else its inferred one (None: unknown)."""
+        got = self.computed.get(key)
+        return got if got is not None else self.inferred.get(key)
+
+    def agrees(self, cell: Cell) -> bool:
+        """Whether the known points of a cell's stencil all have one regime."""
+        corners, centre, edges = stencil(cell)
+        seen = {self.regime(k) for k in [*corners, centre, *(e[0] for e in edges)]}
+        seen.discard(None)
+        return len(seen) <= 1
+
+    def _compute(self, keys: Iterable[Key]) -> None:
+        todo = sorted({k for k in keys if k not in self.computed})
+        if not todo:
+            return
+        for key, regime in self.evaluate(todo).items():
+            guess = self.inferred.pop(key, None)
+            if guess is not None and guess != regime:
+                self.wrong_guesses += 1
+            self.computed[key] = regime
+
+    def run(self) -> None:
+        """Compute the base grid, then probe and split cells coarsest first (module docstring)."""
+        step, fine = self.step, self.fine
+        base = [(i, j) for i in range(0, fine, step) for j in range(0, fine, step)]
+        self._compute(base)
+        queue = [(i, j, step) for i in range(0, fine - 1, step) for j in range(0, fine - 1, step)]
+        leaves: set[Cell] = set()  # probed cells that were not split
+        quiet: set[Cell] = set()  # quarters of split cells whose corners agree: not probed
+        queue = [c for c in queue if c[2] >= 2]
+        while queue and len(self.computed) < self.budget:
+            size = max(c[2] for c in queue)
+            batch = [c for c in queue if c[2] == size]
+            queue = [c for c in queue if c[2] != size]
+            # a cell's corners are facts before it is probed: an inferred corner (a midpoint of
+            # the split parent) is computed first, or a thin band would be guessed away along
+            # every edge it crosses
+            confirm: list[Key] = []
+            fits = []
+            for cell in batch:
+                new = [k for k in stencil(cell)[0] if k not in self.computed and k not in confirm]
+                if len(self.computed) + len(confirm) + len(new) > self.budget:
+                    queue = []
+                    break
+                confirm += new
+                fits.append(cell)
+            batch = fits
+            self._compute(confirm)
+            need: list[Key] = []
+            guesses: dict[Key, str] = {}
+            taken = []
+            for cell in batch:
+                corners, centre, edges = stencil(cell)
+                new = [] if centre in self.computed or centre in need else [centre]
+                for mid, e0, e1 in edges:
+                    if mid in self.computed or mid in need or mid in new:
+                        continue
+                    r0, r1 = self.regime(e0), self.regime(e1)
+                    if r0 != r1:
+                        new.append(mid)
+                    elif mid not in self.inferred and mid not in guesses:
+                        guesses[mid] = r0  # type: ignore[assignment]
+                        if sampled(mid, self.verify):
+                            new.append(mid)
+                if len(self.computed) + len(need) + len(new) > self.budget:
+                    queue = []  # the budget is spent: no finer cells either
+                    break
+                need += new
+                taken.append(cell)
+            for key, regime in guesses.items():
+                if key not in self.computed:
+                    self.inferred.setdefault(key, regime)
+            self._compute(need)
+            for cell in taken:
+                leaves.add(cell)
+            # split every probed cell that disagrees, also one probed earlier whose stencil a
+            # wrong guess has just corrected; a quarter is probed when its corners disagree
+            for cell in sorted(leaves):
+                if not self.agrees(cell):
+                    leaves.discard(cell)
+                    i, j, s = cell
+                    h = s // 2
+                    if h >= 2:
+                        quiet |= {(i, j, h), (i + h, j, h), (i, j + h, h), (i + h, j + h, h)}
+            for cell in sorted(quiet):
+                if not self.agrees(cell):
+                    quiet.discard(cell)
+                    queue.append(cell)
+            if not taken:
+                break
 
 
 def adaptive_sweep(
@@ -49,8 +195,12 @@ def adaptive_sweep(
     scheduler: Any = None,
     progress: bool = False,
     on_row: Any = None,
+    engine: str = "compiled",
+    force: bool = False,
+    verify: float = 0.125,
+    regime_of: Callable[[float, float], str] | None = None,
 ) -> pd.DataFrame:
-    """Compute an adaptive regime diagram of ``model``; return its rows (one per point).
+    """Compute an adaptive regime diagram of ``model``; return its points, computed and inferred.
 
     Parameters
     ----------
@@ -59,7 +209,23 @@ def adaptive_sweep(
     budget
         Largest number of points computed (the base grid counts).
     base, levels
-        Points per axis of the base grid, and the number of halvings of a boundary cell.
+        Points per axis of the base grid, and the number of halvings of a cell.
+    scene, table, workers, scheduler, progress, on_row, engine, force
+        As for :func:`sawdrift.study.sweep.sweep` (the base scene, the resumable table of the
+        computed points, the executor, the engine, and whether to add to a table of other code).
+    verify
+        Share in [0, 1] of the inferred points computed as a check (module docstring).
+    regime_of
+        A function (m*, A*) -> regime used instead of running cells (tests of the method); no
+        table is written then.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The computed points' table rows (``inferred`` False) and the inferred points (``inferred``
+        True, with model, m_star, amplitude and regime only). The table, if any, holds exactly
+        the computed rows; ``frame.attrs`` has ``computed``, ``inferred`` and ``wrong_guesses``
+        (sampled inferred points whose run disagreed).
     """
     from .sweep import sweep
 
@@ -68,73 +234,41 @@ def adaptive_sweep(
     if budget < base * base:
         raise SceneError(f"--budget = {budget} must be at least the base grid, {base} x {base} = "
                          f"{base * base}")
+    if not 0.0 <= verify <= 1.0:
+        raise SceneError(f"adaptive: verify = {verify} must be in [0, 1]")
     fine = (base - 1) * 2**levels + 1
     lm = np.linspace(math.log10(m_range[0]), math.log10(m_range[1]), fine)
     la = np.linspace(math.log10(a_range[0]), math.log10(a_range[1]), fine)
-    step = 2**levels
-    regimes: dict[tuple[int, int], str] = {}
-    inferred: set[tuple[int, int]] = set()
-    rows: list[pd.DataFrame] = []
+    frames: list[pd.DataFrame] = []
 
-    def compute(keys: Sequence[tuple[int, int]]) -> None:
-        keys = [k for k in keys if k not in regimes or k in inferred]
-        if not keys:
-            return
+    def evaluate(keys: list[Key]) -> dict[Key, str]:
         pts = [(10.0 ** lm[i], 10.0 ** la[j]) for i, j in keys]
+        if regime_of is not None:
+            return {k: regime_of(m, a) for k, (m, a) in zip(keys, pts, strict=True)}
         frame = sweep([model], points=pts, base=scene, table=table, workers=workers,
-                      scheduler=scheduler, progress=progress, on_row=on_row)
+                      scheduler=scheduler, progress=progress, on_row=on_row, engine=engine,
+                      force=force)
         lookup = {(round(math.log10(r.m_star), 9), round(math.log10(r.amplitude), 9)): r.regime
                   for r in frame.itertuples()}
-        for (i, j) in keys:
-            regimes[(i, j)] = lookup[(round(lm[i], 9), round(la[j], 9))]
-            inferred.discard((i, j))
-        rows.append(frame)
+        frames.append(frame)
+        return {(i, j): lookup[(round(lm[i], 9), round(la[j], 9))] for i, j in keys}
 
-    compute([_key(i, j) for i in range(0, fine, step) for j in range(0, fine, step)])
-    cells = [(i, j, step) for i in range(0, fine - 1, step) for j in range(0, fine - 1, step)]
-    def computed() -> int:
-        return len(regimes) - len(inferred)
-
-    while cells and computed() < budget:
-        split = [(i, j, s) for i, j, s in cells if s > 1 and len({
-            regimes[(i, j)], regimes[(i + s, j)], regimes[(i, j + s)], regimes[(i + s, j + s)]}) > 1]
-        if not split:
-            break
-        split.sort(key=lambda c: -c[2])  # coarsest first
-        new_cells, todo = [], []
-        guessed: dict[tuple[int, int], str] = {}
-        for i, j, s in split:
-            h = s // 2
-            edges = [((i + h, j), (i, j), (i + s, j)), ((i, j + h), (i, j), (i, j + s)),
-                     ((i + s, j + h), (i + s, j), (i + s, j + s)),
-                     ((i + h, j + s), (i, j + s), (i + s, j + s))]
-            centre = (i + h, j + h)
-            fresh = [] if centre in regimes or centre in todo else [centre]
-            for mid, e0, e1 in edges:
-                if mid in regimes or mid in todo or mid in guessed or mid in fresh:
-                    continue
-                if regimes[e0] == regimes[e1]:
-                    guessed[mid] = regimes[e0]
-                else:
-                    fresh.append(mid)
-            if computed() + len(todo) + len(fresh) > budget:
-                break
-            todo += fresh
-            new_cells += [(i, j, h), (i + h, j, h), (i, j + h, h), (i + h, j + h, h)]
-        if not new_cells:
-            break
-        for key, regime in guessed.items():
-            if key not in regimes and key not in todo:
-                regimes[key] = regime
-                inferred.add(key)
-        compute(todo)
-        done = {(i, j, s) for i, j, s in split[: len(new_cells) // 4]}
-        cells = [c for c in cells if c not in done] + new_cells
-    out = pd.concat(rows, ignore_index=True).drop_duplicates("cell_id").assign(inferred=False)
-    guesses = pd.DataFrame({"model": model, "m_star": [10.0 ** lm[i] for i, _ in inferred],
-                            "amplitude": [10.0 ** la[j] for _, j in inferred],
-                            "regime": [regimes[k] for k in inferred], "inferred": True})
-    return pd.concat([out, guesses], ignore_index=True)
+    ref = Refinement(fine, 2**levels, evaluate, budget, verify)
+    ref.run()
+    if regime_of is not None:
+        out = pd.DataFrame({"model": model, "m_star": [10.0 ** lm[i] for i, _ in ref.computed],
+                            "amplitude": [10.0 ** la[j] for _, j in ref.computed],
+                            "regime": list(ref.computed.values())})
+    else:
+        out = pd.concat(frames, ignore_index=True).drop_duplicates("cell_id")
+    out = out.assign(inferred=False)
+    keys = sorted(ref.inferred)
+    guesses = pd.DataFrame({"model": model, "m_star": [10.0 ** lm[i] for i, _ in keys],
+                            "amplitude": [10.0 ** la[j] for _, j in keys],
+                            "regime": [ref.inferred[k] for k in keys], "inferred": True})
+    frame = pd.concat([out, guesses], ignore_index=True) if keys else out.reset_index(drop=True)
+    frame.attrs.update(computed=len(out), inferred=len(keys), wrong_guesses=ref.wrong_guesses)
+    return frame
 
 
 def regime_map(points: pd.DataFrame, m_values: np.ndarray, a_values: np.ndarray) -> np.ndarray:
