@@ -151,3 +151,29 @@ def test_an_axis_sweeps_over_the_default_plane(tmp_path):
     cli("sweep", "--model", "material_point", "--axis", "particle.m_star=0.1,1",
         "--amplitude", "0.1,1,2", "--workers", "1", "--no-progress", "-o", str(out2), check=True)
     assert len(pd.read_parquet(out2)) == 2 * 3
+
+
+def test_scene_options_are_generated_from_the_schema():
+    # the frozen option table matches the schema: a new scene field is a new option
+    from sawdrift.scene import options
+
+    assert options.GENERATED.read_text() == options.render(), (
+        "src/sawdrift/_scene_options.py is stale: regenerate it with "
+        "python -m sawdrift.scene.options")
+    dotted = {row[1] for row in options.scene_options()}
+    for name, part in (("material", sd.scene.Material), ("numerics", sd.scene.Numerics),
+                       ("effects", sd.scene.Effects)):
+        assert {f"{name}.{f}" for f in part.model_fields} <= dotted
+
+
+def test_every_scene_field_reaches_the_scene_from_run_and_sweep(tmp_path):
+    # fields that had no hand-written option before (ramp, measuring window, drift tolerance)
+    out = json.loads(cli("run", "--model", "material_point", "--ramp-periods", "0",
+                         "--measure-periods", "7", "--drift-tolerance", "0.01", "--json",
+                         check=True).stdout)
+    assert out["ramp_periods"] == 0.0 and out["measure_periods"] == 7
+    assert out["scene"]["numerics"]["drift_tolerance"] == 0.01
+    table = tmp_path / "t.parquet"
+    cli("sweep", "--model", "material_point", "--m-star", "0.1", "--amplitude", "0.1,0.2",
+        "--ramp-periods", "2", "--no-progress", "--workers", "1", "-o", str(table), check=True)
+    assert (pd.read_parquet(table)["ramp_periods"] == 2.0).all()

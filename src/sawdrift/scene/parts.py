@@ -42,6 +42,7 @@ def bounded(
             raise ValueError(f"is outside the allowed range {text}")
         return value
 
+    check.interval = text  # type: ignore[attr-defined]  # read by sawdrift.scene.options
     return AfterValidator(check)
 
 
@@ -195,7 +196,7 @@ class Numerics(BaseModel):
     periods: Annotated[float, bounded(0.0, 1e7, lo_open=True)] = Field(
         60.0, description="simulated periods (with settle: the minimum)"
     )
-    measure_periods: Annotated[int, Field(ge=1)] | None = Field(
+    measure_periods: Annotated[int, Field(ge=1, le=10_000_000)] | None = Field(
         None, description="whole periods at the end over which the drift is measured"
     )
     drift_tolerance: Annotated[float, bounded(0.0, 1.0)] = Field(

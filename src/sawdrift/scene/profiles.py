@@ -45,7 +45,9 @@ class Profile(BaseModel):
     model_config = ConfigDict(frozen=True, extra="forbid")
 
     shape: Literal["sphere", "cone", "flat", "power", "table"] = "sphere"
-    exponent: Annotated[float, Field(ge=1.0, le=10.0)] | None = None
+    exponent: Annotated[float, Field(ge=1.0, le=10.0)] | None = Field(
+        None, description="p of N* = a*^p for shape 'power'"
+    )
     file: str | None = None
 
     @model_validator(mode="after")

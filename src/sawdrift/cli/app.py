@@ -1,0 +1,126 @@
+"""The command-line application: the Typer app, one-line errors, exit statuses, shared helpers.
+
+Every user error (bad field, unknown model, malformed TOML or grid, broken plugin, an output path
+that cannot be written) ends in one line on stderr and exit status 2, never a traceback. Exit
+status 1 means a check failed (check-model, validate, bench speed); an internal failure (a bug:
+please report it) exits with :data:`INTERNAL_FAILURE`.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import warnings
+from pathlib import Path
+from typing import Any
+
+import typer
+
+import sawdrift as sd
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    help="Compare frictional contact models on a particle driven by a Rayleigh wave.",
+    pretty_exceptions_enable=False,
+)
+
+
+#: exit status of an unexpected internal failure (1 is a failed check, 2 bad input)
+INTERNAL_FAILURE = 3
+
+
+def _fail(message: str, code: int = 2) -> None:
+    typer.echo(f"error: {message}", err=True)
+    raise typer.Exit(code)
+
+
+def _one_line_warnings(message, category, filename, lineno, file=None, line=None):  # noqa: ARG001
+    sys.stderr.write(f"warning: {message}\n")
+
+
+def _writable(path: Path, option: str = "-o", folder: bool = True) -> Path:
+    """Check before any work that ``path`` (a folder, or a file's folder) can be written.
+
+    A run or a sweep must not compute for minutes and then lose its results to a bad path.
+    """
+    import os
+    import tempfile
+
+    where = path if folder else path.parent
+    if not folder and path.is_dir():
+        _fail(f"{option} {str(path)!r} is a directory; give a file name")
+    if folder and path.exists() and not path.is_dir():
+        _fail(f"{option} {str(path)!r} exists and is not a folder")
+    try:
+        where.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=where, prefix=".sawdrift-probe-")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        _fail(f"{option} {str(path)!r} cannot be written ({exc.strerror or exc})")
+    return path
+
+
+def _parse_param(items: list[str] | None) -> dict[str, Any]:
+    params: dict[str, Any] = {}
+    for item in items or []:
+        if "=" not in item:
+            _fail(f"--param {item!r} must look like NAME=VALUE")
+        key, raw = item.split("=", 1)
+        if not key.strip():
+            _fail(f"--param {item!r} has no parameter name; it must look like NAME=VALUE")
+        try:
+            value: Any = json.loads(raw)
+        except json.JSONDecodeError:
+            value = raw
+        params[key.strip()] = value
+    return params
+
+
+def _load_table(path: Path):
+    import pandas as pd
+
+    if not path.exists():
+        _fail(f"table {str(path)!r} does not exist")
+    if path.is_dir():
+        _fail(f"table {str(path)!r} is a directory, not a Parquet file")
+    try:
+        return pd.read_parquet(path)
+    except Exception as exc:  # noqa: BLE001
+        _fail(f"table {str(path)!r} is not a readable Parquet file ({exc})".splitlines()[0])
+
+
+bench_app = typer.Typer(help="Performance: work-precision study and speed targets.", no_args_is_help=True)
+app.add_typer(bench_app, name="bench")
+
+
+def main() -> None:
+    """Console entry point: one-line errors and exit status 2 for user errors."""
+    warnings.showwarning = _one_line_warnings
+    try:
+        # standalone_mode=False makes click return a typer.Exit's code instead of raising it
+        code = app(standalone_mode=False)
+        sys.exit(code if isinstance(code, int) else 0)
+    except typer.Exit as exc:
+        sys.exit(exc.exit_code)
+    except sd.SawdriftError as exc:
+        typer.echo(f"error: {exc}", err=True)
+        sys.exit(2)
+    except OSError as exc:
+        # a path given on the command line (or a folder it names) cannot be read or written
+        name = f" {str(exc.filename)!r}" if exc.filename else ""
+        typer.echo(f"error: cannot use{name}: {exc.strerror or exc}", err=True)
+        sys.exit(2)
+    except Exception as exc:  # noqa: BLE001 - usage errors and anything unexpected
+        # typer vendors click: its usage errors carry format_message() and an exit code
+        if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):
+            typer.echo(f"error: {exc.format_message()}", err=True)
+            sys.exit(exc.exit_code)
+        if type(exc).__name__ == "Abort":
+            sys.exit(130)
+        text = str(exc).splitlines()[0] if str(exc) else "no details"
+        typer.echo(f"error: internal failure ({text}); please report it with the command line",
+                   err=True)
+        sys.exit(INTERNAL_FAILURE)
+

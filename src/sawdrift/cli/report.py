@@ -1,0 +1,135 @@
+"""Reports: phase diagrams, comparisons, export, the demo, validation and benchmarks."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+import sawdrift as sd
+
+from .._startup import fast_start
+from .app import _fail, _load_table, _writable, app, bench_app
+
+
+@app.command("phase-diagram")
+def phase_diagram_cmd(
+    table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
+    model: Annotated[str | None, typer.Option("--model", help="model to draw")] = None,
+    x: Annotated[str, typer.Option("--x", help="column on the horizontal axis")] = "amplitude",
+    y: Annotated[str, typer.Option("--y", help="column on the vertical axis")] = "m_star",
+    drift: Annotated[
+        bool, typer.Option("--drift", help="regimes beside the drift ratio, boundaries drawn over it "
+                           "(uniform or adaptive tables)")
+    ] = False,
+) -> None:
+    """Draw the regime phase diagram of one model over two swept axes (default A*, m*)."""
+    frame = _load_table(table)
+    _writable(out, folder=False)
+    if drift:
+        path = sd.plot_drift_map(frame, out, model, x, y)
+    else:
+        path = sd.plot_phase_diagram(frame, out, model, x, y)
+    typer.echo(f"wrote {path}")
+
+
+@app.command("compare")
+def compare_cmd(
+    table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
+    models: Annotated[str, typer.Option("--models", help="comma-separated model names")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
+    by: Annotated[
+        str | None, typer.Option("--by", help="a swept column: one panel per model and value "
+                                 "(e.g. effects.rotation)")
+    ] = None,
+    x: Annotated[str, typer.Option("--x", help="column on the horizontal axis")] = "amplitude",
+    y: Annotated[str, typer.Option("--y", help="column on the vertical axis")] = "m_star",
+) -> None:
+    """Side-by-side phase diagrams, the cells where they disagree, and an agreement table.
+
+    Compare models (--models a,b), or the values of a swept field for each model
+    (--by effects.rotation after a sweep with --axis effects.rotation=false,true).
+    """
+    frame = _load_table(table)
+    _writable(out, folder=False)
+    path, md = sd.plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out, by,
+                            x, y)
+    typer.echo(md)
+    typer.echo(f"wrote {path} and {path.with_suffix('.md')}")
+
+
+@app.command("export")
+def export_cmd(
+    table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="grid file: .nc (netCDF) or .zarr")],
+) -> None:
+    """Export a sweep table to a gridded dataset (xarray; CF regime flags; provenance in attrs)."""
+    _load_table(table)  # one-line errors for a missing or unreadable table
+    _writable(out.parent if out.suffix == ".zarr" else out, folder=out.suffix == ".zarr")
+    ds = sd.write_grid(table, out)
+    dims = ", ".join(f"{d} ({n})" for d, n in ds.sizes.items())
+    typer.echo(f"wrote {out}: dimensions {dims}; variables {', '.join(ds.data_vars)}")
+
+
+@app.command("demo")
+def demo_cmd(
+    out: Annotated[Path, typer.Option("-o", "--out", help="output folder")] = Path("sawdrift_out"),
+    n: Annotated[int, typer.Option("--n", help="grid points per axis")] = 21,
+    workers: Annotated[int | None, typer.Option("--workers")] = None,
+) -> None:
+    """The main job: a default scene, and the phase diagrams of material_point and mmd.
+
+    The grid is the paper's Fig. 3 plane, m* in [1e-3, 1e2] and A* in [1e-2, 10], at mu = 0.1,
+    nu = 0.3; the figures and the table go to OUT.
+    """
+    if not 2 <= n <= 401:
+        _fail(f"--n = {n} is not allowed; use 2 to 401 grid points per axis")
+    _writable(out)
+    fast_start()
+    sd.demo(out, n, workers, echo=typer.echo)
+
+
+@app.command("validate")
+def validate_cmd(
+    out: Annotated[Path, typer.Option("-o", "--out", help="report folder (index.html, results.json)")] = Path(
+        "validation_report"
+    ),
+    quick: Annotated[bool, typer.Option("--quick", help="the fast subset CI runs")] = False,
+    cases: Annotated[Path | None, typer.Option("--cases", help="folder of validation cases")] = None,
+    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
+) -> None:
+    """Run the validation cases and write an HTML report; exit status 1 if any case fails."""
+    _writable(out)
+    fast_start()
+    report = sd.validate(out, quick=quick, cases_dir=cases, progress=progress)
+    typer.echo(report.summary_line() if hasattr(report, "summary_line") else str(report))
+    typer.echo(f"wrote {out / 'index.html'} and {out / 'results.json'}")
+    if not report.passed:
+        raise typer.Exit(1)
+
+
+@bench_app.command("work-precision")
+def bench_work_precision_cmd(
+    out: Annotated[Path, typer.Option("-o", "--out", help="output folder")] = Path("work_precision"),
+    models: Annotated[str | None, typer.Option("--models", help="comma-separated model names")] = None,
+    quick: Annotated[bool, typer.Option("--quick", help="a short ladder (seconds)")] = False,
+) -> None:
+    """Error against wall time for every model, order and step (figures, CSV, observed order)."""
+    names = [m.strip() for m in models.split(",")] if models else None
+    for name in names or []:
+        sd.get_model(name)
+    _writable(out)
+    sd.work_precision(names, out, quick=quick)
+    typer.echo(f"wrote {out}")
+
+
+@bench_app.command("speed")
+def bench_speed_cmd(
+    quick: Annotated[bool, typer.Option("--quick", help="small sizes (seconds)")] = False,
+) -> None:
+    """Measure the performance targets and print each with PASS/FAIL; exit 1 if one fails."""
+    result = sd.bench_speed(quick=quick)
+    if not result["all_passed"]:
+        raise typer.Exit(1)

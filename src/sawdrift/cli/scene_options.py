@@ -1,0 +1,99 @@
+"""Scene options for every command that builds a scene, generated from the Scene schema.
+
+:data:`sawdrift._scene_options.OPTIONS` (frozen from the schema by
+:mod:`sawdrift.scene.options`, checked by a test) gives one option per scene field with its name,
+help and allowed range; :func:`with_scene_options` adds them to a command, so ``run``, ``sweep``
+and the studies share them, and a new scene field is a new option without editing the command
+line. The values reach the command as ``scene_overrides``, a ``{dotted field: value}`` dict of
+the options that were given, which :func:`scene_from_options` applies to the scene file (or the
+defaults) through :func:`sawdrift.scene.apply_overrides`, the one rule for every path (a
+normalized field on a device scene is an error naming the device field to set instead).
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+from collections.abc import Callable, Iterable
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+import sawdrift as sd
+
+from .._scene_options import OPTIONS
+
+_TYPES: dict[str, Any] = {"float": float, "int": int, "choice": str}
+
+
+def _parameter(name: str, kind: str, help_text: str) -> inspect.Parameter:
+    ident = name.replace("-", "_")
+    if kind == "bool":
+        option = typer.Option(f"--{name}/--no-{name}", help=help_text, show_default=False)
+        annotation: Any = Annotated[bool | None, option]
+    else:
+        option = typer.Option(f"--{name}", help=help_text, show_default=False)
+        annotation = Annotated[_TYPES[kind] | None, option]
+    return inspect.Parameter(ident, inspect.Parameter.KEYWORD_ONLY, default=None,
+                             annotation=annotation)
+
+
+def with_scene_options(exclude: Iterable[str] = ()) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Decorate a command taking ``scene_overrides``: one option per scene field, except ``exclude``.
+
+    ``exclude`` names options the command defines itself (e.g. sweep's ``--m-star`` takes an axis).
+    """
+    skip = set(exclude)
+    rows = [(name, dotted, kind, text) for name, dotted, kind, _choices, text in OPTIONS
+            if name not in skip]
+
+    def decorate(func: Callable[..., Any]) -> Callable[..., Any]:
+        sig = inspect.signature(func, eval_str=True)
+        own = [p for p in sig.parameters.values() if p.name != "scene_overrides"]
+        taken = {p.name for p in own}
+        clash = taken & {name.replace("-", "_") for name, *_ in rows}
+        if clash:
+            raise TypeError(f"{func.__name__} defines scene options itself: {sorted(clash)}")
+        extra = [_parameter(name, kind, text) for name, _dotted, kind, text in rows]
+
+        @functools.wraps(func)
+        def command(**kwargs: Any) -> Any:
+            overrides = {}
+            for name, dotted, _kind, _text in rows:
+                value = kwargs.pop(name.replace("-", "_"), None)
+                if value is not None:
+                    overrides[dotted] = value
+            return func(**kwargs, scene_overrides=overrides)
+
+        params = own + extra
+        command.__signature__ = sig.replace(parameters=params)  # type: ignore[attr-defined]
+        command.__annotations__ = {p.name: p.annotation for p in params}
+        del command.__wrapped__  # typer must read the signature above, not func's
+        return command
+
+    return decorate
+
+
+def scene_from_options(scene_file: Path | None, model: str | None = None,
+                       params: dict[str, Any] | None = None,
+                       overrides: dict[str, Any] | None = None) -> sd.Scene:
+    """Load a scene file (or the defaults) and apply the command-line values.
+
+    ``overrides`` maps dotted scene fields to values; ``model`` and ``params`` set the model
+    and its parameters (a file's parameters belong to the file's model and are dropped when
+    another model is named).
+    """
+    base = sd.Scene.from_toml(scene_file) if scene_file is not None else None
+    data = base.model_dump(exclude_none=True) if base is not None else {}
+    values = dict(overrides or {})
+    if model is not None:
+        values["model"] = model
+    # one rule for every path: on a device scene a derived (normalized) field is an error
+    # naming the device field to set instead (sawdrift.scene.apply_overrides)
+    data = sd.scene.apply_overrides(data, values)
+    if base is not None and model not in (None, base.model):
+        data["model_params"] = {}
+    if params:
+        data.setdefault("model_params", {}).update(params)
+    return sd.scene.build_scene(data, source=str(scene_file) if scene_file else None)

@@ -1,0 +1,103 @@
+"""Studies over many scenes: sweep (uniform or adaptive)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+import sawdrift as sd
+
+from .._startup import fast_start
+from .app import _fail, _parse_param, _writable, app
+from .scene_options import scene_from_options, with_scene_options
+
+
+@app.command("sweep")
+@with_scene_options(exclude=("m-star", "amplitude"))
+def sweep_cmd(
+    out: Annotated[Path, typer.Option("-o", "--out", help="Parquet table (resumed if it exists)")],
+    scene_arg: Annotated[Path | None, typer.Argument(help="base scene TOML (or use --scene)")] = None,
+    model: Annotated[str | None, typer.Option("--model", help="model name(s), comma-separated")] = None,
+    m_star: Annotated[
+        str | None, typer.Option("--m-star", help="START:STOP:N (log) or a,b,c; shorthand for an axis")
+    ] = None,
+    amplitude: Annotated[
+        str | None, typer.Option("--amplitude", help="START:STOP:N (log) or a,b,c; shorthand for an axis")
+    ] = None,
+    axis: Annotated[
+        list[str] | None,
+        typer.Option("--axis", help="FIELD=SPEC, repeatable: a dotted scene field (material.mu, "
+                     "device.amplitude, effects.rotation) and a,b,c | START:STOP:N (log) | "
+                     "lin:START:STOP:N; device values may carry units ('5 nm,10 nm')"),
+    ] = None,
+    adaptive: Annotated[
+        bool, typer.Option("--adaptive", help="refine only where neighbouring cells disagree in regime "
+                           "(m*, A* ranges from --m-star/--amplitude START:STOP:BASE)")
+    ] = False,
+    budget: Annotated[int, typer.Option("--budget", help="adaptive: most cells computed")] = 2000,
+    levels: Annotated[int, typer.Option("--levels", help="adaptive: halvings of a boundary cell")] = 3,
+    scene_file: Annotated[Path | None, typer.Option("--scene", help="base scene TOML")] = None,
+    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    workers: Annotated[int | None, typer.Option("--workers", help="local processes")] = None,
+    scheduler: Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")] = None,
+    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
+    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
+    force: Annotated[
+        bool, typer.Option("--force", help="resume a table written by other code or from another "
+                           "base scene (rows of both kinds are then mixed)")
+    ] = False,
+    *,
+    scene_overrides: dict[str, Any],
+) -> None:
+    """Run a grid (models x axes) into a resumable Parquet table.
+
+    The grid is the (m*, A*) plane, by default m* in [1e-3, 1e2] and A* in [1e-2, 10] with 11
+    log-spaced values each, times every --axis; an axis over particle.m_star or drive.amplitude
+    replaces that default. A device scene has no default plane: give its axes (device.*).
+    Every other scene field is an option (--mu, --periods, --settle, ...) setting the base scene.
+    """
+    if scene_arg is not None and scene_file is not None:
+        _fail("give the base scene either as an argument or with --scene, not both")
+    _writable(out, folder=False)
+    scene_file = scene_arg or scene_file
+    axes: dict[str, str] = {}
+    for item in axis or []:
+        field, sep, spec = item.partition("=")
+        if not sep or not field.strip() or not spec.strip():
+            _fail(f"--axis {item!r} must look like FIELD=SPEC (e.g. material.mu=0.05,0.1,0.2)")
+        axes[field.strip()] = spec.strip()
+    named = [m.strip() for m in model.split(",") if m.strip()] if model else []
+    fast_start()
+    for name in named:
+        sd.get_model(name)
+    base = scene_from_options(scene_file, named[0] if named else None, _parse_param(param),
+                              scene_overrides)
+    models = named or [base.model]
+    if adaptive:
+        if axes or len(models) != 1:
+            _fail("--adaptive works on the (m*, A*) plane of one model: no --axis, one --model")
+        m_axis = sd.parse_axis(m_star or "1e-3:1e2:21", "m_star")
+        a_axis = sd.parse_axis(amplitude or "1e-2:10:21", "amplitude")
+        if m_axis.size != a_axis.size or m_axis.size < 2:
+            _fail("--adaptive needs --m-star and --amplitude as START:STOP:N with the same N >= 2")
+        frame = sd.adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
+                               budget=budget, base=int(m_axis.size), levels=levels, scene=base,
+                               table=out, workers=workers, scheduler=scheduler, progress=progress)
+    else:
+        if base.device is None:
+            # the (m*, A*) plane unless an axis replaces it: --axis effects.rotation=false,true
+            # alone sweeps rotation over the whole default plane, not over one cell
+            if m_star is None and "particle.m_star" not in axes:
+                m_star = "1e-3:1e2:11"
+            if amplitude is None and "drive.amplitude" not in axes:
+                amplitude = "1e-2:10:11"
+        frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
+                         workers=workers, scheduler=scheduler, progress=progress, engine=engine,
+                         force=force)
+    counts = frame.groupby(["model", "regime"]).size()
+    for (name, regime), n in counts.items():
+        typer.echo(f"{name:>20} {regime:>14}: {n}")
+    errors = int(frame["error"].notna().sum())
+    typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)")
