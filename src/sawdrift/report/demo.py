@@ -1,4 +1,5 @@
-"""The main job (``sawdrift demo``): a default scene, the paper's Fig. 2 and Fig. 3, rotation."""
+"""The main job (``sawdrift demo``): a default scene, the paper's Fig. 2 and Fig. 3, the explorer
+page, rotation."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ from ..dynamics.runner import run
 from ..scene.schema import Scene
 from ..study.sweep import sweep
 from .diagrams import plot_compare, plot_drift_map, plot_phase_diagram, unsettled_cells
+from .explore import write_explorer
 from .fig2 import plot_fig2
 from .plots import plot_trajectory
 
@@ -19,8 +21,9 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
 
     The default scene (mmd, m* = 0.1, A* = 0.316), the phase diagrams of the material point and
     mmd over m* in [1e-3, 1e2] and A* in [1e-2, 10] (n x n cells, 40 periods, mu = 0.1,
-    nu = 0.3), their comparison and mmd's drift map, the four regimes' trajectories (Fig. 2),
-    and the same plane with rotation off and on ((n + 1)/2 cells per axis).
+    nu = 0.3), their comparison and mmd's drift map, the explorer page of their table
+    (``explore.html``), the four regimes' trajectories (Fig. 2), and the same plane with rotation
+    off and on ((n + 1)/2 cells per axis).
     """
     out.mkdir(parents=True, exist_ok=True)
     scene = Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
@@ -43,6 +46,9 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     echo(f"wrote {drift.name}: mmd's drift ratio under its regime boundaries; {unsettled} of "
          f"{len(mmd)} cells (hatched) have not reached their steady drift in 40 periods "
          "(`sawdrift sweep --settle` runs each cell to it)")
+    page = write_explorer(table, out / "explore.html")
+    echo(f"wrote {page.name}: both phase diagrams to hover, click and compare in a browser "
+         "(one file, works offline)")
     fig2 = plot_fig2(out / "fig2_regimes.png")
     echo(f"wrote {fig2.name}: the four regimes' trajectories (the paper's Fig. 2)")
     # rolling: the same plane with the sphere free to turn (kappa = 2/5), side by side

@@ -1,0 +1,287 @@
+"""The Bokeh document of the explorer page (:mod:`sawdrift.report.explore` prepares its data).
+
+Every panel's cells are one ``ColumnDataSource`` shared by its regime view and its drift view,
+so hovering, tapping and selection agree between the two; all phase views share one pair of
+ranges (zoom and pan together). Two CustomJS callbacks run in the page: one recomputes the
+disagreement layer when the set of compared panels changes, one decodes the tapped cell's trace
+(zlib via the browser's ``DecompressionStream``, then the 8-bit levels of
+:func:`sawdrift.study.traces.pack_traces`) into the trace panel's source.
+"""
+
+from __future__ import annotations
+
+import html
+from typing import TYPE_CHECKING, Any
+
+from .diagrams import COLOURS
+
+if TYPE_CHECKING:
+    from bokeh.document import Document
+
+    from .explore import Axis, ExplorerData
+
+NO_TRACES = ("Traces were not stored with this table, so a click cannot show a cell's last "
+             "periods. Store them by running the sweep again with <code>--traces</code> "
+             "(<code>sawdrift sweep ... --traces -o TABLE.parquet</code>: the cells already in the "
+             "table are run once more, for their traces) and build this page again.")
+
+_NUM = """return Number.isFinite(value) ? String(Number(value.toPrecision(4))) : "n/a";"""
+_PERIOD = """if (!Number.isFinite(value)) return "n/a";
+return value > 0 ? value + (value == 1 ? " period" : " periods") : "none";"""
+
+# disagreement layer: a cell is marked where the compared panels' regimes (c<q> columns) differ
+_DISAGREE_JS = """
+const S = compare.active;
+const show = toggle.active.length > 0;
+for (let p = 0; p < sources.length; p++) {
+  const d = sources[p].data;
+  const n = d.regime.length;
+  const marked = [];
+  if (S.length > 1) {
+    for (let i = 0; i < n; i++) {
+      const first = d["c" + S[0]][i];
+      let known = first >= 0, differ = false;
+      for (const q of S) {
+        const c = d["c" + q][i];
+        if (c < 0) known = false;
+        if (c !== first) differ = true;
+      }
+      if (known && differ) marked.push(i);
+    }
+  }
+  overlays[p].view.filter.indices = marked;
+  overlays[p].visible = show;
+  titles[p].text = base[p] + (S.length > 1 ? ` (disagree: ${marked.length} of ${n})` : "");
+}
+summary.text = S.length > 1 ? `${S.length} panels compared` : "select two or more panels to compare";
+"""
+
+# click: the tapped cell's header line, then its trace decoded from the page's blob
+_TAP_JS = """
+const p = sources.findIndex((s) => s.selected === cb_obj);
+if (p < 0 || cb_obj.indices.length === 0) return;
+const i = cb_obj.indices[0];
+for (let q = 0; q < sources.length; q++)
+  if (q !== p && sources[q].selected.indices.length) sources[q].selected.indices = [];
+const d = sources[p].data;
+const fmt = (v) => Number.isFinite(v) ? String(Number(v.toPrecision(4))) : "n/a";
+const head = `<b>${labels[p]}</b>: ${xlabel} = ${fmt(d.xv[i])}, ${ylabel} = ${fmt(d.yv[i])}: ` +
+  `<b>${d.regime[i]}</b>, drift ratio ${fmt(d.drift_ratio[i])}`;
+const empty = {t: []};
+for (const f of fields) empty[f] = [];
+if (!blob) { trace.data = empty; info.text = head + "<br>" + no_traces; return; }
+const row = d.trace_row[i];
+if (row < 0) {
+  trace.data = empty;
+  info.text = head + "<br>This cell has no stored trace (it failed, or was computed without --traces).";
+  return;
+}
+async function load() {
+  const bytes = Uint8Array.from(atob(blob), (c) => c.charCodeAt(0));
+  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate"));
+  return await new Response(stream).arrayBuffer();
+}
+window.__sawdrift_traces = window.__sawdrift_traces || load();
+window.__sawdrift_traces.then((buf) => {
+  const width = 2 + 2 * fields.length;
+  const count = buf.byteLength / (4 * width + fields.length * m);
+  const h = new Float32Array(buf, 4 * width * row, width);
+  const codes = new Uint8Array(buf, 4 * width * count);
+  const data = {t: Array.from({length: m}, (_, k) => h[0] + (h[1] - h[0]) * k / (m - 1))};
+  fields.forEach((f, j) => {
+    const lo = h[2 + 2 * j], hi = h[3 + 2 * j], at = (row * fields.length + j) * m;
+    const v = new Array(m);
+    let level = 0;
+    for (let k = 0; k < m; k++) {
+      level = (level + codes[at + k]) & 255;
+      v[k] = lo + (hi - lo) * level / 255;
+    }
+    data[f] = v;
+  });
+  const fit = (r, v) => {
+    const lo = Math.min(...v), hi = Math.max(...v);
+    const flat = hi - lo <= 1e-9 * Math.max(1, Math.abs(lo), Math.abs(hi));  // e.g. N* = 0 in flight
+    const pad = flat ? 0.5 * Math.max(1, Math.abs(lo)) : 0.05 * (hi - lo);
+    r.setv({start: lo - pad, end: hi + pad, reset_start: lo - pad, reset_end: hi + pad});
+  };
+  fit(t_range, [data.t[0], data.t[m - 1]]);
+  fields.forEach((f, j) => fit(y_ranges[j], data[f]));
+  trace.data = data;
+  info.text = head + `<br>the last ${fmt(h[1] - h[0])} periods, t* = ${fmt(h[0])} to ${fmt(h[1])}`;
+}).catch((e) => { info.text = head + "<br>the stored traces could not be read: " + e; });
+"""
+
+
+def _swatches() -> str:
+    items = [f'<span style="display:inline-block;width:12px;height:12px;background:{c};'
+             f'border:1px solid #888;margin:0 4px 0 10px"></span>{html.escape(r)}'
+             for r, c in COLOURS.items()]
+    return "".join(items)
+
+
+def _tooltip(label: str, xa: Axis, ya: Axis, info: dict[str, Any]) -> str:
+    safe = html.escape(label).replace("@", "&#64;").replace("$", "&#36;")
+    lines = [f"<b>@regime</b> &mdash; {safe}",
+             f"{html.escape(xa.label)} = @xv{{custom}}, {html.escape(ya.label)} = @yv{{custom}}"]
+    if {xa.column, ya.column} != {"m_star", "amplitude"}:
+        lines.append("m* = @m_star{custom}, A* = @amplitude{custom}")
+    lines += ["drift ratio: @drift_ratio{custom}", "drift velocity x*': @drift_velocity{custom}"]
+    if info["device"]:
+        lines.append("drift speed: @speed{custom} m/s")
+    lines.append("settled: @settled (after @settle_periods{custom} periods)")
+    lines.append("orbit period: @orbit_period{period}" if info["has_orbit_period"]
+                 else "orbit period: not stored in this table")
+    lines += ["hop period: @hop_period{period}", "Lyapunov exponent: @lyapunov{custom}",
+              "gross-slip fraction: @gross_slip{custom}", "lift-offs per period: @liftoffs{custom}",
+              "model version: @version"]
+    if info["has_errors"]:
+        lines.append("error: @error")
+    lines.append('<span style="color:#777">cell @cell_id</span>')
+    body = "<br>".join(lines)
+    return f'<div class="sd-tip" style="font-size:12px;line-height:1.35;max-width:340px">{body}</div>'
+
+
+def _drift_palette() -> list[str]:
+    import matplotlib
+    from matplotlib.colors import to_hex
+
+    cmap = matplotlib.colormaps["RdBu_r"]
+    return [to_hex(cmap(k / 255.0)) for k in range(256)]
+
+
+def build_document(page: ExplorerData) -> Document:
+    """The page: header and controls, one (regimes, drift) row per panel, the trace panel."""
+    import numpy as np
+    from bokeh.document import Document
+    from bokeh.layouts import column, row
+    from bokeh.models import (
+        CategoricalColorMapper,
+        CDSView,
+        CheckboxGroup,
+        ColorBar,
+        ColumnDataSource,
+        CustomJS,
+        CustomJSHover,
+        Div,
+        HoverTool,
+        IndexFilter,
+        LinearColorMapper,
+        Range1d,
+        TapTool,
+    )
+    from bokeh.plotting import figure
+
+    panels, sources, marks, xa, ya, info = page.panels, page.sources, page.marks, page.xa, page.ya, page.info
+    blob, m, fields, lim = page.blob, page.samples, page.fields, page.limit
+    regimes = CategoricalColorMapper(factors=list(COLOURS), palette=list(COLOURS.values()),
+                                     nan_color="white")
+    drift = LinearColorMapper(palette=_drift_palette(), low=-lim, high=lim, nan_color="#d9d9d9")
+    num, period = CustomJSHover(code=_NUM), CustomJSHover(code=_PERIOD)
+    formatters = {f"@{c}": num for c in ("xv", "yv", "m_star", "amplitude", "drift_ratio",
+                                          "drift_velocity", "speed", "settle_periods", "lyapunov",
+                                          "gross_slip", "liftoffs")}
+    formatters.update({"@orbit_period": period, "@hop_period": period})
+    box = [np.inf, -np.inf, np.inf, -np.inf]
+    for s in sources:
+        xs = np.concatenate(s["xs"]) if "xs" in s else np.concatenate([s["left"], s["right"]])
+        ys = np.concatenate(s["ys"]) if "ys" in s else np.concatenate([s["bottom"], s["top"]])
+        box = [min(box[0], xs.min()), max(box[1], xs.max()), min(box[2], ys.min()), max(box[3], ys.max())]
+    x_range = Range1d(float(box[0]), float(box[1]), bounds=(float(box[0]), float(box[1])))
+    y_range = Range1d(float(box[2]), float(box[3]), bounds=(float(box[2]), float(box[3])))
+    axis_type = {"x_axis_type": "log" if xa.log else "linear", "y_axis_type": "log" if ya.log else "linear"}
+    rows, cds, overlays, titles, base = [], [], [], [], []
+    for k, (panel, data) in enumerate(zip(panels, sources, strict=True)):
+        src = ColumnDataSource(data, name=f"cells-{k}")
+        cds.append(src)
+        views = []
+        for kind in ("regimes", "drift"):
+            fig = figure(width=360 if kind == "regimes" else 430, height=330, x_range=x_range,
+                         y_range=y_range, tools="pan,wheel_zoom,box_zoom,reset,save",
+                         active_scroll="wheel_zoom", title=f"{panel.label}: "
+                         + ("regimes" if kind == "regimes" else "drift ratio"),
+                         name=f"{kind}-{k}", **axis_type)
+            fig.xaxis.axis_label, fig.yaxis.axis_label = xa.label, ya.label
+            fig.toolbar.logo, fig.toolbar.autohide = None, True
+            fill = ({"field": "regime", "transform": regimes} if kind == "regimes"
+                    else {"field": "drift_ratio", "transform": drift})
+            shape = ({"left": "left", "right": "right", "bottom": "bottom", "top": "top"}
+                     if panel.quads is not None else {"xs": "xs", "ys": "ys"})
+            draw = fig.quad if panel.quads is not None else fig.patches
+            cells = draw(**shape, source=src, fill_color=fill, line_color=None,
+                         selection_line_color="black", selection_line_width=2.5)
+            cells.nonselection_glyph = cells.glyph
+            fig.add_tools(HoverTool(renderers=[cells], tooltips=_tooltip(panel.label, xa, ya, info),
+                                    formatters=formatters), TapTool(renderers=[cells]))
+            if kind == "regimes":
+                # the disagreeing cells only: a hatch drawn at zero alpha still costs its time
+                marked = IndexFilter([int(i) for i in np.flatnonzero(marks[k])])
+                layer = draw(**shape, source=src, view=CDSView(filter=marked), fill_alpha=0,
+                             line_alpha=0, hatch_pattern="x", hatch_color="#1a1a1a", hatch_alpha=0.55,
+                             hatch_scale=9, hatch_weight=0.7)
+                layer.selection_glyph = layer.nonselection_glyph = layer.glyph
+                overlays.append(layer)
+                titles.append(fig.title)
+                base.append(f"{panel.label}: regimes")
+            else:
+                fig.add_layout(ColorBar(color_mapper=drift, width=10, title="drift ratio"), "right")
+                unsettled = [i for i, s in enumerate(data["settled"]) if s == "no"]
+                if unsettled:
+                    hatch = draw(**shape, source=src, view=CDSView(filter=IndexFilter(unsettled)),
+                                 fill_alpha=0, line_alpha=0, hatch_pattern="/", hatch_color="#444",
+                                 hatch_alpha=0.45, hatch_scale=9, hatch_weight=0.7)
+                    hatch.selection_glyph = hatch.nonselection_glyph = hatch.glyph
+                    fig.title.text += f"; hatched: not settled ({len(unsettled)})"
+            views.append(fig)
+        rows.append(row(*views))
+    trace = ColumnDataSource({"t": [], **{f: [] for f in fields}}, name="trace-source")
+    # explicit ranges, set by the click (an empty source leaves a data range nothing to fit)
+    t_range = Range1d(0, 1)
+    y_ranges = [Range1d(0, 1) for _ in fields]
+    trace_figs = []
+    names = {"x": "x*", "a": "a*", "N": "N*", "T": "T*"}
+    for j, f in enumerate(fields):
+        fig = figure(width=430, height=150 if j < len(fields) - 1 else 175, x_range=t_range,
+                     y_range=y_ranges[j], tools="pan,wheel_zoom,box_zoom,reset,save", name=f"trace-{f}")
+        fig.toolbar.logo, fig.toolbar.autohide = None, True
+        fig.line("t", f, source=trace, line_width=1.4, color="#1f4e9c")
+        fig.yaxis.axis_label = names.get(f, f)
+        fig.min_border_left = 60
+        if j == len(fields) - 1:
+            fig.xaxis.axis_label = "t* (wave periods)"
+        trace_figs.append(fig)
+    first = ("Click a cell to draw its last periods here." if info["stored"]
+             else NO_TRACES)
+    trace_info = Div(text=first, width=430, name="trace-info", styles={"font-size": "13px"})
+    labels = [p.label for p in panels]
+    tap = CustomJS(args={"sources": cds, "labels": labels, "trace": trace, "info": trace_info,
+                         "blob": blob, "m": m, "fields": fields, "no_traces": NO_TRACES,
+                         "xlabel": xa.label, "ylabel": ya.label, "t_range": t_range,
+                         "y_ranges": y_ranges}, code=_TAP_JS)
+    for src in cds:
+        src.selected.js_on_change("indices", tap)
+    compare = CheckboxGroup(labels=labels, active=list(range(len(panels))), inline=True, name="compare")
+    toggle = CheckboxGroup(labels=["hatch (x) the cells where the compared panels disagree in regime"],
+                           active=[0], name="layer")
+    summary = Div(text=f"{len(panels)} panels compared" if len(panels) > 1 else
+                  "one panel: nothing to compare", name="summary")
+    again = CustomJS(args={"sources": cds, "overlays": overlays, "titles": titles, "base": base,
+                           "compare": compare, "toggle": toggle, "summary": summary}, code=_DISAGREE_JS)
+    compare.js_on_change("active", again)
+    toggle.js_on_change("active", again)
+    for k, mark in enumerate(marks):
+        if len(panels) > 1:
+            titles[k].text = f"{base[k]} (disagree: {int(np.sum(mark))} of {len(mark)})"
+    stored = (f"{info['stored']} of {info['cells']} cells have a stored trace: click one."
+              if info["stored"] else f"<b>{NO_TRACES}</b>")
+    header = Div(width=1250, name="header", text=(
+        f"<h2 style='margin:4px 0'>sawdrift explorer: {html.escape(info['name'])}</h2>"
+        f"<div>{info['cells']} cells in {len(panels)} panel(s); sawdrift "
+        f"{html.escape(str(info['version']))}. Hover a cell for its metrics; zoom and pan move every "
+        f"diagram together. {stored}</div><div style='margin-top:4px'>{_swatches()}</div>"))
+    controls = column(Div(text="<b>Compare</b> (the hatched layer):"), compare, toggle, summary)
+    side = column(trace_info, *trace_figs)
+    doc = Document()
+    doc.add_root(column(header, controls, row(column(*rows), side)))
+    doc.js_on_event("document_ready", CustomJS(code="window.__sawdrift_ready = true;"))
+    doc.title = f"sawdrift explorer: {info['name']}"
+    return doc

@@ -1,0 +1,424 @@
+"""The explorer page: traces stored beside a table, and the page driven in headless Chromium."""
+
+from __future__ import annotations
+
+import io
+import re
+import shutil
+import tempfile
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import sawdrift as sd
+from sawdrift.errors import SawdriftError, SceneError
+from sawdrift.report.explore import explorer_data, write_explorer
+from sawdrift.study.adaptive import regime_map
+from sawdrift.study.sweep import cell_id, grid
+from sawdrift.study.traces import (
+    PACKED_FIELDS,
+    SOURCE_COLUMNS,
+    append_trace,
+    consolidate_traces,
+    read_traces,
+    record_every,
+    run_traced,
+    trace_of,
+    traces_journal,
+    traces_path,
+)
+
+BASE = sd.Scene(numerics={"periods": 40})
+MODELS = ["material_point", "mmd"]
+MOTOR = "examples/saw_linear_motor.toml"
+
+
+@pytest.fixture(scope="module")
+def table(tmp_path_factory):
+    """A 6 x 6 two-model table of the demo's plane, with traces of four cells (real runs)."""
+    path = tmp_path_factory.mktemp("explore") / "phase.parquet"
+    frame = sd.sweep(MODELS, "1e-3:1e2:6", "1e-2:10:6", base=BASE, table=path, workers=1,
+                     progress=False)
+    mmd = frame[frame["model"] == "mmd"]
+    picks = [mmd.loc[mmd["drift_ratio"].idxmax()], mmd.loc[mmd["drift_ratio"].idxmin()],
+             frame[frame["model"] == "material_point"].iloc[20], mmd.iloc[3]]
+    for row in picks:
+        scene = grid([row["model"]], [row["m_star"]], [row["amplitude"]], BASE)[0]
+        assert cell_id(scene) == row["cell_id"]
+        result = sd.run(scene, trajectory=True, record_every=record_every(scene))
+        append_trace(path, row["cell_id"], trace_of(result))
+    consolidate_traces(path)
+    return path, frame, picks[0]
+
+
+# -- traces ----------------------------------------------------------------------------------
+
+
+def test_trace_is_the_last_periods_of_the_trajectory_decimated():
+    scene = sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316},
+                     numerics={"periods": 20})
+    result = sd.run(scene, trajectory=True)
+    tr = result.trajectory
+    trace = trace_of(result, periods=3, samples=120)
+    t = tr["t"].to_numpy()
+    assert trace["t"].size == 120
+    step = t[1] - t[0]
+    # the window is the last 3 periods: first sample within one recording step of t_end - 3
+    assert 0.0 <= trace["t"][0] - (t[-1] - 3.0) < step + 1e-6
+    assert trace["t"][-1] == pytest.approx(t[-1], abs=1e-5)
+    # every kept sample is a row of the trajectory, unchanged (float32 copies)
+    rows = np.searchsorted(t, trace["t"].astype(float) - 1e-5)
+    for field in ("x", "a", "N", "T"):
+        column = next(c for c in SOURCE_COLUMNS[field] if c in tr.columns)
+        np.testing.assert_allclose(trace[field], tr[column].to_numpy()[rows], rtol=1e-6, atol=1e-6)
+    # the forces' columns under their other names (N, T before the runner's rename) read the same
+    other = {"N_star": "N", "T_star": "T", "N": "N_star", "T": "T_star"}
+    result.trajectory = tr.rename(columns={c: other[c] for c in tr.columns if c in other})
+    again = trace_of(result, periods=3, samples=120)
+    for field in ("N", "T"):
+        np.testing.assert_array_equal(again[field], trace[field])
+
+
+def test_traced_run_records_enough_for_a_full_trace_and_changes_nothing():
+    for model in ("mmd", "material_point"):
+        scene = sd.Scene(model=model, particle={"m_star": 0.03}, drive={"amplitude": 1.0},
+                         numerics={"periods": 12})
+        result, trace = run_traced(scene)
+        assert trace["t"].size == 400, model  # the stride leaves >= 400 samples in 4 periods
+        assert trace["t"][-1] - trace["t"][0] == pytest.approx(4.0, abs=0.02)
+        plain = sd.run(scene)
+        assert (result.drift_ratio, result.regime) == (plain.drift_ratio, plain.regime)
+
+
+def test_trace_journal_survives_a_cut_line_and_consolidates(tmp_path):
+    table = tmp_path / "t.parquet"
+    rng = np.random.default_rng(1)
+    made = {f"cell{k}": {f: rng.normal(size=50).astype(np.float32) for f in ("t", "x", "a", "N", "T")}
+            for k in range(3)}
+    for cid, tr in made.items():
+        append_trace(table, cid, tr)
+    line = traces_journal(table).read_text().splitlines()[0]
+    with traces_journal(table).open("a") as fh:  # a kill in the middle of writing a fourth line
+        fh.write(line.replace("cell0", "cell9")[: len(line) // 2])
+    got = read_traces(table)
+    assert sorted(got) == sorted(made)
+    assert consolidate_traces(table) == traces_path(table)
+    assert not traces_journal(table).exists()
+    again = read_traces(table)
+    for cid, tr in made.items():
+        for f, values in tr.items():
+            np.testing.assert_array_equal(again[cid][f], values)
+    append_trace(table, "cell0", {f: v[:10] for f, v in made["cell0"].items()})  # a newer trace wins
+    assert read_traces(table)["cell0"]["x"].size == 10
+
+
+# -- page data -------------------------------------------------------------------------------
+
+
+def test_bad_input_gives_one_line(tmp_path, table):
+    path, frame, _ = table
+    plain = tmp_path / "plain.parquet"
+    pd.DataFrame({"a": [1.0, 2.0]}).to_parquet(plain)
+    text = tmp_path / "text.parquet"
+    text.write_text("not a table\n")
+    cases = [(plain, "is not a sawdrift sweep table (no cell_id, model, regime"),
+             (tmp_path / "missing.parquet", "does not exist"),
+             (text, "is not a readable Parquet file"),
+             (tmp_path, "is a directory")]
+    for bad, needle in cases:
+        with pytest.raises(SceneError) as err:
+            write_explorer(bad, tmp_path / "x.html")
+        assert needle in str(err.value) and "\n" not in str(err.value)
+    with pytest.raises(SawdriftError) as err:
+        write_explorer(path, tmp_path / "x.html", traces=plain)
+    assert "not a sawdrift traces file" in str(err.value) and "\n" not in str(err.value)
+    with pytest.raises(SceneError, match="axis 'nope' is not a column"):
+        write_explorer(path, tmp_path / "x.html", x="nope")
+    assert not (tmp_path / "x.html").exists()
+
+
+def test_uniform_cells_meet_at_geometric_midpoints_and_disagreement_matches_the_table(table):
+    path, frame, _ = table
+    data = explorer_data(path)
+    assert [p.label for p in data.panels] == MODELS
+    amps = np.sort(frame["amplitude"].unique())
+    mids = np.sqrt(amps[1:] * amps[:-1])
+    for src in data.sources:
+        # each cell's right edge is the next cell's left edge, at sqrt(A_i A_i+1)
+        np.testing.assert_allclose(np.unique(src["left"])[1:], mids, rtol=1e-12)
+        np.testing.assert_allclose(np.unique(src["right"])[:-1], mids, rtol=1e-12)
+    wide = frame.pivot_table(index=["m_star", "amplitude"], columns="model", values="regime",
+                             aggfunc="first")
+    differ = int((wide["material_point"] != wide["mmd"]).sum())
+    assert differ > 0
+    assert [int(m.sum()) for m in data.marks] == [differ, differ]
+
+
+def test_adaptive_table_draws_the_nearest_point_regions(tmp_path):
+    table = tmp_path / "ad.parquet"
+    points = sd.adaptive_sweep("material_point", (1e-3, 1e2), (1e-2, 10.0), budget=60, base=5,
+                               levels=2, scene=BASE, table=table, workers=1)
+    computed = points[~points["inferred"]]
+    data = explorer_data(table)
+    (panel,), (src,) = data.panels, data.sources
+    assert panel.patches is not None and len(src["xs"]) == len(computed) > 25
+    polys = [np.column_stack([np.log10(x), np.log10(y)]) for x, y in zip(src["xs"], src["ys"], strict=True)]
+    area = sum(0.5 * abs(np.dot(p[:, 0], np.roll(p[:, 1], 1)) - np.dot(p[:, 1], np.roll(p[:, 0], 1)))
+               for p in polys)
+    allp = np.vstack(polys)
+    span = np.ptp(allp[:, 0]) * np.ptp(allp[:, 1])
+    assert area == pytest.approx(span, rel=1e-5)  # the cells tile the plotted box
+    # a random point of the plane lies in the cell whose regime the adaptive map gives it
+    from matplotlib.path import Path as MplPath
+
+    rng = np.random.default_rng(3)
+    lo, hi = allp.min(axis=0), allp.max(axis=0)
+    probe = lo + (hi - lo) * rng.random((300, 2))
+    paths = [MplPath(p) for p in polys]
+    inside = np.array([next(k for k, pa in enumerate(paths) if pa.contains_point(q)) for q in probe])
+    want = [regime_map(computed, np.array([10 ** q[1]]), np.array([10 ** q[0]]))[0, 0] for q in probe]
+    assert list(src["regime"][inside]) == want
+
+
+def test_device_table_is_drawn_on_physical_axes_with_speeds_in_m_s(tmp_path):
+    from pathlib import Path
+
+    base = sd.Scene.from_toml(Path(__file__).resolve().parents[1] / MOTOR).with_updates(
+        **{"numerics.settle": False, "numerics.periods": 20})
+    table = tmp_path / "dev.parquet"
+    frame = sd.sweep(["mmd"], axes={"device.amplitude": "5 nm,10 nm", "device.frequency": "5 MHz,10 MHz"},
+                     base=base, table=table, workers=1, progress=False)
+    data = explorer_data(table)
+    assert (data.xa.label, data.ya.label) == ("device.amplitude (m)", "device.frequency (Hz)")
+    (src,) = data.sources
+    rows = frame.set_index("cell_id").loc[src["cell_id"]]
+    # x*' a0 f with a0 = A_y / A* (docs/physics.md, "Physical units"), written out here
+    expect = rows["drift_velocity"] * rows["device.amplitude"] / rows["amplitude"] * rows["device.frequency"]
+    np.testing.assert_allclose(src["speed"], expect.to_numpy(), rtol=1e-5)
+    assert np.all(np.abs(src["speed"]) > 0)
+    page = write_explorer(table, tmp_path / "dev.html")
+    assert "drift speed: @speed{custom} m/s" in page.read_text()
+
+
+# -- in the browser --------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def browser(chromium):
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    binary, driver_path = chromium
+    profile = tempfile.mkdtemp(prefix="sawdrift-chromium-")
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = binary
+    for arg in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                f"--user-data-dir={profile}", "--window-size=1400,1000"):
+        opts.add_argument(arg)
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    driver = webdriver.Chrome(service=Service(driver_path), options=opts)
+    yield driver
+    driver.quit()
+    shutil.rmtree(profile, ignore_errors=True)
+
+
+def _open(driver, page) -> float:
+    """Load the page; seconds until Bokeh's document is ready (scripts run, views built)."""
+    driver.get_log("browser")  # drop earlier pages' messages
+    t0 = time.perf_counter()
+    driver.get(page.resolve().as_uri())
+    while not driver.execute_script("return window.__sawdrift_ready === true"):
+        assert time.perf_counter() - t0 < 30, "the page never became ready"
+        time.sleep(0.02)
+    return time.perf_counter() - t0
+
+
+_VIEW = """
+const doc = Bokeh.documents[0];
+const fig = doc.get_model_by_name(arguments[0]);
+function find(v) {
+  if (v.model === fig) return v;
+  for (const c of (v.child_views ?? [])) { const r = find(c); if (r) return r; }
+  return null;
+}
+let view = null;
+for (const r of Bokeh.index.roots) { view = find(r); if (view) break; }
+const box = view.el.getBoundingClientRect();
+"""
+_CELL = _VIEW + """
+const src = doc.get_model_by_name(arguments[1]);
+const i = src.data.cell_id.indexOf(arguments[2]);
+return [box.left + view.frame.x_scale.compute(src.data.xv[i]),
+        box.top + view.frame.y_scale.compute(src.data.yv[i])];
+"""
+_FRAME = _VIEW + "const f = view.frame.bbox; return [box.left + f.left, box.top + f.top, f.width, f.height];"
+_TIPS = """
+function all(root, out) {
+  for (const el of root.querySelectorAll('*')) {
+    if (el.classList && el.classList.contains('sd-tip') && el.getClientRects().length) out.push(el.innerText);
+    if (el.shadowRoot) all(el.shadowRoot, out);
+  }
+  return out;
+}
+return all(document, []);
+"""
+
+
+def _pointer(driver, xy, click=False) -> None:
+    from selenium.webdriver.common.actions.action_builder import ActionBuilder
+
+    actions = ActionBuilder(driver)
+    actions.pointer_action.move_to_location(int(round(xy[0])), int(round(xy[1])))
+    if click:
+        actions.pointer_action.click()
+    actions.perform()
+
+
+def _wait(driver, script, timeout=10.0):
+    t0 = time.perf_counter()
+    while not (value := driver.execute_script(script)):
+        assert time.perf_counter() - t0 < timeout, f"timed out waiting for: {script}"
+        time.sleep(0.05)
+    return value
+
+
+def _severe(driver) -> list[str]:
+    return [e["message"] for e in driver.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def _blue_columns(driver, name: str) -> float:
+    """Fraction of the pixel columns of a figure's frame holding a blue line pixel."""
+    from PIL import Image
+
+    left, top, width, height = driver.execute_script(_FRAME, name)
+    image = Image.open(io.BytesIO(driver.get_screenshot_as_png())).convert("RGB")
+    crop = np.asarray(image.crop((int(left) + 2, int(top) + 2, int(left + width) - 2,
+                                  int(top + height) - 2))).astype(int)
+    r, g, b = crop[..., 0], crop[..., 1], crop[..., 2]
+    return float(((b > r + 40) & (b > g + 20)).any(axis=0).mean())
+
+
+def test_hover_and_click_a_cell_in_chromium(browser, table, tmp_path):
+    path, frame, known = table
+    page = write_explorer(path, tmp_path / "explore.html")
+    text = page.read_text()
+    assert "<script src=" not in text and "cdn.bokeh.org" not in text  # everything inline
+    seconds = _open(browser, page)
+    assert seconds < 3.0
+    panel = MODELS.index(known["model"])
+    spot = browser.execute_script(_CELL, f"regimes-{panel}", f"cells-{panel}", known["cell_id"])
+    _pointer(browser, spot)
+    tips = _wait(browser, _TIPS)
+    assert len(tips) == 1
+    regime = tips[0].split()[0]
+    drift = float(re.search(r"drift ratio: (\S+)", tips[0]).group(1))
+    assert regime == known["regime"]
+    assert drift == pytest.approx(known["drift_ratio"], rel=6e-4)
+    assert _blue_columns(browser, "trace-x") == 0.0
+    _pointer(browser, spot, click=True)
+    m = _wait(browser, "return Bokeh.documents[0].get_model_by_name('trace-source').data.t.length")
+    got = browser.execute_script("return Bokeh.documents[0].get_model_by_name('trace-source').data")
+    stored = read_traces(path)[known["cell_id"]]
+    assert m == stored["t"].size == 400
+    t = np.asarray(got["t"])
+    assert t[0] == pytest.approx(stored["t"][0], abs=1e-4)
+    assert t[-1] == pytest.approx(stored["t"][-1], abs=1e-4)
+    for field in PACKED_FIELDS:  # the drawn trace is the stored one, to 1/510 of its range
+        want = np.interp(t, stored["t"], stored[field])
+        span = float(stored[field].max() - stored[field].min())
+        np.testing.assert_allclose(got[field], want, atol=span / 510 * 1.01 + 1e-6)
+    info = browser.execute_script("return Bokeh.documents[0].get_model_by_name('trace-info').text")
+    assert known["regime"] in info and "the last 4 periods" in info
+    time.sleep(0.3)
+    shot = tmp_path / "explorer.png"
+    browser.save_screenshot(str(shot))
+    print(f"screenshot: {shot}")
+    # the x* panel is drawn: the trace (#1f4e9c) crosses its frame, which held no line before
+    assert _blue_columns(browser, "trace-x") > 0.8  # it spans 1/1.1 of the frame's width
+    assert _severe(browser) == []
+
+
+def test_compared_panels_drive_the_disagreement_layer(browser, table, tmp_path):
+    path, frame, _ = table
+    page = write_explorer(path, tmp_path / "explore.html")
+    _open(browser, page)
+    count = """const d = Bokeh.documents[0];
+      return [0, 1].map((k) => d.get_model_by_name('regimes-' + k).renderers[1]
+                                .view.filter.indices.length);"""
+    wide = frame.pivot_table(index=["m_star", "amplitude"], columns="model", values="regime", aggfunc="first")
+    differ = int((wide["material_point"] != wide["mmd"]).sum())
+    assert browser.execute_script(count) == [differ, differ]
+    browser.execute_script("Bokeh.documents[0].get_model_by_name('compare').active = [1]")
+    assert browser.execute_script(count) == [0, 0]
+    title = "return Bokeh.documents[0].get_model_by_name('regimes-1').title.text"
+    assert browser.execute_script(title) == "mmd: regimes"
+    browser.execute_script("Bokeh.documents[0].get_model_by_name('compare').active = [0, 1]")
+    assert browser.execute_script(count) == [differ, differ]
+    assert browser.execute_script(title) == f"mmd: regimes (disagree: {differ} of {len(wide)})"
+    assert _severe(browser) == []
+
+
+def test_page_without_traces_says_they_were_not_stored(browser, table, tmp_path):
+    path, frame, known = table
+    bare = tmp_path / "bare.parquet"
+    shutil.copy(path, bare)
+    page = write_explorer(bare, tmp_path / "bare.html")
+    _open(browser, page)
+    header = browser.execute_script("return Bokeh.documents[0].get_model_by_name('header').text")
+    assert "Traces were not stored" in header and "--traces" in header
+    panel = MODELS.index(known["model"])
+    spot = browser.execute_script(_CELL, f"regimes-{panel}", f"cells-{panel}", known["cell_id"])
+    _pointer(browser, spot, click=True)
+    info = _wait(browser, "const t = Bokeh.documents[0].get_model_by_name('trace-info').text;"
+                          "return t.includes('<b>') ? t : null")
+    assert known["regime"] in info and "Traces were not stored" in info
+    assert browser.execute_script(
+        "return Bokeh.documents[0].get_model_by_name('trace-source').data.t.length") == 0
+    assert _severe(browser) == []
+
+
+def _synthetic_table(n: int) -> tuple[pd.DataFrame, dict]:
+    """A 2-model n x n table with smooth made-up traces of 400 samples (for the SIZE only)."""
+    rng = np.random.default_rng(7)
+    m, a = np.meshgrid(np.geomspace(1e-3, 1e2, n), np.geomspace(1e-2, 10, n), indexing="ij")
+    rows, traces = [], {}
+    t = np.linspace(36.0, 40.0, 400)
+    for model in MODELS:
+        for k, (mm, aa) in enumerate(zip(m.ravel(), a.ravel(), strict=True)):
+            cid = f"{model[:3]}{k:013d}"
+            rows.append({"cell_id": cid, "model": model, "m_star": mm, "amplitude": aa,
+                         "regime": ["stick", "hopping", "drift_with", "bouncing"][int(k * 7 / n) % 4],
+                         "drift_ratio": rng.normal(0, 0.3), "drift_velocity": rng.normal(),
+                         "settled": bool(k % 3), "settle_periods": 40.0, "hop_period": 1,
+                         "lyapunov": rng.normal(), "gross_slip_fraction": rng.random(),
+                         "liftoffs_per_period": 1.0, "version": "0.2.0", "error": None})
+            phase = rng.random(4) * 6.28
+            pulse = np.exp(-(((t - 36.5 - phase[0] / 6.28) % 1.0) / 0.03) ** 2)
+            traces[cid] = {"t": t, "x": rng.normal() * (t - 36) + 0.05 * np.sin(6.28 * t + phase[1]),
+                           "a": 1 + aa * np.sin(6.28 * t + phase[2]), "N": 1 + 5 * pulse,
+                           "T": -0.3 * pulse + 0.01 * np.sin(6.28 * t + phase[3])}
+    return pd.DataFrame(rows), traces
+
+
+def test_a_41_by_41_two_model_page_is_small_and_opens_fast(browser, tmp_path):
+    frame, traces = _synthetic_table(41)
+    page = write_explorer(frame, tmp_path / "big.html", traces=traces)
+    size = page.stat().st_size
+    assert size < 5e6, f"{size / 1e6:.2f} MB"
+    seconds = _open(browser, page)
+    assert seconds < 3.0
+    assert _severe(browser) == []
+
+
+def test_another_swept_field_gives_one_panel_per_value():
+    frame = sd.sweep(["mmd"], "1e-2:1:3", "0.1:3:3", axes={"effects.rotation": "false,true"},
+                     base=sd.Scene(numerics={"periods": 20}), workers=1, progress=False)
+    data = explorer_data(frame)
+    assert [p.label for p in data.panels] == ["mmd, effects.rotation = False",
+                                              "mmd, effects.rotation = True"]
+    wide = frame.pivot_table(index=["m_star", "amplitude"], columns="effects.rotation",
+                             values="regime", aggfunc="first")
+    assert [int(m.sum()) for m in data.marks] == [int((wide[False] != wide[True]).sum())] * 2
