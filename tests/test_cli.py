@@ -177,3 +177,14 @@ def test_every_scene_field_reaches_the_scene_from_run_and_sweep(tmp_path):
     cli("sweep", "--model", "material_point", "--m-star", "0.1", "--amplitude", "0.1,0.2",
         "--ramp-periods", "2", "--no-progress", "--workers", "1", "-o", str(table), check=True)
     assert (pd.read_parquet(table)["ramp_periods"] == 2.0).all()
+
+
+def test_adaptive_sweep_reports_what_it_wrote(tmp_path):
+    # the count printed for the table is the count of rows in it (inferred points are extra)
+    table = tmp_path / "ad.parquet"
+    proc = cli("sweep", "--model", "material_point", "--adaptive", "--budget", "120", "--m-star",
+               "1e-3:1e2:9", "--amplitude", "1e-2:10:9", "--levels", "1", "--no-progress",
+               "-o", str(table), check=True)
+    line = proc.stdout.strip().splitlines()[-1]
+    computed = int(line.split("(")[1].split(" cells computed")[0])
+    assert computed == len(pd.read_parquet(table))

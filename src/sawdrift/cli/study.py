@@ -84,7 +84,8 @@ def sweep_cmd(
             _fail("--adaptive needs --m-star and --amplitude as START:STOP:N with the same N >= 2")
         frame = sd.adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
                                budget=budget, base=int(m_axis.size), levels=levels, scene=base,
-                               table=out, workers=workers, scheduler=scheduler, progress=progress)
+                               table=out, workers=workers, scheduler=scheduler, progress=progress,
+                               engine=engine, force=force)
     else:
         if base.device is None:
             # the (m*, A*) plane unless an axis replaces it: --axis effects.rotation=false,true
@@ -100,4 +101,10 @@ def sweep_cmd(
     for (name, regime), n in counts.items():
         typer.echo(f"{name:>20} {regime:>14}: {n}")
     errors = int(frame["error"].notna().sum())
-    typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)")
+    if adaptive:
+        # the table holds the computed points; the inferred ones only complete the diagram
+        typer.echo(f"wrote {out} ({frame.attrs['computed']} cells computed, {errors} with errors; "
+                   f"{frame.attrs['inferred']} more inferred from their neighbours, "
+                   f"{frame.attrs['wrong_guesses']} wrong guesses found by the check sample)")
+    else:
+        typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)")
