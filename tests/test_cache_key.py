@@ -89,6 +89,9 @@ for name in ("ck_pair", "ck_slot"):
 history = SlotLaw().new_history("compiled")
 history.advance(1.0, 0.0)
 out["slot_t"] = history.advance(1.0, 0.01)[1]
+pair = PairModel().new_history("compiled")
+pair.advance(1.0, 0.0)
+out["pair_t"] = pair.advance(1.0, 0.01)[1]
 print(json.dumps(out))
 """
 
@@ -118,6 +121,7 @@ def test_an_edited_kernel_or_callee_runs_its_new_code_in_the_next_process(tmp_pa
         got = json.loads(proc.stdout.strip().splitlines()[-1])
         runs.append(got)
         assert got["slot_t"] == level * scale, (level, scale, got)
+        assert got["pair_t"] == level * scale, (level, scale, got)  # a direct kernel call
         for name in ("ck_pair", "ck_slot"):
             compiled, python = got[name]
             assert abs(compiled - python) <= 1e-9 * abs(python), (name, level, scale, got)

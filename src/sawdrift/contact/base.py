@@ -113,11 +113,29 @@ class LazyFunction:
     def __init__(self, module: str, name: str) -> None:
         self.module, self.name = module, name
 
-    def load(self) -> Any:
-        """The function itself."""
-        import importlib
+    def __getstate__(self) -> dict[str, Any]:
+        # a process that unpickles it imports (and checks) the function itself
+        return {"module": self.module, "name": self.name}
 
-        return getattr(importlib.import_module(self.module), self.name)
+    def load(self) -> Any:
+        """The function itself.
+
+        On the first load, numba's on-disk cache of it is brought in line with its code and the
+        code it calls (:func:`sawdrift.dynamics.loop_cache.refresh_stale_caches`), so a direct
+        call (the conformance suite, ``ContactHistory``) never runs machine code of an older
+        version of the kernel or of a helper in another file.
+        """
+        fn = self.__dict__.get("_fn")
+        if fn is None:
+            import importlib
+
+            fn = getattr(importlib.import_module(self.module), self.name)
+            if hasattr(fn, "py_func"):
+                from ..dynamics.loop_cache import refresh_stale_caches
+
+                refresh_stale_caches([fn])
+            self._fn = fn
+        return fn
 
 
 class LazyKernelPair:
