@@ -18,6 +18,7 @@ with the substrate kinematics and the ramp R(t*) of :mod:`sawdrift.dynamics.wave
 from __future__ import annotations
 
 import math
+import sys
 import types
 from collections.abc import Callable
 from typing import Any
@@ -259,6 +260,27 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
 
 _COMPILED: dict[Any, Callable[..., None]] = {}
 
+#: import lines of the generated loop module: the loop body's global names (see loop_cache)
+_LOOP_IMPORTS = (
+    "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
+    "from sawdrift.dynamics.adams_bashforth import AB_COEFFS as ab  # noqa: F401\n"
+    "from sawdrift.dynamics.evidence import *  # noqa: F403\n"
+    "from sawdrift.dynamics.wave import surface  # noqa: F401\n"
+)
+
+
+def _loop_namespace(force: Callable[..., Any]) -> dict[str, Any]:
+    """The global names the generated module gives the loop body (the values of _LOOP_IMPORTS)."""
+    from . import evidence, wave
+
+    def public(module: types.ModuleType) -> dict[str, Any]:
+        names = getattr(module, "__all__", None) or [n for n in vars(module) if not n.startswith("_")]
+        return {n: getattr(module, n) for n in names}
+
+    ns = {**public(sys.modules[__name__]), **public(evidence)}
+    ns.update(surface=wave.surface, force=force, ab=AB_COEFFS)
+    return ns
+
 
 def _python_loop(force: Callable[..., Any]) -> Callable[..., None]:
     """The loop body run as plain Python with ``force`` bound in (the python engine)."""
@@ -280,7 +302,7 @@ def wave_loop(force: Callable[..., Any], compiled: bool) -> Callable[..., None]:
     if fn is None:
         from .loop_cache import cached_loop
 
-        fn = cached_loop(force)
+        fn = cached_loop(force, wave_loop_body, _LOOP_IMPORTS, _loop_namespace(force))
         if fn is None:
             fn = njit(_python_loop(force))
         _COMPILED[force] = fn

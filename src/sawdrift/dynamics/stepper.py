@@ -21,12 +21,13 @@ from ..scene.schema import Scene, Wave
 from . import adams_bashforth as ig
 from . import evidence as ev
 from . import rigid as rg
+from .assembly import assemble
 from .wave import surface
 
 if TYPE_CHECKING:
     import pandas as pd
 
-    from .runner import Assembly
+    from .assembly import Assembly
 
 #: Trajectory samples recorded per wave period (at most).
 RECORDS_PER_PERIOD = 200
@@ -45,7 +46,7 @@ class Stepper:
     Parameters
     ----------
     scene, model, plan
-        The scene, its model instance and the runner's :class:`~sawdrift.dynamics.runner.Assembly`.
+        The scene, its model instance and the runner's :class:`~sawdrift.dynamics.assembly.Assembly`.
     record
         Record the trajectory (about :data:`RECORDS_PER_PERIOD` rows per period).
     preload
@@ -218,8 +219,6 @@ class Stepper:
         and contact state layout (a parameter continuation: amplitude, m*, mu, ...). If the step
         changes, the Adams-Bashforth history restarts at order 1.
         """
-        from .runner import assemble
-
         if scene.model != self.scene.model:
             raise ValueError(f"a continuation keeps the contact model ({self.scene.model!r}); "
                              f"got {scene.model!r}")

@@ -9,7 +9,7 @@ import platform
 import tempfile
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
@@ -28,35 +28,11 @@ from .bench_core import (
     drive_timed,
     random_history,
 )
+from .targets import Target, _target
 
 # -- speed -----------------------------------------------------------------------------------------
 
 
-@dataclass
-class Target:
-    """One speed target: what was measured, the limit and the verdict."""
-
-    name: str
-    description: str
-    measured: float
-    unit: str
-    limit: float
-    comparison: str  # "<=", "<" or ">="
-    passed: bool
-    details: dict[str, Any]
-
-    def line(self) -> str:
-        """One report line: verdict, measured value and target."""
-        verdict = "PASS" if self.passed else "FAIL"
-        return (f"[{verdict}] {self.description}: {self.measured:.4g} {self.unit} "
-                f"(target {self.comparison} {self.limit:g} {self.unit})")
-
-
-def _target(name: str, description: str, measured: float, unit: str, limit: float,
-            comparison: str, details: dict[str, Any], extra_ok: bool = True) -> Target:
-    ok = {"<=": measured <= limit, "<": measured < limit, ">=": measured >= limit}[comparison]
-    return Target(name, description, float(measured), unit, float(limit), comparison,
-                  bool(ok and extra_ok and math.isfinite(measured)), details)
 
 
 def speed_sweep(quick: bool = False, progress: bool = True) -> Target:

@@ -13,7 +13,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from .bench_speed import Target, _target
+from .targets import Target, _target
 
 
 def _process_seconds(args: list[str], repeats: int) -> float:
