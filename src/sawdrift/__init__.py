@@ -71,6 +71,7 @@ _LAZY: dict[str, str] = {
     "plot_drift_map": "report.diagrams",
     "plot_compare": "report.diagrams",
     "demo": "report.demo",
+    "write_explorer": "report.explore",
     "validate": "report.validation",
     "work_precision": "report.bench",
     "bench_speed": "report.bench:speed",

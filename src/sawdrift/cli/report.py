@@ -73,6 +73,28 @@ def export_cmd(
     typer.echo(f"wrote {out}: dimensions {dims}; variables {', '.join(ds.data_vars)}")
 
 
+@app.command("explore")
+def explore_cmd(
+    table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="page (one self-contained HTML file)")] = Path(
+        "explore.html"),
+    traces: Annotated[
+        Path | None, typer.Option("--traces", help="traces file (default: TABLE.traces.parquet beside "
+                                  "the table, if any)")
+    ] = None,
+    x: Annotated[str | None, typer.Option("--x", help="column on the horizontal axis (default: A*, "
+                                          "or a swept device field)")] = None,
+    y: Annotated[str | None, typer.Option("--y", help="column on the vertical axis (default: m*, "
+                                          "or a swept device field)")] = None,
+) -> None:
+    """An offline page of a table's phase diagrams: hover a cell for its metrics, click it for its
+    last periods (tables swept with --traces), compare the models' regimes.
+    """
+    _writable(out, folder=False)
+    path = sd.write_explorer(table, out, traces, x=x, y=y)
+    typer.echo(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB): open it in a browser")
+
+
 @app.command("demo")
 def demo_cmd(
     out: Annotated[Path, typer.Option("-o", "--out", help="output folder")] = Path("sawdrift_out"),

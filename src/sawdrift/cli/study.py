@@ -48,6 +48,10 @@ def sweep_cmd(
         bool, typer.Option("--force", help="resume a table written by other code or from another "
                            "base scene (rows of both kinds are then mixed)")
     ] = False,
+    traces: Annotated[
+        bool, typer.Option("--traces", help="also store each cell's last periods (TABLE.traces.parquet) "
+                           "for the click panel of `sawdrift explore`")
+    ] = False,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
@@ -85,7 +89,7 @@ def sweep_cmd(
         frame = sd.adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
                                budget=budget, base=int(m_axis.size), levels=levels, scene=base,
                                table=out, workers=workers, scheduler=scheduler, progress=progress,
-                               engine=engine, force=force)
+                               engine=engine, force=force, traces=traces)
     else:
         if base.device is None:
             # the (m*, A*) plane unless an axis replaces it: --axis effects.rotation=false,true
@@ -96,7 +100,7 @@ def sweep_cmd(
                 amplitude = "1e-2:10:11"
         frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
                          workers=workers, scheduler=scheduler, progress=progress, engine=engine,
-                         force=force)
+                         force=force, traces=traces)
     counts = frame.groupby(["model", "regime"]).size()
     for (name, regime), n in counts.items():
         typer.echo(f"{name:>20} {regime:>14}: {n}")

@@ -8,11 +8,28 @@ from pathlib import Path
 
 from ..dynamics.runner import run
 from ..scene.schema import Scene
-from ..study.sweep import sweep
+from ..study.provenance import TableProvenanceError
+from ..study.sweep import journal_path, sweep
+from ..study.traces import traces_path
 from .diagrams import plot_compare, plot_drift_map, plot_phase_diagram, unsettled_cells
 from .explore import write_explorer
 from .fig2 import plot_fig2
 from .plots import plot_trajectory
+
+
+def _sweep(echo: Callable[[str], None], table: Path, *args, **kwargs):
+    """``sweep`` into ``table``; a table of other code (an older sawdrift) is computed anew.
+
+    The demo's tables are its own outputs, so running the demo again after an upgrade replaces
+    them instead of refusing to mix rows of two versions.
+    """
+    try:
+        return sweep(*args, table=table, **kwargs)
+    except TableProvenanceError as exc:
+        echo(f"{table.name}: {exc}; computing it anew")
+        for path in (table, journal_path(table), traces_path(table)):
+            path.unlink(missing_ok=True)
+        return sweep(*args, table=table, **kwargs)
 
 
 def demo(out: Path, n: int = 21, workers: int | None = None,
@@ -33,8 +50,8 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     echo(f"default scene (mmd, m* = 0.1, A* = 0.316): {result.regime}, "
          f"drift ratio {result.drift_ratio:.4f}; wrote {out / 'default_scene.png'}")
     table = out / "phase_table.parquet"
-    frame = sweep(["material_point", "mmd"], f"1e-3:1e2:{n}", f"1e-2:10:{n}",
-                  base=Scene(numerics={"periods": 40}), table=table, workers=workers)
+    frame = _sweep(echo, table, ["material_point", "mmd"], f"1e-3:1e2:{n}", f"1e-2:10:{n}",
+                   base=Scene(numerics={"periods": 40}), workers=workers, traces=True)
     for name in ("material_point", "mmd"):
         plot_phase_diagram(frame, out / f"phase_{name}.png", name)
     path, md = plot_compare(frame, ["material_point", "mmd"], out / "compare.png")
@@ -54,9 +71,9 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     # rolling: the same plane with the sphere free to turn (kappa = 2/5), side by side
     rot_table = out / "rotation_table.parquet"
     m_rot = max(2, (n + 1) // 2)
-    rot = sweep(["material_point", "mmd"], f"1e-3:1e2:{m_rot}", f"1e-2:10:{m_rot}",
-                axes={"effects.rotation": "false,true"}, base=Scene(numerics={"periods": 40}),
-                table=rot_table, workers=workers)
+    rot = _sweep(echo, rot_table, ["material_point", "mmd"], f"1e-3:1e2:{m_rot}",
+                 f"1e-2:10:{m_rot}", axes={"effects.rotation": "false,true"},
+                 base=Scene(numerics={"periods": 40}), workers=workers)
     rpath, rmd = plot_compare(rot, ["material_point", "mmd"], out / "rotation_compare.png",
                               by="effects.rotation")
     echo(rmd)

@@ -18,7 +18,6 @@ from .diagrams import COLOURS
 if TYPE_CHECKING:
     from bokeh.document import Document
 
-    from .explore import Axis, ExplorerData
 
 NO_TRACES = ("Traces were not stored with this table, so a click cannot show a cell's last "
              "periods. Store them by running the sweep again with <code>--traces</code> "
@@ -119,7 +118,8 @@ def _swatches() -> str:
     return "".join(items)
 
 
-def _tooltip(label: str, xa: Axis, ya: Axis, info: dict[str, Any]) -> str:
+def _tooltip(label: str, xa: Any, ya: Any, info: dict[str, Any]) -> str:
+    # xa, ya: sawdrift.report.explore.Axis (not imported: explore imports this module)
     safe = html.escape(label).replace("@", "&#64;").replace("$", "&#36;")
     lines = [f"<b>@regime</b> &mdash; {safe}",
              f"{html.escape(xa.label)} = @xv{{custom}}, {html.escape(ya.label)} = @yv{{custom}}"]
@@ -149,7 +149,8 @@ def _drift_palette() -> list[str]:
     return [to_hex(cmap(k / 255.0)) for k in range(256)]
 
 
-def build_document(page: ExplorerData) -> Document:
+def build_document(page: Any) -> Document:
+    # page: sawdrift.report.explore.ExplorerData (not imported: explore imports this module)
     """The page: header and controls, one (regimes, drift) row per panel, the trace panel."""
     import numpy as np
     from bokeh.document import Document

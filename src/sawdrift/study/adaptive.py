@@ -202,6 +202,7 @@ def adaptive_sweep(
     on_row: Any = None,
     engine: str = "compiled",
     force: bool = False,
+    traces: bool = False,
     verify: float = 0.125,
     regime_of: Callable[[float, float], str] | None = None,
 ) -> pd.DataFrame:
@@ -252,7 +253,7 @@ def adaptive_sweep(
             return {k: regime_of(m, a) for k, (m, a) in zip(keys, pts, strict=True)}
         frame = sweep([model], points=pts, base=scene, table=table, workers=workers,
                       scheduler=scheduler, progress=progress, on_row=on_row, engine=engine,
-                      force=force)
+                      force=force, traces=traces)
         lookup = {(round(math.log10(r.m_star), 9), round(math.log10(r.amplitude), 9)): r.regime
                   for r in frame.itertuples()}
         frames.append(frame)

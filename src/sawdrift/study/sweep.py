@@ -31,12 +31,14 @@ from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, set_dotted
 from .axes import parse_axis, parse_values
 from .provenance import check_resume, code_hash
+from .traces import append_trace, consolidate_traces, read_traces, run_traced
 
 #: Columns of a sweep table, in order: ``events_dropped`` counts the events the run could not log
 #: (its evidence is then incomplete), ``code_hash`` names the code that computed the row
 #: (:func:`sawdrift.study.provenance.code_hash`).
 TABLE_COLUMNS = tuple(dict.fromkeys(("cell_id", "scene_id", *SUMMARY_FIELDS, "settled",
-                                     "settle_periods", "events_dropped", "code_hash", "error")))
+                                     "settle_periods", "orbit_period", "events_dropped", "code_hash",
+                                     "error")))
 
 #: Parquet metadata keys of a sweep table (provenance).
 META_VERSION, META_BASE_SCENE, META_CODE = b"sawdrift_version", b"base_scene", b"sawdrift_code"
@@ -119,10 +121,11 @@ def get_dotted(data: dict[str, Any], dotted: str) -> Any:
     return node
 
 
-def run_cell(scene_json: str, engine: str = "compiled") -> dict[str, Any]:
+def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) -> dict[str, Any]:
     """Run one cell from its scene JSON and return its table row; an error fills ``error``.
 
-    A model that raises or returns NaN fails only its own cell.
+    A model that raises or returns NaN fails only its own cell. With ``traces`` the row also
+    holds ``"trace"``, the cell's last periods (:func:`sawdrift.study.traces.run_traced`).
     """
     from ..dynamics.runner import run
 
@@ -131,8 +134,12 @@ def run_cell(scene_json: str, engine: str = "compiled") -> dict[str, Any]:
     row["cell_id"] = cell_id(scene)
     row["scene_id"] = scene_id(scene)
     row["code_hash"] = code_hash([scene.model])
+    trace = None
     try:
-        result = run(scene, engine=engine)  # type: ignore[arg-type]
+        if traces:
+            result, trace = run_traced(scene, engine)
+        else:
+            result = run(scene, engine=engine)  # type: ignore[arg-type]
         row.update(result.summary())
         row["events_dropped"] = int(getattr(result, "events_dropped",
                                             result.extra.get("events_dropped", 0)))
@@ -149,7 +156,10 @@ def run_cell(scene_json: str, engine: str = "compiled") -> dict[str, Any]:
             regime="error",
             error=(kind + str(exc)).splitlines()[0],
         )
-    return {key: row.get(key) for key in TABLE_COLUMNS}
+    out = {key: row.get(key) for key in TABLE_COLUMNS}
+    if trace is not None and row["error"] is None:
+        out["trace"] = trace
+    return out
 
 
 # -- the resumable table ---------------------------------------------------------------------
@@ -287,14 +297,16 @@ def _stored_base(table: Path) -> dict[str, Any] | None:
 # -- executors -------------------------------------------------------------------------------
 
 
-def _serial(cells: list[str], workers: int, scheduler: Any, engine: str) -> Iterator[dict[str, Any]]:
+def _serial(cells: list[str], workers: int, scheduler: Any, engine: str,
+            traces: bool = False) -> Iterator[dict[str, Any]]:
     for cell in cells:
-        yield run_cell(cell, engine)
+        yield run_cell(cell, engine, traces)
 
 
-def _processes(cells: list[str], workers: int, scheduler: Any, engine: str) -> Iterator[dict[str, Any]]:
+def _processes(cells: list[str], workers: int, scheduler: Any, engine: str,
+               traces: bool = False) -> Iterator[dict[str, Any]]:
     with ProcessPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(run_cell, cell, engine) for cell in cells]
+        futures = [pool.submit(run_cell, cell, engine, traces) for cell in cells]
         try:
             for fut in as_completed(futures):
                 yield fut.result()
@@ -303,7 +315,8 @@ def _processes(cells: list[str], workers: int, scheduler: Any, engine: str) -> I
                 fut.cancel()
 
 
-def _dask(cells: list[str], workers: int, scheduler: Any, engine: str) -> Iterator[dict[str, Any]]:
+def _dask(cells: list[str], workers: int, scheduler: Any, engine: str,
+          traces: bool = False) -> Iterator[dict[str, Any]]:
     try:
         from distributed import Client
         from distributed import as_completed as dask_completed
@@ -314,7 +327,7 @@ def _dask(cells: list[str], workers: int, scheduler: Any, engine: str) -> Iterat
     except OSError as exc:
         raise SceneError(f"scheduler = {scheduler!r} could not be reached ({exc})") from None
     try:
-        futures = client.map(run_cell, cells, engine=engine, pure=False)
+        futures = client.map(run_cell, cells, engine=engine, traces=traces, pure=False)
         for fut in dask_completed(futures):
             yield fut.result()
     finally:
@@ -338,6 +351,7 @@ def sweep(
     engine: str = "compiled",
     on_row: Callable[[dict[str, Any]], None] | None = None,
     force: bool = False,
+    traces: bool = False,
 ) -> pd.DataFrame:
     """Run a (model, m*, A*) grid and return one row per cell as a DataFrame.
 
@@ -374,6 +388,9 @@ def sweep(
     force
         Add to a table of other code or another base scene anyway: a cell whose scene the table
         already holds keeps its row, whatever code computed it (each row names its code).
+    traces
+        Also store each cell's last periods, decimated, in ``TABLE.traces.parquet``
+        (:mod:`sawdrift.study.traces`); a cell of the table without one is run again for it.
     """
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
@@ -390,6 +407,9 @@ def sweep(
                       overrides, extra_axes)
     path = Path(table) if table is not None else None
     done = read_rows(path) if path is not None else {}
+    if traces and path is None:
+        raise SceneError("traces are stored next to a table: give table= (--out)")
+    have = set(read_traces(path)) if traces and path is not None else set()
     swept_from = _base_json(base, overrides)
     if path is not None:
         check_resume(path, done.values(), _stored_base(path), swept_from, force)
@@ -406,7 +426,8 @@ def sweep(
         if extra_axes:
             dumped = scene.model_dump()
             columns[cid] = {f: get_dotted(dumped, f) for f in extra_axes}
-        if cid not in done and cid not in wanted:
+        rerun = traces and cid in done and cid not in have and not done[cid].get("error")
+        if (cid not in done or rerun) and cid not in wanted:
             todo.append(scene.model_dump_json())
         wanted.add(cid)
     workers = workers if workers is not None else (os.cpu_count() or 1)
@@ -434,7 +455,10 @@ def sweep(
         if header:  # what the rows belong to, until the table's metadata records it
             fh.write(json.dumps({"base_scene": swept_from}) + "\n")
     try:
-        for row in executor(todo, workers, scheduler, engine):
+        for row in executor(todo, workers, scheduler, engine, traces):
+            trace = row.pop("trace", None)
+            if trace is not None and path is not None:
+                append_trace(path, row["cell_id"], trace)
             row.update(columns.get(row["cell_id"], {}))
             rows[row["cell_id"]] = row
             if fh is not None:
@@ -457,4 +481,6 @@ def sweep(
         write_table(to_frame(supersede(everything.values())), path, swept_from)
         if journal is not None and journal.exists():
             journal.unlink()
+        if traces:
+            consolidate_traces(path)
     return frame
