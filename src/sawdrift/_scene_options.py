@@ -1,3 +1,4 @@
+# ruff: noqa: E501
 """Generated from the Scene schema by ``python -m sawdrift.scene.options``. Do not edit.
 
 One row per scene field: (option name, dotted field, kind, choices, help).
