@@ -57,6 +57,8 @@ CORPUS = [
     "explore {d}/unknown.toml -o {d}/x.html",
     "demo --n 1 -o {d}/demo",
     "demo --n 100000 -o {d}/demo",
+    "sweep -o {d}/t.parquet --adaptive --levels 40",
+    "sweep -o {d}/t.parquet --adaptive --budget 1000000000",
     "run -o /proc/sawdrift_out",
     "run -o {d}/malformed.toml",
     "sweep -o /proc/sawdrift.parquet --m-star 1 --amplitude 1",

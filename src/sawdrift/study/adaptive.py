@@ -235,8 +235,11 @@ def adaptive_sweep(
     """
     from .sweep import sweep
 
-    if base < 2 or levels < 0:
-        raise SceneError("adaptive: base must be >= 2 and levels >= 0")
+    if not 2 <= base <= 401 or not 0 <= levels <= 10:
+        raise SceneError(f"adaptive: base = {base} must be in [2, 401] (points per axis) and "
+                         f"levels = {levels} in [0, 10] (halvings of a cell)")
+    if budget > 1_000_000:
+        raise SceneError(f"--budget = {budget} is more than 1000000 cells; split the study")
     if budget < base * base:
         raise SceneError(f"--budget = {budget} must be at least the base grid, {base} x {base} = "
                          f"{base * base}")
