@@ -28,7 +28,7 @@ import pandas as pd
 
 from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
-from ..scene.schema import Scene, build_scene, set_dotted
+from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
 from .axes import parse_axis, parse_values
 from .provenance import check_resume, code_hash
 from .traces import append_trace, consolidate_traces, read_traces, run_traced
@@ -109,16 +109,6 @@ def grid(
                 set_dotted(cell, field, value)
             scenes.append(build_scene(cell))
     return scenes
-
-
-def get_dotted(data: dict[str, Any], dotted: str) -> Any:
-    """``data["a"]["b"]`` for ``dotted = "a.b"`` (None where a level is missing)."""
-    node: Any = data
-    for key in dotted.split("."):
-        if not isinstance(node, dict):
-            return None
-        node = node.get(key)
-    return node
 
 
 def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) -> dict[str, Any]:
