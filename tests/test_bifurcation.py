@@ -1,0 +1,181 @@
+"""Bifurcation diagrams: located thresholds, slow transients, hysteresis, resume, bad input, panels.
+
+The completely inelastic bouncing ball (material point, restitution 0, r = 0, Gamma = 4 pi^2 m* A*;
+m* = 1/(4 pi^2) makes A* = Gamma): lift-off at Gamma = 1, loss of the sticking phase at
+sqrt(1 + pi^2), first period doubling at sqrt(4 + pi^2) (Mehta and Luck 1990; docs/physics.md).
+With restitution e the period-1 bounce exists from Gamma_1 = pi (1 - e)/(1 + e) and doubles at
+sqrt(Gamma_1^2 + (2 (1 + e^2)/(1 + e)^2)^2) (Luck and Mehta 1993), while a particle at rest first
+lifts off at Gamma = 1: between them the answer depends on the history.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import sawdrift as sd
+from sawdrift.dynamics.window import orbit_period, state_scale
+from sawdrift.errors import SceneError
+from sawdrift.study.bifurcation import TABLE, bifurcation
+from sawdrift.study.branch import Budget, attractor, continue_to, new_stepper
+from sawdrift.study.orbits import classify
+from sawdrift.study.provenance import TableProvenanceError
+
+M_GAMMA = 1.0 / (4.0 * math.pi**2)  # m* at which A* = Gamma
+
+
+def ball(restitution: float = 0.0) -> sd.Scene:
+    return sd.Scene(model="material_point", particle={"m_star": M_GAMMA},
+                    drive={"horizontal_ratio": 0.0}, model_params={"restitution": restitution})
+
+
+def located(result, kind: str, direction: str = "up", model: str = "material_point") -> list[float]:
+    return [b["value"] for b in result.bifurcations
+            if b["kind"] == kind and b["direction"] == direction and b["model"] == model
+            and b["located"]]
+
+
+def test_inelastic_bouncing_ball_thresholds_are_located():
+    res = bifurcation(ball(), "drive.amplitude", "lin:0.9:3.9:16", samples=16, locate=True,
+                      tolerance=1e-4, workers=2, progress=False)
+    (lift,) = located(res, "lift_off")
+    (stick,) = located(res, "sticking_lost")
+    (flip,) = located(res, "period_doubling")
+    assert lift == pytest.approx(1.0, abs=1e-3)
+    assert stick == pytest.approx(math.sqrt(1.0 + math.pi**2), abs=1e-3)
+    assert flip == pytest.approx(math.sqrt(4.0 + math.pi**2), abs=1e-3)
+    pts = res.summary["points"]["material_point"]["up"]
+    assert all(p["period"] == 1 for p in pts if p["value"] < 3.7)
+    assert all(p["period"] == 2 for p in pts if 3.75 < p["value"] < 3.9)
+
+
+def test_slowly_decaying_alternation_is_period_one_with_the_map_multiplier():
+    # Gamma = 3.72, just below the doubling: the period-1 orbit's multiplier is
+    # 1 - sqrt(Gamma^2 - pi^2) = -0.99218. After 1600 periods the alternation is 4e-8 and
+    # s_(n+2) - s_n = (1 + lambda)(s_(n+1) - s_n) is below the round-off test: the state
+    # "repeats after 2 periods", but the motion converges to the period-1 orbit
+    gamma = 3.72
+    scene = ball().with_updates(**{"drive.amplitude": gamma})
+    st = new_stepper(ball().with_updates(**{"drive.amplitude": 3.70}))
+    st.advance(3000 * st.k_per)
+    st = continue_to(st, scene)
+    scale = state_scale(gamma, 0.0)
+    rows = []
+    for _ in range(1600):
+        st.advance(st.k_per)
+        rows.append(st.y[:4].copy())
+    samples = np.array(rows[-64:])
+    assert orbit_period(samples, scale) == 2
+    cls = classify(samples[:, 1:4] / scale)
+    assert cls.period == 1 and not cls.exact
+    assert cls.multiplier == pytest.approx(1.0 - math.sqrt(gamma**2 - math.pi**2), abs=1e-4)
+    point = attractor(continue_to(st, scene), scene, Budget.for_scene(scene, 16), gamma)
+    assert point.period == 1 and point.exact
+    # ln |lambda| per period, from the renormalized twin
+    assert point.lyapunov == pytest.approx(math.log(0.99218), abs=2e-3)
+
+
+def test_hysteresis_of_the_bouncing_ball_with_restitution():
+    e = 0.8
+    res = bifurcation(ball(e), "drive.amplitude", "lin:0.25:1.45:13", samples=16,
+                      direction="both", locate=True, workers=2, progress=False)
+    gamma_1 = math.pi * (1 - e) / (1 + e)
+    gamma_2 = math.sqrt(gamma_1**2 + (2 * (1 + e * e) / (1 + e) ** 2) ** 2)
+    (up_lift,) = located(res, "lift_off", "up")
+    (down_lift,) = located(res, "lift_off", "down")
+    assert up_lift == pytest.approx(1.0, abs=1e-3)  # from rest: lifts when Gamma > 1
+    assert down_lift == pytest.approx(gamma_1, abs=1e-3)  # the bounce dies at its saddle-node
+    assert located(res, "period_doubling", "down")[0] == pytest.approx(gamma_2, abs=1e-3)
+    spans = [(h["from"], h["to"]) for h in res.hysteresis]
+    assert any(a <= 0.45 and b >= 0.95 for a, b in spans)
+    table = res.table
+    flagged = set(table[table["hysteresis"]]["value"].round(9))
+    assert min(flagged) > gamma_1  # below the saddle-node both branches rest on the surface
+    assert {round(v, 9) for v in np.linspace(0.25, 1.45, 13) if 0.4 < v < 1.0} <= flagged
+
+
+def test_interrupted_run_resumes_with_the_same_table(tmp_path):
+    axis = "lin:3.5:4.0:10"
+    whole = bifurcation(ball(), "drive.amplitude", axis, samples=8, out=tmp_path / "a",
+                        workers=1, progress=False, figure=False)
+    seen = []
+
+    def stop(record):
+        seen.append(record["i"])
+        if len(seen) == 4:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        bifurcation(ball(), "drive.amplitude", axis, samples=8, out=tmp_path / "b", workers=1,
+                    progress=False, figure=False, on_value=stop)
+    again = bifurcation(ball(), "drive.amplitude", axis, samples=8, out=tmp_path / "b",
+                        workers=1, progress=False, figure=False)
+    assert whole.computed == 10 and again.computed == 6
+    pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "a" / TABLE),
+                                  pd.read_parquet(tmp_path / "b" / TABLE))
+    done = bifurcation(ball(), "drive.amplitude", axis, samples=8, out=tmp_path / "b",
+                       workers=1, progress=False, figure=False)
+    assert done.computed == 0
+
+
+def test_a_folder_of_other_code_or_another_axis_is_refused(tmp_path):
+    out = tmp_path / "d"
+    bifurcation(ball(), "drive.amplitude", "3.5,3.6", samples=4, out=out, workers=1,
+                progress=False, figure=False)
+    with pytest.raises(TableProvenanceError, match="another bifurcation diagram"):
+        bifurcation(ball(), "drive.amplitude", "3.5,3.7", samples=4, out=out, workers=1,
+                    progress=False, figure=False)
+    journal = out / "journal" / "material_point-up.jsonl"
+    lines = journal.read_text().splitlines()
+    head = json.loads(lines[0])
+    head["code_hash"] = "0123456789ab"
+    journal.write_text("\n".join([json.dumps(head), *lines[1:]]) + "\n")
+    (out / TABLE).unlink()
+    with pytest.raises(TableProvenanceError, match="other code"):
+        bifurcation(ball(), "drive.amplitude", "3.5,3.6", samples=4, out=out, workers=1,
+                    progress=False, figure=False)
+    res = bifurcation(ball(), "drive.amplitude", "3.5,3.6", samples=4, out=out, workers=1,
+                      progress=False, figure=False, force=True)
+    assert res.computed == 0 and len(res.table) == 8
+
+
+@pytest.mark.parametrize(("kwargs", "match"), [
+    ({"values": "a,b"}, "not a number"),
+    ({"values": "1.5"}, "at least two different values"),
+    ({"values": [2.0, 2.0]}, "at least two different values"),
+    ({"samples": 0}, "samples = 0 must be an integer >= 1"),
+    ({"field": "drive.amplitud"}, "drive.amplitud is not a known field"),
+    ({"field": "drive.orbit"}, "not a numeric scene field"),
+    ({"direction": "sideways"}, "direction = 'sideways'"),
+])
+def test_bad_input_is_one_line(kwargs, match):
+    args = {"field": "drive.amplitude", "values": "3.5,3.6", **kwargs}
+    with pytest.raises(SceneError, match=match) as info:
+        bifurcation(ball(), args.pop("field"), args.pop("values"), progress=False, **args)
+    assert "\n" not in str(info.value)
+
+
+def test_two_models_side_by_side_on_one_axis():
+    # a stiff compliant contact (m* = 1e-3, Tsuji damping) next to the rigid point: same values,
+    # and below Gamma = 1 both stay in contact while the point's doubling is still located
+    m = 1e-3
+    k = 4 * math.pi**2 * m
+    base = sd.Scene(model="material_point", particle={"m_star": m}, drive={"horizontal_ratio": 0.0})
+    res = bifurcation(base, "drive.amplitude", f"lin:{0.6 / k}:{4.2 / k}:10",
+                      models="material_point,hertz_tsuji", samples=8, locate=True, workers=2,
+                      progress=False)
+    t = res.table
+    assert set(t["model"]) == {"material_point", "hertz_tsuji"}
+    assert set(t[t.model == "material_point"]["value"]) == set(t[t.model == "hertz_tsuji"]["value"])
+    (flip,) = located(res, "period_doubling")
+    assert flip * k == pytest.approx(math.sqrt(4.0 + math.pi**2), abs=1e-3)
+    (lift,) = located(res, "lift_off", model="hertz_tsuji")
+    assert lift * k == pytest.approx(1.0, abs=0.05)
+    from sawdrift.report.bifurcation_plot import plot_bifurcation
+
+    fig = plot_bifurcation(res)
+    assert len(fig.axes) == 2 * 4  # two columns: samples, lift-off phase, period, Lyapunov
