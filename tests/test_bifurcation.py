@@ -51,6 +51,14 @@ def test_inelastic_bouncing_ball_thresholds_are_located():
     pts = res.summary["points"]["material_point"]["up"]
     assert all(p["period"] == 1 for p in pts if p["value"] < 3.7)
     assert all(p["period"] == 2 for p in pts if 3.75 < p["value"] < 3.9)
+    # the period-1 orbit without a resting phase (docs/physics.md): take-off at the plate phase
+    # tau = arccos(pi/Gamma), t* = (tau + pi/2)/(2 pi) mod 1, multiplier 1 - sqrt(Gamma^2 - pi^2)
+    for gamma in (3.5, 3.7):
+        rows = res.table[np.isclose(res.table["value"], gamma)]
+        phase = (math.acos(math.pi / gamma) + 0.5 * math.pi) / (2 * math.pi)
+        assert np.allclose(rows["liftoff_phase"], phase, atol=1e-6)
+        lam = 1.0 - math.sqrt(gamma**2 - math.pi**2)
+        assert rows["lyapunov"].iloc[0] == pytest.approx(math.log(abs(lam)), abs=0.01)
 
 
 def test_slowly_decaying_alternation_is_period_one_with_the_map_multiplier():

@@ -3,7 +3,8 @@
 One column per model, all on the same axis; rows, top to bottom: the classic diagram (a* at
 integer t* against the parameter), the lift-off phases (when the particle loses contact), the
 orbit period and the largest Lyapunov exponent. The up branch is drawn in blue, the down branch
-in orange; located bifurcations are dotted vertical lines, hysteresis intervals are shaded.
+in orange; located bifurcations are dotted vertical lines, hysteresis intervals are shaded, a value
+whose integration failed is a red cross in the period panel.
 """
 
 from __future__ import annotations
@@ -109,6 +110,11 @@ def _draw_branch(panel: dict[str, Any], part: pd.DataFrame, direction: str) -> N
         panel["lift"].plot(lp["value"], lp["liftoff_phase"], "o", color=colour, ms=0.8, alpha=0.5)
         panel["lift"].set_ylim(0.0, 1.0)
     per = part.groupby("index").first()
+    failed = per["error"].notna()
+    # a value whose integration failed (its error is in the table) is a cross, not a period 0
+    panel["period"].plot(per["value"][failed], np.zeros(int(failed.sum())), "x", color="#d62728",
+                         ms=4)
+    per = per[~failed]
     panel["period"].plot(per["value"], per["period"] + offset, "o", color=colour, ms=2.5)
     panel["period"].set_ylim(-0.5, max(2.5, float(per["period"].max()) + 0.8))
     lyap = per["lyapunov"].to_numpy(dtype=float)
@@ -132,7 +138,14 @@ def _marks(panel: dict[str, Any], summary: dict[str, Any], model: str) -> None:
             continue
         for ax in panel.values():
             ax.axvline(b["value"], color=KINDS.get(b["kind"], "k"), ls=":", lw=0.9)
+    values = np.asarray(sorted(summary.get("values", [])), dtype=float)
     for h in summary.get("hysteresis", []):
-        if h.get("model") == model:
-            for ax in panel.values():
-                ax.axvspan(h["from"], h["to"], color="#ffd54f", alpha=0.4, lw=0)
+        if h.get("model") != model:
+            continue
+        # the interval's values, widened by half a spacing each side (one value is a band too)
+        lo, hi = h["from"], h["to"]
+        below, above = values[values < lo], values[values > hi]
+        lo -= 0.5 * (lo - below[-1]) if below.size else 0.0
+        hi += 0.5 * (above[0] - hi) if above.size else 0.0
+        for ax in panel.values():
+            ax.axvspan(lo, hi, color="#ffd54f", alpha=0.4, lw=0)

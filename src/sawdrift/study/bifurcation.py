@@ -237,11 +237,10 @@ def bifurcation(
     summary = _summary(field, axis, list(bases), samples, direction, locate, tolerance, points,
                        found, hyst, scene)
     table = _table(points, field, hyst)
-    result = BifurcationResult(table, summary, folder, computed, 0.0)
+    result = BifurcationResult(table, summary, folder, computed, time.perf_counter() - t0)
+    summary["seconds"] = round(result.seconds, 3)  # the computation, before the files
     if folder is not None:
         _write(folder, result, scene, figure)
-    result.seconds = time.perf_counter() - t0
-    summary["seconds"] = round(result.seconds, 3)
     return result
 
 
@@ -348,7 +347,7 @@ def _check_table(folder: Path, scene: Scene, force: bool) -> None:
     except Exception as exc:  # noqa: BLE001 - a foreign or broken file must not be overwritten
         raise SceneError(f"table {str(path)!r} exists but is not a bifurcation table ({exc})"
                          .splitlines()[0]) from None
-    rows = rows.drop_duplicates().to_dict(orient="records")
+    rows = rows.to_dict(orient="records")
     check_resume(path, rows, table_metadata(path)["base_scene"],
                  json.loads(scene.model_dump_json()), force)
 

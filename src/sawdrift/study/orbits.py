@@ -140,7 +140,7 @@ def decay(s: np.ndarray, q: int, skip: float = 0.25) -> Decay:
     sign = float(np.sign(np.sum(d[q:] * d[:-q]))) or 1.0
     total = float(np.log(b[idx[-1] + 1] / b[idx[0]]))
     vanishes = eps < -3.0 * error and total < -SIGNIFICANT
-    mult = sign * math.exp(eps)
+    mult = sign * math.exp(min(eps, 50.0))  # a runaway fit is no multiplier worth printing
     return Decay(q, eps, mult, float(b[-1]), vanishes)
 
 
