@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 
@@ -188,3 +189,15 @@ def test_adaptive_sweep_reports_what_it_wrote(tmp_path):
     line = proc.stdout.strip().splitlines()[-1]
     computed = int(line.split("(")[1].split(" cells computed")[0])
     assert computed == len(pd.read_parquet(table))
+
+
+def test_bifurcation_locates_the_bouncing_balls_doubling_from_the_command_line(tmp_path):
+    # Gamma = 4 pi^2 m* A*; the completely inelastic ball doubles at sqrt(4 + pi^2) = 3.7242
+    proc = cli("bifurcation", "--model", "material_point", "--m-star", "0.1",
+               "--horizontal-ratio", "0", "--axis", "drive.amplitude=lin:0.85:1.0:16", "--locate",
+               "--no-progress", "--json", "-o", str(tmp_path / "bif"), check=True)
+    found = [b for b in json.loads(proc.stdout)["bifurcations"] if b["kind"] == "period_doubling"]
+    assert len(found) == 1
+    gamma = 4 * math.pi**2 * 0.1 * found[0]["value"]
+    assert abs(gamma - math.sqrt(4 + math.pi**2)) <= 1e-3
+    assert (tmp_path / "bif" / "bifurcation.png").stat().st_size > 10_000

@@ -174,3 +174,16 @@ def test_sweep_rows_carry_events_dropped_as_the_run_reports_it(tmp_path):
         result = sd.run(scene)
         want = getattr(result, "events_dropped", result.extra.get("events_dropped", 0))
         assert row.events_dropped == want and isinstance(row.events_dropped, int | np.integer)
+
+
+def test_a_dask_client_is_accepted_as_the_scheduler_and_left_open():
+    # the docstring promises an address, a cluster or a Client; Client(Client) raised TypeError
+    from distributed import Client, LocalCluster
+
+    kwargs = dict(base=BASE, progress=False)
+    serial = sd.sweep("material_point", "0.01:1:3", "0.05:0.5:2", workers=1, **kwargs)
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cl, Client(cl) as client:
+        got = sd.sweep("material_point", "0.01:1:3", "0.05:0.5:2", scheduler=client, **kwargs)
+        assert client.status == "running"
+    pd.testing.assert_frame_equal(_values(serial), _values(got))

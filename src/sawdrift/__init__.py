@@ -72,6 +72,8 @@ _LAZY: dict[str, str] = {
     "plot_compare": "report.diagrams",
     "demo": "report.demo",
     "write_explorer": "report.explore",
+    "bifurcation": "study.bifurcation",
+    "plot_bifurcation": "report.bifurcation_plot",
     "validate": "report.validation",
     "work_precision": "report.bench",
     "bench_speed": "report.bench:speed",

@@ -1,7 +1,8 @@
-"""Studies over many scenes: sweep (uniform or adaptive)."""
+"""Studies over many scenes: sweep (uniform or adaptive) and bifurcation diagrams."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -112,3 +113,90 @@ def sweep_cmd(
                    f"{frame.attrs['wrong_guesses']} wrong guesses found by the check sample)")
     else:
         typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)")
+
+
+@app.command("bifurcation")
+@with_scene_options()
+def bifurcation_cmd(
+    axis: Annotated[
+        str,
+        typer.Option("--axis", help="FIELD=SPEC: a numeric dotted scene field (drive.amplitude, "
+                     "particle.m_star, material.mu, model_params.restitution) and its values "
+                     "a,b,c | START:STOP:N (log) | lin:START:STOP:N, at least two"),
+    ],
+    out: Annotated[
+        Path, typer.Option("-o", "--out", help="output folder: bifurcation.parquet, .json, .png "
+                           "and the branches' journals (a stopped run resumes)")
+    ],
+    scene_arg: Annotated[Path | None, typer.Argument(help="base scene TOML")] = None,
+    model: Annotated[
+        str | None, typer.Option("--model", help="model name(s), comma-separated: one panel each, "
+                                 "on the same axis")
+    ] = None,
+    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    samples: Annotated[int, typer.Option("--samples", help="Poincare samples per value (K >= 1)")] = 64,
+    direction: Annotated[
+        str, typer.Option("--direction", help="up, down or both (both marks hysteresis: where the "
+                          "two sweeps end on different attractors)")
+    ] = "up",
+    locate: Annotated[
+        bool, typer.Option("--locate", help="bisect every change between neighbouring values "
+                           "(period, lift-off, sticking phase)")
+    ] = False,
+    tolerance: Annotated[
+        float, typer.Option("--tolerance", help="--locate: relative width of the final bracket")
+    ] = 1e-4,
+    workers: Annotated[int | None, typer.Option("--workers", help="local processes")] = None,
+    scheduler: Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")] = None,
+    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
+    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
+    force: Annotated[
+        bool, typer.Option("--force", help="resume a folder written by other code (values of both "
+                           "are then mixed) or restart one holding another diagram")
+    ] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="print the summary as one JSON object")] = False,
+    *,
+    scene_overrides: dict[str, Any],
+) -> None:
+    """Bifurcation diagram: each value of --axis run to its attractor, warm-started from the last.
+
+    Records K stroboscopic samples per value (a*, a*', x*' - u_x' at integer t*, lift-off
+    phases), the orbit period, its multiplier and the largest Lyapunov exponent; writes the
+    table, a JSON summary and the figure to -o DIR. Every other scene field is an option
+    (--m-star, --mu, --horizontal-ratio, ...) setting the base scene.
+    """
+    field, sep, spec = axis.partition("=")
+    if not sep or not field.strip() or not spec.strip():
+        _fail(f"--axis {axis!r} must look like FIELD=SPEC (e.g. drive.amplitude=lin:0.1:1.5:100)")
+    _writable(out)
+    named = [m.strip() for m in model.split(",") if m.strip()] if model else []
+    fast_start()
+    for name in named:
+        sd.get_model(name)
+    base = scene_from_options(
+        scene_arg, named[0] if named else None, _parse_param(param), scene_overrides)
+    from sawdrift.study.bifurcation import bifurcation
+
+    res = bifurcation(base, field.strip(), spec.strip(), models=named or None, samples=samples,
+                      direction=direction, locate=locate, tolerance=tolerance, out=out,
+                      workers=workers, scheduler=scheduler, progress=progress, force=force,
+                      engine=engine)
+    if as_json:
+        typer.echo(json.dumps(res.summary))
+        return
+    for name, branches in res.summary["points"].items():
+        for way, points in branches.items():
+            periods: dict[int, int] = {}
+            for p in points:
+                periods[p["period"]] = periods.get(p["period"], 0) + 1
+            shown = ", ".join(f"period {k}: {n}" if k else f"no period: {n}"
+                              for k, n in sorted(periods.items()))
+            typer.echo(f"{name:>20} {way:>4}: {shown}")
+    for b in res.bifurcations:
+        where = f"{b['value']:.6g}" if b["located"] else f"{b['bracket'][0]:.6g}..{b['bracket'][1]:.6g}"
+        typer.echo(f"{b['model']:>20} {b['direction']:>4}: {b['kind']} {b['from_period']} -> "
+                   f"{b['to_period']} at {field.strip()} = {where}")
+    for h in res.hysteresis:
+        typer.echo(f"{h['model']:>20} both: hysteresis from {h['from']:.6g} to {h['to']:.6g}")
+    typer.echo(f"wrote {out}/bifurcation.parquet, bifurcation.json, bifurcation.png "
+               f"({res.computed} values computed)")

@@ -312,8 +312,14 @@ def _dask(cells: list[str], workers: int, scheduler: Any, engine: str,
         from distributed import as_completed as dask_completed
     except ImportError:
         raise SceneError("--scheduler needs dask.distributed: pip install 'sawdrift[dask]'") from None
+    owned = not isinstance(scheduler, Client)  # a Client given by the caller stays open
     try:
-        client = Client(scheduler, timeout="10s") if isinstance(scheduler, str) else Client(scheduler)
+        if not owned:
+            client = scheduler
+        elif isinstance(scheduler, str):
+            client = Client(scheduler, timeout="10s")
+        else:
+            client = Client(scheduler)  # a cluster object (LocalCluster, ...)
     except OSError as exc:
         raise SceneError(f"scheduler = {scheduler!r} could not be reached ({exc})") from None
     try:
@@ -321,7 +327,7 @@ def _dask(cells: list[str], workers: int, scheduler: Any, engine: str,
         for fut in dask_completed(futures):
             yield fut.result()
     finally:
-        if isinstance(scheduler, str):
+        if owned:
             client.close()
 
 
