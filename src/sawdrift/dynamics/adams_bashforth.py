@@ -12,7 +12,8 @@ Equations (normalized, docs/physics.md)::
     m* y''  = 1 - N*(a*)                   a*          = y* - u_y(t*)
     u_x = -A* r R(t*) sin(2 pi t*)         u_y = A* R(t*) cos(2 pi t*)
 
-with the substrate kinematics and the ramp R(t*) of :mod:`sawdrift.dynamics.wave`.
+with the substrate motion of the scene's drive (:mod:`sawdrift.dynamics.drives`): the loop calls
+``drive_surface(t, x, dp)``, bound per drive like the kernel ``force``.
 """
 
 from __future__ import annotations
@@ -48,7 +49,6 @@ from .evidence import (
     event,
     log_full,
 )
-from .wave import surface
 
 #: Adams-Bashforth coefficients, row k-1 for order k (Hairer, Norsett, Wanner, *Solving ODEs I*,
 #: section III.1, table 1.1), newest derivative first.
@@ -61,17 +61,33 @@ AB_COEFFS = np.array(
     ]
 )
 
-# Layout of the parameter vector ``prm`` passed to the loops.
-P_M, P_A, P_R, P_MU, P_THETA, P_RAMP, P_H, P_ORDER = 0, 1, 2, 3, 4, 5, 6, 7
-P_FRICTION, P_DAMP, P_P, P_HORIZ, P_VERT, P_KRAMP = 8, 9, 10, 11, 12, 13
-#: rotation: c = 1 + 1/kappa with the sphere free to turn, 0 without rotation (see the loop)
-P_ROLL = 14
-#: rolling resistance mu_r (0: off) of the elastic-plastic rolling spring (see the loop)
-P_RR = 15
-#: horizontal inertia m*_x of the x* equation (m* itself, except in the reduced-inertia steady
-#: state method of sawdrift.dynamics.steady)
-P_MX = 16
-N_PRM = 17
+#: Names of the scheme's parameter vector ``prm`` (the drive's own are in ``dp``), in order;
+#: :func:`pack` builds it from a dict of these names.
+PRM_NAMES = (
+    "m",  # m* of the normal equation
+    "mu",  # friction coefficient
+    "theta",  # E*/(4 G*) of the contact: theta mu b* = x* - u_x
+    "h",  # step in t*
+    "order",  # Adams-Bashforth order 1-4
+    "friction",  # 1: integrate x* with the tangential law, 0: friction off
+    "damping",  # viscous normal damping c (0: off)
+    "p",  # exponent of the profile's normal law (rolling spring stiffness)
+    "k_ramp",  # first step after the drive's start-up ramp (evidence is taken from there)
+    "roll",  # rotation: c = 1 + 1/kappa with the sphere free to turn, 0 without rotation
+    "rolling_resistance",  # mu_r of the elastic-plastic rolling spring (0: off)
+    "m_x",  # horizontal inertia m*_x (m* itself, except in steady.settle's reduced inertia)
+)
+(P_M, P_MU, P_THETA, P_H, P_ORDER, P_FRICTION, P_DAMP, P_P, P_KRAMP, P_ROLL, P_RR,
+ P_MX) = range(len(PRM_NAMES))
+N_PRM = len(PRM_NAMES)
+
+
+def pack(values: dict[str, float], names: tuple[str, ...] = PRM_NAMES) -> np.ndarray:
+    """The parameter vector of ``names`` (all required) from a dict of named values."""
+    missing = [n for n in names if n not in values]
+    if missing:
+        raise KeyError(f"parameters without a value: {missing}")
+    return np.array([float(values[n]) for n in names], dtype=np.float64)
 
 #: State vector: x*, x*', y*, y*', then, with rolling resistance, psi = R phi / a0, psi' and the
 #: elastic rolling displacement psi_e of the spring.
@@ -116,21 +132,17 @@ force: Callable[..., Any] | None = None
 ab = AB_COEFFS
 
 
-def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
-    """One wave-scene integration segment; ``force`` and ``ab`` are globals bound per kernel."""
+def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st):
+    """One integration segment; ``force``, ``drive_surface`` and ``ab`` are globals bound per
+    kernel and drive; ``dp`` is the drive's parameter vector."""
     m = prm[P_M]
     mx = prm[P_MX]
-    amp = prm[P_A]
-    r = prm[P_R]
     mu = prm[P_MU]
     scale_b = 1.0 / (prm[P_THETA] * mu)
-    t_ramp = prm[P_RAMP]
     h = prm[P_H]
     order = int(prm[P_ORDER])
     friction = prm[P_FRICTION] > 0.0
     damp = prm[P_DAMP]
-    horiz = prm[P_HORIZ]
-    vert = prm[P_VERT]
     k_ramp = int(prm[P_KRAMP])
     # Rotation (I = kappa m R^2): m x'' = -T and I phi'' = -R T, so from rest the contact
     # point s = x + R phi moves as s = c x with c = 1 + 1/kappa (docs/physics.md, Rotation).
@@ -150,7 +162,7 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
     for _ in range(n_steps):
         k = ctr[0]
         t = k * h
-        ux, uxd, uy, uyd = surface(t, amp, r, t_ramp, horiz, vert)
+        ux, uxd, uy, uyd = drive_surface(t, y[0], dp)  # noqa: F821
         a = y[2] - uy
         adot = y[3] - uyd
         if friction:
@@ -265,45 +277,46 @@ _LOOP_IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
     "from sawdrift.dynamics.adams_bashforth import AB_COEFFS as ab  # noqa: F401\n"
     "from sawdrift.dynamics.evidence import *  # noqa: F403\n"
-    "from sawdrift.dynamics.wave import surface  # noqa: F401\n"
 )
 
 
-def _loop_namespace(force: Callable[..., Any]) -> dict[str, Any]:
-    """The global names the generated module gives the loop body (the values of _LOOP_IMPORTS)."""
-    from . import evidence, wave
+def _public(module: types.ModuleType) -> dict[str, Any]:
+    names = getattr(module, "__all__", None) or [n for n in vars(module) if not n.startswith("_")]
+    return {n: getattr(module, n) for n in names}
 
-    def public(module: types.ModuleType) -> dict[str, Any]:
-        names = getattr(module, "__all__", None) or [n for n in vars(module) if not n.startswith("_")]
-        return {n: getattr(module, n) for n in names}
 
-    ns = {**public(sys.modules[__name__]), **public(evidence)}
-    ns.update(surface=wave.surface, force=force, ab=AB_COEFFS)
+def _loop_namespace(force: Callable[..., Any], drive_surface: Callable[..., Any]) -> dict[str, Any]:
+    """The global names the loop body runs with (the values of the generated module's imports)."""
+    from . import evidence
+
+    ns = {**_public(sys.modules[__name__]), **_public(evidence)}
+    ns.update(drive_surface=drive_surface, force=force, ab=AB_COEFFS)
     return ns
 
 
-def _python_loop(force: Callable[..., Any]) -> Callable[..., None]:
-    """The loop body run as plain Python with ``force`` bound in (the python engine)."""
-    scope = dict(globals(), force=force, ab=AB_COEFFS)
-    return types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body")
-
-
-def wave_loop(force: Callable[..., Any], compiled: bool) -> Callable[..., None]:
-    """The wave-scene loop for a given force function.
+def wave_loop(force: Callable[..., Any], drive: Any, compiled: bool) -> Callable[..., None]:
+    """The integration loop for a force function and a drive (:mod:`sawdrift.dynamics.drives`).
 
     The compiled loop is cached on disk across processes (see :mod:`.loop_cache`): it is
-    generated, once per kernel, as a small module that imports the kernel by name, so that numba's
-    ``cache=True`` applies; a kernel that cannot be imported by name (defined in ``__main__`` or a
-    notebook) is compiled in memory instead. Compiled loops are also cached per process.
+    generated, once per kernel and drive, as a small module that imports the kernel and the
+    drive's ``surface`` by name, so that numba's ``cache=True`` applies; a kernel that cannot be
+    imported by name (defined in ``__main__`` or a notebook) is compiled in memory instead.
+    Compiled loops are also cached per process. The python engine runs the same body as plain
+    Python with the same functions bound in.
     """
+    surface = drive.functions()[0]
     if not compiled:
-        return _python_loop(force)
-    fn = _COMPILED.get(force)
+        scope = dict(_loop_namespace(force, surface), force=force)
+        return types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body")
+    key = (force, drive.module)
+    fn = _COMPILED.get(key)
     if fn is None:
         from .loop_cache import cached_loop
 
-        fn = cached_loop(force, wave_loop_body, _LOOP_IMPORTS, _loop_namespace(force))
+        imports = _LOOP_IMPORTS + f"from {drive.module} import surface as drive_surface  # noqa: F401\n"
+        fn = cached_loop(force, wave_loop_body, imports, _loop_namespace(force, surface))
         if fn is None:
-            fn = njit(_python_loop(force))
-        _COMPILED[force] = fn
+            scope = _loop_namespace(force, surface)
+            fn = njit(types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body"))
+        _COMPILED[key] = fn
     return fn

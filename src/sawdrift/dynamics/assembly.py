@@ -7,16 +7,78 @@ free impact), the engine and the slots that are on; an empty slot is never compu
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Literal
 
 from ..contact.base import ContactModel
 from ..errors import SceneError
 from ..scene.schema import Impact, Prescribed, Scene, Wave
+from .drives import Drive, drive_of
 
 Engine = Literal["compiled", "python"]
 
-__all__ = ["Assembly", "Engine", "assemble", "explain"]
+__all__ = ["Assembly", "Engine", "assemble", "explain", "steps_per_period"]
+
+
+#: scene fields whose physics is being built: a value other than the default is refused in one
+#: line rather than silently ignored (each entry goes when its part runs)
+_UNBUILT = {
+    "particle.load": ("particle", "load", 0.0),
+    "material.restitution": ("material", "restitution", None),
+    "drive.backward": ("drive", "backward", 0.0),
+    "drive.backward_phase_rate": ("drive", "backward_phase_rate", 0.0),
+    "drive.position": ("drive", "position", 0.0),
+    "drive.wavelength": ("drive", "wavelength", None),
+}
+
+
+def _refuse_unbuilt(scene: Scene) -> None:
+    for dotted, (part, field, default) in _UNBUILT.items():
+        value = getattr(getattr(scene, part), field, default)
+        if value != default:
+            raise SceneError(f"{dotted} = {value!r} is not computed by this version of sawdrift; "
+                             f"leave it at {default!r}")
+
+
+def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
+    """Steps per wave period: the scene's ``numerics.steps_per_period``, or the automatic default.
+
+    For a rigid model the default is 256 (nothing stiff to resolve; events are located by
+    bisection inside steps). Otherwise it resolves the contact's small-amplitude natural frequency
+    omega = sqrt(k / m*) (per unit t*, docs/physics.md) with h omega <= 0.06, where
+    k = p a_ref^(p-1) max(1, c/theta) bounds the normal and tangential stiffness at the largest
+    expected compression a_ref = 1 + 2 A* (c = 1 + 1/kappa with rotation, else 1), and never goes
+    below 128 per period. ``rigid`` is the model's capability (looked up when not given).
+    """
+    if scene.numerics.steps_per_period is not None:
+        return scene.numerics.steps_per_period
+    if rigid is None:
+        from ..contact.registry import get_model
+
+        rigid = get_model(scene.model).capabilities.rigid
+    if rigid:
+        return 256
+    p = scene.particle.profile.p
+    amp = scene.drive.amplitude if isinstance(scene.drive, Wave) else 0.0
+    a_ref = 1.0 + 2.0 * amp
+    if isinstance(scene.drive, Impact):
+        # largest compression from the energy balance with gravity:
+        # a^(p+1) / (p+1) - a = m* v^2 / 2, solved by fixed-point iteration
+        energy = 0.5 * scene.particle.m_star * scene.drive.velocity**2
+        a_ref = 1.0
+        for _ in range(60):
+            a_ref = ((p + 1.0) * (energy + a_ref)) ** (1.0 / (p + 1.0))
+    # a rolling contact point is lighter by c = 1 + 1/kappa: its tangential frequency is
+    # sqrt(c) higher
+    c = 1.0 + 1.0 / scene.particle.gyration if scene.effects.rotation else 1.0
+    k = p * a_ref ** (p - 1.0) * max(1.0, c / scene.theta)
+    if scene.effects.rotation and scene.effects.rolling_resistance > 0.0:
+        # the rolling spring 2.25 mu_r^2 dN*/da* acts on the rotational inertia kappa m*
+        mu_r = scene.effects.rolling_resistance
+        k = max(k, 2.25 * mu_r**2 * p * a_ref ** (p - 1.0) / scene.particle.gyration)
+    omega = math.sqrt(k / scene.particle.m_star)
+    return int(min(10_000_000, max(128, math.ceil(omega / 0.06))))
 
 
 @dataclass(frozen=True)
@@ -37,6 +99,10 @@ class Assembly:
     equations: tuple[str, ...]
     calls: tuple[str, ...]
     outputs: tuple[str, ...]
+    #: the substrate's motion (sawdrift.dynamics.drives); None for a prescribed contact history
+    drive: Drive | None = None
+    #: the integration step is 1 / steps_per_period (0 for a prescribed history)
+    steps_per_period: int = 0
 
 
 def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | None = None) -> Assembly:
@@ -62,9 +128,12 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
             (f"{kernel}(a*, b*) once per sample, committing the history",),
             ("N*(k)", "T*(k)", "dissipated work = sum of T* db*"),
         )
+    _refuse_unbuilt(scene)
     horiz = isinstance(drive, Wave) and eff.horizontal_wave
     vert = isinstance(drive, Wave) and eff.vertical_wave
-    ramp = drive.ramp_periods if isinstance(drive, Wave) else 0.0
+    part = drive_of(scene)
+    ramp = part.ramp_periods(scene)
+    k_per = steps_per_period(scene, caps.rigid)
     equations: list[str] = []
     calls: list[str] = []
     slot = getattr(type(model), "damping", None)
@@ -111,8 +180,7 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
             calls.append(f"{kernel}(a*, b*, a*', b*') once per step, committing the history")
         else:
             equations.append("x* not integrated (friction off); the tangential law is never called")
-        calls.append(f"Adams-Bashforth order {scene.numerics.order}, "
-                     f"{scene.steps_per_period()} steps per period")
+        calls.append(f"Adams-Bashforth order {scene.numerics.order}, {k_per} steps per period")
     if eff.rotation and eff.friction and not caps.rigid:
         kappa = scene.particle.gyration
         c = 1.0 + 1.0 / kappa
@@ -128,24 +196,9 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
             equations.append("theta mu b* = s* - u_x: the contact point moves like a mass "
                              f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the "
                              "centre keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
-    if horiz and drive.orbit == "retrograde":
-        equations.append(f"u_x = +A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
-                         f"r = {scene.horizontal_ratio:.6g} (retrograde orbit: at the crest the "
-                         "surface moves against the propagation direction, -x)")
-    elif horiz:
-        equations.append(f"u_x = -A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
-                         f"r = {scene.horizontal_ratio:.6g}")
-    if horiz and drive.orbit == "prograde":
-        equations.append("prograde orbit (eq. 1 as printed, y* into the substrate): at the crest "
-                         "the surface moves with the wave, +x")
-    if vert:
-        equations.append(f"u_y = A* R(t*) cos(2 pi t*), A* = {drive.amplitude:g}")
-    if isinstance(drive, Wave) and not (horiz or vert):
-        equations.append("substrate at rest (both wave components off)")
-    if isinstance(drive, Wave):
-        equations.append(f"R(t*) = sin^2(pi t* / (2 x {ramp:g})) ramp" if ramp > 0 else "no ramp")
+    equations += part.describe(scene)
     if isinstance(drive, Impact):
-        equations.append(f"substrate at rest; start at a* = 0 with a*' = {drive.velocity:g}")
+        equations.append(f"start at a* = 0 with a*' = {drive.velocity:g}")
     outputs = (
         ("rebound speed ratio", "contact duration", "max compression")
         if isinstance(drive, Impact)
@@ -155,7 +208,7 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     )
     return Assembly(
         scheme, engine, eff.friction, eff.friction and not caps.rigid, eff.normal_damping,
-        horiz, vert, ramp, tuple(equations), tuple(calls), outputs,
+        horiz, vert, ramp, tuple(equations), tuple(calls), outputs, part, k_per,
     )
 
 

@@ -135,6 +135,7 @@ def scene_options() -> tuple[tuple[str, str, str, tuple[str, ...], str], ...]:
 def render() -> str:
     """The source of ``sawdrift/_scene_options.py``."""
     lines = [
+        "# ruff: noqa: E501",
         '"""Generated from the Scene schema by ``python -m sawdrift.scene.options``. Do not edit.',
         "",
         "One row per scene field: (option name, dotted field, kind, choices, help).",
