@@ -26,10 +26,6 @@ __all__ = ["Assembly", "Engine", "assemble", "explain", "steps_per_period"]
 _UNBUILT = {
     "particle.load": ("particle", "load", 0.0),
     "material.restitution": ("material", "restitution", None),
-    "drive.backward": ("drive", "backward", 0.0),
-    "drive.backward_phase_rate": ("drive", "backward_phase_rate", 0.0),
-    "drive.position": ("drive", "position", 0.0),
-    "drive.wavelength": ("drive", "wavelength", None),
 }
 
 
