@@ -99,9 +99,15 @@ class Field:
     errors: list[str] = field(default_factory=list)
 
     def velocity_at(self, xi: np.ndarray | float) -> np.ndarray:
-        """V at ``xi`` by periodic linear interpolation of the samples (period 1/2)."""
+        """V at ``xi``: periodic linear interpolation of the samples and the zeros (period 1/2)."""
         x = np.append(self.positions, self.positions[0] + PERIOD)
         v = np.append(self.drift_velocity, self.drift_velocity[0])
+        # the located zeros are knots too (V = 0 there), so that the path ends at them
+        knots = [_wrap(z["position"], x[0]) for z in self.zeros if "values" in z]
+        if knots:
+            order = np.argsort(np.concatenate([x, knots]), kind="stable")
+            x = np.concatenate([x, knots])[order]
+            v = np.concatenate([v, np.zeros(len(knots))])[order]
         rel = np.mod(np.asarray(xi, dtype=float) - self.positions[0], PERIOD) + self.positions[0]
         return np.interp(rel, x, v)
 
@@ -185,8 +191,10 @@ def _field_base(scene: Scene) -> Scene:
     """The scene of the field's local orbits: no wavelength, no phase ramp (psi as given)."""
     if not isinstance(scene.drive, Wave):
         raise SceneError(f"drive.kind = {scene.drive.kind!r}: a drift field needs a wave drive")
-    return scene.with_updates(**{"drive.wavelength": None, "drive.backward_phase_rate": 0.0,
-                                 "drive.position": 0.0})
+    data = json.loads(json.dumps(scene.model_dump(exclude_none=True)))
+    data["drive"].pop("wavelength", None)
+    data["drive"].update(backward_phase_rate=0.0, position=0.0)
+    return build_scene(data)
 
 
 def _species(base: Scene, axis: tuple[str, list[Any]] | None) -> list[tuple[str, Scene]]:
