@@ -297,8 +297,9 @@ def drift_field(
 
 
 def _zero_eps(scene: Scene) -> float:
-    """|V| at or below which a sample is a zero: round-off of the forward wave's speed."""
-    return 1e-9 * 2.0 * math.pi * scene.horizontal_ratio * scene.drive.amplitude
+    """|V| at or below which a sample is a zero: the regimes' "no drift", ``numerics.
+    drift_tolerance`` times the forward wave's horizontal speed 2 pi r A*."""
+    return scene.numerics.drift_tolerance * 2.0 * math.pi * scene.horizontal_ratio * scene.drive.amplitude
 
 
 def _refine(fields: list[Field], rounds: int, workers: int | None, engine: str) -> None:
