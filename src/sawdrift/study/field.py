@@ -289,7 +289,9 @@ def drift_field(
                                      for s in rows["settled"]],
                             zeros=[], scene=sp, errors=errors))
     for f in fields:
-        f.zeros = find_zeros(f.positions, f.drift_velocity, _zero_eps(f.scene))
+        ok = np.isfinite(f.drift_velocity)  # a failed run (its error is kept) is left out
+        f.zeros = (find_zeros(f.positions[ok], f.drift_velocity[ok], _zero_eps(f.scene))
+                   if ok.sum() >= 2 else [])
     _refine(fields, refine, workers, engine)
     for f in fields:
         f.summary = _summarize(f)
