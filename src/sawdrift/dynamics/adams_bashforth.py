@@ -76,9 +76,11 @@ PRM_NAMES = (
     "roll",  # rotation: c = 1 + 1/kappa with the sphere free to turn, 0 without rotation
     "rolling_resistance",  # mu_r of the elastic-plastic rolling spring (0: off)
     "m_x",  # horizontal inertia m*_x (m* itself, except in steady.settle's reduced inertia)
+    "load",  # constant external tangential force L on the centre, in M g (0: off)
+    "restitution_damping",  # C of the restitution damping C a*^((p-1)/2) a*' (0: off)
 )
 (P_M, P_MU, P_THETA, P_H, P_ORDER, P_FRICTION, P_DAMP, P_P, P_KRAMP, P_ROLL, P_RR,
- P_MX) = range(len(PRM_NAMES))
+ P_MX, P_LOAD, P_REST) = range(len(PRM_NAMES))
 N_PRM = len(PRM_NAMES)
 
 
@@ -88,6 +90,76 @@ def pack(values: dict[str, float], names: tuple[str, ...] = PRM_NAMES) -> np.nda
     if missing:
         raise KeyError(f"parameters without a value: {missing}")
     return np.array([float(values[n]) for n in names], dtype=np.float64)
+
+def restitution_of_damping_ratio(zeta: float) -> float:
+    """Rebound speed ratio e of a free impact on a linear spring-dashpot of damping ratio zeta.
+
+    x'' = -x - 2 zeta x' from x = 0, x' = 1, with the force clamped at zero (the contact does not
+    pull: it ends where x + 2 zeta x' = 0). Closed form of Schwager and Poeschel (2007, Granular
+    Matter 9, 465-469): for zeta < 1, e = exp(-zeta (pi - phi) / w) with w = sqrt(1 - zeta^2),
+    phi = atan2(2 zeta w, 1 - 2 zeta^2); e = exp(-2) at zeta = 1; for zeta > 1 the overdamped
+    solution evaluated where the force vanishes, t_c = ln(2 zeta^2 - 1 + 2 zeta s) / s,
+    s = sqrt(zeta^2 - 1).
+    """
+    if zeta <= 0.0:
+        return 1.0
+    if zeta < 1.0:
+        w = math.sqrt(1.0 - zeta * zeta)
+        phi = math.atan2(2.0 * zeta * w, 1.0 - 2.0 * zeta * zeta)
+        return math.exp(-zeta * (math.pi - phi) / w)
+    if zeta == 1.0:
+        return math.exp(-2.0)
+    s = math.sqrt(zeta * zeta - 1.0)
+    l1, l2 = -zeta + s, -zeta - s
+    t = math.log(2.0 * zeta * zeta - 1.0 + 2.0 * zeta * s) / s
+    return -(l1 * math.exp(l1 * t) - l2 * math.exp(l2 * t)) / (l1 - l2)
+
+
+#: the smallest restitution a compliant contact takes: its damping ratio zeta = 2 stays inside
+#: the explicit scheme's stability at the default step (h omega <= 0.06, damping rate
+#: 2 zeta omega: h 2 zeta omega <= 0.24 against AB4's real stability bound 0.3)
+MIN_RESTITUTION = 0.05
+
+
+def damping_ratio(e: float) -> float:
+    """The damping ratio zeta whose clamped linear impact rebounds with ratio ``e`` in (0, 1].
+
+    Inverts :func:`restitution_of_damping_ratio` (monotone decreasing) by bisection to 1e-15.
+    """
+    if not 0.0 < e <= 1.0:
+        raise ValueError(f"restitution e = {e!r} is outside (0, 1]")
+    if e == 1.0:
+        return 0.0
+    lo, hi = 0.0, 1.0
+    while restitution_of_damping_ratio(hi) > e:
+        hi *= 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if restitution_of_damping_ratio(mid) > e:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
+def restitution_damping(e: float, p: float, m_star: float) -> float:
+    """C of the restitution damping N* += C a*^((p-1)/2) a*' for the normal law N* = a*^p.
+
+    The damping force is beta sqrt(m* dN*/da*) a*' (stiffness-proportional, as in DEM codes after
+    Tsuji, Tanaka and Ishida 1992, Powder Technol. 71, 239-250), so C = beta sqrt(p m*). In the
+    phase plane of the free impact, m* v dv/da = -a^p - C a^((p-1)/2) v, the substitution
+    a = A x^(2/(p+1)) with A^(p+1) = (p+1)/2 gives exactly the linear spring-dashpot
+    v dv/dx = -x - 2 zeta v (with time in units of sqrt(m*)) of damping ratio
+    zeta = beta sqrt(p / (2 (p + 1))), and the clamp N* = 0 maps onto x + 2 zeta v = 0 (Antypov
+    and Elliott 2011, EPL 94, 50004, for p = 3/2). The rebound ratio is therefore that of the
+    clamped linear dashpot, independent of the impact speed and of m*: C = zeta(e)
+    sqrt(2 (p + 1) m*) with zeta from :func:`damping_ratio`. Gravity, left out of this impact,
+    changes the rebound by a part that falls with the impact speed (docs/physics.md).
+    """
+    return damping_ratio(e) * math.sqrt(2.0 * (p + 1.0) * m_star)
+
 
 #: State vector: x*, x*', y*, y*', then, with rolling resistance, psi = R phi / a0, psi' and the
 #: elastic rolling displacement psi_e of the spring.
@@ -155,10 +227,19 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
     # The rotational inertia follows the horizontal one (m*_x, reduced only by steady.settle),
     # so both relax together.
     rr = prm[P_RR]
-    resist = rr > 0.0 and roll > 0.0
+    # A constant tangential load L acts on the centre: m* x'' = -mu T* + L (docs/physics.md,
+    # "Loads, inclines and restitution"). It exerts no torque, so with rotation the contact point
+    # no longer stays at s = c x: the rotation angle is then integrated (the rolling path below,
+    # with its spring only if mu_r > 0), and goes on being integrated once it is not (c - 1) x.
+    load = prm[P_LOAD]
+    spin = roll > 0.0 and (rr > 0.0 or load != 0.0 or y[4] != 0.0 or y[5] != 0.0)
     kappa_m = mx / (roll - 1.0) if roll > 0.0 else 0.0
     p_exp = prm[P_P]
-    ncomp = 6 if resist else 4
+    # Restitution damping C a*^((p-1)/2) a*' = beta sqrt(m* dN*/da*) a*' for N* = a*^p: a free
+    # impact rebounds with the speed ratio e at every impact speed (see restitution_damping)
+    rest = prm[P_REST]
+    q_rest = 0.5 * (p_exp - 1.0)
+    ncomp = 6 if spin else 4
     for _ in range(n_steps):
         k = ctr[0]
         t = k * h
@@ -166,7 +247,7 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
         a = y[2] - uy
         adot = y[3] - uyd
         if friction:
-            if resist:
+            if spin:
                 b = (y[0] + y[4] - ux) * scale_b
                 bdot = (y[1] + y[5] - uxd) * scale_b
             elif roll > 0.0:
@@ -181,8 +262,11 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
             b = 0.0
             nf, tf = force(fs, is_, pp, a, 0.0, adot, 0.0)
             tf = 0.0
-        if damp > 0.0 and a > 0.0:
-            nf += damp * adot
+        if (damp > 0.0 or rest > 0.0) and a > 0.0:
+            if damp > 0.0:
+                nf += damp * adot
+            else:
+                nf += rest * a**q_rest * adot
             if nf < 0.0:
                 nf = 0.0
             # the Coulomb bound holds for the total normal force, damping included (as in DEM
@@ -191,7 +275,7 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
                 tf = nf
             elif tf < -nf:
                 tf = -nf
-        ax = -mu * tf / mx
+        ax = (-mu * tf + load) / mx if load != 0.0 else -mu * tf / mx
         ay = (1.0 - nf) / m
         inside = a > 0.0
         slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
@@ -227,11 +311,11 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
         for j in range(3, 0, -1):
             for c in range(ncomp):
                 fh[j, c] = fh[j - 1, c]
-        fh[0, 0] = y[1] if friction else 0.0
+        fh[0, 0] = y[1] if (friction or load != 0.0) else 0.0
         fh[0, 1] = ax
         fh[0, 2] = y[3]
         fh[0, 3] = ay
-        if resist:
+        if spin:
             kr = 2.25 * rr * rr * p_exp * a ** (p_exp - 1.0) if a > 0.0 else 0.0
             cap = rr * nf
             mr = -kr * y[6]
@@ -252,7 +336,7 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
             for j in range(q):
                 acc += ab[q - 1, j] * fh[j, c]
             y[c] += h * acc
-        if resist:
+        if spin:
             # the spring takes the rotation increment, and slides (plastic) at its cap
             y[6] += y[4] - psi_old
             if kr > 0.0 and abs(kr * y[6]) > cap:

@@ -24,8 +24,6 @@ __all__ = ["Assembly", "Engine", "assemble", "explain", "steps_per_period"]
 #: scene fields whose physics is being built: a value other than the default is refused in one
 #: line rather than silently ignored (each entry goes when its part runs)
 _UNBUILT = {
-    "particle.load": ("particle", "load", 0.0),
-    "material.restitution": ("material", "restitution", None),
 }
 
 
@@ -99,6 +97,13 @@ class Assembly:
     drive: Drive | None = None
     #: the integration step is 1 / steps_per_period (0 for a prescribed history)
     steps_per_period: int = 0
+    #: the constant tangential load L on the centre (particle.load), in M g
+    load: float = 0.0
+    #: the restitution in force: a compliant contact's damped e (None: undamped), or the rigid
+    #: point's Newton restitution
+    restitution: float | None = None
+    #: C of a compliant contact's restitution damping N* += C a*^((p-1)/2) a*' (0: off)
+    restitution_damping: float = 0.0
 
 
 def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | None = None) -> Assembly:
@@ -139,12 +144,17 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
             f"on model {name!r}, which has its own normal-damping slot ({slot.name!r}); use one: "
             "set effects.normal_damping = 0, or pick a model without a damping slot"
         )
+    load = scene.particle.load
+    restitution, rest_c, rest_lines = _restitution(scene, model, slot)
     if caps.rigid:
         scheme = "rigid"
         normal = "N* = 1 - m* u_y''" if eff.vertical_inertia else "N* = 1 (vertical inertia off)"
-        equations.append("a* = 0 in contact; flight m* y*'' = 1 when N* < 0; impact with restitution")
+        equations.append("a* = 0 in contact; flight m* y*'' = 1 when N* < 0; impact with restitution"
+                         + (rest_lines[0] if rest_lines else ""))
         equations.append(normal)
-        if eff.friction and eff.rotation:
+        if load != 0.0:
+            equations += _rigid_load_lines(scene)
+        elif eff.friction and eff.rotation:
             kappa = scene.particle.gyration
             equations.append("rotation: I phi'' = -R T, I = kappa m R^2, kappa = "
                              f"{kappa:.6g}: the contact point s = x + R phi = (1 + 1/kappa) x has "
@@ -166,23 +176,36 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         if eff.normal_damping > 0.0:
             equations.append(f"N* += {eff.normal_damping:g} a*' while a* > 0, N* >= 0 (viscous "
                              "normal damping); |T*| <= N*, the total normal force")
+        elif rest_lines:
+            equations += rest_lines
         elif slot is not None:
             equations.append(f"N* from the normal-damping slot {slot.name!r} "
                              f"({slot.__doc__.strip().splitlines()[0] if slot.__doc__ else ''}); "
                              "|T*| <= N*, the total normal force")
         if eff.friction:
-            equations.append("m* x*'' = -mu T*(b*, a*)" + (
+            equations.append("m* x*'' = -mu T*(b*, a*)" + (" + L" if load != 0.0 else "") + (
                 " (x* the centre)" if eff.rotation else ", theta mu b* = x* - u_x"))
             calls.append(f"{kernel}(a*, b*, a*', b*') once per step, committing the history")
+        elif load != 0.0:
+            equations.append("m* x*'' = L (friction off); the tangential law is never called")
         else:
             equations.append("x* not integrated (friction off); the tangential law is never called")
+        if load != 0.0:
+            equations.append(_LOAD_LINE.format(load=load))
         calls.append(f"Adams-Bashforth order {scene.numerics.order}, {k_per} steps per period")
     if eff.rotation and eff.friction and not caps.rigid:
         kappa = scene.particle.gyration
         c = 1.0 + 1.0 / kappa
-        equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
-                         f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x")
-        if eff.rolling_resistance > 0.0:
+        if load != 0.0 and eff.rolling_resistance == 0.0:
+            equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
+                             "the load pulls the centre without turning it: kappa m* psi'' = "
+                             "-mu T*, psi = R phi / a0, theta mu b* = s* - u_x with s* = x* + psi")
+        else:
+            equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
+                             f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x")
+        if load != 0.0 and eff.rolling_resistance == 0.0:
+            equations.append("the centre keeps m* x*'' = -mu T* + L; spin R phi' / a0 = psi'")
+        elif eff.rolling_resistance > 0.0:
             mu_r = eff.rolling_resistance
             equations.append("rolling resistance (elastic-plastic spring, Ai et al. 2011): "
                              "kappa m* psi'' = -mu T* + m_r, psi = R phi / a0, s* = x* + psi, "
@@ -205,7 +228,86 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     return Assembly(
         scheme, engine, eff.friction, eff.friction and not caps.rigid, eff.normal_damping,
         horiz, vert, ramp, tuple(equations), tuple(calls), outputs, part, k_per,
+        load, restitution, rest_c,
     )
+
+
+_LOAD_LINE = ("L = {load:g}: particle.load, a constant tangential force on the centre in units of "
+              "M g (positive along +x), applied from t* = 0")
+
+
+def _rigid_load_lines(scene: Scene) -> list[str]:
+    """The rigid scheme's tangential equations with the load L (docs/physics.md)."""
+    load = scene.particle.load
+    eff = scene.effects
+    if not eff.friction:
+        return ["m* x*'' = L (friction off: no tangential force)", _LOAD_LINE.format(load=load)]
+    if not eff.rotation:
+        return ["Coulomb with the load: stick x*'' = u_x'' while |m* u_x'' - L|/mu <= N*, else "
+                "m* x*'' = -mu N* sgn(x*' - u_x') + L; in flight m* x*'' = L",
+                _LOAD_LINE.format(load=load)]
+    kappa = scene.particle.gyration
+    c = 1.0 + 1.0 / kappa
+    m_s = scene.particle.m_star / c
+    return [f"rotation: I phi'' = -R T, I = kappa m R^2, kappa = {kappa:.6g}; the load acts on the "
+            f"centre only: the contact point s = x + R phi has the mass m_s = m* / (1 + 1/kappa) = "
+            f"{m_s:.6g} and the load L / (1 + 1/kappa) = {scene.particle.load / c:.6g}",
+            "Coulomb on the contact point: stick s*'' = u_x'' while |m_s u_x'' - L/(1 + 1/kappa)|/mu "
+            "<= N*, else m_s s*'' = -mu N* sgn(s*' - u_x') + L/(1 + 1/kappa); centre "
+            "m* x*'' = -mu T* + L, so (1 + 1/kappa) x* - s* grows as (1/kappa) L t*^2 / (2 m*)",
+            _LOAD_LINE.format(load=load)]
+
+
+def _restitution(scene: Scene, model: ContactModel,
+                 slot: object) -> tuple[float | None, float, list[str]]:
+    """(restitution in force, C of the compliant restitution damping, its equation lines).
+
+    ``material.restitution`` is the one name of the restitution for every model: on a compliant
+    contact a normal damping that rebounds a free impact with ratio e at any speed; on the rigid
+    point its Newton restitution (``model_params.restitution`` may only repeat it).
+    """
+    from .adams_bashforth import MIN_RESTITUTION, damping_ratio, restitution_damping
+
+    e = scene.material.restitution
+    if model.capabilities.rigid:
+        given = scene.model_params.get("restitution")
+        if e is None:
+            return (float(given) if given is not None else None), 0.0, []
+        field = type(model).Params.model_fields.get("restitution")
+        default = field.default if field is not None else None
+        if given is not None and given != default and given != e:
+            raise SceneError(f"material.restitution = {e:g} and model_params.restitution = "
+                             f"{given:g} disagree; give one of them (material.restitution is "
+                             "the restitution of every model)")
+        return e, 0.0, [f" e = {e:g} (material.restitution)"]
+    if e is None:
+        return None, 0.0, []
+    eff = scene.effects
+    if eff.normal_damping > 0.0:
+        raise SceneError(f"material.restitution = {e:g} and effects.normal_damping = "
+                         f"{eff.normal_damping:g} would be two normal dampings; use one of them")
+    if slot is not None:
+        raise SceneError(f"material.restitution = {e:g} would stack a second normal damping on "
+                         f"model {scene.model!r}, which has its own normal-damping slot "
+                         f"({getattr(slot, 'name', '?')!r}); use a model without one")
+    profile = scene.particle.profile
+    if profile.shape == "table":
+        raise SceneError(f"material.restitution = {e:g} needs a power-law profile (sphere, cone, "
+                         "flat, power): a tabulated normal law has no speed-independent "
+                         "restitution damping")
+    if e < MIN_RESTITUTION:
+        raise SceneError(f"material.restitution = {e:g} is below {MIN_RESTITUTION:g}, the "
+                         "smallest a compliant contact takes (its damping would exceed the "
+                         "explicit scheme's stability); give e in [0.05, 1]")
+    p = profile.p
+    m = scene.particle.m_star
+    c = restitution_damping(e, p, m)
+    zeta = damping_ratio(e)
+    line = (f"N* += beta sqrt(m* dN*/da*) a*' = C a*^((p-1)/2) a*' while a* > 0, N* >= 0: a free "
+            f"impact rebounds with e = {e:g} at any speed (damping ratio zeta = {zeta:.6g}, beta = "
+            f"zeta sqrt(2 (p+1)/p), C = zeta sqrt(2 (p+1) m*) = {c:.6g}); |T*| <= N*, the total "
+            "normal force")
+    return e, c, [line]
 
 
 def explain(scene: Scene, engine: Engine = "compiled") -> str:

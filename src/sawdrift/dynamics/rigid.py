@@ -4,9 +4,12 @@ Paper section 4 (after Verma and DasGupta, Phys. Rev. E 88, 052915, 2013), norma
 docs/physics.md: a* = 0 while in contact, and then
 
     N*(t*) = 1 - m* u_y''(t*)          (N* = 1 with the vertical inertia switched off)
-    stick:  x*'' = u_x''   while |T_req| = |m* u_x''| / mu <= N*
-    slip:   m* x*'' = -mu N* sgn(s),   s = x*' - u_x'
-    flight: m* y*'' = 1, x*'' = 0       (contact lost when N* would turn negative)
+    stick:  x*'' = u_x''   while |T_req| = |m* u_x'' - L| / mu <= N*
+    slip:   m* x*'' = -mu N* sgn(s) + L,   s = x*' - u_x'
+    flight: m* y*'' = 1, m* x*'' = L    (contact lost when N* would turn negative)
+
+with L the constant tangential load (``particle.load``, 0 by default; docs/physics.md, "Loads,
+inclines and restitution"); with L = 0 every expression is the one without the load.
 
 Re-contact is an impact with a Newton restitution coefficient e (default 0) and a Coulomb-limited
 tangential impulse. Within a fixed step, events (break-away, slip reversal or stick, lift-off,
@@ -30,6 +33,7 @@ from .adams_bashforth import (
     P_FRICTION,
     P_H,
     P_KRAMP,
+    P_LOAD,
     P_M,
     P_MU,
     P_ROLL,
@@ -89,6 +93,16 @@ def _tangential_mass(prm):
     return prm[P_M] / c if c > 0.0 else prm[P_M]
 
 
+def _tangential_load(prm):
+    """The load on the tangential motion: L/c on a rolling sphere's contact point, else L.
+
+    The load acts on the centre and exerts no torque: m x'' = -mu T + L and
+    I phi'' = -R mu T give for s = x + R phi the equation (m/c) s'' = -mu T + L/c.
+    """
+    c = prm[P_ROLL]
+    return prm[P_LOAD] / c if c > 0.0 else prm[P_LOAD]
+
+
 def _normal(t, prm):
     """N*(t) in permanent contact (1 - m* u_y'' with vertical inertia, else 1)."""
     if prm[P_VINERTIA] <= 0.0:
@@ -98,9 +112,8 @@ def _normal(t, prm):
 
 
 def _stick_margin(t, prm):
-    """N* - |T_req| with T_req = -m* u_x''/mu: stick holds while this is >= 0."""
-    k = drive_kinematics(t, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
-    return _normal(t, prm) - abs(_tangential_mass(prm) * k[2] / prm[P_MU])
+    """N* - |T_req| with T_req = (L - m* u_x'')/mu: stick holds while this is >= 0."""
+    return _normal(t, prm) - abs(_t_req(t, prm))
 
 
 def _sticks(t, prm):
@@ -113,14 +126,19 @@ def _sticks(t, prm):
 
 
 def _t_req(t, prm):
+    """The friction T* that keeps the point stuck: mu T* = L - m* u_x'' (the load included)."""
     k = drive_kinematics(t, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
-    return -_tangential_mass(prm) * k[2] / prm[P_MU]
+    load = _tangential_load(prm)
+    if load == 0.0:
+        return -_tangential_mass(prm) * k[2] / prm[P_MU]
+    return (load - _tangential_mass(prm) * k[2]) / prm[P_MU]
 
 
 def _slip_state(t0, x0, v0, t, sigma, prm):
     """Exact (x*, x*') at t after slipping with sgn(s) = sigma from (t0, x0, v0).
 
-    In contact int N* dt = dt - m* (u_y'(t) - u_y'(t0)), so the slip motion has a closed form.
+    In contact int N* dt = dt - m* (u_y'(t) - u_y'(t0)), so the slip motion has a closed form;
+    the load adds the constant acceleration L/m* (L/c over m*/c on a rolling contact point).
     """
     m = prm[P_M]
     c = prm[P_MU] * sigma / _tangential_mass(prm)
@@ -133,7 +151,10 @@ def _slip_state(t0, x0, v0, t, sigma, prm):
     else:
         int_n = dt
         int2_n = 0.5 * dt * dt
-    return x0 + v0 * dt - c * int2_n, v0 - c * int_n
+    g = prm[P_LOAD] / m
+    if g == 0.0:
+        return x0 + v0 * dt - c * int2_n, v0 - c * int_n
+    return x0 + v0 * dt - c * int2_n + 0.5 * g * dt * dt, v0 - c * int_n + g * dt
 
 
 def _slip_velocity(t0, x0, v0, t, sigma, prm):
@@ -163,10 +184,26 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
     k_ramp = int(prm[P_KRAMP])
     amp = prm[P_UY]
     dp = prm[N_PRM_RIGID:]
+    # the load's acceleration L/m* of the free (flight, frictionless) tangential motion
+    g_load = prm[P_LOAD] / m
+    roll = prm[P_ROLL]
     for _ in range(n_steps):
         k = ctr[0]
         t = k * h
         prm[P_XQ] = y[0]
+        # A rolling sphere under a load: the scheme integrates the contact point s = x + psi
+        # (psi = R phi / a0), but s = c x (from rest) no longer holds, since the load pulls the
+        # centre without turning it. d = c x - s obeys d'' = (c - 1) L/m* in every phase
+        # (impulses change c x' and s' alike). Between steps y[0], y[1] hold c x, c x' (as
+        # without the load) and y[4], y[5] the rolling angle psi, psi' (d = (c - 1) x - psi).
+        offset = roll > 0.0 and (g_load != 0.0 or y[4] != 0.0 or y[5] != 0.0)
+        d = 0.0
+        dv = 0.0
+        if offset:
+            d = y[0] * (roll - 1.0) / roll - y[4]
+            dv = y[1] * (roll - 1.0) / roll - y[5]
+            y[0] -= d
+            y[1] -= dv
         t_end = t + h
         tau = t
         out_time = 0.0
@@ -178,6 +215,9 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 if _gap(tau, y[2], y[3], t_end, prm) < 0.0:
                     dt = t_end - tau
                     y[0] += y[1] * dt
+                    if g_load != 0.0:
+                        y[0] += 0.5 * g_load * dt * dt
+                        y[1] += g_load * dt
                     y[2] += y[3] * dt + 0.5 * dt * dt / m
                     y[3] += dt / m
                     out_time += dt
@@ -194,6 +234,9 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 dt = tc - tau
                 out_time += dt
                 y[0] += y[1] * dt
+                if g_load != 0.0:
+                    y[0] += 0.5 * g_load * dt * dt
+                    y[1] += g_load * dt
                 vy = y[3] + dt / m
                 kk = drive_kinematics(tc, prm[P_XQ], dp)  # noqa: F821
                 vn = vy - kk[4]
@@ -261,6 +304,9 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             if not friction:
                 dt = seg_end - tau
                 y[0] += y[1] * dt
+                if g_load != 0.0:
+                    y[0] += 0.5 * g_load * dt * dt
+                    y[1] += g_load * dt
             elif ctr[3] == 1:  # stick: follows the substrate
                 if not _sticks(seg_end, prm):
                     lo, hi = tau, seg_end
@@ -325,6 +371,14 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             st[S_BAD] = BAD_EVENTS
             st[S_BADSTEP] = k
             return
+        if offset:
+            gd = (roll - 1.0) * g_load
+            d += dv * h + 0.5 * gd * h * h
+            dv += gd * h
+            y[0] += d
+            y[1] += dv
+            y[4] = y[0] * (roll - 1.0) / roll - d
+            y[5] = y[1] * (roll - 1.0) / roll - dv
         # ---- bookkeeping at the end of the step ----
         kk = drive_kinematics(t_end, prm[P_XQ], dp)  # noqa: F821
         a = y[2] - kk[3] if ctr[1] == 1 else 0.0
@@ -361,7 +415,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
 # -- the scheme bound to a drive ------------------------------------------------------------------
 
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
-_FUNCTIONS = (_tangential_mass, _normal, _stick_margin, _sticks, _t_req, _slip_state,
+_FUNCTIONS = (_tangential_mass, _tangential_load, _normal, _stick_margin, _sticks, _t_req, _slip_state,
               _slip_velocity, _gap, rigid_loop)
 _IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"

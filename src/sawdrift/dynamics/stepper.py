@@ -83,8 +83,12 @@ class Stepper:
             "p": scene.particle.profile.p, "k_ramp": math.ceil(ramp * self.k_per - 1e-9),
             "roll": self.roll,
             "rolling_resistance": eff.rolling_resistance if eff.rotation else 0.0,
+            "load": plan.load,
+            "restitution_damping": plan.restitution_damping,
         })
-        self.resist = prm[ig.P_RR] > 0.0
+        #: the rolling angle psi = R phi / a0 is integrated (state y[4], y[5]): with rolling
+        #: resistance, or under a load (which turns the centre's motion away from s = c x)
+        self.resist = prm[ig.P_RR] > 0.0 or (self.roll > 0.0 and plan.load != 0.0)
         self.ev_margin = rg.EV_MARGIN_RIGID if self.rigid else ev.EV_MARGIN
         self.st = ev.new_stats(max(EVENTS_PER_PERIOD * max(1, event_periods) + 64,
                                    2 * self.ev_margin))
@@ -96,7 +100,9 @@ class Stepper:
         self.history: ContactHistory | None = None
         if self.rigid:
             extra = np.zeros(rg.N_PRM_RIGID - ig.N_PRM)
-            extra[rg.P_RESTITUTION - ig.N_PRM] = float(model.params.restitution)
+            # material.restitution, or the model's own parameter (the assembly checks they agree)
+            e = plan.restitution if plan.restitution is not None else model.params.restitution
+            extra[rg.P_RESTITUTION - ig.N_PRM] = float(e)
             extra[rg.P_VINERTIA - ig.N_PRM] = 1.0 if eff.vertical_inertia else 0.0
             extra[rg.P_UY - ig.N_PRM] = self.drive.vertical_amplitude(scene)
             # the rigid scheme reads the drive's parameters behind its own
@@ -225,6 +231,13 @@ class Stepper:
         new.y = self.y.copy()
         new.ctr = self.ctr.copy()
         new.ctr[0] = int(round(t * new.k_per))
+        if new.resist and not self.resist and new.roll > 0.0:
+            # the rolling angle starts being integrated: from rest it was psi = (c - 1) x
+            new.y[4] = (new.roll - 1.0) * self.centre(self.y[0])
+            new.y[5] = (new.roll - 1.0) * self.centre(self.y[1])
+        elif self.resist and new.roll > 0.0:
+            new.resist = True  # psi, once apart from (c - 1) x, stays integrated (the loops
+            # go on integrating it while it is nonzero)
         if self.rigid:
             return new
         if new.k_per == self.k_per:
@@ -303,8 +316,10 @@ class Stepper:
 
         data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
         if self.rigid and self.roll > 0.0:
-            # the rigid scheme integrates the contact point s = c x = x + R phi / a0
-            data[:, 9:11] = data[:, 1:3] * (1.0 - 1.0 / self.roll)
+            # the rigid scheme's state is c x (s = c x = x + R phi / a0 from rest, without a
+            # load); under a load it also records psi = R phi / a0 (columns 9, 10)
+            if not self.resist:
+                data[:, 9:11] = data[:, 1:3] * (1.0 - 1.0 / self.roll)
             data[:, 1:3] /= self.roll
         elif self.roll > 0.0 and not self.resist:
             # from rest R phi = x / kappa = (c - 1) x (docs/physics.md, Rotation)
