@@ -23,6 +23,7 @@ GROUPS: dict[str, str] = {
     "conformance": "7. Conformance of every installed model: passivity, Coulomb bound, kernels",
     "rotation": "8. Rotation: a finite sphere that can roll",
     "steady": "9. Steady drift: the settle method and the settled flag against brute-force runs",
+    "loads": "11. Loads, inclines and restitution",
 }
 
 #: The compliant models the oracle cases run for by default.
