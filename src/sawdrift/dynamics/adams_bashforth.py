@@ -115,7 +115,7 @@ def restitution_of_damping_ratio(zeta: float) -> float:
     return -(l1 * math.exp(l1 * t) - l2 * math.exp(l2 * t)) / (l1 - l2)
 
 
-#: the smallest restitution a compliant contact takes: its damping ratio zeta = 2 stays inside
+#: the smallest restitution a compliant contact takes: its damping ratio zeta = 1.95 stays inside
 #: the explicit scheme's stability at the default step (h omega <= 0.06, damping rate
 #: 2 zeta omega: h 2 zeta omega <= 0.24 against AB4's real stability bound 0.3)
 MIN_RESTITUTION = 0.05
