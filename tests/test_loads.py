@@ -267,3 +267,13 @@ def test_cli_load_is_a_run_option(monkeypatch, capsys):
     assert code == 2 and len(lines) == 1 and "particle.load = 500.0 is outside" in lines[0]
     code, out, _ = _cli(monkeypatch, capsys, "run", "--load", "0.02", "--explain")
     assert code == 0 and "L = 0.02: particle.load" in out
+
+
+def test_the_inclined_conveyor_climbs_at_2_deg_and_slides_back_at_3_deg():
+    # examples/grain_on_incline.toml: on a slope L = -tan(alpha) exactly (no preload)
+    scene = sd.Scene.from_toml(MOTOR.parent / "grain_on_incline.toml")
+    assert scene.particle.load == pytest.approx(-math.tan(math.radians(2.0)), rel=1e-12)
+    up = sd.run(scene)
+    down = sd.run(scene.with_updates(**{"device.incline": "3 deg"}))
+    assert up.settled and up.extra["drift_speed_m_s"] > 0.0 and up.extra["power_w"] > 0.0
+    assert down.settled and down.extra["drift_speed_m_s"] < 0.0
