@@ -277,3 +277,8 @@ def test_the_inclined_conveyor_climbs_at_2_deg_and_slides_back_at_3_deg():
     down = sd.run(scene.with_updates(**{"device.incline": "3 deg"}))
     assert up.settled and up.extra["drift_speed_m_s"] > 0.0 and up.extra["power_w"] > 0.0
     assert down.settled and down.extra["drift_speed_m_s"] < 0.0
+
+
+def test_a_prescribed_history_refuses_a_load_in_one_line():
+    with pytest.raises(sd.SceneError, match="particle.load = 0.1 acts on the particle's motion"):
+        sd.run(sd.Scene(drive={"kind": "prescribed"}, particle={"load": 0.1}))

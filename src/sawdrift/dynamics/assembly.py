@@ -123,6 +123,11 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     name = scene.model
     kernel = f"{name}.kernel.force" if engine == "compiled" else f"{name}.reference().force"
     if isinstance(drive, Prescribed):
+        for field, value, off in (("particle.load", scene.particle.load, 0.0),
+                                  ("material.restitution", scene.material.restitution, None)):
+            if value != off:
+                raise SceneError(f"{field} = {value!r} acts on the particle's motion; a prescribed "
+                                 "contact history has none (leave it unset)")
         return Assembly(
             "prescribed", engine, False, True, 0.0, False, False, 0.0,
             ("a*(k), b*(k) prescribed (" + drive.waveform + "); no dynamics",),

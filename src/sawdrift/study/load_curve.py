@@ -99,7 +99,7 @@ class LoadCurve:
         out: dict[str, Any] = {
             "direction": {1: "+x", -1: "-x"}.get(self.direction, "none"),
             "loads": self.loads.tolist(),
-            "applied_load": (-self.direction * self.loads).tolist(),
+            "applied_load": (0.0 - self.direction * self.loads).tolist(),
             "drift_velocity": self.velocities.tolist(),
             "power": self.power.tolist(),
             "regimes": list(self.regimes),
