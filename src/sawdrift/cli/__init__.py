@@ -2,7 +2,8 @@
 
 :mod:`.app` holds the application, its one-line errors and exit statuses; the commands live in
 :mod:`.run` (models, check-model, run), :mod:`.study` (sweeps), :mod:`.report` (diagrams,
-comparison, export, demo, validation, benchmarks) and :mod:`.field` (two-wave drift fields).
+comparison, export, demo, validation, benchmarks), :mod:`.field` (two-wave drift fields) and
+:mod:`.load_curve` (speed and power against a load).
 Scene options are generated from the Scene schema (:mod:`.scene_options`).
 """
 
@@ -12,6 +13,7 @@ from . import run  # noqa: F401
 from . import study  # noqa: F401
 from . import report  # noqa: F401
 from . import field  # noqa: F401
+from . import load_curve  # noqa: F401
 # isort: on
 from .app import INTERNAL_FAILURE, app, main
 from .scene_options import scene_from_options

@@ -23,7 +23,9 @@ GROUPS: dict[str, str] = {
     "conformance": "7. Conformance of every installed model: passivity, Coulomb bound, kernels",
     "rotation": "8. Rotation: a finite sphere that can roll",
     "steady": "9. Steady drift: the settle method and the settled flag against brute-force runs",
+    "bifurcation": "10. Bifurcation diagrams: the inelastic bouncing ball, convergence in the step",
     "loads": "11. Loads, inclines and restitution",
+    "fields": "12. Two-wave drift fields: traps, phase shifts, direct runs, moving traps",
 }
 
 #: The compliant models the oracle cases run for by default.

@@ -67,7 +67,7 @@ UNITS = {
 FIELD_KIND = {"frequency": "frequency", "amplitude": "length", "radius": "length",
               "youngs_modulus": "pressure", "density": "density", "mass": "mass",
               "gravity": "acceleration", "preload": "force", "half_angle": "angle",
-              "load": "force", "incline": "angle"}
+              "load": "force", "incline": "angle", "wavelength": "length"}
 
 
 @lru_cache(maxsize=1)
@@ -202,6 +202,9 @@ class DeviceSubstrate(BaseModel):
 
     youngs_modulus: Pressure = Field(description="E2")
     poisson: Poisson = Field(description="nu2, in (-1, 0.5)")
+    density: Annotated[float, _quantity("density")] | None = Field(
+        None, description="rho2: the Rayleigh speed c_R = xi_R sqrt(G2/rho2) and so the "
+        "wavelength c_R/f (two-wave fields and direct runs)")
 
 
 class Device(BaseModel):
@@ -228,6 +231,9 @@ class Device(BaseModel):
         "surface rises towards +x: gravity's normal part m g cos(alpha) holds the particle, its "
         "part m g sin(alpha) pulls it down the slope")
     friction: Annotated[float, Field(gt=0.0, le=10.0)] = Field(description="mu")
+    wavelength: Annotated[float, _quantity("length")] | None = Field(
+        None, description="surface wavelength; overrides c_R/f from device.substrate.density "
+        "(anisotropic crystals)")
     particle: DeviceParticle
     substrate: DeviceSubstrate
 
