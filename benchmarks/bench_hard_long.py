@@ -19,6 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
+from sawdrift.dynamics.assembly import steps_per_period
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import sawdrift as sd  # noqa: E402
@@ -36,7 +38,7 @@ def main() -> int:
     for name in sorted(CASES):
         t0 = time.perf_counter()
         base = _scene(CASES[name], periods=args.periods)
-        k = base.steps_per_period()
+        k = steps_per_period(base)
         coarse = sd.run(base)
         fine = sd.run(_scene(CASES[name], periods=args.periods, steps=2 * k))
         finite = all(math.isfinite(r.drift_ratio) for r in (coarse, fine))

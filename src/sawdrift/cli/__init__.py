@@ -1,9 +1,10 @@
 """The ``sawdrift`` command line: a thin layer over the public Python API.
 
 :mod:`.app` holds the application, its one-line errors and exit statuses; the commands live in
-:mod:`.run` (models, check-model, run), :mod:`.study` (sweeps) and :mod:`.report` (diagrams,
-comparison, export, demo, validation, benchmarks). Scene options are generated from the Scene
-schema (:mod:`.scene_options`).
+:mod:`.run` (models, check-model, run), :mod:`.study` (sweeps), :mod:`.report` (diagrams,
+comparison, export, demo, validation, benchmarks), :mod:`.field` (two-wave drift fields) and
+:mod:`.load_curve` (speed and power against a load).
+Scene options are generated from the Scene schema (:mod:`.scene_options`).
 """
 
 # the commands register in this order, which is the order of --help
@@ -11,6 +12,8 @@ schema (:mod:`.scene_options`).
 from . import run  # noqa: F401
 from . import study  # noqa: F401
 from . import report  # noqa: F401
+from . import field  # noqa: F401
+from . import load_curve  # noqa: F401
 # isort: on
 from .app import INTERNAL_FAILURE, app, main
 from .scene_options import scene_from_options

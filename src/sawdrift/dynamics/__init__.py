@@ -1,7 +1,15 @@
-"""Dynamics: the wave kinematics once, and one integration scheme per module.
+"""Dynamics: a run assembled from parts (docs/architecture.md).
 
-* :mod:`.wave` - substrate motion of paper eq. 1 and the start-up ramp;
-* :mod:`.adams_bashforth` - compliant models (paper eq. 5), Adams-Bashforth orders 1-4;
-* :mod:`.rigid` - the material point: unilateral contact, Coulomb friction, located events;
-* :mod:`.runner` - assembles the slots a scene asks for and picks the scheme.
+* :mod:`.drives` - the substrate's motion, one module per drive (the travelling wave's local orbit
+  of any phase, a substrate at rest);
+* :mod:`.assembly` - what a run computes, decided once from the scene: scheme, engine, slots, the
+  drive and the step; the same decisions print as ``--explain``;
+* :mod:`.adams_bashforth` - compliant models (paper eq. 5), Adams-Bashforth orders 1-4, the loop
+  generated per contact kernel and drive;
+* :mod:`.rigid` - the material point: unilateral contact, Coulomb friction, located events, the
+  scheme generated per drive;
+* :mod:`.stepper` - one integration advanced in segments (and warm starts for continuation);
+* :mod:`.evidence`, :mod:`.window` - what the loops observe (statistics, the event log) and the
+  measuring window read from it;
+* :mod:`.steady` - settling to the steady drift; :mod:`.runner` - a scene to a Result.
 """

@@ -12,7 +12,8 @@ Equations (normalized, docs/physics.md)::
     m* y''  = 1 - N*(a*)                   a*          = y* - u_y(t*)
     u_x = -A* r R(t*) sin(2 pi t*)         u_y = A* R(t*) cos(2 pi t*)
 
-with the substrate kinematics and the ramp R(t*) of :mod:`sawdrift.dynamics.wave`.
+with the substrate motion of the scene's drive (:mod:`sawdrift.dynamics.drives`): the loop calls
+``drive_surface(t, x, dp)``, bound per drive like the kernel ``force``.
 """
 
 from __future__ import annotations
@@ -48,7 +49,6 @@ from .evidence import (
     event,
     log_full,
 )
-from .wave import surface
 
 #: Adams-Bashforth coefficients, row k-1 for order k (Hairer, Norsett, Wanner, *Solving ODEs I*,
 #: section III.1, table 1.1), newest derivative first.
@@ -61,17 +61,105 @@ AB_COEFFS = np.array(
     ]
 )
 
-# Layout of the parameter vector ``prm`` passed to the loops.
-P_M, P_A, P_R, P_MU, P_THETA, P_RAMP, P_H, P_ORDER = 0, 1, 2, 3, 4, 5, 6, 7
-P_FRICTION, P_DAMP, P_P, P_HORIZ, P_VERT, P_KRAMP = 8, 9, 10, 11, 12, 13
-#: rotation: c = 1 + 1/kappa with the sphere free to turn, 0 without rotation (see the loop)
-P_ROLL = 14
-#: rolling resistance mu_r (0: off) of the elastic-plastic rolling spring (see the loop)
-P_RR = 15
-#: horizontal inertia m*_x of the x* equation (m* itself, except in the reduced-inertia steady
-#: state method of sawdrift.dynamics.steady)
-P_MX = 16
-N_PRM = 17
+#: Names of the scheme's parameter vector ``prm`` (the drive's own are in ``dp``), in order;
+#: :func:`pack` builds it from a dict of these names.
+PRM_NAMES = (
+    "m",  # m* of the normal equation
+    "mu",  # friction coefficient
+    "theta",  # E*/(4 G*) of the contact: theta mu b* = x* - u_x
+    "h",  # step in t*
+    "order",  # Adams-Bashforth order 1-4
+    "friction",  # 1: integrate x* with the tangential law, 0: friction off
+    "damping",  # viscous normal damping c (0: off)
+    "p",  # exponent of the profile's normal law (rolling spring stiffness)
+    "k_ramp",  # first step after the drive's start-up ramp (evidence is taken from there)
+    "roll",  # rotation: c = 1 + 1/kappa with the sphere free to turn, 0 without rotation
+    "rolling_resistance",  # mu_r of the elastic-plastic rolling spring (0: off)
+    "m_x",  # horizontal inertia m*_x (m* itself, except in steady.settle's reduced inertia)
+    "load",  # constant external tangential force L on the centre, in M g (0: off)
+    "restitution_damping",  # C of the restitution damping C a*^((p-1)/2) a*' (0: off)
+)
+(P_M, P_MU, P_THETA, P_H, P_ORDER, P_FRICTION, P_DAMP, P_P, P_KRAMP, P_ROLL, P_RR,
+ P_MX, P_LOAD, P_REST) = range(len(PRM_NAMES))
+N_PRM = len(PRM_NAMES)
+
+
+def pack(values: dict[str, float], names: tuple[str, ...] = PRM_NAMES) -> np.ndarray:
+    """The parameter vector of ``names`` (all required) from a dict of named values."""
+    missing = [n for n in names if n not in values]
+    if missing:
+        raise KeyError(f"parameters without a value: {missing}")
+    return np.array([float(values[n]) for n in names], dtype=np.float64)
+
+def restitution_of_damping_ratio(zeta: float) -> float:
+    """Rebound speed ratio e of a free impact on a linear spring-dashpot of damping ratio zeta.
+
+    x'' = -x - 2 zeta x' from x = 0, x' = 1, with the force clamped at zero (the contact does not
+    pull: it ends where x + 2 zeta x' = 0). Closed form of Schwager and Poeschel (2007, Granular
+    Matter 9, 465-469): for zeta < 1, e = exp(-zeta (pi - phi) / w) with w = sqrt(1 - zeta^2),
+    phi = atan2(2 zeta w, 1 - 2 zeta^2); e = exp(-2) at zeta = 1; for zeta > 1 the overdamped
+    solution evaluated where the force vanishes, t_c = ln(2 zeta^2 - 1 + 2 zeta s) / s,
+    s = sqrt(zeta^2 - 1).
+    """
+    if zeta <= 0.0:
+        return 1.0
+    if zeta < 1.0:
+        w = math.sqrt(1.0 - zeta * zeta)
+        phi = math.atan2(2.0 * zeta * w, 1.0 - 2.0 * zeta * zeta)
+        return math.exp(-zeta * (math.pi - phi) / w)
+    if zeta == 1.0:
+        return math.exp(-2.0)
+    s = math.sqrt(zeta * zeta - 1.0)
+    l1, l2 = -zeta + s, -zeta - s
+    t = math.log(2.0 * zeta * zeta - 1.0 + 2.0 * zeta * s) / s
+    return -(l1 * math.exp(l1 * t) - l2 * math.exp(l2 * t)) / (l1 - l2)
+
+
+#: the smallest restitution a compliant contact takes: its damping ratio zeta = 1.95 stays inside
+#: the explicit scheme's stability at the default step (h omega <= 0.06, damping rate
+#: 2 zeta omega: h 2 zeta omega <= 0.24 against AB4's real stability bound 0.3)
+MIN_RESTITUTION = 0.05
+
+
+def damping_ratio(e: float) -> float:
+    """The damping ratio zeta whose clamped linear impact rebounds with ratio ``e`` in (0, 1].
+
+    Inverts :func:`restitution_of_damping_ratio` (monotone decreasing) by bisection to 1e-15.
+    """
+    if not 0.0 < e <= 1.0:
+        raise ValueError(f"restitution e = {e!r} is outside (0, 1]")
+    if e == 1.0:
+        return 0.0
+    lo, hi = 0.0, 1.0
+    while restitution_of_damping_ratio(hi) > e:
+        hi *= 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if restitution_of_damping_ratio(mid) > e:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * hi:
+            break
+    return 0.5 * (lo + hi)
+
+
+def restitution_damping(e: float, p: float, m_star: float) -> float:
+    """C of the restitution damping N* += C a*^((p-1)/2) a*' for the normal law N* = a*^p.
+
+    The damping force is beta sqrt(m* dN*/da*) a*' (stiffness-proportional, as in DEM codes after
+    Tsuji, Tanaka and Ishida 1992, Powder Technol. 71, 239-250), so C = beta sqrt(p m*). In the
+    phase plane of the free impact, m* v dv/da = -a^p - C a^((p-1)/2) v, the substitution
+    a = A x^(2/(p+1)) with A^(p+1) = (p+1)/2 gives exactly the linear spring-dashpot
+    v dv/dx = -x - 2 zeta v (with time in units of sqrt(m*)) of damping ratio
+    zeta = beta sqrt(p / (2 (p + 1))), and the clamp N* = 0 maps onto x + 2 zeta v = 0 (Antypov
+    and Elliott 2011, EPL 94, 50004, for p = 3/2). The rebound ratio is therefore that of the
+    clamped linear dashpot, independent of the impact speed and of m*: C = zeta(e)
+    sqrt(2 (p + 1) m*) with zeta from :func:`damping_ratio`. Gravity, left out of this impact,
+    changes the rebound by a part that falls with the impact speed (docs/physics.md).
+    """
+    return damping_ratio(e) * math.sqrt(2.0 * (p + 1.0) * m_star)
+
 
 #: State vector: x*, x*', y*, y*', then, with rolling resistance, psi = R phi / a0, psi' and the
 #: elastic rolling displacement psi_e of the spring.
@@ -116,21 +204,17 @@ force: Callable[..., Any] | None = None
 ab = AB_COEFFS
 
 
-def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
-    """One wave-scene integration segment; ``force`` and ``ab`` are globals bound per kernel."""
+def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st):
+    """One integration segment; ``force``, ``drive_surface`` and ``ab`` are globals bound per
+    kernel and drive; ``dp`` is the drive's parameter vector."""
     m = prm[P_M]
     mx = prm[P_MX]
-    amp = prm[P_A]
-    r = prm[P_R]
     mu = prm[P_MU]
     scale_b = 1.0 / (prm[P_THETA] * mu)
-    t_ramp = prm[P_RAMP]
     h = prm[P_H]
     order = int(prm[P_ORDER])
     friction = prm[P_FRICTION] > 0.0
     damp = prm[P_DAMP]
-    horiz = prm[P_HORIZ]
-    vert = prm[P_VERT]
     k_ramp = int(prm[P_KRAMP])
     # Rotation (I = kappa m R^2): m x'' = -T and I phi'' = -R T, so from rest the contact
     # point s = x + R phi moves as s = c x with c = 1 + 1/kappa (docs/physics.md, Rotation).
@@ -143,18 +227,27 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
     # The rotational inertia follows the horizontal one (m*_x, reduced only by steady.settle),
     # so both relax together.
     rr = prm[P_RR]
-    resist = rr > 0.0 and roll > 0.0
+    # A constant tangential load L acts on the centre: m* x'' = -mu T* + L (docs/physics.md,
+    # "Loads, inclines and restitution"). It exerts no torque, so with rotation the contact point
+    # no longer stays at s = c x: the rotation angle is then integrated (the rolling path below,
+    # with its spring only if mu_r > 0), and goes on being integrated once it is not (c - 1) x.
+    load = prm[P_LOAD]
+    spin = roll > 0.0 and (rr > 0.0 or load != 0.0 or y[4] != 0.0 or y[5] != 0.0)
     kappa_m = mx / (roll - 1.0) if roll > 0.0 else 0.0
     p_exp = prm[P_P]
-    ncomp = 6 if resist else 4
+    # Restitution damping C a*^((p-1)/2) a*' = beta sqrt(m* dN*/da*) a*' for N* = a*^p: a free
+    # impact rebounds with the speed ratio e at every impact speed (see restitution_damping)
+    rest = prm[P_REST]
+    q_rest = 0.5 * (p_exp - 1.0)
+    ncomp = 6 if spin else 4
     for _ in range(n_steps):
         k = ctr[0]
         t = k * h
-        ux, uxd, uy, uyd = surface(t, amp, r, t_ramp, horiz, vert)
+        ux, uxd, uy, uyd = drive_surface(t, y[0], dp)  # noqa: F821
         a = y[2] - uy
         adot = y[3] - uyd
         if friction:
-            if resist:
+            if spin:
                 b = (y[0] + y[4] - ux) * scale_b
                 bdot = (y[1] + y[5] - uxd) * scale_b
             elif roll > 0.0:
@@ -169,8 +262,11 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
             b = 0.0
             nf, tf = force(fs, is_, pp, a, 0.0, adot, 0.0)
             tf = 0.0
-        if damp > 0.0 and a > 0.0:
-            nf += damp * adot
+        if (damp > 0.0 or rest > 0.0) and a > 0.0:
+            if damp > 0.0:
+                nf += damp * adot
+            else:
+                nf += rest * a**q_rest * adot
             if nf < 0.0:
                 nf = 0.0
             # the Coulomb bound holds for the total normal force, damping included (as in DEM
@@ -179,7 +275,7 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
                 tf = nf
             elif tf < -nf:
                 tf = -nf
-        ax = -mu * tf / mx
+        ax = (-mu * tf + load) / mx if load != 0.0 else -mu * tf / mx
         ay = (1.0 - nf) / m
         inside = a > 0.0
         slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
@@ -215,11 +311,11 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
         for j in range(3, 0, -1):
             for c in range(ncomp):
                 fh[j, c] = fh[j - 1, c]
-        fh[0, 0] = y[1] if friction else 0.0
+        fh[0, 0] = y[1] if (friction or load != 0.0) else 0.0
         fh[0, 1] = ax
         fh[0, 2] = y[3]
         fh[0, 3] = ay
-        if resist:
+        if spin:
             kr = 2.25 * rr * rr * p_exp * a ** (p_exp - 1.0) if a > 0.0 else 0.0
             cap = rr * nf
             mr = -kr * y[6]
@@ -240,7 +336,7 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, n_steps, rec, rec_every, st):
             for j in range(q):
                 acc += ab[q - 1, j] * fh[j, c]
             y[c] += h * acc
-        if resist:
+        if spin:
             # the spring takes the rotation increment, and slides (plastic) at its cap
             y[6] += y[4] - psi_old
             if kr > 0.0 and abs(kr * y[6]) > cap:
@@ -265,45 +361,46 @@ _LOOP_IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
     "from sawdrift.dynamics.adams_bashforth import AB_COEFFS as ab  # noqa: F401\n"
     "from sawdrift.dynamics.evidence import *  # noqa: F403\n"
-    "from sawdrift.dynamics.wave import surface  # noqa: F401\n"
 )
 
 
-def _loop_namespace(force: Callable[..., Any]) -> dict[str, Any]:
-    """The global names the generated module gives the loop body (the values of _LOOP_IMPORTS)."""
-    from . import evidence, wave
+def _public(module: types.ModuleType) -> dict[str, Any]:
+    names = getattr(module, "__all__", None) or [n for n in vars(module) if not n.startswith("_")]
+    return {n: getattr(module, n) for n in names}
 
-    def public(module: types.ModuleType) -> dict[str, Any]:
-        names = getattr(module, "__all__", None) or [n for n in vars(module) if not n.startswith("_")]
-        return {n: getattr(module, n) for n in names}
 
-    ns = {**public(sys.modules[__name__]), **public(evidence)}
-    ns.update(surface=wave.surface, force=force, ab=AB_COEFFS)
+def _loop_namespace(force: Callable[..., Any], drive_surface: Callable[..., Any]) -> dict[str, Any]:
+    """The global names the loop body runs with (the values of the generated module's imports)."""
+    from . import evidence
+
+    ns = {**_public(sys.modules[__name__]), **_public(evidence)}
+    ns.update(drive_surface=drive_surface, force=force, ab=AB_COEFFS)
     return ns
 
 
-def _python_loop(force: Callable[..., Any]) -> Callable[..., None]:
-    """The loop body run as plain Python with ``force`` bound in (the python engine)."""
-    scope = dict(globals(), force=force, ab=AB_COEFFS)
-    return types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body")
-
-
-def wave_loop(force: Callable[..., Any], compiled: bool) -> Callable[..., None]:
-    """The wave-scene loop for a given force function.
+def wave_loop(force: Callable[..., Any], drive: Any, compiled: bool) -> Callable[..., None]:
+    """The integration loop for a force function and a drive (:mod:`sawdrift.dynamics.drives`).
 
     The compiled loop is cached on disk across processes (see :mod:`.loop_cache`): it is
-    generated, once per kernel, as a small module that imports the kernel by name, so that numba's
-    ``cache=True`` applies; a kernel that cannot be imported by name (defined in ``__main__`` or a
-    notebook) is compiled in memory instead. Compiled loops are also cached per process.
+    generated, once per kernel and drive, as a small module that imports the kernel and the
+    drive's ``surface`` by name, so that numba's ``cache=True`` applies; a kernel that cannot be
+    imported by name (defined in ``__main__`` or a notebook) is compiled in memory instead.
+    Compiled loops are also cached per process. The python engine runs the same body as plain
+    Python with the same functions bound in.
     """
+    surface = drive.functions()[0]
     if not compiled:
-        return _python_loop(force)
-    fn = _COMPILED.get(force)
+        scope = dict(_loop_namespace(force, surface), force=force)
+        return types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body")
+    key = (force, drive.module)
+    fn = _COMPILED.get(key)
     if fn is None:
         from .loop_cache import cached_loop
 
-        fn = cached_loop(force, wave_loop_body, _LOOP_IMPORTS, _loop_namespace(force))
+        imports = _LOOP_IMPORTS + f"from {drive.module} import surface as drive_surface  # noqa: F401\n"
+        fn = cached_loop(force, wave_loop_body, imports, _loop_namespace(force, surface))
         if fn is None:
-            fn = njit(_python_loop(force))
-        _COMPILED[force] = fn
+            scope = _loop_namespace(force, surface)
+            fn = njit(types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body"))
+        _COMPILED[key] = fn
     return fn

@@ -7,16 +7,72 @@ free impact), the engine and the slots that are on; an empty slot is never compu
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Literal
 
 from ..contact.base import ContactModel
 from ..errors import SceneError
 from ..scene.schema import Impact, Prescribed, Scene, Wave
+from .drives import Drive, drive_of
 
 Engine = Literal["compiled", "python"]
 
-__all__ = ["Assembly", "Engine", "assemble", "explain"]
+__all__ = ["Assembly", "Engine", "assemble", "explain", "steps_per_period"]
+
+
+#: scene fields whose physics is being built: a value other than the default is refused in one
+#: line rather than silently ignored (each entry goes when its part runs)
+_UNBUILT = {
+}
+
+
+def _refuse_unbuilt(scene: Scene) -> None:
+    for dotted, (part, field, default) in _UNBUILT.items():
+        value = getattr(getattr(scene, part), field, default)
+        if value != default:
+            raise SceneError(f"{dotted} = {value!r} is not computed by this version of sawdrift; "
+                             f"leave it at {default!r}")
+
+
+def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
+    """Steps per wave period: the scene's ``numerics.steps_per_period``, or the automatic default.
+
+    For a rigid model the default is 256 (nothing stiff to resolve; events are located by
+    bisection inside steps). Otherwise it resolves the contact's small-amplitude natural frequency
+    omega = sqrt(k / m*) (per unit t*, docs/physics.md) with h omega <= 0.06, where
+    k = p a_ref^(p-1) max(1, c/theta) bounds the normal and tangential stiffness at the largest
+    expected compression a_ref = 1 + 2 A* (c = 1 + 1/kappa with rotation, else 1), and never goes
+    below 128 per period. ``rigid`` is the model's capability (looked up when not given).
+    """
+    if scene.numerics.steps_per_period is not None:
+        return scene.numerics.steps_per_period
+    if rigid is None:
+        from ..contact.registry import get_model
+
+        rigid = get_model(scene.model).capabilities.rigid
+    if rigid:
+        return 256
+    p = scene.particle.profile.p
+    amp = scene.drive.amplitude if isinstance(scene.drive, Wave) else 0.0
+    a_ref = 1.0 + 2.0 * amp
+    if isinstance(scene.drive, Impact):
+        # largest compression from the energy balance with gravity:
+        # a^(p+1) / (p+1) - a = m* v^2 / 2, solved by fixed-point iteration
+        energy = 0.5 * scene.particle.m_star * scene.drive.velocity**2
+        a_ref = 1.0
+        for _ in range(60):
+            a_ref = ((p + 1.0) * (energy + a_ref)) ** (1.0 / (p + 1.0))
+    # a rolling contact point is lighter by c = 1 + 1/kappa: its tangential frequency is
+    # sqrt(c) higher
+    c = 1.0 + 1.0 / scene.particle.gyration if scene.effects.rotation else 1.0
+    k = p * a_ref ** (p - 1.0) * max(1.0, c / scene.theta)
+    if scene.effects.rotation and scene.effects.rolling_resistance > 0.0:
+        # the rolling spring 2.25 mu_r^2 dN*/da* acts on the rotational inertia kappa m*
+        mu_r = scene.effects.rolling_resistance
+        k = max(k, 2.25 * mu_r**2 * p * a_ref ** (p - 1.0) / scene.particle.gyration)
+    omega = math.sqrt(k / scene.particle.m_star)
+    return int(min(10_000_000, max(128, math.ceil(omega / 0.06))))
 
 
 @dataclass(frozen=True)
@@ -37,6 +93,17 @@ class Assembly:
     equations: tuple[str, ...]
     calls: tuple[str, ...]
     outputs: tuple[str, ...]
+    #: the substrate's motion (sawdrift.dynamics.drives); None for a prescribed contact history
+    drive: Drive | None = None
+    #: the integration step is 1 / steps_per_period (0 for a prescribed history)
+    steps_per_period: int = 0
+    #: the constant tangential load L on the centre (particle.load), in M g
+    load: float = 0.0
+    #: the restitution in force: a compliant contact's damped e (None: undamped), or the rigid
+    #: point's Newton restitution
+    restitution: float | None = None
+    #: C of a compliant contact's restitution damping N* += C a*^((p-1)/2) a*' (0: off)
+    restitution_damping: float = 0.0
 
 
 def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | None = None) -> Assembly:
@@ -56,15 +123,23 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     name = scene.model
     kernel = f"{name}.kernel.force" if engine == "compiled" else f"{name}.reference().force"
     if isinstance(drive, Prescribed):
+        for field, value, off in (("particle.load", scene.particle.load, 0.0),
+                                  ("material.restitution", scene.material.restitution, None)):
+            if value != off:
+                raise SceneError(f"{field} = {value!r} acts on the particle's motion; a prescribed "
+                                 "contact history has none (leave it unset)")
         return Assembly(
             "prescribed", engine, False, True, 0.0, False, False, 0.0,
             ("a*(k), b*(k) prescribed (" + drive.waveform + "); no dynamics",),
             (f"{kernel}(a*, b*) once per sample, committing the history",),
             ("N*(k)", "T*(k)", "dissipated work = sum of T* db*"),
         )
+    _refuse_unbuilt(scene)
     horiz = isinstance(drive, Wave) and eff.horizontal_wave
     vert = isinstance(drive, Wave) and eff.vertical_wave
-    ramp = drive.ramp_periods if isinstance(drive, Wave) else 0.0
+    part = drive_of(scene)
+    ramp = part.ramp_periods(scene)
+    k_per = steps_per_period(scene, caps.rigid)
     equations: list[str] = []
     calls: list[str] = []
     slot = getattr(type(model), "damping", None)
@@ -74,12 +149,17 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
             f"on model {name!r}, which has its own normal-damping slot ({slot.name!r}); use one: "
             "set effects.normal_damping = 0, or pick a model without a damping slot"
         )
+    load = scene.particle.load
+    restitution, rest_c, rest_lines = _restitution(scene, model, slot)
     if caps.rigid:
         scheme = "rigid"
         normal = "N* = 1 - m* u_y''" if eff.vertical_inertia else "N* = 1 (vertical inertia off)"
-        equations.append("a* = 0 in contact; flight m* y*'' = 1 when N* < 0; impact with restitution")
+        equations.append("a* = 0 in contact; flight m* y*'' = 1 when N* < 0; impact with restitution"
+                         + (rest_lines[0] if rest_lines else ""))
         equations.append(normal)
-        if eff.friction and eff.rotation:
+        if load != 0.0:
+            equations += _rigid_load_lines(scene)
+        elif eff.friction and eff.rotation:
             kappa = scene.particle.gyration
             equations.append("rotation: I phi'' = -R T, I = kappa m R^2, kappa = "
                              f"{kappa:.6g}: the contact point s = x + R phi = (1 + 1/kappa) x has "
@@ -101,24 +181,36 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         if eff.normal_damping > 0.0:
             equations.append(f"N* += {eff.normal_damping:g} a*' while a* > 0, N* >= 0 (viscous "
                              "normal damping); |T*| <= N*, the total normal force")
+        elif rest_lines:
+            equations += rest_lines
         elif slot is not None:
             equations.append(f"N* from the normal-damping slot {slot.name!r} "
                              f"({slot.__doc__.strip().splitlines()[0] if slot.__doc__ else ''}); "
                              "|T*| <= N*, the total normal force")
         if eff.friction:
-            equations.append("m* x*'' = -mu T*(b*, a*)" + (
+            equations.append("m* x*'' = -mu T*(b*, a*)" + (" + L" if load != 0.0 else "") + (
                 " (x* the centre)" if eff.rotation else ", theta mu b* = x* - u_x"))
             calls.append(f"{kernel}(a*, b*, a*', b*') once per step, committing the history")
+        elif load != 0.0:
+            equations.append("m* x*'' = L (friction off); the tangential law is never called")
         else:
             equations.append("x* not integrated (friction off); the tangential law is never called")
-        calls.append(f"Adams-Bashforth order {scene.numerics.order}, "
-                     f"{scene.steps_per_period()} steps per period")
+        if load != 0.0:
+            equations.append(_LOAD_LINE.format(load=load))
+        calls.append(f"Adams-Bashforth order {scene.numerics.order}, {k_per} steps per period")
     if eff.rotation and eff.friction and not caps.rigid:
         kappa = scene.particle.gyration
         c = 1.0 + 1.0 / kappa
-        equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
-                         f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x")
-        if eff.rolling_resistance > 0.0:
+        if load != 0.0 and eff.rolling_resistance == 0.0:
+            equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
+                             "the load pulls the centre without turning it: kappa m* psi'' = "
+                             "-mu T*, psi = R phi / a0, theta mu b* = s* - u_x with s* = x* + psi")
+        else:
+            equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
+                             f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x")
+        if load != 0.0 and eff.rolling_resistance == 0.0:
+            equations.append("the centre keeps m* x*'' = -mu T* + L; spin R phi' / a0 = psi'")
+        elif eff.rolling_resistance > 0.0:
             mu_r = eff.rolling_resistance
             equations.append("rolling resistance (elastic-plastic spring, Ai et al. 2011): "
                              "kappa m* psi'' = -mu T* + m_r, psi = R phi / a0, s* = x* + psi, "
@@ -128,24 +220,9 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
             equations.append("theta mu b* = s* - u_x: the contact point moves like a mass "
                              f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the "
                              "centre keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
-    if horiz and drive.orbit == "retrograde":
-        equations.append(f"u_x = +A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
-                         f"r = {scene.horizontal_ratio:.6g} (retrograde orbit: at the crest the "
-                         "surface moves against the propagation direction, -x)")
-    elif horiz:
-        equations.append(f"u_x = -A* r R(t*) sin(2 pi t*), A* = {drive.amplitude:g}, "
-                         f"r = {scene.horizontal_ratio:.6g}")
-    if horiz and drive.orbit == "prograde":
-        equations.append("prograde orbit (eq. 1 as printed, y* into the substrate): at the crest "
-                         "the surface moves with the wave, +x")
-    if vert:
-        equations.append(f"u_y = A* R(t*) cos(2 pi t*), A* = {drive.amplitude:g}")
-    if isinstance(drive, Wave) and not (horiz or vert):
-        equations.append("substrate at rest (both wave components off)")
-    if isinstance(drive, Wave):
-        equations.append(f"R(t*) = sin^2(pi t* / (2 x {ramp:g})) ramp" if ramp > 0 else "no ramp")
+    equations += part.describe(scene)
     if isinstance(drive, Impact):
-        equations.append(f"substrate at rest; start at a* = 0 with a*' = {drive.velocity:g}")
+        equations.append(f"start at a* = 0 with a*' = {drive.velocity:g}")
     outputs = (
         ("rebound speed ratio", "contact duration", "max compression")
         if isinstance(drive, Impact)
@@ -155,8 +232,87 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     )
     return Assembly(
         scheme, engine, eff.friction, eff.friction and not caps.rigid, eff.normal_damping,
-        horiz, vert, ramp, tuple(equations), tuple(calls), outputs,
+        horiz, vert, ramp, tuple(equations), tuple(calls), outputs, part, k_per,
+        load, restitution, rest_c,
     )
+
+
+_LOAD_LINE = ("L = {load:g}: particle.load, a constant tangential force on the centre in units of "
+              "M g (positive along +x), applied from t* = 0")
+
+
+def _rigid_load_lines(scene: Scene) -> list[str]:
+    """The rigid scheme's tangential equations with the load L (docs/physics.md)."""
+    load = scene.particle.load
+    eff = scene.effects
+    if not eff.friction:
+        return ["m* x*'' = L (friction off: no tangential force)", _LOAD_LINE.format(load=load)]
+    if not eff.rotation:
+        return ["Coulomb with the load: stick x*'' = u_x'' while |m* u_x'' - L|/mu <= N*, else "
+                "m* x*'' = -mu N* sgn(x*' - u_x') + L; in flight m* x*'' = L",
+                _LOAD_LINE.format(load=load)]
+    kappa = scene.particle.gyration
+    c = 1.0 + 1.0 / kappa
+    m_s = scene.particle.m_star / c
+    return [f"rotation: I phi'' = -R T, I = kappa m R^2, kappa = {kappa:.6g}; the load acts on the "
+            f"centre only: the contact point s = x + R phi has the mass m_s = m* / (1 + 1/kappa) = "
+            f"{m_s:.6g} and the load L / (1 + 1/kappa) = {scene.particle.load / c:.6g}",
+            "Coulomb on the contact point: stick s*'' = u_x'' while |m_s u_x'' - L/(1 + 1/kappa)|/mu "
+            "<= N*, else m_s s*'' = -mu N* sgn(s*' - u_x') + L/(1 + 1/kappa); centre "
+            "m* x*'' = -mu T* + L, so (1 + 1/kappa) x* - s* grows as (1/kappa) L t*^2 / (2 m*)",
+            _LOAD_LINE.format(load=load)]
+
+
+def _restitution(scene: Scene, model: ContactModel,
+                 slot: object) -> tuple[float | None, float, list[str]]:
+    """(restitution in force, C of the compliant restitution damping, its equation lines).
+
+    ``material.restitution`` is the one name of the restitution for every model: on a compliant
+    contact a normal damping that rebounds a free impact with ratio e at any speed; on the rigid
+    point its Newton restitution (``model_params.restitution`` may only repeat it).
+    """
+    from .adams_bashforth import MIN_RESTITUTION, damping_ratio, restitution_damping
+
+    e = scene.material.restitution
+    if model.capabilities.rigid:
+        given = scene.model_params.get("restitution")
+        if e is None:
+            return (float(given) if given is not None else None), 0.0, []
+        field = type(model).Params.model_fields.get("restitution")
+        default = field.default if field is not None else None
+        if given is not None and given != default and given != e:
+            raise SceneError(f"material.restitution = {e:g} and model_params.restitution = "
+                             f"{given:g} disagree; give one of them (material.restitution is "
+                             "the restitution of every model)")
+        return e, 0.0, [f" e = {e:g} (material.restitution)"]
+    if e is None:
+        return None, 0.0, []
+    eff = scene.effects
+    if eff.normal_damping > 0.0:
+        raise SceneError(f"material.restitution = {e:g} and effects.normal_damping = "
+                         f"{eff.normal_damping:g} would be two normal dampings; use one of them")
+    if slot is not None:
+        raise SceneError(f"material.restitution = {e:g} would stack a second normal damping on "
+                         f"model {scene.model!r}, which has its own normal-damping slot "
+                         f"({getattr(slot, 'name', '?')!r}); use a model without one")
+    profile = scene.particle.profile
+    if profile.shape == "table":
+        raise SceneError(f"material.restitution = {e:g} needs a power-law profile (sphere, cone, "
+                         "flat, power): a tabulated normal law has no speed-independent "
+                         "restitution damping")
+    if e < MIN_RESTITUTION:
+        raise SceneError(f"material.restitution = {e:g} is below {MIN_RESTITUTION:g}, the "
+                         "smallest a compliant contact takes (its damping would exceed the "
+                         "explicit scheme's stability); give e in [0.05, 1]")
+    p = profile.p
+    m = scene.particle.m_star
+    c = restitution_damping(e, p, m)
+    zeta = damping_ratio(e)
+    line = (f"N* += beta sqrt(m* dN*/da*) a*' = C a*^((p-1)/2) a*' while a* > 0, N* >= 0: a free "
+            f"impact rebounds with e = {e:g} at any speed (damping ratio zeta = {zeta:.6g}, beta = "
+            f"zeta sqrt(2 (p+1)/p), C = zeta sqrt(2 (p+1) m*) = {c:.6g}); |T*| <= N*, the total "
+            "normal force")
+    return e, c, [line]
 
 
 def explain(scene: Scene, engine: Engine = "compiled") -> str:

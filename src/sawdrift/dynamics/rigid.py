@@ -4,9 +4,12 @@ Paper section 4 (after Verma and DasGupta, Phys. Rev. E 88, 052915, 2013), norma
 docs/physics.md: a* = 0 while in contact, and then
 
     N*(t*) = 1 - m* u_y''(t*)          (N* = 1 with the vertical inertia switched off)
-    stick:  x*'' = u_x''   while |T_req| = |m* u_x''| / mu <= N*
-    slip:   m* x*'' = -mu N* sgn(s),   s = x*' - u_x'
-    flight: m* y*'' = 1, x*'' = 0       (contact lost when N* would turn negative)
+    stick:  x*'' = u_x''   while |T_req| = |m* u_x'' - L| / mu <= N*
+    slip:   m* x*'' = -mu N* sgn(s) + L,   s = x*' - u_x'
+    flight: m* y*'' = 1, m* x*'' = L    (contact lost when N* would turn negative)
+
+with L the constant tangential load (``particle.load``, 0 by default; docs/physics.md, "Loads,
+inclines and restitution"); with L = 0 every expression is the one without the load.
 
 Re-contact is an impact with a Newton restitution coefficient e (default 0) and a Coulomb-limited
 tangential impulse. Within a fixed step, events (break-away, slip reversal or stick, lift-off,
@@ -17,22 +20,23 @@ approximation is that a stick or contact violation that begins and ends inside o
 
 from __future__ import annotations
 
+import inspect
 import math
+import textwrap
+from collections.abc import Callable
+from typing import Any
 
 from numba import njit
 
 from .adams_bashforth import (
-    P_A,
+    N_PRM,
     P_FRICTION,
     P_H,
-    P_HORIZ,
     P_KRAMP,
+    P_LOAD,
     P_M,
     P_MU,
-    P_R,
-    P_RAMP,
     P_ROLL,
-    P_VERT,
     record,
 )
 from .evidence import (
@@ -54,12 +58,16 @@ from .evidence import (
     event,
     log_full,
 )
-from .wave import kinematics
 
-#: Extra slots of the parameter vector used by the rigid scheme.
-P_RESTITUTION = 17
-P_VINERTIA = 18
-N_PRM_RIGID = 19
+#: Extra slots of the parameter vector used by the rigid scheme: the Newton restitution, the
+#: vertical inertia switch, the particle's x* at the start of the step (where the drive is
+#: evaluated during the step) and the drive's vertical amplitude (the impact-speed floor); the
+#: drive's own parameters follow from N_PRM_RIGID on.
+P_RESTITUTION = N_PRM
+P_VINERTIA = N_PRM + 1
+P_XQ = N_PRM + 2
+P_UY = N_PRM + 3
+N_PRM_RIGID = N_PRM + 4
 
 _BISECT = 60
 #: events (impacts, lift-offs, stick and slip changes) one step may hold before it is an error
@@ -75,7 +83,6 @@ _ZENO = 1e-6
 _GRAZE = 1e-6
 
 
-@njit(cache=True)
 def _tangential_mass(prm):
     """m* of the tangential motion: m*/c for a rolling sphere (c = 1 + 1/kappa), else m*.
 
@@ -86,23 +93,29 @@ def _tangential_mass(prm):
     return prm[P_M] / c if c > 0.0 else prm[P_M]
 
 
-@njit(cache=True)
+def _tangential_load(prm):
+    """The load on the tangential motion: L/c on a rolling sphere's contact point, else L.
+
+    The load acts on the centre and exerts no torque: m x'' = -mu T + L and
+    I phi'' = -R mu T give for s = x + R phi the equation (m/c) s'' = -mu T + L/c.
+    """
+    c = prm[P_ROLL]
+    return prm[P_LOAD] / c if c > 0.0 else prm[P_LOAD]
+
+
 def _normal(t, prm):
     """N*(t) in permanent contact (1 - m* u_y'' with vertical inertia, else 1)."""
     if prm[P_VINERTIA] <= 0.0:
         return 1.0
-    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    k = drive_kinematics(t, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
     return 1.0 - prm[P_M] * k[5]
 
 
-@njit(cache=True)
 def _stick_margin(t, prm):
-    """N* - |T_req| with T_req = -m* u_x''/mu: stick holds while this is >= 0."""
-    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
-    return _normal(t, prm) - abs(_tangential_mass(prm) * k[2] / prm[P_MU])
+    """N* - |T_req| with T_req = (L - m* u_x'')/mu: stick holds while this is >= 0."""
+    return _normal(t, prm) - abs(_t_req(t, prm))
 
 
-@njit(cache=True)
 def _sticks(t, prm):
     """Stick holds: |T_req| <= N*, or nothing pulls the point along (T_req = 0, e.g. r = 0).
 
@@ -112,51 +125,56 @@ def _sticks(t, prm):
     return _stick_margin(t, prm) >= 0.0 or _t_req(t, prm) == 0.0
 
 
-@njit(cache=True)
 def _t_req(t, prm):
-    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
-    return -_tangential_mass(prm) * k[2] / prm[P_MU]
+    """The friction T* that keeps the point stuck: mu T* = L - m* u_x'' (the load included)."""
+    k = drive_kinematics(t, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    load = _tangential_load(prm)
+    if load == 0.0:
+        return -_tangential_mass(prm) * k[2] / prm[P_MU]
+    return (load - _tangential_mass(prm) * k[2]) / prm[P_MU]
 
 
-@njit(cache=True)
 def _slip_state(t0, x0, v0, t, sigma, prm):
     """Exact (x*, x*') at t after slipping with sgn(s) = sigma from (t0, x0, v0).
 
-    In contact int N* dt = dt - m* (u_y'(t) - u_y'(t0)), so the slip motion has a closed form.
+    In contact int N* dt = dt - m* (u_y'(t) - u_y'(t0)), so the slip motion has a closed form;
+    the load adds the constant acceleration L/m* (L/c over m*/c on a rolling contact point).
     """
     m = prm[P_M]
     c = prm[P_MU] * sigma / _tangential_mass(prm)
     dt = t - t0
     if prm[P_VINERTIA] > 0.0:
-        k0 = kinematics(t0, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
-        k1 = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+        k0 = drive_kinematics(t0, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+        k1 = drive_kinematics(t, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
         int_n = dt - m * (k1[4] - k0[4])
         int2_n = 0.5 * dt * dt - m * (k1[3] - k0[3] - k0[4] * dt)
     else:
         int_n = dt
         int2_n = 0.5 * dt * dt
-    return x0 + v0 * dt - c * int2_n, v0 - c * int_n
+    g = prm[P_LOAD] / m
+    if g == 0.0:
+        return x0 + v0 * dt - c * int2_n, v0 - c * int_n
+    return x0 + v0 * dt - c * int2_n + 0.5 * g * dt * dt, v0 - c * int_n + g * dt
 
 
-@njit(cache=True)
 def _slip_velocity(t0, x0, v0, t, sigma, prm):
-    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    k = drive_kinematics(t, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
     return _slip_state(t0, x0, v0, t, sigma, prm)[1] - k[1]
 
 
-@njit(cache=True)
 def _gap(t0, y0, v0, t, prm):
     """a* = y* - u_y at t in flight from (t0, y0, v0): negative while separated."""
     dt = t - t0
-    k = kinematics(t, prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT])
+    k = drive_kinematics(t, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
     return y0 + v0 * dt + 0.5 * dt * dt / prm[P_M] - k[3]
 
 
-@njit(cache=True)
 def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
     """Advance the material point ``n_steps`` fixed steps; state in ``y`` = (x, x', y, y').
 
-    ``ctr`` = (step index, mode 0 contact / 1 flight, record index, stick flag, sigma).
+    ``ctr`` = (step index, mode 0 contact / 1 flight, record index, stick flag, sigma). The drive
+    (``drive_kinematics``, bound per drive in the generated module) is evaluated at the x* of the
+    step's start: within a step the closed forms take the surface motion at one place.
     """
     h = prm[P_H]
     m = prm[P_M]
@@ -164,10 +182,28 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
     e = prm[P_RESTITUTION]
     friction = prm[P_FRICTION] > 0.0
     k_ramp = int(prm[P_KRAMP])
-    amp, r, t_ramp, horiz, vert = prm[P_A], prm[P_R], prm[P_RAMP], prm[P_HORIZ], prm[P_VERT]
+    amp = prm[P_UY]
+    dp = prm[N_PRM_RIGID:]
+    # the load's acceleration L/m* of the free (flight, frictionless) tangential motion
+    g_load = prm[P_LOAD] / m
+    roll = prm[P_ROLL]
     for _ in range(n_steps):
         k = ctr[0]
         t = k * h
+        prm[P_XQ] = y[0]
+        # A rolling sphere under a load: the scheme integrates the contact point s = x + psi
+        # (psi = R phi / a0), but s = c x (from rest) no longer holds, since the load pulls the
+        # centre without turning it. d = c x - s obeys d'' = (c - 1) L/m* in every phase
+        # (impulses change c x' and s' alike). Between steps y[0], y[1] hold c x, c x' (as
+        # without the load) and y[4], y[5] the rolling angle psi, psi' (d = (c - 1) x - psi).
+        offset = roll > 0.0 and (g_load != 0.0 or y[4] != 0.0 or y[5] != 0.0)
+        d = 0.0
+        dv = 0.0
+        if offset:
+            d = y[0] * (roll - 1.0) / roll - y[4]
+            dv = y[1] * (roll - 1.0) / roll - y[5]
+            y[0] -= d
+            y[1] -= dv
         t_end = t + h
         tau = t
         out_time = 0.0
@@ -179,6 +215,9 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 if _gap(tau, y[2], y[3], t_end, prm) < 0.0:
                     dt = t_end - tau
                     y[0] += y[1] * dt
+                    if g_load != 0.0:
+                        y[0] += 0.5 * g_load * dt * dt
+                        y[1] += g_load * dt
                     y[2] += y[3] * dt + 0.5 * dt * dt / m
                     y[3] += dt / m
                     out_time += dt
@@ -195,8 +234,11 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 dt = tc - tau
                 out_time += dt
                 y[0] += y[1] * dt
+                if g_load != 0.0:
+                    y[0] += 0.5 * g_load * dt * dt
+                    y[1] += g_load * dt
                 vy = y[3] + dt / m
-                kk = kinematics(tc, amp, r, t_ramp, horiz, vert)
+                kk = drive_kinematics(tc, prm[P_XQ], dp)  # noqa: F821
                 vn = vy - kk[4]
                 if vn < 0.0:
                     vn = 0.0
@@ -262,6 +304,9 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             if not friction:
                 dt = seg_end - tau
                 y[0] += y[1] * dt
+                if g_load != 0.0:
+                    y[0] += 0.5 * g_load * dt * dt
+                    y[1] += g_load * dt
             elif ctr[3] == 1:  # stick: follows the substrate
                 if not _sticks(seg_end, prm):
                     lo, hi = tau, seg_end
@@ -271,8 +316,8 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                             lo = mid
                         else:
                             hi = mid
-                    k0 = kinematics(tau, amp, r, t_ramp, horiz, vert)
-                    k1 = kinematics(hi, amp, r, t_ramp, horiz, vert)
+                    k0 = drive_kinematics(tau, prm[P_XQ], dp)  # noqa: F821
+                    k1 = drive_kinematics(hi, prm[P_XQ], dp)  # noqa: F821
                     y[0] += k1[0] - k0[0]
                     y[1] = k1[1]
                     ctr[3] = 0
@@ -280,8 +325,8 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     tau = hi
                     event(st, EV_SLIP_START, hi, y, 0.0)
                     continue
-                k0 = kinematics(tau, amp, r, t_ramp, horiz, vert)
-                k1 = kinematics(seg_end, amp, r, t_ramp, horiz, vert)
+                k0 = drive_kinematics(tau, prm[P_XQ], dp)  # noqa: F821
+                k1 = drive_kinematics(seg_end, prm[P_XQ], dp)  # noqa: F821
                 y[0] += k1[0] - k0[0]
                 y[1] = k1[1]
             else:  # slip with sgn(s) = sigma
@@ -295,7 +340,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                         else:
                             hi = mid
                     xs, _vs = _slip_state(tau, y[0], y[1], hi, sigma, prm)
-                    k1 = kinematics(hi, amp, r, t_ramp, horiz, vert)
+                    k1 = drive_kinematics(hi, prm[P_XQ], dp)  # noqa: F821
                     y[0] = xs
                     y[1] = k1[1]
                     slip_time += hi - tau
@@ -311,7 +356,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 xs, vs = _slip_state(tau, y[0], y[1], seg_end, sigma, prm)
                 y[0] = xs
                 y[1] = vs
-            kk = kinematics(seg_end, amp, r, t_ramp, horiz, vert)
+            kk = drive_kinematics(seg_end, prm[P_XQ], dp)  # noqa: F821
             y[2] = kk[3]
             y[3] = kk[4]
             tau = seg_end
@@ -326,8 +371,16 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             st[S_BAD] = BAD_EVENTS
             st[S_BADSTEP] = k
             return
+        if offset:
+            gd = (roll - 1.0) * g_load
+            d += dv * h + 0.5 * gd * h * h
+            dv += gd * h
+            y[0] += d
+            y[1] += dv
+            y[4] = y[0] * (roll - 1.0) / roll - d
+            y[5] = y[1] * (roll - 1.0) / roll - dv
         # ---- bookkeeping at the end of the step ----
-        kk = kinematics(t_end, amp, r, t_ramp, horiz, vert)
+        kk = drive_kinematics(t_end, prm[P_XQ], dp)  # noqa: F821
         a = y[2] - kk[3] if ctr[1] == 1 else 0.0
         if ctr[1] == 1:
             nf = 0.0
@@ -357,3 +410,82 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             return
         if log_full(st, EV_MARGIN_RIGID):
             return  # the stepper grows the event log and goes on from the next step
+
+
+# -- the scheme bound to a drive ------------------------------------------------------------------
+
+#: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
+_FUNCTIONS = (_tangential_mass, _tangential_load, _normal, _stick_margin, _sticks, _t_req, _slip_state,
+              _slip_velocity, _gap, rigid_loop)
+_IMPORTS = (
+    "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
+    "from sawdrift.dynamics.evidence import *  # noqa: F403\n"
+    "from sawdrift.dynamics.rigid import (  # noqa: F401\n"
+    "    _BISECT, _GRAZE, _MAX_EVENTS, _ZENO, EV_MARGIN_RIGID, N_PRM_RIGID, P_RESTITUTION, P_UY,\n"
+    "    P_VINERTIA, P_XQ,\n"
+    ")\n"
+)
+_LOOPS: dict[str, Callable[..., None]] = {}
+
+
+def _source() -> str:
+    return "\n\n".join("@njit(cache=True)\n" + textwrap.dedent(inspect.getsource(f))
+                       for f in _FUNCTIONS)
+
+
+def _namespace(kinematics: Any) -> dict[str, Any]:
+    from . import adams_bashforth, evidence
+
+    ns: dict[str, Any] = {"math": math, "njit": njit}
+    for module in (adams_bashforth, evidence):
+        ns.update({n: v for n, v in vars(module).items() if not n.startswith("_")})
+    ns.update({n: globals()[n] for n in ("_BISECT", "_GRAZE", "_MAX_EVENTS", "_ZENO",
+                                          "EV_MARGIN_RIGID", "N_PRM_RIGID", "P_RESTITUTION",
+                                          "P_UY", "P_VINERTIA", "P_XQ")})
+    ns["drive_kinematics"] = kinematics
+    return ns
+
+
+def rigid_loop_for(drive: Any) -> Callable[..., None]:
+    """The compiled rigid scheme bound to ``drive`` (a :class:`~sawdrift.dynamics.drives.Drive`).
+
+    Generated once per drive as a module in the cache folder (numba's disk cache then applies,
+    keyed by the code of the scheme and of the drive, :mod:`.loop_cache`), or compiled in memory
+    if that folder cannot be written. Its ``py_func`` is the python engine (helpers compiled).
+    """
+    fn = _LOOPS.get(drive.module)
+    if fn is not None:
+        return fn
+    from .loop_cache import load_generated, refresh_stale_caches, walk_code
+
+    kinematics = drive.functions()[1]
+    ns = _namespace(kinematics)
+    walk, code = walk_code([kinematics], ns, _FUNCTIONS)
+    refresh_stale_caches(walk)
+    source = (f'"""Generated by sawdrift: the rigid scheme bound to {drive.module}. Do not edit."""\n'
+              "import math  # noqa: F401\n\nfrom numba import njit\n\n" + _IMPORTS
+              + f"from {drive.module} import kinematics as drive_kinematics  # noqa: F401\n\n\n"
+              + _source())
+    module = load_generated("sawdrift_rigid_", source, code)
+    if module is not None:
+        fn = module.rigid_loop
+    else:
+        exec(compile(_source(), "<sawdrift rigid scheme>", "exec"), ns)  # noqa: S102
+        fn = ns["rigid_loop"]
+    _LOOPS[drive.module] = fn
+    return fn
+
+
+def rigid_python_loop(drive: Any) -> Callable[..., None]:
+    """The rigid scheme as plain Python bound to ``drive`` (the python engine).
+
+    Built from this module's functions and globals at call time, with the drive's compiled
+    ``kinematics``: the readable scheme that the compiled one is tested against.
+    """
+    import types
+
+    ns = dict(globals())
+    ns["drive_kinematics"] = drive.functions()[1]
+    for func in _FUNCTIONS:
+        ns[func.__name__] = types.FunctionType(func.__code__, ns, func.__name__)
+    return ns["rigid_loop"]

@@ -27,7 +27,7 @@ from .steady import (
     settle,
 )
 from .stepper import Stepper
-from .window import lyapunov, measure_window, state_scale
+from .window import lyapunov, measure_window
 
 __all__ = ["Assembly", "Engine", "assemble", "explain", "prescribed_history", "run"]
 
@@ -76,7 +76,8 @@ def _run_wave(
     k_per = stepper.k_per
     n_measure = n_periods * k_per
     n_total = max(int(round(num.periods * k_per)), n_measure)
-    speed = 2.0 * math.pi * scene.horizontal_ratio * wave.amplitude
+    drive = plan.drive
+    speed = drive.horizontal_speed(scene)
     m_star = scene.particle.m_star
     cap = num.max_periods
     if cap is None:
@@ -85,7 +86,7 @@ def _run_wave(
                                   n_periods, rolling_frequency(scene, m_x))
     n_max = max(n_total, int(round(cap * k_per)))
     stepper.advance(n_total - n_measure)
-    scale = state_scale(wave.amplitude, scene.horizontal_ratio)
+    scale = drive.state_scale(scene)
     settling = None
     if num.settle:
         win, settling = settle(stepper, scene, speed, scale, n_periods, n_max)
@@ -99,7 +100,13 @@ def _run_wave(
                                 relaxation_periods(scene, m_star, speed), stepper.step / k_per,
                                 chaotic)
     t90 = settling.t90_periods if num.settle else math.nan
-    regime = classify(win.contact_lost, win.drift_ratio, num.drift_tolerance,
+    # without horizontal surface motion (r = 0) the drift ratio is undefined: it is reported as
+    # null, and the regime reads the drift against the vertical surface speed instead
+    drift_ratio = win.drift_ratio if speed > 0.0 else math.nan
+    vertical = 2.0 * math.pi * drive.vertical_amplitude(scene)
+    ratio_for_regime = (win.drift_ratio if speed > 0.0
+                        else (win.drift / vertical if vertical > 0.0 else 0.0))
+    regime = classify(win.contact_lost, ratio_for_regime, num.drift_tolerance,
                       gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
     extra: dict[str, object] = {}
     if scene.device is not None:
@@ -120,9 +127,9 @@ def _run_wave(
         ramp_periods=wave.ramp_periods,
         measure_periods=win.periods,
         drift_velocity=win.drift,
-        drift_ratio=win.drift_ratio,
+        drift_ratio=drift_ratio,
         regime=regime,
-        orbit=wave.orbit,
+        orbit=drive.orbit_name(scene),
         contact_lost=win.contact_lost,
         out_of_contact_fraction=win.out_of_contact_fraction,
         min_compression=win.min_compression,

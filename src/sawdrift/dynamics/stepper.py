@@ -17,12 +17,11 @@ import numpy as np
 
 from ..contact.base import ContactHistory, ContactModel
 from ..errors import NonFiniteStateError
-from ..scene.schema import Scene, Wave
+from ..scene.schema import Scene
 from . import adams_bashforth as ig
 from . import evidence as ev
 from . import rigid as rg
 from .assembly import assemble
-from .wave import surface
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -65,37 +64,31 @@ class Stepper:
         event_periods: int = 1,
     ):
         self.scene = scene
-        wave = scene.drive
-        amplitude = wave.amplitude if isinstance(wave, Wave) else 0.0
+        #: the substrate's motion (sawdrift.dynamics.drives): its functions are bound into the
+        #: loops, its parameters are the vector dp
+        self.drive = plan.drive
+        self.dp = self.drive.pack(scene)
         ramp = plan.ramp_periods
         engine = plan.engine
-        self.k_per = scene.steps_per_period()
+        self.k_per = plan.steps_per_period
         self.h = 1.0 / self.k_per
         self.rigid = model.capabilities.rigid
         eff = scene.effects
-        prm = np.zeros(rg.N_PRM_RIGID)
-        prm[ig.P_M] = scene.particle.m_star
-        prm[ig.P_MX] = scene.particle.m_star
-        prm[ig.P_A] = amplitude
-        prm[ig.P_R] = scene.horizontal_ratio if isinstance(wave, Wave) else 0.0
-        prm[ig.P_MU] = scene.material.mu
-        prm[ig.P_THETA] = scene.theta
-        prm[ig.P_RAMP] = ramp
-        prm[ig.P_H] = self.h
-        prm[ig.P_ORDER] = scene.numerics.order
-        prm[ig.P_FRICTION] = 1.0 if plan.integrate_x else 0.0
-        prm[ig.P_DAMP] = plan.normal_damping
-        prm[ig.P_P] = scene.particle.profile.p
-        # the retrograde orbit is the mirror x -> -x of eq. 1 (sawdrift.dynamics.wave)
-        orbit = -1.0 if isinstance(wave, Wave) and wave.orbit == "retrograde" else 1.0
-        prm[ig.P_HORIZ] = orbit if plan.horizontal_wave else 0.0
-        prm[ig.P_VERT] = 1.0 if plan.vertical_wave else 0.0
-        prm[ig.P_KRAMP] = math.ceil(ramp * self.k_per - 1e-9)
         #: c = 1 + 1/kappa with rotation (contact point s = c x from rest), else 0: not computed
         self.roll = 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0
-        prm[ig.P_ROLL] = self.roll
-        prm[ig.P_RR] = eff.rolling_resistance if eff.rotation else 0.0
-        self.resist = prm[ig.P_RR] > 0.0
+        prm = ig.pack({
+            "m": scene.particle.m_star, "m_x": scene.particle.m_star, "mu": scene.material.mu,
+            "theta": scene.theta, "h": self.h, "order": scene.numerics.order,
+            "friction": 1.0 if plan.integrate_x else 0.0, "damping": plan.normal_damping,
+            "p": scene.particle.profile.p, "k_ramp": math.ceil(ramp * self.k_per - 1e-9),
+            "roll": self.roll,
+            "rolling_resistance": eff.rolling_resistance if eff.rotation else 0.0,
+            "load": plan.load,
+            "restitution_damping": plan.restitution_damping,
+        })
+        #: the rolling angle psi = R phi / a0 is integrated (state y[4], y[5]): with rolling
+        #: resistance, or under a load (which turns the centre's motion away from s = c x)
+        self.resist = prm[ig.P_RR] > 0.0 or (self.roll > 0.0 and plan.load != 0.0)
         self.ev_margin = rg.EV_MARGIN_RIGID if self.rigid else ev.EV_MARGIN
         self.st = ev.new_stats(max(EVENTS_PER_PERIOD * max(1, event_periods) + 64,
                                    2 * self.ev_margin))
@@ -106,15 +99,20 @@ class Stepper:
         self.compiled = engine == "compiled"
         self.history: ContactHistory | None = None
         if self.rigid:
-            prm[rg.P_RESTITUTION] = float(model.params.restitution)
-            prm[rg.P_VINERTIA] = 1.0 if eff.vertical_inertia else 0.0
+            extra = np.zeros(rg.N_PRM_RIGID - ig.N_PRM)
+            # material.restitution, or the model's own parameter (the assembly checks they agree)
+            e = plan.restitution if plan.restitution is not None else model.params.restitution
+            extra[rg.P_RESTITUTION - ig.N_PRM] = float(e)
+            extra[rg.P_VINERTIA - ig.N_PRM] = 1.0 if eff.vertical_inertia else 0.0
+            extra[rg.P_UY - ig.N_PRM] = self.drive.vertical_amplitude(scene)
+            # the rigid scheme reads the drive's parameters behind its own
+            self.prm = np.concatenate([prm, extra, self.dp])
             self.ctr = np.zeros(5, dtype=np.int64)
             self.ctr[3] = 1  # starts stuck to the substrate at rest
-            self.prm = prm
-            # the python engine runs the same scheme uncompiled (its helpers stay compiled)
-            self.loop = rg.rigid_loop if self.compiled else rg.rigid_loop.py_func
+            self.loop = (rg.rigid_loop_for(self.drive) if self.compiled
+                         else rg.rigid_python_loop(self.drive))
         else:
-            self.prm = prm[: ig.N_PRM]
+            self.prm = prm
             self.ctr = np.zeros(3, dtype=np.int64)
             self.fh = np.zeros((4, 6))
             # a* = 1: static compression under M g (docs/physics.md); an impact starts at 0
@@ -130,12 +128,13 @@ class Stepper:
                 normal, self.pp = model.normal_law()
                 self.fs = np.zeros(1)
                 self.is_ = np.zeros(1, dtype=np.int64)
-                self.loop = ig.wave_loop(normal if self.compiled else normal.py_func, self.compiled)
+                self.loop = ig.wave_loop(normal if self.compiled else normal.py_func, self.drive,
+                                         self.compiled)
 
     def _bind_history(self) -> None:
         assert self.history is not None
         force, self.fs, self.is_, self.pp = self.history.kernel_call()
-        self.loop = ig.wave_loop(force, self.compiled)
+        self.loop = ig.wave_loop(force, self.drive, self.compiled)
 
     def warm_up(self) -> float:
         """Compile (or load from the disk cache) the loop with a call of zero steps; seconds."""
@@ -148,7 +147,7 @@ class Stepper:
             self.loop(self.y.copy(), self.ctr.copy(), self.prm, 0, rec, 0, st)
         else:
             self.loop(self.y.copy(), self.fh.copy(), self.ctr.copy(), self.fs, self.is_, self.pp,
-                      self.prm, 0, rec, 0, st)
+                      self.prm, self.dp, 0, rec, 0, st)
         return time.perf_counter() - t0
 
     @property
@@ -172,7 +171,7 @@ class Stepper:
                 self.loop(self.y, self.ctr, self.prm, n, rec, self.rec_every, self.st)
             else:
                 self.loop(
-                    self.y, self.fh, self.ctr, self.fs, self.is_, self.pp, self.prm, n,
+                    self.y, self.fh, self.ctr, self.fs, self.is_, self.pp, self.prm, self.dp, n,
                     rec, self.rec_every, self.st,
                 )
             if self.record:
@@ -232,6 +231,13 @@ class Stepper:
         new.y = self.y.copy()
         new.ctr = self.ctr.copy()
         new.ctr[0] = int(round(t * new.k_per))
+        if new.resist and not self.resist and new.roll > 0.0:
+            # the rolling angle starts being integrated: from rest it was psi = (c - 1) x
+            new.y[4] = (new.roll - 1.0) * self.centre(self.y[0])
+            new.y[5] = (new.roll - 1.0) * self.centre(self.y[1])
+        elif self.resist and new.roll > 0.0:
+            new.resist = True  # psi, once apart from (c - 1) x, stays integrated (the loops
+            # go on integrating it while it is nonzero)
         if self.rigid:
             return new
         if new.k_per == self.k_per:
@@ -254,11 +260,15 @@ class Stepper:
                 new.history.advance(a, b)
         return new
 
+    def surface(self) -> tuple[float, float, float, float]:
+        """(u_x, u_x', u_y, u_y') of the drive now, at the particle's position."""
+        ux, uxd, uy, uyd = self.drive.functions()[0](self.step * self.h, self.y[0], self.dp)
+        return float(ux), float(uxd), float(uy), float(uyd)
+
     def displacements(self) -> tuple[float, float]:
         """(a*, b*) of the present state, as the compliant loop computes them."""
         prm = self.prm
-        ux, _, uy, _ = surface(self.step * self.h, prm[ig.P_A], prm[ig.P_R], prm[ig.P_RAMP],
-                               prm[ig.P_HORIZ], prm[ig.P_VERT])
+        ux, _, uy, _ = self.surface()
         y = self.y
         if self.resist:
             s = y[0] + y[4]
@@ -306,8 +316,10 @@ class Stepper:
 
         data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
         if self.rigid and self.roll > 0.0:
-            # the rigid scheme integrates the contact point s = c x = x + R phi / a0
-            data[:, 9:11] = data[:, 1:3] * (1.0 - 1.0 / self.roll)
+            # the rigid scheme's state is c x (s = c x = x + R phi / a0 from rest, without a
+            # load); under a load it also records psi = R phi / a0 (columns 9, 10)
+            if not self.resist:
+                data[:, 9:11] = data[:, 1:3] * (1.0 - 1.0 / self.roll)
             data[:, 1:3] /= self.roll
         elif self.roll > 0.0 and not self.resist:
             # from rest R phi = x / kappa = (c - 1) x (docs/physics.md, Rotation)

@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 
 from ..contact.registry import get_model
+from ..dynamics.assembly import steps_per_period
 from ..dynamics.runner import run
 from ..errors import NonFiniteStateError
 from ..scene.schema import Numerics, Scene
@@ -156,7 +157,7 @@ def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[
             ref, unc, ref_regime = mmd_ref, mmd_unc, mmd_regime
         else:
             ref, unc, ref_regime = reference(model)
-        default_spp = _wave_scene(model, periods=periods).steps_per_period()
+        default_spp = steps_per_period(_wave_scene(model, periods=periods))
         strips = _default_strips() if model == "mdr" else None
         for order in cfg.orders:
             for spp in cfg.steps:
@@ -164,7 +165,7 @@ def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[
     if "mdr" in compliant:
         # strip ladder at the default numerics, against mmd run with identical numerics
         base = _wave_scene("mmd", periods=periods)
-        default_spp = base.steps_per_period()
+        default_spp = steps_per_period(base)
         mmd_same = run(base)
         bar.update(1)
         for strips in cfg.wave_strips:
@@ -173,7 +174,7 @@ def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[
                        strips=strips, note="vs mmd with identical numerics (strip error only)")
     for model in rigid:
         ref, unc, ref_regime = reference(model)
-        default_spp = _wave_scene(model, periods=periods).steps_per_period()
+        default_spp = steps_per_period(_wave_scene(model, periods=periods))
         for spp in cfg.rigid_steps:
             ladder_row(model, None, spp, ref, unc, ref_regime, default_spp,
                        note="event-locating scheme (no Adams-Bashforth order)")
@@ -196,7 +197,7 @@ def _defaults_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> l
         for m in m_axis:
             for amp in a_axis:
                 scene = _wave_scene(model, periods=cfg.periods, m_star=float(m), amplitude=float(amp))
-                spp = scene.steps_per_period()
+                spp = steps_per_period(scene)
                 note = ""
                 try:
                     t0 = time.perf_counter()
@@ -249,7 +250,7 @@ def _long_rows(models: Sequence[str], quick: bool, progress: bool) -> list[dict[
                 base = Scene(model=model, material=material, particle={"m_star": WAVE_M_STAR},
                              drive={"amplitude": 0.3, "ramp_periods": 1.0},
                              numerics={"periods": periods, "order": order})
-                k = base.steps_per_period()
+                k = steps_per_period(base)
                 return base.with_updates(**{"numerics.steps_per_period": k * factor})
 
             ref = run(scene(4, 8))

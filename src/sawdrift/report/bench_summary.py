@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from ..dynamics.assembly import steps_per_period
 from ..scene.schema import Numerics
 from .bench_core import (
     WAVE_AMPLITUDE,
@@ -274,5 +275,5 @@ def recommendations(frame: pd.DataFrame, orders: pd.DataFrame) -> list[str]:
             model=model, lo=int(w["steps_per_period"].min()), hi=int(w["steps_per_period"].max()),
             wave_max=_fmt(w["error"].max()),
             plane_max=_fmt(g.loc[g["setting"] == "defaults", "error"].max()),
-            steps=int(_wave_scene(str(model)).steps_per_period())))
+            steps=int(steps_per_period(_wave_scene(str(model))))))
     return out

@@ -24,6 +24,8 @@ GROUPS: dict[str, str] = {
     "rotation": "8. Rotation: a finite sphere that can roll",
     "steady": "9. Steady drift: the settle method and the settled flag against brute-force runs",
     "bifurcation": "10. Bifurcation diagrams: located thresholds of the bouncing ball, step convergence",
+    "loads": "11. Loads, inclines and restitution",
+    "fields": "12. Two-wave drift fields: traps, phase shifts, direct runs, moving traps",
 }
 
 #: The compliant models the oracle cases run for by default.

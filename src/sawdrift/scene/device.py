@@ -9,9 +9,13 @@ bare numbers are SI (an angle in radians).
 Conversion (docs/physics.md, "Physical units and two materials"; docs/devices.md)::
 
     1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2          1/G* = (2 - nu1)/G1 + (2 - nu2)/G2
-    G_i = E_i / (2 (1 + nu_i))                       M g = m g + F_ext
+    G_i = E_i / (2 (1 + nu_i))                       M g = m g cos(alpha) + F_ext
     a0: the compression under M g of the particle's profile (see below)
     m* = a0 m f^2 / (M g)      A* = A_y / a0      theta = E* / (4 G*)      r = r(nu2) by default
+    L = (F_load - m g sin(alpha)) / (M g)             (particle.load)
+
+with alpha the incline of the substrate (positive: the surface rises towards +x, so gravity
+pulls the particle down the slope, towards -x) and F_load an external tangential force along +x.
 
 The static compression a0 solves N(a0) = M g with the profile's elastic normal law N(delta)
 (all three in Sneddon 1965, "The relation between load and penetration in the axisymmetric
@@ -62,7 +66,8 @@ UNITS = {
 #: the kind of quantity of each device field, for messages about a missing one
 FIELD_KIND = {"frequency": "frequency", "amplitude": "length", "radius": "length",
               "youngs_modulus": "pressure", "density": "density", "mass": "mass",
-              "gravity": "acceleration", "preload": "force", "half_angle": "angle"}
+              "gravity": "acceleration", "preload": "force", "half_angle": "angle",
+              "load": "force", "incline": "angle", "wavelength": "length"}
 
 
 @lru_cache(maxsize=1)
@@ -103,6 +108,14 @@ def to_si(value: Any, kind: str) -> float:
             out = float(q.to(unit).magnitude)
     if not math.isfinite(out):
         raise ValueError("is not finite")
+    return out
+
+
+def _incline(value: Any) -> float:
+    out = to_si(value, "angle")
+    if not -0.5 * math.pi < out < 0.5 * math.pi:
+        raise ValueError("is outside (-90, 90) deg: the substrate's slope, positive where the "
+                         "surface rises towards +x, e.g. '5 deg' (a bare number is in radians)")
     return out
 
 
@@ -189,6 +202,9 @@ class DeviceSubstrate(BaseModel):
 
     youngs_modulus: Pressure = Field(description="E2")
     poisson: Poisson = Field(description="nu2, in (-1, 0.5)")
+    density: Annotated[float, _quantity("density")] | None = Field(
+        None, description="rho2: the Rayleigh speed c_R = xi_R sqrt(G2/rho2) and so the "
+        "wavelength c_R/f (two-wave fields and direct runs)")
 
 
 class Device(BaseModel):
@@ -207,7 +223,17 @@ class Device(BaseModel):
         9.81, description="g; 0 allowed with a preload")
     preload: Annotated[float, _quantity("force", allow_zero=True)] = Field(
         0.0, description="external normal force F_ext")
+    load: Annotated[float, _quantity("force", positive=False)] = Field(
+        0.0, description="external tangential force on the particle along +x (a motor's load is "
+        "negative against a drift to +x)")
+    incline: Annotated[float, BeforeValidator(_incline)] = Field(
+        0.0, description="slope alpha of the substrate, in (-90, 90) deg, positive where the "
+        "surface rises towards +x: gravity's normal part m g cos(alpha) holds the particle, its "
+        "part m g sin(alpha) pulls it down the slope")
     friction: Annotated[float, Field(gt=0.0, le=10.0)] = Field(description="mu")
+    wavelength: Annotated[float, _quantity("length")] | None = Field(
+        None, description="surface wavelength; overrides c_R/f from device.substrate.density "
+        "(anisotropic crystals)")
     particle: DeviceParticle
     substrate: DeviceSubstrate
 
@@ -255,7 +281,10 @@ def normalized(device: Device) -> dict[str, float]:
     g2 = s.youngs_modulus / (2 * (1 + s.poisson))
     g_star = 1.0 / ((2 - p.poisson) / g1 + (2 - s.poisson) / g2)
     m = p.mass_kg
-    weight = m * device.gravity + device.preload
+    # the normal part of gravity and the preload hold the particle; the slope's part is a load
+    # (cos 0 = 1 exactly: a level device converts as before)
+    weight = m * device.gravity * math.cos(device.incline) + device.preload
+    slope = m * device.gravity * math.sin(device.incline)
     a0, contact = static_compression(p.shape, weight, e_star, p.radius, p.half_angle)
     f = device.frequency
     r = device.horizontal_ratio if device.horizontal_ratio is not None else rayleigh_ratio(s.poisson)
@@ -271,6 +300,8 @@ def normalized(device: Device) -> dict[str, float]:
         "e_star_pa": e_star,
         "g_star_pa": g_star,
         "contact_radius_m": contact,
+        "load": (device.load - slope) / weight,
+        "load_n": device.load - slope,
     }
 
 
@@ -284,13 +315,19 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
     norm = normalized(device)
     speed = drift_velocity * norm["a0_m"] * norm["frequency_hz"]
     moving = regime not in ("stick", "oscillating_slip") and speed != 0.0
-    return {
+    out = {
         "normalized": {k: norm[k] for k in ("m_star", "amplitude", "theta", "horizontal_ratio", "a0_m")},
         "drift_speed_m_s": speed,
         "direction": ("with" if speed > 0.0 else "against") if moving else "none",
         "t90_s": (t90_periods / norm["frequency_hz"]
                   if t90_periods is not None and math.isfinite(t90_periods) else None),
     }
+    if norm["load_n"] != 0.0:
+        # the tangential load (device.load and the slope's pull) and the power the particle
+        # delivers against it, -F v (positive while it advances against the load)
+        out["load_n"] = norm["load_n"]
+        out["power_w"] = -norm["load_n"] * speed
+    return out
 
 
 def explain_device(device: Device, mu: float) -> list[str]:
@@ -301,7 +338,10 @@ def explain_device(device: Device, mu: float) -> list[str]:
     law = {"sphere": "Hertz sphere", "cone": "Sneddon cone", "flat": "Boussinesq flat punch"}
     lines = [
         "device (physical units):",
-        f"  particle mass m = {n['mass_kg']:.4g} kg, load M g = m g + F_ext = {n['weight_n']:.4g} N",
+        (f"  particle mass m = {n['mass_kg']:.4g} kg, load M g = m g + F_ext = {n['weight_n']:.4g} N"
+         if device.incline == 0.0 else
+         f"  particle mass m = {n['mass_kg']:.4g} kg, normal load M g = m g cos(alpha) + F_ext = "
+         f"{n['weight_n']:.4g} N on the incline alpha = {math.degrees(device.incline):.6g} deg"),
         f"  E* = {n['e_star_pa']:.4g} Pa, G* = {n['g_star_pa']:.4g} Pa, theta = E*/(4 G*) = "
         f"{n['theta']:.6g}",
         f"  static compression a0 = {n['a0_m']:.4g} m ({law[part.shape]}), contact radius "
@@ -310,6 +350,10 @@ def explain_device(device: Device, mu: float) -> list[str]:
         f"orbit {device.orbit}",
         f"  speed scale a0 f = {n['a0_m'] * f:.4g} m/s, time scale 1/f = {1 / f:.4g} s",
     ]
+    if n["load_n"] != 0.0:
+        lines.append(f"  tangential load F = device.load - m g sin(alpha) = {n['load_n']:.4g} N "
+                     f"(along +x): particle.load L = F / (M g) = {n['load']:.6g}; the most "
+                     f"friction can hold is mu M g = {mu * n['weight_n']:.4g} N")
     # small-amplitude normal natural frequency: omega^2 = N*'(1)/m* = p/m* per unit t*
     f_n = math.sqrt(SHAPE_EXPONENT[part.shape] / n["m_star"]) / (2 * math.pi) * f
     lines.append(f"  contact (normal) natural frequency {f_n:.4g} Hz = {f_n / f:.4g} f")

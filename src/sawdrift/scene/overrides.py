@@ -1,9 +1,9 @@
 """The one rule for a scene with a ``[device]`` table, and the one way to override scene fields.
 
 A device (``sawdrift.scene.device``) is the source of truth for the normalized fields it
-derives: ``particle.m_star``, ``particle.profile``, ``particle.preload``, ``drive.amplitude``,
-``drive.horizontal_ratio``, ``drive.orbit``, ``material.mu``, ``material.nu`` and
-``material.theta`` (:data:`DERIVED`). On a device scene:
+derives: ``particle.m_star``, ``particle.profile``, ``particle.preload``, ``particle.load``,
+``drive.amplitude``, ``drive.horizontal_ratio``, ``drive.orbit``, ``material.mu``, ``material.nu``
+and ``material.theta`` (:data:`DERIVED`). On a device scene:
 
 * device fields override in device units (``device.amplitude = "5 nm"``, a sweep axis over
   ``device.preload``): every derived field is computed again from the device;
@@ -38,6 +38,7 @@ DERIVED: dict[str, str] = {
     "particle.profile": "device.particle.shape (sphere, cone with device.particle.half_angle, "
                         "flat)",
     "particle.preload": "device.preload (it enters m* through M g = m g + F_ext)",
+    "particle.load": "device.load (a force, e.g. '1 mN') or device.incline (e.g. '5 deg')",
     "drive.amplitude": "device.amplitude",
     "drive.horizontal_ratio": "device.horizontal_ratio",
     "drive.orbit": "device.orbit",
@@ -57,6 +58,7 @@ def derived_values(device: Device) -> dict[str, Any]:
         "particle.m_star": norm["m_star"],
         "particle.profile": {"shape": device.particle.shape},
         "particle.preload": 0.0,
+        "particle.load": norm["load"],
         "drive.amplitude": norm["amplitude"],
         "drive.horizontal_ratio": norm["horizontal_ratio"],
         "drive.orbit": device.orbit,

@@ -70,6 +70,14 @@ class Material(BaseModel):
             "identical materials"
         ),
     )
+    restitution: Annotated[float, bounded(0.0, 1.0)] | None = Field(
+        None,
+        description=(
+            "coefficient of restitution e of a free normal impact, in [0, 1]: a normal damping "
+            "that gives the rebound speed ratio e independent of impact speed (compliant "
+            "models); default none, the undamped contact"
+        ),
+    )
 
 
 class Particle(BaseModel):
@@ -93,6 +101,13 @@ class Particle(BaseModel):
         description=(
             "F_ext / (m g). It enters the normalized equations only through M = m + F_ext/g in "
             "m*; kept for conversion from dimensional inputs"
+        ),
+    )
+    load: Annotated[float, bounded(-100.0, 100.0)] = Field(
+        0.0,
+        description=(
+            "constant external tangential force on the particle, in units of its static normal "
+            "load M g, positive along +x (a motor's thrust, gravity along an incline)"
         ),
     )
 
@@ -119,6 +134,50 @@ class Wave(BaseModel):
             "(the mirror x -> -x: every drift changes sign)"
         ),
     )
+    backward: Annotated[float, bounded(0.0, 1.0)] = Field(
+        0.0,
+        description=(
+            "amplitude ratio s of a second, counter-propagating wave (travelling to -x), in "
+            "[0, 1]; 1: a standing wave"
+        ),
+    )
+    backward_phase: Annotated[float, bounded(-3600.0, 3600.0)] = Field(
+        0.0, description="phase psi of the counter-propagating wave, degrees"
+    )
+    backward_phase_rate: Annotated[float, bounded(-3600.0, 3600.0)] = Field(
+        0.0, description="change of backward_phase per wave period, degrees (a moving trap)"
+    )
+    position: Annotated[float, bounded(-1e6, 1e6)] = Field(
+        0.0,
+        description=(
+            "where the particle sits, xi = X / wavelength: with two waves the local orbit "
+            "depends on it"
+        ),
+    )
+    wavelength: Annotated[float, bounded(0.0, 1e15, lo_open=True)] | None = Field(
+        None,
+        description=(
+            "L* = wavelength / a0: given, the drive is evaluated at the particle's own "
+            "position (phase 2 pi (t* -+ x*/L*), a direct run); default: at drive.position"
+        ),
+    )
+    phase: Annotated[float, bounded(-360.0, 360.0)] | None = Field(
+        None,
+        description=(
+            "phase of u_x against u_y in degrees, u_x = r A* cos(2 pi t* + phase): 90 is the "
+            "prograde orbit, -90 the retrograde one, 0 and 180 a linear vibration; default from "
+            "orbit; phase + 180 mirrors x"
+        ),
+    )
+
+    @model_validator(mode="after")
+    def _phase_and_orbit_agree(self) -> Wave:
+        if self.phase is not None and "orbit" in self.model_fields_set:
+            named = 90.0 if self.orbit == "prograde" else -90.0
+            if math.fmod(self.phase - named, 360.0) != 0.0:
+                raise ValueError(f"drive.phase = {self.phase:g} and drive.orbit = {self.orbit!r} "
+                                 f"disagree ({self.orbit} is phase {named:g}); give one of them")
+        return self
 
 
 class Prescribed(BaseModel):

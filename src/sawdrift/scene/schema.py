@@ -9,7 +9,6 @@ physical units is converted by :mod:`sawdrift.scene.device` under the rule of
 
 from __future__ import annotations
 
-import math
 import tomllib
 from pathlib import Path
 from typing import Annotated, Any
@@ -192,44 +191,6 @@ class Scene(BaseModel):
 
         cls = get_model(self.model)
         return cls(cls.Params.model_validate(self.model_params), self.particle.profile)
-
-    def steps_per_period(self) -> int:
-        """Steps per period: the scene's, or the automatic default.
-
-        For a rigid model the default is 256 (nothing stiff to resolve). Otherwise it resolves
-        the contact's small-amplitude natural frequency
-        omega = sqrt(k / m*) (per unit t*, docs/physics.md) with h omega <= 0.06, where
-        k = p a_ref^(p-1) max(1, c/theta) bounds the normal and tangential stiffness at the
-        largest expected compression a_ref = 1 + 2 A* (c = 1 + 1/kappa with rotation, else 1),
-        and never goes below 128 per period.
-        """
-        if self.numerics.steps_per_period is not None:
-            return self.numerics.steps_per_period
-        from ..contact.registry import get_model
-
-        if get_model(self.model).capabilities.rigid:
-            # no contact stiffness to resolve; events are located by bisection inside steps
-            return 256
-        p = self.particle.profile.p
-        amp = self.drive.amplitude if isinstance(self.drive, Wave) else 0.0
-        a_ref = 1.0 + 2.0 * amp
-        if isinstance(self.drive, Impact):
-            # largest compression from the energy balance with gravity:
-            # a^(p+1) / (p+1) - a = m* v^2 / 2, solved by fixed-point iteration
-            energy = 0.5 * self.particle.m_star * self.drive.velocity**2
-            a_ref = 1.0
-            for _ in range(60):
-                a_ref = ((p + 1.0) * (energy + a_ref)) ** (1.0 / (p + 1.0))
-        # a rolling contact point is lighter by c = 1 + 1/kappa: its tangential frequency is
-        # sqrt(c) higher
-        c = 1.0 + 1.0 / self.particle.gyration if self.effects.rotation else 1.0
-        k = p * a_ref ** (p - 1.0) * max(1.0, c / self.theta)
-        if self.effects.rotation and self.effects.rolling_resistance > 0.0:
-            # the rolling spring 2.25 mu_r^2 dN*/da* acts on the rotational inertia kappa m*
-            mu_r = self.effects.rolling_resistance
-            k = max(k, 2.25 * mu_r**2 * p * a_ref ** (p - 1.0) / self.particle.gyration)
-        omega = math.sqrt(k / self.particle.m_star)
-        return int(min(10_000_000, max(128, math.ceil(omega / 0.06))))
 
     def measure_periods(self) -> int:
         """Whole periods at the end of the run over which the drift is averaged."""

@@ -27,7 +27,6 @@ import numpy as np
 from ..dynamics.runner import assemble
 from ..dynamics.steady import default_max_periods, relaxation_periods, rolling_frequency
 from ..dynamics.stepper import Stepper
-from ..dynamics.wave import surface
 from ..dynamics.window import Window, hop_liftoffs, measure_window, state_scale
 from ..scene.schema import Scene, Wave
 from .orbits import LONGEST, OrbitClass, alternation_side, classify, nearest
@@ -147,8 +146,7 @@ def new_stepper(scene: Scene, engine: str = "compiled") -> Stepper:
 
 
 def _surface(stepper: Stepper) -> tuple[float, float, float, float]:
-    prm = stepper.prm
-    return surface(stepper.step * stepper.h, prm[1], prm[2], prm[5], prm[11], prm[12])
+    return stepper.surface()
 
 
 def continue_to(stepper: Stepper, scene: Scene) -> Stepper:
@@ -338,7 +336,7 @@ def _point(stepper: Stepper, value: float, win: Window, cls: OrbitClass, scale: 
         # nearby states separate: the motion does not converge to an orbit, whatever the
         # differences seemed to do
         cls = OrbitClass(0, False, math.nan, math.inf)
-    prm = stepper.prm
+    surface = stepper.drive.functions()[0]
     rows = np.empty((n, len(SAMPLE_COLUMNS)))
     first = win.periods - n
     t0 = win.t_start
@@ -346,8 +344,8 @@ def _point(stepper: Stepper, value: float, win: Window, cls: OrbitClass, scale: 
     slot = np.floor(lifts - t0).astype(int)
     for j in range(n):
         t = t0 + first + j + 1
-        ux, uxd, uy, uyd = surface(t, prm[1], prm[2], prm[5], prm[11], prm[12])
         x = win.samples[first + j]
+        ux, uxd, uy, uyd = surface(t, x[0], stepper.dp)
         here = lifts[slot == first + j]
         rows[j] = (j, t, x[2] - uy, x[3] - uyd, stepper.centre(x[1]) - uxd,
                    (here[0] % 1.0) if here.size else math.nan, here.size)

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..dynamics.assembly import steps_per_period
 from ..errors import SawdriftError
 
 if TYPE_CHECKING:
@@ -60,7 +61,7 @@ def record_every(scene: Scene, periods: float = DEFAULT_PERIODS, samples: int = 
     (and its cost) no denser than the trace needs.
     """
     per_period = max(1.0, samples / max(periods, 1e-9))
-    return max(1, int(scene.steps_per_period() // math.ceil(per_period)))
+    return max(1, int(steps_per_period(scene) // math.ceil(per_period)))
 
 
 def _column(frame: Any, field: str) -> np.ndarray:

@@ -1,0 +1,104 @@
+"""The drift field of two waves: sawdrift field (traps, direct runs, sorting)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from .._startup import fast_start
+from .app import _fail, _parse_param, _writable, app
+from .scene_options import scene_from_options, with_scene_options
+
+
+@app.command("field")
+@with_scene_options()
+def field_cmd(
+    scene_arg: Annotated[Path | None, typer.Argument(help="scene TOML (or the defaults)")] = None,
+    model: Annotated[str | None, typer.Option("--model", help="contact model name")] = None,
+    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    points: Annotated[int, typer.Option("--points", help="positions over one period of the field "
+                                        "(1/2 wavelength), at least 4")] = 32,
+    refine: Annotated[int, typer.Option("--refine", help="regula-falsi runs per zero")] = 2,
+    axis: Annotated[str | None, typer.Option(
+        "--axis", help="FIELD=a,b: one field per value of a particle field, overlaid (sorting), "
+        "e.g. particle.m_star=0.05,0.5 or 'device.particle.radius=5 um,40 um'")] = None,
+    direct: Annotated[bool, typer.Option(
+        "--direct", help="also integrate the particle with the drive at its own position "
+        "(needs --wavelength or a device wavelength); --periods is then its length")] = False,
+    start: Annotated[float, typer.Option("--start", help="direct run: start position xi = X / "
+                                         "wavelength")] = 0.0,
+    workers: Annotated[int | None, typer.Option("--workers", help="local processes")] = None,
+    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
+    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="write field.json and field.png "
+                                             "here")] = None,
+    *,
+    scene_overrides: dict[str, Any],
+) -> None:
+    """The drift field of two counter-propagating waves: V(xi), its traps and repellers.
+
+    Each of --points positions over one period (1/2 wavelength) is a full run of the local
+    orbit there (settled with --settle); zeros with V' < 0 are traps. --backward S and
+    --backward-phase PSI set the second wave. --direct runs the particle through the field from
+    --start for --periods periods (a phase ramp with --backward-phase-rate moves the traps) and
+    reports it beside the field's prediction.
+    """
+    from ..study.field import direct_run, drift_field
+
+    fast_start()
+    if engine not in ("compiled", "python"):
+        _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    if out is not None:
+        _writable(out)
+    species = None
+    if axis is not None:
+        name, sep, spec = axis.partition("=")
+        if not sep or not name.strip() or not spec.strip():
+            _fail(f"--axis {axis!r} must look like FIELD=a,b (e.g. particle.m_star=0.05,0.5)")
+        from ..study.axes import parse_values
+
+        species = (name.strip(), parse_values(spec.strip(), name.strip()))
+    direct_periods = scene_overrides.pop("numerics.periods", None) if direct else None
+    scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
+    if direct:
+        from ..study.field import wavelength_star
+
+        if wavelength_star(scene) is None:
+            _fail("--direct needs the wavelength: --wavelength L* (wavelength / a0), or a device "
+                  "with device.wavelength or device.substrate.density")
+    study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
+                        progress=progress, engine=engine)
+    if direct:
+        study.direct = direct_run(scene, start, float(direct_periods or 2000.0), study.fields[0],
+                                  engine=engine)
+    data = study.to_json()
+    if out is not None:
+        from ..report.field_plot import plot_field
+
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "field.json").write_text(json.dumps(data, indent=1) + "\n")
+        plot_field(study, out / "field.png")
+        scene.to_toml(out / "scene.toml")
+    if as_json:
+        typer.echo(json.dumps(data))
+        return
+    for fld in study.fields:
+        head = f"{fld.label}: " if fld.label else ""
+        typer.echo(f"{head}{fld.summary}")
+        for z in fld.zeros:
+            typer.echo(f"  {z['kind']:>9} at xi = {z['position']:.5f} (+ k/2)")
+        if fld.errors:
+            typer.echo(f"  {len(fld.errors)} kinds of run errors, e.g. {fld.errors[0]}", err=True)
+    if study.direct is not None:
+        d = study.direct
+        pred = d.get("predicted", {})
+        where = pred.get("final_position", float("nan"))
+        typer.echo(f"direct run from xi = {d['start']:g}, {d['periods']:g} periods: ends at xi = "
+                   f"{d['final_position']:.5f}; the field predicts {where:.5f}"
+                   + (f" (trap at {pred['trap']:.5f})" if pred.get("trap") is not None else ""))
+    if out is not None:
+        typer.echo(f"wrote {out}/field.json, field.png, scene.toml")

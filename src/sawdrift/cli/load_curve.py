@@ -1,0 +1,91 @@
+"""Load curves: sawdrift load-curve (drift speed and output power against a load, the stall)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from .._startup import fast_start
+from .app import _fail, _parse_param, _writable, app
+from .scene_options import scene_from_options, with_scene_options
+
+
+@app.command("load-curve")
+@with_scene_options()
+def load_curve_cmd(
+    scene_arg: Annotated[Path | None, typer.Argument(help="scene TOML (a device scene is reported "
+                                                     "in mN, m/s and mW)")] = None,
+    model: Annotated[str | None, typer.Option("--model", help="contact model name")] = None,
+    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    loads: Annotated[int, typer.Option("--loads", help="points of the curve, evenly from 0 to the "
+                                       "stall load, at least 2")] = 16,
+    workers: Annotated[int | None, typer.Option("--workers", help="local processes (default: all "
+                                                "cores)")] = None,
+    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
+    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="write load_curve.json and "
+                                             "load_curve.png here")] = None,
+    *,
+    scene_overrides: dict[str, Any],
+) -> None:
+    """Drift speed and output power against a tangential load, up to the stall load.
+
+    The load opposes the unloaded drift (a motor's thrust, or what a conveyor can lift); the stall
+    load, where the particle no longer advances, is bracketed and narrowed by k-section (one run
+    per worker per round) to 1e-3 of mu M g, then --loads loads from 0 to it are run. Heavy
+    particles need --settle. The scene's own particle.load (device.load) is replaced by the
+    curve's; a device's incline stays. Device scenes are reported in mN, m/s and mW.
+    """
+    from ..report.load_curve_plot import plot_load_curve
+    from ..study.load_curve import load_curve
+
+    fast_start()
+    if engine not in ("compiled", "python"):
+        _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    if loads < 2:
+        _fail(f"--loads = {loads}: a load curve needs at least 2 loads")
+    if workers is not None and workers < 1:
+        _fail(f"--workers = {workers}: give at least 1")
+    if out is not None:
+        _writable(out)
+    scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
+    note = (lambda line: typer.echo(line, err=True)) if progress else None
+    curve = load_curve(scene, loads=loads, workers=workers, engine=engine, progress=note)
+    data = curve.to_json()
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "load_curve.json").write_text(json.dumps(data, indent=1) + "\n")
+        plot_load_curve(curve, out / "load_curve.png")
+        scene.to_toml(out / "scene.toml")
+    if as_json:
+        typer.echo(json.dumps(data))
+        return
+    dev = data.get("device")
+    if dev is not None:
+        typer.echo(f"drift to {data['direction']} without load: {dev['free_speed_m_s']:.4g} m/s")
+        typer.echo(f"stall thrust {dev['stall_load_mN']:.4g} mN (of a normal load "
+                   f"{dev['normal_load_mN']:.4g} mN), largest power {dev['max_power_mW']:.4g} mW "
+                   f"at {dev['load_at_max_power_mN']:.4g} mN, start-up acceleration "
+                   f"{dev['start_acceleration_g']:.3g} g")
+        rows = zip(dev["loads_mN"], dev["speed_m_s"], dev["power_mW"], data["regimes"],
+                   data["settled"], strict=True)
+        typer.echo(f"{'load (mN)':>12} {'speed (m/s)':>12} {'power (mW)':>12}  regime")
+    else:
+        typer.echo(f"drift to {data['direction']} without load: {data['drift_velocity'][0]:.6g} "
+                   "a0 f")
+        typer.echo(f"stall load {data['stall_load']:.6g} M g, largest power "
+                   f"{data['max_power']:.6g} M g a0 f at {data['load_at_max_power']:.6g} M g")
+        rows = zip(data["loads"], data["drift_velocity"], data["power"], data["regimes"],
+                   data["settled"], strict=True)
+        typer.echo(f"{'load (M g)':>12} {'v (a0 f)':>12} {'F v':>12}  regime")
+    for f, v, p, regime, settled in rows:
+        typer.echo(f"{f:12.5g} {v:12.5g} {p:12.5g}  {regime}" + ("" if settled else " (not settled)"))
+    if not all(data["settled"]):
+        typer.echo("note: some loads did not settle; use --settle or raise numerics.max_periods",
+                   err=True)
+    if out is not None:
+        typer.echo(f"wrote {out}/load_curve.json, load_curve.png, scene.toml")

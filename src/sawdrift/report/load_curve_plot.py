@@ -1,0 +1,63 @@
+"""Figure of a load curve: drift speed and output power against the load, the stall load marked."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from ..study.load_curve import LoadCurve
+
+__all__ = ["plot_load_curve"]
+
+
+def plot_load_curve(curve: LoadCurve, path: str | Path | None = None, title: str = "") -> Figure:
+    """Speed (left axis) and power F v (right axis) against the load; write a PNG if ``path``.
+
+    Device scenes are drawn in mN, m/s and mW, normalized ones in M g, a0 f and M g a0 f. The
+    stall load (the top of its bracket) and the largest sampled power are marked.
+    """
+    data = curve.to_json()
+    dev = data.get("device")
+    if dev is not None:
+        x, v, p = dev["loads_mN"], dev["speed_m_s"], dev["power_mW"]
+        labels = ("load F (mN)", "drift speed v (m/s)", "output power F v (mW)")
+        stall, p_max, at = dev["stall_load_mN"], dev["max_power_mW"], dev["load_at_max_power_mN"]
+        unit = "mN"
+    else:
+        x, v, p = data["loads"], data["drift_velocity"], data["power"]
+        labels = ("load F / (M g)", "drift velocity v / (a0 f)", "output power F v / (M g a0 f)")
+        stall, p_max, at = data["stall_load"], data["max_power"], data["load_at_max_power"]
+        unit = "M g"
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
+    ax.plot(x, v, "o-", color="#3182bd", ms=4, lw=1.2, label="drift speed")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.axvline(stall, color="0.4", ls="--", lw=0.9, label=f"stall load {stall:.4g} {unit}")
+    ax.set_xlabel(labels[0])
+    ax.set_ylabel(labels[1], color="#3182bd")
+    ax.grid(alpha=0.3)
+    twin = ax.twinx()
+    twin.plot(x, p, "s-", color="#e6550d", ms=3.5, lw=1.0, label="output power")
+    twin.plot([at], [p_max], "*", color="#e6550d", ms=12,
+              label=f"largest power {p_max:.4g} at {at:.4g} {unit}")
+    twin.set_ylabel(labels[2], color="#e6550d")
+    # both axes with their zero at the same height: the same fraction of each range below it
+    top_v, top_p = 1.1 * max(max(v), 1e-300), 1.1 * max(max(p), 1e-300)
+    below = max(0.05, -min(v) / top_v * 1.1, -min(p) / top_p * 1.1)
+    ax.set_ylim(-below * top_v, top_v)
+    twin.set_ylim(-below * top_p, top_p)
+    handles = ax.get_legend_handles_labels()[0] + twin.get_legend_handles_labels()[0]
+    ax.legend(handles, [h.get_label() for h in handles], fontsize=8, loc="lower left")
+    ax.set_title(title or f"load curve: the particle drifts to {data['direction']} without load",
+                 fontsize=9)
+    if path is not None:
+        fig.savefig(Path(path), dpi=120)
+        plt.close(fig)
+    return fig

@@ -1,0 +1,442 @@
+"""The drift field of two counter-propagating waves, its traps, and direct runs that test it.
+
+With two waves (``drive.backward`` = s > 0) the local orbit depends on the place xi = X /
+wavelength (:mod:`sawdrift.dynamics.drives.two_wave`), and so does the steady drift V(xi) of a
+particle sitting there. A particle much smaller than the wavelength, whose drift per period is
+much smaller than it, moves on the slow time as dX/dt = V(X) (docs/physics.md, "Two waves: the
+local orbit and the drift field"): zeros with V' < 0 are traps, zeros with V' > 0 repellers.
+
+* :func:`drift_field` runs the steady drift at N positions over one spatial period (1/2
+  wavelength: every local quantity depends on 4 pi xi + psi), through the sweep's executors, for
+  one scene or several species (an axis over a particle field), locates the zeros (sign changes,
+  then regula falsi with more runs) and classifies them;
+* :func:`direct_run` integrates the particle with the drive at its own position (``drive.
+  wavelength`` = L*) and compares it with the field's prediction, dxi/dt = V(xi + rate t*/720) /
+  L* (a phase ramp of ``rate`` degrees per period moves the field by -rate/720 wavelengths per
+  period);
+* :func:`rayleigh_wavelength` and :func:`device_wavelength`: the wavelength of a device,
+  lambda = c_R / f, c_R = xi_R sqrt(G / rho) with xi_R = c_R / c_S the root of the Rayleigh
+  equation (:mod:`sawdrift.scene.rayleigh`).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import SceneError
+from ..scene.schema import Scene, Wave, build_scene, set_dotted
+
+__all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_field", "find_zeros",
+           "nearest_zero", "predict_path", "rayleigh_wavelength", "wavelength_star"]
+
+#: period of the field in wavelengths
+PERIOD = 0.5
+#: fewest positions of a field
+MIN_POINTS = 4
+
+
+def rayleigh_wavelength(youngs_modulus: float, poisson: float, density: float,
+                        frequency: float) -> float:
+    """lambda = c_R / f in m, c_R = xi_R sqrt(G / rho), G = E / (2 (1 + nu)) (SI inputs).
+
+    xi_R = c_R / c_S is the root of the Rayleigh equation (Achenbach 1973, eq. 5.2.7;
+    :func:`sawdrift.scene.rayleigh.rayleigh_speed_ratio`): 0.9194 at nu = 0.25.
+    """
+    from ..scene.rayleigh import rayleigh_speed_ratio
+
+    if not (density > 0.0 and youngs_modulus > 0.0 and frequency > 0.0):
+        raise SceneError("a Rayleigh wavelength needs a density, Young's modulus and frequency > 0")
+    shear = youngs_modulus / (2.0 * (1.0 + poisson))
+    return rayleigh_speed_ratio(poisson) * math.sqrt(shear / density) / frequency
+
+
+def device_wavelength(device: Any) -> float | None:
+    """The wavelength of a device in m: ``device.wavelength`` if given (anisotropic crystals),
+    else from ``device.substrate.density`` and its moduli (:func:`rayleigh_wavelength`), else None.
+    """
+    given = getattr(device, "wavelength", None)
+    if given is not None:
+        return float(given)
+    sub = device.substrate
+    rho = getattr(sub, "density", None)
+    if rho is None:
+        return None
+    return rayleigh_wavelength(sub.youngs_modulus, sub.poisson, float(rho), device.frequency)
+
+
+def wavelength_star(scene: Scene) -> float | None:
+    """L* = wavelength / a0: ``drive.wavelength``, else the device's (None if unknown)."""
+    wave = scene.drive
+    if isinstance(wave, Wave) and wave.wavelength is not None:
+        return wave.wavelength
+    if scene.device is not None:
+        from ..scene.device import normalized
+
+        lam = device_wavelength(scene.device)
+        if lam is not None:
+            return lam / normalized(scene.device)["a0_m"]
+    return None
+
+
+@dataclass
+class Field:
+    """The drift field of one species: V(xi) over one period and its zeros."""
+
+    label: str
+    positions: np.ndarray
+    drift_velocity: np.ndarray
+    regimes: list[str]
+    settled: list[bool | None]
+    zeros: list[dict[str, Any]]
+    scene: Scene
+    #: one line: where it collects, or which way it goes
+    summary: str = ""
+    errors: list[str] = field(default_factory=list)
+
+    def velocity_at(self, xi: np.ndarray | float) -> np.ndarray:
+        """V at ``xi``: periodic linear interpolation of the samples and the zeros (period 1/2)."""
+        x = np.append(self.positions, self.positions[0] + PERIOD)
+        v = np.append(self.drift_velocity, self.drift_velocity[0])
+        # the located zeros are knots too (V = 0 there), so that the path ends at them
+        knots = [_wrap(z["position"], x[0]) for z in self.zeros if "values" in z]
+        if knots:
+            order = np.argsort(np.concatenate([x, knots]), kind="stable")
+            x = np.concatenate([x, knots])[order]
+            v = np.concatenate([v, np.zeros(len(knots))])[order]
+        rel = np.mod(np.asarray(xi, dtype=float) - self.positions[0], PERIOD) + self.positions[0]
+        return np.interp(rel, x, v)
+
+    def to_json(self) -> dict[str, Any]:
+        """``{"positions", "drift_velocity", "regimes", "zeros", ...}`` (positions in wavelengths)."""
+        return {"label": self.label, "positions": self.positions.tolist(),
+                "drift_velocity": self.drift_velocity.tolist(), "regimes": list(self.regimes),
+                "settled": list(self.settled), "zeros": self.zeros, "summary": self.summary,
+                "errors": self.errors}
+
+
+@dataclass
+class FieldStudy:
+    """The fields of every species of one study (one species without an axis)."""
+
+    fields: list[Field]
+    axis: str | None = None
+    direct: dict[str, Any] | None = None
+
+    def to_json(self) -> dict[str, Any]:
+        """The first species' field at the top level (the one-species form), all under "species"."""
+        out = dict(self.fields[0].to_json())
+        if self.axis is not None:
+            out["axis"] = self.axis
+            out["species"] = [f.to_json() for f in self.fields]
+        if self.direct is not None:
+            out["direct"] = self.direct
+        return out
+
+
+def find_zeros(positions: np.ndarray, velocity: np.ndarray, eps: float = 0.0) -> list[dict[str, Any]]:
+    """Zeros of a periodic field sampled at ``positions`` (period :data:`PERIOD`), classified.
+
+    A sign change between neighbours is a zero at the linear interpolation, a *trap* where V
+    falls through it (V' < 0: particles on both sides move towards it) and a *repeller* where V
+    rises. Samples with |V| <= ``eps`` form a zero band; its centre is the zero, classified by
+    the signs beside the band (+ then -: trap, - then +: repeller, equal: ``one-sided``, a place
+    where particles from one side stop). Each zero holds ``position``, ``kind`` and its
+    ``bracket`` (the two neighbouring samples, or the band's ends, unwrapped: lo < hi).
+    """
+    x = np.asarray(positions, dtype=float)
+    v = np.asarray(velocity, dtype=float)
+    n = x.size
+    sign = np.where(np.abs(v) <= eps, 0, np.sign(v)).astype(int)
+    if not np.any(sign):
+        return []
+
+    def at(idx: int) -> float:  # position of sample idx on the unrolled circle
+        return float(x[idx % n] + PERIOD * (idx // n))
+
+    zeros: list[dict[str, Any]] = []
+    k = int(np.nonzero(sign)[0][0])  # walk the circle once from a non-zero sample
+    end = k + n
+    while k < end:
+        j = k + 1
+        if sign[j % n] == 0:
+            m = j
+            while sign[m % n] == 0:
+                m += 1
+            lo, hi = at(j), at(m - 1)
+            pair = (sign[k % n], sign[m % n])
+            kind = "trap" if pair == (1, -1) else "repeller" if pair == (-1, 1) else "one-sided"
+            zeros.append({"position": _wrap(0.5 * (lo + hi), x[0]), "kind": kind,
+                          "bracket": [lo, hi]})
+            k = m
+            continue
+        if sign[k % n] * sign[j % n] < 0:
+            x0, x1, v0, v1 = at(k), at(j), float(v[k % n]), float(v[j % n])
+            zeros.append({"position": _wrap(x0 + v0 / (v0 - v1) * (x1 - x0), x[0]),
+                          "kind": "trap" if v0 > 0 else "repeller", "bracket": [x0, x1],
+                          "values": [v0, v1]})
+        k = j
+    return sorted(zeros, key=lambda z: z["position"])
+
+
+def _wrap(xi: float, origin: float) -> float:
+    return float(np.mod(xi - origin, PERIOD) + origin)
+
+
+def _field_base(scene: Scene) -> Scene:
+    """The scene of the field's local orbits: no wavelength, no phase ramp (psi as given)."""
+    if not isinstance(scene.drive, Wave):
+        raise SceneError(f"drive.kind = {scene.drive.kind!r}: a drift field needs a wave drive")
+    data = json.loads(json.dumps(scene.model_dump(exclude_none=True)))
+    data["drive"].pop("wavelength", None)
+    data["drive"].update(backward_phase_rate=0.0, position=0.0)
+    return build_scene(data)
+
+
+def _species(base: Scene, axis: tuple[str, list[Any]] | None) -> list[tuple[str, Scene]]:
+    if axis is None:
+        return [("", base)]
+    name, values = axis
+    out = []
+    for value in values:
+        cell = json.loads(json.dumps(base.model_dump(exclude_none=True)))
+        set_dotted(cell, name, value)
+        out.append((f"{name}={value}", build_scene(cell)))
+    return out
+
+
+def _run_scenes(scenes: list[Scene], workers: int | None, engine: str) -> list[dict[str, Any]]:
+    """Rows of :func:`sawdrift.study.sweep.run_cell` for ``scenes``, in order (sweep executors)."""
+    import os
+
+    from .sweep import _processes, _serial, run_cell
+
+    cells = [s.model_dump_json() for s in scenes]
+    workers = workers if workers is not None else (os.cpu_count() or 1)
+    executor = _serial if workers == 1 or len(cells) <= 1 else _processes
+    by_id: dict[str, dict[str, Any]] = {}
+    for row in executor(cells, workers, None, engine):
+        by_id[row["scene_id"]] = row
+    from .sweep import scene_id
+
+    return [by_id[scene_id(s)] if scene_id(s) in by_id else run_cell(c, engine)
+            for s, c in zip(scenes, cells, strict=True)]
+
+
+def drift_field(
+    scene: Scene,
+    points: int = 64,
+    *,
+    axis: tuple[str, list[Any]] | None = None,
+    refine: int = 2,
+    workers: int | None = None,
+    scheduler: Any = None,
+    progress: bool = False,
+    engine: str = "compiled",
+) -> FieldStudy:
+    """The drift field V(xi) of ``scene`` at ``points`` positions over one period (1/2 wavelength).
+
+    Parameters
+    ----------
+    scene
+        A wave scene (``drive.backward``, ``drive.backward_phase`` set; ``numerics.settle`` for
+        settled drifts); its wavelength, position and phase ramp are ignored here.
+    points
+        Positions xi = k / (2 points), k = 0 .. points - 1; at least :data:`MIN_POINTS`.
+    axis
+        ``(dotted particle field, values)``: one field per value (species to sort).
+    refine
+        Regula-falsi rounds per zero (each one more run per zero, all zeros at once).
+    workers, scheduler, progress, engine
+        As for :func:`sawdrift.study.sweep.sweep`, which runs the positions.
+    """
+    from .sweep import sweep
+
+    if int(points) != points or points < MIN_POINTS:
+        raise SceneError(f"points = {points!r}: a field needs at least {MIN_POINTS} positions "
+                         "over its period (1/2 wavelength)")
+    if refine < 0:
+        raise SceneError(f"refine = {refine!r} must be >= 0")
+    base = _field_base(scene)
+    positions = np.arange(int(points)) * (PERIOD / int(points))
+    axes: dict[str, Any] = {"drive.position": positions.tolist()}
+    if axis is not None:
+        axes[axis[0]] = axis[1]
+    frame = sweep([base.model], axes=axes, base=base, workers=workers, scheduler=scheduler,
+                  progress=progress, engine=engine)
+    species = _species(base, axis)
+    fields = []
+    for label, sp in species:
+        rows = frame
+        if axis is not None:
+            from .sweep import get_dotted
+
+            want = get_dotted(sp.model_dump(), axis[0])
+            rows = frame[np.isclose(frame[axis[0]].astype(float), float(want), rtol=1e-12)]
+        rows = rows.sort_values("drive.position")
+        if len(rows) != len(positions):
+            raise SceneError(f"field of {label or 'the scene'}: {len(rows)} of {len(positions)} "
+                             "positions computed")
+        v = rows["drift_velocity"].to_numpy(dtype=float)
+        errors = [str(e) for e in rows["error"].dropna().unique()]
+        fields.append(Field(label=label, positions=positions.copy(), drift_velocity=v,
+                            regimes=[str(r) for r in rows["regime"]],
+                            settled=[None if s is None or s != s else bool(s)
+                                     for s in rows["settled"]],
+                            zeros=[], scene=sp, errors=errors))
+    for f in fields:
+        ok = np.isfinite(f.drift_velocity)  # a failed run (its error is kept) is left out
+        f.zeros = (find_zeros(f.positions[ok], f.drift_velocity[ok], _zero_eps(f.scene))
+                   if ok.sum() >= 2 else [])
+    _refine(fields, refine, workers, engine)
+    for f in fields:
+        f.summary = _summarize(f)
+    return FieldStudy(fields, axis[0] if axis is not None else None)
+
+
+def _zero_eps(scene: Scene) -> float:
+    """|V| at or below which a sample is a zero: the regimes' "no drift", ``numerics.
+    drift_tolerance`` times the forward wave's horizontal speed 2 pi r A*."""
+    return scene.numerics.drift_tolerance * 2.0 * math.pi * scene.horizontal_ratio * scene.drive.amplitude
+
+
+def _refine(fields: list[Field], rounds: int, workers: int | None, engine: str) -> None:
+    """Regula falsi (Illinois) on every sign-change bracket, one run per zero and round."""
+    jobs = [(f, z) for f in fields for z in f.zeros if "values" in z]
+    for _ in range(rounds):
+        if not jobs:
+            return
+        scenes = []
+        for f, z in jobs:
+            (x0, x1), (v0, v1) = z["bracket"], z["values"]
+            z["position"] = x0 + v0 / (v0 - v1) * (x1 - x0)
+            scenes.append(f.scene.with_updates(**{"drive.position": _wrap(z["position"], 0.0)}))
+        rows = _run_scenes(scenes, workers, engine)
+        for (_f, z), row in zip(jobs, rows, strict=True):
+            vm = row["drift_velocity"]
+            if vm is None or not math.isfinite(vm):
+                continue
+            (x0, x1), (v0, v1) = z["bracket"], z["values"]
+            xm = z["position"]
+            if vm == 0.0:
+                z["bracket"], z["values"] = [xm, xm], [0.0, 0.0]
+            elif (vm > 0.0) == (v0 > 0.0):  # keep the right end (halved if kept twice: Illinois)
+                z["bracket"], z["values"] = [xm, x1], [vm, v1 * (0.5 if z.get("side") == 0 else 1.0)]
+                z["side"] = 0
+            else:
+                z["bracket"], z["values"] = [x0, xm], [v0 * (0.5 if z.get("side") == 1 else 1.0), vm]
+                z["side"] = 1
+        jobs = [(f, z) for f, z in jobs if z["bracket"][0] != z["bracket"][1]]
+    for f in fields:
+        for z in f.zeros:
+            if "values" in z:
+                (x0, x1), (v0, v1) = z["bracket"], z["values"]
+                z["position"] = _wrap(x0 if v0 == v1 else x0 + v0 / (v0 - v1) * (x1 - x0),
+                                      f.positions[0])
+                z.pop("side", None)
+        f.zeros.sort(key=lambda z: z["position"])
+
+
+def _summarize(f: Field) -> str:
+    traps = [z["position"] for z in f.zeros if z["kind"] == "trap"]
+    if traps:
+        return "collects at xi = " + ", ".join(f"{t:.4f}" for t in traps) + " (+ k/2)"
+    if not f.zeros:
+        mean = float(np.mean(f.drift_velocity))
+        if np.all(f.drift_velocity > 0):
+            return f"goes to +x everywhere (mean V = {mean:.4g})"
+        if np.all(f.drift_velocity < 0):
+            return f"goes to -x everywhere (mean V = {mean:.4g})"
+        return "no drift"
+    return "no trap: " + ", ".join(f"{z['kind']} at {z['position']:.4f}" for z in f.zeros)
+
+
+def predict_path(fld: Field, start: float, times: np.ndarray, wavelength: float,
+                 rate: float = 0.0) -> np.ndarray:
+    """xi(t*) from dxi/dt* = V(xi + rate t*/720) / L*, xi(0) = ``start`` (the field's prediction).
+
+    ``rate`` is the phase ramp in degrees per period: the field moves by -rate/720 wavelengths
+    per period (every local quantity depends on 4 pi xi + psi). Integrated with scipy's RK45
+    (rtol 1e-8) on the periodic linear interpolation of the sampled field.
+    """
+    from scipy.integrate import solve_ivp
+
+    times = np.asarray(times, dtype=float)
+    t_end = float(times[-1]) if times.size else 0.0
+    if t_end <= 0.0:
+        return np.full(times.shape, float(start))
+
+    def rhs(t: float, y: np.ndarray) -> np.ndarray:
+        return np.array([float(fld.velocity_at(y[0] + rate * t / 720.0)) / wavelength])
+
+    step = PERIOD / max(len(fld.positions), 1) * wavelength / max(np.max(np.abs(fld.drift_velocity)),
+                                                                     1e-300)
+    sol = solve_ivp(rhs, (0.0, t_end), [float(start)], t_eval=times, rtol=1e-8, atol=1e-12,
+                    max_step=max(step, 1e-3))
+    return sol.y[0]
+
+
+def nearest_zero(fld: Field, xi: float, kind: str = "trap") -> float | None:
+    """The zero of ``kind`` nearest to ``xi`` on the unrolled line (a zero at z stands for z + k/2)."""
+    best = None
+    for z in fld.zeros:
+        if z["kind"] != kind:
+            continue
+        cand = z["position"] + PERIOD * round((xi - z["position"]) / PERIOD)
+        if best is None or abs(cand - xi) < abs(best - xi):
+            best = cand
+    return best
+
+
+def direct_run(scene: Scene, start: float, periods: float, fld: Field | None = None, *,
+               wavelength: float | None = None, samples: int = 400,
+               engine: str = "compiled") -> dict[str, Any]:
+    """Integrate the particle with the drive at its own position and compare with the field.
+
+    The run starts at xi = ``start`` (``drive.position``) with ``drive.wavelength`` = L*
+    (``wavelength``, else the scene's or its device's, :func:`wavelength_star`) for ``periods``
+    periods, no settle criterion. Returns ``{"start", "wavelength_star", "periods",
+    "final_position", "trajectory": {"t", "position"}}`` (``samples`` points, xi in
+    wavelengths) and, given the field ``fld`` of the same scene, ``"predicted"``: the path of
+    :func:`predict_path` on the same times, its final position and the trap nearest to it.
+    """
+    from ..dynamics.runner import run
+
+    lstar = wavelength if wavelength is not None else wavelength_star(scene)
+    if lstar is None:
+        raise SceneError("a direct run needs the wavelength: drive.wavelength = L* (wavelength / "
+                         "a0, --wavelength), or a device with device.wavelength or "
+                         "device.substrate.density")
+    if not (math.isfinite(periods) and periods > 0):
+        raise SceneError(f"periods = {periods!r}: a direct run needs periods > 0")
+    window = max(1, min(20, int(periods) // 2))
+    sc = scene.with_updates(**{"drive.wavelength": float(lstar), "drive.position": float(start),
+                               "numerics.periods": float(periods), "numerics.settle": False,
+                               "numerics.measure_periods": window})
+    from ..dynamics.assembly import steps_per_period
+
+    every = max(1, int(steps_per_period(sc) * periods / max(samples, 2)))
+    res = run(sc, trajectory=True, engine=engine, record_every=every)  # type: ignore[arg-type]
+    tr = res.trajectory
+    t = tr["t"].to_numpy(dtype=float)
+    xi = float(start) + tr["x"].to_numpy(dtype=float) / lstar
+    out: dict[str, Any] = {
+        "start": float(start), "wavelength_star": float(lstar), "periods": float(periods),
+        "backward_phase_rate": sc.drive.backward_phase_rate,
+        "final_position": float(xi[-1]), "regime": res.regime,
+        "trajectory": {"t": t.tolist(), "position": xi.tolist()},
+    }
+    if fld is not None:
+        rate = sc.drive.backward_phase_rate
+        pred = predict_path(fld, start, t, lstar, rate)
+        trap = nearest_zero(fld, float(pred[-1]) + rate * float(t[-1]) / 720.0)
+        out["predicted"] = {
+            "final_position": float(pred[-1]),
+            "trap": None if trap is None else trap - rate * float(t[-1]) / 720.0,
+            "trajectory": {"t": t.tolist(), "position": pred.tolist()},
+        }
+    return out

@@ -1,0 +1,300 @@
+"""Load curves: drift speed and output power against a tangential load, up to the stall load.
+
+A particle (a motor's slider, a grain on a conveyor) drifts at V0 without load. A constant
+tangential load F against that drift (``particle.load``, in units of the static normal load M g;
+``device.load`` in newtons on a device scene) slows it, and from the stall load F_s on it no
+longer advances (docs/physics.md, "Loads, inclines and restitution"). :func:`load_curve`
+
+1. runs the scene without load (the direction of the drift, V0);
+2. brackets the stall load in [0, F_max], F_max = mu + (the scene's own load along the drift,
+   an incline's pull): against a load of mu M g or more nothing can advance, since the
+   period-averaged normal force is M g and friction is at most mu times it; F_max itself is not
+   run (it is known not to advance), and the bracket is narrowed by k-section, k - 1 runs in
+   parallel per round (bisection with one worker), to ``tolerance`` F_max;
+3. runs ``loads`` loads evenly from 0 to the stall load (in parallel), and reports the speed,
+   the output power P = F v and its largest sampled value.
+
+"Advances" means a drift along the unloaded direction above the scene's
+``numerics.drift_tolerance`` times the horizontal surface speed 2 pi r A* (the regime
+classifier's threshold for "stick"). Device scenes are reported in mN, m/s and mW as well, with
+the start-up acceleration F_s / m (the net force on the unloaded slider at rest is the stall
+load, by its definition).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import SceneError
+from ..scene.schema import Scene, Wave
+
+__all__ = ["LoadCurve", "load_curve"]
+
+#: summary fields kept of each run
+_KEPT = ("drift_velocity", "drift_ratio", "regime", "settled", "settle_periods")
+
+G_N = 9.80665  # standard gravity, for start-up accelerations in g
+
+
+def _run_load(scene_json: str, engine: str) -> dict[str, Any]:
+    """Run one loaded scene (in a worker process) and keep its summary fields."""
+    from ..dynamics.runner import run
+
+    result = run(Scene.model_validate_json(scene_json), engine=engine)  # type: ignore[arg-type]
+    summary = result.summary()
+    return {key: summary.get(key) for key in _KEPT}
+
+
+@dataclass(frozen=True)
+class LoadCurve:
+    """Drift speed and output power against the load, and the stall load.
+
+    Loads ``F`` are magnitudes against the unloaded drift, in units of the static normal load
+    M g; the applied ``particle.load`` is ``-direction F``. Velocities are drift velocities
+    (x* per period, i.e. in units of a0 f) along the unloaded drift: positive while the particle
+    advances. Power is F v in units of M g a0 f.
+    """
+
+    direction: int
+    loads: np.ndarray
+    velocities: np.ndarray
+    regimes: tuple[str, ...]
+    settled: tuple[bool, ...]
+    stall_load: float
+    stall_bracket: tuple[float, float]
+    max_load: float
+    threshold: float
+    m_star: float
+    runs: int
+    wall_time_s: float
+    #: device scenes: newtons per unit load (M g), m/s per unit velocity (a0 f), particle mass
+    device: dict[str, float] | None = None
+    #: every run made, {load: summary}
+    table: dict[float, dict[str, Any]] = field(default_factory=dict, repr=False)
+
+    @property
+    def power(self) -> np.ndarray:
+        """Output power F v (M g a0 f); negative where the particle is pushed back."""
+        return self.loads * self.velocities
+
+    @property
+    def max_power(self) -> tuple[float, float]:
+        """(largest sampled power, its load)."""
+        if self.loads.size == 0:
+            return 0.0, 0.0
+        i = int(np.argmax(self.power))
+        return float(self.power[i]), float(self.loads[i])
+
+    def to_json(self) -> dict[str, Any]:
+        """The curve as plain JSON values, with device units where the scene is a device."""
+        p_max, at = self.max_power
+        out: dict[str, Any] = {
+            "direction": {1: "+x", -1: "-x"}.get(self.direction, "none"),
+            "loads": self.loads.tolist(),
+            "applied_load": (0.0 - self.direction * self.loads).tolist(),
+            "drift_velocity": self.velocities.tolist(),
+            "power": self.power.tolist(),
+            "regimes": list(self.regimes),
+            "settled": list(self.settled),
+            "stall_load": self.stall_load,
+            "stall_bracket": list(self.stall_bracket),
+            "max_power": p_max,
+            "load_at_max_power": at,
+            "start_acceleration": self.stall_load / self.m_star,
+            "units": {"load": "M g", "drift_velocity": "a0 f", "power": "M g a0 f",
+                      "start_acceleration": "a0 f^2"},
+            "advance_threshold": self.threshold,
+            "max_load": self.max_load,
+            "runs": self.runs,
+            "wall_time_s": self.wall_time_s,
+        }
+        if self.device is not None:
+            force, speed = self.device["force_n"], self.device["speed_m_s"]
+            out["device"] = {
+                "loads_mN": (1e3 * force * self.loads).tolist(),
+                "speed_m_s": (speed * self.velocities).tolist(),
+                "power_mW": (1e3 * force * speed * self.power).tolist(),
+                "stall_load_mN": 1e3 * force * self.stall_load,
+                "max_power_mW": 1e3 * force * speed * p_max,
+                "load_at_max_power_mN": 1e3 * force * at,
+                "free_speed_m_s": speed * float(self.velocities[0]) if self.velocities.size else 0.0,
+                "start_acceleration_m_s2": force * self.stall_load / self.device["mass_kg"],
+                "start_acceleration_g": force * self.stall_load / self.device["mass_kg"] / G_N,
+                "normal_load_mN": 1e3 * force,
+            }
+        return out
+
+
+class _Runner:
+    """Runs loaded copies of a scene, in parallel where asked, remembering every result."""
+
+    def __init__(self, scene: Scene, engine: str, workers: int) -> None:
+        self.scene = scene
+        self.engine = engine
+        self.workers = workers
+        self.table: dict[float, dict[str, Any]] = {}
+        self.pool: ProcessPoolExecutor | None = None
+        dev = scene.device
+        if dev is not None:
+            from ..scene.device import normalized
+
+            norm = normalized(dev)
+            self.newtons = norm["weight_n"]
+            self.background = norm["load"] - dev.load / norm["weight_n"]
+        else:
+            self.newtons = 0.0
+            self.background = 0.0
+
+    def loaded(self, applied: float) -> Scene:
+        """The scene with the external load ``applied`` (units of M g, signed along +x)."""
+        if self.scene.device is not None:
+            return self.scene.with_updates(**{"device.load": applied * self.newtons})
+        return self.scene.with_updates(**{"particle.load": applied})
+
+    def run(self, applied: Sequence[float]) -> list[dict[str, Any]]:
+        todo = [a for a in dict.fromkeys(applied) if a not in self.table]
+        scenes = [self.loaded(a).model_dump_json() for a in todo]
+        if self.workers > 1 and len(todo) > 1:
+            if self.pool is None:
+                self.pool = ProcessPoolExecutor(max_workers=self.workers)
+            results = list(self.pool.map(_run_load, scenes, [self.engine] * len(scenes)))
+        else:
+            results = [_run_load(s, self.engine) for s in scenes]
+        self.table.update(zip(todo, results, strict=True))
+        return [self.table[a] for a in applied]
+
+    def close(self) -> None:
+        if self.pool is not None:
+            self.pool.shutdown()
+            self.pool = None
+
+
+def _surface_speed(scene: Scene) -> float:
+    """The regime classifier's velocity scale: 2 pi r A*, or 2 pi A* without horizontal motion."""
+    drive = scene.drive
+    if not isinstance(drive, Wave):
+        raise SceneError(f"drive.kind = {drive.kind!r}: a load curve needs a wave drive")
+    u = 2.0 * math.pi * scene.horizontal_ratio * drive.amplitude
+    return u if u > 0.0 else 2.0 * math.pi * drive.amplitude
+
+
+def load_curve(
+    scene: Scene,
+    *,
+    loads: int = 16,
+    settle: bool | None = None,
+    tolerance: float = 1e-3,
+    workers: int | None = None,
+    engine: str = "compiled",
+    progress: Callable[[str], None] | None = None,
+) -> LoadCurve:
+    """Drift speed and output power of ``scene`` against a tangential load, up to the stall load.
+
+    Parameters
+    ----------
+    scene
+        A wave scene (normalized or a device). Its own ``particle.load`` (``device.load``) is
+        replaced by the curve's loads; a device's incline stays (its pull is part of the scene).
+    loads
+        Points of the curve, evenly from 0 to the stall load (both included), >= 2.
+    settle
+        Override ``numerics.settle`` (None keeps the scene's): heavy particles need it.
+    tolerance
+        Width of the final stall bracket, relative to the largest possible stall load F_max.
+    workers
+        Local processes (default: all cores); 1 runs everything in this process.
+    engine
+        ``"compiled"`` or ``"python"``.
+    progress
+        Called with a short line after each stage (the command line prints it).
+
+    Raises
+    ------
+    SceneError
+        One line: fewer than 2 loads, a tolerance outside (0, 0.5), a drive that is not a wave.
+    """
+    if not isinstance(loads, int) or loads < 2:
+        raise SceneError(f"loads = {loads!r}: a load curve needs at least 2 loads (an integer)")
+    if not 0.0 < tolerance < 0.5:
+        raise SceneError(f"tolerance = {tolerance!r} is outside (0, 0.5)")
+    if engine not in ("compiled", "python"):
+        raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    speed = _surface_speed(scene)
+    if settle is not None:
+        scene = scene.with_updates(**{"numerics.settle": bool(settle)})
+    workers = max(1, int(workers if workers is not None else (os.cpu_count() or 1)))
+    t0 = time.perf_counter()
+    runner = _Runner(scene, engine, workers)
+    note = progress or (lambda _line: None)
+    try:
+        curve = _curve(scene, runner, speed, loads, tolerance, note)
+    finally:
+        runner.close()
+    return LoadCurve(**curve, runs=len(runner.table), wall_time_s=time.perf_counter() - t0,
+                     device=_device_scales(scene), table=dict(runner.table))
+
+
+def _curve(scene: Scene, runner: _Runner, speed: float, n: int, tolerance: float,
+           note: Callable[[str], None]) -> dict[str, Any]:
+    threshold = scene.numerics.drift_tolerance * speed
+    free = runner.run([0.0])[0]
+    v0 = float(free["drift_velocity"])
+    direction = 0 if abs(v0) <= threshold else (1 if v0 > 0.0 else -1)
+    note(f"without load: drift velocity {v0:.6g} ({free['regime']})")
+    f_max = scene.material.mu + direction * runner.background
+    if direction == 0 or f_max <= 0.0:
+        # nothing to hold against: the curve is the single unloaded point
+        return {"direction": direction, "loads": np.zeros(1),
+                "velocities": np.array([abs(v0) if direction else 0.0]),
+                "regimes": (str(free["regime"]),), "settled": (bool(free["settled"]),),
+                "stall_load": 0.0, "stall_bracket": (0.0, 0.0), "max_load": max(f_max, 0.0),
+                "threshold": threshold, "m_star": scene.particle.m_star}
+
+    def advances(f: float) -> bool:
+        return direction * float(runner.table[-direction * f]["drift_velocity"]) > threshold
+
+    lo, hi = 0.0, f_max  # advances at lo; at hi (= F_max) nothing can advance
+    k = runner.workers + 1
+    while hi - lo > tolerance * f_max:
+        points = [lo + (hi - lo) * j / k for j in range(1, k)]
+        runner.run([-direction * f for f in points])
+        for f in points:
+            if advances(f):
+                lo = f
+            else:
+                hi = f
+                break
+        note(f"stall load in [{lo:.6g}, {hi:.6g}] M g")
+    stall = hi
+    # the curve ends at the stall load; if the particle advanced at every load tried, the stall
+    # is F_max by the bound above, which is not run (against it the particle accelerates back
+    # for ever and never settles): the curve then ends at the largest load tried
+    grid = np.linspace(0.0, hi if hi < f_max else lo, n)
+    rows = runner.run([-direction * float(f) for f in grid])
+    note(f"{n} loads from 0 to the stall load {stall:.6g} M g")
+    return {
+        "direction": direction, "loads": grid,
+        "velocities": np.array([direction * float(r["drift_velocity"]) for r in rows]),
+        "regimes": tuple(str(r["regime"]) for r in rows),
+        "settled": tuple(bool(r["settled"]) for r in rows),
+        "stall_load": stall, "stall_bracket": (lo, hi), "max_load": f_max,
+        "threshold": threshold, "m_star": scene.particle.m_star,
+    }
+
+
+def _device_scales(scene: Scene) -> dict[str, float] | None:
+    if scene.device is None:
+        return None
+    from ..scene.device import normalized
+
+    norm = normalized(scene.device)
+    return {"force_n": norm["weight_n"], "speed_m_s": norm["a0_m"] * norm["frequency_hz"],
+            "mass_kg": norm["mass_kg"]}

@@ -1,0 +1,184 @@
+"""Two waves: the local orbit, the drift field and its traps, direct runs, moving traps, sorting."""
+
+from __future__ import annotations
+
+import math
+import sys
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import sawdrift as sd
+from sawdrift.dynamics import drives
+from sawdrift.dynamics.drives.two_wave import local_orbit
+from sawdrift.study.field import (
+    PERIOD,
+    device_wavelength,
+    direct_run,
+    drift_field,
+    find_zeros,
+    nearest_zero,
+    rayleigh_wavelength,
+)
+
+SETTLED = dict(model="mmd", particle={"m_star": 0.1}, numerics={"settle": True})
+
+
+def _speed(amplitude: float) -> float:
+    """The forward wave's horizontal surface speed 2 pi r A* (the drift tolerances' scale)."""
+    return 2.0 * math.pi * sd.Scene().horizontal_ratio * amplitude
+
+
+def test_the_default_wave_still_runs_the_travelling_drive():
+    assert drives.drive_of(sd.Scene()) is drives.DRIVES["wave"]
+    assert drives.drive_of(sd.Scene(drive={"backward": 0.2})) is drives.TWO_WAVES
+    assert drives.drive_of(sd.Scene(drive={"wavelength": 300.0})) is drives.TWO_WAVES
+
+
+@pytest.mark.parametrize("model", ["mmd", "material_point"])
+def test_two_waves_with_s_0_at_xi_0_are_the_travelling_wave(model, monkeypatch):
+    scene = sd.Scene(model=model, particle={"m_star": 0.1}, drive={"amplitude": 0.5, "phase": 30},
+                     numerics={"periods": 30})
+    single = sd.run(scene)
+    monkeypatch.setitem(drives.DRIVES, "wave", drives.TWO_WAVES)
+    both = sd.run(scene)
+    assert single.drift_velocity != 0.0
+    assert both.drift_velocity == pytest.approx(single.drift_velocity, rel=1e-12, abs=1e-14)
+    assert both.regime == single.regime
+
+
+def test_the_standing_wave_is_vertical_at_0_and_horizontal_at_a_quarter():
+    r = 0.7
+    u_x, u_y = local_orbit(1.0, r, 90.0, 1.0, 0.0, 0.0)
+    assert abs(u_x) == 0.0 and abs(u_y) == pytest.approx(2.0, rel=1e-15)
+    u_x, u_y = local_orbit(1.0, r, 90.0, 1.0, 0.0, 0.25)
+    assert abs(u_y) < 1e-15 and abs(u_x) == pytest.approx(2.0 * r, rel=1e-15)
+    # in between a linear vibration: U_x / U_y real (phase 0 or 180 degrees)
+    u_x, u_y = local_orbit(1.0, r, 90.0, 1.0, 0.0, 0.1)
+    assert abs((u_x / u_y).imag) < 1e-14
+
+
+def test_s_0_field_is_flat_and_equals_the_single_wave_drift():
+    single = sd.run(sd.Scene(**SETTLED))
+    fld = drift_field(sd.Scene(**SETTLED, drive={"backward": 0.0}), 8, workers=1).fields[0]
+    tol = sd.Scene().numerics.settle_tolerance * _speed(0.316)
+    assert np.max(np.abs(fld.drift_velocity - single.drift_velocity)) <= tol
+    assert fld.zeros == [] and fld.summary.startswith("goes to +x")
+
+
+def test_s_1_field_is_antisymmetric_about_a_quarter_wavelength():
+    fld = drift_field(sd.Scene(**SETTLED, drive={"backward": 1.0, "amplitude": 0.2}), 16,
+                      workers=2).fields[0]
+    v = fld.drift_velocity
+    assert fld.positions[8] == 0.25
+    tol = 2.0 * sd.Scene().numerics.settle_tolerance * _speed(0.2)
+    pairs = np.array([v[8 - k] + v[8 + k] for k in range(1, 8)])
+    assert np.max(np.abs(pairs)) <= tol
+    assert abs(v[0]) <= tol  # V(0) = -V(1/2) = -V(0): the period is 1/2
+    assert np.max(np.abs(v)) > 100 * tol  # not trivially zero
+    kinds = {round(z["position"], 9): z["kind"] for z in fld.zeros}
+    assert kinds == {0.0: "trap", 0.25: "repeller"}
+
+
+def test_a_phase_shift_moves_every_zero_by_minus_psi_over_4_pi():
+    base = sd.Scene(**SETTLED, drive={"backward": 0.5})
+    psi = 50.0
+    a = drift_field(base, 16, workers=2).fields[0]
+    b = drift_field(base.with_updates(**{"drive.backward_phase": psi}), 16, workers=2).fields[0]
+    assert len(a.zeros) == len(b.zeros) == 2
+    shift = -math.radians(psi) / (4.0 * math.pi)
+    for za in a.zeros:
+        moved = za["position"] + shift
+        zb = min(b.zeros, key=lambda z: abs(math.remainder(z["position"] - moved, PERIOD)))
+        assert zb["kind"] == za["kind"]
+        assert abs(math.remainder(zb["position"] - moved, PERIOD)) < 1e-3
+
+
+def test_a_light_particle_direct_run_ends_at_the_trap_the_field_predicts():
+    scene = sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"backward": 0.5})
+    fld = drift_field(scene, 16, workers=2).fields[0]
+    start = 0.12  # between the trap (~0.042) and the repeller (~0.186)
+    run = direct_run(scene, start, 1500, fld, wavelength=200.0)
+    trap = nearest_zero(fld, start)
+    assert run["predicted"]["trap"] == pytest.approx(trap, abs=1e-12)
+    assert abs(run["final_position"] - trap) < 1e-3
+    assert abs(run["predicted"]["final_position"] - trap) < 1e-3
+    assert abs(start - trap) > 0.05  # it really moved
+
+
+def test_a_phase_ramp_carries_the_trapped_particle_along():
+    scene = sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"backward": 0.5})
+    fld = drift_field(scene, 16, workers=2).fields[0]
+    trap = nearest_zero(fld, 0.0)
+    rate, periods = 0.5, 3000.0
+    run = direct_run(scene.with_updates(**{"drive.backward_phase_rate": rate}), trap, periods, fld,
+                     wavelength=200.0)
+    moved = trap - rate * periods / 720.0  # -2.08 wavelengths: the trap's own path
+    assert run["final_position"] < trap - 1.5
+    assert abs(run["final_position"] - moved) < 0.05
+    assert abs(run["final_position"] - run["predicted"]["final_position"]) < 0.02
+
+
+def test_species_of_an_axis_are_the_fields_of_each_scene_alone():
+    scene = sd.Scene(model="mmd", drive={"backward": 0.5}, numerics={"periods": 30})
+    study = drift_field(scene, 4, axis=("particle.m_star", [0.1, 3.0]), workers=2, refine=0)
+    assert [f.label for f in study.fields] == ["particle.m_star=0.1", "particle.m_star=3.0"]
+    for fld, m in zip(study.fields, (0.1, 3.0), strict=True):
+        alone = drift_field(scene.with_updates(**{"particle.m_star": m}), 4, workers=1,
+                            refine=0).fields[0]
+        np.testing.assert_array_equal(fld.drift_velocity, alone.drift_velocity)
+    assert study.to_json()["species"][1]["label"] == "particle.m_star=3.0"
+
+
+def test_zeros_of_a_sampled_field_are_located_and_classified():
+    x = np.arange(32) * (PERIOD / 32)
+    v = np.sin(4.0 * np.pi * (x - 0.1))  # rises through 0.1, falls through 0.35
+    zeros = find_zeros(x, v)
+    assert [z["kind"] for z in zeros] == ["repeller", "trap"]
+    assert zeros[0]["position"] == pytest.approx(0.1, abs=2e-3)
+    assert zeros[1]["position"] == pytest.approx(0.35, abs=2e-3)
+    # a band of zero drift between + and - is a trap at its centre
+    band = np.array([1.0, 0.5, 0.0, 0.0, 0.0, -0.5, -1.0, -0.2])
+    xb = np.arange(8) * (PERIOD / 8)
+    assert find_zeros(xb, band)[0]["kind"] == "trap"
+    assert find_zeros(xb, band)[0]["position"] == pytest.approx(xb[3])
+
+
+def test_the_rayleigh_wavelength_solves_the_rayleigh_equation():
+    from scipy.optimize import brentq
+
+    e, nu, rho, f = 210e9, 0.3, 7850.0, 1e6
+    k2 = (1 - 2 * nu) / (2 * (1 - nu))
+    eta = brentq(lambda q: (2 - q) ** 2 - 4 * math.sqrt(1 - q) * math.sqrt(1 - k2 * q), 0.5, 0.99)
+    c_s = math.sqrt(e / (2 * (1 + nu)) / rho)
+    assert rayleigh_wavelength(e, nu, rho, f) == pytest.approx(math.sqrt(eta) * c_s / f, rel=1e-9)
+    sub = SimpleNamespace(youngs_modulus=e, poisson=nu, density=rho)
+    assert device_wavelength(SimpleNamespace(substrate=sub, frequency=f)) == pytest.approx(
+        rayleigh_wavelength(e, nu, rho, f), rel=1e-15)
+    given = SimpleNamespace(substrate=sub, frequency=f, wavelength=3.99e-4)
+    assert device_wavelength(given) == 3.99e-4
+
+
+def test_bad_input_is_one_line():
+    with pytest.raises(sd.SceneError, match="points = 3"):
+        drift_field(sd.Scene(drive={"backward": 0.5}), 3)
+    with pytest.raises(sd.SceneError, match="wavelength"):
+        direct_run(sd.Scene(drive={"backward": 0.5}), 0.1, 100)
+    with pytest.raises(sd.SceneError, match="drive.backward"):
+        sd.scene.build_scene({"drive": {"backward": 1.5}})
+
+
+@pytest.mark.parametrize("line", ["run --backward 1.5", "run --backward -0.1",
+                                  "field --points 3 --backward 0.5", "field --backward 2",
+                                  "field --backward 0.5 --direct --start 0.1"])
+def test_the_command_line_answers_bad_input_with_one_line_and_exit_2(line, monkeypatch, capsys):
+    from sawdrift.cli import app, main
+
+    if line.startswith("field") and "field" not in {c.name for c in app.registered_commands}:
+        pytest.skip("the field command is not registered in this tree")
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *line.split()])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1 and err[0].startswith("error: "), err

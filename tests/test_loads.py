@@ -1,0 +1,298 @@
+"""Constant tangential loads (particle.load), device loads and inclines, and the load curve."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+import sawdrift as sd
+from sawdrift.study.load_curve import load_curve
+
+MOTOR = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
+
+#: drift velocities (float.hex) of these scenes by the code before loads existed (commit
+#: 1fb3e4f, "Drives as parts"): with load 0 the loops must run exactly the same arithmetic
+BEFORE_LOADS: dict[str, tuple[dict[str, Any], str]] = {
+    "mmd": ({}, "0x1.ea8d962068673p-2"),
+    "mdr": ({"model": "mdr"}, "0x1.ea8ed128de877p-2"),
+    "jaeger": ({"model": "jaeger", "particle": {"m_star": 0.3}, "drive": {"amplitude": 0.8}},
+               "0x1.b61261c04d8d2p+0"),
+    "hertz_mindlin_dem": ({"model": "hertz_mindlin_dem", "particle": {"m_star": 1.0},
+                           "drive": {"amplitude": 1.2}}, "0x1.4a6f5f538db53p+1"),
+    "material_point": ({"model": "material_point", "particle": {"m_star": 0.1},
+                        "drive": {"amplitude": 0.6}}, "-0x1.4432c8c98bfb9p+0"),
+    "mmd_rotation": ({"effects": {"rotation": True}, "particle": {"m_star": 0.5}},
+                     "0x1.9df66134a7e3bp-4"),
+    "point_rotation": ({"model": "material_point", "effects": {"rotation": True},
+                        "particle": {"m_star": 0.3}, "drive": {"amplitude": 0.3}},
+                       "0x1.521e8624de3f3p-3"),
+}
+
+
+@pytest.mark.parametrize("name", list(BEFORE_LOADS))
+def test_load_zero_gives_the_results_of_before_bit_for_bit(name):
+    data, before = BEFORE_LOADS[name]
+    particle = {**data.get("particle", {}), "load": 0.0}
+    res = sd.run(sd.Scene(**{**data, "particle": particle}))
+    assert res.drift_velocity.hex() == before
+
+
+def _still(model: str, load: float, **extra: Any) -> sd.Scene:
+    """A particle on a substrate at rest (no wave), m* = 0.5, mu = 0.1."""
+    return sd.Scene(model=model, particle={"m_star": 0.5, "load": load}, material={"mu": 0.1},
+                    drive={"amplitude": 0.0}, numerics={"periods": 20}, **extra)
+
+
+@pytest.mark.parametrize("load", [0.05, -0.099, 0.25, -0.3])
+def test_a_rigid_point_at_rest_sticks_below_mu_and_accelerates_above(load):
+    # m* x'' = -mu N* sgn(x') + L with N* = 1: stuck while |L| <= mu, else (L - mu sgn L)/m*
+    tr = sd.run(_still("material_point", load), trajectory=True).trajectory
+    t, x, v = tr["t"].to_numpy(), tr["x"].to_numpy(), tr["vx"].to_numpy()
+    if abs(load) <= 0.1:
+        assert np.all(x == 0.0) and np.all(v == 0.0)
+        return
+    acc = (load - 0.1 * math.copysign(1.0, load)) / 0.5
+    np.testing.assert_allclose(v[1:], acc * t[1:], rtol=1e-10)
+    np.testing.assert_allclose(x[1:], 0.5 * acc * t[1:] ** 2, rtol=1e-10)
+
+
+@pytest.mark.parametrize("load", [0.3, 0.4])
+def test_a_rigid_sphere_rolls_under_a_load_on_its_centre(load):
+    # the load acts on the centre, friction on the contact point: rolling without slip gives
+    # x'' = L / (m* (1 + kappa)) while L <= mu (1 + 1/kappa) = 0.35; beyond, it slips at
+    # (L - mu) / m* with the spin decelerating at mu / (kappa m*)
+    res = sd.run(_still("material_point", load, effects={"rotation": True}), trajectory=True)
+    tr = res.trajectory
+    t, v, spin = tr["t"].to_numpy()[1:], tr["vx"].to_numpy()[1:], tr["spin"].to_numpy()[1:]
+    if load <= 0.1 * 3.5:
+        acc, spin_acc = load / (0.5 * 1.4), -load / (0.5 * 1.4)
+    else:
+        acc, spin_acc = (load - 0.1) / 0.5, -0.1 / (0.4 * 0.5)
+    np.testing.assert_allclose(v, acc * t, rtol=1e-10)
+    np.testing.assert_allclose(spin, spin_acc * t, rtol=1e-10)
+
+
+@pytest.mark.parametrize("model", ["mmd", "mdr", "jaeger", "hertz_mindlin_dem"])
+def test_a_compliant_particle_on_a_still_substrate_slides_at_the_analytic_acceleration(model):
+    # once the tangential law is in full slip T* = N* = 1 exactly: x'' = (L - mu sgn L) / m*
+    for load in (0.25, -0.3):
+        tr = sd.run(_still(model, load), trajectory=True).trajectory
+        late = tr[tr.t > 5.0]
+        t, v = late["t"].to_numpy(), late["vx"].to_numpy()
+        acc = (load - 0.1 * math.copysign(1.0, load)) / 0.5
+        np.testing.assert_allclose(np.diff(v) / np.diff(t), acc, rtol=1e-9)
+
+
+@pytest.mark.parametrize("model", ["mmd", "mdr", "jaeger"])
+def test_a_compliant_particle_below_mu_swings_to_the_energy_balance_of_cattaneo_mindlin(model):
+    # |L| < mu, applied at once: no gross slip; on the first, monotone loading T* follows
+    # Cattaneo-Mindlin, 1 - (1 - b*)^1.5 at a* = 1, so the first maximum x_max = theta mu b_max
+    # has L x_max = int mu T* dx: (L/mu) b = b - 0.4 (1 - (1 - b)^2.5)
+    res = sd.run(_still(model, 0.05), trajectory=True)
+    b_max = brentq(lambda b: 0.5 * b - 0.4 * (1.0 - (1.0 - b) ** 2.5), 1e-6, 1.0)
+    x_max = sd.Scene().theta * 0.1 * b_max
+    assert float(res.trajectory["x"].max()) == pytest.approx(x_max, rel=2e-4)
+    assert res.gross_slip_fraction == 0.0
+
+
+def _stick_scene(load: float, fraction: float, gz: float = 0.5, mu: float = 0.3) -> sd.Scene:
+    m = 0.1
+    gx = fraction * math.sqrt((mu - abs(load)) ** 2 - (mu * gz) ** 2)
+    return sd.Scene(model="material_point", particle={"m_star": m, "load": load},
+                    material={"mu": mu}, numerics={"periods": 40},
+                    drive={"amplitude": gz / (4 * math.pi**2 * m), "horizontal_ratio": gx / gz})
+
+
+@pytest.mark.parametrize("load", [0.1, -0.1, 0.05])
+def test_the_stick_bound_with_a_load(load):
+    # |Gx sin(phi) - L| <= mu (1 + Gz cos(phi)) for every phi iff
+    # Gx <= sqrt((mu - |L|)^2 - (mu Gz)^2): the point sticks 1 % below it and slips 1 % above
+    scene = _stick_scene(load, 0.99)
+    below = sd.run(scene, trajectory=True)
+    above = sd.run(_stick_scene(load, 1.01))
+    assert below.regime == "stick" and below.gross_slip_fraction == 0.0
+    # the friction it needs, |m* u_x'' - L| / mu against N* = 1 + Gz cos(phi), peaks at
+    gz = 4 * math.pi**2 * 0.1 * scene.drive.amplitude
+    gx = scene.horizontal_ratio * gz
+    phi = np.linspace(0.0, 2 * math.pi, 200_001)
+    peak = np.max(np.abs(gx * np.sin(phi) - load) / (0.3 * (1.0 + gz * np.cos(phi))))
+    tr = below.trajectory[below.trajectory.t > below.ramp_periods]
+    assert peak < 1.0
+    assert float((tr["T_star"].abs() / tr["N_star"]).max()) == pytest.approx(peak, abs=1e-4)
+    assert above.gross_slip_fraction > 0.0
+
+
+@pytest.mark.parametrize("model", ["mmd", "material_point"])
+def test_a_load_mirrors_with_the_orbit_exactly(model):
+    # x -> -x maps (phase, L) to (phase + 180, -L): the motion mirrors to the last bit
+    def scene(phase: float, load: float) -> sd.Scene:
+        return sd.Scene(model=model, particle={"m_star": 0.1, "load": load},
+                        drive={"amplitude": 0.5, "phase": phase}, numerics={"periods": 30})
+
+    a = sd.run(scene(30.0, 0.03), trajectory=True)
+    b = sd.run(scene(210.0, -0.03), trajectory=True)
+    assert a.drift_velocity != 0.0 and b.drift_velocity == -a.drift_velocity
+    np.testing.assert_array_equal(b.trajectory["x"].to_numpy(), -a.trajectory["x"].to_numpy())
+
+
+def _heavy_sliding_ratio(gz: float, load_over_mu: float) -> float:
+    """V / (2 pi r A*) of the point in heavy sliding under the load: cos(phi0) with
+    2 phi0 - pi = 2 Gz sin(phi0) - pi L / mu (docs/physics.md)."""
+    phi0 = brentq(lambda p: 2 * p - math.pi - 2 * gz * math.sin(p) + math.pi * load_over_mu,
+                  0.0, math.pi)
+    return math.cos(phi0)
+
+
+def test_the_load_curve_of_heavy_sliding_and_its_stall_load():
+    # mu / Gx = 0.02: the point slides all the time; its stall load is 2 mu Gz / pi
+    from sawdrift.report.validation_cases import point_scene
+
+    gz, mu = 0.6, 0.1
+    scene = point_scene(gz, mu / 0.02, periods=40, measure_periods=10, settle=True,
+                        settle_tolerance=1e-6)
+    curve = load_curve(scene, loads=5, workers=1)
+    u = 2 * math.pi * scene.horizontal_ratio * scene.drive.amplitude
+    assert curve.direction == -1  # against the prograde wave
+    assert curve.stall_load == pytest.approx(2 * mu * gz / math.pi, rel=0.01)
+    lo, hi = curve.stall_bracket
+    assert hi - lo <= 1e-3 * curve.max_load and curve.max_load == mu
+    for f, v in zip(curve.loads[:-1], curve.velocities[:-1], strict=True):
+        # the applied load is +f (against a drift to -x): L/mu = f/mu
+        assert v / u == pytest.approx(-_heavy_sliding_ratio(gz, f / mu), abs=2e-3)
+    assert np.all(np.diff(curve.velocities) < 0.0)
+    power = curve.power
+    assert curve.max_power[0] == pytest.approx(power.max()) and power[0] == 0.0
+
+
+def test_the_motor_gives_its_stall_thrust_in_device_units():
+    scene = sd.Scene.from_toml(MOTOR)
+    curve = load_curve(scene, loads=4, workers=1)
+    out = curve.to_json()
+    dev = out["device"]
+    weight = scene.device.particle.mass_kg * 9.81 + scene.device.preload
+    assert out["direction"] == "-x" and dev["normal_load_mN"] == pytest.approx(1e3 * weight)
+    # stall between 0 and mu M g, the curve in mN and m/s consistent with the normalized one
+    assert 0.0 < dev["stall_load_mN"] < 1e3 * 0.2 * weight
+    assert dev["speed_m_s"][0] == pytest.approx(-sd.run(scene).extra["drift_speed_m_s"], rel=1e-12)
+    # at the bracket's bottom it still advances, at its top (the stall) it does not
+    lo, hi = curve.stall_bracket
+    adv = curve.table[-curve.direction * lo]["drift_velocity"] * curve.direction
+    stop = curve.table[-curve.direction * hi]["drift_velocity"] * curve.direction
+    assert adv > curve.threshold >= stop
+    # the start-up acceleration is the stall force over the ball's mass
+    assert dev["start_acceleration_m_s2"] == pytest.approx(
+        1e-3 * dev["stall_load_mN"] / scene.device.particle.mass_kg, rel=1e-12)
+    json.dumps(out)
+
+
+def test_load_curve_bad_input_is_one_line():
+    with pytest.raises(sd.SceneError, match="at least 2 loads"):
+        load_curve(sd.Scene(), loads=1)
+    with pytest.raises(sd.SceneError, match="wave drive"):
+        load_curve(sd.Scene(drive={"kind": "impact"}), loads=4)
+
+
+# -- devices: load and incline ------------------------------------------------------------------
+
+
+def test_device_load_and_incline_set_the_normalization_and_the_load():
+    base = sd.Scene.from_toml(MOTOR)
+    dev = base.device
+    m, g = dev.particle.mass_kg, dev.gravity
+    alpha = math.radians(30.0)
+    tilted = base.with_updates(**{"device.incline": "30 deg", "device.load": "0.2 mN"})
+    normal = m * g * math.cos(alpha) + dev.preload
+    assert tilted.particle.load == pytest.approx((0.2e-3 - m * g * math.sin(alpha)) / normal,
+                                                 rel=1e-12)
+    # m* = a0 m f^2 / (M g) with a0 ~ (M g)^(2/3): m* ~ (M g)^(-1/3)
+    ratio = (normal / (m * g + dev.preload)) ** (-1.0 / 3.0)
+    assert tilted.particle.m_star == pytest.approx(base.particle.m_star * ratio, rel=1e-12)
+    assert base.particle.load == 0.0
+
+
+def test_device_incline_and_a_derived_load_are_one_line_errors():
+    base = sd.Scene.from_toml(MOTOR)
+    for bad in ("90 deg", "-90 deg", "120 deg"):
+        with pytest.raises(sd.SceneError, match=r"device.incline = .* outside \(-90, 90\) deg"):
+            base.with_updates(**{"device.incline": bad})
+    with pytest.raises(sd.SceneError, match="device.load = '1 m' is not a force"):
+        base.with_updates(**{"device.load": "1 m"})
+    with pytest.raises(sd.SceneError, match="particle.load = 0.1: a device scene derives"):
+        base.with_updates(**{"particle.load": 0.1})
+
+
+def test_a_device_run_reports_its_load_and_power():
+    scene = sd.Scene.from_toml(MOTOR).with_updates(**{"device.load": "0.2 mN"})
+    res = sd.run(scene)
+    assert res.extra["load_n"] == pytest.approx(0.2e-3)
+    assert res.extra["power_w"] == pytest.approx(-0.2e-3 * res.extra["drift_speed_m_s"])
+    assert res.extra["power_w"] > 0.0  # the slider still advances (to -x) against 0.2 mN
+
+
+def test_explain_shows_the_load():
+    assert "m* x*'' = -mu T*(b*, a*) + L" in sd.explain(sd.Scene(particle={"load": 0.05}))
+    assert "L = 0.05: particle.load" in sd.explain(sd.Scene(particle={"load": 0.05}))
+    rigid = sd.explain(sd.Scene(model="material_point", particle={"load": -0.02}))
+    assert "|m* u_x'' - L|/mu <= N*" in rigid and "in flight m* x*'' = L" in rigid
+    assert "L = " not in sd.explain(sd.Scene())
+
+
+def _cli(monkeypatch, capsys, *args: str) -> tuple[int, str, str]:
+    """Run the command line's ``main`` on ``args``: (exit status, stdout, stderr)."""
+    import sys
+
+    from sawdrift.cli import main
+
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *args])
+    code = 0
+    try:
+        main()
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_cli_load_is_a_run_option(monkeypatch, capsys):
+    code, out, _ = _cli(monkeypatch, capsys, "run", "--load", "0.02", "--periods", "20", "--json")
+    assert code == 0 and json.loads(out)["scene"]["particle"]["load"] == 0.02
+    code, _, err = _cli(monkeypatch, capsys, "run", "--load", "500")
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1 and "particle.load = 500.0 is outside" in lines[0]
+    code, out, _ = _cli(monkeypatch, capsys, "run", "--load", "0.02", "--explain")
+    assert code == 0 and "L = 0.02: particle.load" in out
+
+
+def test_the_inclined_conveyor_climbs_at_2_deg_and_slides_back_at_3_deg():
+    # examples/grain_on_incline.toml: on a slope L = -tan(alpha) exactly (no preload)
+    scene = sd.Scene.from_toml(MOTOR.parent / "grain_on_incline.toml")
+    assert scene.particle.load == pytest.approx(-math.tan(math.radians(2.0)), rel=1e-12)
+    up = sd.run(scene)
+    down = sd.run(scene.with_updates(**{"device.incline": "3 deg"}))
+    assert up.settled and up.extra["drift_speed_m_s"] > 0.0 and up.extra["power_w"] > 0.0
+    assert down.settled and down.extra["drift_speed_m_s"] < 0.0
+
+
+def test_a_prescribed_history_refuses_a_load_in_one_line():
+    with pytest.raises(sd.SceneError, match="particle.load = 0.1 acts on the particle's motion"):
+        sd.run(sd.Scene(drive={"kind": "prescribed"}, particle={"load": 0.1}))
+
+
+@pytest.mark.parametrize(("model", "effects"), [("material_point", {}),
+                                                ("material_point", {"rotation": True}),
+                                                ("mmd", {"rotation": True})])
+def test_the_python_engine_runs_the_same_load_terms(model, effects):
+    # the readable engines run the same loop bodies: the rigid scheme to the bit, the compliant
+    # loop (with the mmd reference law, restitution damping on) to round-off
+    material = {"restitution": 0.7} if model == "mmd" else {}
+    scene = sd.Scene(model=model, effects=effects, particle={"m_star": 0.3, "load": 0.03},
+                     material=material, drive={"amplitude": 0.5}, numerics={"periods": 12})
+    a, b = sd.run(scene), sd.run(scene, engine="python")
+    assert a.drift_velocity != 0.0
+    assert b.drift_velocity == pytest.approx(a.drift_velocity, rel=1e-12, abs=0.0)
