@@ -112,11 +112,14 @@ def test_vertical_inertia_off_gives_constant_normal_force():
     assert np.allclose(off.trajectory["N_star"], 1.0, atol=1e-15)
 
 
-@pytest.mark.parametrize(("gamma", "period"), [(3.6, 1), (3.9, 2), (4.6, 2)])
+@pytest.mark.parametrize(("gamma", "period"), [(1.8, 1), (2.34, 1), (2.78, 1), (3.6, 1), (3.9, 2),
+                                             (4.6, 2)])
 def test_vertical_vibration_is_the_inelastic_bouncing_ball(gamma, period):
     # r = 0, restitution 0: the completely inelastic bouncing ball (Mehta and Luck 1990). Its
     # period-1 orbit doubles at Gamma = sqrt(4 + pi^2) = 3.724, so 3.6 repeats every period and
-    # 3.9 and 4.6 every second one; nothing moves horizontally and nothing may slip
+    # 3.9 and 4.6 every second one; nothing moves horizontally and nothing may slip. At 1.8, 2.34
+    # and 2.78 a lift-off falls in the last 1e-6 of a step, where a flight rounds to a landing
+    # at once (the scheme then met 4096 events in one step)
     m = 0.1
     scene = sd.Scene(model="material_point", particle={"m_star": m},
                      drive={"amplitude": gamma / (4 * math.pi**2 * m), "horizontal_ratio": 0.0},

@@ -299,8 +299,12 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                         lo = mid
                     else:
                         hi = mid
-                seg_end = lo
-                lift = True
+                # a lift-off in the last 1e-3 of the step waits for the next step's start, where
+                # N* < 0 already: a flight that short rises below what the gap function
+                # resolves (it rounds to a landing at once, and lift-off and landing repeat)
+                if t_end - lo > 1e-3 * h:
+                    seg_end = lo
+                    lift = True
             if not friction:
                 dt = seg_end - tau
                 y[0] += y[1] * dt
