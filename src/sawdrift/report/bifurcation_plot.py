@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import matplotlib
 
@@ -20,16 +20,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-if TYPE_CHECKING:
-    from ..study.bifurcation import BifurcationResult
-
 #: colours of the two sweep directions and of the bifurcation kinds
 COLOURS = {"up": "#1f77b4", "down": "#ff7f0e"}
 KINDS = {"period_doubling": "#d62728", "other": "#7f7f7f", "lift_off": "#2ca02c",
          "contact_regained": "#2ca02c", "sticking_lost": "#9467bd", "sticking_regained": "#9467bd"}
 
 
-def plot_bifurcation(result: BifurcationResult | pd.DataFrame, path: str | Path | None = None,
+def plot_bifurcation(result: Any, path: str | Path | None = None,
                      summary: dict[str, Any] | None = None, title: str | None = None):
     """Draw a bifurcation diagram (see the module docstring); write a PNG if ``path`` is given.
 
