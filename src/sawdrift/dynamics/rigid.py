@@ -212,7 +212,22 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
         while tau < t_end and guard < _MAX_EVENTS:
             guard += 1
             if ctr[1] == 1:  # flight
-                if _gap(tau, y[2], y[3], t_end, prm) < 0.0:
+                tc = t_end
+                if _gap(tau, y[2], y[3], t_end, prm) >= 0.0:
+                    lo, hi = tau, t_end
+                    for _i in range(_BISECT):
+                        mid = 0.5 * (lo + hi)
+                        if _gap(tau, y[2], y[3], mid, prm) < 0.0:
+                            lo = mid
+                        else:
+                            hi = mid
+                    tc = hi
+                    kk = drive_kinematics(tc, prm[P_XQ], dp)  # noqa: F821
+                    if y[3] + (tc - tau) / m - kk[4] <= 0.0 and _normal(tc, prm) < 0.0:
+                        # a 'landing' that rounding finds right after a lift-off: the point does
+                        # not approach the surface, which accelerates away (N* < 0): no landing
+                        tc = t_end
+                if tc >= t_end:
                     dt = t_end - tau
                     y[0] += y[1] * dt
                     if g_load != 0.0:
@@ -223,14 +238,6 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     out_time += dt
                     tau = t_end
                     break
-                lo, hi = tau, t_end
-                for _i in range(_BISECT):
-                    mid = 0.5 * (lo + hi)
-                    if _gap(tau, y[2], y[3], mid, prm) < 0.0:
-                        lo = mid
-                    else:
-                        hi = mid
-                tc = hi
                 dt = tc - tau
                 out_time += dt
                 y[0] += y[1] * dt
@@ -299,12 +306,8 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                         lo = mid
                     else:
                         hi = mid
-                # a lift-off in the last 1e-3 of the step waits for the next step's start, where
-                # N* < 0 already: a flight that short rises below what the gap function
-                # resolves (it rounds to a landing at once, and lift-off and landing repeat)
-                if t_end - lo > 1e-3 * h:
-                    seg_end = lo
-                    lift = True
+                seg_end = lo
+                lift = True
             if not friction:
                 dt = seg_end - tau
                 y[0] += y[1] * dt
