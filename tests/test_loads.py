@@ -296,3 +296,24 @@ def test_the_python_engine_runs_the_same_load_terms(model, effects):
     a, b = sd.run(scene), sd.run(scene, engine="python")
     assert a.drift_velocity != 0.0
     assert b.drift_velocity == pytest.approx(a.drift_velocity, rel=1e-12, abs=0.0)
+
+
+def test_load_curve_axis_overlays_species_each_as_its_own_curve(tmp_path):
+    # sorting: one curve per value of a particle field; each species' stall load is the one of a
+    # curve computed for that species alone (the overlay changes nothing)
+    import subprocess
+    import sys
+
+    base = ["--model", "material_point", "--amplitude", "0.02", "--loads", "4", "--workers", "1"]
+    proc = subprocess.run([sys.executable, "-m", "sawdrift", "load-curve", *base, "--axis",
+                           "particle.m_star=5,20", "--json", "-o", str(tmp_path / "lc")],
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    species = json.loads(proc.stdout)["species"]
+    assert [s["label"] for s in species] == ["particle.m_star=5.0", "particle.m_star=20.0"]
+    for s, m in zip(species, (5.0, 20.0), strict=True):
+        alone = load_curve(sd.Scene(model="material_point", particle={"m_star": m},
+                                    drive={"amplitude": 0.02}), loads=4, workers=1)
+        assert s["stall_load"] == pytest.approx(alone.stall_load, rel=1e-12)
+        assert s["stall_load"] > 0.0
+    assert (tmp_path / "lc" / "load_curve.png").stat().st_size > 10_000

@@ -29,6 +29,9 @@ def load_curve_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write load_curve.json and "
                                              "load_curve.png here")] = None,
+    axis: Annotated[str | None, typer.Option(
+        "--axis", help="FIELD=a,b: one curve per value of a particle field, overlaid (sorting), "
+        "e.g. particle.m_star=0.05,0.5 or 'device.particle.radius=0.2 mm,1 mm'")] = None,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
@@ -54,6 +57,9 @@ def load_curve_cmd(
         _writable(out)
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
     note = (lambda line: typer.echo(line, err=True)) if progress else None
+    if axis is not None:
+        _species_curves(scene, axis, loads, workers, engine, note, as_json, out)
+        return
     curve = load_curve(scene, loads=loads, workers=workers, engine=engine, progress=note)
     data = curve.to_json()
     if out is not None:
@@ -87,5 +93,43 @@ def load_curve_cmd(
     if not all(data["settled"]):
         typer.echo("note: some loads did not settle; use --settle or raise numerics.max_periods",
                    err=True)
+    if out is not None:
+        typer.echo(f"wrote {out}/load_curve.json, load_curve.png, scene.toml")
+
+
+def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engine: str, note: Any,
+                    as_json: bool, out: Path | None) -> None:
+    """One load curve per value of ``axis`` (``FIELD=a,b``), overlaid: which way each species
+    goes without load and where it stalls."""
+    from ..report.load_curve_plot import plot_load_curves
+    from ..study.axes import parse_values
+    from ..study.field import species_scenes
+    from ..study.load_curve import load_curve
+
+    name, sep, spec = axis.partition("=")
+    if not sep or not name.strip() or not spec.strip():
+        _fail(f"--axis {axis!r} must look like FIELD=a,b (e.g. particle.m_star=0.05,0.5)")
+    name = name.strip()
+    curves = []
+    for label, sp in species_scenes(scene, (name, parse_values(spec.strip(), name))):
+        curves.append((label, load_curve(sp, loads=loads, workers=workers, engine=engine,
+                                         progress=note)))
+    data = {"axis": name, "species": [{"label": label, **c.to_json()} for label, c in curves]}
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "load_curve.json").write_text(json.dumps(data, indent=1) + "\n")
+        plot_load_curves(curves, out / "load_curve.png")
+        scene.to_toml(out / "scene.toml")
+    if as_json:
+        typer.echo(json.dumps(data))
+        return
+    for label, curve in curves:
+        d = curve.to_json()
+        dev = d.get("device")
+        stall = (f"{dev['stall_load_mN']:.4g} mN" if dev is not None
+                 else f"{d['stall_load']:.4g} M g")
+        free = (f"{dev['free_speed_m_s']:.4g} m/s" if dev is not None
+                else f"{d['drift_velocity'][0]:.4g} a0 f")
+        typer.echo(f"{label}: drifts to {d['direction']} at {free} without load, stalls at {stall}")
     if out is not None:
         typer.echo(f"wrote {out}/load_curve.json, load_curve.png, scene.toml")

@@ -15,7 +15,7 @@ if TYPE_CHECKING:
 
     from ..study.load_curve import LoadCurve
 
-__all__ = ["plot_load_curve"]
+__all__ = ["plot_load_curve", "plot_load_curves"]
 
 
 def plot_load_curve(curve: LoadCurve, path: str | Path | None = None, title: str = "") -> Figure:
@@ -57,6 +57,43 @@ def plot_load_curve(curve: LoadCurve, path: str | Path | None = None, title: str
     ax.legend(handles, [h.get_label() for h in handles], fontsize=8, loc="lower left")
     ax.set_title(title or f"load curve: the particle drifts to {data['direction']} without load",
                  fontsize=9)
+    if path is not None:
+        fig.savefig(Path(path), dpi=120)
+        plt.close(fig)
+    return fig
+
+
+def plot_load_curves(curves: list[tuple[str, LoadCurve]], path: str | Path | None = None,
+                     title: str = "") -> Figure:
+    """Several species' load curves on one figure: speed against load, stall loads marked.
+
+    Speeds are signed along +x (a species that drifts to -x without load is drawn below zero),
+    so species that go opposite ways, or stall at different loads, read at a glance. Device
+    scenes in mN and m/s, normalized ones in M g and a0 f.
+    """
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    unit = "M g"
+    for k, (label, curve) in enumerate(curves):
+        data = curve.to_json()
+        dev = data.get("device")
+        sign = curve.direction or 1
+        if dev is not None:
+            x, v, stall, unit = dev["loads_mN"], dev["speed_m_s"], dev["stall_load_mN"], "mN"
+            ax.set_xlabel("load F against the drift (mN)")
+            ax.set_ylabel("drift speed along +x (m/s)")
+        else:
+            x, v, stall = data["loads"], data["drift_velocity"], data["stall_load"]
+            ax.set_xlabel("load F against the drift / (M g)")
+            ax.set_ylabel("drift velocity along +x / (a0 f)")
+        colour = colours[k % len(colours)]
+        ax.plot(x, [sign * s for s in v], "o-", ms=3.5, lw=1.2, color=colour,
+                label=f"{label}: to {data['direction']}, stall {stall:.4g} {unit}")
+        ax.axvline(stall, color=colour, ls="--", lw=0.8)
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title or "load curves of the species", fontsize=9)
     if path is not None:
         fig.savefig(Path(path), dpi=120)
         plt.close(fig)

@@ -197,7 +197,8 @@ def _field_base(scene: Scene) -> Scene:
     return build_scene(data)
 
 
-def _species(base: Scene, axis: tuple[str, list[Any]] | None) -> list[tuple[str, Scene]]:
+def species_scenes(base: Scene, axis: tuple[str, list[Any]] | None) -> list[tuple[str, Scene]]:
+    """(label, scene) of every species: ``base`` with the axis field set to each value."""
     if axis is None:
         return [("", base)]
     name, values = axis
@@ -268,7 +269,7 @@ def drift_field(
         axes[axis[0]] = axis[1]
     frame = sweep([base.model], axes=axes, base=base, workers=workers, scheduler=scheduler,
                   progress=progress, engine=engine)
-    species = _species(base, axis)
+    species = species_scenes(base, axis)
     fields = []
     for label, sp in species:
         rows = frame
