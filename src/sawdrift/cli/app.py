@@ -12,7 +12,7 @@ import json
 import sys
 import warnings
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
 import typer
 
@@ -25,6 +25,13 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 
+
+#: options several commands share, declared once
+Param = Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")]
+Workers = Annotated[int | None, typer.Option("--workers", help="local processes")]
+Scheduler = Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")]
+Engine = Annotated[str, typer.Option("--engine", help="compiled or python")]
+Progress = Annotated[bool, typer.Option("--progress/--no-progress")]
 
 #: exit status of an unexpected internal failure (1 is a failed check, 2 bad input)
 INTERNAL_FAILURE = 3
@@ -124,3 +131,17 @@ def main() -> None:
                    err=True)
         sys.exit(INTERNAL_FAILURE)
 
+
+
+def check_engine(engine: str) -> None:
+    """One line, exit 2, for an engine that is neither compiled nor python."""
+    if engine not in ("compiled", "python"):
+        _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+
+
+def write_outputs(out: Path, stem: str, data: dict[str, Any], plot: Any, scene: Any) -> None:
+    """Write a study's ``STEM.json``, its figure ``STEM.png`` (``plot(path)``) and its scene."""
+    out.mkdir(parents=True, exist_ok=True)
+    (out / f"{stem}.json").write_text(json.dumps(data, indent=1) + "\n")
+    plot(out / f"{stem}.png")
+    scene.to_toml(out / "scene.toml")

@@ -9,7 +9,18 @@ from typing import Annotated, Any
 import typer
 
 from .._startup import fast_start
-from .app import _fail, _parse_param, _writable, app
+from .app import (
+    Engine,
+    Param,
+    Progress,
+    Workers,
+    _fail,
+    _parse_param,
+    _writable,
+    app,
+    check_engine,
+    write_outputs,
+)
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -18,7 +29,7 @@ from .scene_options import scene_from_options, with_scene_options
 def field_cmd(
     scene_arg: Annotated[Path | None, typer.Argument(help="scene TOML (or the defaults)")] = None,
     model: Annotated[str | None, typer.Option("--model", help="contact model name")] = None,
-    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    param: Param = None,
     points: Annotated[int, typer.Option("--points", help="positions over one period of the field "
                                         "(1/2 wavelength), at least 4")] = 32,
     refine: Annotated[int, typer.Option("--refine", help="regula-falsi runs per zero")] = 2,
@@ -30,9 +41,9 @@ def field_cmd(
         "(needs --wavelength or a device wavelength); --periods is then its length")] = False,
     start: Annotated[float, typer.Option("--start", help="direct run: start position xi = X / "
                                          "wavelength")] = 0.0,
-    workers: Annotated[int | None, typer.Option("--workers", help="local processes")] = None,
-    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
-    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = False,
+    workers: Workers = None,
+    engine: Engine = "compiled",
+    progress: Progress = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write field.json and field.png "
                                              "here")] = None,
@@ -50,8 +61,7 @@ def field_cmd(
     from ..study.field import direct_run, drift_field
 
     fast_start()
-    if engine not in ("compiled", "python"):
-        _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    check_engine(engine)
     if out is not None:
         _writable(out)
     species = None
@@ -79,10 +89,7 @@ def field_cmd(
     if out is not None:
         from ..report.field_plot import plot_field
 
-        out.mkdir(parents=True, exist_ok=True)
-        (out / "field.json").write_text(json.dumps(data, indent=1) + "\n")
-        plot_field(study, out / "field.png")
-        scene.to_toml(out / "scene.toml")
+        write_outputs(out, "field", data, lambda path: plot_field(study, path), scene)
     if as_json:
         typer.echo(json.dumps(data))
         return

@@ -9,7 +9,17 @@ from typing import Annotated, Any
 import typer
 
 from .._startup import fast_start
-from .app import _fail, _parse_param, _writable, app
+from .app import (
+    Engine,
+    Param,
+    Progress,
+    _fail,
+    _parse_param,
+    _writable,
+    app,
+    check_engine,
+    write_outputs,
+)
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -19,13 +29,13 @@ def load_curve_cmd(
     scene_arg: Annotated[Path | None, typer.Argument(help="scene TOML (a device scene is reported "
                                                      "in mN, m/s and mW)")] = None,
     model: Annotated[str | None, typer.Option("--model", help="contact model name")] = None,
-    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    param: Param = None,
     loads: Annotated[int, typer.Option("--loads", help="points of the curve, evenly from 0 to the "
                                        "stall load, at least 2")] = 16,
     workers: Annotated[int | None, typer.Option("--workers", help="local processes (default: all "
                                                 "cores)")] = None,
-    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
-    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = False,
+    engine: Engine = "compiled",
+    progress: Progress = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write load_curve.json and "
                                              "load_curve.png here")] = None,
@@ -47,8 +57,7 @@ def load_curve_cmd(
     from ..study.load_curve import load_curve
 
     fast_start()
-    if engine not in ("compiled", "python"):
-        _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    check_engine(engine)
     if loads < 2:
         _fail(f"--loads = {loads}: a load curve needs at least 2 loads")
     if workers is not None and workers < 1:
@@ -63,10 +72,7 @@ def load_curve_cmd(
     curve = load_curve(scene, loads=loads, workers=workers, engine=engine, progress=note)
     data = curve.to_json()
     if out is not None:
-        out.mkdir(parents=True, exist_ok=True)
-        (out / "load_curve.json").write_text(json.dumps(data, indent=1) + "\n")
-        plot_load_curve(curve, out / "load_curve.png")
-        scene.to_toml(out / "scene.toml")
+        write_outputs(out, "load_curve", data, lambda path: plot_load_curve(curve, path), scene)
     if as_json:
         typer.echo(json.dumps(data))
         return
@@ -116,10 +122,7 @@ def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engi
                                          progress=note)))
     data = {"axis": name, "species": [{"label": label, **c.to_json()} for label, c in curves]}
     if out is not None:
-        out.mkdir(parents=True, exist_ok=True)
-        (out / "load_curve.json").write_text(json.dumps(data, indent=1) + "\n")
-        plot_load_curves(curves, out / "load_curve.png")
-        scene.to_toml(out / "scene.toml")
+        write_outputs(out, "load_curve", data, lambda path: plot_load_curves(curves, path), scene)
     if as_json:
         typer.echo(json.dumps(data))
         return

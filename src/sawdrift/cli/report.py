@@ -10,7 +10,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import _fail, _load_table, _writable, app, bench_app
+from .app import Progress, _fail, _load_table, _writable, app, bench_app
 
 
 @app.command("phase-diagram")
@@ -120,7 +120,7 @@ def validate_cmd(
     ),
     quick: Annotated[bool, typer.Option("--quick", help="the fast subset CI runs")] = False,
     cases: Annotated[Path | None, typer.Option("--cases", help="folder of validation cases")] = None,
-    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
+    progress: Progress = True,
 ) -> None:
     """Run the validation cases and write an HTML report; exit status 1 if any case fails."""
     _writable(out)

@@ -11,7 +11,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import _fail, _parse_param, _writable, app
+from .app import Engine, Param, _parse_param, _writable, app, check_engine
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -42,7 +42,7 @@ def models_cmd(
 @app.command("check-model")
 def check_model_cmd(
     name: Annotated[str, typer.Argument(help="registered model name")],
-    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    param: Param = None,
     profile: Annotated[
         str | None,
         typer.Option("--profile", help="one declared profile: sphere, cone, flat, power (p = 2.5) or "
@@ -69,8 +69,8 @@ def check_model_cmd(
 def run_cmd(
     scene_file: Annotated[Path | None, typer.Argument(help="scene TOML file")] = None,
     model: Annotated[str | None, typer.Option("--model", help="contact model name")] = None,
-    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
-    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
+    param: Param = None,
+    engine: Engine = "compiled",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write trajectory and figure here")] = None,
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
@@ -84,8 +84,7 @@ def run_cmd(
     """
     fast_start()
     scene = scene_from_options(scene_file, model, _parse_param(param), scene_overrides)
-    if engine not in ("compiled", "python"):
-        _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    check_engine(engine)
     if explain:
         typer.echo(sd.explain(scene, engine))  # type: ignore[arg-type]
         return

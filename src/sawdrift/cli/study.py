@@ -11,7 +11,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import _fail, _parse_param, _writable, app
+from .app import Engine, Param, Progress, Scheduler, Workers, _fail, _parse_param, _writable, app
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -40,11 +40,11 @@ def sweep_cmd(
     budget: Annotated[int, typer.Option("--budget", help="adaptive: most cells computed")] = 2000,
     levels: Annotated[int, typer.Option("--levels", help="adaptive: halvings of a boundary cell")] = 3,
     scene_file: Annotated[Path | None, typer.Option("--scene", help="base scene TOML")] = None,
-    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
-    workers: Annotated[int | None, typer.Option("--workers", help="local processes")] = None,
-    scheduler: Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")] = None,
-    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
-    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
+    param: Param = None,
+    workers: Workers = None,
+    scheduler: Scheduler = None,
+    progress: Progress = True,
+    engine: Engine = "compiled",
     force: Annotated[
         bool, typer.Option("--force", help="resume a table written by other code or from another "
                            "base scene (rows of both kinds are then mixed)")
@@ -133,7 +133,7 @@ def bifurcation_cmd(
         str | None, typer.Option("--model", help="model name(s), comma-separated: one panel each, "
                                  "on the same axis")
     ] = None,
-    param: Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")] = None,
+    param: Param = None,
     samples: Annotated[int, typer.Option("--samples", help="Poincare samples per value (K >= 1)")] = 64,
     direction: Annotated[
         str, typer.Option("--direction", help="up, down or both (both marks hysteresis: where the "
@@ -146,10 +146,10 @@ def bifurcation_cmd(
     tolerance: Annotated[
         float, typer.Option("--tolerance", help="--locate: relative width of the final bracket")
     ] = 1e-4,
-    workers: Annotated[int | None, typer.Option("--workers", help="local processes")] = None,
-    scheduler: Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")] = None,
-    progress: Annotated[bool, typer.Option("--progress/--no-progress")] = True,
-    engine: Annotated[str, typer.Option("--engine", help="compiled or python")] = "compiled",
+    workers: Workers = None,
+    scheduler: Scheduler = None,
+    progress: Progress = True,
+    engine: Engine = "compiled",
     force: Annotated[
         bool, typer.Option("--force", help="resume a folder written by other code (values of both "
                            "are then mixed) or restart one holding another diagram")
