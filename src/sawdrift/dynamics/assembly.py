@@ -21,20 +21,6 @@ Engine = Literal["compiled", "python"]
 __all__ = ["Assembly", "Engine", "assemble", "explain", "steps_per_period"]
 
 
-#: scene fields whose physics is being built: a value other than the default is refused in one
-#: line rather than silently ignored (each entry goes when its part runs)
-_UNBUILT = {
-}
-
-
-def _refuse_unbuilt(scene: Scene) -> None:
-    for dotted, (part, field, default) in _UNBUILT.items():
-        value = getattr(getattr(scene, part), field, default)
-        if value != default:
-            raise SceneError(f"{dotted} = {value!r} is not computed by this version of sawdrift; "
-                             f"leave it at {default!r}")
-
-
 def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     """Steps per wave period: the scene's ``numerics.steps_per_period``, or the automatic default.
 
@@ -138,7 +124,6 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
             (f"{kernel}(a*, b*) once per sample, committing the history",),
             ("N*(k)", "T*(k)", "dissipated work = sum of T* db*"),
         )
-    _refuse_unbuilt(scene)
     horiz = isinstance(drive, Wave) and eff.horizontal_wave
     vert = isinstance(drive, Wave) and eff.vertical_wave
     part = drive_of(scene)
