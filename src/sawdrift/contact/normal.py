@@ -79,13 +79,34 @@ def power_law(z: float, p: float) -> float:
 
 
 @njit(**JIT_OPTIONS, inline="always")
+def _power_slope(z: float, p: float) -> float:
+    """N*'(z) = p z^(p-1) of a power law at z > 0: no power for Hertz, the cone or the flat punch."""
+    out = 0.0
+    if p == 1.5:
+        out = 1.5 * math.sqrt(z)
+    elif p == 1.0:
+        out = 1.0
+    elif p == 2.0:
+        out = 2.0 * z
+    else:
+        out = p * z ** (p - 1.0)
+    return out
+
+
+@njit(**JIT_OPTIONS, inline="always")
 def law_normal(z: float, law, off: int) -> float:
-    """N*(z) of the descriptor ``law[off:]``; 0 for z <= 0."""
+    """N*(z) of the descriptor ``law[off:]``; 0 for z <= 0.
+
+    A power law is evaluated as N*(z) = z N*'(z) / p (Euler's relation for the homogeneous z^p,
+    N*' as :func:`law_slope` gives it): the rounding of the N*(z) the memory diagram stores for
+    its kinks (:mod:`sawdrift_builtin.mmd_kernel`), so the normal slot and that law agree bit for
+    bit, and a Hertz contact costs a square root instead of a power.
+    """
     out = 0.0
     if z > 0.0:
         p = law[off]
         if p > 0.0:
-            out = z**p
+            out = z * _power_slope(z, p) / p
         else:
             out = _hermite(z, law, off, False)
     return out
@@ -100,14 +121,8 @@ def law_slope(z: float, law, off: int) -> float:
     out = 0.0
     if z > 0.0:
         p = law[off]
-        if p == 1.5:
-            out = 1.5 * math.sqrt(z)
-        elif p == 1.0:
-            out = 1.0
-        elif p == 2.0:
-            out = 2.0 * z
-        elif p > 0.0:
-            out = p * z ** (p - 1.0)
+        if p > 0.0:
+            out = _power_slope(z, p)
         else:
             out = _hermite(z, law, off, True)
     return out
