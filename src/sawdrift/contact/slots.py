@@ -12,6 +12,8 @@ compliant contact here is
 The framework owns what every law used to repeat: the committed (a*, b*), contact entry (a fresh
 history that starts where the straight path crosses a* = 0), contact loss (the tangential
 history is reset once, on the step that leaves contact), the normal force, and the state layout.
+Every compliant built-in law (``mmd``, ``mdr``, ``jaeger``, ``hertz_mindlin_dem``) is a tangential
+law here, so :func:`contact_force` is the only place where contact entry and loss are handled.
 From the slots it generates the contact protocol of :mod:`sawdrift.contact.base`
 (``reset``/``force``), so the integrators, the conformance suite and the python engine see an
 ordinary contact model. The generated module is written to the cache folder of
@@ -23,10 +25,19 @@ Tangential step protocol (numba ``@njit`` functions)::
     reset(ts, is_, law, tp)               -> None   # optional; default: zero ts and is_
 
 ``ts`` (float64) and ``is_`` (int64) are the law's own state (sizes from
-:meth:`TangentialLaw.tangential_sizes`), ``law`` is the normal-law descriptor (read it with
-:func:`~sawdrift.contact.normal.law_normal` / :func:`~sawdrift.contact.normal.law_slope`) and ``tp``
-the law's parameters (:meth:`TangentialLaw.tangential_params`). ``step`` is only called in
-contact (a > 0); ``a0 = 0`` exactly when the contact is new and the history has just been reset.
+:meth:`TangentialLaw.tangential_sizes`), ``law`` starts with the normal-law descriptor (read it
+with :func:`~sawdrift.contact.normal.law_normal` / :func:`~sawdrift.contact.normal.law_slope` at
+offset 0; the view runs on past it) and ``tp`` holds the law's parameters
+(:meth:`TangentialLaw.tangential_params`). ``step`` is only called in contact (a > 0);
+``a0 = 0`` exactly when the contact is new and the history has just been reset. ``reset`` is
+called on a zeroed ``is_`` for a new history (:meth:`ContactHistory.reset
+<sawdrift.contact.base.ContactHistory.reset>`) and on the live state, once, on the step that
+loses contact, so a law can keep what outlives a contact (a high-water mark, a set-up grid).
+
+The composition inlines ``step`` and ``damp`` (numba IR inlining, :data:`_INLINE`), so a law in
+a slot costs what the same code written as one whole kernel does; numba copies an inlined body
+once per call site, so a step should call its big helpers from few places (see
+:mod:`sawdrift_builtin.mmd_kernel`) to keep compilation short.
 
 Damping protocol: ``damp(dp, law, a, adot, n_elastic) -> N*`` with ``dp`` from
 :meth:`NormalDamping.packed`.
@@ -46,6 +57,8 @@ from .base import ContactModel, KernelPair, KernelReference, LazyFunction, NoPar
 #: Float entries the framework keeps in front of the law's state: committed a*, committed b*,
 #: and 1.0 while the tangential history belongs to a contact (0.0: fresh).
 HEADER = 3
+#: where the normal-law descriptor starts in ``pp``
+LAW = 2
 
 
 def _load(func: Any) -> Any:
@@ -56,18 +69,20 @@ def _load(func: Any) -> Any:
 
 
 def contact_reset(fs, is_, pp):
-    """Empty history, out of contact at (a*, b*) = (0, 0)."""
-    it = int(pp[0])
+    """Empty history, out of contact at (a*, b*) = (0, 0); the law's reset on a zeroed ``is_``."""
     fs[0] = 0.0
     fs[1] = 0.0
     fs[2] = 0.0
-    tangential_reset(fs[HEADER:], is_, pp[2:it], pp[it:int(pp[1])])  # noqa: F821
+    for i in range(is_.shape[0]):
+        is_[i] = 0
+    tangential_reset(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])])  # noqa: F821
 
 
 def contact_force(fs, is_, pp, a, b, adot, bdot):
-    """Advance along the straight path from the committed (a*, b*) to (a, b), commit, (N*, T*)."""
-    it = int(pp[0])
-    idp = int(pp[1])
+    """Advance along the straight path from the committed (a*, b*) to (a, b), commit, (N*, T*).
+
+    The one place of contact entry and loss (every tangential law runs inside it).
+    """
     a0 = fs[0]
     b0 = fs[1]
     fs[0] = a
@@ -75,7 +90,7 @@ def contact_force(fs, is_, pp, a, b, adot, bdot):
     if not a > 0.0:
         if fs[2] != 0.0:
             # contact lost: the tangential history is forgotten, once
-            tangential_reset(fs[HEADER:], is_, pp[2:it], pp[it:idp])  # noqa: F821
+            tangential_reset(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])])  # noqa: F821
             fs[2] = 0.0
         return 0.0, 0.0
     if fs[2] == 0.0:
@@ -84,14 +99,16 @@ def contact_force(fs, is_, pp, a, b, adot, bdot):
             b0 = b0 + (b - b0) * (-a0 / (a - a0))
         a0 = 0.0
         fs[2] = 1.0
-    t = tangential_step(fs[HEADER:], is_, pp[2:it], pp[it:idp], a0, b0, a, b)  # noqa: F821
-    n = normal_damping(pp[idp:], pp[2:it], a, adot, law_normal(a, pp, 2))  # noqa: F821
-    # the Coulomb bound holds for the total normal force, damping included (as in DEM codes);
-    # the law's committed history is left as it is
-    if t > n:
-        t = n
-    elif t < -n:
-        t = -n
+    t = tangential_step(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])],  # noqa: F821
+                        a0, b0, a, b)
+    n = normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, law_normal(a, pp, LAW))  # noqa: F821
+    if CAP:  # noqa: F821 - a constant of the composition (TangentialLaw.coulomb_cap)
+        # the Coulomb bound holds for the total normal force, damping included (as in DEM
+        # codes); the law's committed history is left as it is
+        if t > n:
+            t = n
+        elif t < -n:
+            t = -n
     return n, t
 
 
@@ -99,8 +116,7 @@ def contact_normal(fs, is_, pp, a, b, adot, bdot):
     """(N*, 0): the normal and normal-damping slots alone (friction off); no history."""
     if not a > 0.0:
         return 0.0, 0.0
-    it = int(pp[0])
-    return normal_damping(pp[int(pp[1]):], pp[2:it], a, adot, law_normal(a, pp, 2)), 0.0  # noqa: F821
+    return normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, law_normal(a, pp, LAW)), 0.0  # noqa: F821
 
 
 _TEMPLATES = (contact_reset, contact_force, contact_normal)
@@ -110,15 +126,23 @@ def _body() -> str:
     return "\n\n".join(textwrap.dedent(inspect.getsource(f)) for f in _TEMPLATES)
 
 
-def _namespace(step: Any, reset: Any, damp: Any, law_normal: Any, label: str) -> dict[str, Any]:
+def _namespace(step: Any, reset: Any, damp: Any, law_normal: Any, label: str,
+               cap: bool) -> dict[str, Any]:
     """The composition source run in a namespace bound to the given slot functions."""
-    ns: dict[str, Any] = {"HEADER": HEADER, "law_normal": law_normal, "tangential_step": step,
-                          "tangential_reset": reset, "normal_damping": damp}
+    ns: dict[str, Any] = {"HEADER": HEADER, "LAW": LAW, "law_normal": law_normal,
+                          "tangential_step": step, "tangential_reset": reset,
+                          "normal_damping": damp, "CAP": cap}
     exec(compile(_body(), f"<sawdrift contact slots{label}>", "exec"), ns)  # noqa: S102
     return ns
 
 
-def _compiled_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
+#: numba options of the step and damping functions as the composition sees them: inlined into
+#: ``contact_force`` at numba's IR level, so a law in a slot costs what the same code written as
+#: one whole kernel does (a called step kept its state arrays and parameters behind a call)
+_INLINE = {"inline": "always", "_nrt": False}
+
+
+def _compiled_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str, Any]:
     """The generated, disk-cached module's namespace (or an in-memory compilation)."""
     from numba import njit
 
@@ -127,41 +151,47 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
 
     # the code of every slot function and of all they call keys the module (an edited law
     # compiles anew), and numba's own caches of those functions are brought in line with it
-    slots = {"HEADER": HEADER, "law_normal": law_normal, "tangential_step": step,
-             "tangential_reset": reset, "normal_damping": damp}
+    slots = {"HEADER": HEADER, "LAW": LAW, "law_normal": law_normal, "tangential_step": step,
+             "tangential_reset": reset, "normal_damping": damp, "CAP": cap}
     walk, code = walk_code([step, reset, damp], slots, _TEMPLATES)
     refresh_stale_caches(walk)
     origins = [importable_origin(f) for f in (step, reset, damp)]
     if all(o is not None for o in origins):
         imports = "\n".join(
             f"from {mod} import {name} as {alias}  # noqa: F401"
-            for (mod, name), alias in zip(origins, ("tangential_step", "tangential_reset",
-                                                    "normal_damping"), strict=True)
+            for (mod, name), alias in zip(origins, ("_step", "tangential_reset", "_damp"),
+                                          strict=True)
         )
         decorated = _body().replace("\ndef ", "\n@njit(**JIT_OPTIONS)\ndef ")
         source = (
             '"""Generated by sawdrift: a contact composed of slots. Do not edit."""\n'
             "from numba import njit\n\n"
             "from sawdrift.contact.normal import JIT_OPTIONS, law_normal  # noqa: F401\n"
-            "from sawdrift.contact.slots import HEADER  # noqa: F401\n"
-            f"{imports}\n\n\n@njit(**JIT_OPTIONS)\n{decorated}\n"
+            "from sawdrift.contact.slots import HEADER, LAW  # noqa: F401\n"
+            f"{imports}\n\n"
+            "# the step and the damping are inlined into the composition (numba IR inlining)\n"
+            f"tangential_step = njit(**{_INLINE!r})(_step.py_func)\n"
+            f"normal_damping = njit(**{_INLINE!r})(_damp.py_func)\n"
+            f"CAP = {cap!r}\n\n\n"
+            f"@njit(**JIT_OPTIONS)\n{decorated}\n"
         )
         # the wave loop's generated module imports this one by name
         module = load_generated("sawdrift_contact_", source, code)
         if module is not None:
             return vars(module)
     # not importable by name, or an unwritable cache: compile in memory instead
-    ns = _namespace(step, reset, damp, law_normal, "")
+    ns = _namespace(njit(**_INLINE)(_py(step)), reset, njit(**_INLINE)(_py(damp)), law_normal, "",
+                    cap)
     for f in _TEMPLATES:
         ns[f.__name__] = njit(**JIT_OPTIONS)(ns[f.__name__])
     return ns
 
 
-def _python_namespace(step: Any, reset: Any, damp: Any) -> dict[str, Any]:
+def _python_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str, Any]:
     """The same composition run as plain Python (the python engine)."""
     from .normal import law_normal
 
-    return _namespace(step, reset, damp, law_normal.py_func, " (python)")
+    return _namespace(step, reset, damp, law_normal.py_func, " (python)", cap)
 
 
 _COMPOSED: dict[tuple[Any, ...], dict[str, Any]] = {}
@@ -169,6 +199,25 @@ _COMPOSED: dict[tuple[Any, ...], dict[str, Any]] = {}
 
 def _py(func: Any) -> Any:
     return getattr(func, "py_func", func)
+
+
+class _SlotKernel:
+    """The ``kernel`` of a :class:`TangentialLaw`: the :class:`KernelPair` composed from its slots.
+
+    The composition depends on the class only (its step, reset and damping functions), so it is
+    the same on the class and on every instance.
+    """
+
+    def __get__(self, obj: Any, owner: type[TangentialLaw]) -> KernelPair:
+        key = owner._key()
+        pair = _PAIRS.get(key)
+        if pair is None:
+            ns = owner._compiled()
+            pair = _PAIRS[key] = KernelPair(ns["contact_reset"], ns["contact_force"])
+        return pair
+
+
+_PAIRS: dict[tuple[Any, ...], KernelPair] = {}
 
 
 class NormalDamping:
@@ -201,6 +250,11 @@ class TangentialLaw(ContactModel):
     step: ClassVar[Any]
     reset_state: ClassVar[Any] = None
     damping: ClassVar[type[NormalDamping] | None] = None
+    #: The slots cap |T*| by N* after the step (the law's committed history is left as it is).
+    #: A law whose T* meets the Coulomb bound by construction (T* = N* in full sliding, as the
+    #: memory diagram) may set False to get its own T* bit for bit; with a normal-damping slot
+    #: the cap applies anyway, the total N* being one the law does not know.
+    coulomb_cap: ClassVar[bool] = True
 
     # -- what a law provides ---------------------------------------------------------------
     def tangential_sizes(self) -> tuple[int, int]:
@@ -221,8 +275,9 @@ class TangentialLaw(ContactModel):
         return None
 
     # -- what the framework derives ----------------------------------------------------------
-    def _functions(self) -> tuple[Any, Any, Any]:
-        cls = type(self)  # class access: a numba function would bind as a method on an instance
+    @classmethod
+    def _functions(cls) -> tuple[Any, Any, Any]:
+        # class access: a numba function would bind as a method on an instance
         step = _load(cls.step)
         reset = _load(cls.reset_state) if cls.reset_state is not None else None
         damp = _load(cls.damping.damp) if cls.damping is not None else None
@@ -233,21 +288,21 @@ class TangentialLaw(ContactModel):
             damp = damp if damp is not None else slot_kernels.no_damping
         return step, reset, damp
 
-    def _compiled(self) -> dict[str, Any]:
-        key = self._functions()
+    @classmethod
+    def _key(cls) -> tuple[Any, Any, Any, bool]:
+        """What the composition is made of: the slot functions and whether T* is capped."""
+        return (*cls._functions(), cls.damping is not None or cls.coulomb_cap)
+
+    @classmethod
+    def _compiled(cls) -> dict[str, Any]:
+        key = cls._key()
         ns = _COMPOSED.get(key)
         if ns is None:
             ns = _COMPOSED[key] = _compiled_namespace(*key)
         return ns
 
-    @property
-    def kernel(self) -> KernelPair:  # type: ignore[override]
-        """The contact protocol generated from the slots."""
-        pair = self.__dict__.get("_kernel_pair")
-        if pair is None:
-            ns = self._compiled()
-            pair = self.__dict__["_kernel_pair"] = KernelPair(ns["contact_reset"], ns["contact_force"])
-        return pair
+    #: the contact protocol generated from the slots (also on the class: ``Law.kernel.force``)
+    kernel = _SlotKernel()  # type: ignore[assignment]
 
     def state_sizes(self) -> tuple[int, int]:
         """The framework's header plus the law's own state."""
@@ -267,7 +322,7 @@ class TangentialLaw(ContactModel):
         law = np.asarray(self.profile.law(), dtype=np.float64)
         tp = np.asarray(self.tangential_params(), dtype=np.float64)
         dp = self.damping_params()
-        it = 2 + law.size
+        it = LAW + law.size
         return np.concatenate([[float(it), float(it + tp.size)], law, tp, dp])
 
     def normal_law(self):
@@ -300,7 +355,7 @@ class SlotReference(KernelReference):
     """The python engine of a :class:`TangentialLaw`: the composition source run uncompiled."""
 
     def __init__(self, model: TangentialLaw) -> None:
-        step, reset, damp = model._functions()
+        step, reset, damp, cap = model._key()
         readable = model.reference_step()
         #: the law's readable reference, when it is an object with ``reset()`` and ``step()``
         self.readable = readable if hasattr(readable, "step") else None
@@ -314,5 +369,5 @@ class SlotReference(KernelReference):
                 obj.reset()
         elif readable is not None:
             step, reset = readable
-        ns = _python_namespace(_py(step), _py(reset), _py(damp))
+        ns = _python_namespace(_py(step), _py(reset), _py(damp), cap)
         super().__init__(model, ns["contact_reset"], ns["contact_force"])
