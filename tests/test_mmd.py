@@ -199,6 +199,11 @@ def test_kernel_matches_reference(p: float) -> None:
         np.testing.assert_allclose(n_c, n_p, rtol=1e-14, atol=0)
         np.testing.assert_allclose(t_c, t_p, rtol=0, atol=1e-12)
         assert np.all(np.abs(t_c) <= n_c * (1 + 1e-12))
+        # the readable reference's own force(), entry and loss written out apart from the slots
+        oracle = MemoryDiagramReference(p)
+        n_o, t_o = np.array([oracle.force(x, y) for x, y in zip(a, b, strict=True)]).T
+        np.testing.assert_allclose(n_c, n_o, rtol=1e-14, atol=0)
+        np.testing.assert_allclose(t_c, t_o, rtol=0, atol=1e-12)
 
 
 vertex = st.tuples(
@@ -259,6 +264,23 @@ def test_drifting_million_steps_bounded_memory_and_precise() -> None:
     t_ref = np.array([ref.force(x, y)[1] for x, y in zip(a2, b2, strict=True)])
     assert np.all(np.abs(b2) > 1e6)
     np.testing.assert_allclose(t_kernel, t_ref, rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_contact_loss_keeps_the_high_water_mark_reset_clears_it(engine: str) -> None:
+    """The slots reset the law on contact loss (its memory points go, its high-water mark of
+    kinks stays) and on a history reset (both go)."""
+    a, b = random_history(60, seed=14, a_low=0.2)
+    h = ContactHistory(SPHERE, engine)
+    h.drive(a, b)
+    h.advance(-0.1, 0.0)
+    assert SPHERE.memory_points(h).shape[0] == 0
+    if engine == "compiled":
+        assert h._is[0] == 0 and h._is[1] > 3
+        h.reset()
+        assert h._is[1] == 0
+    h.reset()
+    assert h.advance(0.8, 0.2) == ContactHistory(SPHERE, engine).advance(0.8, 0.2)
 
 
 def test_capacity_overflow_raises() -> None:

@@ -8,9 +8,10 @@ the equivalent 1-D profile; each strip carries a displacement v(z) with |v(z)| <
 For a power-law profile and a piecewise-linear loading path this is the exact
 Mindlin & Deresiewicz (1953) solution generalized to arbitrary 2-D histories by Aleshin,
 Bou Matar and Van Den Abeele (2015), Int. J. Solids Struct. 60-61, 84-95 ("Method of memory
-diagrams"). The compiled kernel (:mod:`sawdrift_builtin.mmd_kernel`) keeps the diagram as a
-stack and costs O(1) amortized per step; :mod:`sawdrift_builtin.mmd_reference` is the readable
-reference it is tested against.
+diagrams"). It is a tangential law in the contact slots (:mod:`sawdrift.contact.slots`, which
+give N* and handle contact entry and loss); its compiled step (:mod:`sawdrift_builtin.mmd_kernel`)
+keeps the diagram as a stack and costs O(1) amortized per step;
+:mod:`sawdrift_builtin.mmd_reference` is the readable reference it is tested against.
 """
 
 from __future__ import annotations
@@ -20,7 +21,8 @@ from typing import ClassVar
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
 
-from sawdrift.contact import Capabilities, ContactHistory, ContactModel, KernelPair
+from sawdrift.contact import Capabilities, ContactHistory
+from sawdrift.contact.slots import HEADER, LazyFunction, TangentialLaw
 from sawdrift.hookspecs import hookimpl
 
 from .mmd_reference import MemoryDiagramReference
@@ -39,7 +41,7 @@ class MemoryDiagramParams(BaseModel):
     )
 
 
-class MemoryDiagramModel(ContactModel):
+class MemoryDiagramModel(TangentialLaw):
     """Memory-diagram contact (Aleshin et al. 2015), exact for piecewise-linear histories.
 
     Parameters
@@ -59,26 +61,25 @@ class MemoryDiagramModel(ContactModel):
     capabilities: ClassVar[Capabilities] = Capabilities(
         profiles=("sphere", "cone", "flat", "power", "table"), straight_path_exact=True
     )
-    kernel: ClassVar[KernelPair | None] = KernelPair.lazy("sawdrift_builtin.mmd_kernel")
+    step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.mmd_kernel", "mmd_step")
+    reset_state: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.mmd_kernel", "mmd_reset")
+    #: |v(z)| <= a* - z on every strip bounds |T*| by N* (T* = N* in full sliding, to rounding)
+    coulomb_cap: ClassVar[bool] = False
 
-    def state_sizes(self) -> tuple[int, int]:
-        """Sizes of ``fs`` and ``is_`` (layout in :mod:`sawdrift_builtin.mmd_kernel`)."""
+    def tangential_sizes(self) -> tuple[int, int]:
+        """Sizes of the diagram's state (layout in :mod:`sawdrift_builtin.mmd_kernel`)."""
         from . import mmd_kernel
 
         return mmd_kernel.state_sizes(self.params.max_memory_points)
 
     def live_sizes(self, fs: np.ndarray, is_: np.ndarray) -> tuple[int, int]:
-        """The header and the stored memory points (the rest of the stack is free)."""
+        """The headers and the stored memory points (the rest of the stack is free)."""
         from . import mmd_kernel
 
-        return mmd_kernel.HEADER + mmd_kernel.RECORD * int(is_[0]), is_.size
+        return HEADER + mmd_kernel.HEADER + mmd_kernel.RECORD * int(is_[0]), is_.size
 
-    def packed_params(self) -> np.ndarray:
-        """The profile's normal-law descriptor (``[p]`` for a power law)."""
-        return self.profile.law()
-
-    def reference(self) -> MemoryDiagramReference:
-        """A fresh pure-Python memory-diagram contact."""
+    def reference_step(self) -> MemoryDiagramReference:
+        """A fresh readable memory diagram, driven through its ``step`` by the python engine."""
         law = self.profile.law()
         return MemoryDiagramReference(law[0] if law.size == 1 else law)
 
@@ -86,13 +87,13 @@ class MemoryDiagramModel(ContactModel):
     def memory_points(history: ContactHistory) -> np.ndarray:
         """The committed memory points of ``history`` as a (k, 2) array of (z, v)."""
         if history._ref is not None:
-            return np.array(history._ref.kinks, dtype=np.float64).reshape(-1, 2)
+            return np.array(history._ref.readable.kinks, dtype=np.float64).reshape(-1, 2)
         from . import mmd_kernel
 
-        return mmd_kernel.memory_points(history._fs, history._is)
+        return mmd_kernel.memory_points(history._fs[HEADER:], history._is)
 
 
 @hookimpl
-def sawdrift_contact_models() -> list[type[ContactModel]]:
+def sawdrift_contact_models() -> list[type[TangentialLaw]]:
     """Register the ``mmd`` model."""
     return [MemoryDiagramModel]

@@ -1,10 +1,13 @@
-"""Compiled kernel of the Method of Memory Diagrams (MMD): amortized O(1) per step.
+"""Compiled step of the Method of Memory Diagrams (MMD): amortized O(1) per step.
 
 Implements the normalized tangential law of docs/physics.md, "Contact laws" (Aleshin, Bou Matar
 and Van Den Abeele 2015, "Method of memory diagrams for mechanical frictional contacts subject
 to arbitrary 2D loading", Int. J. Solids Struct. 60-61, 84-95; the elementary partial-slip
-solutions are those of Mindlin & Deresiewicz 1953). The normal law is the profile's, given by its
-descriptor in ``pp`` (:mod:`sawdrift.contact.normal`): a power law N*(a*) = a*^p, with
+solutions are those of Mindlin & Deresiewicz 1953) as the tangential step :func:`mmd_step` of the
+contact slots (:mod:`sawdrift.contact.slots`), which keep the committed (a*, b*), handle contact
+entry and loss and give N*(a*); ``force`` and ``reset`` of this module are that composed contact.
+The normal law is the profile's, given by its descriptor ``law``
+(:mod:`sawdrift.contact.normal`): a power law N*(a*) = a*^p, with
 N*'(z) = p z^(p-1) for z > 0 and, by convention, N*'(0-) = 0 (the flat punch, p = 1, carries a
 point mass of dN*' at z = 0), or a tabulated law.
 
@@ -46,25 +49,23 @@ by more than 2 a*, which the bounds forbid, so the O(kinks) re-base is amortized
 
 State layout (sizes from :func:`state_sizes`)
 ---------------------------------------------
-``fs`` (float64), capacity ``cap = (fs.size - HEADER) // RECORD``:
+This is the law's own state in the tangential slot (:mod:`sawdrift.contact.slots`), which keeps
+the committed (a*, b*) and handles contact entry and loss in front of it. ``ts`` (float64),
+capacity ``cap = (ts.size - HEADER) // RECORD``:
 
 ========================  ===================================================================
-``fs[0]``                 committed a*
-``fs[1]``                 committed b*
-``fs[2]``                 offset (v = w + offset)
-``fs[3]``, ``fs[4]``      N*, T* of the last step (diagnostics)
-``fs[5:8]``               reserved
-``fs[8 + 5i + 0]``        z_i, level of kink i (i = 0 at the bottom, z_0 = 0)
-``fs[8 + 5i + 1]``        w_i, value relative to the offset
-``fs[8 + 5i + 2]``        C_i, prefix integral of w dN*' over [0, z_i]
-``fs[8 + 5i + 3]``        N*'(z_i) (0 at z = 0)
-``fs[8 + 5i + 4]``        N*(z_i)
+``ts[0]``                 offset (v = w + offset)
+``ts[1 + 5i + 0]``        z_i, level of kink i (i = 0 at the bottom, z_0 = 0)
+``ts[1 + 5i + 1]``        w_i, value relative to the offset
+``ts[1 + 5i + 2]``        C_i, prefix integral of w dN*' over [0, z_i]
+``ts[1 + 5i + 3]``        N*'(z_i) (0 at z = 0)
+``ts[1 + 5i + 4]``        N*(z_i)
 ========================  ===================================================================
 
 ``is_`` (int64): ``is_[0]`` number of kinks (0 when out of contact), ``is_[1]`` high-water mark
 of the kink count, ``is_[2]`` number of re-bases, ``is_[3]`` capacity.
 
-``pp`` (float64): the normal-law descriptor (``[p]`` for a power law).
+``law`` (float64): the normal-law descriptor (``[p]`` for a power law); ``tp`` is empty.
 
 If the capacity is exceeded, :class:`MemoryCapacityError` is raised and the history is invalid.
 """
@@ -77,8 +78,8 @@ from numba import njit
 from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
 from sawdrift.errors import SawdriftError
 
-HEADER = 8
-"""Number of scalar slots at the start of ``fs``."""
+HEADER = 1
+"""Number of scalar slots at the start of ``ts`` (the offset)."""
 RECORD = 5
 """Float64 slots per kink: z, w, C, N*'(z), N*(z)."""
 N_INT = 4
@@ -92,7 +93,7 @@ class MemoryCapacityError(SawdriftError, RuntimeError):
 
 
 def state_sizes(max_memory_points: int) -> tuple[int, int]:
-    """Sizes of ``fs`` and ``is_`` for a stack of ``max_memory_points`` kinks."""
+    """Sizes of ``ts`` and ``is_`` for a stack of ``max_memory_points`` kinks."""
     return HEADER + RECORD * max_memory_points, N_INT
 
 
@@ -112,7 +113,10 @@ def _segment(z1, w1, d1, n1, z2, w2, d2, n2) -> float:
 
 @njit(**JIT_OPTIONS, inline="always")
 def _normal_at(z, d, pp):
-    """N*(z) given N*'(z) = d: z d / p for a power law (no power taken), else the table."""
+    """N*(z) given N*'(z) = d: z d / p for a power law (no power taken), else the table.
+
+    The same rounding as :func:`~sawdrift.contact.normal.law_normal`, the normal slot's N*.
+    """
     p = pp[0]
     out = 0.0
     if p > 0.0:
@@ -139,49 +143,45 @@ def _write(fs, k, z, w, d, pp):
 
 
 @njit(**JIT_OPTIONS, inline="always")
-def _push(fs, is_, z, w, pp):
-    """Push the kink (z, w) on the stack.
+def _push(fs, n, cap, z, w, pp):
+    """Push the kink (z, w) on the stack of ``n`` kinks (capacity ``cap``); the new count.
 
     A level not above the top only replaces the top's value (v is continuous, so the two agree
     to rounding); a kink collinear with the two below it moves the top instead of stacking.
-    Single exit on purpose (numba generates tighter code for it).
+    Two writes, not one per case: numba's inlining copies an inlined body once per call site,
+    and the step is itself inlined into the contact slots. The count lives in a register for
+    the whole step (the step stores it once).
     """
-    n = is_[0]
     r = HEADER + RECORD * (n - 1)  # top record
-    mode = 2  # 0: replace the top's value, 1: move the top along its line, 2: push
     if n > 0 and z <= fs[r]:
-        mode = 0
-    elif n >= 2:
-        z1 = fs[r - RECORD]
-        w1 = fs[r - RECORD + 1]
-        # |w_line(z_top) - w_top| <= tol (|w1| + |w|), multiplied through by z - z1 > 0
-        # (no division on the hot path)
-        dev = (w1 - fs[r + 1]) * (z - z1) + (w - w1) * (fs[r] - z1)
-        if abs(dev) <= COLLINEAR_RTOL * (abs(w1) + abs(w)) * (z - z1):
-            mode = 1
-    if mode == 0:
         _write(fs, n - 1, fs[r], w, fs[r + 3], pp)
-    elif mode == 1:
-        _write(fs, n - 1, z, w, law_slope(z, pp, 0), pp)
     else:
-        if n >= is_[3]:
-            raise MemoryCapacityError(
-                "mmd: the memory diagram is full; raise the model parameter max_memory_points"
-            )
-        _write(fs, n, z, w, law_slope(z, pp, 0), pp)
-        is_[0] = n + 1
-        if n + 1 > is_[1]:
-            is_[1] = n + 1
+        k = n  # push, or n - 1: move the top along its line
+        if n >= 2:
+            z1 = fs[r - RECORD]
+            w1 = fs[r - RECORD + 1]
+            # |w_line(z_top) - w_top| <= tol (|w1| + |w|), multiplied through by z - z1 > 0
+            # (no division on the hot path)
+            dev = (w1 - fs[r + 1]) * (z - z1) + (w - w1) * (fs[r] - z1)
+            if abs(dev) <= COLLINEAR_RTOL * (abs(w1) + abs(w)) * (z - z1):
+                k = n - 1
+        if k == n:
+            if n >= cap:
+                raise MemoryCapacityError(
+                    "mmd: the memory diagram is full; raise the model parameter max_memory_points"
+                )
+            n += 1
+        _write(fs, k, z, w, law_slope(z, pp, 0), pp)
+    return n
 
 
 @njit(**JIT_OPTIONS, inline="always")
-def _clip(fs, is_, a, offset, s, pp):
+def _clip(fs, n, cap, a, offset, s, pp):
     """Clip the suffix that violates s v(z) <= a - z (s = +1 upper, -1 lower bound).
 
-    Pops the violating kinks, pushes the crossing of the diagram with the bound and the end
-    kink (a, v = 0).
+    Pops the violating kinks and pushes the crossing of the diagram with the bound; the caller
+    then pushes the end kink (a, v = 0). Returns the new count of kinks.
     """
-    n = is_[0]
     zp = a
     gp = 0.0
     while n > 0:
@@ -193,105 +193,109 @@ def _clip(fs, is_, a, offset, s, pp):
             n -= 1
         else:
             break
-    is_[0] = n
-    if n == 0:
-        # the whole diagram slides: v = s (a - z) from z = 0
-        _push(fs, is_, 0.0, s * a - offset, pp)
-    else:
+    # n = 0: the whole diagram slides, v = s (a - z) from z = 0
+    cross = n == 0
+    zx = 0.0
+    wx = s * a - offset
+    if n > 0:
         r = HEADER + RECORD * (n - 1)
         zj = fs[r]
         gj = s * (fs[r + 1] + offset) - (a - zj)
         if gj < 0.0:
             zx = zj + (zp - zj) * (-gj / (gp - gj))
             if zx > zj:
-                _push(fs, is_, zx, s * (a - zx) - offset, pp)
-    _push(fs, is_, a, -offset, pp)
+                cross = True
+                wx = s * (a - zx) - offset
+    if cross:
+        n = _push(fs, n, cap, zx, wx, pp)
+    return n
 
 
 @njit(**JIT_OPTIONS)
 def _rebase(fs, is_, pp):
     """Fold the offset into the stored values and recompute the prefix integrals."""
-    offset = fs[2]
+    offset = fs[0]
     for k in range(is_[0]):
         r = HEADER + RECORD * k
         fs[r + 1] += offset
         _write(fs, k, fs[r], fs[r + 1], fs[r + 3], pp)
-    fs[2] = 0.0
+    fs[0] = 0.0
     is_[2] += 1
 
 
 @njit(**JIT_OPTIONS)
-def reset(fs, is_, pp):
-    """Empty history: out of contact at (a*, b*) = (0, 0)."""
-    for i in range(HEADER):
-        fs[i] = 0.0
+def mmd_reset(ts, is_, law, tp):  # noqa: ARG001 - the slot signature
+    """Empty diagram: no memory points, zero offset.
+
+    The slots call it on a zeroed ``is_`` for a new history and on the live state when contact
+    is lost; the high-water mark and the re-base count then carry over.
+    """
+    ts[0] = 0.0
     is_[0] = 0
-    is_[1] = 0
-    is_[2] = 0
-    is_[3] = (fs.shape[0] - HEADER) // RECORD
+    is_[3] = (ts.shape[0] - HEADER) // RECORD
 
 
 @njit(**JIT_OPTIONS)
-def force(fs, is_, pp, a, b, adot, bdot):
-    """Advance along the straight path to (a*, b*), commit, return (N*, T*).
+def mmd_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signature
+    """Advance the diagram along the straight path (a0, b0) -> (a, b), commit, return T*.
 
-    ``adot`` and ``bdot`` are ignored (the law is rate independent).
+    The tangential slot of :mod:`sawdrift.contact.slots` (which gives N* = N*(a*) and handles
+    contact entry and loss): ``a0 = 0`` is a new contact, which starts from the point diagram at
+    z = 0 on an empty stack.
     """
-    a0 = fs[0]
-    b0 = fs[1]
-    fs[0] = a
-    fs[1] = b
-    nf = 0.0
-    t = 0.0
-    if not a > 0.0:
-        # contact lost: the memory is erased, the next contact starts clean
-        is_[0] = 0
-        fs[2] = 0.0
-    else:
-        if a0 <= 0.0:
-            # the straight path enters contact where a* crosses 0: start there, point diagram
-            if a0 < 0.0:
-                b0 = b0 + (b - b0) * (-a0 / (a - a0))
-            a0 = 0.0
-            is_[0] = 0
-            fs[2] = 0.0
-            _push(fs, is_, 0.0, 0.0, pp)
-        offset = fs[2] + (b - b0)
-        fs[2] = offset
-        n = is_[0]
-        if a < a0:
-            # strips z >= a leave contact: pop them, re-set the top at z = a by interpolation
-            while n >= 2 and fs[HEADER + RECORD * (n - 2)] >= a:
-                n -= 1
-            is_[0] = n
-            r = HEADER + RECORD * (n - 1)
-            z1 = fs[r - RECORD]
-            w1 = fs[r - RECORD + 1]
-            wa = w1 + (fs[r + 1] - w1) * ((a - z1) / (fs[r] - z1))
-            _write(fs, n - 1, a, wa, law_slope(a, pp, 0), pp)
+    n = is_[0]
+    if a0 == 0.0:
+        # a new contact (the stack is empty): the point diagram, one kink (z, w) = (0, 0) with
+        # C = N*' = N* = 0
+        for i in range(HEADER, HEADER + RECORD):
+            ts[i] = 0.0
+        n = 1
+    cap = is_[3]
+    offset = ts[0] + (b - b0)
+    ts[0] = offset
+    if a < a0:
+        # strips z >= a leave contact: pop them, re-set the top at z = a by interpolation
+        while n >= 2 and ts[HEADER + RECORD * (n - 2)] >= a:
+            n -= 1
         r = HEADER + RECORD * (n - 1)
-        vt = fs[r + 1] + offset
-        slack = a - fs[r] if fs[r] < a else 0.0
-        if vt > slack:
-            _clip(fs, is_, a, offset, 1.0, pp)
-        elif -vt > slack:
-            _clip(fs, is_, a, offset, -1.0, pp)
-        else:
-            _push(fs, is_, a, -offset, pp)
-        if abs(offset) > REBASE_LIMIT * max(1.0, a):
-            _rebase(fs, is_, pp)
-            offset = 0.0
-        r = HEADER + RECORD * (is_[0] - 1)
-        da = fs[r + 3]
-        nf = fs[r + 4]
-        t = fs[r + 2] + offset * da
-    fs[3] = nf
-    fs[4] = t
-    return nf, t
+        z1 = ts[r - RECORD]
+        w1 = ts[r - RECORD + 1]
+        wa = w1 + (ts[r + 1] - w1) * ((a - z1) / (ts[r] - z1))
+        _write(ts, n - 1, a, wa, law_slope(a, law, 0), law)
+    r = HEADER + RECORD * (n - 1)
+    vt = ts[r + 1] + offset
+    slack = a - ts[r] if ts[r] < a else 0.0
+    s = 0.0  # the bound the top violates (rule 4): +1 upper, -1 lower, 0 none
+    if vt > slack:
+        s = 1.0
+    elif -vt > slack:
+        s = -1.0
+    if s != 0.0:
+        n = _clip(ts, n, cap, a, offset, s, law)
+    n = _push(ts, n, cap, a, -offset, law)
+    # pops come before pushes in a step, so its last count is its largest
+    is_[0] = n
+    if n > is_[1]:
+        is_[1] = n
+    if abs(offset) > REBASE_LIMIT * max(1.0, a):
+        _rebase(ts, is_, law)
+        offset = 0.0
+    r = HEADER + RECORD * (n - 1)
+    return ts[r + 2] + offset * ts[r + 3]
 
 
-def memory_points(fs: np.ndarray, is_: np.ndarray) -> np.ndarray:
-    """The stored kinks as a (k, 2) array of (z, v), bottom (z = 0) first."""
+def memory_points(ts: np.ndarray, is_: np.ndarray) -> np.ndarray:
+    """The stored kinks of the law's state ``ts`` as a (k, 2) array of (z, v), bottom first."""
     n = int(is_[0])
-    rec = fs[HEADER : HEADER + RECORD * n].reshape(n, RECORD)
-    return np.column_stack([rec[:, 0], rec[:, 1] + fs[2]])
+    rec = ts[HEADER : HEADER + RECORD * n].reshape(n, RECORD)
+    return np.column_stack([rec[:, 0], rec[:, 1] + ts[0]])
+
+
+def __getattr__(name: str):
+    """``force`` and ``reset``: the whole compiled ``mmd`` contact (the slots composed around
+    :func:`mmd_step`, protocol of :mod:`sawdrift.contact.base`), generated on first access."""
+    if name in ("force", "reset"):
+        from .mmd import MemoryDiagramModel
+
+        return getattr(MemoryDiagramModel.kernel, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

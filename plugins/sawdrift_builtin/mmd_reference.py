@@ -90,7 +90,54 @@ def _clip_to_bound(kinks: list[Kink], a: float, s: float) -> list[Kink]:
     return [k for k, flag in zip(out, keep, strict=True) if flag]
 
 
-class MemoryDiagramReference:
+class StraightPathReference:
+    """Readable contact entry and loss around a tangential ``step``: the references' oracle.
+
+    Written out plainly, apart from the compiled contact slots (:mod:`sawdrift.contact.slots`) the
+    kernels run in, so that comparing the two checks the slots' bookkeeping as well: a* <= 0
+    forgets the history (N* = T* = 0); a straight path from a* <= 0 enters contact where it
+    crosses a* = 0, and the law starts there with ``a0 = 0``; N* = N*(a*) of the profile.
+    Subclasses provide ``p``, :meth:`forget` and :meth:`step`.
+    """
+
+    p: float | np.ndarray
+    a: float = 0.0
+    b: float = 0.0
+
+    def forget(self) -> None:
+        """Erase the tangential history (out of contact)."""
+        raise NotImplementedError
+
+    def step(self, a0: float, b0: float, a: float, b: float) -> float:
+        """T* after the straight path (a0, b0) -> (a, b) in contact; ``a0 = 0``: a new contact."""
+        raise NotImplementedError
+
+    def reset(self) -> None:
+        """Forget all history: out of contact at (a*, b*) = (0, 0)."""
+        self.a = 0.0
+        self.b = 0.0
+        self.forget()
+
+    def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
+        """Advance along the straight path to (a*, b*), commit, and return (N*, T*).
+
+        ``adot`` and ``bdot`` are ignored (the laws are rate independent).
+        """
+        a, b = float(a), float(b)
+        a0, b0 = self.a, self.b
+        self.a, self.b = a, b
+        if not a > 0.0:
+            self.forget()
+            return 0.0, 0.0
+        if a0 <= 0.0:
+            # a fresh contact starts where the straight path crosses a* = 0
+            if a0 < 0.0:
+                b0 = b0 + (b - b0) * (-a0) / (a - a0)
+            a0 = 0.0
+        return normal_force(a, self.p), self.step(a0, b0, a, b)
+
+
+class MemoryDiagramReference(StraightPathReference):
     """Pure-Python memory-diagram contact (Aleshin et al. 2015), for checking the kernel.
 
     Parameters
@@ -109,9 +156,7 @@ class MemoryDiagramReference:
     def __init__(self, p) -> None:
         # an exponent p, or a normal-law descriptor (sawdrift.contact.normal) for a table
         self.p = float(p) if np.ndim(p) == 0 else np.asarray(p, dtype=float)
-        self.a = 0.0
-        self.b = 0.0
-        self.kinks: list[Kink] = []
+        self.reset()
 
     @classmethod
     def from_kinks(cls, p: float, a: float, b: float, kinks: list[Kink]) -> MemoryDiagramReference:
@@ -121,35 +166,22 @@ class MemoryDiagramReference:
         ref.kinks = [(float(z), float(v)) for z, v in kinks] if a > 0.0 else []
         return ref
 
-    def reset(self) -> None:
-        """Forget all history: out of contact at (a*, b*) = (0, 0)."""
-        self.a = 0.0
-        self.b = 0.0
-        self.kinks = []
+    def forget(self) -> None:
+        """No memory points."""
+        self.kinks: list[Kink] = []
 
     def tangential_force(self) -> float:
         """T* of the committed diagram, summed over all its segments."""
         return tangential_force(self.kinks, self.p)
 
-    def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
-        """Advance along the straight path to (a*, b*), commit, and return (N*, T*).
+    def step(self, a0: float, b0: float, a: float, b: float) -> float:
+        """The four rules along the straight path (a0, b0) -> (a, b), a > 0; commit; T*.
 
-        ``adot`` and ``bdot`` are ignored (the law is rate independent).
+        ``a0 = 0`` starts a new contact from the point diagram at z = 0 (the tangential slot's
+        form, :mod:`sawdrift.contact.slots`; :meth:`force` adds contact entry and loss).
         """
-        a, b = float(a), float(b)
-        a0, b0 = self.a, self.b
         self.a, self.b = a, b
-        if not a > 0.0:
-            self.kinks = []
-            return 0.0, 0.0
-        if a0 <= 0.0:
-            # a fresh contact starts where the straight path crosses a* = 0, from a point diagram
-            if a0 < 0.0:
-                b0 = b0 + (b - b0) * (-a0) / (a - a0)
-            a0 = 0.0
-            kinks: list[Kink] = [(0.0, 0.0)]
-        else:
-            kinks = list(self.kinks)
+        kinks: list[Kink] = [(0.0, 0.0)] if a0 == 0.0 else list(self.kinks)
         db = b - b0
         # rule 1: strips with z >= a* leave contact and are forgotten
         if a < a0:
@@ -164,4 +196,4 @@ class MemoryDiagramReference:
         kinks = _clip_to_bound(kinks, a, 1.0)
         kinks = _clip_to_bound(kinks, a, -1.0)
         self.kinks = kinks
-        return normal_force(a, self.p), tangential_force(kinks, self.p)
+        return tangential_force(kinks, self.p)
