@@ -20,7 +20,8 @@ from hypothesis import strategies as st
 from pydantic import ValidationError
 
 from sawdrift import ContactHistory, Profile, get_model
-from sawdrift_builtin.mdr import MdrModel, MdrParams, strip_grid
+from sawdrift.contact.slots import HEADER
+from sawdrift_builtin.mdr import MdrModel, MdrParams, MdrReference, strip_grid
 from sawdrift_builtin.mmd import MemoryDiagramModel
 
 
@@ -60,6 +61,11 @@ def test_kernel_matches_reference(p: float) -> None:
         n_p, t_p = ContactHistory(model, "python").drive(a, b)
         np.testing.assert_allclose(n_c, n_p, rtol=1e-12, atol=1e-12)
         np.testing.assert_allclose(t_c, t_p, rtol=1e-12, atol=1e-12)
+        # the readable reference's own force(), entry and loss written out apart from the slots
+        oracle = MdrReference(p, 128)
+        n_o, t_o = np.array([oracle.force(x, y) for x, y in zip(a, b, strict=True)]).T
+        np.testing.assert_allclose(n_c, n_o, rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(t_c, t_o, rtol=1e-12, atol=1e-12)
 
 
 def test_flat_punch_is_exact() -> None:
@@ -73,16 +79,23 @@ def test_flat_punch_is_exact() -> None:
 
 
 def test_coulomb_limit_holds_exactly() -> None:
-    """|T*| <= N* at every step, and full sliding gives |T*| = N* exactly (discrete N*)."""
+    """|T*| <= N* = a*^p at every step; full sliding gives T* = sum m_j (a* - c_j)^+, the strips'
+    quadrature of N*, short of it by at most dz m_j of the cell holding a*."""
     a, b = random_history(300, seed=4)
     n, t = ContactHistory(mdr(256)).drive(a, b)
     assert np.all(np.abs(t) <= n * (1 + 1e-13))
+    np.testing.assert_allclose(n, np.where(a > 0.0, np.maximum(a, 0.0) ** 1.5, 0.0), rtol=1e-15,
+                               atol=0)
     h = ContactHistory(mdr(256))
     h.advance(1.2, 0.0)
     n1, t1 = h.advance(1.2, 5.0)
     n2, t2 = h.advance(1.2, -5.0)
-    assert t1 == pytest.approx(n1, rel=1e-14)
-    assert t2 == pytest.approx(-n2, rel=1e-14)
+    c, m = strip_grid(256, 2.0 / 256, 1.5)
+    sliding = float(np.sum(m * np.maximum(1.2 - c, 0.0)))
+    assert t1 == pytest.approx(sliding, rel=1e-14)
+    assert t2 == pytest.approx(-sliding, rel=1e-14)
+    assert n1 == n2 == pytest.approx(1.2**1.5, rel=1e-15)
+    assert 0.0 < n1 - t1 <= quadrature_bound(np.zeros((0, 2)), 1.2, 256, 1.5, 2.0)
 
 
 def test_cattaneo_mindlin_converges() -> None:
@@ -168,9 +181,9 @@ def test_grid_grows_and_resets() -> None:
     _, t = h.drive(a, b)
     _, t_exact = ContactHistory(MemoryDiagramModel()).drive(a, b)
     np.testing.assert_allclose(t, t_exact, rtol=0, atol=2e-4)
-    assert h._is[0] == 1 and h._fs[2] == pytest.approx(4.0 / 1024)
+    assert h._is[0] == 1 and h._fs[HEADER] == pytest.approx(4.0 / 1024)  # the law's dz
     h.advance(-0.1, 0.0)
-    assert h._is[0] == 0 and h._fs[2] == pytest.approx(2.0 / 1024)
+    assert h._is[0] == 0 and h._fs[HEADER] == pytest.approx(2.0 / 1024)
     h.advance(0.0, 0.0)
     assert h.advance(1.0, 0.3) == ContactHistory(model).advance(1.0, 0.3)
 

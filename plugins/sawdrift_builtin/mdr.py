@@ -15,9 +15,12 @@ from typing import ClassVar
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
 
-from sawdrift.contact import Capabilities, ContactModel, KernelPair
+from sawdrift.contact import Capabilities
+from sawdrift.contact.slots import LazyFunction, TangentialLaw
 from sawdrift.hookspecs import hookimpl
 from sawdrift.scene.profiles import normal_force, normal_stiffness
+
+from .mmd_reference import StraightPathReference
 
 
 class MdrParams(BaseModel):
@@ -66,7 +69,7 @@ def strip_grid(strips: int, dz: float, p) -> tuple[np.ndarray, np.ndarray]:
     return c, m
 
 
-class MdrReference:
+class MdrReference(StraightPathReference):
     """Readable numpy MDR contact: N strips following the memory-diagram rules.
 
     Parameters
@@ -83,14 +86,14 @@ class MdrReference:
         self.p = float(p) if np.ndim(p) == 0 else np.asarray(p, dtype=float)
         self.strips = int(strips)
         self.z_max = float(z_max)
+        self._set_grid(self.z_max / self.strips)
         self.reset()
 
-    def reset(self) -> None:
-        """Forget all history: out of contact at (a*, b*) = (0, 0), initial grid."""
-        self.a = 0.0
-        self.b = 0.0
-        self._set_grid(self.z_max / self.strips)
+    def forget(self) -> None:
+        """Every strip at rest, on the initial grid."""
         self.v = np.zeros(self.strips)
+        if self.dz != self.z_max / self.strips:
+            self._set_grid(self.z_max / self.strips)
 
     def _set_grid(self, dz: float) -> None:
         self.dz = dz
@@ -105,23 +108,12 @@ class MdrReference:
         self._set_grid(2.0 * self.dz)
         self.v = np.where(self.c < a0, np.interp(self.c, zs, vs), 0.0)
 
-    def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
-        """Advance along the straight path to (a*, b*), commit, and return (N*, T*).
+    def step(self, a0: float, b0: float, a: float, b: float) -> float:
+        """Every strip along the straight path (a0, b0) -> (a, b), a > 0; commit; T*.
 
-        ``adot`` and ``bdot`` are ignored (the law is rate independent).
+        ``a0 = 0`` is a new contact (every strip enters), the tangential slot's form
+        (:mod:`sawdrift.contact.slots`); :meth:`force` adds contact entry and loss.
         """
-        a, b = float(a), float(b)
-        a0, b0 = self.a, self.b
-        self.a, self.b = a, b
-        if not a > 0.0:
-            self.v[:] = 0.0
-            if self.dz != self.z_max / self.strips:
-                self._set_grid(self.z_max / self.strips)
-            return 0.0, 0.0
-        if a0 <= 0.0:
-            if a0 < 0.0:
-                b0 = b0 + (b - b0) * (-a0) / (a - a0)
-            a0 = 0.0
         while a > self.strips * self.dz:
             self._coarsen(a0)
         db = b - b0
@@ -133,13 +125,14 @@ class MdrReference:
         with np.errstate(divide="ignore", invalid="ignore"):
             v = np.where(entering, db * (a - c) / (a - a0), v)
         lim = np.where(now_in, a - c, 0.0)
-        v = np.where(now_in, np.clip(v, -lim, lim), 0.0)
-        self.v = v
-        return float(np.sum(self.m * lim)), float(np.sum(self.m * v))
+        self.v = np.where(now_in, np.clip(v, -lim, lim), 0.0)
+        return float(np.sum(self.m * self.v))
 
 
-class MdrModel(ContactModel):
+class MdrModel(TangentialLaw):
     """MDR contact (Popov 2015) with N discrete strips; converges to ``mmd`` as N grows.
+
+    A tangential law in the contact slots (:mod:`sawdrift.contact.slots`): N* is the profile's.
 
     Parameters
     ----------
@@ -162,25 +155,26 @@ class MdrModel(ContactModel):
                      "on how it is cut: up to 4e-7 (1 + N*) on histories to a* = 20; exact below "
                      "z_max"),),
     )
-    kernel: ClassVar[KernelPair | None] = KernelPair.lazy("sawdrift_builtin.mdr_kernel")
+    step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.mdr_kernel", "mdr_step")
+    reset_state: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.mdr_kernel", "mdr_reset")
 
-    def state_sizes(self) -> tuple[int, int]:
-        """Sizes of ``fs`` and ``is_`` (layout in :mod:`sawdrift_builtin.mdr_kernel`)."""
+    def tangential_sizes(self) -> tuple[int, int]:
+        """Sizes of the strips' state (layout in :mod:`sawdrift_builtin.mdr_kernel`)."""
         from . import mdr_kernel
 
         return mdr_kernel.state_sizes(self.params.strips)
 
-    def packed_params(self) -> np.ndarray:
-        """``[strips, z_max, *law]`` with the profile's normal-law descriptor ``law``."""
-        return np.concatenate([[float(self.params.strips), self.params.z_max], self.profile.law()])
+    def tangential_params(self) -> np.ndarray:
+        """``[strips, z_max]``."""
+        return np.array([float(self.params.strips), self.params.z_max], dtype=np.float64)
 
-    def reference(self) -> MdrReference:
-        """A fresh numpy MDR contact."""
+    def reference_step(self) -> MdrReference:
+        """A fresh numpy MDR contact, driven through its ``step`` by the python engine."""
         law = self.profile.law()
         return MdrReference(law[0] if law.size == 1 else law, self.params.strips, self.params.z_max)
 
 
 @hookimpl
-def sawdrift_contact_models() -> list[type[ContactModel]]:
+def sawdrift_contact_models() -> list[type[TangentialLaw]]:
     """Register the ``mdr`` model."""
     return [MdrModel]

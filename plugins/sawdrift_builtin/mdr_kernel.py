@@ -26,9 +26,10 @@ pointwise, so its value v_j equals the exact v(c_j) of the continuous model:
 * a strip entering along the straight path (a0 <= c_j < a1) gets db (a1 - c_j) / (a1 - a0);
 * then v_j is clipped to [-(a1 - c_j), a1 - c_j].
 
-Forces: N* = sum_j m_j (a* - c_j)^+ and T* = sum_j m_j v_j, so |T*| <= N* holds exactly (full
-sliding gives T* = N*). N* is the discrete MDR normal force, not the exact a*^p: the two differ
-by O(dz^2) through the partial cell at z = a*.
+Forces: T* = sum_j m_j v_j. The normal force is the profile's N*(a*) of the normal slot
+(:mod:`sawdrift.contact.slots`, which also handles contact entry and loss). Full sliding gives
+T* = sum_j m_j (a* - c_j)^+, the strips' quadrature of N*(a*), which falls short of it by
+O(dz^2) through the partial cell at z = a*, so |T*| <= N* holds.
 
 Adaptive growth: when a* exceeds the grid end N dz, the grid is coarsened (cells merged in
 pairs, dz doubled) until it covers a*; the values on the new centroids are interpolated
@@ -39,16 +40,15 @@ Cost O(strips in contact) per step, no allocation.
 
 State layout (sizes from :func:`state_sizes`)
 ---------------------------------------------
-``fs`` (float64), N = ``strips``: ``fs[0]`` committed a*, ``fs[1]`` committed b*, ``fs[2]`` current
-dz, ``fs[3]``, ``fs[4]`` N*, T* of the last step, ``fs[5:8]`` reserved; then the blocks
-``c`` = ``fs[8 : 8+N]`` (centroids), ``m`` = ``fs[8+N : 8+2N]`` (weights), ``v`` =
-``fs[8+2N : 8+3N]`` (strip displacements) and ``fs[8+3N : 8+4N]`` scratch.
+This is the law's own state in the tangential slot. ``ts`` (float64), N = ``strips``: ``ts[0]``
+current dz; then the blocks ``c`` = ``ts[1 : 1+N]`` (centroids), ``m`` = ``ts[1+N : 1+2N]``
+(weights), ``v`` = ``ts[1+2N : 1+3N]`` (strip displacements) and ``ts[1+3N : 1+4N]`` scratch.
 
-``is_`` (int64): ``is_[0]`` number of coarsenings of the current grid, ``is_[1]`` N,
-``is_[2]`` number of strips in contact (c_j < a*), ``is_[3]`` reserved.
+``is_`` (int64): ``is_[0]`` number of coarsenings of the current grid, ``is_[1]`` N (0 before the
+first reset), ``is_[2]`` number of strips in contact (c_j < a*), ``is_[3]`` reserved.
 
-``pp`` (float64): ``pp[0]`` = N, ``pp[1]`` = z_max, then the profile's normal-law descriptor
-(:mod:`sawdrift.contact.normal`; ``[p]`` for a power law).
+``law`` (float64): the profile's normal-law descriptor (:mod:`sawdrift.contact.normal`; ``[p]``
+for a power law); ``tp`` = ``[N, z_max]``.
 """
 
 from __future__ import annotations
@@ -57,59 +57,54 @@ from numba import njit
 
 from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
 
-#: the normal-law descriptor starts at pp[LAW] (after N and z_max)
-LAW = 2
-
-HEADER = 8
-"""Number of scalar slots at the start of ``fs``."""
+HEADER = 1
+"""Number of scalar slots at the start of ``ts`` (the current dz)."""
 N_INT = 4
 """Size of ``is_``."""
-"""numba options of every kernel function: no allocation, so no reference counting (which
-costs atomic operations on every call)."""
 
 
 def state_sizes(strips: int) -> tuple[int, int]:
-    """Sizes of ``fs`` and ``is_`` for ``strips`` strips."""
+    """Sizes of ``ts`` and ``is_`` for ``strips`` strips."""
     return HEADER + 4 * strips, N_INT
 
 
 @njit(**JIT_OPTIONS, inline="always")
-def _cell(j, dz, pp):
+def _cell(j, dz, law):
     """Centroid c and weight m = dN*' of the cell [j dz, (j+1) dz]."""
     e0 = j * dz
     e1 = (j + 1) * dz
-    d0 = law_slope(e0, pp, LAW)
-    d1 = law_slope(e1, pp, LAW)
+    d0 = law_slope(e0, law, 0)
+    d1 = law_slope(e1, law, 0)
     m = d1 - d0
     if m > 0.0:
         # integral z dN*' over the cell, by parts: [z N*'] - [N*]
-        c = (e1 * d1 - e0 * d0 - (law_normal(e1, pp, LAW) - law_normal(e0, pp, LAW))) / m
+        c = (e1 * d1 - e0 * d0 - (law_normal(e1, law, 0) - law_normal(e0, law, 0))) / m
     else:
         c = 0.5 * (e0 + e1)
     return c, m
 
 
 @njit(**JIT_OPTIONS)
-def _grid(fs, nst, dz, pp):
+def _grid(fs, nst, dz, law):
     """Fill centroids c_j and weights m_j of the cells [j dz, (j+1) dz]."""
     for j in range(nst):
-        c, m = _cell(j, dz, pp)
+        c, m = _cell(j, dz, law)
         fs[HEADER + j] = c
         fs[HEADER + nst + j] = m
 
 
 @njit(**JIT_OPTIONS)
-def _coarsen(fs, is_, a0, pp):
+def _coarsen(fs, is_, a0, law):
     """Merge cells in pairs (dz doubled); interpolate the diagram onto the new centroids."""
     nst = is_[1]
     n_in = is_[2]
     ic = HEADER
     iv = HEADER + 2 * nst
     isc = HEADER + 3 * nst
-    dz = 2.0 * fs[2]
+    dz = 2.0 * fs[0]
     # new centroids into scratch first, to interpolate against the old ones
     for j in range(nst):
-        fs[isc + j] = _cell(j, dz, pp)[0]
+        fs[isc + j] = _cell(j, dz, law)[0]
     k = 0
     n_new = 0
     for j in range(nst):
@@ -135,83 +130,74 @@ def _coarsen(fs, is_, a0, pp):
         n_new = j + 1
     for j in range(nst):
         fs[iv + j] = fs[isc + j]
-    fs[2] = dz
-    _grid(fs, nst, dz, pp)
+    fs[0] = dz
+    _grid(fs, nst, dz, law)
     is_[0] += 1
     is_[2] = n_new
 
 
 @njit(**JIT_OPTIONS)
-def reset(fs, is_, pp):
-    """Empty history: out of contact at (a*, b*) = (0, 0), initial grid."""
-    nst = int(pp[0])
-    fs[:] = 0.0
-    fs[2] = pp[1] / nst
-    is_[0] = 0
-    is_[1] = nst
+def mdr_reset(ts, is_, law, tp):
+    """Every strip at rest on the initial grid (dz = z_max / N).
+
+    The slots call it on a zeroed ``is_`` for a new history (everything is set up) and on the
+    live state when contact is lost: then only the strips that were in contact are zeroed, and
+    the grid is rebuilt only if it was coarsened.
+    """
+    nst = int(tp[0])
+    iv = HEADER + 2 * nst
+    regrid = True
+    if is_[1] == nst:
+        # contact lost: forget every strip in contact (the others are at rest)
+        for j in range(is_[2]):
+            ts[iv + j] = 0.0
+        regrid = is_[0] > 0
+    else:
+        ts[:] = 0.0
+        is_[1] = nst
+        is_[3] = 0
     is_[2] = 0
-    is_[3] = 0
-    _grid(fs, nst, fs[2], pp)
+    if regrid:
+        ts[0] = tp[1] / nst
+        _grid(ts, nst, ts[0], law)
+        is_[0] = 0
 
 
 @njit(**JIT_OPTIONS)
-def force(fs, is_, pp, a, b, adot, bdot):
-    """Advance all strips along the straight path to (a*, b*), commit, return (N*, T*).
+def mdr_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signature
+    """Advance all strips along the straight path (a0, b0) -> (a, b), commit, return T*.
 
-    ``adot`` and ``bdot`` are ignored (the law is rate independent).
+    The tangential slot of :mod:`sawdrift.contact.slots` (which gives N* and handles contact
+    entry and loss); ``a0 = 0`` is a new contact, every strip entering.
     """
     nst = is_[1]
     ic = HEADER
     im = HEADER + nst
     iv = HEADER + 2 * nst
-    a0 = fs[0]
-    b0 = fs[1]
-    fs[0] = a
-    fs[1] = b
-    nf = 0.0
+    while a > nst * ts[0]:
+        _coarsen(ts, is_, a0, law)
+    db = b - b0
+    n_old = is_[2]
+    n_in = 0
     t = 0.0
-    if not a > 0.0:
-        # contact lost: forget every strip, return to the initial grid
-        for j in range(is_[2]):
-            fs[iv + j] = 0.0
-        is_[2] = 0
-        if is_[0] > 0:
-            fs[2] = pp[1] / nst
-            _grid(fs, nst, fs[2], pp)
-            is_[0] = 0
-    else:
-        if a0 <= 0.0:
-            # a fresh contact starts where the straight path crosses a* = 0
-            if a0 < 0.0:
-                b0 = b0 + (b - b0) * (-a0 / (a - a0))
-            a0 = 0.0
-        while a > nst * fs[2]:
-            _coarsen(fs, is_, a0, pp)
-        db = b - b0
-        n_old = is_[2]
-        n_in = 0
-        for j in range(nst):
-            c = fs[ic + j]
-            if c >= a:
-                if j >= n_old:
-                    break
-                fs[iv + j] = 0.0  # rule 1: the strip leaves contact and is forgotten
+    for j in range(nst):
+        c = ts[ic + j]
+        if c >= a:
+            if j >= n_old:
+                break
+            ts[iv + j] = 0.0  # rule 1: the strip leaves contact and is forgotten
+        else:
+            if c < a0:
+                v = ts[iv + j] + db  # rule 3: shift
             else:
-                if c < a0:
-                    v = fs[iv + j] + db  # rule 3: shift
-                else:
-                    v = db * ((a - c) / (a - a0))  # rule 2: straight-path entry
-                lim = a - c
-                if v > lim:  # rule 4: local slip
-                    v = lim
-                elif v < -lim:
-                    v = -lim
-                fs[iv + j] = v
-                m = fs[im + j]
-                t += m * v
-                nf += m * lim
-                n_in = j + 1
-        is_[2] = n_in
-    fs[3] = nf
-    fs[4] = t
-    return nf, t
+                v = db * ((a - c) / (a - a0))  # rule 2: straight-path entry
+            lim = a - c
+            if v > lim:  # rule 4: local slip
+                v = lim
+            elif v < -lim:
+                v = -lim
+            ts[iv + j] = v
+            t += ts[im + j] * v
+            n_in = j + 1
+    is_[2] = n_in
+    return t
