@@ -30,6 +30,7 @@ from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
 from .axes import parse_axis, parse_values
+from .journal import records
 from .provenance import check_resume, code_hash
 from .traces import append_trace, consolidate_traces, read_traces, run_traced
 
@@ -179,16 +180,9 @@ def read_rows(table: Path) -> dict[str, dict[str, Any]]:
             rec = _clean(rec)
             rec.setdefault("scene_id", None)
             rows[rec["cell_id"]] = rec
-    journal = journal_path(table)
-    if journal.exists():
-        with journal.open() as fh:
-            for line in fh:
-                try:
-                    rec = json.loads(line)
-                except json.JSONDecodeError:
-                    continue  # a line cut by a kill mid-write: that cell is simply recomputed
-                if "cell_id" in rec:
-                    rows[rec["cell_id"]] = rec
+    for rec in records(journal_path(table)):  # a cell cut short by a kill is recomputed
+        if "cell_id" in rec:
+            rows[rec["cell_id"]] = rec
     return rows
 
 

@@ -29,6 +29,7 @@ import numpy as np
 
 from ..dynamics.assembly import steps_per_period
 from ..errors import SawdriftError
+from .journal import records
 
 if TYPE_CHECKING:
     from ..result.result import Result
@@ -199,15 +200,11 @@ def read_traces(table: str | Path) -> dict[str, Trace]:
     """
     side = traces_path(table)
     out = _read_parquet(side) if side.exists() else {}
-    journal = traces_journal(table)
-    if journal.exists():
-        with journal.open() as fh:
-            for line in fh:
-                try:
-                    rec = json.loads(line)
-                    out[rec["cell_id"]] = _decode(rec)
-                except (json.JSONDecodeError, KeyError, ValueError, TypeError):
-                    continue
+    for rec in records(traces_journal(table)):
+        try:
+            out[rec["cell_id"]] = _decode(rec)
+        except (KeyError, ValueError, TypeError):
+            continue
     return out
 
 
