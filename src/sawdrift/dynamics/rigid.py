@@ -86,7 +86,7 @@ _GRAZE = 1e-6
 def _tangential_mass(prm):
     """m* of the tangential motion: m*/c for a rolling sphere (c = 1 + 1/kappa), else m*.
 
-    With rotation the state (x*, x*') of this scheme is the contact point s = x + R phi, which
+    With rotation the closed forms within a step integrate the contact point s = x + R phi, which
     moves like a particle of mass m kappa / (1 + kappa) (docs/physics.md, Rotation).
     """
     c = prm[P_ROLL]
@@ -169,12 +169,33 @@ def _gap(t0, y0, v0, t, prm):
     return y0 + v0 * dt + 0.5 * dt * dt / prm[P_M] - k[3]
 
 
-def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
-    """Advance the material point ``n_steps`` fixed steps; state in ``y`` = (x, x', y, y').
+def _log(st, kind, tc, y, t, od, odv, gd, roll):
+    """Log an event at ``tc`` in the step from ``t`` at the centre, from the contact point in ``y``.
 
+    x = (s + od) / c with the offset od = c x - s advanced to ``tc`` (see :func:`rigid_loop`);
+    without rotation (``roll`` = 0) ``y`` holds the point itself. ``y`` is restored exactly.
+    """
+    if roll <= 0.0:
+        event(st, kind, tc, y, 0.0)
+        return
+    xs = y[0]
+    vs = y[1]
+    dt = tc - t
+    y[0] = (xs + od + odv * dt + 0.5 * gd * dt * dt) / roll
+    y[1] = (vs + odv + gd * dt) / roll
+    event(st, kind, tc, y, 0.0)
+    y[0] = xs
+    y[1] = vs
+
+
+def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
+    """Advance the material point ``n_steps`` fixed steps; state in ``y`` = (x, x', y, y', psi, psi').
+
+    The state is the compliant loop's: the centre's x*, and with rotation the rolling angle psi =
+    R phi / a0 where it is integrated (else psi = (c - 1) x*, the rolling constraint from rest).
     ``ctr`` = (step index, mode 0 contact / 1 flight, record index, stick flag, sigma). The drive
-    (``drive_kinematics``, bound per drive in the generated module) is evaluated at the x* of the
-    step's start: within a step the closed forms take the surface motion at one place.
+    (``drive_kinematics``, bound per drive in the generated module) is evaluated at the centre's
+    x* at the step's start: within a step the closed forms take the surface motion at one place.
     """
     h = prm[P_H]
     m = prm[P_M]
@@ -190,20 +211,27 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
     for _ in range(n_steps):
         k = ctr[0]
         t = k * h
-        prm[P_XQ] = y[0]
-        # A rolling sphere under a load: the scheme integrates the contact point s = x + psi
-        # (psi = R phi / a0), but s = c x (from rest) no longer holds, since the load pulls the
-        # centre without turning it. d = c x - s obeys d'' = (c - 1) L/m* in every phase
-        # (impulses change c x' and s' alike). Between steps y[0], y[1] hold c x, c x' (as
-        # without the load) and y[4], y[5] the rolling angle psi, psi' (d = (c - 1) x - psi).
-        offset = roll > 0.0 and (g_load != 0.0 or y[4] != 0.0 or y[5] != 0.0)
-        d = 0.0
-        dv = 0.0
-        if offset:
-            d = y[0] * (roll - 1.0) / roll - y[4]
-            dv = y[1] * (roll - 1.0) / roll - y[5]
-            y[0] -= d
-            y[1] -= dv
+        prm[P_XQ] = y[0]  # the centre: the drive acts where the sphere is
+        # A rolling sphere: y[0], y[1] hold the centre x, x' between steps (as in the compliant
+        # loop); within the step the closed forms integrate the contact point s = x + psi (psi =
+        # R phi / a0), a particle of mass m*/c. Without a load, from rest, psi = (c - 1) x and
+        # s = c x. A load pulls the centre without turning it: then psi is integrated (y[4],
+        # y[5]) and the offset od = c x - s obeys od'' = (c - 1) L/m* in every phase (impulses
+        # change c x' and s' alike), so it is advanced in closed form.
+        od = 0.0
+        odv = 0.0
+        gd = 0.0
+        turning = roll > 0.0 and (g_load != 0.0 or y[4] != 0.0 or y[5] != 0.0)
+        if roll > 0.0:
+            if turning:
+                od = (roll - 1.0) * y[0] - y[4]
+                odv = (roll - 1.0) * y[1] - y[5]
+                gd = (roll - 1.0) * g_load
+                y[0] += y[4]
+                y[1] += y[5]
+            else:
+                y[0] *= roll
+                y[1] *= roll
         t_end = t + h
         tau = t
         out_time = 0.0
@@ -253,10 +281,10 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 if friction:
                     # a tangential impulse J moves the contact point by J / (tangential mass)
                     s = y[1] - kk[1]
-                    dv = min(abs(s), mu * (1.0 + e) * vn * m / _tangential_mass(prm))
-                    y[1] -= math.copysign(dv, s) if s != 0.0 else 0.0
+                    jv = min(abs(s), mu * (1.0 + e) * vn * m / _tangential_mass(prm))
+                    y[1] -= math.copysign(jv, s) if s != 0.0 else 0.0
                 tau = tc
-                event(st, EV_LANDING, tc, y, 0.0)
+                _log(st, EV_LANDING, tc, y, t, od, odv, gd, roll)
                 # Restitution applies to every impact, also where N* <= 0 would lift at once.
                 # An inelastic collapse (rebounds shrinking geometrically) ends in landing once
                 # the next flight 2 e vn m*/N* is shorter than _ZENO steps (the remaining flights
@@ -271,7 +299,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                         and ev_n * ev_n * m > 1e-12 * (1.0 + amp) * n_imp)
                 ):
                     y[3] = kk[4] - e * vn
-                    event(st, EV_LIFT_OFF, tc, y, 0.0)
+                    _log(st, EV_LIFT_OFF, tc, y, t, od, odv, gd, roll)
                     st[S_LIFTS] += 1.0
                 else:
                     ctr[1] = 0
@@ -282,18 +310,18 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     elif abs(s) <= 1e-14 and _sticks(tc, prm):
                         ctr[3] = 1
                         y[1] = kk[1]
-                        event(st, EV_STICK_START, tc, y, 0.0)
+                        _log(st, EV_STICK_START, tc, y, t, od, odv, gd, roll)
                     else:
                         ctr[3] = 0
                         ctr[4] = 1 if (s > 0.0 or (s == 0.0 and _t_req(tc, prm) > 0.0)) else -1
-                        event(st, EV_SLIP_START, tc, y, 0.0)
+                        _log(st, EV_SLIP_START, tc, y, t, od, odv, gd, roll)
                 continue
             # ---- contact ----
             if _normal(tau, prm) < -_GRAZE:
                 if friction and ctr[3] == 0:
-                    event(st, EV_SLIP_END, tau, y, 0.0)
+                    _log(st, EV_SLIP_END, tau, y, t, od, odv, gd, roll)
                 ctr[1] = 1
-                event(st, EV_LIFT_OFF, tau, y, 0.0)
+                _log(st, EV_LIFT_OFF, tau, y, t, od, odv, gd, roll)
                 st[S_LIFTS] += 1.0
                 continue
             seg_end = t_end
@@ -330,7 +358,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     ctr[3] = 0
                     ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
                     tau = hi
-                    event(st, EV_SLIP_START, hi, y, 0.0)
+                    _log(st, EV_SLIP_START, hi, y, t, od, odv, gd, roll)
                     continue
                 k0 = drive_kinematics(tau, prm[P_XQ], dp)  # noqa: F821
                 k1 = drive_kinematics(seg_end, prm[P_XQ], dp)  # noqa: F821
@@ -353,8 +381,8 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                     slip_time += hi - tau
                     if _sticks(hi, prm):
                         ctr[3] = 1
-                        event(st, EV_SLIP_END, hi, y, 0.0)
-                        event(st, EV_STICK_START, hi, y, 0.0)
+                        _log(st, EV_SLIP_END, hi, y, t, od, odv, gd, roll)
+                        _log(st, EV_STICK_START, hi, y, t, od, odv, gd, roll)
                     else:
                         ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
                     tau = hi
@@ -369,23 +397,29 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             tau = seg_end
             if lift:
                 if friction and ctr[3] == 0:
-                    event(st, EV_SLIP_END, seg_end, y, 0.0)
+                    _log(st, EV_SLIP_END, seg_end, y, t, od, odv, gd, roll)
                 ctr[1] = 1
-                event(st, EV_LIFT_OFF, seg_end, y, 0.0)
+                _log(st, EV_LIFT_OFF, seg_end, y, t, od, odv, gd, roll)
                 st[S_LIFTS] += 1.0
         if tau < t_end:
             # more events in one step than the scheme resolves: never fall behind silently
             st[S_BAD] = BAD_EVENTS
             st[S_BADSTEP] = k
             return
-        if offset:
-            gd = (roll - 1.0) * g_load
-            d += dv * h + 0.5 * gd * h * h
-            dv += gd * h
-            y[0] += d
-            y[1] += dv
-            y[4] = y[0] * (roll - 1.0) / roll - d
-            y[5] = y[1] * (roll - 1.0) / roll - dv
+        if roll > 0.0:
+            # back to the centre (and the rolling angle, where it is integrated)
+            xs = y[0]
+            if turning:
+                od += odv * h + 0.5 * gd * h * h
+                odv += gd * h
+                y[0] = (xs + od) / roll
+                y[4] = xs - y[0]
+                vs = y[1]
+                y[1] = (vs + odv) / roll
+                y[5] = vs - y[1]
+            else:
+                y[0] = xs / roll
+                y[1] /= roll
         # ---- bookkeeping at the end of the step ----
         kk = drive_kinematics(t_end, prm[P_XQ], dp)  # noqa: F821
         a = y[2] - kk[3] if ctr[1] == 1 else 0.0
@@ -423,7 +457,7 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
 
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
 _FUNCTIONS = (_tangential_mass, _tangential_load, _normal, _stick_margin, _sticks, _t_req, _slip_state,
-              _slip_velocity, _gap, rigid_loop)
+              _slip_velocity, _gap, _log, rigid_loop)
 _IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
     "from sawdrift.dynamics.evidence import *  # noqa: F403\n"

@@ -233,8 +233,8 @@ class Stepper:
         new.ctr[0] = int(round(t * new.k_per))
         if new.resist and not self.resist and new.roll > 0.0:
             # the rolling angle starts being integrated: from rest it was psi = (c - 1) x
-            new.y[4] = (new.roll - 1.0) * self.centre(self.y[0])
-            new.y[5] = (new.roll - 1.0) * self.centre(self.y[1])
+            new.y[4] = (new.roll - 1.0) * self.y[0]
+            new.y[5] = (new.roll - 1.0) * self.y[1]
         elif self.resist and new.roll > 0.0:
             new.resist = True  # psi, once apart from (c - 1) x, stays integrated (the loops
             # go on integrating it while it is nonzero)
@@ -298,14 +298,6 @@ class Stepper:
                 new.fs, new.is_ = self.fs.copy(), self.is_.copy()
         return new
 
-    def centre(self, x: float) -> float:
-        """The centre's x* (or x*') from this scheme's horizontal state.
-
-        The rigid scheme integrates the contact point s = c x of a rolling sphere; the compliant
-        loop integrates the centre itself.
-        """
-        return x / self.roll if (self.rigid and self.roll > 0.0) else x
-
     def trajectory(self) -> pd.DataFrame:
         """The recorded rows (columns ``t, x, vx, y, vy, a, b, N_star, T_star``); x is the centre.
 
@@ -315,13 +307,7 @@ class Stepper:
         import pandas as pd
 
         data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
-        if self.rigid and self.roll > 0.0:
-            # the rigid scheme's state is c x (s = c x = x + R phi / a0 from rest, without a
-            # load); under a load it also records psi = R phi / a0 (columns 9, 10)
-            if not self.resist:
-                data[:, 9:11] = data[:, 1:3] * (1.0 - 1.0 / self.roll)
-            data[:, 1:3] /= self.roll
-        elif self.roll > 0.0 and not self.resist:
+        if self.roll > 0.0 and not self.resist:
             # from rest R phi = x / kappa = (c - 1) x (docs/physics.md, Rotation)
             data[:, 9:11] = data[:, 1:3] * (self.roll - 1.0)
         columns = list(ig.REC_COLUMNS)

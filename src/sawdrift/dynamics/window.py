@@ -121,7 +121,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     for j in range(periods):
         stepper.advance(stepper.k_per)
         samples[j] = stepper.y[:4]
-    positions = np.array([stepper.centre(x) for x in (x0, *samples[:, 0])])
+    positions = np.concatenate(([x0], samples[:, 0]))
     if stepper.resist:
         spin = (stepper.y[4] - psi0) / periods
     elif stepper.roll > 0.0:

@@ -347,7 +347,7 @@ def _point(stepper: Stepper, value: float, win: Window, cls: OrbitClass, scale: 
         x = win.samples[first + j]
         ux, uxd, uy, uyd = surface(t, x[0], stepper.dp)
         here = lifts[slot == first + j]
-        rows[j] = (j, t, x[2] - uy, x[3] - uyd, stepper.centre(x[1]) - uxd,
+        rows[j] = (j, t, x[2] - uy, x[3] - uyd, x[1] - uxd,
                    (here[0] % 1.0) if here.size else math.nan, here.size)
     return Point(float(value), cls.period, cls.exact, cls.multiplier, lyap, win.contact_lost,
                  1.0 - win.out_of_contact_fraction, periods, rows)
