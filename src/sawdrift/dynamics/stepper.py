@@ -21,6 +21,7 @@ from ..scene.schema import Scene
 from . import adams_bashforth as ig
 from . import evidence as ev
 from . import rigid as rg
+from . import rigid_bind
 from .assembly import assemble
 
 if TYPE_CHECKING:
@@ -109,8 +110,8 @@ class Stepper:
             self.prm = np.concatenate([prm, extra, self.dp])
             self.ctr = np.zeros(5, dtype=np.int64)
             self.ctr[3] = 1  # starts stuck to the substrate at rest
-            self.loop = (rg.rigid_loop_for(self.drive) if self.compiled
-                         else rg.rigid_python_loop(self.drive))
+            self.loop = (rigid_bind.rigid_loop_for(self.drive) if self.compiled
+                         else rigid_bind.rigid_python_loop(self.drive))
         else:
             self.prm = prm
             self.ctr = np.zeros(3, dtype=np.int64)
