@@ -137,8 +137,7 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     num = scene.numerics
     m = scene.particle.m_star
     m_x = horizontal_inertia(m, stepper.rigid)
-    if not stepper.rigid:
-        stepper.prm[ig.P_MX] = m_x  # the rotational inertia kappa m*_x follows (see the loop)
+    stepper.set_horizontal_inertia(m_x)
     w = window_length(m, relaxation_periods(scene, m_x, speed), minimum_window, stepper.rigid,
                       rolling_frequency(scene, m_x))
     tol = num.settle_tolerance

@@ -261,6 +261,13 @@ class Stepper:
                 new.history.advance(a, b)
         return new
 
+    def set_horizontal_inertia(self, m_x: float) -> None:
+        """Integrate the horizontal motion with the inertia ``m_x`` (the rotation's follows, kappa
+        m_x): the separation of motions of :func:`~sawdrift.dynamics.steady.settle`. The rigid
+        scheme keeps m* (its relaxation is already short); a no-op there."""
+        if not self.rigid:
+            self.prm[ig.P_MX] = m_x
+
     def surface(self) -> tuple[float, float, float, float]:
         """(u_x, u_x', u_y, u_y') of the drive now, at the particle's position."""
         ux, uxd, uy, uyd = self.drive.functions()[0](self.step * self.h, self.y[0], self.dp)
