@@ -162,7 +162,9 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
                              "else m* x*'' = -mu N* sgn(x*' - u_x')")
         else:
             equations.append("x*'' = 0 (friction off: no tangential force)")
-        calls.append("closed-form N*(t), slip velocity and event bisection (sawdrift.dynamics.rigid)")
+        calls.append("closed-form N*(t), slip velocity and event bisection (sawdrift.dynamics.rigid)"
+                     + ("; within a step on the contact point s*, between steps the state is the "
+                        "centre x* (the drive is evaluated there)" if eff.rotation else ""))
     else:
         scheme = "impact" if isinstance(drive, Impact) else "adams-bashforth"
         normal = f"{name} normal law" + ("" if eff.friction else " alone (its normal slot)")
