@@ -29,25 +29,13 @@ from numba import njit
 
 from .evidence import (
     BAD_NONFINITE,
-    EV_LANDING,
-    EV_LIFT_OFF,
     EV_MARGIN,
-    EV_SLIP_END,
-    EV_SLIP_START,
-    EV_STICK_START,
-    S_AMIN,
     S_BAD,
     S_BADSTEP,
-    S_COUNT,
-    S_LIFTS,
-    S_LOST,
-    S_OUT,
-    S_PREVIN,
-    S_PREVSLIP,
-    S_SLIP,
     SLIP_RTOL,
-    event,
     log_full,
+    observe_contact,
+    observe_step,
 )
 
 #: Adams-Bashforth coefficients, row k-1 for order k (Hairer, Norsett, Wanner, *Solving ODEs I*,
@@ -279,33 +267,9 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
         ay = (1.0 - nf) / m
         inside = a > 0.0
         slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
-        was_in = st[S_PREVIN] > 0.0
-        was_slip = st[S_PREVSLIP] > 0.0
-        if inside and not was_in:
-            event(st, EV_LANDING, t, y, a)
-            event(st, EV_SLIP_START if slipping else EV_STICK_START, t, y, a)
-        elif was_in and not inside:
-            if was_slip:
-                event(st, EV_SLIP_END, t, y, a)
-            event(st, EV_LIFT_OFF, t, y, a)
-            st[S_LIFTS] += 1.0
-        elif inside:
-            if slipping and not was_slip:
-                event(st, EV_SLIP_START, t, y, a)
-            elif was_slip and not slipping:
-                event(st, EV_SLIP_END, t, y, a)
-                event(st, EV_STICK_START, t, y, a)
-        st[S_PREVIN] = 1.0 if inside else 0.0
-        st[S_PREVSLIP] = 1.0 if slipping else 0.0
+        observe_contact(st, t, y, a, inside, slipping)
         if k >= k_ramp:
-            if not inside:
-                st[S_LOST] = 1.0
-                st[S_OUT] += 1.0
-            if slipping:
-                st[S_SLIP] += 1.0
-            if a < st[S_AMIN]:
-                st[S_AMIN] = a
-            st[S_COUNT] += 1.0
+            observe_step(st, 0.0 if inside else 1.0, 1.0 if slipping else 0.0, a)
         if rec_every > 0 and k % rec_every == 0:
             record(rec, ctr, t, y, a, b, nf, tf)
         for j in range(3, 0, -1):

@@ -105,6 +105,43 @@ def event(st, kind, t, y, a):
     st[S_NEV] = i + 1.0
 
 
+@njit(cache=True)
+def observe_contact(st, t, y, a, inside, slipping):
+    """Log the events of a step sampled at ``t``: contact (``inside``) and gross slip against the
+    last step's (the compliant loop; the rigid scheme locates its events itself)."""
+    was_in = st[S_PREVIN] > 0.0
+    was_slip = st[S_PREVSLIP] > 0.0
+    if inside and not was_in:
+        event(st, EV_LANDING, t, y, a)
+        event(st, EV_SLIP_START if slipping else EV_STICK_START, t, y, a)
+    elif was_in and not inside:
+        if was_slip:
+            event(st, EV_SLIP_END, t, y, a)
+        event(st, EV_LIFT_OFF, t, y, a)
+        st[S_LIFTS] += 1.0
+    elif inside:
+        if slipping and not was_slip:
+            event(st, EV_SLIP_START, t, y, a)
+        elif was_slip and not slipping:
+            event(st, EV_SLIP_END, t, y, a)
+            event(st, EV_STICK_START, t, y, a)
+    st[S_PREVIN] = 1.0 if inside else 0.0
+    st[S_PREVSLIP] = 1.0 if slipping else 0.0
+
+
+@njit(cache=True)
+def observe_step(st, out, slip, a):
+    """Add one step to the window's statistics (both schemes, after the ramp): ``out`` and
+    ``slip`` are the fractions of the step out of contact and in gross slip, ``a`` is a*."""
+    if out > 0.0:
+        st[S_LOST] = 1.0
+        st[S_OUT] += out
+    st[S_SLIP] += slip
+    if a < st[S_AMIN]:
+        st[S_AMIN] = a
+    st[S_COUNT] += 1.0
+
+
 def events(st: np.ndarray) -> np.ndarray:
     """The events written since the window opened, as an (n, EV_W) array."""
     n = int(st[S_NEV])

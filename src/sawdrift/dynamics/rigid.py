@@ -41,16 +41,12 @@ from .evidence import (
     EV_SLIP_END,
     EV_SLIP_START,
     EV_STICK_START,
-    S_AMIN,
     S_BAD,
     S_BADSTEP,
-    S_COUNT,
     S_LIFTS,
-    S_LOST,
-    S_OUT,
-    S_SLIP,
     event,
     log_full,
+    observe_step,
 )
 
 #: Extra slots of the parameter vector used by the rigid scheme: the Newton restitution, the
@@ -429,13 +425,8 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             else:
                 tf = nf * ctr[4]
         if k >= k_ramp:
-            if out_time > 0.0 or ctr[1] == 1:
-                st[S_LOST] = 1.0
-                st[S_OUT] += min(1.0, out_time / h) if out_time > 0.0 else 1.0
-            if a < st[S_AMIN]:
-                st[S_AMIN] = a
-            st[S_SLIP] += slip_time / h
-            st[S_COUNT] += 1.0
+            out = min(1.0, out_time / h) if out_time > 0.0 else (1.0 if ctr[1] == 1 else 0.0)
+            observe_step(st, out, slip_time / h, a)
         if rec_every > 0 and (k + 1) % rec_every == 0:
             record(rec, ctr, t_end, y, a, math.nan, nf, tf)
         ctr[0] = k + 1
