@@ -47,3 +47,26 @@ def test_continuation_in_amplitude_keeps_the_memory_and_reaches_the_new_attracto
     cold = sd.run(target)
     assert drift == pytest.approx(cold.drift_velocity, rel=1e-6)
     assert x1 != x0
+
+
+@pytest.mark.parametrize("model", ["mmd", "material_point"])
+def test_continuing_a_rolling_sphere_moves_its_contact_point_with_the_surface(model):
+    # continue_to shifts the particle with the surface so that a*, b* and the slip velocity
+    # s' - u_x' carry over; on a sphere rolling from rest the contact point is s = c x
+    # (c = 1 + 1/kappa), so the centre moves by 1/c of the surface's shift
+    from sawdrift.study.branch import continue_to
+
+    base = sd.Scene(model=model, particle={"m_star": 0.1}, drive={"amplitude": 0.3},
+                    effects={"rotation": True}, numerics={"steps_per_period": 256})
+    a = _stepper(base)
+    a.advance(20 * a.k_per)
+    c = a.roll
+
+    def slip(st: Stepper) -> float:
+        return c * st.y[1] - st.surface()[1]
+
+    before = (slip(a), *a.displacements())
+    new = continue_to(a, base.with_updates(**{"drive.amplitude": 0.5}))
+    after = (slip(new), *new.displacements())
+    assert new.surface()[1] != a.surface()[1]  # the surface velocity really changed
+    np.testing.assert_allclose(after, before, rtol=0, atol=1e-12)

@@ -154,13 +154,16 @@ def continue_to(stepper: Stepper, scene: Scene) -> Stepper:
 
     At integer t* the surface is at (0, A*) with velocity (-s 2 pi r A*, 0) (docs/physics.md); a
     new amplitude or ratio moves it. The particle is shifted by the same amount, so a*, a*', b*
-    and x*' - u_x' - and with them the contact history - carry over unchanged.
+    and x*' - u_x' - and with them the contact history - carry over unchanged. On a sphere rolling
+    from rest (its contact point at c x*, c = 1 + 1/kappa) the centre moves by 1/c of the shift, so
+    that the contact point moves with the surface.
     """
     before = _surface(stepper)
     new = stepper.continued(scene)
     after = _surface(new)
-    new.y[0] += after[0] - before[0]
-    new.y[1] += after[1] - before[1]
+    share = 1.0 / new.roll if (new.roll > 0.0 and not new.resist) else 1.0
+    new.y[0] += (after[0] - before[0]) * share
+    new.y[1] += (after[1] - before[1]) * share
     new.y[2] += after[2] - before[2]
     new.y[3] += after[3] - before[3]
     return new
