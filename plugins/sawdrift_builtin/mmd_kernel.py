@@ -266,7 +266,11 @@ def mmd_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signatu
         z1 = ts[r - RECORD]
         w1 = ts[r - RECORD + 1]
         wa = w1 + (ts[r + 1] - w1) * ((a - z1) / (ts[r] - z1))
-        _write(ts, n - 1, a, wa, law_slope(a, law, 0), law)
+        # the top's level, value and N*'; its prefix integral and N* are written by the push at
+        # z = a below, which replaces the top's value (or the clip pops it first)
+        ts[r] = a
+        ts[r + 1] = wa
+        ts[r + 3] = law_slope(a, law, 0)
     r = HEADER + RECORD * (n - 1)
     vt = ts[r + 1] + offset
     slack = a - ts[r] if ts[r] < a else 0.0
