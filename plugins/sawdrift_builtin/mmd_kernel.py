@@ -4,8 +4,9 @@ Implements the normalized tangential law of docs/physics.md, "Contact laws" (Ale
 and Van Den Abeele 2015, "Method of memory diagrams for mechanical frictional contacts subject
 to arbitrary 2D loading", Int. J. Solids Struct. 60-61, 84-95; the elementary partial-slip
 solutions are those of Mindlin & Deresiewicz 1953) as the tangential step :func:`mmd_step` of the
-contact slots (:mod:`sawdrift.contact.slots`), which keep the committed (a*, b*), handle contact
-entry and loss and give N*(a*); ``force`` and ``reset`` of this module are that composed contact.
+contact slots (:mod:`sawdrift.contact.slots`), which keep the committed (a*, b*) and handle contact
+entry and loss; the step hands N*(a*), stored with its top kink, back with T*. ``force`` and
+``reset`` of this module are that composed contact.
 The normal law is the profile's, given by its descriptor ``law``
 (:mod:`sawdrift.contact.normal`): a power law N*(a*) = a*^p, with
 N*'(z) = p z^(p-1) for z > 0 and, by convention, N*'(0-) = 0 (the flat punch, p = 1, carries a
@@ -76,6 +77,7 @@ import numpy as np
 from numba import njit
 
 from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
+from sawdrift.contact.slots import gives_normal
 from sawdrift.errors import SawdriftError
 
 HEADER = 1
@@ -235,13 +237,16 @@ def mmd_reset(ts, is_, law, tp):  # noqa: ARG001 - the slot signature
     is_[3] = (ts.shape[0] - HEADER) // RECORD
 
 
+@gives_normal
 @njit(**JIT_OPTIONS)
 def mmd_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signature
-    """Advance the diagram along the straight path (a0, b0) -> (a, b), commit, return T*.
+    """Advance the diagram along the straight path (a0, b0) -> (a, b), commit, return (T*, N*).
 
-    The tangential slot of :mod:`sawdrift.contact.slots` (which gives N* = N*(a*) and handles
-    contact entry and loss): ``a0 = 0`` is a new contact, which starts from the point diagram at
-    z = 0 on an empty stack.
+    The tangential slot of :mod:`sawdrift.contact.slots` (which handles contact entry and
+    loss): ``a0 = 0`` is a new contact, which starts from the point diagram at z = 0 on an empty
+    stack. N* = N*(a*) is the top kink's (z = a*), which the step has just written: the normal
+    slot's N*(a*) bit for bit (:func:`_normal_at`), so the slots take it from here
+    (:func:`~sawdrift.contact.slots.gives_normal`) instead of evaluating the law again.
     """
     n = is_[0]
     if a0 == 0.0:
@@ -261,7 +266,11 @@ def mmd_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signatu
         z1 = ts[r - RECORD]
         w1 = ts[r - RECORD + 1]
         wa = w1 + (ts[r + 1] - w1) * ((a - z1) / (ts[r] - z1))
-        _write(ts, n - 1, a, wa, law_slope(a, law, 0), law)
+        # the top's level, value and N*'; its prefix integral and N* are written by the push at
+        # z = a below, which replaces the top's value (or the clip pops it first)
+        ts[r] = a
+        ts[r + 1] = wa
+        ts[r + 3] = law_slope(a, law, 0)
     r = HEADER + RECORD * (n - 1)
     vt = ts[r + 1] + offset
     slack = a - ts[r] if ts[r] < a else 0.0
@@ -281,7 +290,7 @@ def mmd_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signatu
         _rebase(ts, is_, law)
         offset = 0.0
     r = HEADER + RECORD * (n - 1)
-    return ts[r + 2] + offset * ts[r + 3]
+    return ts[r + 2] + offset * ts[r + 3], ts[r + 4]
 
 
 def memory_points(ts: np.ndarray, is_: np.ndarray) -> np.ndarray:

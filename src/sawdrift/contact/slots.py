@@ -24,6 +24,10 @@ Tangential step protocol (numba ``@njit`` functions)::
     step(ts, is_, law, tp, a0, b0, a, b)  -> T*     # straight path (a0, b0) -> (a, b), commit
     reset(ts, is_, law, tp)               -> None   # optional; default: zero ts and is_
 
+A step that computes N*(a*) anyway (``mmd``'s top kink stores it) may return ``(T*, N*)``
+instead, N* bit for bit :func:`~sawdrift.contact.normal.law_normal`'s, if it is marked with
+:func:`gives_normal`; the slots then take N* from it instead of evaluating the law again.
+
 ``ts`` (float64) and ``is_`` (int64) are the law's own state (sizes from
 :meth:`TangentialLaw.tangential_sizes`), ``law`` starts with the normal-law descriptor (read it
 with :func:`~sawdrift.contact.normal.law_normal` / :func:`~sawdrift.contact.normal.law_slope` at
@@ -99,9 +103,17 @@ def contact_force(fs, is_, pp, a, b, adot, bdot):
             b0 = b0 + (b - b0) * (-a0 / (a - a0))
         a0 = 0.0
         fs[2] = 1.0
-    t = tangential_step(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])],  # noqa: F821
-                        a0, b0, a, b)
-    n = normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, law_normal(a, pp, LAW))  # noqa: F821
+    # STEP_NORMAL, DAMPED and CAP are constants of the composition: numba prunes the branches
+    # not taken before it inlines the step, so an empty slot is never computed
+    if STEP_NORMAL:  # noqa: F821 - the step gives N*(a*) with T* (gives_normal)
+        t, n = tangential_step(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])],  # noqa: F821
+                               a0, b0, a, b)
+    else:
+        t = tangential_step(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])],  # noqa: F821
+                            a0, b0, a, b)
+        n = law_normal(a, pp, LAW)  # noqa: F821
+    if DAMPED:  # noqa: F821 - a normal-damping slot is filled
+        n = normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, n)  # noqa: F821
     if CAP:  # noqa: F821 - a constant of the composition (TangentialLaw.coulomb_cap)
         # the Coulomb bound holds for the total normal force, damping included (as in DEM
         # codes); the law's committed history is left as it is
@@ -116,7 +128,10 @@ def contact_normal(fs, is_, pp, a, b, adot, bdot):
     """(N*, 0): the normal and normal-damping slots alone (friction off); no history."""
     if not a > 0.0:
         return 0.0, 0.0
-    return normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, law_normal(a, pp, LAW)), 0.0  # noqa: F821
+    n = law_normal(a, pp, LAW)  # noqa: F821
+    if DAMPED:  # noqa: F821
+        n = normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, n)  # noqa: F821
+    return n, 0.0
 
 
 _TEMPLATES = (contact_reset, contact_force, contact_normal)
@@ -126,12 +141,35 @@ def _body() -> str:
     return "\n\n".join(textwrap.dedent(inspect.getsource(f)) for f in _TEMPLATES)
 
 
+def gives_normal(step: Any) -> Any:
+    """Mark a tangential step as returning ``(T*, N*)`` (module docstring); returns ``step``.
+
+    N* must be the normal slot's N*(a*) bit for bit; the slots then skip evaluating the law.
+    """
+    step.gives_normal = True
+    py = getattr(step, "py_func", None)
+    if py is not None:
+        py.gives_normal = True
+    return step
+
+
+def _gives_normal(step: Any) -> bool:
+    return bool(getattr(step, "gives_normal", False))
+
+
+def _constants(step: Any, damp: Any, cap: bool) -> dict[str, Any]:
+    """The constants of a composition: layout, and which branches of the templates it takes."""
+    from .slot_kernels import no_damping
+
+    return {"HEADER": HEADER, "LAW": LAW, "CAP": cap, "STEP_NORMAL": _gives_normal(step),
+            "DAMPED": _py(damp) is not _py(no_damping)}
+
+
 def _namespace(step: Any, reset: Any, damp: Any, law_normal: Any, label: str,
-               cap: bool) -> dict[str, Any]:
+               consts: dict[str, Any]) -> dict[str, Any]:
     """The composition source run in a namespace bound to the given slot functions."""
-    ns: dict[str, Any] = {"HEADER": HEADER, "LAW": LAW, "law_normal": law_normal,
-                          "tangential_step": step, "tangential_reset": reset,
-                          "normal_damping": damp, "CAP": cap}
+    ns: dict[str, Any] = {"law_normal": law_normal, "tangential_step": step,
+                          "tangential_reset": reset, "normal_damping": damp, **consts}
     exec(compile(_body(), f"<sawdrift contact slots{label}>", "exec"), ns)  # noqa: S102
     return ns
 
@@ -151,8 +189,9 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str
 
     # the code of every slot function and of all they call keys the module (an edited law
     # compiles anew), and numba's own caches of those functions are brought in line with it
-    slots = {"HEADER": HEADER, "LAW": LAW, "law_normal": law_normal, "tangential_step": step,
-             "tangential_reset": reset, "normal_damping": damp, "CAP": cap}
+    consts = _constants(step, damp, cap)
+    slots = {"law_normal": law_normal, "tangential_step": step, "tangential_reset": reset,
+             "normal_damping": damp, **consts}
     walk, code = walk_code([step, reset, damp], slots, _TEMPLATES)
     refresh_stale_caches(walk)
     origins = [importable_origin(f) for f in (step, reset, damp)]
@@ -172,7 +211,8 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str
             "# the step and the damping are inlined into the composition (numba IR inlining)\n"
             f"tangential_step = njit(**{_INLINE!r})(_step.py_func)\n"
             f"normal_damping = njit(**{_INLINE!r})(_damp.py_func)\n"
-            f"CAP = {cap!r}\n\n\n"
+            + "".join(f"{k} = {consts[k]!r}\n" for k in ("CAP", "STEP_NORMAL", "DAMPED"))
+            + "\n\n"
             f"@njit(**JIT_OPTIONS)\n{decorated}\n"
         )
         # the wave loop's generated module imports this one by name
@@ -181,7 +221,7 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str
             return vars(module)
     # not importable by name, or an unwritable cache: compile in memory instead
     ns = _namespace(njit(**_INLINE)(_py(step)), reset, njit(**_INLINE)(_py(damp)), law_normal, "",
-                    cap)
+                    consts)
     for f in _TEMPLATES:
         ns[f.__name__] = njit(**JIT_OPTIONS)(ns[f.__name__])
     return ns
@@ -191,7 +231,8 @@ def _python_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str, 
     """The same composition run as plain Python (the python engine)."""
     from .normal import law_normal
 
-    return _namespace(step, reset, damp, law_normal.py_func, " (python)", cap)
+    return _namespace(step, reset, damp, law_normal.py_func, " (python)",
+                      _constants(step, damp, cap))
 
 
 _COMPOSED: dict[tuple[Any, ...], dict[str, Any]] = {}
@@ -205,19 +246,28 @@ class _SlotKernel:
     """The ``kernel`` of a :class:`TangentialLaw`: the :class:`KernelPair` composed from its slots.
 
     The composition depends on the class only (its step, reset and damping functions), so it is
-    the same on the class and on every instance.
+    the same on the class and on every instance. The pair is looked up by the class and its raw
+    slot attributes, so an access costs a few attribute reads, not the
+    loading of the slot functions (``ContactHistory.drive`` reads ``kernel`` on every call).
     """
 
     def __get__(self, obj: Any, owner: type[TangentialLaw]) -> KernelPair:
+        raw = (owner.step, owner.reset_state, owner.damping, owner.coulomb_cap)
+        hit = _BY_CLASS.get(owner)
+        if hit is not None and hit[0] == raw:  # identical objects: no __eq__ is called
+            return hit[1]
         key = owner._key()
         pair = _PAIRS.get(key)
         if pair is None:
             ns = owner._compiled()
             pair = _PAIRS[key] = KernelPair(ns["contact_reset"], ns["contact_force"])
+        _BY_CLASS[owner] = (raw, pair)
         return pair
 
 
 _PAIRS: dict[tuple[Any, ...], KernelPair] = {}
+#: class -> (its raw slot attributes, its pair): the fast path of :class:`_SlotKernel`
+_BY_CLASS: dict[type, tuple[tuple[Any, ...], KernelPair]] = {}
 
 
 class NormalDamping:
