@@ -400,6 +400,9 @@ class ContactHistory:
         """
         a = np.asarray(a, dtype=np.float64)
         b = np.asarray(b, dtype=np.float64)
+        quasi_static = adot is None and bdot is None
+        if quasi_static:
+            adot = bdot = a  # not read: the quasi-static loop passes zero velocities
         adot = np.zeros_like(a) if adot is None else np.asarray(adot, dtype=np.float64)
         bdot = np.zeros_like(a) if bdot is None else np.asarray(bdot, dtype=np.float64)
         if not a.shape == b.shape == adot.shape == bdot.shape:
@@ -408,7 +411,10 @@ class ContactHistory:
         t_out = np.empty_like(a)
         if self._ref is None:
             _drive_compiled(self.model.kernel.force, self._fs, self._is, self._pp, a, b, adot, bdot,
-                            n_out, t_out)
+                            n_out, t_out, quasi_static)
+        elif quasi_static:
+            for k in range(a.size):
+                n_out[k], t_out[k] = self._ref.force(a[k], b[k], 0.0, 0.0)
         else:
             for k in range(a.size):
                 n_out[k], t_out[k] = self._ref.force(a[k], b[k], adot[k], bdot[k])
@@ -418,18 +424,27 @@ class ContactHistory:
 _DRIVERS: dict[Any, Callable[..., None]] = {}
 
 
-def _drive_compiled(force, fs, is_, pp, a, b, adot, bdot, n_out, t_out) -> None:
-    """Run a kernel over a sampled history inside one compiled loop (one per kernel, cached)."""
-    fn = _DRIVERS.get(force)
+def _drive_compiled(force, fs, is_, pp, a, b, adot, bdot, n_out, t_out,
+                    quasi_static: bool = False) -> None:
+    """Run a kernel over a sampled history inside one compiled loop (one per kernel, cached);
+    ``quasi_static`` passes zero velocities without reading ``adot``, ``bdot``."""
+    fn = _DRIVERS.get((force, quasi_static))
     if fn is None:
         from numba import njit
 
-        def loop(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
-            for k in range(a.size):
-                n, t = force(fs, is_, pp, a[k], b[k], adot[k], bdot[k])
-                n_out[k] = n
-                t_out[k] = t
+        if quasi_static:
+            def loop(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
+                for k in range(a.size):
+                    n, t = force(fs, is_, pp, a[k], b[k], 0.0, 0.0)
+                    n_out[k] = n
+                    t_out[k] = t
+        else:
+            def loop(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
+                for k in range(a.size):
+                    n, t = force(fs, is_, pp, a[k], b[k], adot[k], bdot[k])
+                    n_out[k] = n
+                    t_out[k] = t
 
         fn = njit(loop)
-        _DRIVERS[force] = fn
+        _DRIVERS[(force, quasi_static)] = fn
     fn(fs, is_, pp, a, b, adot, bdot, n_out, t_out)
