@@ -24,11 +24,12 @@ from sawdrift.contact import Capabilities, ContactModel, KernelPair
 from sawdrift.contact.base import KernelReference
 from sawdrift.contact.conformance import CHECK_NAMES, check_model, cycles
 from sawdrift.contact.normal import law_normal, law_slope
-from sawdrift.contact.slots import NormalDamping
+from sawdrift.contact.slots import NormalDamping, gives_normal
 from sawdrift.errors import SceneError
 from sawdrift.scene.profiles import Profile
 from sawdrift_builtin.hertz_mindlin_dem import HertzMindlinDEM, HertzMindlinDEMParams
 from sawdrift_builtin.mmd import MemoryDiagramModel as MMD
+from sawdrift_builtin.mmd_kernel import mmd_step
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -401,3 +402,27 @@ def test_cli_exit_status_is_1_for_a_failing_plugin_model(tmp_path):
     assert out.stdout.startswith("model 'test_unnormalized': FAIL")
     failing = [line.split() for line in out.stdout.splitlines() if " fail " in line]
     assert [row[:3] for row in failing] == [["sphere", "normalization", "fail"]]
+
+
+# A step that hands N* back (gives_normal) must hand the normal slot's N*(a*) to the last bit.
+
+
+@njit
+def _pow_normal_step(ts, is_, law, tp, a0, b0, a, b):
+    # mmd's step, but N* = a*^1.5 by a power: the sphere's law, rounded otherwise than the slot's
+    # z N*'(z) / p (many a* differ in the last bit)
+    t, _n = mmd_step(ts, is_, law, tp, a0, b0, a, b)
+    return t, a**1.5
+
+
+class _PowNormal(MMD):
+    name = "test_pow_normal"
+    capabilities = replace(MMD.capabilities, profiles=("sphere",))
+    step = gives_normal(_pow_normal_step)
+
+
+def test_a_step_handing_back_another_normal_force_fails_normal_slot(register):
+    res = check_model(register(_PowNormal))
+    assert _failed(res) == {("sphere", "normal_slot")}
+    assert 0.0 < res.get("normal_slot").value < 1e-12
+    assert check_model("mmd", "sphere").get("normal_slot").status == "pass"

@@ -327,10 +327,32 @@ def _replay(model: ContactModel) -> Check:
                   "a copy replays the second half of 2 random histories")
 
 
+def _normal_slot(model: ContactModel) -> Check:
+    import inspect
+
+    from .slots import _SlotKernel
+
+    if not isinstance(inspect.getattr_static(type(model), "kernel", None), _SlotKernel):
+        return Check("normal_slot", "skipped", math.nan, math.nan,
+                     "a whole contact kernel: its N* is its own")
+    normal, pp = model.normal_law()
+    fs, is_ = np.zeros(1), np.zeros(1, dtype=np.int64)
+    err = 0.0
+    for p in histories([41]):
+        n, _ = p.still().drive(ContactHistory(model, _engine(model)))
+        ref = np.array([normal(fs, is_, pp, a, 0.0, 0.0, 0.0)[0] for a in p.a.tolist()])
+        err = max(err, float(np.max(np.abs(n - ref))))
+    return _check(model, "normal_slot", err == 0.0, err, 0.0,
+                  "N* of the composed contact against the normal slot's N*(a*), bit for bit, on 2 "
+                  f"quasi-static random histories with contact loss, up to a* = {LARGE_A:g} (a "
+                  "step that hands N* back must hand the slot's)")
+
+
 CHECKS = (_normalization, _passivity, _coulomb, _kernel_vs_reference, _velocity_independence,
-          _split, _contact_loss, _replay)
+          _split, _contact_loss, _replay, _normal_slot)
 CHECK_NAMES = ("normalization", "passivity", "coulomb_bound", "kernel_vs_reference",
-               "velocity_independence", "split_invariance", "contact_loss_reset", "replay")
+               "velocity_independence", "split_invariance", "contact_loss_reset", "replay",
+               "normal_slot")
 
 
 def check_model(name: str, profile: str | Profile | None = None, **params: Any) -> Conformance:
