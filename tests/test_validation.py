@@ -11,10 +11,9 @@ from numba import njit
 import sawdrift as sd
 from sawdrift.contact import KernelPair
 from sawdrift.report.validation import Case, CaseResult, load_cases, validate
-from sawdrift_builtin import mmd_kernel
 from sawdrift_builtin.mmd import MemoryDiagramModel
 
-_mmd_force = mmd_kernel.force
+_mmd_force = MemoryDiagramModel.kernel.force
 
 
 @njit
@@ -29,7 +28,7 @@ class FlippedFriction(MemoryDiagramModel):
 
     name = "mmd_flipped_friction"
     summary = "deliberately broken: mmd with the friction sign flipped (tests only)"
-    kernel = KernelPair(reset=mmd_kernel.reset, force=_flipped_force)
+    kernel = KernelPair(reset=MemoryDiagramModel.kernel.reset, force=_flipped_force)
 
 
 @pytest.fixture

@@ -5,8 +5,8 @@ and Van Den Abeele 2015, "Method of memory diagrams for mechanical frictional co
 to arbitrary 2D loading", Int. J. Solids Struct. 60-61, 84-95; the elementary partial-slip
 solutions are those of Mindlin & Deresiewicz 1953) as the tangential step :func:`mmd_step` of the
 contact slots (:mod:`sawdrift.contact.slots`), which keep the committed (a*, b*) and handle contact
-entry and loss; the step hands N*(a*), stored with its top kink, back with T*. ``force`` and
-``reset`` of this module are that composed contact.
+entry and loss; the step hands N*(a*), stored with its top kink, back with T*. The composed
+contact is ``MemoryDiagramModel.kernel`` (:mod:`sawdrift_builtin.mmd`).
 The normal law is the profile's, given by its descriptor ``law``
 (:mod:`sawdrift.contact.normal`): a power law N*(a*) = a*^p, with
 N*'(z) = p z^(p-1) for z > 0 and, by convention, N*'(0-) = 0 (the flat punch, p = 1, carries a
@@ -298,13 +298,3 @@ def memory_points(ts: np.ndarray, is_: np.ndarray) -> np.ndarray:
     n = int(is_[0])
     rec = ts[HEADER : HEADER + RECORD * n].reshape(n, RECORD)
     return np.column_stack([rec[:, 0], rec[:, 1] + ts[0]])
-
-
-def __getattr__(name: str):
-    """``force`` and ``reset``: the whole compiled ``mmd`` contact (the slots composed around
-    :func:`mmd_step`, protocol of :mod:`sawdrift.contact.base`), generated on first access."""
-    if name in ("force", "reset"):
-        from .mmd import MemoryDiagramModel
-
-        return getattr(MemoryDiagramModel.kernel, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
