@@ -402,9 +402,10 @@ class ContactHistory:
         b = np.asarray(b, dtype=np.float64)
         quasi_static = adot is None and bdot is None
         if quasi_static:
-            adot = bdot = a  # not read: the quasi-static loop passes zero velocities
-        adot = np.zeros_like(a) if adot is None else np.asarray(adot, dtype=np.float64)
-        bdot = np.zeros_like(a) if bdot is None else np.asarray(bdot, dtype=np.float64)
+            adot = bdot = a  # placeholders of the right shape: the quasi-static loop passes 0.0
+        else:
+            adot = np.zeros_like(a) if adot is None else np.asarray(adot, dtype=np.float64)
+            bdot = np.zeros_like(a) if bdot is None else np.asarray(bdot, dtype=np.float64)
         if not a.shape == b.shape == adot.shape == bdot.shape:
             raise ValueError("a, b, adot and bdot must have the same length")
         n_out = np.empty_like(a)
