@@ -426,3 +426,25 @@ def test_a_step_handing_back_another_normal_force_fails_normal_slot(register):
     assert _failed(res) == {("sphere", "normal_slot")}
     assert 0.0 < res.get("normal_slot").value < 1e-12
     assert check_model("mmd", "sphere").get("normal_slot").status == "pass"
+
+
+@njit
+def _tenfold_negative_damp(dp, law, a, adot, n_elastic):
+    return n_elastic - 10.0 * dp[0] * adot
+
+
+def test_replacing_a_damping_function_recomposes_the_kernel(monkeypatch):
+    # the kernel is cached per class: a new damp function must not leave the old one running
+    law = _SphereDEM.with_damping(_NegativeDamping, name="test_swapped_damping", summary="test")
+    model = law(law.Params(), Profile())
+    fs, is_ = (np.zeros(n, dtype=d) for n, d in zip(model.state_sizes(), (float, np.int64),
+                                                     strict=True))
+    pp = model.packed_params()
+    c = float(model.damping_params()[0])
+    n_before, _ = law.kernel.force(fs.copy(), is_.copy(), pp, 1.0, 0.0, 1.0, 0.0)
+    monkeypatch.setattr(_NegativeDamping, "damp", _tenfold_negative_damp)
+    n_after, _ = law.kernel.force(fs.copy(), is_.copy(), pp, 1.0, 0.0, 1.0, 0.0)
+    # N*(1) = 1 elastic, a*' = 1: the dashpot's share is -c, then -10 c (this damp has no clamp)
+    assert n_before == pytest.approx(1.0 - c, abs=1e-12)
+    assert n_after == pytest.approx(1.0 - 10.0 * c, abs=1e-12)
+    assert n_after != n_before

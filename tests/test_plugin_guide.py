@@ -49,3 +49,22 @@ def test_example_appears_in_models(spring, monkeypatch, capsys):
         main()
     assert exc.value.code == 0
     assert "coulomb_spring" in capsys.readouterr().out
+
+
+def test_a_law_defined_in_a_script_runs_compiled_in_memory(spring, tmp_path):
+    # a law written in a notebook or a script lives in __main__: it cannot be imported by name,
+    # so its contact and loop are compiled in memory (no disk cache); the physics is the same
+    import os
+    import subprocess
+
+    source = EXAMPLE.read_text().replace("@njit(cache=True)", "@njit")
+    script = tmp_path / "my_law.py"
+    script.write_text(source + "\n\nimport sawdrift as sd\n\nsd.registry.register(CoulombSpring)\n"
+                      "print(repr(sd.run(sd.Scene(model='coulomb_spring', "
+                      "numerics={'periods': 10, 'measure_periods': 5})).drift_ratio))\n")
+    env = {**os.environ, "SAWDRIFT_CACHE_DIR": str(tmp_path / "cache")}
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
+                         timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    here = sd.run(sd.Scene(model=spring.name, numerics={"periods": 10, "measure_periods": 5}))
+    assert float(out.stdout.strip().splitlines()[-1]) == here.drift_ratio

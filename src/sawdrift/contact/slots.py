@@ -222,8 +222,9 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str
     # not importable by name, or an unwritable cache: compile in memory instead
     ns = _namespace(njit(**_INLINE)(_py(step)), reset, njit(**_INLINE)(_py(damp)), law_normal, "",
                     consts)
+    in_memory = {k: v for k, v in JIT_OPTIONS.items() if k != "cache"}  # source has no file
     for f in _TEMPLATES:
-        ns[f.__name__] = njit(**JIT_OPTIONS)(ns[f.__name__])
+        ns[f.__name__] = njit(**in_memory)(ns[f.__name__])
     return ns
 
 
@@ -247,12 +248,15 @@ class _SlotKernel:
 
     The composition depends on the class only (its step, reset and damping functions), so it is
     the same on the class and on every instance. The pair is looked up by the class and its raw
-    slot attributes, so an access costs a few attribute reads, not the
-    loading of the slot functions (``ContactHistory.drive`` reads ``kernel`` on every call).
+    slot attributes (the damping class's ``damp`` included), so an access costs a few attribute
+    reads, not the loading of the slot functions (``ContactHistory.drive`` reads ``kernel`` on
+    every call); replacing any slot function recomposes.
     """
 
     def __get__(self, obj: Any, owner: type[TangentialLaw]) -> KernelPair:
-        raw = (owner.step, owner.reset_state, owner.damping, owner.coulomb_cap)
+        damping = owner.damping
+        raw = (owner.step, owner.reset_state, damping, owner.coulomb_cap,
+               damping.damp if damping is not None else None)
         hit = _BY_CLASS.get(owner)
         if hit is not None and hit[0] == raw:  # identical objects: no __eq__ is called
             return hit[1]

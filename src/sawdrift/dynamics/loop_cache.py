@@ -171,7 +171,7 @@ class _Walk:
                      for a in names if a in vars(value) and _is_dispatcher(getattr(value, a))
                      or a in vars(value) and _constant(getattr(value, a)) is not None]
             return ";".join(attrs)
-        if isinstance(value, types.FunctionType) and value.__module__.split(".")[0] not in _FOREIGN:
+        if isinstance(value, types.FunctionType) and (value.__module__ or "").split(".")[0] not in _FOREIGN:
             return f"{name}=" + self.function(value)  # e.g. a function numba inlines or overloads
         text = _constant(value)
         return "" if text is None else f"{name}={text}"
@@ -179,7 +179,7 @@ class _Walk:
     def dispatcher(self, disp: Any, files: set[str] | None = None) -> str:
         """Digest of a numba dispatcher (the code of its ``py_func`` and all it calls)."""
         func = disp.py_func
-        if func.__module__.split(".")[0] in _FOREIGN:
+        if (func.__module__ or "").split(".")[0] in _FOREIGN:
             return f"{func.__module__}.{func.__qualname__}"
         digest = self.function(func)
         self.dispatchers.setdefault(id(func), disp)
@@ -235,7 +235,7 @@ def refresh_stale_caches(roots: Iterable[Any] | _Walk) -> list[str]:
         func = disp.py_func
         cache = getattr(disp, "_cache", None)
         index = getattr(getattr(cache, "_cache_file", None), "_index_path", None)
-        if (index is None or func.__module__.startswith(GENERATED)
+        if (index is None or (func.__module__ or "").startswith(GENERATED)
                 or len(walk.files.get(key, ())) < 2):
             continue
         record = Path(index + ".sawdrift-code")
