@@ -391,17 +391,14 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 ctr[1] = 1
                 _log(st, EV_LIFT_OFF, seg_end, y, t, od, odv, gd, roll)
                 st[S_LIFTS] += 1.0
-        if tau < t_end:
-            # more events in one step than the scheme resolves: never fall behind silently
-            st[S_BAD] = BAD_EVENTS
-            st[S_BADSTEP] = k
-            return
         if roll > 0.0:
-            # back to the centre (and the rolling angle, where it is integrated)
+            # back to the centre (and the rolling angle, where it is integrated), at tau: the
+            # step's end, or where a step with too many events stopped
             xs = y[0]
             if turning:
-                od += odv * h + 0.5 * gd * h * h
-                odv += gd * h
+                hh = h if tau >= t_end else tau - t
+                od += odv * hh + 0.5 * gd * hh * hh
+                odv += gd * hh
                 y[0] = (xs + od) / roll
                 y[4] = xs - y[0]
                 vs = y[1]
@@ -410,6 +407,11 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
             else:
                 y[0] = xs / roll
                 y[1] /= roll
+        if tau < t_end:
+            # more events in one step than the scheme resolves: never fall behind silently
+            st[S_BAD] = BAD_EVENTS
+            st[S_BADSTEP] = k
+            return
         # ---- bookkeeping at the end of the step ----
         kk = drive_kinematics(t_end, prm[P_XQ], dp)  # noqa: F821
         a = y[2] - kk[3] if ctr[1] == 1 else 0.0
