@@ -120,3 +120,22 @@ def test_a_drive_module_plugs_into_both_schemes(model, monkeypatch):
     # the same orbit written another way: the drift agrees to rounding
     assert other.drift_velocity == pytest.approx(builtin.drift_velocity, rel=1e-8, abs=1e-12)
     assert other.regime == builtin.regime
+
+
+def test_the_loop_runs_with_the_parameters_the_assembly_prints():
+    # --explain prints Assembly.params; the stepper packs exactly those, in the loops' order
+    from sawdrift.dynamics import adams_bashforth as ig
+    from sawdrift.dynamics import rigid as rg
+    from sawdrift.dynamics.assembly import assemble, explain
+    from sawdrift.dynamics.stepper import Stepper
+
+    for data in ({"particle": {"load": 0.02}, "effects": {"rotation": True}},
+                 {"model": "material_point", "effects": {"rotation": True}}):
+        scene = sd.Scene(**data)
+        model = scene.model_instance()
+        plan = assemble(scene, "compiled", model)
+        st = Stepper(scene, model, plan, record=False)
+        names = ig.PRM_NAMES + (rg.RIGID_PRM_NAMES if st.rigid else ())
+        assert st.prm[: len(names)].tolist() == [plan.param(n) for n in names]
+        text = explain(scene)
+        assert f"load = {scene.particle.load:.6g}" in text and "roll = 3.5" in text

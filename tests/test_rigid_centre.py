@@ -62,3 +62,4 @@ def test_a_rigid_rolling_sphere_keeps_its_momentum_balance_through_impacts(load)
     inv = tr["vx"] - kappa * tr["spin"] - load * tr["t"] / m
     scale = float(np.abs(tr["vx"]).max())
     assert float(np.abs(inv - inv.iloc[0]).max()) < 1e-9 * scale
+

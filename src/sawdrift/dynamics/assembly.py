@@ -94,6 +94,13 @@ class Assembly:
     restitution: float | None = None
     #: C of a compliant contact's restitution damping N* += C a*^((p-1)/2) a*' (0: off)
     restitution_damping: float = 0.0
+    #: the scheme's named parameters (adams_bashforth.PRM_NAMES, and the rigid scheme's
+    #: rigid.RIGID_PRM_NAMES), in that order: what the loop runs with
+    params: tuple[tuple[str, float], ...] = ()
+
+    def param(self, name: str) -> float:
+        """The scheme parameter ``name`` (KeyError if this assembly has none of that name)."""
+        return dict(self.params)[name]
 
 
 def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | None = None) -> Assembly:
@@ -221,10 +228,25 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
               "gross_slip_fraction", "liftoffs_per_period", "hop_period", "lyapunov", "settled")
         + (("spin_rate",) if eff.rotation else ())
     )
+    m = scene.particle.m_star
+    params = {
+        "m": m, "mu": scene.material.mu, "theta": scene.theta, "h": 1.0 / k_per,
+        "order": scene.numerics.order, "friction": 1.0 if eff.friction else 0.0,
+        "damping": eff.normal_damping, "p": scene.particle.profile.p,
+        "k_ramp": math.ceil(ramp * k_per - 1e-9),
+        "roll": 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0,
+        "rolling_resistance": eff.rolling_resistance if eff.rotation else 0.0,
+        "m_x": m, "load": load, "restitution_damping": rest_c,
+    }
+    if caps.rigid:
+        # material.restitution, or the model's own parameter (_restitution checks they agree)
+        e = restitution if restitution is not None else model.params.restitution
+        params.update({"restitution": e, "vertical_inertia": 1.0 if eff.vertical_inertia else 0.0,
+                       "x_q": 0.0, "u_y": part.vertical_amplitude(scene)})
     return Assembly(
         scheme, engine, eff.friction, eff.friction and not caps.rigid, eff.normal_damping,
         horiz, vert, ramp, tuple(equations), tuple(calls), outputs, part, k_per,
-        load, restitution, rest_c,
+        load, restitution, rest_c, tuple((k, float(v)) for k, v in params.items()),
     )
 
 
@@ -314,6 +336,9 @@ def explain(scene: Scene, engine: Engine = "compiled") -> str:
     lines += [f"  {eq}" for eq in plan.equations]
     lines.append("calls:")
     lines += [f"  {c}" for c in plan.calls]
+    if plan.params:
+        lines.append("scheme parameters: " + ", ".join(f"{k} = {v:.6g}" for k, v in plan.params
+                                                       if k != "x_q"))
     lines.append("outputs: " + ", ".join(plan.outputs))
     if scene.device is not None:
         from ..scene.device import explain_device

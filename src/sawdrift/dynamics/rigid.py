@@ -49,15 +49,16 @@ from .evidence import (
     observe_step,
 )
 
-#: Extra slots of the parameter vector used by the rigid scheme: the Newton restitution, the
-#: vertical inertia switch, the particle's x* at the start of the step (where the drive is
-#: evaluated during the step) and the drive's vertical amplitude (the impact-speed floor); the
-#: drive's own parameters follow from N_PRM_RIGID on.
-P_RESTITUTION = N_PRM
-P_VINERTIA = N_PRM + 1
-P_XQ = N_PRM + 2
-P_UY = N_PRM + 3
-N_PRM_RIGID = N_PRM + 4
+#: Extra slots of the parameter vector used by the rigid scheme, after the compliant loop's
+#: :data:`~.adams_bashforth.PRM_NAMES`; the drive's own parameters follow from N_PRM_RIGID on.
+RIGID_PRM_NAMES = (
+    "restitution",  # Newton restitution e of an impact
+    "vertical_inertia",  # 1: N* = 1 - m* u_y'', 0: N* = 1
+    "x_q",  # the centre's x* at the step's start, where the drive is evaluated (set by the loop)
+    "u_y",  # the drive's vertical amplitude (the impact-speed floor)
+)
+P_RESTITUTION, P_VINERTIA, P_XQ, P_UY = range(N_PRM, N_PRM + len(RIGID_PRM_NAMES))
+N_PRM_RIGID = N_PRM + len(RIGID_PRM_NAMES)
 
 _BISECT = 60
 #: events (impacts, lift-offs, stick and slip changes) one step may hold before it is an error

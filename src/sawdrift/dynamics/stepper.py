@@ -10,7 +10,6 @@ estimate of the regime evidence.
 from __future__ import annotations
 
 import copy
-import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -69,24 +68,14 @@ class Stepper:
         #: loops, its parameters are the vector dp
         self.drive = plan.drive
         self.dp = self.drive.pack(scene)
-        ramp = plan.ramp_periods
         engine = plan.engine
         self.k_per = plan.steps_per_period
         self.h = 1.0 / self.k_per
         self.rigid = model.capabilities.rigid
-        eff = scene.effects
+        named = dict(plan.params)  # the scheme's parameters, decided by the assembly
         #: c = 1 + 1/kappa with rotation (contact point s = c x from rest), else 0: not computed
-        self.roll = 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0
-        prm = ig.pack({
-            "m": scene.particle.m_star, "m_x": scene.particle.m_star, "mu": scene.material.mu,
-            "theta": scene.theta, "h": self.h, "order": scene.numerics.order,
-            "friction": 1.0 if plan.integrate_x else 0.0, "damping": plan.normal_damping,
-            "p": scene.particle.profile.p, "k_ramp": math.ceil(ramp * self.k_per - 1e-9),
-            "roll": self.roll,
-            "rolling_resistance": eff.rolling_resistance if eff.rotation else 0.0,
-            "load": plan.load,
-            "restitution_damping": plan.restitution_damping,
-        })
+        self.roll = named["roll"]
+        prm = ig.pack(named)
         #: the rolling angle psi = R phi / a0 is integrated (state y[4], y[5]): with rolling
         #: resistance, or under a load (which turns the centre's motion away from s = c x)
         self.resist = prm[ig.P_RR] > 0.0 or (self.roll > 0.0 and plan.load != 0.0)
@@ -100,14 +89,8 @@ class Stepper:
         self.compiled = engine == "compiled"
         self.history: ContactHistory | None = None
         if self.rigid:
-            extra = np.zeros(rg.N_PRM_RIGID - ig.N_PRM)
-            # material.restitution, or the model's own parameter (the assembly checks they agree)
-            e = plan.restitution if plan.restitution is not None else model.params.restitution
-            extra[rg.P_RESTITUTION - ig.N_PRM] = float(e)
-            extra[rg.P_VINERTIA - ig.N_PRM] = 1.0 if eff.vertical_inertia else 0.0
-            extra[rg.P_UY - ig.N_PRM] = self.drive.vertical_amplitude(scene)
-            # the rigid scheme reads the drive's parameters behind its own
-            self.prm = np.concatenate([prm, extra, self.dp])
+            # the rigid scheme reads its own parameters, then the drive's, behind the common ones
+            self.prm = np.concatenate([prm, ig.pack(named, rg.RIGID_PRM_NAMES), self.dp])
             self.ctr = np.zeros(5, dtype=np.int64)
             self.ctr[3] = 1  # starts stuck to the substrate at rest
             self.loop = (rigid_bind.rigid_loop_for(self.drive) if self.compiled
