@@ -69,6 +69,14 @@ def _writable(path: Path, option: str = "-o", folder: bool = True) -> Path:
     return path
 
 
+def _split_axis(item: str, form: str, example: str) -> tuple[str, str]:
+    """``FIELD`` and ``SPEC`` of an ``--axis FIELD=SPEC`` option, or one line and exit 2."""
+    field, sep, spec = item.partition("=")
+    if not sep or not field.strip() or not spec.strip():
+        _fail(f"--axis {item!r} must look like {form} (e.g. {example})")
+    return field.strip(), spec.strip()
+
+
 def _parse_param(items: list[str] | None) -> dict[str, Any]:
     params: dict[str, Any] = {}
     for item in items or []:

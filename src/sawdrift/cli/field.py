@@ -16,6 +16,7 @@ from .app import (
     Workers,
     _fail,
     _parse_param,
+    _split_axis,
     _writable,
     app,
     check_engine,
@@ -66,12 +67,10 @@ def field_cmd(
         _writable(out)
     species = None
     if axis is not None:
-        name, sep, spec = axis.partition("=")
-        if not sep or not name.strip() or not spec.strip():
-            _fail(f"--axis {axis!r} must look like FIELD=a,b (e.g. particle.m_star=0.05,0.5)")
+        name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
         from ..study.axes import parse_values
 
-        species = (name.strip(), parse_values(spec.strip(), name.strip()))
+        species = (name, parse_values(spec, name))
     direct_periods = scene_overrides.pop("numerics.periods", None) if direct else None
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
     if direct:

@@ -15,6 +15,7 @@ from .app import (
     Progress,
     _fail,
     _parse_param,
+    _split_axis,
     _writable,
     app,
     check_engine,
@@ -112,12 +113,9 @@ def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engi
     from ..study.field import species_scenes
     from ..study.load_curve import load_curve
 
-    name, sep, spec = axis.partition("=")
-    if not sep or not name.strip() or not spec.strip():
-        _fail(f"--axis {axis!r} must look like FIELD=a,b (e.g. particle.m_star=0.05,0.5)")
-    name = name.strip()
+    name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
     curves = []
-    for label, sp in species_scenes(scene, (name, parse_values(spec.strip(), name))):
+    for label, sp in species_scenes(scene, (name, parse_values(spec, name))):
         curves.append((label, load_curve(sp, loads=loads, workers=workers, engine=engine,
                                          progress=note)))
     data = {"axis": name, "species": [{"label": label, **c.to_json()} for label, c in curves]}

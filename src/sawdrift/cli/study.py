@@ -11,7 +11,18 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import Engine, Param, Progress, Scheduler, Workers, _fail, _parse_param, _writable, app
+from .app import (
+    Engine,
+    Param,
+    Progress,
+    Scheduler,
+    Workers,
+    _fail,
+    _parse_param,
+    _split_axis,
+    _writable,
+    app,
+)
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -69,10 +80,8 @@ def sweep_cmd(
     scene_file = scene_arg or scene_file
     axes: dict[str, str] = {}
     for item in axis or []:
-        field, sep, spec = item.partition("=")
-        if not sep or not field.strip() or not spec.strip():
-            _fail(f"--axis {item!r} must look like FIELD=SPEC (e.g. material.mu=0.05,0.1,0.2)")
-        axes[field.strip()] = spec.strip()
+        field, spec = _split_axis(item, "FIELD=SPEC", "material.mu=0.05,0.1,0.2")
+        axes[field] = spec
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
     fast_start()
     for name in named:
@@ -165,9 +174,7 @@ def bifurcation_cmd(
     table, a JSON summary and the figure to -o DIR. Every other scene field is an option
     (--m-star, --mu, --horizontal-ratio, ...) setting the base scene.
     """
-    field, sep, spec = axis.partition("=")
-    if not sep or not field.strip() or not spec.strip():
-        _fail(f"--axis {axis!r} must look like FIELD=SPEC (e.g. drive.amplitude=lin:0.1:1.5:100)")
+    field, spec = _split_axis(axis, "FIELD=SPEC", "drive.amplitude=lin:0.1:1.5:100")
     _writable(out)
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
     fast_start()
@@ -177,7 +184,7 @@ def bifurcation_cmd(
         scene_arg, named[0] if named else None, _parse_param(param), scene_overrides)
     from sawdrift.study.bifurcation import bifurcation
 
-    res = bifurcation(base, field.strip(), spec.strip(), models=named or None, samples=samples,
+    res = bifurcation(base, field, spec, models=named or None, samples=samples,
                       direction=direction, locate=locate, tolerance=tolerance, out=out,
                       workers=workers, scheduler=scheduler, progress=progress, force=force,
                       engine=engine)
@@ -195,7 +202,7 @@ def bifurcation_cmd(
     for b in res.bifurcations:
         where = f"{b['value']:.6g}" if b["located"] else f"{b['bracket'][0]:.6g}..{b['bracket'][1]:.6g}"
         typer.echo(f"{b['model']:>20} {b['direction']:>4}: {b['kind']} {b['from_period']} -> "
-                   f"{b['to_period']} at {field.strip()} = {where}")
+                   f"{b['to_period']} at {field} = {where}")
     for h in res.hysteresis:
         typer.echo(f"{h['model']:>20} both: hysteresis from {h['from']:.6g} to {h['to']:.6g}")
     typer.echo(f"wrote {out}/bifurcation.parquet, bifurcation.json, bifurcation.png "
