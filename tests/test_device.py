@@ -282,3 +282,45 @@ def test_a_device_profile_that_cannot_be_converted_is_refused(particle, scene_ex
     with pytest.raises(SceneError) as info:
         build_scene({"model": "mmd", "device": _sneddon_device(**particle), **scene_extra})
     assert needle in str(info.value) and "\n" not in str(info.value)
+
+
+def _motor_with(**device) -> dict:
+    data = tomllib.loads(MOTOR.read_text())
+    data["device"].update(device)
+    return data
+
+
+@pytest.mark.parametrize("amplitude, needle", [
+    (10, "faster than any elastic wave"),           # '10 nm' typed as a bare 10: 10 m
+    ("10 um", "strains the surface"),               # 2 pi 10 um f / 1.3e4 m/s = 0.046
+])
+def test_an_implausible_device_amplitude_is_refused_naming_field_and_unit(amplitude, needle):
+    with pytest.raises(SceneError) as err:
+        build_scene(_motor_with(amplitude=amplitude))
+    text = str(err.value)
+    assert "device.amplitude" in text and needle in text and "'10 nm'" in text
+
+
+def test_the_wave_bounds_use_the_devices_own_wavelength():
+    # LiNbO3-like substrate, density given: c_R = 0.9194 sqrt(68 GPa / 4650) = 3516 m/s, so at
+    # 9.6 MHz lambda = 366 um. 1 um has strain 2 pi 1e-6 / 3.66e-4 = 0.0172 > 1e-2 (refused);
+    # 0.5 um has 0.0086 (accepted). Without the density only the any-solid bound applies.
+    sub = {"youngs_modulus": "170 GPa", "poisson": 0.25, "density": "4650 kg/m^3"}
+    with pytest.raises(SceneError, match=r"strains the surface by 0\.017"):
+        build_scene(_motor_with(amplitude="1 um", substrate=sub))
+    assert build_scene(_motor_with(amplitude="0.5 um", substrate=sub)).device is not None
+    assert build_scene(_motor_with(amplitude="1 um")).device is not None
+    # the surface may never outrun the wave: 0.1 mm at 9.6 MHz with a 366 um wavelength
+    with pytest.raises(SceneError, match="faster than the wave itself"):
+        build_scene(_motor_with(amplitude="0.1 mm", substrate=sub))
+
+
+def test_cli_refuses_a_unitless_amplitude_at_once(tmp_path):
+    text = MOTOR.read_text().replace('amplitude = "10 nm"', "amplitude = 10")
+    (tmp_path / "bad.toml").write_text(text)
+    for cmd in (["run"], ["load-curve", "-o", str(tmp_path / "lc")]):
+        out = _cli(*cmd, str(tmp_path / "bad.toml"))
+        assert out.returncode == 2, out.stderr
+        lines = out.stderr.strip().splitlines()
+        assert len(lines) == 1 and "device.amplitude = 10 m" in lines[0]
+        assert "Traceback" not in out.stderr and out.stdout == ""

@@ -49,6 +49,9 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
+from ..errors import SceneError
+from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio
+
 _FROZEN = ConfigDict(frozen=True, extra="forbid")
 
 #: expected dimension of each kind of quantity, with an example for error messages
@@ -243,6 +246,90 @@ class Device(BaseModel):
             raise ValueError("gravity = 0 needs a preload > 0: nothing would hold the particle")
         return self
 
+    @model_validator(mode="after")
+    def _plausible_wave(self) -> Device:
+        problem = wave_implausibility(self)
+        if problem is not None:
+            raise ValueError(problem)
+        return self
+
+
+#: Peak surface strain k A_y of a wave the linear-elastic model can stand for. Crystals used for
+#: SAW devices crack or turn plastic well below 1 % strain; amplitudes this large are typed in
+#: the wrong unit, not measured.
+MAX_SURFACE_STRAIN = 1e-2
+
+#: Fastest shear-wave speed of any solid (diamond, about 12.8 km/s), rounded up: a bound on the
+#: Rayleigh speed c_R < c_S when the substrate's density and the wavelength are not given.
+MAX_WAVE_SPEED = 1.3e4
+
+
+def rayleigh_wavelength(youngs_modulus: float, poisson: float, density: float,
+                        frequency: float) -> float:
+    """lambda = c_R / f in m, c_R = xi_R sqrt(G / rho), G = E / (2 (1 + nu)) (SI inputs).
+
+    xi_R = c_R / c_S is the root of the Rayleigh equation (Achenbach 1973, eq. 5.2.7;
+    :func:`sawdrift.scene.rayleigh.rayleigh_speed_ratio`): 0.9194 at nu = 0.25.
+    """
+    if not (density > 0.0 and youngs_modulus > 0.0 and frequency > 0.0):
+        raise SceneError("a Rayleigh wavelength needs a density, Young's modulus and frequency > 0")
+    shear = youngs_modulus / (2.0 * (1.0 + poisson))
+    return rayleigh_speed_ratio(poisson) * math.sqrt(shear / density) / frequency
+
+
+def device_wavelength(device: Any) -> float | None:
+    """The wavelength of a device in m: ``device.wavelength`` if given (anisotropic crystals),
+    else from ``device.substrate.density`` and its moduli (:func:`rayleigh_wavelength`), else None.
+    """
+    given = getattr(device, "wavelength", None)
+    if given is not None:
+        return float(given)
+    sub = device.substrate
+    rho = getattr(sub, "density", None)
+    if rho is None:
+        return None
+    return rayleigh_wavelength(sub.youngs_modulus, sub.poisson, float(rho), device.frequency)
+
+
+def wave_implausibility(device: Device) -> str | None:
+    """Why the device's wave cannot be what its numbers say, or None if it can.
+
+    A travelling wave's surface speed over its phase speed is its surface strain:
+    v / c = omega A / c = k A = 2 pi A / lambda. So three bounds are one, seen three ways: the
+    peak surface speed 2 pi f A_y sqrt(1 + r^2) must stay below the wave speed c = lambda f, the
+    amplitude below a fraction of the wavelength, and the strain 2 pi A_y / lambda below
+    :data:`MAX_SURFACE_STRAIN`. The wave speed is the device's (``wavelength`` times f, or the
+    Rayleigh speed of ``substrate.density``); without either, :data:`MAX_WAVE_SPEED` bounds it,
+    which only catches amplitudes typed in the wrong unit (a bare ``amplitude = 10`` is 10 m).
+    """
+    f, amp = device.frequency, device.amplitude
+    if amp == 0.0:
+        return None
+    lam = device_wavelength(device)
+    r = device.horizontal_ratio if device.horizontal_ratio is not None else rayleigh_ratio(
+        device.substrate.poisson)
+    speed = 2.0 * math.pi * f * amp * math.sqrt(1.0 + r * r)
+    given = f"device.amplitude = {amp:.4g} m at device.frequency = {f:.4g} Hz"
+    hint = "(a bare number is in m: write the unit, e.g. amplitude = '10 nm')"
+    if lam is None:
+        if speed >= MAX_WAVE_SPEED:
+            return (f"{given} moves the surface at {speed:.3g} m/s, faster than any elastic wave "
+                    f"(below {MAX_WAVE_SPEED:.2g} m/s in every solid) {hint}")
+        strain = 2.0 * math.pi * f * amp / MAX_WAVE_SPEED
+        where = f"at least {strain:.3g} (with the fastest wave speed of any solid)"
+    else:
+        c = lam * f
+        if speed >= c:
+            return (f"{given} moves the surface at {speed:.3g} m/s, faster than the wave itself "
+                    f"({c:.4g} m/s) {hint}")
+        strain = 2.0 * math.pi * amp / lam
+        where = f"{strain:.3g} (wavelength {lam:.4g} m)"
+    if strain > MAX_SURFACE_STRAIN:
+        return (f"{given} strains the surface by {where}, above {MAX_SURFACE_STRAIN:g}: no "
+                f"substrate stays elastic there; the amplitude must be below "
+                f"{MAX_SURFACE_STRAIN / (2.0 * math.pi):.2g} wavelengths {hint}")
+    return None
+
 
 def static_compression(shape: str, load: float, e_star: float, radius: float | None = None,
                        half_angle: float | None = None) -> tuple[float, float]:
@@ -273,8 +360,6 @@ def static_compression(shape: str, load: float, e_star: float, radius: float | N
 
 def normalized(device: Device) -> dict[str, float]:
     """The normalized quantities of ``device`` and the scales that convert back."""
-    from .rayleigh import rayleigh_ratio
-
     p, s = device.particle, device.substrate
     e_star = 1.0 / ((1 - p.poisson**2) / p.youngs_modulus + (1 - s.poisson**2) / s.youngs_modulus)
     g1 = p.youngs_modulus / (2 * (1 + p.poisson))

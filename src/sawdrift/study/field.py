@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SceneError
+from ..scene.device import device_wavelength, rayleigh_wavelength
 from ..scene.schema import Scene, Wave, build_scene, set_dotted
 
 __all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_field", "find_zeros",
@@ -38,35 +39,6 @@ __all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_fiel
 PERIOD = 0.5
 #: fewest positions of a field
 MIN_POINTS = 4
-
-
-def rayleigh_wavelength(youngs_modulus: float, poisson: float, density: float,
-                        frequency: float) -> float:
-    """lambda = c_R / f in m, c_R = xi_R sqrt(G / rho), G = E / (2 (1 + nu)) (SI inputs).
-
-    xi_R = c_R / c_S is the root of the Rayleigh equation (Achenbach 1973, eq. 5.2.7;
-    :func:`sawdrift.scene.rayleigh.rayleigh_speed_ratio`): 0.9194 at nu = 0.25.
-    """
-    from ..scene.rayleigh import rayleigh_speed_ratio
-
-    if not (density > 0.0 and youngs_modulus > 0.0 and frequency > 0.0):
-        raise SceneError("a Rayleigh wavelength needs a density, Young's modulus and frequency > 0")
-    shear = youngs_modulus / (2.0 * (1.0 + poisson))
-    return rayleigh_speed_ratio(poisson) * math.sqrt(shear / density) / frequency
-
-
-def device_wavelength(device: Any) -> float | None:
-    """The wavelength of a device in m: ``device.wavelength`` if given (anisotropic crystals),
-    else from ``device.substrate.density`` and its moduli (:func:`rayleigh_wavelength`), else None.
-    """
-    given = getattr(device, "wavelength", None)
-    if given is not None:
-        return float(given)
-    sub = device.substrate
-    rho = getattr(sub, "density", None)
-    if rho is None:
-        return None
-    return rayleigh_wavelength(sub.youngs_modulus, sub.poisson, float(rho), device.frequency)
 
 
 def wavelength_star(scene: Scene) -> float | None:
