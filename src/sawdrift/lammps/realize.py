@@ -1,0 +1,159 @@
+"""An SI realization of a scene for LAMMPS, and which scenes have a LAMMPS equivalent.
+
+A normalized scene (docs/physics.md) fixes m*, A*, theta, mu, r, the orbit phase, the ramp and
+the load; any sphere, modulus and frequency that reproduce them give the same normalized motion.
+A device scene carries its own SI values (sawdrift.scene.device), which are used as they are.
+With R, the particle mass m, the normal load M g and the static compression a0:
+
+    E* = (9 (M g)^2 / (16 R a0^3))^(1/2)     (Hertz, a0 = (9 (M g)^2 / (16 R E*^2))^(1/3))
+    G* = E* / (4 theta)                       (theta = E*/(4 G*))
+    f  = (m* M g / (a0 m))^(1/2)              (m* = a0 m f^2 / (M g))
+    A_y = A* a0
+
+A normalized scene is realized as a sphere of R = 1 mm and density 2500 kg/m^3 under gravity
+9.81 m/s^2 (with its preload, M g = m g (1 + preload)) and a0 = 1e-5 R.
+
+LAMMPS's ``fix wall/gran`` mixes the wall's material with itself (measured on LAMMPS 2025.7:
+the normal stiffness is (4/3) E/(2 (1 - nu^2)) sqrt(R delta) for the wall's E and nu, LAMMPS
+issue 4141), so the equivalent single material of the wall has E_w = 2 (1 - nu_w^2) E*; its
+tangential stiffness is given directly, k_t = 8 G* (``mindlin_rescale/force k_t``: the spring
+is k_t a with the contact radius a = sqrt(R delta), Mindlin's 8 G* a), so any theta works.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import SceneError
+from ..scene.schema import Scene, Wave
+
+#: models with a LAMMPS equivalent (pair granular hertz/material + mindlin_rescale/force or
+#: mindlin/force, no damping) and the LAMMPS tangential model of each
+LAMMPS_EQUIVALENT = {"hertz_mindlin_dem": "mindlin_rescale/force"}
+
+#: Poisson's ratio of the equivalent wall material (it only enters E_w, see the module docstring)
+WALL_NU = 0.3
+
+#: realization of a normalized scene: radius (m), density (kg/m^3), gravity (m/s^2), a0 / R
+NORMALIZED_RADIUS = 1e-3
+NORMALIZED_DENSITY = 2500.0
+NORMALIZED_GRAVITY = 9.81
+NORMALIZED_A0_OVER_R = 1e-5
+
+
+@dataclass(frozen=True)
+class Realization:
+    """The SI quantities of one particle's scene (see the module docstring)."""
+
+    radius: float  # m
+    mass: float  # kg
+    weight: float  # M g, the static normal load, N
+    a0: float  # m
+    e_star: float  # Pa
+    g_star: float  # Pa
+    frequency: float  # Hz
+    amplitude: float  # A_y, m
+    ratio: float  # r
+    sin_phase: float
+    cos_phase: float
+    ramp_periods: float
+    horizontal: float  # 1 or 0 (effects.horizontal_wave)
+    vertical: float  # 1 or 0
+    mu: float
+    load: float  # tangential force along +x, N
+    rotation: bool
+    m_star: float
+    theta: float
+
+    @property
+    def density(self) -> float:
+        """Density of the sphere (kg/m^3) that has this mass."""
+        return self.mass / (4.0 / 3.0 * math.pi * self.radius**3)
+
+    @property
+    def wall_modulus(self) -> float:
+        """E_w = 2 (1 - nu_w^2) E*: LAMMPS mixes the wall with itself."""
+        return 2.0 * (1.0 - WALL_NU**2) * self.e_star
+
+    @property
+    def k_t(self) -> float:
+        """Mindlin's k_t = 8 G* (pressure units; the spring is k_t times the contact radius)."""
+        return 8.0 * self.g_star
+
+    @property
+    def speed(self) -> float:
+        """a0 f: the unit of x*' in m/s."""
+        return self.a0 * self.frequency
+
+
+def refusal(scene: Scene) -> str | None:
+    """Why ``scene`` has no LAMMPS equivalent (one line), or None if it has one."""
+    if scene.model not in LAMMPS_EQUIVALENT:
+        return (f"model = {scene.model!r} has no LAMMPS equivalent; the LAMMPS engine runs "
+                + ", ".join(LAMMPS_EQUIVALENT) + " (pair granular hertz/material, "
+                "mindlin_rescale/force or mindlin/force, no damping)")
+    if not isinstance(scene.drive, Wave):
+        return f"drive.kind = {scene.drive.kind!r}: the LAMMPS engine runs a wave drive only"
+    d = scene.drive
+    if d.backward > 0.0 or d.wavelength is not None or d.position != 0.0 or d.backward_phase_rate:
+        return "drive: the LAMMPS engine runs one travelling wave's local orbit (no backward " \
+               "wave, position, wavelength or phase rate)"
+    shape = scene.particle.profile.shape
+    if shape != "sphere":
+        return f"particle.profile.shape = {shape!r}: LAMMPS has spheres only (Hertz, p = 3/2)"
+    eff = scene.effects
+    if not eff.friction:
+        return "effects.friction = false has no LAMMPS equivalent here; keep friction on"
+    if eff.normal_damping > 0.0 or scene.material.restitution not in (None, 1.0):
+        return ("effects.normal_damping / material.restitution: the LAMMPS comparison is the "
+                "undamped contact; leave them off")
+    if eff.rolling_resistance > 0.0:
+        return "effects.rolling_resistance has no LAMMPS equivalent here; set it to 0"
+    if eff.rotation and scene.particle.gyration != 0.4:
+        return (f"particle.gyration = {scene.particle.gyration:g}: LAMMPS spheres are solid "
+                "(kappa = 0.4); use 0.4")
+    if scene.device is not None and scene.device.particle.shape != "sphere":
+        return f"device.particle.shape = {scene.device.particle.shape!r}: LAMMPS has spheres only"
+    return None
+
+
+def check_equivalent(scene: Scene) -> None:
+    """Raise a one-line SceneError if ``scene`` has no LAMMPS equivalent (see :func:`refusal`)."""
+    why = refusal(scene)
+    if why is not None:
+        raise SceneError(why)
+
+
+def realize(scene: Scene) -> Realization:
+    """The SI realization of ``scene`` (module docstring): the device's values, or a chosen one."""
+    from ..dynamics.drives.travelling import phase_of, unit_phase
+
+    check_equivalent(scene)
+    m_star = scene.particle.m_star
+    theta = scene.theta
+    if scene.device is not None:
+        from ..scene.device import normalized
+
+        norm = normalized(scene.device)
+        radius = float(scene.device.particle.radius)
+        mass, weight, a0 = norm["mass_kg"], norm["weight_n"], norm["a0_m"]
+        frequency = norm["frequency_hz"]
+    else:
+        radius = NORMALIZED_RADIUS
+        mass = NORMALIZED_DENSITY * 4.0 / 3.0 * math.pi * radius**3
+        weight = mass * NORMALIZED_GRAVITY * (1.0 + scene.particle.preload)
+        a0 = NORMALIZED_A0_OVER_R * radius
+        frequency = math.sqrt(m_star * weight / (a0 * mass))
+    e_star = math.sqrt(9.0 * weight**2 / (16.0 * radius * a0**3))
+    s, c = unit_phase(phase_of(scene))
+    eff = scene.effects
+    return Realization(
+        radius=radius, mass=mass, weight=weight, a0=a0, e_star=e_star,
+        g_star=e_star / (4.0 * theta), frequency=frequency,
+        amplitude=scene.drive.amplitude * a0, ratio=scene.horizontal_ratio, sin_phase=s,
+        cos_phase=c, ramp_periods=scene.drive.ramp_periods,
+        horizontal=1.0 if eff.horizontal_wave else 0.0, vertical=1.0 if eff.vertical_wave else 0.0,
+        mu=scene.material.mu, load=scene.particle.load * weight, rotation=eff.rotation,
+        m_star=m_star, theta=theta,
+    )
