@@ -77,24 +77,93 @@ def regime_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = 
     return xs, ys, codes
 
 
+def unsettled_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = "m_star",
+                   where: dict | None = None) -> np.ndarray:
+    """True for each cell of :func:`regime_grid`'s grid whose drift has not settled ([y, x])."""
+    sub = select(table, model, where)
+    xs = np.sort(sub[x].unique())
+    ys = np.sort(sub[y].unique())
+    mask = np.zeros((ys.size, xs.size), dtype=bool)
+    ix = {v: i for i, v in enumerate(xs)}
+    iy = {v: i for i, v in enumerate(ys)}
+    for vy, vx, bad in zip(sub[y], sub[x], unsettled_cells(sub), strict=True):
+        mask[iy[vy], ix[vx]] |= bool(bad)
+    return mask
+
+
 _LABELS = {"amplitude": "A*", "m_star": "m*"}
 
+#: the hatching of cells whose drift has not settled, in every regime figure and the drift map
+HATCH = "////"
 
-def _draw(ax, amps, masses, codes, title: str, x: str = "amplitude", y: str = "m_star") -> None:
+
+def _hatch_unsettled(ax, xs: np.ndarray, ys: np.ndarray, mask: np.ndarray) -> str:
+    """Hatch the region where ``mask`` ([y, x] over the points ``xs``, ``ys``) is true.
+
+    The one mechanism of every figure (phase diagram, compare, drift map): a filled contour of
+    the mask with no colour and :data:`HATCH`. Returns a title suffix naming how many are
+    unsettled ("" when none is).
+    """
+    if not mask.any():
+        return ""
+    ax.contourf(xs, ys, mask.astype(float), levels=[0.5, 1.5], colors="none", hatches=[HATCH])
+    return f"hatched: not settled ({int(mask.sum())} of {mask.size})"
+
+
+def _fine(edges: np.ndarray, n: int = 400) -> tuple[np.ndarray, np.ndarray]:
+    """Points of a fine log grid over ``edges`` and the index of the cell holding each."""
+    fine = np.logspace(np.log10(edges[0]), np.log10(edges[-1]), n)
+    return fine, np.clip(np.searchsorted(edges, fine) - 1, 0, edges.size - 2)
+
+
+def _hatch_cells(ax, amps: np.ndarray, masses: np.ndarray, mask: np.ndarray) -> str:
+    """:func:`_hatch_unsettled` for a grid of cells (their centres ``amps``, ``masses``)."""
+    if not mask.any():
+        return ""
+    fx, ix = _fine(_edges(amps))
+    fy, iy = _fine(_edges(masses))
+    # the title counts cells, not points of the fine grid
+    suffix = f"hatched: not settled ({int(mask.sum())} of {mask.size})"
+    _hatch_unsettled(ax, fx, fy, mask[np.ix_(iy, ix)])
+    return suffix
+
+
+def _draw(ax, amps, masses, codes, title: str, x: str = "amplitude", y: str = "m_star",
+          unsettled: np.ndarray | None = None) -> None:
     cmap = ListedColormap(["white", *COLOURS.values()])
     ax.pcolormesh(_edges(amps), _edges(masses), codes + 1, cmap=cmap, vmin=0, vmax=len(COLOURS),
                   shading="flat", edgecolors="none")
+    note = _hatch_cells(ax, amps, masses, unsettled) if unsettled is not None else ""
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel(_LABELS.get(x, x))
     ax.set_ylabel(_LABELS.get(y, y))
-    ax.set_title(title, fontsize=10)
+    ax.set_title(f"{title}\n{note}" if note else title, fontsize=10)
 
 
-def _legend(fig, codes_list) -> None:
+def _legend(fig, codes_list, unsettled: bool = False) -> None:
+    """The regimes used (and the hatching, if any cell is unsettled) below the panels.
+
+    As many columns as fit the figure's width: a single row of six regimes is wider than a
+    one-panel figure and would be cut at both ends.
+    """
     used = sorted({int(c) for codes in codes_list for c in np.unique(codes) if c >= 0})
     handles = [Patch(color=COLOURS[_ORDER[c]], label=_ORDER[c]) for c in used]
-    fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), frameon=False)
+    if unsettled:
+        handles.append(Patch(facecolor="white", edgecolor="k", hatch=HATCH, label="not settled"))
+    if not handles:
+        return
+    ncol = len(handles)
+    leg = fig.legend(handles=handles, loc="outside lower center", ncol=ncol, frameon=False)
+    width = leg.get_window_extent(fig.canvas.get_renderer()).width
+    room = 0.96 * fig.bbox.width
+    if width > room:
+        leg.remove()
+        per = width / ncol
+        ncol = max(1, int(room // per))
+        rows = -(-len(handles) // ncol)
+        ncol = -(-len(handles) // rows)  # balance the rows
+        fig.legend(handles=handles, loc="outside lower center", ncol=ncol, frameon=False)
 
 
 def _material_label(table: pd.DataFrame) -> str:
@@ -112,9 +181,10 @@ def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None 
             raise SceneError(f"the table holds several models ({', '.join(models)}); choose one with --model")
         model = models[0]
     amps, masses, codes = regime_grid(table, model, x, y)
+    unsettled = unsettled_grid(table, model, x, y)
     fig, ax = plt.subplots(figsize=(6.4, 5.6), layout="constrained")
-    _draw(ax, amps, masses, codes, f"{model}: {_material_label(table)}", x, y)
-    _legend(fig, [codes])
+    _draw(ax, amps, masses, codes, f"{model}: {_material_label(table)}", x, y, unsettled)
+    _legend(fig, [codes], bool(unsettled.any()))
     path = Path(path)
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -195,9 +265,8 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     # cells whose drift is still on its approach (Result.settled false) are hatched
     unsettled = unsettled_cells(sub)
     mask = unsettled[idx].reshape(mx.shape)
-    if mask.any():
-        ax2.contourf(10**gx, 10**gy, mask.astype(float), levels=[0.5, 1.5], colors="none",
-                     hatches=["////"])
+    if _hatch_unsettled(ax2, 10**gx, 10**gy, mask):
+        _hatch_unsettled(ax1, 10**gx, 10**gy, mask)
         title2 += f"; hatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
     for ax, title in ((ax1, f"{model}: regimes"), (ax2, title2)):
         ax.set_xscale("log")
@@ -208,7 +277,7 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
         ax.set_ylabel(_LABELS.get(y, y))
         ax.set_title(title, fontsize=10)
     ax1.plot(10**lx, 10**ly, ",", color="k", alpha=0.3)
-    _legend(fig, [np.unique(codes)])
+    _legend(fig, [np.unique(codes)], bool(unsettled.any()))
     path = Path(path)
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -245,8 +314,9 @@ def plot_compare(table: pd.DataFrame, models: list[str], path: str | Path, by: s
             raise SceneError(f"{label!r} was swept on a different grid; compare needs shared axes")
     fig, axes = plt.subplots(1, len(panels) + 1, figsize=(4.6 * (len(panels) + 1), 4.8),
                              sharex=True, sharey=True, layout="constrained")
-    for ax, (label, _, _), (_, _, codes) in zip(axes, panels, grids, strict=False):
-        _draw(ax, amps, masses, codes, label, x, y)
+    masks = [unsettled_grid(table, m, x, y, where) for _, m, where in panels]
+    for ax, (label, _, _), (_, _, codes), mask in zip(axes, panels, grids, masks, strict=False):
+        _draw(ax, amps, masses, codes, label, x, y, mask)
     stack = np.stack([g[2] for g in grids])
     differ = np.any(stack != stack[0], axis=0)
     missing = np.any(stack < 0, axis=0)
@@ -259,7 +329,7 @@ def plot_compare(table: pd.DataFrame, models: list[str], path: str | Path, by: s
     ax.set_yscale("log")
     ax.set_xlabel(_LABELS.get(x, x))
     ax.set_title(f"cells where they disagree ({int(differ.sum())} of {differ.size})", fontsize=10)
-    _legend(fig, [g[2] for g in grids])
+    _legend(fig, [g[2] for g in grids], any(m.any() for m in masks))
     fig.suptitle(f"{' vs '.join(p[0] for p in panels)}: {_material_label(table)}")
     path = Path(path)
     fig.savefig(path, dpi=110)

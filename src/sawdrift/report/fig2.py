@@ -18,6 +18,7 @@ import numpy as np  # noqa: E402
 
 from ..dynamics.runner import run  # noqa: E402
 from ..scene.schema import Scene  # noqa: E402
+from .plots import unsettled_mark  # noqa: E402
 
 #: (label, m*, A*) of the four panels
 CELLS = (
@@ -37,7 +38,8 @@ def plot_fig2(path: str | Path, periods: float = 60.0) -> Path:
         res = run(scene, trajectory=True)
         tr = res.trajectory
         ax.plot(tr["t"], tr["x"], color="#3182bd", lw=1.0)
-        ax.set_title(f"{label}\nsawdrift: {res.regime}, V = {res.drift_ratio:+.3f}", fontsize=9)
+        ax.set_title(f"{label}\nsawdrift: {res.regime}, V = {res.drift_ratio:+.3f}"
+                     f"{unsettled_mark(res)}", fontsize=9)
         ax.set_xlabel("t* (wave periods)")
         ax.set_ylabel("x*")
         ax.plot([], [], " ", label=f"m* = {m:g}, A* = {a:g}")

@@ -12,6 +12,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 from ..result.result import Result  # noqa: E402
 
 
+def unsettled_mark(result: Result) -> str:
+    """``", NOT settled"`` for a run whose drift is not the steady one, else ``""``."""
+    return ", NOT settled" if result.settled is False else ""
+
+
 def plot_trajectory(result: Result, path: str | Path) -> Path:
     """Write a PNG of x*, a*, N* and T* against t* for a run made with ``trajectory=True``."""
     if result.trajectory is None:
@@ -35,7 +40,8 @@ def plot_trajectory(result: Result, path: str | Path) -> Path:
     axes[-1].set_xlabel("t*  (wave periods)")
     title = (
         f"{result.model}: m* = {result.m_star:g}, A* = {result.amplitude:g}, mu = {result.mu:g}, "
-        f"nu = {result.nu:g}  ->  {result.regime} (V = {result.drift_ratio:.3g})"
+        f"nu = {result.nu:g}  ->  {result.regime} (V = {result.drift_ratio:.3g}"
+        f"{unsettled_mark(result)})"
     )
     fig.suptitle(title, fontsize=10)
     path = Path(path)
