@@ -10,11 +10,11 @@ from __future__ import annotations
 import argparse
 import sys
 
-from sawdrift.report.bench import speed
+from sawdrift.bench import speed
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Parse the options, run :func:`sawdrift.report.bench.speed`; exit status 1 if a target fails."""
+    """Parse the options, run :func:`sawdrift.bench.speed`; exit status 1 if a target fails."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small variants (seconds, for CI)")
     parser.add_argument("--json", default=None, help="also write the results to this JSON file")

@@ -10,11 +10,11 @@ from __future__ import annotations
 import argparse
 import sys
 
-from sawdrift.report.bench import work_precision
+from sawdrift.bench import work_precision
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Parse the options and run :func:`sawdrift.report.bench.work_precision`."""
+    """Parse the options and run :func:`sawdrift.bench.work_precision`."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--models", default=None, help="comma-separated model names (default: all "
                         "built-in models)")

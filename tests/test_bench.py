@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from sawdrift.report import bench
+from sawdrift import bench
 
 
 def test_fit_order_recovers_a_power_law():

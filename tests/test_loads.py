@@ -148,7 +148,7 @@ def _heavy_sliding_ratio(gz: float, load_over_mu: float) -> float:
 
 def test_the_load_curve_of_heavy_sliding_and_its_stall_load():
     # mu / Gx = 0.02: the point slides all the time; its stall load is 2 mu Gz / pi
-    from sawdrift.report.validation_cases import point_scene
+    from sawdrift.validation import point_scene
 
     gz, mu = 0.6, 0.1
     scene = point_scene(gz, mu / 0.02, periods=40, measure_periods=10, settle=True,

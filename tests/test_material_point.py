@@ -12,7 +12,7 @@ import pytest
 
 import sawdrift as sd
 from sawdrift.analytic import heavy_sliding_v
-from sawdrift.report.validation import point_scene
+from sawdrift.validation import point_scene
 
 MU = 0.1
 

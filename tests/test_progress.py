@@ -17,7 +17,7 @@ LINE = re.compile(r"^(\w[\w ]*): (\d+)/(\d+) (\w+)s \((\d+)%\), [\d.na]+ \w+s/s,
 
 BENCH = """
 import sys, time
-from sawdrift.report.bench_core import _progress
+from sawdrift.bench.core import _progress
 bar = _progress(200, "wave", True)
 for i in range(200):
     bar.update(1)

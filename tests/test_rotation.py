@@ -11,7 +11,7 @@ import pytest
 
 import sawdrift as sd
 from sawdrift.analytic import heavy_sliding_v
-from sawdrift.report.validation import MU, point_scene
+from sawdrift.validation import MU, point_scene
 
 
 @pytest.mark.parametrize("kappa", [0.4, 2.0 / 3.0])

@@ -10,7 +10,7 @@ from numba import njit
 
 import sawdrift as sd
 from sawdrift.contact import KernelPair
-from sawdrift.report.validation import Case, CaseResult, load_cases, validate
+from sawdrift.validation import Case, CaseResult, load_cases, validate
 from sawdrift_builtin.mmd import MemoryDiagramModel
 
 _mmd_force = MemoryDiagramModel.kernel.force
@@ -78,14 +78,14 @@ def test_missing_model_and_broken_case_file_are_errors_not_crashes(tmp_path):
     cases = tmp_path / "cases"
     cases.mkdir()
     (cases / "good.py").write_text(
-        "from sawdrift.report.validation import Case\n"
+        "from sawdrift.validation import Case\n"
         "CASE = Case(name='good', group='convergence', title='1 <= 2', tolerance=2.0, quick=True,\n"
         "            models=('mmd', 'no_such_model'))\n"
         "def run(model):\n"
         "    return CASE.result(1.0, model=model, message='ok')\n"
     )
     (cases / "raises.py").write_text(
-        "from sawdrift.report.validation import Case\n"
+        "from sawdrift.validation import Case\n"
         "CASE = Case(name='raises', group='convergence', title='raises', tolerance=0.0, quick=True)\n"
         "def run():\n"
         "    raise RuntimeError('boom')\n"
@@ -110,7 +110,7 @@ def test_expected_deviation_is_reported_not_failed(tmp_path):
     cases = tmp_path / "cases"
     cases.mkdir()
     (cases / "dev.py").write_text(
-        "from sawdrift.report.validation import Case\n"
+        "from sawdrift.validation import Case\n"
         "CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9, models=('mmd', 'jaeger'),\n"
         "            expected_deviation=('jaeger',))\n"
         "def run(model):\n"
@@ -132,7 +132,17 @@ def test_case_result_comparisons():
     assert isinstance(ge.result(5), CaseResult)
 
 
-def test_default_cases_dir_is_the_repository_validation_folder():
-    from sawdrift.report.validation import default_cases_dir
+def test_default_cases_are_the_installed_package_resources():
+    """The cases are found through the package's resources, as from an installed wheel."""
+    from importlib.resources import files
 
-    assert default_cases_dir() == Path(__file__).resolve().parents[1] / "validation"
+    from sawdrift.validation import default_cases_dir
+
+    found = default_cases_dir()
+    assert found == Path(str(files("sawdrift.validation.cases")))
+    shipped = {p.name for p in found.glob("g*.py")}
+    assert len(shipped) >= 40 and "g1a_hop_threshold.py" in shipped
+    # in this checkout the package is the top-level validation/ folder (pyproject maps it)
+    checkout = Path(__file__).resolve().parents[1] / "validation"
+    assert shipped == {p.name for p in checkout.glob("g*.py")}
+    assert {lc.path.name for lc in load_cases()} == shipped

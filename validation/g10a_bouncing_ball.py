@@ -14,8 +14,8 @@ from __future__ import annotations
 import math
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
 from sawdrift.study.bifurcation import bifurcation
+from sawdrift.validation import Case, CaseResult
 
 EXACT = {"lift_off": 1.0, "sticking_lost": math.sqrt(1.0 + math.pi**2),
          "period_doubling": math.sqrt(4.0 + math.pi**2)}

@@ -10,8 +10,8 @@ same places. The value is the largest relative difference between the two locate
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
 from sawdrift.study.bifurcation import bifurcation
+from sawdrift.validation import Case, CaseResult
 
 STEPS = (512, 1024)
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import Any
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult
 
 #: (scene, drift velocity as float.hex) by the code before loads (commit 1fb3e4f); mdr and jaeger
 #: recomputed at 668d660: mdr's N* is the profile's (7.5e-7), jaeger's N* is rounded as

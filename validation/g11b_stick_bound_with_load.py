@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult
 
 MU = 0.3
 M_STAR = 0.1

@@ -17,8 +17,8 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from sawdrift.report.validation import Case, CaseResult, point_scene
 from sawdrift.study.load_curve import load_curve
+from sawdrift.validation import Case, CaseResult, point_scene
 
 MU = 0.1
 MU_OVER_GX = 0.02

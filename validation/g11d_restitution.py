@@ -11,7 +11,7 @@ sqrt(m*) v = 1e3 and 1e4 (m* = 100). Value: the largest |e_measured / e - 1| ove
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult
 
 CASE = Case(
     name="restitution",

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult
 
 M_STAR, MU = 0.5, 0.1
 

@@ -13,8 +13,8 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
 from sawdrift.study.field import drift_field
+from sawdrift.validation import Case, CaseResult
 
 CASE = Case(
     name="two_wave_flat_field",

@@ -12,8 +12,8 @@ from __future__ import annotations
 import math
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
 from sawdrift.study.field import PERIOD, drift_field
+from sawdrift.validation import Case, CaseResult
 
 CASE = Case(
     name="phase_moves_traps",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult, point_scene
+from sawdrift.validation import Case, CaseResult, point_scene
 
 CASE = Case(
     name="mp_hop_threshold",

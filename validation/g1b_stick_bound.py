@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, Case, CaseResult, point_scene
+from sawdrift.validation import MU, Case, CaseResult, point_scene
 
 FRACTION = 0.97
 

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, Case, CaseResult, point_scene
+from sawdrift.validation import MU, Case, CaseResult, point_scene
 
 CASE = Case(
     name="mp_symmetric_slip",

@@ -1,6 +1,6 @@
 """Material point: drift appears exactly where the two slips of a period merge.
 
-The closed form (:func:`sawdrift.report.validation.point_prediction`) gives the Gx at which the forward
+The closed form (:func:`sawdrift.validation.point_prediction`) gives the Gx at which the forward
 slip lasts until the backward one would start; below it the slips are mirror images (no drift),
 above it the point slides continuously against the wave. The simulated onset of drift is located
 by bisection and compared with it.
@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, Case, CaseResult, point_prediction, point_scene
+from sawdrift.validation import MU, Case, CaseResult, point_prediction, point_scene
 
 CASE = Case(
     name="mp_slip_merge",

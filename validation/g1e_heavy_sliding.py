@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, Case, CaseResult, heavy_sliding_v, point_scene
+from sawdrift.validation import MU, Case, CaseResult, heavy_sliding_v, point_scene
 
 #: mu / Gx of the runs (the limit law has corrections of order mu / Gx).
 MU_OVER_GX = 0.02

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, NU, Case, CaseResult
+from sawdrift.validation import MU, NU, Case, CaseResult
 
 CASE = Case(
     name="mp_scaling",

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult, cattaneo_mindlin, mindlin_loop
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult, cattaneo_mindlin, mindlin_loop
 
 N_SEG = 2000
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult, masing_unloading, mindlin_loop
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult, masing_unloading, mindlin_loop
 
 N_SEG = 2000
 B = 0.6

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sawdrift.report.validation import (
+from sawdrift.validation import (
     COMPLIANT_MODELS,
     Case,
     CaseResult,

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult, prescribed
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult, prescribed
 
 CASE = Case(
     name="cm_proportional",

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult, prescribed, shared
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult, prescribed, shared
 
 DRIVE = {"waveform": "random", "a_max": 1.0, "cycles": 5, "samples_per_segment": 200, "seed": 1}
 

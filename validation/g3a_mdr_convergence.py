@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sawdrift.report.validation import Case, CaseResult, prescribed
+from sawdrift.validation import Case, CaseResult, prescribed
 
 DRIVE = {"waveform": "random", "a_max": 1.0, "cycles": 5, "samples_per_segment": 200, "seed": 7}
 STRIPS = (64, 256, 1024, 4096)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult, prescribed
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult, prescribed
 
 DRIVE = {"waveform": "random", "a_max": 1.0, "cycles": 3, "samples_per_segment": 100, "seed": 3}
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult
 
 #: Independently checked values quoted in docs/physics.md (six decimals).
 R_VALUES = {0.20: 0.704932, 0.25: 0.681250, 0.30: 0.656264, 0.40: 0.602488}

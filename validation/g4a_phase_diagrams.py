@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import DIAGRAM_GRID, DIAGRAM_MODELS, MU, NU, Case, CaseResult, regime_table
+from sawdrift.validation import DIAGRAM_GRID, DIAGRAM_MODELS, MU, NU, Case, CaseResult, regime_table
 
 CASE = Case(
     name="phase_diagrams",
@@ -55,7 +55,7 @@ def run() -> CaseResult:
 def _disagreements_off_boundary(mmd, mdr) -> int:
     """Cells where the regime classes of mdr and mmd differ and no 4-neighbour in mmd differs."""
     from sawdrift.report.diagrams import COLOURS, regime_grid
-    from sawdrift.report.validation import regime_class
+    from sawdrift.validation import regime_class
 
     names = list(COLOURS)
 

@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, NU, Case, CaseResult, regime_class, regime_table
+from sawdrift.validation import MU, NU, Case, CaseResult, regime_class, regime_table
 
 CASE = Case(
     name="four_regimes",

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from sawdrift.report.validation import Case, CaseResult, regime_class, regime_table
+from sawdrift.validation import Case, CaseResult, regime_class, regime_table
 
 #: |drift ratio| at or below this is "no steady drift" (the default Numerics.drift_tolerance).
 DRIFT_TOL = 1e-3

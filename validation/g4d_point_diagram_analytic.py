@@ -1,6 +1,6 @@
 """The material point's whole diagram against its closed-form thresholds (docs/physics.md).
 
-Each cell's regime is predicted by :func:`sawdrift.report.validation.point_prediction` (contact lost
+Each cell's regime is predicted by :func:`sawdrift.validation.point_prediction` (contact lost
 iff Gz > 1; stick iff the slips do not merge; else drift against the wave). Cells next to a
 predicted boundary are skipped (the grid cannot resolve it).
 """
@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import NU, Case, CaseResult, point_prediction, regime_class, regime_table
+from sawdrift.validation import NU, Case, CaseResult, point_prediction, regime_class, regime_table
 
 CASE = Case(
     name="point_diagram_analytic",

@@ -8,7 +8,7 @@ so every compliant model must agree.
 
 from __future__ import annotations
 
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult, regime_class, regime_table
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult, regime_class, regime_table
 
 CASE = Case(
     name="heavy_keeps_contact",

@@ -18,7 +18,7 @@ import math
 from scipy.integrate import quad
 
 import sawdrift as sd
-from sawdrift.report.validation import COMPLIANT_MODELS, MU, NU, Case, CaseResult
+from sawdrift.validation import COMPLIANT_MODELS, MU, NU, Case, CaseResult
 
 M_STAR = 100.0
 RAMP = 300.0

@@ -11,7 +11,7 @@ is hopping.
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import DIAGRAM_GRID, Case, CaseResult, regime_table
+from sawdrift.validation import DIAGRAM_GRID, Case, CaseResult, regime_table
 
 CELLS = ((0.3, 1.5), (10.0, 1.2), (3.0, 1.0))
 

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, NU, Case, CaseResult
+from sawdrift.validation import MU, NU, Case, CaseResult
 
 GZ = 0.5
 MU_OVER_GX = 0.05

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, NU, Case, CaseResult, heavy_sliding_v
+from sawdrift.validation import MU, NU, Case, CaseResult, heavy_sliding_v
 
 GZ = 0.5
 MU_OVER_GX = 0.05

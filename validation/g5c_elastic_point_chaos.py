@@ -13,7 +13,7 @@ A* = 0.5, 1 and 2 (Gz = 2, 3.9, 7.9: repeated rebounds).
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult
 
 AMPLITUDES = (0.5, 1.0, 2.0)
 

@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import math
 
-from sawdrift.report.validation import Case, CaseResult
 from sawdrift.scene.device import Device, normalized
+from sawdrift.validation import Case, CaseResult
 
 PAIRS = {
     "steel on LiNbO3": dict(R=0.5e-3, rho=7850, E1=210e9, nu1=0.3, E2=170e9, nu2=0.25,

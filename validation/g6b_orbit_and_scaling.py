@@ -12,8 +12,8 @@
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
 from sawdrift.scene.device import normalized
+from sawdrift.validation import Case, CaseResult
 
 CASE = Case(
     name="orbit_and_scaling",

@@ -9,7 +9,7 @@ also to the last bit. Value: the number of (model, check) pairs that are not exa
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import COMPLIANT_MODELS, Case, CaseResult
+from sawdrift.validation import COMPLIANT_MODELS, Case, CaseResult
 
 CASE = Case(
     name="phase_mirror",

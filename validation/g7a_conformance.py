@@ -16,7 +16,7 @@ import numpy as np
 
 from sawdrift.contact.conformance import check_model, cycles, loop_works
 from sawdrift.contact.registry import registry
-from sawdrift.report.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult
 
 PLAIN_DEM = "hertz_mindlin_dem[rescale=false]"
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, Case, CaseResult, point_scene
+from sawdrift.validation import MU, Case, CaseResult, point_scene
 
 GZ = 0.3
 KAPPAS = (0.4, 2.0 / 3.0)

@@ -20,7 +20,7 @@ import numpy as np
 import sawdrift as sd
 from sawdrift.dynamics.runner import assemble
 from sawdrift.dynamics.stepper import Stepper
-from sawdrift.report.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult
 
 KAPPAS = (0.4, 2.0 / 3.0)
 M_STAR = 0.1

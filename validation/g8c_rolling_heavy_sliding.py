@@ -15,7 +15,7 @@ mu / Gx_s = 0.02 (as the point's heavy-sliding case), settled; Gz = 0.3, 0.5, 0.
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import MU, Case, CaseResult, heavy_sliding_v, point_scene
+from sawdrift.validation import MU, Case, CaseResult, heavy_sliding_v, point_scene
 
 GZS = (0.3, 0.5, 0.9)
 KAPPAS = (0.4, 2.0 / 3.0)

@@ -10,7 +10,7 @@ the same with and without rotation, for both models. 9 x 9 cells, m* in [1e-3, 1
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult, regime_class
+from sawdrift.validation import Case, CaseResult, regime_class
 
 CASE = Case(
     name="rotation_diagrams",

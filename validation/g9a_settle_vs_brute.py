@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult
 
 #: (m*, A*, mu) cells with a clear drift; the first is the quick one
 CELLS = [(30.0, 0.7, 0.3), (300.0, 0.7, 0.3), (300.0, 0.25, 0.1), (3000.0, 0.6, 0.3)]

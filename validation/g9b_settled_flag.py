@@ -12,7 +12,7 @@ from __future__ import annotations
 import itertools
 
 import sawdrift as sd
-from sawdrift.report.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult
 
 CASE = Case(
     name="settled_flag",

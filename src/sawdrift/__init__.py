@@ -10,7 +10,9 @@ The package follows the pipeline::
     dynamics/  wave kinematics, one integration scheme per module, the runner
     result/    Result, evidence, regimes
     study/     sweeps and their resumable tables
-    report/    phase diagrams, comparisons, validation report, benchmarks
+    report/    drawing only: phase diagrams, comparisons, the explorer page, figures
+    bench/     work-precision study and speed targets (sawdrift bench)
+    validation/  the validation harness (sawdrift validate); its cases ship as validation.cases
 """
 
 from __future__ import annotations
@@ -81,11 +83,12 @@ _LAZY: dict[str, str] = {
     "load_curve": "study.load_curve",
     "LoadCurve": "study.load_curve",
     "plot_load_curve": "report.load_curve_plot",
-    "validate": "report.validation",
-    "work_precision": "report.bench",
-    "bench_speed": "report.bench:speed",
+    "validate": "validation",
+    "work_precision": "bench",
+    "bench_speed": "bench:speed",
 }
-_SUBPACKAGES = ("scene", "contact", "dynamics", "result", "study", "report", "analytic")
+_SUBPACKAGES = ("scene", "contact", "dynamics", "result", "study", "report", "bench", "validation",
+                "analytic")
 
 
 def __getattr__(name: str) -> Any:

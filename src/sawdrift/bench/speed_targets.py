@@ -18,7 +18,7 @@ import numpy as np
 from ..contact.registry import get_model
 from ..dynamics.runner import run
 from ..study.sweep import sweep
-from .bench_core import (
+from .core import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
     _history,

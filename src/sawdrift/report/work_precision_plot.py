@@ -1,4 +1,7 @@
-"""Figures of the work-precision study (error against wall time)."""
+"""Figures of the work-precision study (``sawdrift bench work-precision``): error against wall time.
+
+Drawing only: the study (``sawdrift.bench``) measures the frame and fits the orders.
+"""
 
 from __future__ import annotations
 
@@ -7,12 +10,6 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
-
-from .bench_core import (
-    WAVE_AMPLITUDE,
-    WAVE_M_STAR,
-    fit_order,
-)
 
 # -- figures -----------------------------------------------------------------------------------------
 
@@ -42,8 +39,13 @@ def _orders(column: pd.Series) -> pd.Series:
     return pd.Series([_order_or_none(v) for v in column], index=column.index, dtype=object)
 
 
-def plot_prescribed(frame: pd.DataFrame, path: Path) -> Path:
-    """Work-precision (error vs wall time) and the mdr strip convergence, prescribed setting."""
+def plot_prescribed(frame: pd.DataFrame, path: Path,
+                    strip_orders: tuple[float, float] = (float("nan"), float("nan"))) -> Path:
+    """Work-precision (error vs wall time) and the mdr strip convergence, prescribed setting.
+
+    ``strip_orders`` is mdr's observed order against the strip count (max and rms error), shown
+    in the second panel's title.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -69,8 +71,7 @@ def plot_prescribed(frame: pd.DataFrame, path: Path) -> Path:
         ax2.loglog(s, strips["error"].astype(float), "-o", color=_color("mdr", 1), label="max error")
         ax2.loglog(s, strips["error_rms"].astype(float), "--o", color=_color("mdr", 1), alpha=0.6,
                    label="rms error")
-        p_max = fit_order(s, strips["error"], finest=len(s))
-        p_rms = fit_order(s, strips["error_rms"], finest=len(s))
+        p_max, p_rms = strip_orders
         ax2.set_title(f"mdr vs strips: observed order {p_max:.2f} (max), {p_rms:.2f} (rms)")
         ax3 = ax2.twinx()
         ax3.loglog(s, strips["ns_per_step"].astype(float), ":^", color="gray", label="ns/step")
@@ -91,8 +92,11 @@ def plot_prescribed(frame: pd.DataFrame, path: Path) -> Path:
     return path
 
 
-def plot_wave(frame: pd.DataFrame, path: Path) -> Path:
-    """Work-precision (error vs wall time) and error vs steps per period, wave setting."""
+def plot_wave(frame: pd.DataFrame, path: Path, m_star: float, amplitude: float) -> Path:
+    """Work-precision (error vs wall time) and error vs steps per period, wave setting.
+
+    ``m_star`` and ``amplitude`` name the wave scene in the title.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -133,7 +137,7 @@ def plot_wave(frame: pd.DataFrame, path: Path) -> Path:
                        ms=16, mfc="none", mec="k")
     ax.set_xlabel("|drift ratio - reference|")
     ax.set_ylabel("wall time of the run (s)")
-    ax.set_title(f"(b) wave scene m* = {WAVE_M_STAR:g}, A* = {WAVE_AMPLITUDE:g}: work-precision "
+    ax.set_title(f"(b) wave scene m* = {m_star:g}, A* = {amplitude:g}: work-precision "
                  "(star: current default)", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     handles, labels = ax.get_legend_handles_labels()

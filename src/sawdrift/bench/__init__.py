@@ -29,13 +29,14 @@ absorbs numba compilation and cache loading), and the best of a few repeats is k
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
 
-from .bench_core import (  # noqa: F401 - re-exported: the study's shared pieces
+from .core import (  # noqa: F401 - re-exported: the study's shared pieces
     COLUMNS,
     DEFAULT_MODELS,
     FULL,
@@ -103,16 +104,28 @@ def work_precision(models: str | Sequence[str] | None, out_dir: str | Path, quic
     orders = observed_orders(frame)
     orders.to_csv(out / "orders.csv", index=False)
     if (frame["setting"] == "prescribed").any():
-        plot_prescribed(frame, out / "work_precision_prescribed.png")
+        plot_prescribed(frame, out / "work_precision_prescribed.png", strip_orders(frame))
     if (frame["setting"] == "wave").any():
-        plot_wave(frame, out / "work_precision_wave.png")
+        plot_wave(frame, out / "work_precision_wave.png", WAVE_M_STAR, WAVE_AMPLITUDE)
     (out / "summary.md").write_text(summary_markdown(frame, orders, cfg, quick))
     return frame
 
 
+def strip_orders(frame: pd.DataFrame) -> tuple[float, float]:
+    """mdr's observed order against the strip count in the prescribed setting (max and rms error).
+
+    NaN when the frame has fewer than two strip counts.
+    """
+    strips = frame[(frame["setting"] == "prescribed") & (frame["ladder"] == "strips")].sort_values("strips")
+    if strips.empty:
+        return math.nan, math.nan
+    s = strips["strips"].astype(float)
+    return (fit_order(s, strips["error"], finest=len(s)), fit_order(s, strips["error_rms"], finest=len(s)))
+
+
 # the study's parts live in their own modules; their public names are re-exported here
-from .bench_figures import plot_prescribed, plot_wave  # noqa: E402
-from .bench_speed import (  # noqa: E402, F401
+from ..report.work_precision_plot import plot_prescribed, plot_wave  # noqa: E402
+from .speed_targets import (  # noqa: E402, F401
     Target,
     _target,
     speed,
@@ -123,7 +136,7 @@ from .bench_speed import (  # noqa: E402, F401
     speed_vs_material_point,
     speed_vs_mdr,
 )
-from .bench_study import (  # noqa: E402, F401
+from .study_rows import (  # noqa: E402, F401
     _default_strips,
     _defaults_rows,
     _long_rows,
@@ -131,4 +144,4 @@ from .bench_study import (  # noqa: E402, F401
     _wave_rows,
     converged_cells,
 )
-from .bench_summary import observed_orders, recommendations, summary_markdown  # noqa: E402, F401
+from .summary import observed_orders, recommendations, summary_markdown  # noqa: E402, F401

@@ -43,10 +43,24 @@ Compare = Literal["<=", ">="]
 
 
 def default_cases_dir() -> Path:
-    """The ``validation/`` folder at the repository root (next to ``src/``)."""
-    import sawdrift
+    """The folder of the cases shipped with sawdrift: the package ``sawdrift.validation.cases``.
 
-    return Path(sawdrift.__file__).resolve().parents[2] / "validation"
+    Found through ``importlib.resources``: in an installed wheel it is the package's folder in
+    site-packages; in a checkout (``pip install -e .``) it is the top-level ``validation/``, which
+    pyproject maps to that package.
+    """
+    from importlib.resources import files
+
+    from ..errors import SawdriftError
+
+    try:
+        root = files("sawdrift.validation.cases")
+    except ModuleNotFoundError:
+        raise SawdriftError("the validation cases (package sawdrift.validation.cases) are not installed: "
+                            "reinstall sawdrift, or give a folder of cases with --cases") from None
+    if not isinstance(root, Path):  # e.g. imported from a zip archive
+        raise SawdriftError(f"the validation cases are not a folder ({root}): give one with --cases")
+    return root
 
 # -- the case API ------------------------------------------------------------------------------
 

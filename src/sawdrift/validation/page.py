@@ -9,8 +9,8 @@ import json
 from pathlib import Path
 from typing import Any
 
-from .texts import asset
-from .validation_api import GROUPS, MU, NU, ValidationReport, _environment, _fmt, _one_line
+from ..report.texts import asset
+from .api import GROUPS, MU, NU, ValidationReport, _environment, _fmt, _one_line
 
 # -- report writers ----------------------------------------------------------------------------
 

@@ -15,7 +15,7 @@ from ..dynamics.assembly import steps_per_period
 from ..dynamics.runner import run
 from ..errors import NonFiniteStateError
 from ..scene.schema import Numerics, Scene
-from .bench_core import (
+from .core import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
     StudyConfig,

@@ -11,8 +11,10 @@ import numpy as np
 import pandas as pd
 
 from ..dynamics.assembly import steps_per_period
+from ..report.texts import text
+from ..report.work_precision_plot import _order_or_none, _orders
 from ..scene.schema import Numerics
-from .bench_core import (
+from .core import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
     StudyConfig,
@@ -20,9 +22,7 @@ from .bench_core import (
     _wave_scene,
     fit_order,
 )
-from .bench_figures import _order_or_none, _orders
-from .bench_study import converged_cells
-from .texts import text
+from .study_rows import converged_cells
 
 # -- observed orders and the summary ---------------------------------------------------------------
 

@@ -1,6 +1,6 @@
 """Helpers for validation case files: shared values of one run, scenes, sweeps of the diagram cases.
 
-Case files import them through :mod:`sawdrift.report.validation`.
+Case files import them through :mod:`sawdrift.validation`.
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from .validation_api import DIAGRAM_MODELS, MU, NU
+from .api import DIAGRAM_MODELS, MU, NU
 
 # -- values shared between cases of one run ----------------------------------------------------
 

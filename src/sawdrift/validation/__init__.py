@@ -1,8 +1,9 @@
 """Validation harness: run the cases of ``validation/`` and write an HTML and JSON report.
 
-A *case* is one Python file in the cases folder (by default ``validation/`` at the repository
-root). It asserts one physical or numerical fact against a closed-form oracle or an independent
-reference, with a stated tolerance, and defines
+A *case* is one Python file in the cases folder: by default the cases shipped with sawdrift,
+the package ``sawdrift.validation.cases`` (the repository's top-level ``validation/``, mapped by
+pyproject; :func:`default_cases_dir`). It asserts one physical or numerical fact against a
+closed-form oracle or an independent reference, with a stated tolerance, and defines
 
 * ``CASE``: a :class:`Case` (name, group, statement, tolerance, whether it is in the quick subset,
   the models it is run for, and which of them deviate by design);
@@ -32,7 +33,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .validation_api import (  # noqa: F401 - the case API, re-exported for case files
+from .api import (  # noqa: F401 - the case API, re-exported for case files
     COMPLIANT_MODELS,
     DIAGRAM_MODELS,
     GROUPS,
@@ -220,7 +221,7 @@ def validate(
 
 # the case files' helpers and the report writers live in their own modules; re-exported here so
 # that a case file needs one import
-from .validation_cases import (  # noqa: E402, F401
+from .oracles import (  # noqa: E402, F401
     DIAGRAM_GRID,
     amplitude_for_force_ratio,
     cattaneo_mindlin,
@@ -236,7 +237,7 @@ from .validation_cases import (  # noqa: E402, F401
     regime_table,
     shared,
 )
-from .validation_html import _write_figures, figure_png, write_html, write_json  # noqa: E402, F401
+from .page import _write_figures, figure_png, write_html, write_json  # noqa: E402, F401
 
 __all__ = [
     "COMPLIANT_MODELS",

@@ -1,7 +1,7 @@
 """Speed targets of the second round: cold start, steady drift of heavy particles, adaptive diagrams.
 
-Used by :func:`sawdrift.report.bench.speed` beside the first round's targets; each returns a
-:class:`~sawdrift.report.bench.Target`.
+Used by :func:`sawdrift.bench.speed` beside the first round's targets; each returns a
+:class:`~sawdrift.bench.Target`.
 """
 
 from __future__ import annotations
