@@ -212,3 +212,27 @@ def test_dilute_mixture_drifts_like_single_particles(tmp_path):
 
     plot_mixture(result, tmp_path / "mixture.png")
     assert (tmp_path / "mixture.png").stat().st_size > 0
+
+
+def test_many_processes_without_mpirun_is_one_line(monkeypatch):
+    from sawdrift.lammps import many
+
+    monkeypatch.setattr(many, "mpirun", lambda: None)
+    assert many.default_processes(10_000) == 1  # no MPI: serial by default
+    with pytest.raises(LammpsUnavailableError, match="MPI is missing: 2 processes need mpirun"):
+        many.run_particles(dem(), {"count": 4, "radius": "1 mm"}, processes=2)
+
+
+def test_mixture_example_is_a_valid_two_species_table():
+    from sawdrift.lammps.many import parse_particles, species_of
+
+    data = tomllib.loads((EXAMPLES / "mixture.toml").read_text())
+    spec = parse_particles(data.pop("particles"))
+    scene = sd.scene.build_scene(data)
+    assert spec.counts() == [100, 100]
+    small, large = species_of(scene, spec)
+    # the same device with either radius gives the same m* and A* as sawdrift's own conversion
+    for sp in (small, large):
+        own = scene.with_updates(**{"device.particle.radius": sp.radius})
+        assert sp.m_star == pytest.approx(own.particle.m_star, rel=1e-9)
+        assert sp.amplitude == pytest.approx(own.drive.amplitude, rel=1e-9)

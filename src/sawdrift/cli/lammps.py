@@ -56,7 +56,7 @@ def lammps_cmd(
     write_input: Annotated[Path | None, typer.Option("--write-input", help="write the LAMMPS "
                                                      "input here and do not run")] = None,
     processes: Annotated[int | None, typer.Option("--np", help="MPI processes for many particles "
-                                                  "(default: one per 100, at most the cores)")] = None,
+                                                  "(default: one per 2000, at most the cores)")] = None,
     progress: Annotated[bool, typer.Option("--progress/--no-progress", help="a progress bar on "
                                            "stderr")] = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
