@@ -97,7 +97,7 @@ def test_phase_diagram_and_compare_hatch_unsettled_cells(tmp_path, figures):
 
 def test_trajectory_figure_says_when_the_drift_is_not_settled(tmp_path, figures):
     scene = sd.Scene(model="material_point", particle={"m_star": 300.0}, drive={"amplitude": 0.5},
-                     numerics={"periods": 10})
+                     numerics={"periods": 10, "settle": False})
     res = sd.run(scene, trajectory=True)
     assert res.settled is False
     sd.plot_trajectory(res, tmp_path / "t.png")
@@ -114,7 +114,6 @@ def _sections(text: str) -> list[str]:
             and line.endswith(":")]
 
 
-@pending
 def test_run_text_is_grouped_in_sections_without_none_or_dicts(monkeypatch, capsys):
     code, out, _ = call(monkeypatch, capsys, "run", "--model", "material_point", "--periods", "10")
     assert code == 0
@@ -122,16 +121,14 @@ def test_run_text_is_grouped_in_sections_without_none_or_dicts(monkeypatch, caps
     assert "None" not in out and "{" not in out
 
 
-@pending
 def test_run_text_says_an_unsettled_drift_is_not_settled_beside_the_number(monkeypatch, capsys):
     code, out, _ = call(monkeypatch, capsys, "run", "--model", "mmd", "--m-star", "300",
-                        "--amplitude", "0.5", "--periods", "20")
+                        "--amplitude", "0.5", "--periods", "20", "--no-settle")
     assert code == 0
     line = next(x for x in out.splitlines() if x.strip().startswith("drift_ratio"))
     assert "NOT settled" in line
 
 
-@pending
 def test_run_text_of_a_device_shows_m_per_s_first(monkeypatch, capsys):
     code, out, _ = call(monkeypatch, capsys, "run", str(MOTOR), "--no-settle", "--periods", "20")
     assert code == 0
@@ -143,7 +140,6 @@ def test_run_text_of_a_device_shows_m_per_s_first(monkeypatch, capsys):
 # --- run: two models on one scene -----------------------------------------------------------
 
 
-@pending
 def test_run_two_models_prints_a_table_and_overlays_their_trajectories(monkeypatch, capsys,
                                                                        tmp_path, figures):
     code, out, err = call(monkeypatch, capsys, "run", "--model", "material_point,mmd",
@@ -175,7 +171,6 @@ def test_models_lists_each_models_parameters(monkeypatch, capsys):
 # --- -o FILE ----------------------------------------------------------------------------------
 
 
-@pending
 def test_run_o_csv_writes_the_trajectory(monkeypatch, capsys, tmp_path):
     path = tmp_path / "out.csv"
     code, out, err = call(monkeypatch, capsys, "run", "--model", "material_point", "--periods",
@@ -190,7 +185,6 @@ def test_run_o_csv_writes_the_trajectory(monkeypatch, capsys, tmp_path):
     assert f"wrote {path}" in out
 
 
-@pending
 @pytest.mark.parametrize("args", [
     ("run", "--model", "material_point", "--periods", "5", "-o", "{d}/out.txt"),
     ("run", "--model", "material_point", "--periods", "5", "-o", "{d}/out.png"),
@@ -205,7 +199,6 @@ def test_o_with_an_unsupported_suffix_is_refused_in_one_line(args, monkeypatch, 
     assert not any(tmp_path.iterdir())
 
 
-@pending
 def test_load_curve_o_csv_writes_the_curve(monkeypatch, capsys, tmp_path):
     path = tmp_path / "curve.csv"
     code, _, err = call(monkeypatch, capsys, "load-curve", "--model", "material_point",
@@ -236,7 +229,6 @@ UNKNOWN = [
 ]
 
 
-@pending
 @pytest.mark.parametrize(("kind", "text", "key", "near"), UNKNOWN, ids=[u[2] for u in UNKNOWN])
 def test_a_misspelled_key_is_named_with_the_nearest_valid_one(kind, text, key, near, monkeypatch,
                                                                capsys, tmp_path):
@@ -271,7 +263,6 @@ def test_load_curve_shows_progress_by_default(monkeypatch, capsys):
     assert "load-curve:" in err and "stall load" in err
 
 
-@pending
 def test_a_slow_step_announces_itself(capsys):
     from sawdrift.study.progress import notice
 

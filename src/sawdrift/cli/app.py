@@ -69,11 +69,40 @@ def _writable(path: Path, option: str = "-o", folder: bool = True) -> Path:
     return path
 
 
+def _looks_like_file(path: Path) -> bool:
+    """Whether ``path`` ends in a file suffix (``.csv``, ``.png``; not ``out_0.1``)."""
+    import re
+
+    return bool(re.fullmatch(r"\.[A-Za-z][A-Za-z0-9]{0,7}", path.suffix))
+
+
+def out_kind(path: Path, files: tuple[str, ...], what: str, option: str = "-o") -> str:
+    """``"folder"`` or the file suffix of an output path; one line and exit 2 for another suffix.
+
+    A command that writes a folder of results may also write one file (``files``, e.g.
+    ``(".csv",)``); ``what`` says what that file holds. An existing folder is a folder whatever
+    its name; a name with another file suffix (``out.txt``, ``out.png``) is refused before any
+    work, naming what is allowed.
+    """
+    if path.is_dir() or not _looks_like_file(path):
+        return "folder"
+    suffix = path.suffix.lower()
+    if suffix in files:
+        return suffix
+    allowed = " or ".join(f"NAME{s}" for s in files)
+    file_part = f", or {allowed} ({what})" if files else ""
+    _fail(f"{option} {str(path)!r}: {suffix} files are not written here; give a folder{file_part}")
+    return ""  # not reached
+
+
 def _split_axis(item: str, form: str, example: str) -> tuple[str, str]:
     """``FIELD`` and ``SPEC`` of an ``--axis FIELD=SPEC`` option, or one line and exit 2."""
+    from ..scene.overrides import check_dotted
+
     field, sep, spec = item.partition("=")
     if not sep or not field.strip() or not spec.strip():
         _fail(f"--axis {item!r} must look like {form} (e.g. {example})")
+    check_dotted(field.strip())  # a misspelled field: one line naming the nearest valid one
     return field.strip(), spec.strip()
 
 
@@ -141,10 +170,11 @@ def main() -> None:
 
 
 
-def check_engine(engine: str) -> None:
-    """One line, exit 2, for an engine that is neither compiled nor python."""
-    if engine not in ("compiled", "python"):
-        _fail(f"--engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+def check_engine(engine: str, lammps: bool = False) -> None:
+    """One line, exit 2, for an engine that is neither compiled nor python (nor lammps, if allowed)."""
+    allowed = ("compiled", "python", "lammps") if lammps else ("compiled", "python")
+    if engine not in allowed:
+        _fail(f"--engine = {engine!r} is not allowed; use " + ", ".join(repr(a) for a in allowed))
 
 
 def write_outputs(out: Path, stem: str, data: dict[str, Any], plot: Any, scene: Any) -> None:

@@ -20,6 +20,7 @@ from .app import (
     _writable,
     app,
     check_engine,
+    out_kind,
     write_outputs,
 )
 from .scene_options import scene_from_options, with_scene_options
@@ -63,8 +64,10 @@ def field_cmd(
 
     fast_start()
     check_engine(engine)
+    kind = (out_kind(out, (".csv",), "the field: position, drift velocity, regime, settled")
+            if out is not None else None)
     if out is not None:
-        _writable(out)
+        _writable(out, folder=kind == "folder")
     species = None
     if axis is not None:
         name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
@@ -85,7 +88,9 @@ def field_cmd(
         study.direct = direct_run(scene, start, float(direct_periods or 2000.0), study.fields[0],
                                   engine=engine)
     data = study.to_json()
-    if out is not None:
+    if kind == ".csv":
+        _field_csv(study, out)
+    elif out is not None:
         from ..report.field_plot import plot_field
 
         write_outputs(out, "field", data, lambda path: plot_field(study, path), scene)
@@ -106,5 +111,21 @@ def field_cmd(
         typer.echo(f"direct run from xi = {d['start']:g}, {d['periods']:g} periods: ends at xi = "
                    f"{d['final_position']:.5f}; the field predicts {where:.5f}"
                    + (f" (trap at {pred['trap']:.5f})" if pred.get("trap") is not None else ""))
-    if out is not None:
+    if kind == ".csv":
+        typer.echo(f"wrote {out}")
+    elif out is not None:
         typer.echo(f"wrote {out}/field.json, field.png, scene.toml")
+
+
+def _field_csv(study: Any, out: Path) -> None:
+    """The field(s) as CSV: (species,) position xi, drift velocity, regime, settled."""
+    import pandas as pd
+
+    frames = []
+    for fld in study.fields:
+        frame = pd.DataFrame({"position": fld.positions, "drift_velocity": fld.drift_velocity,
+                              "regime": fld.regimes, "settled": fld.settled})
+        if study.axis is not None:
+            frame.insert(0, "species", fld.label)
+        frames.append(frame)
+    pd.concat(frames, ignore_index=True).to_csv(out, index=False)

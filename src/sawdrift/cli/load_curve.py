@@ -19,6 +19,7 @@ from .app import (
     _writable,
     app,
     check_engine,
+    out_kind,
     write_outputs,
 )
 from .scene_options import scene_from_options, with_scene_options
@@ -63,8 +64,10 @@ def load_curve_cmd(
         _fail(f"--loads = {loads}: a load curve needs at least 2 loads")
     if workers is not None and workers < 1:
         _fail(f"--workers = {workers}: give at least 1")
+    kind = (out_kind(out, (".csv",), "the curve: load, drift velocity, power, regime, settled")
+            if out is not None else None)
     if out is not None:
-        _writable(out)
+        _writable(out, folder=kind == "folder")
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
     note = (lambda line: typer.echo(line, err=True)) if progress else None
     if axis is not None:
@@ -72,7 +75,9 @@ def load_curve_cmd(
         return
     curve = load_curve(scene, loads=loads, workers=workers, engine=engine, progress=note)
     data = curve.to_json()
-    if out is not None:
+    if kind == ".csv":
+        _curve_csv([("", data)], out)
+    elif out is not None:
         write_outputs(out, "load_curve", data, lambda path: plot_load_curve(curve, path), scene)
     if as_json:
         typer.echo(json.dumps(data))
@@ -100,8 +105,36 @@ def load_curve_cmd(
     if not all(data["settled"]):
         typer.echo("note: some loads did not settle; use --settle or raise numerics.max_periods",
                    err=True)
-    if out is not None:
+    _wrote(out)
+
+
+def _wrote(out: Path | None) -> None:
+    if out is not None and out.suffix.lower() == ".csv" and not out.is_dir():
+        typer.echo(f"wrote {out}")
+    elif out is not None:
         typer.echo(f"wrote {out}/load_curve.json, load_curve.png, scene.toml")
+
+
+def _curve_csv(curves: list[tuple[str, dict[str, Any]]], out: Path) -> None:
+    """Load curve(s) as CSV: (species,) load, drift velocity, power, regime, settled.
+
+    Normalized units (M g, a0 f, M g a0 f), or a device's mN, m/s, mW (columns named so).
+    """
+    import pandas as pd
+
+    frames = []
+    for label, d in curves:
+        dev = d.get("device")
+        if dev is not None:
+            cols = {"load_mN": dev["loads_mN"], "speed_m_s": dev["speed_m_s"],
+                    "power_mW": dev["power_mW"]}
+        else:
+            cols = {"load": d["loads"], "drift_velocity": d["drift_velocity"], "power": d["power"]}
+        frame = pd.DataFrame({**cols, "regime": d["regimes"], "settled": d["settled"]})
+        if len(curves) > 1:
+            frame.insert(0, "species", label)
+        frames.append(frame)
+    pd.concat(frames, ignore_index=True).to_csv(out, index=False)
 
 
 def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engine: str, note: Any,
@@ -119,7 +152,9 @@ def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engi
         curves.append((label, load_curve(sp, loads=loads, workers=workers, engine=engine,
                                          progress=note)))
     data = {"axis": name, "species": [{"label": label, **c.to_json()} for label, c in curves]}
-    if out is not None:
+    if out is not None and out.suffix.lower() == ".csv" and not out.is_dir():
+        _curve_csv([(label, c.to_json()) for label, c in curves], out)
+    elif out is not None:
         write_outputs(out, "load_curve", data, lambda path: plot_load_curves(curves, path), scene)
     if as_json:
         typer.echo(json.dumps(data))
@@ -132,5 +167,4 @@ def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engi
         free = (f"{dev['free_speed_m_s']:.4g} m/s" if dev is not None
                 else f"{d['drift_velocity'][0]:.4g} a0 f")
         typer.echo(f"{label}: drifts to {d['direction']} at {free} without load, stalls at {stall}")
-    if out is not None:
-        typer.echo(f"wrote {out}/load_curve.json, load_curve.png, scene.toml")
+    _wrote(out)

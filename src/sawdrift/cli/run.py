@@ -11,7 +11,9 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import Engine, Param, _parse_param, _writable, app, check_engine
+from ..study.progress import notice
+from .app import Engine, Param, _fail, _parse_param, _writable, app, check_engine, out_kind
+from .run_text import grouped, side_by_side
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -69,11 +71,17 @@ def check_model_cmd(
 @with_scene_options()
 def run_cmd(
     scene_file: Annotated[Path | None, typer.Argument(help="scene TOML file")] = None,
-    model: Annotated[str | None, typer.Option("--model", help="contact model name")] = None,
+    model: Annotated[str | None, typer.Option("--model", help="contact model name; several, "
+                                              "comma-separated (mmd,mdr), run the same scene "
+                                              "and are compared")] = None,
     param: Param = None,
     engine: Engine = "compiled",
-    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
-    out: Annotated[Path | None, typer.Option("-o", "--out", help="write trajectory and figure here")] = None,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object (a list with "
+                                          "several models)")] = False,
+    out: Annotated[Path | None, typer.Option(
+        "-o", "--out", help="a folder: trajectory.parquet, events.parquet, trajectory.png, "
+        "scene.toml, result.json; or NAME.csv / NAME.parquet: the trajectory only (t, x, vx, y, "
+        "vy, a, b, N_star, T_star, ...; with several models a 'model' column first)")] = None,
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
     *,
     scene_overrides: dict[str, Any],
@@ -81,37 +89,97 @@ def run_cmd(
     """Run one scene and report its drift and motion regime.
 
     Every scene field is an option (--m-star, --amplitude, --mu, --rotation, ...); the values
-    override the scene file or the defaults.
+    override the scene file or the defaults. The text output is grouped: regime, drift, settled,
+    evidence, provenance (a device's speed in m/s first); a drift that has not settled is marked
+    NOT settled beside the number. --model a,b runs the same scene with each model and prints
+    them side by side (-o DIR overlays their trajectories).
     """
+    names = [m.strip() for m in model.split(",") if m.strip()] if model else []
+    if model is not None and not names:
+        _fail(f"--model {model!r} names no model")
+    kind = out_kind(out, (".csv", ".parquet"), "the trajectory") if out is not None else None
     fast_start()
-    scene = scene_from_options(scene_file, model, _parse_param(param), scene_overrides)
-    check_engine(engine)
+    params = _parse_param(param)
+    scenes = [scene_from_options(scene_file, name, params, scene_overrides)
+              for name in (names or [None])]
+    check_engine(engine, lammps=True)
     if explain:
-        typer.echo(sd.explain(scene, engine))  # type: ignore[arg-type]
+        if engine == "lammps":  # the LAMMPS input of each scene (pip install -e ".[lammps]")
+            from ..lammps import input_script
+
+            typer.echo("\n\n".join(input_script(sc) for sc in scenes))
+            return
+        typer.echo("\n\n".join(sd.explain(sc, engine) for sc in scenes))  # type: ignore[arg-type]
         return
     if out is not None:
-        _writable(out)
-    result = sd.run(scene, trajectory=out is not None, engine=engine)  # type: ignore[arg-type]
-    summary = result.summary()
+        _writable(out, folder=kind == "folder")
+    results = []
+    for sc in scenes:
+        with notice(f"run: {sc.model}: compiling or loading its loop (first run: seconds)"):
+            results.append(_run_one(sc, engine, out is not None))
+    summaries = [r.summary() for r in results]
     if out is not None:
-        out.mkdir(parents=True, exist_ok=True)
-        result.trajectory.to_parquet(out / "trajectory.parquet", index=False)
-        if result.events is not None:
-            result.events.to_parquet(out / "events.parquet", index=False)
-        sd.plot_trajectory(result, out / "trajectory.png")
-        scene.to_toml(out / "scene.toml")
-        (out / "result.json").write_text(json.dumps(summary, indent=2) + "\n")
+        written = _write(out, kind, scenes, results, summaries)
     if as_json:
-        typer.echo(json.dumps(summary))
+        typer.echo(json.dumps(summaries[0] if len(summaries) == 1 else summaries))
         return
-    for key, value in summary.items():
-        if key != "scene":  # the whole scene is in --json and in -o DIR/scene.toml
-            typer.echo(f"{key:>24}: {value}")
-    if summary.get("settled") is False:
-        typer.echo(_unsettled_note(summary, scene.particle.m_star / scene.material.mu), err=True)
+    if len(results) == 1:
+        for line in grouped(summaries[0]):
+            typer.echo(line)
+    else:
+        for line in side_by_side(summaries):
+            typer.echo(line)
+    for sc, summary in zip(scenes, summaries, strict=True):
+        if summary.get("settled") is False:
+            head = f"{sc.model}: " if len(scenes) > 1 else ""
+            typer.echo(head + _unsettled_note(summary, sc.particle.m_star / sc.material.mu), err=True)
     if out is not None:
-        typer.echo(f"wrote {out}/trajectory.parquet, events.parquet, trajectory.png, scene.toml, "
-                   "result.json")
+        typer.echo(f"wrote {written}")
+
+
+def _run_one(scene: Any, engine: str, trajectory: bool) -> Any:
+    """One run of ``scene`` on ``engine``."""
+    if engine == "lammps":  # the optional extra, loaded on use (sawdrift.lammps)
+        from ..lammps import run_scene
+
+        return run_scene(scene, trajectory=trajectory)  # a bar on long runs
+    return sd.run(scene, trajectory=trajectory, engine=engine)  # type: ignore[arg-type]
+
+
+def _write(out: Path, kind: str | None, scenes: list[Any], results: list[Any],
+           summaries: list[dict[str, Any]]) -> str:
+    """Write the run(s) to ``out`` (a folder, or one .csv / .parquet trajectory file); what."""
+    import pandas as pd
+
+    several = len(results) > 1
+    if kind in (".csv", ".parquet"):
+        frames = [r.trajectory.assign(model=r.model)[["model", *r.trajectory.columns]] if several
+                  else r.trajectory for r in results]
+        frame = pd.concat(frames, ignore_index=True) if several else frames[0]
+        if kind == ".csv":
+            frame.to_csv(out, index=False)
+        else:
+            frame.to_parquet(out, index=False)
+        return f"{out} ({len(frame)} rows of the trajectory{'ies' if several else ''})"
+    out.mkdir(parents=True, exist_ok=True)
+    for sc, res in zip(scenes, results, strict=True):
+        tag = f"_{res.model}" if several else ""
+        res.trajectory.to_parquet(out / f"trajectory{tag}.parquet", index=False)
+        if res.events is not None:
+            res.events.to_parquet(out / f"events{tag}.parquet", index=False)
+        sc.to_toml(out / f"scene{tag}.toml")
+    if several:
+        from ..report.plots import plot_trajectories
+
+        plot_trajectories(results, out / "trajectory.png")
+    else:
+        sd.plot_trajectory(results[0], out / "trajectory.png")
+    (out / "result.json").write_text(json.dumps(summaries if several else summaries[0], indent=2)
+                                     + "\n")
+    if several:
+        return (f"{out}/trajectory_MODEL.parquet, events_MODEL.parquet, scene_MODEL.toml for "
+                f"{', '.join(r.model for r in results)}; trajectory.png (overlaid), result.json")
+    return f"{out}/trajectory.parquet, events.parquet, trajectory.png, scene.toml, result.json"
 
 
 def _unsettled_note(summary: dict[str, Any], tau: float) -> str:

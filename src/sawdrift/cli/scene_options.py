@@ -23,6 +23,7 @@ import typer
 import sawdrift as sd
 
 from .._scene_options import OPTIONS
+from ..scene.overrides import check_known_fields, check_model_params
 
 _TYPES: dict[str, Any] = {"float": float, "int": int, "choice": str}
 
@@ -84,11 +85,15 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
     and its parameters (a file's parameters belong to the file's model and are dropped when
     another model is named).
     """
+    if scene_file is not None:
+        _check_keys(scene_file, model)
     base = sd.Scene.from_toml(scene_file) if scene_file is not None else None
     data = base.model_dump(exclude_none=True) if base is not None else {}
     values = dict(overrides or {})
     if model is not None:
         values["model"] = model
+    if params:
+        check_model_params(model or (base.model if base is not None else "mmd"), params)
     # one rule for every path: on a device scene a derived (normalized) field is an error
     # naming the device field to set instead (sawdrift.scene.apply_overrides)
     data = sd.scene.apply_overrides(data, values)
@@ -97,3 +102,21 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
     if params:
         data.setdefault("model_params", {}).update(params)
     return sd.scene.build_scene(data, source=str(scene_file) if scene_file else None)
+
+
+def _check_keys(scene_file: Path, model: str | None) -> None:
+    """Name a misspelled key of a scene file with the nearest valid one (one line, exit 2).
+
+    A file that cannot be read or parsed is left to :meth:`sawdrift.Scene.from_toml`'s own
+    one-line errors.
+    """
+    import tomllib
+
+    try:
+        data = tomllib.loads(Path(scene_file).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return
+    check_known_fields(data, str(scene_file))
+    params = data.get("model_params")
+    if isinstance(params, dict) and model in (None, data.get("model", "mmd")):
+        check_model_params(str(data.get("model", "mmd")), params, str(scene_file))

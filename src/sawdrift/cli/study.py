@@ -18,10 +18,12 @@ from .app import (
     Scheduler,
     Workers,
     _fail,
+    _looks_like_file,
     _parse_param,
     _split_axis,
     _writable,
     app,
+    out_kind,
 )
 from .scene_options import scene_from_options, with_scene_options
 
@@ -76,6 +78,9 @@ def sweep_cmd(
     """
     if scene_arg is not None and scene_file is not None:
         _fail("give the base scene either as an argument or with --scene, not both")
+    if _looks_like_file(out) and out.suffix.lower() not in (".parquet", ".pq"):
+        _fail(f"-o {str(out)!r}: a sweep writes a resumable Parquet table; give NAME.parquet "
+              "(`sawdrift export` writes netCDF; pandas.read_parquet reads it for CSV)")
     _writable(out, folder=False)
     scene_file = scene_arg or scene_file
     axes: dict[str, str] = {}
@@ -175,6 +180,7 @@ def bifurcation_cmd(
     (--m-star, --mu, --horizontal-ratio, ...) setting the base scene.
     """
     field, spec = _split_axis(axis, "FIELD=SPEC", "drive.amplitude=lin:0.1:1.5:100")
+    out_kind(out, (), "")
     _writable(out)
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
     fast_start()

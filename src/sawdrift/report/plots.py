@@ -50,6 +50,39 @@ def plot_trajectory(result: Result, path: str | Path) -> Path:
     return path
 
 
+def plot_trajectories(results: list[Result], path: str | Path) -> Path:
+    """Several runs of one scene (one per model) overlaid: x*, a*, N*, T* against t*.
+
+    Each line is labelled with its model; a run whose drift has not settled says so in the
+    legend.
+    """
+    fig, axes = plt.subplots(4, 1, figsize=(9, 9), sharex=True, constrained_layout=True)
+    series = [("x", "x*  (particle position)"), ("a", "a*  (normal contact displacement)"),
+              ("N_star", "N*  (normal force)"), ("T_star", "T*  (friction force)")]
+    for k, res in enumerate(results):
+        if res.trajectory is None:
+            raise ValueError("a result has no trajectory; run with trajectory=True")
+        tr = res.trajectory
+        style = ("-", "--", ":", "-.")[k % 4]  # models that agree stay visible over each other
+        for ax, (col, _) in zip(axes, series, strict=True):
+            ax.plot(tr["t"], tr[col], lw=0.8 + 0.4 * (k > 0), ls=style, label=res.model)
+    for ax, (_, label) in zip(axes, series, strict=True):
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+        ax.axvspan(0, results[0].ramp_periods, color="0.9", zorder=0)
+    axes[0].legend(fontsize=8, loc="best",
+                   labels=[f"{r.model}: {r.regime}, V = {r.drift_ratio:.3g}{unsettled_mark(r)}"
+                           for r in results])
+    axes[-1].set_xlabel("t*  (wave periods)")
+    r0 = results[0]
+    fig.suptitle(f"{' vs '.join(r.model for r in results)}: m* = {r0.m_star:g}, "
+                 f"A* = {r0.amplitude:g}, mu = {r0.mu:g}, nu = {r0.nu:g}", fontsize=10)
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def _plot_prescribed(result: Result, path: Path) -> Path:
     """a*, b*, N*, T* against the sample index, and the T*(b*) hysteresis loop."""
     tr = result.trajectory

@@ -165,6 +165,89 @@ def strip_derived(data: dict[str, Any]) -> dict[str, Any]:
     return data
 
 
+def _models_in(annotation: Any) -> list[type[BaseModel]]:
+    """The pydantic models an annotation can hold (through Optional, Union and Annotated)."""
+    import typing
+
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return [annotation]
+    found: list[type[BaseModel]] = []
+    for arg in typing.get_args(annotation):
+        for cls in _models_in(arg):
+            if cls not in found:
+                found.append(cls)
+    return found
+
+
+def nearest(key: str, known: list[str], listing: bool = True) -> str:
+    """``"; did you mean 'x'?"`` for the known name nearest to ``key`` (difflib), or the list
+    (``listing``)."""
+    import difflib
+
+    close = difflib.get_close_matches(key, known, n=1, cutoff=0.6)
+    if close:
+        return f"; did you mean {close[0]!r}?"
+    return f" (known: {', '.join(sorted(known))})" if known and listing else ""
+
+
+def check_known_fields(data: Mapping[str, Any], source: str | None = None,
+                       models: list[type[BaseModel]] | None = None, prefix: str = "") -> None:
+    """Raise a one-line SceneError naming the first key of ``data`` that is no scene field.
+
+    Walks the Scene schema (``[device.particle]`` and the drives included) and suggests the
+    nearest valid name of the same table: ``particle.m_stra is not a known field; did you mean
+    'm_star'?``. Values are not checked here (the schema does that); ``model_params`` belong to
+    the model and are checked against it by :func:`check_model_params`.
+    """
+    if models is None:
+        from .schema import Scene
+
+        models = [Scene]
+    fields: dict[str, Any] = {}
+    for cls in models:
+        for name, info in cls.model_fields.items():
+            fields.setdefault(name, []).append(info.annotation)
+    where = f"{source}: " if source else ""
+    for key, value in data.items():
+        path = f"{prefix}{key}"
+        if key not in fields:
+            raise SceneError(f"{where}{path} is not a known field{nearest(str(key), list(fields))}")
+        if path == "model_params" or not isinstance(value, Mapping):
+            continue
+        inner = [cls for ann in fields[key] for cls in _models_in(ann)]
+        if inner:
+            check_known_fields(value, source, inner, f"{path}.")
+
+
+def check_dotted(dotted: str, source: str | None = None) -> None:
+    """:func:`check_known_fields` for one dotted field (``"material.mu"``, an ``--axis``)."""
+    node: Any = None
+    for key in reversed(dotted.split(".")):
+        node = {key: node}
+    check_known_fields(node, source)
+
+
+def check_model_params(model: str, params: Mapping[str, Any], source: str | None = None) -> None:
+    """A one-line SceneError for a parameter ``model`` does not take, with the nearest name.
+
+    An unknown model is left to the registry's own error.
+    """
+    from ..errors import SawdriftError
+
+    try:
+        from ..contact.registry import get_model
+
+        known = list(get_model(model).Params.model_fields)
+    except (SawdriftError, ImportError, AttributeError):
+        return
+    where = f"{source}: " if source else ""
+    for key in params:
+        if key not in known:
+            raise SceneError(f"{where}model_params.{key} is not a known parameter of model "
+                             f"{model!r}{nearest(str(key), known, False)} (it takes: "
+                             f"{', '.join(known) or 'none'})")
+
+
 def apply_overrides(data: Mapping[str, Any] | BaseModel,
                     overrides: Mapping[str, Any]) -> dict[str, Any]:
     """A scene dict with dotted-path ``overrides`` set, by the rule for device scenes.
@@ -211,6 +294,8 @@ def apply_overrides(data: Mapping[str, Any] | BaseModel,
         except (AttributeError, TypeError):
             raise SceneError(f"{key} is not a known field: {key.rsplit('.', 1)[0]} is not a "
                              "table") from None
+    for key in overrides:
+        check_dotted(key)  # a misspelled field is named with the nearest one
     if out.get("device") is not None:
         out = strip_derived(apply_device(out))  # an overridden derived field must agree
     return out

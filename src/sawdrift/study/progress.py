@@ -14,10 +14,15 @@ from __future__ import annotations
 
 import sys
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 #: seconds between two plain progress lines at most (while work is being done)
 EVERY = 30.0
+
+#: seconds a step may take silently before :func:`notice` says what it is doing
+NOTICE_AFTER = 1.0
 
 
 class _Lines:
@@ -110,3 +115,30 @@ def counter(total: int, desc: str, unit: str, enabled: bool = True, leave: bool 
     """Like :func:`progress`, but a silent counter instead of None when disabled."""
     bar = progress(total, desc, unit, enabled=enabled, leave=leave)
     return _Off() if bar is None else bar
+
+
+@contextmanager
+def notice(line: str, after: float | None = None, enabled: bool = True) -> Iterator[None]:
+    """Print ``line`` to stderr if the block takes longer than ``after`` seconds.
+
+    For a step of unknown length that is usually quick but sometimes takes seconds in silence
+    (compiling a contact model's loop on its first use): nothing is printed when it is quick.
+    ``after`` defaults to :data:`NOTICE_AFTER`.
+    """
+    import threading
+
+    if not enabled:
+        yield
+        return
+
+    def say() -> None:
+        sys.stderr.write(f"{line}\n")
+        sys.stderr.flush()
+
+    timer = threading.Timer(NOTICE_AFTER if after is None else after, say)
+    timer.daemon = True
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()

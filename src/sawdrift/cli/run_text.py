@@ -1,0 +1,133 @@
+"""The text of ``sawdrift run``: a run's summary grouped, and several models side by side.
+
+The summary (``Result.summary()``, also ``run --json``) is printed in five groups, in this order:
+regime, drift, settled, evidence, provenance. A device's speed in m/s comes first, on a line of
+its own. Fields that do not apply (None) are left out; nested values (a device's normalized
+scene) are printed one field a line. A drift that has not settled says so beside the number.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+#: the groups of ``run``'s text output and the summary fields of each, in order; a field not
+#: named here (a new model's or drive's extra output) goes to "evidence"
+GROUPS: dict[str, tuple[str, ...]] = {
+    "regime": ("regime", "direction", "hop_period", "liftoffs_per_hop", "orbit_period", "chaotic",
+               "contact_lost"),
+    "drift": ("drift_speed_m_s", "drift_velocity", "drift_ratio", "t90_s", "load_n", "power_w",
+              "rebound_ratio", "contact_duration", "max_compression", "dissipated_work"),
+    "settled": ("settled", "settle_method", "settle_periods", "t90_periods", "horizontal_inertia"),
+    "evidence": ("out_of_contact_fraction", "min_compression", "gross_slip_fraction",
+                 "liftoffs_per_period", "liftoff_phase", "liftoff_phase_spread", "lyapunov",
+                 "periodicity", "spin_rate", "events_dropped"),
+    "provenance": ("model", "engine", "version", "m_star", "amplitude", "mu", "nu",
+                   "horizontal_ratio", "orbit", "profile", "steps_per_period", "periods",
+                   "ramp_periods", "measure_periods", "steps", "wall_time_s", "compile_s",
+                   "normalized"),
+}
+
+#: the drift fields that carry the NOT settled mark
+DRIFTS = ("drift_speed_m_s", "drift_velocity", "drift_ratio")
+
+#: units of fields that have them
+UNITS = {"drift_speed_m_s": "m/s", "t90_s": "s", "load_n": "N", "power_w": "W",
+         "wall_time_s": "s", "compile_s": "s", "drift_velocity": "a0 f"}
+
+#: rows of the side-by-side table of several models
+TABLE_ROWS = ("regime", "drift_speed_m_s", "drift_velocity", "drift_ratio", "settled",
+              "contact_lost", "gross_slip_fraction", "liftoffs_per_period", "hop_period", "lyapunov",
+              "spin_rate", "steps_per_period", "periods", "wall_time_s")
+
+
+def value_text(value: Any) -> str:
+    """A value as printed: floats to 6 significant digits, booleans as yes / no."""
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+def _flat(summary: dict[str, Any]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in summary.items():
+        if key == "scene" or value is None:
+            continue  # the whole scene is in --json and in -o DIR/scene.toml
+        if isinstance(value, dict):
+            for sub, v in value.items():
+                if v is not None:
+                    out[f"{key}.{sub}"] = v
+        else:
+            out[key] = value
+    return out
+
+
+def unsettled_text(summary: dict[str, Any], mark: str = "NOT settled") -> str:
+    """Why the drift is not the steady one, short enough to stand beside a number."""
+    if summary.get("chaotic"):
+        return f"{mark}: chaotic, an average over the window"
+    return f"{mark} after {value_text(summary.get('periods'))} periods"
+
+
+def _line(key: str, value: Any, summary: dict[str, Any], width: int) -> str:
+    text = value_text(value)
+    unit = UNITS.get(key)
+    if unit is not None and not isinstance(value, bool):
+        text += f" {unit}"
+    if key in DRIFTS and summary.get("settled") is False:
+        text += f"  <- {unsettled_text(summary)}"
+    if key == "settled" and value is False:
+        text = unsettled_text(summary, "NO, still changing")
+    return f"  {key:<{width}}  {text}"
+
+
+def grouped(summary: dict[str, Any]) -> list[str]:
+    """The lines of ``run``'s text output (see the module docstring)."""
+    flat = _flat(summary)
+    lines: list[str] = []
+    speed = flat.get("drift_speed_m_s")
+    if speed is not None:
+        way = flat.get("direction")
+        head = f"drift speed {speed:.4g} m/s" + (f", {way} the wave" if way in ("with", "against")
+                                                  else "")
+        if summary.get("settled") is False:
+            head += f" ({unsettled_text(summary)})"
+        lines.append(head)
+    placed: dict[str, list[str]] = {group: [] for group in GROUPS}
+    home = {key: group for group, keys in GROUPS.items() for key in keys}
+    for key in flat:
+        group = home.get(key, home.get(key.split(".")[0], "evidence"))
+        placed[group].append(key)
+    order = {key: i for keys in GROUPS.values() for i, key in enumerate(keys)}
+    width = max((len(k) for k in flat), default=8)
+    for group, keys in placed.items():
+        if not keys:
+            continue
+        lines.append(f"{group}:")
+        keys.sort(key=lambda k: order.get(k.split(".")[0], len(order)))
+        lines.extend(_line(k, flat[k], summary, width) for k in keys)
+    return lines
+
+
+def side_by_side(summaries: list[dict[str, Any]]) -> list[str]:
+    """Several runs of one scene as a table: one column per model, one row per field."""
+    names = [str(s["model"]) for s in summaries]
+    rows = [key for key in TABLE_ROWS if any(s.get(key) is not None for s in summaries)]
+    cells = []
+    for key in rows:
+        row = []
+        for s in summaries:
+            value = s.get(key)
+            text = "-" if value is None else value_text(value)
+            if key in DRIFTS and value is not None and s.get("settled") is False:
+                text += " (NOT settled)"
+            row.append(text)
+        cells.append(row)
+    width = max(len(k) for k in rows)
+    cols = [max(len(n), *(len(r[i]) for r in cells)) for i, n in enumerate(names)]
+    lines = [f"{'':<{width}}  " + "  ".join(f"{n:>{c}}" for n, c in zip(names, cols, strict=True))]
+    for key, row in zip(rows, cells, strict=True):
+        lines.append(f"{key:<{width}}  " + "  ".join(f"{v:>{c}}" for v, c in zip(row, cols,
+                                                                                 strict=True)))
+    return lines
