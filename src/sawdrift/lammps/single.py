@@ -47,6 +47,9 @@ from .realize import LAMMPS_EQUIVALENT, WALL_NU, Realization, realize
 #: chunks of a run between two progress updates (at most)
 CHUNKS = 100
 
+#: steps from which a run shows its progress unless told (progress=None)
+LONG_RUN = 200_000
+
 #: relative distance below which |T*| counts as on the Coulomb cap N* (gross slip)
 CAP_TOL = 1e-9
 
@@ -148,7 +151,7 @@ def _run_steps(lmp: Any, n: int, first: bool, bar: Any) -> bool:
     return first
 
 
-def simulate(scene: Scene, *, record_from: int | None = None, progress: bool = False
+def simulate(scene: Scene, *, record_from: int | None = None, progress: bool | None = None
              ) -> tuple[np.ndarray, dict[str, Any]]:
     """Run ``scene`` in LAMMPS; the per-step record from step ``record_from`` (default: the window).
 
@@ -170,7 +173,8 @@ def simulate(scene: Scene, *, record_from: int | None = None, progress: bool = F
     lmp = open_lammps()
     with tempfile.TemporaryDirectory(prefix="sawdrift-lammps-") as tmp:
         path = Path(tmp) / "record.txt"
-        bar = counter(n_total, "lammps", "step", enabled=progress)
+        show = n_total >= LONG_RUN if progress is None else progress
+        bar = counter(n_total, "lammps", "step", enabled=show)
         t0 = time.perf_counter()
         try:
             lmp.commands_string(script)
@@ -348,7 +352,8 @@ def run_scene(scene: Scene, *, trajectory: bool = False, progress: bool | None =
         Also return the time series (t, x, vx, y, vy, a, b, N_star, T_star), about 200 rows per
         period, as ``Result.trajectory``.
     progress
-        Show a progress bar (tqdm on a terminal, plain lines elsewhere) over the steps.
+        Show a progress bar (tqdm on a terminal, plain lines elsewhere) over the steps; None (the
+        default): only for runs of at least :data:`LONG_RUN` steps.
 
     Raises
     ------
@@ -357,5 +362,5 @@ def run_scene(scene: Scene, *, trajectory: bool = False, progress: bool | None =
     LammpsUnavailableError
         LAMMPS or its MPI library is missing (one line naming ``pip install -e ".[lammps]"``).
     """
-    rows, info = simulate(scene, record_from=0 if trajectory else None, progress=bool(progress))
+    rows, info = simulate(scene, record_from=0 if trajectory else None, progress=progress)
     return to_result(scene, rows, info, trajectory)
