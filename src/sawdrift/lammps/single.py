@@ -53,8 +53,9 @@ LONG_RUN = 200_000
 #: relative distance below which |T*| counts as on the Coulomb cap N* (gross slip)
 CAP_TOL = 1e-9
 
-#: columns of the per-step record (in this order)
-RECORD = ("ts", "x", "vx", "z", "vz", "fx", "fz", "wz", "wy")
+#: columns of the per-step record (in this order; LAMMPS writes them after the step number, and
+#: ``wy`` only with rotation): t* and the wall's height follow from the step (wave_variables)
+RECORD = ("ts", "x", "vx", "z", "vz", "fx", "wy")
 
 
 def wave_variables(real: Realization, k_per: int) -> list[str]:
@@ -133,8 +134,8 @@ def input_script(scene: Scene, real: Realization | None = None, k_per: int | Non
     return "\n".join(lines) + "\n"
 
 
-def _record_fix(path: Path) -> str:
-    names = " ".join(f"v_{c}" for c in RECORD)
+def _record_fix(path: Path, rotation: bool) -> str:
+    names = " ".join(f"v_{c}" for c in RECORD[1:] if rotation or c != "wy")
     return f"fix rec all ave/time 1 1 1 {names} file {path} format ' %.17g'"
 
 
@@ -180,7 +181,7 @@ def simulate(scene: Scene, *, record_from: int | None = None, progress: bool | N
             lmp.commands_string(script)
             if start > 0:
                 _run_steps(lmp, start, True, bar)
-            lmp.command(_record_fix(path))
+            lmp.command(_record_fix(path, real.rotation))
             _run_steps(lmp, n_total - start, True, bar)  # set-up again: the new fix joins
             lmp.command("unfix rec")
         except Exception as exc:  # noqa: BLE001 - LAMMPS reports its errors as Exception
@@ -200,8 +201,10 @@ def simulate(scene: Scene, *, record_from: int | None = None, progress: bool | N
 
         raise SawdriftError(f"LAMMPS wrote {table.shape[0]} records for steps {start} to "
                             f"{n_total}; the run did not complete")
-    rows = table[:, 1:]
     start = int(table[0, 0])
+    ts = table[:, 0:1] / k_per
+    spin = table[:, 6:7] if real.rotation else np.zeros_like(ts)
+    rows = np.hstack([ts, table[:, 1:6], spin])
     info = {"real": real, "k_per": k_per, "steps": n_total, "window_start": n_total - n_measure,
             "record_from": start, "wall_time_s": wall, "script": script}
     return rows, info
@@ -215,12 +218,13 @@ def normalized_record(rows: np.ndarray, real: Realization) -> dict[str, np.ndarr
     force against +x, m x'' = -T + load), psi' = -R omega_y/(a0 f) (R phi', the contact point's
     velocity relative to the centre), u_x* and b* = (x* - u_x*)/(theta mu).
     """
-    ts, x, vx, z, vz, fx, _fz, wz, wy = rows.T
+    ts, x, vx, z, vz, fx, wy = rows.T
     a0, v = real.a0, real.speed
-    a = (real.radius - z + wz) / a0
     two_pi = 2.0 * math.pi
     tr = real.ramp_periods
     rr = np.where(ts < tr, np.sin(math.pi / (2.0 * tr) * ts) ** 2, 1.0) if tr > 0.0 else np.ones_like(ts)
+    wz = -rr * real.amplitude * real.vertical * np.cos(two_pi * ts)  # the wall's height (v_dz)
+    a = (real.radius - z + wz) / a0
     amp = real.amplitude / a0
     ux = rr * amp * real.ratio * real.horizontal * (
         -real.sin_phase * np.sin(two_pi * ts) + real.cos_phase * np.cos(two_pi * ts))
