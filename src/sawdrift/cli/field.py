@@ -45,7 +45,7 @@ def field_cmd(
                                          "wavelength")] = 0.0,
     workers: Workers = None,
     engine: Engine = "compiled",
-    progress: Progress = False,
+    progress: Progress = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write field.json and field.png "
                                              "here")] = None,
@@ -85,8 +85,11 @@ def field_cmd(
     study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
                         progress=progress, engine=engine)
     if direct:
-        study.direct = direct_run(scene, start, float(direct_periods or 2000.0), study.fields[0],
-                                  engine=engine)
+        from ..study.progress import notice
+
+        periods = float(direct_periods or 2000.0)
+        with notice(f"field: direct run of {periods:g} periods through the field", 2.0, progress):
+            study.direct = direct_run(scene, start, periods, study.fields[0], engine=engine)
     data = study.to_json()
     if kind == ".csv":
         _field_csv(study, out)

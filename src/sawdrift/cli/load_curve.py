@@ -9,6 +9,7 @@ from typing import Annotated, Any
 import typer
 
 from .._startup import fast_start
+from ..study.progress import counter
 from .app import (
     Engine,
     Param,
@@ -37,7 +38,7 @@ def load_curve_cmd(
     workers: Annotated[int | None, typer.Option("--workers", help="local processes (default: all "
                                                 "cores)")] = None,
     engine: Engine = "compiled",
-    progress: Progress = False,
+    progress: Progress = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write load_curve.json and "
                                              "load_curve.png here")] = None,
@@ -69,11 +70,20 @@ def load_curve_cmd(
     if out is not None:
         _writable(out, folder=kind == "folder")
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
-    note = (lambda line: typer.echo(line, err=True)) if progress else None
+    species = 1
     if axis is not None:
-        _species_curves(scene, axis, loads, workers, engine, note, as_json, out)
+        from ..study.axes import parse_values
+
+        name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
+        species = len(parse_values(spec, name))
+    bar = counter(species * _stages(workers), "load-curve", "stage", enabled=progress)
+    note = _noter(bar)
+    if axis is not None:
+        with bar:
+            _species_curves(scene, axis, loads, workers, engine, note, as_json, out)
         return
-    curve = load_curve(scene, loads=loads, workers=workers, engine=engine, progress=note)
+    with bar:
+        curve = load_curve(scene, loads=loads, workers=workers, engine=engine, progress=note)
     data = curve.to_json()
     if kind == ".csv":
         _curve_csv([("", data)], out)
@@ -135,6 +145,26 @@ def _curve_csv(curves: list[tuple[str, dict[str, Any]]], out: Path) -> None:
             frame.insert(0, "species", label)
         frames.append(frame)
     pd.concat(frames, ignore_index=True).to_csv(out, index=False)
+
+
+def _stages(workers: int | None, tolerance: float = 1e-3) -> int:
+    """Stages of one load curve: the unloaded run, the rounds narrowing the stall bracket (each
+    divides it by workers + 1, down to ``tolerance``, study.load_curve's default) and the curve."""
+    import math
+    import os
+
+    k = max(1, workers if workers is not None else (os.cpu_count() or 1)) + 1
+    return 2 + math.ceil(math.log(1.0 / tolerance) / math.log(k) - 1e-9)
+
+
+def _noter(bar: Any) -> Any:
+    """A ``progress`` callback of :func:`load_curve`: each stage's line advances ``bar``."""
+
+    def note(line: str) -> None:
+        bar.set_postfix_str(line)
+        bar.update(1)
+
+    return note
 
 
 def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engine: str, note: Any,

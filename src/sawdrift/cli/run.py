@@ -21,7 +21,8 @@ from .scene_options import scene_from_options, with_scene_options
 def models_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="machine-readable output")] = False,
 ) -> None:
-    """List the registered contact models and the distribution providing each."""
+    """List the registered contact models, the distribution providing each and their parameters
+    (set with --param NAME=VALUE or a scene's [model_params])."""
     entries = sd.registry.models
     rows = []
     for name in sorted(entries):
@@ -35,6 +36,16 @@ def models_cmd(
     width = max((len(r["name"]) for r in rows), default=4)
     for r in rows:
         typer.echo(f"{r['name']:<{width}}  {r['summary']}  [{r['distribution']}]")
+        for pname, spec in r["parameters"].items():
+            default = spec.get("default")
+            if default is None:
+                shown = ""
+            elif isinstance(default, float) and not isinstance(default, bool):
+                shown = f" = {default:g}"
+            else:
+                shown = f" = {json.dumps(default)}"  # TOML spelling: true, false, 64
+            text = f": {spec['description']}" if spec.get("description") else ""
+            typer.echo(f"{'':<{width}}  --param {pname}{shown}{text}")
         for check, reason in r["deviations"].items():
             typer.echo(f"{'':<{width}}  declared deviation, {check}: {reason}")
     for name, reason in sorted(sd.registry.failed.items()):

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..dynamics.runner import run
 from ..scene.schema import Scene
+from ..study.progress import notice
 from ..study.provenance import TableProvenanceError
 from ..study.sweep import journal_path, sweep
 from ..study.traces import traces_path
@@ -44,7 +45,8 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     """
     out.mkdir(parents=True, exist_ok=True)
     scene = Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
-    result = run(scene, trajectory=True)
+    with notice("demo: compiling the contact models' loops (first run only: a few seconds)"):
+        result = run(scene, trajectory=True)
     plot_trajectory(result, out / "default_scene.png")
     scene.to_toml(out / "default_scene.toml")
     echo(f"default scene (mmd, m* = 0.1, A* = 0.316): {result.regime}, "
