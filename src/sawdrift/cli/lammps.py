@@ -89,7 +89,11 @@ def lammps_cmd(
     from ..lammps import input_script, run_scene
 
     if write_input is not None:
-        write_input.write_text(input_script(scene) + "run N  # sawdrift runs numerics.periods\n")
+        from ..dynamics.assembly import steps_per_period
+
+        k_per = steps_per_period(scene)
+        n_total = max(int(round(scene.numerics.periods * k_per)), scene.measure_periods() * k_per)
+        write_input.write_text(input_script(scene) + f"run {n_total}\n")
         typer.echo(f"wrote {write_input}")
         return
     result = run_scene(scene, progress=progress)
