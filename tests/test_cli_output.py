@@ -284,3 +284,20 @@ def test_demo_announces_its_first_compilation(monkeypatch, capsys, tmp_path):
     with pytest.raises(Stop):
         demo_mod.demo(tmp_path / "demo", 2, 1, echo=lambda _line: None)
     assert "compil" in capsys.readouterr().err
+
+
+def test_sweep_and_field_text_count_unsettled_cells(monkeypatch, capsys, tmp_path):
+    code, out, err = call(monkeypatch, capsys, "sweep", "--model", "mmd", "--m-star", "0.1,300",
+                          "--amplitude", "0.5", "--periods", "20", "--no-settle", "--workers", "1",
+                          "--no-progress", "-o", str(tmp_path / "t.parquet"))
+    assert code == 0, err
+    table = pd.read_parquet(tmp_path / "t.parquet")
+    loose = int((table["settled"] == False).sum())  # noqa: E712
+    assert loose >= 1
+    assert sum(int(line.split("(")[1].split()[0]) for line in out.splitlines()
+               if "NOT settled" in line) == loose
+    code, out, err = call(monkeypatch, capsys, "field", "--model", "mmd", "--m-star", "300",
+                          "--backward", "0.5", "--points", "4", "--refine", "0", "--periods", "20",
+                          "--no-settle", "--workers", "1", "--no-progress")
+    assert code == 0, err
+    assert "4 of 4 positions NOT settled" in out

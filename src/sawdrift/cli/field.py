@@ -105,6 +105,10 @@ def field_cmd(
         typer.echo(f"{head}{fld.summary}")
         for z in fld.zeros:
             typer.echo(f"  {z['kind']:>9} at xi = {z['position']:.5f} (+ k/2)")
+        loose = sum(1 for ok in fld.settled if ok is False)
+        if loose:
+            typer.echo(f"  {loose} of {len(fld.settled)} positions NOT settled: their drift is "
+                       "not the steady one (use --settle)")
         if fld.errors:
             typer.echo(f"  {len(fld.errors)} kinds of run errors, e.g. {fld.errors[0]}", err=True)
     if study.direct is not None:

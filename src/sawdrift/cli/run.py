@@ -126,7 +126,8 @@ def run_cmd(
         _writable(out, folder=kind == "folder")
     results = []
     for sc in scenes:
-        with notice(f"run: {sc.model}: compiling or loading its loop (first run: seconds)"):
+        with notice(f"run: {sc.model}: working (a model's first run compiles its loop, seconds; "
+                    "settling a heavy particle takes longer)"):
             results.append(_run_one(sc, engine, out is not None))
     summaries = [r.summary() for r in results]
     if out is not None:

@@ -23,7 +23,6 @@ import typer
 import sawdrift as sd
 
 from .._scene_options import OPTIONS
-from ..scene.overrides import check_known_fields, check_model_params
 
 _TYPES: dict[str, Any] = {"float": float, "int": int, "choice": str}
 
@@ -93,6 +92,8 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
     if model is not None:
         values["model"] = model
     if params:
+        from ..scene.overrides import check_model_params
+
         check_model_params(model or (base.model if base is not None else "mmd"), params)
     # one rule for every path: on a device scene a derived (normalized) field is an error
     # naming the device field to set instead (sawdrift.scene.apply_overrides)
@@ -111,6 +112,8 @@ def _check_keys(scene_file: Path, model: str | None) -> None:
     one-line errors.
     """
     import tomllib
+
+    from ..scene.overrides import check_known_fields, check_model_params
 
     try:
         data = tomllib.loads(Path(scene_file).read_text(encoding="utf-8"))

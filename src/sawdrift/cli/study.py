@@ -116,9 +116,14 @@ def sweep_cmd(
         frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
                          workers=workers, scheduler=scheduler, progress=progress, engine=engine,
                          force=force, traces=traces)
-    counts = frame.groupby(["model", "regime"]).size()
-    for (name, regime), n in counts.items():
-        typer.echo(f"{name:>20} {regime:>14}: {n}")
+    from ..report.diagrams import unsettled_cells
+
+    frame = frame.assign(_unsettled=unsettled_cells(frame))
+    counts = frame.groupby(["model", "regime"])["_unsettled"].agg(["size", "sum"])
+    for (name, regime), row in counts.iterrows():
+        loose = int(row["sum"])
+        typer.echo(f"{name:>20} {regime:>14}: {int(row['size'])}"
+                   + (f" ({loose} NOT settled)" if loose else ""))
     errors = int(frame["error"].notna().sum())
     if adaptive:
         # the table holds the computed points; the inferred ones only complete the diagram
