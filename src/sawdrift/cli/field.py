@@ -47,8 +47,9 @@ def field_cmd(
     engine: Engine = "compiled",
     progress: Progress = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
-    out: Annotated[Path | None, typer.Option("-o", "--out", help="write field.json and field.png "
-                                             "here")] = None,
+    out: Annotated[Path | None, typer.Option(
+        "-o", "--out", help="a folder: field.json, field.png, scene.toml; or NAME.csv: the field "
+        "only (species, position, drift_velocity, regime, settled)")] = None,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:

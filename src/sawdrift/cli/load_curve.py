@@ -40,8 +40,10 @@ def load_curve_cmd(
     engine: Engine = "compiled",
     progress: Progress = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
-    out: Annotated[Path | None, typer.Option("-o", "--out", help="write load_curve.json and "
-                                             "load_curve.png here")] = None,
+    out: Annotated[Path | None, typer.Option(
+        "-o", "--out", help="a folder: load_curve.json, load_curve.png, scene.toml; or NAME.csv: "
+        "the curve only (species, load, drift_velocity, power, regime, settled; a device's in "
+        "load_mN, speed_m_s, power_mW)")] = None,
     axis: Annotated[str | None, typer.Option(
         "--axis", help="FIELD=a,b: one curve per value of a particle field, overlaid (sorting), "
         "e.g. particle.m_star=0.05,0.5 or 'device.particle.radius=0.2 mm,1 mm'")] = None,

@@ -22,7 +22,7 @@ def models_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="machine-readable output")] = False,
 ) -> None:
     """List the registered contact models, the distribution providing each and their parameters
-    (set with --param NAME=VALUE or a scene's [model_params])."""
+    (set with --param NAME=VALUE or in a scene file's model_params table)."""
     entries = sd.registry.models
     rows = []
     for name in sorted(entries):
