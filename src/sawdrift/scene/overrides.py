@@ -165,6 +165,10 @@ def strip_derived(data: dict[str, Any]) -> dict[str, Any]:
     return data
 
 
+#: tables of a scene file that another command reads, not the Scene
+_ELSEWHERE = {"particles": "a [particles] table (many spheres) is read by `sawdrift lammps` only"}
+
+
 def _models_in(annotation: Any) -> list[type[BaseModel]]:
     """The pydantic models an annotation can hold (through Optional, Union and Annotated)."""
     import typing
@@ -211,6 +215,8 @@ def check_known_fields(data: Mapping[str, Any], source: str | None = None,
     for key, value in data.items():
         path = f"{prefix}{key}"
         if key not in fields:
+            if path in _ELSEWHERE:
+                raise SceneError(f"{where}{path} is not a scene field: {_ELSEWHERE[path]}")
             raise SceneError(f"{where}{path} is not a known field{nearest(str(key), list(fields))}")
         if path == "model_params" or not isinstance(value, Mapping):
             continue
