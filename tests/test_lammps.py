@@ -136,11 +136,15 @@ def test_bad_particles_table_is_one_line(tmp_path, table, needle):
     ({"particle__m_star": 0.1, "drive__amplitude": 0.316}, "drift_with"),
     ({"particle__m_star": 0.1, "drive__amplitude": 0.316, "effects__rotation": True}, "drift_with"),
     ({"particle__m_star": 0.3, "drive__amplitude": 1.2, "material__mu": 0.2}, "hopping"),
+    # no ramp, an oblique orbit: the start (x* = 0, y* = 1 at rest, a* = 1 - A*) as the native one
+    ({"particle__m_star": 0.1, "drive__amplitude": 0.316, "drive__ramp_periods": 0.0,
+      "drive__phase": 30.0}, "drift_against"),
 ])
 def test_lammps_drift_agrees_with_native_within_one_percent(fields, regime):
     """Same law, two integrators (velocity Verlet, Adams-Bashforth 4): drift within 1 %.
 
-    Measured at 512 steps per period: 2.6e-4, 3.0e-4 and -1.0e-4 relative (40 periods).
+    Measured at 512 steps per period: 2.6e-4, 3.0e-4, -1.0e-4 relative (40 periods) and 1.5e-4
+    (no ramp, phase 30, 30 periods).
     """
     scene = dem(**fields)
     native = sd.run(scene)
@@ -250,3 +254,25 @@ def test_run_engine_lammps_gives_the_native_columns():
     assert a["drift_ratio"] == pytest.approx(b["drift_ratio"], rel=1e-2)
     refused = cli("run", "--engine", "lammps", "--model", "jaeger")
     assert refused.returncode == 2 and refused.stderr.startswith("error: model = 'jaeger'")
+
+
+@needs_lammps
+def test_cli_mixture_json_figure_and_mpi(tmp_path):
+    """A [particles] scene through the CLI; under mpirun -np 2 the drifts are the serial ones."""
+    from sawdrift.lammps.engine import mpirun
+
+    path = tmp_path / "mix.toml"
+    path.write_text('model = "hertz_mindlin_dem"\n[particle]\nm_star = 0.1\n'
+                    '[numerics]\nperiods = 10\nsteps_per_period = 256\n'
+                    '[particles]\ncount = 4\nradius = ["1 mm", "0.5 mm"]\nspacing = 10\n')
+    serial = cli("lammps", str(path), "--json", "--np", "1", "-o", str(tmp_path / "out"))
+    assert serial.returncode == 0, serial.stderr
+    data = json.loads(serial.stdout)
+    assert [row["count"] for row in data["species"]] == [2, 2] and data["processes"] == 1
+    assert (tmp_path / "out" / "mixture.png").stat().st_size > 0
+    if mpirun() is None:
+        pytest.skip("no mpirun on PATH: the MPI half is not run")
+    parallel = json.loads(cli("lammps", str(path), "--json", "--np", "2").stdout)
+    assert parallel["processes"] == 2
+    for a, b in zip(data["species"], parallel["species"], strict=True):
+        assert b["drift_ratio"] == pytest.approx(a["drift_ratio"], rel=1e-9)

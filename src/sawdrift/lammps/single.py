@@ -13,7 +13,7 @@ y* points into the substrate, so the wall's height is dz = -a0 u_y* and dx = a0 
 (the normal part) and the preload act as one constant force -M g along z, the scene's load as
 L M g along x (``fix addforce``); ``fix nve`` keeps the sphere from turning, ``fix nve/sphere``
 turns it (a solid sphere, kappa = 2/5). LAMMPS integrates with velocity Verlet, the native
-engine with Adams-Bashforth; both start from the static compression a* = 1 at rest.
+engine with Adams-Bashforth; both start at rest at x* = 0, y* = 1 (a* = 1 under the ramp).
 
 The Result has the native columns: the drift over the last ``measure_periods`` whole periods
 (x* at the same phase at both ends), contact loss, gross slip (|T*| at the cap N*), lift-offs
@@ -89,11 +89,9 @@ def input_script(scene: Scene, real: Realization | None = None, k_per: int | Non
     rescale = bool(scene.model_params.get("rescale", True))
     dt = 1.0 / (real.frequency * k_per)
     big = 1e3 * real.radius
-    # start: static compression a* = 1 against the wall's height at t* = 0, at rest
-    uy0 = real.amplitude * real.vertical * (0.0 if real.ramp_periods > 0.0 else 1.0)
-    ux0 = real.amplitude * real.ratio * real.cos_phase * real.horizontal * (
-        0.0 if real.ramp_periods > 0.0 else 1.0)
-    z0 = -uy0 + real.radius - real.a0
+    # start as the native engine does: x* = 0, y* = 1 (the static compression of the surface at
+    # rest, a* = 1 with the ramp; without a ramp the surface starts at u_y*(0) = A*), at rest
+    z0 = real.radius - real.a0
     lines = [
         "# sawdrift: one particle on the wave-driven plane (units SI)",
         f"# m* = {real.m_star!r}, A* = {real.amplitude / real.a0!r}, theta = {real.theta!r}, "
@@ -108,7 +106,7 @@ def input_script(scene: Scene, real: Realization | None = None, k_per: int | Non
         f"region box block {-big!r} {big!r} {-big!r} {big!r} {-10 * real.radius!r} "
         f"{10 * real.radius!r}",
         "create_box 1 box",
-        f"create_atoms 1 single {ux0!r} 0.0 {z0!r}",
+        f"create_atoms 1 single 0.0 0.0 {z0!r}",
         f"set atom 1 diameter {2.0 * real.radius!r} density {real.density!r}",
         "velocity all set 0.0 0.0 0.0",
         "pair_style granular",
