@@ -62,7 +62,9 @@ VALIDATION_SCENES: dict[str, list[tuple[str, Any]]] = {
         ("hop m*=0.3 A*=1.2 mu=0.2", lambda: _dem(0.3, 1.2, 0.2, False)),
         ("hop m*=1 A*=1.6 mu=0.2, rotation on", lambda: _dem(1.0, 1.6, 0.2, True)),
     ],
-    "device": [("SAW motor, 200 periods", saw_motor)],
+    "device": [(f"SAW motor {amp}, 200 periods",
+                lambda amp=amp: saw_motor().with_updates(**{"device.amplitude": amp}))
+               for amp in ("2 nm", "10 nm", "20 nm", "30 nm")],
 }
 
 
