@@ -269,6 +269,9 @@ def test_cli_mixture_json_figure_and_mpi(tmp_path):
     assert serial.returncode == 0, serial.stderr
     data = json.loads(serial.stdout)
     assert [row["count"] for row in data["species"]] == [2, 2] and data["processes"] == 1
+    series = data["over_time"]  # one sample per period, from t* = 0
+    assert series["t"] == [float(k) for k in range(11)] and len(series["segregation_index"]) == 11
+    assert len(series["mean_displacement_m"]) == 2 and series["mean_displacement_m"][0][0] == 0.0
     assert (tmp_path / "out" / "mixture.png").stat().st_size > 0
     if mpirun() is None:
         pytest.skip("no mpirun on PATH: the MPI half is not run")

@@ -157,7 +157,7 @@ class ManyResult:
     script: str = field(repr=False, default="")
 
     def summary(self) -> dict[str, Any]:
-        """JSON-ready summary (per species, the final segregation index, the cost)."""
+        """JSON-ready summary: per species, the segregation index (last and over time), the cost."""
         seg = float(self.segregation[-1]) if np.isfinite(self.segregation[-1]) else None
         return {
             "engine": "lammps", "count": self.count, "processes": self.processes,
@@ -167,6 +167,11 @@ class ManyResult:
             "particle_periods_per_s": self.count * self.periods / self.wall_time_s,
             "box_m": list(self.box), "surface_speed_m_s": self.surface_speed,
             "segregation_index": seg, "species": self.species,
+            "over_time": {
+                "t": self.times.tolist(),
+                "segregation_index": [float(v) if np.isfinite(v) else None for v in self.segregation],
+                "mean_displacement_m": self.mean_x.T.tolist(),
+            },
         }
 
 
