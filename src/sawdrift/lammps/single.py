@@ -19,8 +19,9 @@ The Result has the native columns: the drift over the last ``measure_periods`` w
 (x* at the same phase at both ends), contact loss, gross slip (|T*| at the cap N*), lift-offs
 and their synchrony, the stroboscopic periodicity and the fixed-run settledness, classified by
 :func:`sawdrift.result.regimes.classify`. Not computed: the Lyapunov estimate (no twin run;
-``lyapunov`` is NaN, ``chaotic`` False) and the ``settle`` continuation (a settle scene runs its
-``numerics.periods`` as a fixed run and says so in ``extra["lammps_note"]``).
+``lyapunov`` is NaN, ``chaotic`` False) and the ``settle`` continuation (LAMMPS always runs
+``numerics.periods`` as a fixed run; where the native engine would settle, ``extra["lammps_note"]``
+says so).
 """
 
 from __future__ import annotations
@@ -255,6 +256,17 @@ def _synchrony(events: np.ndarray, t_start: float, periods: int, orbit: int) -> 
     return synchrony(lifts, t_start, periods)
 
 
+def _settle_asked(scene: Scene, speed: float) -> bool:
+    """Whether the native engine would settle ``scene`` (``numerics.settle``, or its default)."""
+    asked = scene.numerics.settle
+    if asked is None:  # the default: settle where the drift relaxes slowly (dynamics.steady)
+        from ..dynamics import steady
+
+        rule = getattr(steady, "settles", None)
+        return bool(rule(scene, speed)) if rule is not None else False
+    return bool(asked)
+
+
 def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: bool = False
               ) -> Result:
     """The native :class:`~sawdrift.result.Result` of a LAMMPS record (module docstring)."""
@@ -308,7 +320,7 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
                    "frequency_hz": real.frequency, "radius_m": real.radius,
                    "e_star_pa": real.e_star, "g_star_pa": real.g_star},
     }
-    if num.settle:
+    if _settle_asked(scene, speed):
         extra["lammps_note"] = (f"numerics.settle is not continued in LAMMPS: a fixed run of "
                                 f"{info['steps'] / k_per:g} periods")
     if scene.device is not None:
