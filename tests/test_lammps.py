@@ -279,3 +279,18 @@ def test_cli_mixture_json_figure_and_mpi(tmp_path):
     assert parallel["processes"] == 2
     for a, b in zip(data["species"], parallel["species"], strict=True):
         assert b["drift_ratio"] == pytest.approx(a["drift_ratio"], rel=1e-9)
+
+
+@needs_lammps
+def test_rotating_trajectory_has_the_contact_point_columns():
+    """With rotation: psi = R phi/a0 and spin = psi', b* from the contact point x* + psi."""
+    scene = dem(particle__m_star=0.1, effects__rotation=True, numerics__periods=6.0)
+    native = sd.run(scene, trajectory=True).trajectory
+    traj = sd.lammps.run_scene(scene, trajectory=True).trajectory
+    assert list(traj.columns) == list(native.columns)
+    ref = native.iloc[-1]
+    end = traj.iloc[int((traj["t"] - ref["t"]).abs().argmin())]
+    assert end["t"] == pytest.approx(ref["t"], abs=1e-9)  # the same instant
+    # from rest, psi = x*/kappa (docs/physics.md, "Rotation"); b* as the native one, within 1 %
+    assert end["psi"] == pytest.approx(end["x"] / 0.4, rel=1e-3)
+    assert end["b"] == pytest.approx(ref["b"], rel=1e-2)

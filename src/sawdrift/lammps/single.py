@@ -332,8 +332,18 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
         import pandas as pd
 
         every = max(1, k_per // 200)
-        cols = ("t", "x", "vx", "y", "vy", "a", "b", "N_star", "T_star")
-        frame = pd.DataFrame({c: rec_all[c][::every] for c in cols})
+        cols = ["t", "x", "vx", "y", "vy", "a", "b", "N_star", "T_star"]
+        data = dict(rec_all)
+        if real.rotation:
+            # psi = R phi / a0 from rest (the record starts at t* = 0 here), by the trapezoidal
+            # rule on psi' (LAMMPS keeps no angle); the contact point moves with x* + psi, so
+            # b* = (x* + psi - u_x*) / (theta mu), as in the native trajectory
+            spin = data["spin"]
+            psi = np.concatenate(([0.0], np.cumsum(0.5 * (spin[1:] + spin[:-1]) / k_per)))
+            data["psi"] = psi
+            data["b"] = data["b"] + psi / (real.theta * real.mu)
+            cols += ["psi", "spin"]
+        frame = pd.DataFrame({c: data[c][::every] for c in cols})
     return Result(
         model=scene.model, engine="lammps", m_star=scene.particle.m_star,
         amplitude=scene.drive.amplitude, mu=scene.material.mu, nu=scene.material.nu,
