@@ -14,6 +14,7 @@ from sawdrift.study.adaptive import adaptive_sweep, misclassified_area
 BASE = sd.Scene(numerics={"periods": 30})
 
 
+@pytest.mark.slow
 def test_adaptive_point_diagram_equals_the_uniform_one_with_fewer_cells(tmp_path):
     """Every region of the material point's diagram holds base points and the refinement ends
     within the budget, so the adaptive map equals the uniform 33 x 33 one at every node (measured:

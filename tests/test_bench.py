@@ -96,6 +96,7 @@ def test_observed_orders_table(study):
     assert strips.size and np.all((strips > 1.5) & (strips < 2.5)), strips
 
 
+@pytest.mark.slow
 def test_speed_quick_reports_every_target(tmp_path, capsys):
     path = tmp_path / "speed.json"
     result = bench.speed(quick=True, progress=False, out=path)

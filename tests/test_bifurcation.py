@@ -87,6 +87,7 @@ def test_slowly_decaying_alternation_is_period_one_with_the_map_multiplier():
     assert point.lyapunov == pytest.approx(math.log(0.99218), abs=2e-3)
 
 
+@pytest.mark.slow
 def test_hysteresis_of_the_bouncing_ball_with_restitution():
     e = 0.8
     res = bifurcation(ball(e), "drive.amplitude", "lin:0.25:1.45:13", samples=16,
@@ -167,6 +168,7 @@ def test_bad_input_is_one_line(kwargs, match):
     assert "\n" not in str(info.value)
 
 
+@pytest.mark.slow
 def test_two_models_side_by_side_on_one_axis():
     # a stiff compliant contact (m* = 1e-3, Tsuji damping) next to the rigid point: same values,
     # and below Gamma = 1 both stay in contact while the point's doubling is still located

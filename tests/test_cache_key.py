@@ -19,6 +19,11 @@ import subprocess
 import sys
 import textwrap
 
+import pytest
+
+# three fresh processes, each compiling a plugin: seconds
+pytestmark = pytest.mark.slow
+
 HELPER = """
 from numba import njit
 

@@ -139,6 +139,7 @@ def test_prescribed_history_from_a_scene_file(tmp_path):
     assert (frame["T_star"].abs() <= frame["N_star"] + 1e-12).all()
 
 
+@pytest.mark.slow
 def test_an_axis_sweeps_over_the_default_plane(tmp_path):
     # README: `sweep --axis effects.rotation=false,true` compares rotation off and on over the
     # (m*, A*) plane; the axis multiplies the default 11 x 11 plane instead of replacing it
@@ -168,6 +169,7 @@ def test_scene_options_are_generated_from_the_schema():
         assert {f"{name}.{f}" for f in part.model_fields} <= dotted
 
 
+@pytest.mark.slow
 def test_every_scene_field_reaches_the_scene_from_run_and_sweep(tmp_path):
     # fields that had no hand-written option before (ramp, measuring window, drift tolerance)
     out = json.loads(cli("run", "--model", "material_point", "--ramp-periods", "0",
@@ -181,6 +183,7 @@ def test_every_scene_field_reaches_the_scene_from_run_and_sweep(tmp_path):
     assert (pd.read_parquet(table)["ramp_periods"] == 2.0).all()
 
 
+@pytest.mark.slow
 def test_adaptive_sweep_reports_what_it_wrote(tmp_path):
     # the count printed for the table is the count of rows in it (inferred points are extra)
     table = tmp_path / "ad.parquet"
@@ -192,6 +195,7 @@ def test_adaptive_sweep_reports_what_it_wrote(tmp_path):
     assert computed == len(pd.read_parquet(table))
 
 
+@pytest.mark.slow
 def test_bifurcation_locates_the_bouncing_balls_doubling_from_the_command_line(tmp_path):
     # Gamma = 4 pi^2 m* A*; the completely inelastic ball doubles at sqrt(4 + pi^2) = 3.7242
     proc = cli("bifurcation", "--model", "material_point", "--m-star", "0.1",

@@ -69,6 +69,7 @@ DECLARED = {
 }
 
 
+@pytest.mark.slow
 def test_mmd_passes_every_check_on_every_profile_through_the_cli():
     out = _cli("mmd", "--json")
     assert out.returncode == 0, out.stderr
@@ -421,6 +422,7 @@ class _PowNormal(MMD):
     step = gives_normal(_pow_normal_step)
 
 
+@pytest.mark.slow
 def test_a_step_handing_back_another_normal_force_fails_normal_slot(register):
     res = check_model(register(_PowNormal))
     assert _failed(res) == {("sphere", "normal_slot")}

@@ -403,6 +403,7 @@ def _synthetic_table(n: int) -> tuple[pd.DataFrame, dict]:
     return pd.DataFrame(rows), traces
 
 
+@pytest.mark.slow
 def test_a_41_by_41_two_model_page_is_small_and_opens_fast(browser, tmp_path):
     frame, traces = _synthetic_table(41)
     page = write_explorer(frame, tmp_path / "big.html", traces=traces)

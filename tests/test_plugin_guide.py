@@ -31,6 +31,7 @@ def test_example_is_under_50_lines():
     assert len(EXAMPLE.read_text().splitlines()) < 50
 
 
+@pytest.mark.slow
 def test_example_runs_the_wave_scene_and_passes_check_model(spring):
     res = sd.run(sd.Scene(model="coulomb_spring", particle={"m_star": 0.1},
                           drive={"amplitude": 0.316}))
@@ -51,6 +52,7 @@ def test_example_appears_in_models(spring, monkeypatch, capsys):
     assert "coulomb_spring" in capsys.readouterr().out
 
 
+@pytest.mark.slow
 def test_a_law_defined_in_a_script_runs_compiled_in_memory(spring, tmp_path):
     # a law written in a notebook or a script lives in __main__: it cannot be imported by name,
     # so its contact and loop are compiled in memory (no disk cache); the physics is the same

@@ -33,6 +33,7 @@ def _cli_json(*args: str) -> dict:
     return json.loads(out)
 
 
+@pytest.mark.slow
 def test_mmd_rotation_cli_and_no_rotation_equals_plain_run():
     plain, off, on = _cli_json(), _cli_json("--no-rotation"), _cli_json("--rotation")
     for key in ("drift_ratio", "drift_velocity", "regime", "gross_slip_fraction", "steps",

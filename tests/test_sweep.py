@@ -35,6 +35,7 @@ def test_parse_axis():
 BASE = sd.Scene(model="mmd", numerics={"periods": 20})
 
 
+@pytest.mark.slow
 def test_serial_processes_and_dask_agree():
     kwargs = dict(base=BASE, progress=False)
     serial = sd.sweep("mmd,material_point", "0.01:1:3", "0.05:0.5:3", workers=1, **kwargs)
@@ -71,6 +72,7 @@ def test_error_in_one_cell_is_recorded_and_the_sweep_goes_on(tmp_path):
     assert pd.isna(good.error) and good.regime in sd.REGIMES
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(sys.platform == "win32", reason="kill -9")
 def test_kill_9_then_resume_equals_uninterrupted(tmp_path):
     args = ["sweep", "--model", "mmd", "--m-star", "0.01:1:6", "--amplitude", "0.05:0.8:6",

@@ -9,6 +9,9 @@ from pathlib import Path
 
 import pytest
 
+# a notebook kernel and a strict mkdocs build: seconds each
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[1]
 
 

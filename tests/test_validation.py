@@ -40,6 +40,7 @@ def flipped_model():
         sd.registry.unregister(FlippedFriction.name)
 
 
+@pytest.mark.slow
 def test_quick_subset_passes_and_writes_the_report(tmp_path):
     report = validate(tmp_path, quick=True, progress=False)
     failed = [(r.name, r.status, r.message) for r in report.results if r.failed]
@@ -59,6 +60,7 @@ def test_quick_subset_passes_and_writes_the_report(tmp_path):
     assert all(r.seconds >= 0 for r in report.results)
 
 
+@pytest.mark.slow
 def test_oracles_catch_a_flipped_friction_sign(tmp_path, flipped_model):
     # the mindlin oracles and the kernel-against-reference check, run for the broken model only
     report = validate(tmp_path, only=["mindlin", "kernel_vs_reference"], models=[flipped_model],

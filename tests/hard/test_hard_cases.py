@@ -66,6 +66,7 @@ def _run(scene: sd.Scene, engine: str = "compiled") -> sd.Result:
     return sd.run(scene, trajectory=True, engine=engine, record_every=1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rotation", ROTATION)
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_finite_and_convergent(name, rotation):
