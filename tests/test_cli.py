@@ -44,15 +44,17 @@ def test_run_json_is_one_object_and_deterministic():
 
 
 def test_an_unsettled_run_says_so_on_stderr():
-    """m* = 100, A* = 0.3 is transient after 60 periods: settled False and a one-line note;
-    with --settle it settles and no note is printed."""
+    """m* = 100, A* = 0.3 is transient after 60 fixed periods: settled False and a one-line note;
+    with --settle (and by default: a heavy particle settles unless told not to) it settles and no
+    note is printed."""
     args = ("run", "--model", "mmd", "--m-star", "100", "--amplitude", "0.3")
-    short = cli(*args, check=True)
+    short = cli(*args, "--no-settle", check=True)
     assert re.search(r"settled\s+NO, still changing", short.stdout)
     notes = short.stderr.strip().splitlines()
     assert len(notes) == 1 and "m*/mu = 1000" in notes[0] and "--settle" in notes[0]
-    settled = cli(*args, "--settle", check=True)
-    assert re.search(r"settled\s+yes", settled.stdout) and settled.stderr.strip() == ""
+    for flag in (("--settle",), ()):
+        settled = cli(*args, *flag, check=True)
+        assert re.search(r"settled\s+yes", settled.stdout) and settled.stderr.strip() == "", flag
 
 
 def test_run_writes_parquet_and_png(tmp_path):

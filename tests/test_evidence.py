@@ -10,7 +10,13 @@ import pytest
 import sawdrift as sd
 from sawdrift.dynamics import rigid as rg
 from sawdrift.errors import NonFiniteStateError
-from sawdrift.result.regimes import lyapunov_estimate, synchrony
+from sawdrift.result.regimes import (
+    ALIGN_PERIODS,
+    LYAPUNOV_PERIODS,
+    is_chaotic,
+    lyapunov_statistics,
+    synchrony,
+)
 
 
 @pytest.mark.parametrize("m_star, amplitude", [(0.3, 1.5), (10.0, 1.2), (3.0, 1.0)])
@@ -106,12 +112,29 @@ def test_synchrony_finds_period_two_and_rejects_scattered_phases():
     assert synchrony(scattered, 100.0, 40).hop_period == 0
 
 
-def test_lyapunov_estimate_tells_exponential_from_linear_growth():
-    t = np.arange(1, 201)
-    lam, chaotic = lyapunov_estimate(1e-10 * np.exp(0.2 * t))
-    assert chaotic and lam == pytest.approx(0.2, rel=0.05)
-    lam, chaotic = lyapunov_estimate(1e-10 * (1 + 50 * t))
-    assert not chaotic and lam < 0.05
+def test_lyapunov_statistics_tell_exponential_from_linear_growth():
+    rng = np.random.default_rng(3)
+    j = np.arange(ALIGN_PERIODS, ALIGN_PERIODS + LYAPUNOV_PERIODS)
+    # exponential separation at 0.2 per period with noisy stretchings: chaos
+    lam, err = lyapunov_statistics(0.2 + rng.normal(0.0, 0.3, j.size))
+    assert lam == pytest.approx(0.2, abs=3 * err) and is_chaotic(lam, err)
+    # a shear along a neutral direction (separation 1 + c t), renormalized every period: for
+    # every c the mean stretching stays below ln(9)/64, never chaos
+    for c in (0.01, 0.1, 1.0, 50.0, 1e4):
+        lam, err = lyapunov_statistics(np.log((1 + c * (j + 1)) / (1 + c * j)))
+        assert 0.0 < lam < math.log(9) / 64 and not is_chaotic(lam, err)
+    # a stable orbit shrinks the separation; an erased one is -inf
+    assert not is_chaotic(*lyapunov_statistics(np.full(64, math.log(0.5))))
+    assert lyapunov_statistics(np.array([0.1, -math.inf]))[0] == -math.inf
+
+
+def test_a_moderate_positive_exponent_is_chaos():
+    # mmd, m* 0.1, A* 1: drift -0.255 / -0.093 / +0.537 at 128 / 256 / 512 steps per period,
+    # exponent 0.2-0.4 per period; the former growth-by-1e7 rule called none of them chaotic
+    for steps in (128, 256, 512):
+        r = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 1.0},
+                            numerics={"steps_per_period": steps}))
+        assert r.regime == "bouncing" and r.chaotic and r.lyapunov > 0.15
 
 
 def test_rigid_scheme_raises_instead_of_falling_behind(monkeypatch):

@@ -133,3 +133,50 @@ def test_vertical_vibration_is_the_inelastic_bouncing_ball(gamma, period, period
     kinds = res.events["kind"].value_counts()
     assert kinds["slip_start"] == 0 and kinds["slip_end"] == 0
     assert (res.trajectory["x"] == 0.0).all() and (res.trajectory["vx"] == 0.0).all()
+
+
+@pytest.mark.parametrize("excess", [-1e-6, 1e-6, 1e-4])
+def test_the_points_hopping_onset_is_gz_one(excess):
+    # contact is lost iff Gz = 4 pi^2 m* A* > 1 (every Gz); 1e-6 above it the point dips below
+    # N* = 0 for 9e-4 of a period, inside one step of 1/256: the scheme must look inside steps,
+    # and the take-off from sustained contact is a (period-1) hop however short its flight
+    m = 0.1
+    res = sd.run(sd.Scene(model="material_point", particle={"m_star": m}, material={"mu": 0.1},
+                          drive={"amplitude": (1.0 + excess) / (4 * math.pi**2 * m)}))
+    if excess < 0:
+        assert not res.contact_lost and res.regime == "drift_against"
+        return
+    assert res.contact_lost and res.orbit_period == 1
+    assert res.regime == "hopping" and res.hop_period == 1 and res.liftoffs_per_hop == 1
+    # the flight is short, ~sqrt(Gz - 1): it was dropped as a micro-rebound before
+    assert 0.0 < res.out_of_contact_fraction < 0.01
+
+
+def test_a_period_two_bouncing_ball_reports_both_take_off_phases():
+    # r = 0, restitution 0, Gamma = 3.9 > sqrt(4 + pi^2) = 3.724: the take-offs alternate between
+    # two phases (Mehta and Luck 1990); hop period and orbit period are 2, and both phases are
+    # reported, not their circular mean
+    m = 0.1
+    res = sd.run(sd.Scene(model="material_point", model_params={"restitution": 0.0},
+                          particle={"m_star": m},
+                          drive={"amplitude": 3.9 / (4 * math.pi**2 * m), "horizontal_ratio": 0.0},
+                          numerics={"periods": 200}))
+    assert res.orbit_period == 2 and res.hop_period == 2 and res.liftoffs_per_hop == 2
+    a, b = res.liftoff_phases
+    lifts = res.events[res.events["kind"] == "lift_off"]["t"].to_numpy() % 1.0
+    assert min(abs(lifts - a).min(), abs(lifts - b).min()) < 1e-9  # both are real take-offs
+    assert abs(a - b) > 0.02 and res.liftoff_phase == a
+
+
+def test_period_one_bouncing_ball_multiplier_is_the_lyapunov_exponent():
+    # period-1 inelastic bouncing ball: the map of take-off phases has the multiplier
+    # 1 - sqrt(Gamma^2 - pi^2) (Mehta and Luck 1990); the exponent is ln|multiplier|
+    m = 0.1
+    gamma = 3.5
+    res = sd.run(sd.Scene(model="material_point", model_params={"restitution": 0.0},
+                          particle={"m_star": m},
+                          drive={"amplitude": gamma / (4 * math.pi**2 * m), "horizontal_ratio": 0.0},
+                          numerics={"periods": 200}))
+    assert res.hop_period == 1 and not res.chaotic
+    assert res.lyapunov == pytest.approx(math.log(abs(1 - math.sqrt(gamma**2 - math.pi**2))),
+                                         abs=0.01)

@@ -32,12 +32,26 @@ def test_settle_matches_a_brute_force_run_of_many_approach_times():
 
 def test_a_short_run_of_a_heavy_particle_is_reported_as_not_settled():
     """m* = 100, A* = 0.3: 60 periods are far from the steady drift, and the result says so."""
-    short = sd.run(scene("mmd", 100.0, 0.3, 0.1))
+    short = sd.run(scene("mmd", 100.0, 0.3, 0.1, settle=False))
     steady = sd.run(scene("mmd", 100.0, 0.3, 0.1, settle=True, max_periods=1e5))
     assert abs(short.drift_ratio - steady.drift_ratio) > 0.1  # the short run is transient
     assert short.settled is False
     assert short.settle_method == "fixed" and short.settle_periods == 60.0
     assert steady.settled is True
+
+
+def test_a_heavy_particle_settles_by_default_and_a_light_one_runs_fixed():
+    """m* = 300, A* = 0.5, mu = 0.1: 60 fixed periods gave drift ratio 0.0025 against a steady
+    0.381; unset, numerics.settle is on where 3 m*/mu exceeds the periods (here 9000 > 60)."""
+    default = sd.run(scene("mmd", 300.0, 0.5, 0.1))
+    explicit = sd.run(scene("mmd", 300.0, 0.5, 0.1, settle=True))
+    fixed = sd.run(scene("mmd", 300.0, 0.5, 0.1, settle=False))
+    assert default.settled is True and default.settle_method == "reduced_inertia"
+    assert default.drift_ratio == explicit.drift_ratio
+    assert fixed.settled is False and abs(fixed.drift_ratio - default.drift_ratio) > 0.3
+    # m* = 0.1: 3 m*/mu = 3 periods, far below 60: a fixed run, as before
+    light = sd.run(scene("mmd", 0.1, 0.316, 0.1))
+    assert light.settle_method == "fixed" and light.periods == 60.0
 
 
 def test_a_light_particle_is_settled_after_the_default_run():
@@ -55,7 +69,7 @@ def test_a_flight_longer_than_the_window_is_not_taken_for_steady():
     The 60-period run must not be flagged settled, and --settle must go on to the drift of a
     20000-period run (within 1e-3), not stop inside the flight.
     """
-    short = sd.run(scene("material_point", 30.0, 4.0, 0.1))
+    short = sd.run(scene("material_point", 30.0, 4.0, 0.1, settle=False))
     assert short.out_of_contact_fraction == 1.0 and short.liftoffs_per_period == 0.0
     assert short.settled is False
     ref = brute("material_point", 30.0, 4.0, 0.1, 20000)
@@ -72,10 +86,13 @@ def test_the_drift_of_a_period_two_hop_is_measured_over_whole_hops():
     long run: a leftover half hop would bias a 27-period window by about a hop's jump / 27.
     """
     ref = brute("material_point", 0.3, 0.6, 0.3, 2000)
-    assert ref.hop_period == 2
+    assert ref.hop_period == 4 and ref.liftoffs_per_hop == 2
     for window in (27, 28):
         res = sd.run(scene("material_point", 0.3, 0.6, 0.3, periods=400, measure_periods=window))
-        assert res.hop_period == 2 and res.orbit_period == 4  # lifts every 2nd, repeats every 4th
+        # lifts every 2nd period, at two take-off phases in turn: the motion repeats every 4th
+        assert res.hop_period == 4 and res.orbit_period == 4 and res.liftoffs_per_hop == 2
+        phases = res.liftoff_phases
+        assert len(phases) == 2 and abs(phases[0] - phases[1]) > 0.05
         assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-6, window
         assert res.settled is True
 

@@ -78,7 +78,7 @@ _LAZY: dict[str, str] = {
     "plot_bifurcation": "report.bifurcation_plot",
     "drift_field": "study.field",
     "direct_run": "study.field",
-    "rayleigh_wavelength": "study.field",
+    "rayleigh_wavelength": "scene.device",
     "plot_field": "report.field_plot",
     "load_curve": "study.load_curve",
     "LoadCurve": "study.load_curve",

@@ -30,7 +30,7 @@ OPTIONS = (
     ('periods', 'numerics.periods', 'float', (), 'numerics.periods: simulated periods (with settle: the minimum); in (0, 1e+07]; scene default 60.0'),
     ('measure-periods', 'numerics.measure_periods', 'int', (), 'numerics.measure_periods: whole periods at the end over which the drift is measured; in [1, 1e+07]'),
     ('drift-tolerance', 'numerics.drift_tolerance', 'float', (), "numerics.drift_tolerance: |drift_ratio| below this is 'stick' (no steady drift); in [0, 1]; scene default 0.001"),
-    ('settle', 'numerics.settle', 'bool', (), 'numerics.settle: run on, in chunks of measure_periods, until the drift has settled'),
+    ('settle', 'numerics.settle', 'bool', (), 'numerics.settle: run on, in chunks of measure_periods, until the drift has settled; default: on where the drift needs longer than periods/3 to relax (of order m*/mu periods: a heavy particle), else a fixed run of periods'),
     ('settle-tolerance', 'numerics.settle_tolerance', 'float', (), 'numerics.settle_tolerance: in (0, 1]; scene default 0.001'),
     ('max-periods', 'numerics.max_periods', 'float', (), 'numerics.max_periods: settle: stop after this many periods even if not settled; default max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method; in [1, 1e+07]'),
     ('friction', 'effects.friction', 'bool', (), 'effects.friction: tangential friction; off: x* is not integrated, no tangential law'),

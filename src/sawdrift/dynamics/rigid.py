@@ -69,9 +69,14 @@ EV_MARGIN_RIGID = 3 * _MAX_EVENTS + 8
 #: shortest rebound flight, in steps, before an inelastic collapse counts as landed
 _ZENO = 1e-6
 #: A grazing dip of N* below zero by less than this is contact with N* = 0: the flight it would
-#: start rises less than ~1e-12 (|N*|^2 / (16 pi^2 m*)), below what the gap function resolves,
-#: and a lift-off and landing it cannot resolve would repeat without end.
-_GRAZE = 1e-6
+#: start rises less than ~1e-20 / m* (|N*|^2 / (16 pi^2 m*)), below what the gap function
+#: resolves, and a lift-off and landing it cannot resolve would repeat without end (1e-12 did, in
+#: tests/test_material_point.py's bouncing ball at Gamma = 2.78). It is far above the rounding
+#: of N* = 1 - m* u_y'' (1e-16 Gz) and puts the hopping onset of the point at Gz = 1 + 1e-9 (the
+#: rule: contact is lost iff Gz > 1).
+_GRAZE = 1e-9
+#: golden-section iterations that locate the least N* within a step (shrinks it by 0.618^60)
+_GOLDEN = 60
 
 
 def _tangential_mass(prm):
@@ -100,6 +105,53 @@ def _normal(t, prm):
         return 1.0
     k = drive_kinematics(t, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
     return 1.0 - prm[P_M] * k[5]
+
+
+def _least_normal_inside(t0, t1, n0, n1, prm):
+    """The time in (t0, t1) where N* dips below ``-_GRAZE`` first, or -1.0 if it does not.
+
+    N*(t) = 1 - m* u_y''(t) may dip below zero inside a step and be positive again at both ends
+    (just above the hopping onset the dip lasts ~sqrt(Gz - 1) / pi periods, shorter than a step):
+    a lift-off is then missed unless the step looks inside. Within one step N* differs from its
+    chord by at most max|N*''| h^2 / 8 <= 2 m* (2 pi)^4 A h^2 / 8 (factor 2: the ramp and a
+    second wave), so steps whose ends both stand higher are skipped at the cost of one
+    comparison; otherwise a parabola through the ends and the midpoint says whether a minimum
+    lies inside, and a golden-section search locates it before a bisection finds the crossing.
+    """
+    h = t1 - t0
+    reach = 0.25 * prm[P_M] * (2.0 * math.pi) ** 4 * prm[P_UY] * h * h + 1e-9
+    if min(n0, n1) > reach:
+        return -1.0
+    nm = _normal(0.5 * (t0 + t1), prm)
+    c = 2.0 * (n0 - 2.0 * nm + n1)
+    b = 4.0 * nm - 3.0 * n0 - n1
+    if c <= 0.0 or not (0.0 < -b < 2.0 * c):
+        return -1.0  # no minimum inside the step (concave, or the vertex beyond an end)
+    lo, hi = t0, t1
+    g = 0.5 * (math.sqrt(5.0) - 1.0)
+    a_ = hi - g * (hi - lo)
+    b_ = lo + g * (hi - lo)
+    na, nb = _normal(a_, prm), _normal(b_, prm)
+    for _i in range(_GOLDEN):
+        if na < nb:
+            hi, b_, nb = b_, a_, na
+            a_ = hi - g * (hi - lo)
+            na = _normal(a_, prm)
+        else:
+            lo, a_, na = a_, b_, nb
+            b_ = lo + g * (hi - lo)
+            nb = _normal(b_, prm)
+    tmin = a_ if na < nb else b_
+    if min(na, nb) >= -_GRAZE:
+        return -1.0
+    lo, hi = t0, tmin
+    for _i in range(_BISECT):
+        mid = 0.5 * (lo + hi)
+        if _normal(mid, prm) >= -_GRAZE:
+            lo = mid
+        else:
+            hi = mid
+    return lo
 
 
 def _stick_margin(t, prm):
@@ -308,7 +360,8 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                         _log(st, EV_SLIP_START, tc, y, t, od, odv, gd, roll)
                 continue
             # ---- contact ----
-            if _normal(tau, prm) < -_GRAZE:
+            n_tau = _normal(tau, prm)
+            if n_tau < -_GRAZE:
                 if friction and ctr[3] == 0:
                     _log(st, EV_SLIP_END, tau, y, t, od, odv, gd, roll)
                 ctr[1] = 1
@@ -317,7 +370,8 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                 continue
             seg_end = t_end
             lift = False
-            if _normal(t_end, prm) < -_GRAZE:
+            n_end = _normal(t_end, prm)
+            if n_end < -_GRAZE:
                 lo, hi = tau, t_end
                 for _i in range(_BISECT):
                     mid = 0.5 * (lo + hi)
@@ -327,6 +381,11 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
                         hi = mid
                 seg_end = lo
                 lift = True
+            elif prm[P_VINERTIA] > 0.0:
+                dip = _least_normal_inside(tau, t_end, n_tau, n_end, prm)
+                if dip >= 0.0:
+                    seg_end = dip
+                    lift = True
             if not friction:
                 dt = seg_end - tau
                 y[0] += y[1] * dt

@@ -20,14 +20,15 @@ from numba import njit
 from . import rigid as rg
 
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
-_FUNCTIONS = (rg._tangential_mass, rg._tangential_load, rg._normal, rg._stick_margin, rg._sticks,
+_FUNCTIONS = (rg._tangential_mass, rg._tangential_load, rg._normal, rg._least_normal_inside,
+              rg._stick_margin, rg._sticks,
               rg._t_req, rg._slip_state, rg._slip_velocity, rg._gap, rg._log, rg.rigid_loop)
 _IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
     "from sawdrift.dynamics.evidence import *  # noqa: F403\n"
     "from sawdrift.dynamics.rigid import (  # noqa: F401\n"
-    "    _BISECT, _GRAZE, _MAX_EVENTS, _ZENO, EV_MARGIN_RIGID, N_PRM_RIGID, P_RESTITUTION, P_UY,\n"
-    "    P_VINERTIA, P_XQ,\n"
+    "    _BISECT, _GOLDEN, _GRAZE, _MAX_EVENTS, _ZENO, EV_MARGIN_RIGID, N_PRM_RIGID, P_RESTITUTION,\n"
+    "    P_UY, P_VINERTIA, P_XQ,\n"
     ")\n"
 )
 _LOOPS: dict[str, Callable[..., None]] = {}
@@ -44,7 +45,7 @@ def _namespace(kinematics: Any) -> dict[str, Any]:
     ns: dict[str, Any] = {"math": math, "njit": njit}
     for module in (adams_bashforth, evidence):
         ns.update({n: v for n, v in vars(module).items() if not n.startswith("_")})
-    ns.update({n: getattr(rg, n) for n in ("_BISECT", "_GRAZE", "_MAX_EVENTS", "_ZENO",
+    ns.update({n: getattr(rg, n) for n in ("_BISECT", "_GOLDEN", "_GRAZE", "_MAX_EVENTS", "_ZENO",
                                           "EV_MARGIN_RIGID", "N_PRM_RIGID", "P_RESTITUTION",
                                           "P_UY", "P_VINERTIA", "P_XQ")})
     ns["drive_kinematics"] = kinematics

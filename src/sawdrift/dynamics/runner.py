@@ -25,6 +25,7 @@ from .steady import (
     relaxation_periods,
     rolling_frequency,
     settle,
+    settles,
 )
 from .stepper import Stepper
 from .window import lyapunov, measure_window
@@ -79,16 +80,17 @@ def _run_wave(
     drive = plan.drive
     speed = drive.horizontal_speed(scene)
     m_star = scene.particle.m_star
+    settle_on = settles(scene, speed)
     cap = num.max_periods
     if cap is None:
-        m_x = horizontal_inertia(m_star, stepper.rigid) if num.settle else m_star
+        m_x = horizontal_inertia(m_star, stepper.rigid) if settle_on else m_star
         cap = default_max_periods(m_star, relaxation_periods(scene, m_x, speed), stepper.rigid,
                                   n_periods, rolling_frequency(scene, m_x))
     n_max = max(n_total, int(round(cap * k_per)))
     stepper.advance(n_total - n_measure)
     scale = drive.state_scale(scene)
     settling = None
-    if num.settle:
+    if settle_on:
         win, settling = settle(stepper, scene, speed, scale, n_periods, n_max)
     else:
         win = measure_window(stepper, n_periods, speed, scale)
@@ -99,7 +101,7 @@ def _run_wave(
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, m_star, speed), stepper.step / k_per,
                                 chaotic)
-    t90 = settling.t90_periods if num.settle else math.nan
+    t90 = settling.t90_periods if settle_on else math.nan
     # without horizontal surface motion (r = 0) the drift ratio is undefined: it is reported as
     # null, and the regime reads the drift against the vertical surface speed instead
     drift_ratio = win.drift_ratio if speed > 0.0 else math.nan
@@ -112,7 +114,7 @@ def _run_wave(
     if scene.device is not None:
         from ..scene.device import device_outputs
 
-        extra.update(device_outputs(scene.device, win.drift, regime, t90 if num.settle else None))
+        extra.update(device_outputs(scene.device, win.drift, regime, t90 if settle_on else None))
     return Result(
         model=scene.model,
         engine=plan.engine,
@@ -154,8 +156,9 @@ def _run_wave(
         settle_method=settling.method,
         settle_periods=settling.periods,
         t90_periods=t90,
-        horizontal_inertia=settling.horizontal_inertia if num.settle else math.nan,
-        liftoffs_per_hop=sync.liftoffs_per_hop if sync.hop_period else math.nan,
+        horizontal_inertia=settling.horizontal_inertia if settle_on else math.nan,
+        liftoffs_per_hop=sync.liftoffs_per_hop if hop_period else math.nan,
+        liftoff_phases=sync.phases if hop_period else (),
         extra=extra,
     )
 

@@ -82,12 +82,35 @@ def relaxation_periods(scene, m_x: float, speed: float) -> float:
     term at the ratio eta_r (:data:`~sawdrift.dynamics.adams_bashforth.ROLL_DAMPING`): it decays
     in 1 / (eta_r omega_r) periods, and tau is at least that.
     """
-    mu = scene.material.mu
-    tau = m_x / mu * min(1.0, speed) if mu > 0.0 else 0.0
+    tau = horizontal_relaxation(scene, m_x, speed)
     omega = rolling_frequency(scene, m_x)
     if omega > 0.0:
         tau = max(tau, 1.0 / (ig.ROLL_DAMPING * omega))
     return tau
+
+
+def settles(scene, speed: float) -> bool:
+    """Whether a run settles its drift: ``numerics.settle``, or by default where it must.
+
+    Unset, a run settles when its horizontal relaxation time (:func:`horizontal_relaxation`, of
+    order m*/mu periods) exceeds a third of ``numerics.periods``: a fixed run that short would end
+    before the drift had relaxed (the same bound :func:`assess_fixed` holds a fixed run to).
+    """
+    given = scene.numerics.settle
+    if given is not None:
+        return bool(given)
+    return 3.0 * horizontal_relaxation(scene, scene.particle.m_star, speed) > scene.numerics.periods
+
+
+def horizontal_relaxation(scene, m_x: float, speed: float) -> float:
+    """U m*_x / mu periods (U = min(1, speed)): the approach of the horizontal velocity alone.
+
+    The part of :func:`relaxation_periods` that makes a particle heavy; a rolling spring's slow
+    mode (there too) does not decide the default of ``numerics.settle``: a spring of negligible
+    strength rings for ever without changing the drift.
+    """
+    mu = scene.material.mu
+    return m_x / mu * min(1.0, speed) if mu > 0.0 else 0.0
 
 
 def rolling_frequency(scene, m_x: float) -> float:

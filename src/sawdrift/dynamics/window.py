@@ -2,8 +2,8 @@
 
 :func:`measure_window` opens the window on the stepper's evidence vector (every statistic and the
 event log start from zero there), advances whole periods, and reads the drift, the stroboscopic
-samples, contact loss, gross slip and lift-off synchrony. :func:`lyapunov` then replays the same
-window from a perturbed snapshot of its start, for runs that lost contact.
+samples, contact loss, gross slip and lift-off synchrony. :func:`lyapunov` then estimates the
+largest Lyapunov exponent from a copy of the window's start, for runs that lost contact.
 """
 
 from __future__ import annotations
@@ -14,7 +14,16 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import NonFiniteStateError
-from ..result.regimes import LYAPUNOV_D0, MIN_FLIGHT, Synchrony, lyapunov_estimate, synchrony
+from ..result.regimes import (
+    ALIGN_PERIODS,
+    LYAPUNOV_D0,
+    LYAPUNOV_PERIODS,
+    MIN_FLIGHT,
+    Synchrony,
+    is_chaotic,
+    lyapunov_statistics,
+    synchrony,
+)
 from . import evidence as ev
 from .stepper import Stepper
 
@@ -80,10 +89,15 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = 12, last
     return 0
 
 
-def hop_liftoffs(events: np.ndarray, t_end: float) -> np.ndarray:
-    """Times of the lift-offs whose flight lasts at least :data:`~sawdrift.result.regimes.MIN_FLIGHT`.
+def hop_liftoffs(events: np.ndarray, t_start: float, t_end: float,
+                 rebounds_only: bool = True) -> np.ndarray:
+    """Times of the lift-offs that count as hops (see :data:`~sawdrift.result.regimes.MIN_FLIGHT`).
 
-    A flight ends at the next landing, or at ``t_end`` (the window's end) if none follows.
+    A flight ends at the next landing, or at ``t_end`` (the window's end) if none follows. With
+    ``rebounds_only`` a flight shorter than MIN_FLIGHT is left out only if it is a rebound: its
+    lift-off follows a landing (or the window's start) within MIN_FLIGHT. Otherwise every flight
+    shorter than MIN_FLIGHT is left out (the coarser filter, tried second by
+    :func:`measure_window`).
     """
     t = events[:, 0]
     kind = events[:, 1]
@@ -95,7 +109,30 @@ def hop_liftoffs(events: np.ndarray, t_end: float) -> np.ndarray:
         t_land = t[lands[j]] if j < lands.size else t_end
         if t_land - t[i] >= MIN_FLIGHT:
             keep.append(t[i])
+            continue
+        if rebounds_only:
+            before = np.searchsorted(lands, i, side="left") - 1
+            t_touch = t[lands[before]] if before >= 0 else t_start
+            if t[i] - t_touch >= MIN_FLIGHT:
+                keep.append(t[i])  # a take-off from sustained contact: a (short) hop
     return np.asarray(keep, dtype=float)
+
+
+def hop_synchrony(events: np.ndarray, t_start: float, periods: int, orbit: int) -> Synchrony:
+    """The lift-off synchrony of a window, micro-rebounds left out.
+
+    The rebounds of an inelastic collapse are left out first (:func:`hop_liftoffs`); if the
+    remaining lift-offs show no synchronous pattern, every flight shorter than MIN_FLIGHT is left
+    out (a compliant contact's micro-bounces touch for longer than a rigid rebound).
+    """
+    t_end = t_start + periods
+    sync = synchrony(hop_liftoffs(events, t_start, t_end), t_start, periods, orbit)
+    if sync.hop_period == 0:
+        coarse = synchrony(hop_liftoffs(events, t_start, t_end, rebounds_only=False), t_start,
+                           periods, orbit)
+        if coarse.hop_period > 0:
+            return coarse
+    return sync
 
 
 def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarray) -> Window:
@@ -114,8 +151,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     """
     ev.open_window(stepper.st)
     t_start = stepper.step * stepper.h
-    dy = np.array([0.0, 0.0, 0.0, LYAPUNOV_D0 * scale[2]])
-    snapshot = stepper.twin(dy)
+    snapshot = stepper.twin()
     x0, psi0 = stepper.y[0], stepper.y[4]
     samples = np.empty((periods, 4))
     for j in range(periods):
@@ -132,7 +168,6 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     st = stepper.st  # read after the window: the stepper may have grown its event log
     count = max(st[ev.S_COUNT], 1.0)
     events = ev.events(st)
-    lifts = hop_liftoffs(events, t_start + periods)
     orbit = orbit_period(samples, scale)
     # a periodic orbit of several periods: its drift over whole orbits only, or the part of an
     # orbit left over would bias it (by up to one period's jump / periods)
@@ -151,7 +186,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         gross_slip_fraction=float(st[ev.S_SLIP] / count),
         liftoffs_per_period=float(st[ev.S_LIFTS]) / periods,
         periodicity=periodicity(samples, scale),
-        sync=synchrony(lifts, t_start, periods),
+        sync=hop_synchrony(events, t_start, periods, orbit),
         events=events,
         events_dropped=int(st[ev.S_EVDROP]),
         orbit_period=orbit,
@@ -160,24 +195,48 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     )
 
 
-def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
-    """Finite-time Lyapunov exponent (per period) of the window, and whether it shows chaos.
+def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
+                    align: int = ALIGN_PERIODS, d0: float = LYAPUNOV_D0) -> np.ndarray:
+    """ln(d / d0) of each period after ``align``, renormalized every period (Benettin et al. 1980).
 
-    The window's snapshot (its start, perturbed by 1e-10 in scaled y*') is advanced period by
-    period; its scaled distance to the window's stroboscopic samples feeds
-    :func:`sawdrift.result.regimes.lyapunov_estimate`. Stops early once the growth shows chaos.
+    A copy of the integration and a twin displaced by ``d0`` (scaled (x*', y*, y*'), first along
+    y*') are advanced one period at a time; the twin's separation d is logged and the twin is
+    re-started from the copy at distance ``d0`` along the separation. The first ``align``
+    periods, in which the separation turns into the most unstable direction, are left out. A
+    separation erased to 0 (an inelastic landing, a sticking phase) ends the series with -inf.
+    ``stepper`` itself is not advanced.
     """
-    twin = window.snapshot
-    if twin is None:
+    base = stepper.twin()
+    dy = np.zeros(4)
+    dy[3] = d0 * scale[2]
+    logs = np.empty(periods)
+    for j in range(align + periods):
+        twin = base.twin(dy)
+        base.advance(base.k_per)
+        twin.advance(twin.k_per)
+        sep = (twin.y[1:4] - base.y[1:4]) / scale
+        d = float(np.linalg.norm(sep))
+        if not d > 0.0:
+            return np.append(logs[: max(j - align, 0)], -math.inf)
+        if j >= align:
+            logs[j - align] = math.log(d / d0)
+        dy[1:4] = sep * (d0 / d) * scale
+    return logs
+
+
+def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
+    """Largest Lyapunov exponent (per period) from the window's start, and whether it is chaos.
+
+    :func:`stretching_logs` from the window's snapshot over the window's length (at least
+    :data:`~sawdrift.result.regimes.LYAPUNOV_PERIODS`), judged by
+    :func:`~sawdrift.result.regimes.lyapunov_statistics` and
+    :func:`~sawdrift.result.regimes.is_chaotic`.
+    """
+    if window.snapshot is None:
         return math.nan, False
-    distances = []
     try:
-        for j in range(window.periods):
-            twin.advance(twin.k_per)
-            d = float(np.linalg.norm((twin.y[1:4] - window.samples[j, 1:]) / scale))
-            distances.append(d)
-            if d >= 1e-3:
-                break
+        logs = stretching_logs(window.snapshot, scale, max(window.periods, LYAPUNOV_PERIODS))
     except NonFiniteStateError:
         return math.nan, False
-    return lyapunov_estimate(np.asarray(distances))
+    lam, err = lyapunov_statistics(logs)
+    return lam, is_chaotic(lam, err)

@@ -59,6 +59,7 @@ EVIDENCE_FIELDS = (
     "t90_periods",
     "horizontal_inertia",
     "liftoffs_per_hop",
+    "liftoff_phases",
 )
 
 
@@ -130,6 +131,9 @@ class Result:
     horizontal_inertia: float = math.nan
     #: hopping: lift-offs in one hop period
     liftoffs_per_hop: float = math.nan
+    #: hopping: the wave phase t* mod 1 of each lift-off of a hop period, in order (a period-2
+    #: orbit has two take-off phases; ``liftoff_phase`` is the first)
+    liftoff_phases: tuple[float, ...] = ()
     scene: dict[str, Any] = field(default_factory=dict, repr=False)
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
     event_rows: np.ndarray | None = field(default=None, repr=False)
@@ -178,7 +182,9 @@ class Result:
 
 
 def _plain(value: Any) -> Any:
-    """A JSON-ready scalar: numpy scalars become Python ones, non-finite floats None."""
+    """A JSON-ready value: numpy scalars become Python ones, non-finite floats None, tuples lists."""
+    if isinstance(value, tuple):
+        return [_plain(v) for v in value]
     if hasattr(value, "item") and not isinstance(value, (str, bytes)):
         value = value.item()
     if isinstance(value, float) and not math.isfinite(value):

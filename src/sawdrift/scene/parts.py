@@ -261,8 +261,10 @@ class Numerics(BaseModel):
     drift_tolerance: Annotated[float, bounded(0.0, 1.0)] = Field(
         1e-3, description="|drift_ratio| below this is 'stick' (no steady drift)"
     )
-    settle: bool = Field(
-        False, description="run on, in chunks of measure_periods, until the drift has settled"
+    settle: bool | None = Field(
+        None, description="run on, in chunks of measure_periods, until the drift has settled; "
+        "default: on where the drift needs longer than periods/3 to relax (of order m*/mu "
+        "periods: a heavy particle), else a fixed run of periods"
     )
     settle_tolerance: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = 1e-3
     max_periods: Annotated[float, bounded(1.0, 1e7)] | None = Field(

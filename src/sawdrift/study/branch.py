@@ -27,7 +27,7 @@ import numpy as np
 from ..dynamics.runner import assemble
 from ..dynamics.steady import default_max_periods, relaxation_periods, rolling_frequency
 from ..dynamics.stepper import Stepper
-from ..dynamics.window import Window, hop_liftoffs, measure_window, state_scale
+from ..dynamics.window import Window, hop_liftoffs, measure_window, state_scale, stretching_logs
 from ..scene.schema import Scene, Wave
 from .orbits import LONGEST, OrbitClass, alternation_side, classify, nearest
 
@@ -44,9 +44,6 @@ STICK_FRACTION = 1e-9
 #: Largest Lyapunov exponent (per period) above which a motion that is not yet periodic is not
 #: taken to converge to a periodic orbit (chaotic motions of the diagrams here: 0.05 to 1).
 CHAOS_EXPONENT = 0.02
-
-#: Periods of the Lyapunov estimate left out at its start (the separation aligning itself).
-ALIGN_PERIODS = 8
 
 #: Columns of one Poincare sample (one row per period of the last window).
 SAMPLE_COLUMNS = ("sample", "t", "a_star", "a_rate", "v_rel", "liftoff_phase", "liftoffs")
@@ -304,32 +301,14 @@ def _confirms(before: OrbitClass, after: OrbitClass, periods: float) -> bool:
 def largest_lyapunov(stepper: Stepper, scale: np.ndarray, periods: int, d0: float = 1e-8) -> float:
     """Largest Lyapunov exponent per period, renormalized each period (Benettin et al. 1980).
 
-    A copy of the integration and a twin displaced by ``d0`` (scaled (x*', y*, y*'), first along
-    y*') are advanced one period at a time; the twin's separation d is logged and the twin is
-    re-started from the copy at distance ``d0`` along the separation. After
-    :data:`ALIGN_PERIODS` periods, in which the separation turns into the most unstable
-    direction (their growth is a bias, not the exponent), the mean of ln(d / d0) is
-    the exponent: ln |lambda| on a stable periodic orbit, > 0 on a chaotic one, -inf when an
-    inelastic landing or a sticking phase erases the perturbation (a superstable orbit).
-    ``stepper`` itself is not advanced.
+    The mean of :func:`~sawdrift.dynamics.window.stretching_logs` after
+    :data:`~sawdrift.result.regimes.ALIGN_PERIODS`: ln |lambda| on a stable periodic orbit,
+    > 0 on a chaotic one, -inf when an inelastic landing or a sticking phase erases the
+    perturbation (a superstable orbit). ``stepper`` itself is not advanced.
     """
-    base = stepper.twin()
-    dy = np.zeros(4)
-    dy[3] = d0 * scale[2]
-    total = 0.0
-    align = ALIGN_PERIODS
-    for j in range(align + periods):
-        twin = base.twin(dy)
-        base.advance(base.k_per)
-        twin.advance(twin.k_per)
-        sep = (twin.y[1:4] - base.y[1:4]) / scale
-        d = float(np.linalg.norm(sep))
-        if not d > 0.0:
-            return -math.inf
-        if j >= align:
-            total += math.log(d / d0)
-        dy[1:4] = sep * (d0 / d) * scale
-    return total / max(periods, 1)
+    logs = stretching_logs(stepper, scale, periods, d0=d0)
+    # summed in order, as the running total it replaces (bifurcation tables keep their bits)
+    return -math.inf if np.isneginf(logs).any() else sum(logs.tolist(), 0.0) / max(periods, 1)
 
 
 def _point(stepper: Stepper, value: float, win: Window, cls: OrbitClass, scale: np.ndarray,
@@ -343,7 +322,7 @@ def _point(stepper: Stepper, value: float, win: Window, cls: OrbitClass, scale: 
     rows = np.empty((n, len(SAMPLE_COLUMNS)))
     first = win.periods - n
     t0 = win.t_start
-    lifts = hop_liftoffs(win.events, t0 + win.periods)
+    lifts = hop_liftoffs(win.events, t0, t0 + win.periods)
     slot = np.floor(lifts - t0).astype(int)
     for j in range(n):
         t = t0 + first + j + 1
