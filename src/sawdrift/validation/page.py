@@ -55,8 +55,10 @@ def write_json(report: ValidationReport, path: Path) -> None:
             "failed": report.count("fail") + report.count("error"),
             "errors": report.count("error"),
             "expected_deviations": report.count("expected deviation"),
+            "skipped": report.count("skipped"),
             "total": len(report.results),
         },
+        "skipped": [{"name": r.name, "reason": r.skip_reason} for r in report.skipped],
         "quick": report.quick,
         "seconds": round(report.seconds, 3),
         "environment": _environment(),
@@ -68,6 +70,10 @@ def write_json(report: ValidationReport, path: Path) -> None:
 
 _SYMBOL = {"<=": "&le;", ">=": "&ge;"}
 
+#: the skipped label's style (the page's stylesheet has the other statuses)
+_SKIP_CSS = ".st-skip{background:#bdbdbd;color:#222}.skips{font-size:13px;color:#444}"
+
+
 def write_html(report: ValidationReport, path: Path) -> None:
     """Write the self-contained ``index.html`` (figures inline as base64 PNG)."""
     esc = html.escape
@@ -75,7 +81,7 @@ def write_html(report: ValidationReport, path: Path) -> None:
     parts = [
         "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
         "<title>sawdrift validation</title>",
-        f"<style>{asset('validation.css')}</style></head><body>",
+        f"<style>{asset('validation.css')}{_SKIP_CSS}</style></head><body>",
         "<h1>sawdrift validation report</h1>",
         f"<div class='meta'>sawdrift {esc(env['sawdrift'])}, Python {esc(env['python'])}, "
         f"numpy {esc(env['numpy'])}, numba {esc(env['numba'])}; {esc(env['date'])}; "
@@ -83,6 +89,10 @@ def write_html(report: ValidationReport, path: Path) -> None:
         "Oracles: docs/physics.md.</div>",
         f"<div class='summary {'ok' if report.passed else 'bad'}'><b>{esc(report.summary())}</b></div>",
     ]
+    if report.skipped:
+        parts.append("<div class='skips'>Skipped (neither passed nor failed): <ul>" + "".join(
+            f"<li><b>{esc(r.name)}</b>: {esc(r.skip_reason or '')}</li>" for r in report.skipped)
+            + "</ul></div>")
     groups = list(GROUPS) + sorted({r.group for r in report.results} - set(GROUPS))
     for group in groups:
         rows = [r for r in report.results if r.group == group]
@@ -96,6 +106,7 @@ def write_html(report: ValidationReport, path: Path) -> None:
                 "pass": ("st-pass", "PASS"),
                 "fail": ("st-fail", "FAIL"),
                 "expected deviation": ("st-dev", "expected deviation"),
+                "skipped": ("st-skip", "SKIPPED"),
                 "error": ("st-error", "ERROR"),
             }[r.status or "error"]
             first = k == 0 or rows[k - 1].case != r.case
