@@ -9,7 +9,11 @@ estimate of the regime evidence.
 
 from __future__ import annotations
 
+import base64
 import copy
+import io
+import pickle
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -37,6 +41,31 @@ EVENTS_PER_PERIOD = 64
 
 #: Most event rows one window may hold (7 floats a row: 280 MB); more is an error, not a silent cut.
 MAX_EVENT_ROWS = 5_000_000
+
+
+@dataclass(frozen=True)
+class StepperState:
+    """A snapshot of one integration: what :meth:`Stepper.save` keeps and :meth:`Stepper.restore`
+    puts back (mechanical state, step counters, Adams-Bashforth derivative history, contact memory).
+
+    ``arrays`` holds ``y``, ``ctr``, with a compliant scheme ``fh``, and the contact history's
+    live state (``fs``, ``is``; or ``ref``, the python reference pickled). :meth:`to_text` and
+    :meth:`from_text` carry it through a JSON journal (base64 of an ``.npz``), bit for bit.
+    """
+
+    arrays: dict[str, np.ndarray]
+
+    def to_text(self) -> str:
+        """The snapshot as ASCII text (base64 of ``numpy.savez``)."""
+        buf = io.BytesIO()
+        np.savez(buf, **self.arrays)
+        return base64.b64encode(buf.getvalue()).decode()
+
+    @classmethod
+    def from_text(cls, text: str) -> StepperState:
+        """Inverse of :meth:`to_text`."""
+        with np.load(io.BytesIO(base64.b64decode(text))) as data:
+            return cls({key: data[key] for key in data.files})
 
 
 class Stepper:
@@ -243,6 +272,51 @@ class Stepper:
             if a > 0.0:
                 new.history.advance(a, b)
         return new
+
+    def follow_surface(self, before: tuple[float, float, float, float]) -> None:
+        """Shift the state by the surface's move from ``before`` (:meth:`surface` of the stepper
+        this one continues) to now, so that a*, a*', b* and x*' - u_x' carry over unchanged.
+
+        On a sphere rolling from rest (contact point at c x*, c = 1 + 1/kappa) the centre moves
+        by 1/c of the shift, so that the contact point moves with the surface.
+        """
+        after = self.surface()
+        share = 1.0 / self.roll if (self.roll > 0.0 and not self.resist) else 1.0
+        self.y[0] += (after[0] - before[0]) * share
+        self.y[1] += (after[1] - before[1]) * share
+        self.y[2] += after[2] - before[2]
+        self.y[3] += after[3] - before[3]
+
+    def save(self) -> StepperState:
+        """A snapshot of the integration (copies): :meth:`restore` on a stepper of the same scene
+        and engine continues from it bit for bit (the bifurcation journals, :mod:`sawdrift.study.
+        branch`)."""
+        arrays: dict[str, np.ndarray] = {"y": self.y.copy(), "ctr": self.ctr.copy()}
+        if not self.rigid:
+            arrays["fh"] = self.fh.copy()
+        hist = self.history
+        if hist is not None:
+            if hist._ref is None:
+                nf, ni = hist.model.live_sizes(hist._fs, hist._is)
+                arrays["fs"], arrays["is"] = hist._fs[:nf].copy(), hist._is[:ni].copy()
+            else:
+                arrays["ref"] = np.frombuffer(pickle.dumps(hist._ref), dtype=np.uint8)
+        return StepperState(arrays)
+
+    def restore(self, state: StepperState) -> None:
+        """Put back a snapshot of :meth:`save` (taken on a stepper of the same model and engine)."""
+        data = state.arrays
+        self.y[:] = data["y"]
+        self.ctr[:] = data["ctr"]
+        if "fh" in data:
+            self.fh[:] = data["fh"]
+        hist = self.history
+        if hist is not None and "fs" in data:
+            hist._fs[: data["fs"].size] = data["fs"]
+            hist._is[: data["is"].size] = data["is"]
+        elif hist is not None and "ref" in data:
+            hist._ref = pickle.loads(data["ref"].tobytes())  # noqa: S301 - our own snapshot
+            self._bind_history()
 
     def set_horizontal_inertia(self, m_x: float) -> None:
         """Integrate the horizontal motion with the inertia ``m_x`` (the rotation's follows, kappa

@@ -14,10 +14,7 @@ interrupted branch continues bit for bit; :func:`refine` bisects between two nei
 
 from __future__ import annotations
 
-import base64
-import io
 import math
-import pickle
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -26,7 +23,7 @@ import numpy as np
 
 from ..dynamics.runner import assemble
 from ..dynamics.steady import default_max_periods, relaxation_periods, rolling_frequency
-from ..dynamics.stepper import Stepper
+from ..dynamics.stepper import Stepper, StepperState
 from ..dynamics.window import Window, hop_liftoffs, measure_window, state_scale, stretching_logs
 from ..scene.schema import Scene, Wave
 from .orbits import LONGEST, OrbitClass, alternation_side, classify, nearest
@@ -142,62 +139,29 @@ def new_stepper(scene: Scene, engine: str = "compiled") -> Stepper:
     return stepper
 
 
-def _surface(stepper: Stepper) -> tuple[float, float, float, float]:
-    return stepper.surface()
-
-
 def continue_to(stepper: Stepper, scene: Scene) -> Stepper:
     """``stepper.continued(scene)`` with the state moved along with the surface.
 
     At integer t* the surface is at (0, A*) with velocity (-s 2 pi r A*, 0) (docs/physics.md); a
-    new amplitude or ratio moves it. The particle is shifted by the same amount, so a*, a*', b*
-    and x*' - u_x' - and with them the contact history - carry over unchanged. On a sphere rolling
-    from rest (its contact point at c x*, c = 1 + 1/kappa) the centre moves by 1/c of the shift, so
-    that the contact point moves with the surface.
+    new amplitude or ratio moves it. The particle is shifted by the same amount
+    (:meth:`Stepper.follow_surface`), so a*, a*', b* and x*' - u_x' - and with them the contact
+    history - carry over unchanged.
     """
-    before = _surface(stepper)
+    before = stepper.surface()
     new = stepper.continued(scene)
-    after = _surface(new)
-    share = 1.0 / new.roll if (new.roll > 0.0 and not new.resist) else 1.0
-    new.y[0] += (after[0] - before[0]) * share
-    new.y[1] += (after[1] - before[1]) * share
-    new.y[2] += after[2] - before[2]
-    new.y[3] += after[3] - before[3]
+    new.follow_surface(before)
     return new
 
 
 def save_state(stepper: Stepper) -> str:
     """The integration's state (mechanical state, derivative history, contact memory) as text."""
-    arrays: dict[str, np.ndarray] = {"y": stepper.y, "ctr": stepper.ctr}
-    if not stepper.rigid:
-        arrays["fh"] = stepper.fh
-    hist = stepper.history
-    if hist is not None:
-        if hist._ref is None:
-            nf, ni = hist.model.live_sizes(hist._fs, hist._is)
-            arrays["fs"], arrays["is"] = hist._fs[:nf], hist._is[:ni]
-        else:
-            arrays["ref"] = np.frombuffer(pickle.dumps(hist._ref), dtype=np.uint8)
-    buf = io.BytesIO()
-    np.savez(buf, **arrays)
-    return base64.b64encode(buf.getvalue()).decode()
+    return stepper.save().to_text()
 
 
 def load_state(scene: Scene, text: str, engine: str = "compiled") -> Stepper:
     """A stepper for ``scene`` holding a state written by :func:`save_state` (same model)."""
     stepper = new_stepper(scene, engine)
-    with np.load(io.BytesIO(base64.b64decode(text))) as data:
-        stepper.y[:] = data["y"]
-        stepper.ctr[:] = data["ctr"]
-        if "fh" in data:
-            stepper.fh[:] = data["fh"]
-        hist = stepper.history
-        if hist is not None and "fs" in data:
-            hist._fs[: data["fs"].size] = data["fs"]
-            hist._is[: data["is"].size] = data["is"]
-        elif hist is not None and "ref" in data:
-            hist._ref = pickle.loads(data["ref"].tobytes())  # noqa: S301 - our own journal
-            stepper._bind_history()
+    stepper.restore(StepperState.from_text(text))
     return stepper
 
 
