@@ -120,124 +120,25 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     name = scene.model
     kernel = f"{name}.kernel.force" if engine == "compiled" else f"{name}.reference().force"
     if isinstance(drive, Prescribed):
-        for field, value, off in (("particle.load", scene.particle.load, 0.0),
-                                  ("material.restitution", scene.material.restitution, None)):
-            if value != off:
-                raise SceneError(f"{field} = {value!r} acts on the particle's motion; a prescribed "
-                                 "contact history has none (leave it unset)")
-        return Assembly(
-            "prescribed", engine, False, True, 0.0, False, False, 0.0,
-            ("a*(k), b*(k) prescribed (" + drive.waveform + "); no dynamics",),
-            (f"{kernel}(a*, b*) once per sample, committing the history",),
-            ("N*(k)", "T*(k)", "dissipated work = sum of T* db*"),
-        )
-    horiz = isinstance(drive, Wave) and eff.horizontal_wave
-    vert = isinstance(drive, Wave) and eff.vertical_wave
+        return _prescribed(scene, engine, kernel)
     part = drive_of(scene)
     ramp = part.ramp_periods(scene)
     k_per = steps_per_period(scene, caps.rigid)
-    equations: list[str] = []
-    calls: list[str] = []
-    slot = getattr(type(model), "damping", None)
-    if slot is not None and eff.normal_damping > 0.0:
-        raise SceneError(
-            f"effects.normal_damping = {eff.normal_damping:g} would stack a second normal damping "
-            f"on model {name!r}, which has its own normal-damping slot ({slot.name!r}); use one: "
-            "set effects.normal_damping = 0, or pick a model without a damping slot"
-        )
+    slot = _damping_slot(scene, model)
     load = scene.particle.load
     restitution, rest_c, rest_lines = _restitution(scene, model, slot)
     if caps.rigid:
         scheme = "rigid"
-        normal = "N* = 1 - m* u_y''" if eff.vertical_inertia else "N* = 1 (vertical inertia off)"
-        equations.append("a* = 0 in contact; flight m* y*'' = 1 when N* < 0; impact with restitution"
-                         + (rest_lines[0] if rest_lines else ""))
-        equations.append(normal)
-        if load != 0.0:
-            equations += _rigid_load_lines(scene)
-        elif eff.friction and eff.rotation:
-            kappa = scene.particle.gyration
-            equations.append("rotation: I phi'' = -R T, I = kappa m R^2, kappa = "
-                             f"{kappa:.6g}: the contact point s = x + R phi = (1 + 1/kappa) x has "
-                             f"the mass m_s = m* kappa / (1 + kappa) = "
-                             f"{scene.particle.m_star * kappa / (1 + kappa):.6g}")
-            equations.append("Coulomb on the contact point: stick s*'' = u_x'' while "
-                             "|m_s u_x''/mu| <= N*, else m_s s*'' = -mu N* sgn(s*' - u_x'); "
-                             "centre x* = s* kappa / (1 + kappa)")
-        elif eff.friction:
-            equations.append("Coulomb: stick x*'' = u_x'' while |m* u_x''/mu| <= N*, "
-                             "else m* x*'' = -mu N* sgn(x*' - u_x')")
-        else:
-            equations.append("x*'' = 0 (friction off: no tangential force)")
-        calls.append("closed-form N*(t), slip velocity and event bisection (sawdrift.dynamics.rigid)"
-                     + ("; within a step on the contact point s*, between steps the state is the "
-                        "centre x* (the drive is evaluated there)" if eff.rotation else ""))
+        equations, calls = _rigid_lines(scene, rest_lines)
     else:
         scheme = "impact" if isinstance(drive, Impact) else "adams-bashforth"
-        normal = f"{name} normal law" + ("" if eff.friction else " alone (its normal slot)")
-        equations.append(f"m* y*'' = 1 - N*(a*), a* = y* - u_y; N* from the {normal}")
-        if eff.normal_damping > 0.0:
-            equations.append(f"N* += {eff.normal_damping:g} a*' while a* > 0, N* >= 0 (viscous "
-                             "normal damping); |T*| <= N*, the total normal force")
-        elif rest_lines:
-            equations += rest_lines
-        elif slot is not None:
-            equations.append(f"N* from the normal-damping slot {slot.name!r} "
-                             f"({slot.__doc__.strip().splitlines()[0] if slot.__doc__ else ''}); "
-                             "|T*| <= N*, the total normal force")
-        if eff.friction:
-            equations.append("m* x*'' = -mu T*(b*, a*)" + (" + L" if load != 0.0 else "") + (
-                " (x* the centre)" if eff.rotation else ", theta mu b* = x* - u_x"))
-            calls.append(f"{kernel}(a*, b*, a*', b*') once per step, committing the history")
-        elif load != 0.0:
-            equations.append("m* x*'' = L (friction off); the tangential law is never called")
-        else:
-            equations.append("x* not integrated (friction off); the tangential law is never called")
-        if load != 0.0:
-            equations.append(_LOAD_LINE.format(load=load))
-        calls.append(f"Adams-Bashforth order {scene.numerics.order}, {k_per} steps per period")
-    if eff.rotation and eff.friction and not caps.rigid:
-        kappa = scene.particle.gyration
-        c = 1.0 + 1.0 / kappa
-        if load != 0.0 and eff.rolling_resistance == 0.0:
-            equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
-                             "the load pulls the centre without turning it: kappa m* psi'' = "
-                             "-mu T*, psi = R phi / a0, theta mu b* = s* - u_x with s* = x* + psi")
-        else:
-            equations.append(f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
-                             f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x")
-        if load != 0.0 and eff.rolling_resistance == 0.0:
-            equations.append("the centre keeps m* x*'' = -mu T* + L; spin R phi' / a0 = psi'")
-        elif eff.rolling_resistance > 0.0:
-            mu_r = eff.rolling_resistance
-            equations.append("rolling resistance (elastic-plastic spring, Ai et al. 2011): "
-                             "kappa m* psi'' = -mu T* + m_r, psi = R phi / a0, s* = x* + psi, "
-                             f"m_r = -2.25 mu_r^2 (dN*/da*) psi_e capped at mu_r N*, mu_r = {mu_r:g}")
-            equations.append("theta mu b* = s* - u_x; the centre keeps m* x*'' = -mu T*")
-        else:
-            equations.append("theta mu b* = s* - u_x: the contact point moves like a mass "
-                             f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the "
-                             "centre keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
+        equations, calls = _compliant_lines(scene, kernel, slot, rest_lines, k_per)
+        if eff.rotation and eff.friction:
+            equations += _rotation_lines(scene)
     equations += part.describe(scene)
     if isinstance(drive, Impact):
         equations.append(f"start at a* = 0 with a*' = {drive.velocity:g}")
-    outputs = (
-        ("rebound speed ratio", "contact duration", "max compression")
-        if isinstance(drive, Impact)
-        else ("drift_velocity", "drift_ratio", "regime", "contact_lost", "min_compression",
-              "gross_slip_fraction", "liftoffs_per_period", "hop_period", "lyapunov", "settled")
-        + (("spin_rate",) if eff.rotation else ())
-    )
-    m = scene.particle.m_star
-    params = {
-        "m": m, "mu": scene.material.mu, "theta": scene.theta, "h": 1.0 / k_per,
-        "order": scene.numerics.order, "friction": 1.0 if eff.friction else 0.0,
-        "damping": eff.normal_damping, "p": scene.particle.profile.p,
-        "k_ramp": math.ceil(ramp * k_per - 1e-9),
-        "roll": 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0,
-        "rolling_resistance": eff.rolling_resistance if eff.rotation else 0.0,
-        "m_x": m, "load": load, "restitution_damping": rest_c,
-    }
+    params = _params(scene, k_per, ramp, rest_c)
     if caps.rigid:
         # material.restitution, or the model's own parameter (_restitution checks they agree)
         e = restitution if restitution is not None else model.params.restitution
@@ -245,9 +146,148 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
                        "x_q": 0.0, "u_y": part.vertical_amplitude(scene)})
     return Assembly(
         scheme, engine, eff.friction, eff.friction and not caps.rigid, eff.normal_damping,
-        horiz, vert, ramp, tuple(equations), tuple(calls), outputs, part, k_per,
+        isinstance(drive, Wave) and eff.horizontal_wave, isinstance(drive, Wave) and eff.vertical_wave,
+        ramp, tuple(equations), tuple(calls), _outputs(scene), part, k_per,
         load, restitution, rest_c, tuple((k, float(v)) for k, v in params.items()),
     )
+
+
+def _prescribed(scene: Scene, engine: Engine, kernel: str) -> Assembly:
+    """The assembly of a prescribed contact history: the kernel alone, no dynamics."""
+    for field, value, off in (("particle.load", scene.particle.load, 0.0),
+                              ("material.restitution", scene.material.restitution, None)):
+        if value != off:
+            raise SceneError(f"{field} = {value!r} acts on the particle's motion; a prescribed "
+                             "contact history has none (leave it unset)")
+    assert isinstance(scene.drive, Prescribed)
+    return Assembly(
+        "prescribed", engine, False, True, 0.0, False, False, 0.0,
+        ("a*(k), b*(k) prescribed (" + scene.drive.waveform + "); no dynamics",),
+        (f"{kernel}(a*, b*) once per sample, committing the history",),
+        ("N*(k)", "T*(k)", "dissipated work = sum of T* db*"),
+    )
+
+
+def _damping_slot(scene: Scene, model: ContactModel) -> object:
+    """The model's own normal-damping slot (None: none); refused beside effects.normal_damping."""
+    slot = getattr(type(model), "damping", None)
+    damping = scene.effects.normal_damping
+    if slot is not None and damping > 0.0:
+        raise SceneError(
+            f"effects.normal_damping = {damping:g} would stack a second normal damping "
+            f"on model {scene.model!r}, which has its own normal-damping slot ({slot.name!r}); use one: "
+            "set effects.normal_damping = 0, or pick a model without a damping slot"
+        )
+    return slot
+
+
+def _rigid_lines(scene: Scene, rest_lines: list[str]) -> tuple[list[str], list[str]]:
+    """The rigid scheme's equations and calls (docs/physics.md, the rigid point)."""
+    eff = scene.effects
+    equations = ["a* = 0 in contact; flight m* y*'' = 1 when N* < 0; impact with restitution"
+                 + (rest_lines[0] if rest_lines else ""),
+                 "N* = 1 - m* u_y''" if eff.vertical_inertia else "N* = 1 (vertical inertia off)"]
+    if scene.particle.load != 0.0:
+        equations += _rigid_load_lines(scene)
+    elif eff.friction and eff.rotation:
+        kappa = scene.particle.gyration
+        equations.append("rotation: I phi'' = -R T, I = kappa m R^2, kappa = "
+                         f"{kappa:.6g}: the contact point s = x + R phi = (1 + 1/kappa) x has "
+                         f"the mass m_s = m* kappa / (1 + kappa) = "
+                         f"{scene.particle.m_star * kappa / (1 + kappa):.6g}")
+        equations.append("Coulomb on the contact point: stick s*'' = u_x'' while "
+                         "|m_s u_x''/mu| <= N*, else m_s s*'' = -mu N* sgn(s*' - u_x'); "
+                         "centre x* = s* kappa / (1 + kappa)")
+    elif eff.friction:
+        equations.append("Coulomb: stick x*'' = u_x'' while |m* u_x''/mu| <= N*, "
+                         "else m* x*'' = -mu N* sgn(x*' - u_x')")
+    else:
+        equations.append("x*'' = 0 (friction off: no tangential force)")
+    calls = ["closed-form N*(t), slip velocity and event bisection (sawdrift.dynamics.rigid)"
+             + ("; within a step on the contact point s*, between steps the state is the "
+                "centre x* (the drive is evaluated there)" if eff.rotation else "")]
+    return equations, calls
+
+
+def _compliant_lines(scene: Scene, kernel: str, slot: object, rest_lines: list[str],
+                     k_per: int) -> tuple[list[str], list[str]]:
+    """The compliant (Adams-Bashforth) scheme's equations and calls, rotation aside."""
+    eff = scene.effects
+    load = scene.particle.load
+    normal = f"{scene.model} normal law" + ("" if eff.friction else " alone (its normal slot)")
+    equations = [f"m* y*'' = 1 - N*(a*), a* = y* - u_y; N* from the {normal}"]
+    calls: list[str] = []
+    if eff.normal_damping > 0.0:
+        equations.append(f"N* += {eff.normal_damping:g} a*' while a* > 0, N* >= 0 (viscous "
+                         "normal damping); |T*| <= N*, the total normal force")
+    elif rest_lines:
+        equations += rest_lines
+    elif slot is not None:
+        equations.append(f"N* from the normal-damping slot {getattr(slot, 'name', '?')!r} "
+                         f"({slot.__doc__.strip().splitlines()[0] if slot.__doc__ else ''}); "
+                         "|T*| <= N*, the total normal force")
+    if eff.friction:
+        equations.append("m* x*'' = -mu T*(b*, a*)" + (" + L" if load != 0.0 else "") + (
+            " (x* the centre)" if eff.rotation else ", theta mu b* = x* - u_x"))
+        calls.append(f"{kernel}(a*, b*, a*', b*') once per step, committing the history")
+    elif load != 0.0:
+        equations.append("m* x*'' = L (friction off); the tangential law is never called")
+    else:
+        equations.append("x* not integrated (friction off); the tangential law is never called")
+    if load != 0.0:
+        equations.append(_LOAD_LINE.format(load=load))
+    calls.append(f"Adams-Bashforth order {scene.numerics.order}, {k_per} steps per period")
+    return equations, calls
+
+
+def _rotation_lines(scene: Scene) -> list[str]:
+    """The compliant scheme's rotation equations (docs/physics.md, Rotation)."""
+    eff = scene.effects
+    load = scene.particle.load
+    kappa = scene.particle.gyration
+    c = 1.0 + 1.0 / kappa
+    if load != 0.0 and eff.rolling_resistance == 0.0:
+        return [f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
+                "the load pulls the centre without turning it: kappa m* psi'' = "
+                "-mu T*, psi = R phi / a0, theta mu b* = s* - u_x with s* = x* + psi",
+                "the centre keeps m* x*'' = -mu T* + L; spin R phi' / a0 = psi'"]
+    lines = [f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
+             f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x"]
+    if eff.rolling_resistance > 0.0:
+        mu_r = eff.rolling_resistance
+        lines.append("rolling resistance (elastic-plastic spring, Ai et al. 2011): "
+                     "kappa m* psi'' = -mu T* + m_r, psi = R phi / a0, s* = x* + psi, "
+                     f"m_r = -2.25 mu_r^2 (dN*/da*) psi_e capped at mu_r N*, mu_r = {mu_r:g}")
+        lines.append("theta mu b* = s* - u_x; the centre keeps m* x*'' = -mu T*")
+    else:
+        lines.append("theta mu b* = s* - u_x: the contact point moves like a mass "
+                     f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the "
+                     "centre keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
+    return lines
+
+
+def _outputs(scene: Scene) -> tuple[str, ...]:
+    """What a run of ``scene`` reports."""
+    if isinstance(scene.drive, Impact):
+        return ("rebound speed ratio", "contact duration", "max compression")
+    return (("drift_velocity", "drift_ratio", "regime", "contact_lost", "min_compression",
+             "gross_slip_fraction", "liftoffs_per_period", "hop_period", "lyapunov", "settled")
+            + (("spin_rate",) if scene.effects.rotation else ()))
+
+
+def _params(scene: Scene, k_per: int, ramp: float, rest_c: float) -> dict[str, float]:
+    """The compliant scheme's named parameters (adams_bashforth.PRM_NAMES), by name."""
+    eff = scene.effects
+    m = scene.particle.m_star
+    return {
+        "m": m, "mu": scene.material.mu, "theta": scene.theta, "h": 1.0 / k_per,
+        "order": scene.numerics.order, "friction": 1.0 if eff.friction else 0.0,
+        "damping": eff.normal_damping, "p": scene.particle.profile.p,
+        "k_ramp": math.ceil(ramp * k_per - 1e-9),
+        "roll": 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0,
+        "rolling_resistance": eff.rolling_resistance if eff.rotation else 0.0,
+        "m_x": m, "load": scene.particle.load, "restitution_damping": rest_c,
+    }
 
 
 _LOAD_LINE = ("L = {load:g}: particle.load, a constant tangential force on the centre in units of "
