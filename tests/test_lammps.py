@@ -256,6 +256,7 @@ def test_run_engine_lammps_gives_the_native_columns():
     assert refused.returncode == 2 and refused.stderr.startswith("error: model = 'jaeger'")
 
 
+@pytest.mark.slow
 @needs_lammps
 def test_cli_mixture_json_figure_and_mpi(tmp_path):
     """A [particles] scene through the CLI; under mpirun -np 2 the drifts are the serial ones."""
