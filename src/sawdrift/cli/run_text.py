@@ -13,8 +13,8 @@ from typing import Any
 #: the groups of ``run``'s text output and the summary fields of each, in order; a field not
 #: named here (a new model's or drive's extra output) goes to "evidence"
 GROUPS: dict[str, tuple[str, ...]] = {
-    "regime": ("regime", "direction", "hop_period", "liftoffs_per_hop", "orbit_period", "chaotic",
-               "contact_lost"),
+    "regime": ("regime", "direction", "hop_period", "liftoffs_per_hop", "liftoff_phases",
+               "orbit_period", "chaotic", "contact_lost"),
     "drift": ("drift_speed_m_s", "drift_velocity", "drift_ratio", "t90_s", "load_n", "power_w",
               "rebound_ratio", "contact_duration", "max_compression", "dissipated_work"),
     "settled": ("settled", "settle_method", "settle_periods", "t90_periods", "horizontal_inertia"),
@@ -46,14 +46,16 @@ def value_text(value: Any) -> str:
         return "yes" if value else "no"
     if isinstance(value, float):
         return f"{value:.6g}"
+    if isinstance(value, list):
+        return ", ".join(value_text(v) for v in value)
     return str(value)
 
 
 def _flat(summary: dict[str, Any]) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for key, value in summary.items():
-        if key == "scene" or value is None:
-            continue  # the whole scene is in --json and in -o DIR/scene.toml
+        if key == "scene" or value is None or (isinstance(value, list) and not value):
+            continue  # the whole scene is in --json and in -o DIR/scene.toml; [] does not apply
         if isinstance(value, dict):
             for sub, v in value.items():
                 if v is not None:
