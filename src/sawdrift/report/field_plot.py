@@ -19,7 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ..study.field import PERIOD, Field, FieldStudy, wavelength_star  # noqa: E402
+from ..study.field import PERIOD, Field, FieldStudy, field_shift, wavelength_star  # noqa: E402
 from .diagrams import COLOURS  # noqa: E402
 
 __all__ = ["field_units", "plot_field"]
@@ -114,7 +114,7 @@ def _draw_direct(ax: Any, direct: dict[str, Any], fld: Field) -> None:
     rate = direct.get("backward_phase_rate", 0.0)
     lo = min(xi.min(), np.min(pred["trajectory"]["position"]) if pred else xi.min()) - 0.1
     hi = max(xi.max(), np.max(pred["trajectory"]["position"]) if pred else xi.max()) + 0.1
-    shift = rate * t / 720.0
+    shift = -field_shift(rate, t)  # the field's move, owned by the drive
     first = True
     for z in fld.zeros:
         if z["kind"] != "trap":

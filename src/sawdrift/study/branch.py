@@ -21,10 +21,11 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamics.drives import drive_of
 from ..dynamics.runner import assemble
 from ..dynamics.steady import default_max_periods, relaxation_periods, rolling_frequency
 from ..dynamics.stepper import Stepper, StepperState
-from ..dynamics.window import Window, hop_liftoffs, measure_window, state_scale, stretching_logs
+from ..dynamics.window import Window, hop_liftoffs, measure_window, stretching_logs
 from ..scene.schema import Scene, Wave
 from .orbits import LONGEST, OrbitClass, alternation_side, classify, nearest
 
@@ -184,9 +185,7 @@ class Budget:
         cap = scene.numerics.max_periods
         if cap is None:
             rigid = scene.model_instance().capabilities.rigid
-            drive = scene.drive
-            amp = drive.amplitude if isinstance(drive, Wave) else 0.0
-            speed = 2.0 * math.pi * scene.horizontal_ratio * amp
+            speed = drive_of(scene).horizontal_speed(scene) if isinstance(scene.drive, Wave) else 0.0
             m = scene.particle.m_star
             cap = default_max_periods(m, relaxation_periods(scene, m, speed), rigid, window,
                                       rolling_frequency(scene, m))
@@ -210,11 +209,8 @@ def attractor(stepper: Stepper, scene: Scene, budget: Budget, value: float) -> P
     (:func:`~sawdrift.study.orbits.nearest` halves from window to window), and two more windows
     after that. The Poincare samples are the last ``budget.samples`` periods of the last window.
     """
-    drive = scene.drive
-    assert isinstance(drive, Wave)
-    amp, r = drive.amplitude, scene.horizontal_ratio
-    speed = 2.0 * math.pi * r * amp
-    scale = state_scale(amp, r)
+    speed = stepper.drive.horizontal_speed(scene)
+    scale = stepper.drive.state_scale(scene)
     k = stepper.k_per
     start = stepper.step
     stepper.advance(budget.transient * k)
@@ -384,9 +380,7 @@ def refine(scene_at: Callable[[float], Scene], state: str, prev: Point, nxt: Poi
 
 def _flip_side(stepper: Stepper, scene: Scene, q: int, budget: Budget) -> int | None:
     """Run from a state near the q-orbit until :func:`alternation_side` tells the side."""
-    drive = scene.drive
-    assert isinstance(drive, Wave)
-    scale = state_scale(drive.amplitude, scene.horizontal_ratio)
+    scale = stepper.drive.state_scale(scene)
     k = stepper.k_per
     rows: list[np.ndarray] = []
     n = max(4 * budget.window, 8 * q + 16)

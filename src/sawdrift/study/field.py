@@ -28,12 +28,13 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamics.drives.two_wave import TwoWaves, field_shift
 from ..errors import SceneError
 from ..scene.device import device_wavelength, rayleigh_wavelength
 from ..scene.schema import Scene, Wave, build_scene, set_dotted
 
-__all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_field", "find_zeros",
-           "nearest_zero", "predict_path", "rayleigh_wavelength", "wavelength_star"]
+__all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_field", "field_shift",
+           "find_zeros", "nearest_zero", "predict_path", "rayleigh_wavelength", "wavelength_star"]
 
 #: period of the field in wavelengths
 PERIOD = 0.5
@@ -273,8 +274,8 @@ def drift_field(
 
 def _zero_eps(scene: Scene) -> float:
     """|V| at or below which a sample is a zero: the regimes' "no drift", ``numerics.
-    drift_tolerance`` times the forward wave's horizontal speed 2 pi r A*."""
-    return scene.numerics.drift_tolerance * 2.0 * math.pi * scene.horizontal_ratio * scene.drive.amplitude
+    drift_tolerance`` times the forward wave's horizontal speed 2 pi r A* (asked of the drive)."""
+    return scene.numerics.drift_tolerance * TwoWaves.forward_speed(scene)
 
 
 def _refine(fields: list[Field], rounds: int, workers: int | None, engine: str) -> None:
@@ -344,7 +345,7 @@ def predict_path(fld: Field, start: float, times: np.ndarray, wavelength: float,
         return np.full(times.shape, float(start))
 
     def rhs(t: float, y: np.ndarray) -> np.ndarray:
-        return np.array([float(fld.velocity_at(y[0] + rate * t / 720.0)) / wavelength])
+        return np.array([float(fld.velocity_at(y[0] - field_shift(rate, t))) / wavelength])
 
     step = PERIOD / max(len(fld.positions), 1) * wavelength / max(np.max(np.abs(fld.drift_velocity)),
                                                                      1e-300)
@@ -406,10 +407,11 @@ def direct_run(scene: Scene, start: float, periods: float, fld: Field | None = N
     if fld is not None:
         rate = sc.drive.backward_phase_rate
         pred = predict_path(fld, start, t, lstar, rate)
-        trap = nearest_zero(fld, float(pred[-1]) + rate * float(t[-1]) / 720.0)
+        shift = field_shift(rate, float(t[-1]))
+        trap = nearest_zero(fld, float(pred[-1]) - shift)
         out["predicted"] = {
             "final_position": float(pred[-1]),
-            "trap": None if trap is None else trap - rate * float(t[-1]) / 720.0,
+            "trap": None if trap is None else trap + shift,
             "trajectory": {"t": t.tolist(), "position": pred.tolist()},
         }
     return out

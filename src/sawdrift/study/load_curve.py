@@ -33,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamics.drives import drive_of
 from ..errors import SceneError
 from ..scene.schema import Scene, Wave
 
@@ -178,12 +179,14 @@ class _Runner:
 
 
 def _surface_speed(scene: Scene) -> float:
-    """The regime classifier's velocity scale: 2 pi r A*, or 2 pi A* without horizontal motion."""
+    """The regime classifier's velocity scale, asked of the drive: its horizontal surface speed
+    (2 pi r A* for the travelling wave), or 2 pi times its vertical amplitude without one."""
     drive = scene.drive
     if not isinstance(drive, Wave):
         raise SceneError(f"drive.kind = {drive.kind!r}: a load curve needs a wave drive")
-    u = 2.0 * math.pi * scene.horizontal_ratio * drive.amplitude
-    return u if u > 0.0 else 2.0 * math.pi * drive.amplitude
+    part = drive_of(scene)
+    u = part.horizontal_speed(scene)
+    return u if u > 0.0 else 2.0 * math.pi * part.vertical_amplitude(scene)
 
 
 def load_curve(

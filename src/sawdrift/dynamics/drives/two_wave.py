@@ -36,7 +36,7 @@ from .base import Drive
 from .ramp import TWO_PI, ramp
 from .travelling import phase_of, unit_phase
 
-__all__ = ["TwoWaves", "local_orbit", "needs_two_waves"]
+__all__ = ["TwoWaves", "field_shift", "local_orbit", "needs_two_waves"]
 
 
 def needs_two_waves(drive: Any) -> bool:
@@ -47,6 +47,18 @@ def needs_two_waves(drive: Any) -> bool:
     return (getattr(drive, "kind", None) == "wave"
             and (drive.backward > 0.0 or drive.position != 0.0 or drive.wavelength is not None
                  or drive.backward_phase_rate != 0.0))
+
+
+def field_shift(rate: Any, t: Any) -> Any:
+    """How far the drift field has moved at t*, in wavelengths, under a phase ramp: -rate t* / 720.
+
+    Every local quantity of the two waves depends on 4 pi xi + psi(t*) (module formula), and
+    psi(t*) = psi + ``rate`` t* (degrees), so the field V(xi) of t* = 0 is found at
+    xi - rate t* / 720: a trap at z moves to z + :func:`field_shift`. ``rate`` (degrees per period,
+    ``drive.backward_phase_rate``) and ``t`` may be arrays. The one place that says so; the drift
+    field's prediction and its figure ask here.
+    """
+    return -rate * t / 720.0
 
 
 def local_orbit(amplitude: float, ratio: float, phase_deg: float, backward: float,
@@ -111,8 +123,18 @@ class TwoWaves(Drive):
     def horizontal_speed(self, scene: Any) -> float:
         """2 pi |U_x| at ``drive.position``; for a direct run the forward wave's 2 pi r A*."""
         if self.direct(scene):
-            return TWO_PI * scene.horizontal_ratio * scene.drive.amplitude
+            return self.forward_speed(scene)
         return TWO_PI * abs(self.orbit(scene)[0])
+
+    @staticmethod
+    def forward_speed(scene: Any) -> float:
+        """2 pi r A*: the forward wave's horizontal surface speed alone (the same at every xi)."""
+        return TWO_PI * scene.horizontal_ratio * scene.drive.amplitude
+
+    @staticmethod
+    def field_shift(scene: Any, t: Any) -> Any:
+        """:func:`field_shift` of the scene's ``drive.backward_phase_rate`` at t*."""
+        return field_shift(scene.drive.backward_phase_rate, t)
 
     def vertical_amplitude(self, scene: Any) -> float:
         """|U_y| at ``drive.position``; for a direct run its largest value A* (1 + s)."""
