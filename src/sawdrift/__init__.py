@@ -18,17 +18,11 @@ The package follows the pipeline::
 from __future__ import annotations
 
 import importlib
-from importlib.metadata import PackageNotFoundError
-from importlib.metadata import version as _dist_version
 from typing import Any
 
+from ._version import __version__
 from .errors import ModelNotFoundError, NonFiniteStateError, PluginError, SawdriftError, SceneError
 from .hookspecs import hookimpl
-
-try:
-    __version__ = _dist_version("sawdrift")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree without metadata
-    __version__ = "0+unknown"
 
 #: public name -> module (relative to the package) that defines it
 _LAZY: dict[str, str] = {

@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._version import __version__
+
 if TYPE_CHECKING:
     import pandas as pd
 
@@ -64,8 +66,6 @@ EVIDENCE_FIELDS = (
 
 
 def _package_version() -> str:
-    from .. import __version__
-
     return __version__
 
 
