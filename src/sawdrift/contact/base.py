@@ -36,6 +36,7 @@ from typing import Any, ClassVar, Protocol
 import numpy as np
 from pydantic import BaseModel, ConfigDict
 
+from ..codegen import refresh_stale_caches
 from ..scene.profiles import Profile
 
 #: Version of the kernel protocol (the signatures and the trial/commit rule in the module
@@ -121,7 +122,7 @@ class LazyFunction:
         """The function itself.
 
         On the first load, numba's on-disk cache of it is brought in line with its code and the
-        code it calls (:func:`sawdrift.dynamics.loop_cache.refresh_stale_caches`), so a direct
+        code it calls (:func:`sawdrift.codegen.refresh_stale_caches`), so a direct
         call (the conformance suite, ``ContactHistory``) never runs machine code of an older
         version of the kernel or of a helper in another file.
         """
@@ -131,8 +132,6 @@ class LazyFunction:
 
             fn = getattr(importlib.import_module(self.module), self.name)
             if hasattr(fn, "py_func"):
-                from ..dynamics.loop_cache import refresh_stale_caches
-
                 refresh_stale_caches([fn])
             self._fn = fn
         return fn

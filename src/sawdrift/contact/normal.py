@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
-from .._codegen import align_branches
+from ..codegen import align_branches
 
 align_branches()  # before anything is compiled: every kernel imports its options from here
 

@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from ..codegen import Generated, generate
 from .evidence import (
     BAD_NONFINITE,
     EV_MARGIN,
@@ -186,7 +187,7 @@ def record(rec, ctr, t, y, a, b, nf, tf):
 
 
 #: The loop body reads ``force`` (the kernel) and ``ab`` as globals, bound per kernel in the
-#: generated module (loop_cache) or the python engine's function (_python_loop); the values here
+#: generated module (sawdrift.codegen) or the python engine's function (_python_loop); the values here
 #: only name them.
 force: Callable[..., Any] | None = None
 ab = AB_COEFFS
@@ -320,7 +321,7 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
 
 _COMPILED: dict[Any, Callable[..., None]] = {}
 
-#: import lines of the generated loop module: the loop body's global names (see loop_cache)
+#: import lines of the generated loop module: the loop body's global names (see sawdrift.codegen)
 _LOOP_IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
     "from sawdrift.dynamics.adams_bashforth import AB_COEFFS as ab  # noqa: F401\n"
@@ -345,7 +346,7 @@ def _loop_namespace(force: Callable[..., Any], drive_surface: Callable[..., Any]
 def wave_loop(force: Callable[..., Any], drive: Any, compiled: bool) -> Callable[..., None]:
     """The integration loop for a force function and a drive (:mod:`sawdrift.dynamics.drives`).
 
-    The compiled loop is cached on disk across processes (see :mod:`.loop_cache`): it is
+    The compiled loop is cached on disk across processes (see :mod:`sawdrift.codegen`): it is
     generated, once per kernel and drive, as a small module that imports the kernel and the
     drive's ``surface`` by name, so that numba's ``cache=True`` applies; a kernel that cannot be
     imported by name (defined in ``__main__`` or a notebook) is compiled in memory instead.
@@ -359,12 +360,10 @@ def wave_loop(force: Callable[..., Any], drive: Any, compiled: bool) -> Callable
     key = (force, drive.module)
     fn = _COMPILED.get(key)
     if fn is None:
-        from .loop_cache import cached_loop
-
-        imports = _LOOP_IMPORTS + f"from {drive.module} import surface as drive_surface  # noqa: F401\n"
-        fn = cached_loop(force, wave_loop_body, imports, _loop_namespace(force, surface))
-        if fn is None:
-            scope = _loop_namespace(force, surface)
-            fn = njit(types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body"))
+        fn = generate(Generated(
+            prefix="sawdrift_loop_", doc=f"the wave loop bound to a kernel and to {drive.module}",
+            templates=(wave_loop_body,), namespace=_loop_namespace(force, surface),
+            imports=_LOOP_IMPORTS, bind={"force": force, "drive_surface": (drive.module, "surface")},
+        ))["wave_loop_body"]
         _COMPILED[key] = fn
     return fn

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import platform
 
-#: the LLVM option, also part of the key of generated cache modules (see ``loop_cache``)
+#: the LLVM option, also part of the key of generated cache modules (see :mod:`sawdrift.codegen.modules`)
 OPTION = "-x86-branches-within-32B-boundaries"
 _done = False
 

@@ -1,74 +1,26 @@
-"""The compiled wave loop, cached on disk across processes, and the key of that cache.
-
-numba's ``cache=True`` cannot cache a function built per kernel at run time (a closure, or a
-function whose globals are filled in later). So, once per kernel, this module writes a small
-Python module to the cache folder that imports the kernel's ``force`` by name and defines the loop
-body of :func:`sawdrift.dynamics.adams_bashforth.wave_loop_body` under ``@njit(cache=True)``;
-numba then stores the machine code next to it and the next process loads it instead of compiling
-(about 1 s saved per process).
-
-The folder is ``$SAWDRIFT_CACHE_DIR``, else ``$XDG_CACHE_HOME/sawdrift``, else
-``~/.cache/sawdrift``. The generated file's name hashes the sawdrift version, the code layout
-setting, the generated source and the *code* of every compiled function that goes into it
-(:func:`code_digest`: the kernel, every compiled function it calls, across modules, and the
-constants they read), so editing a plugin kernel or any function it calls generates a new module
-instead of running the old machine code. A kernel that cannot be imported by name, or a folder
-that cannot be written, makes :func:`cached_loop` return None (the caller then compiles in memory).
+"""The key of compiled code: the code of every compiled function reachable from some roots.
 
 numba's own cache of a function is keyed by the function's bytecode and its file's time stamp,
 not by the functions it calls: a kernel whose helper in *another* file changed would load its old
-machine code. :func:`refresh_stale_caches` closes that gap (see there).
+machine code. :func:`code_digest` hashes the code of a function and of every compiled function it
+calls, across modules, with the constants they read (it keys generated modules,
+:mod:`sawdrift.codegen.modules`), and :func:`refresh_stale_caches` brings numba's on-disk caches
+in line with it.
 """
 
 from __future__ import annotations
 
 import hashlib
-import importlib
-import importlib.util
-import inspect
 import os
-import sys
-import textwrap
 import types
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 #: Prefixes of the generated modules: their names already carry the digest of their code.
-GENERATED = ("sawdrift_loop_", "sawdrift_contact_")
+GENERATED = ("sawdrift_loop_", "sawdrift_contact_", "sawdrift_rigid_")
 #: Modules whose functions are not walked (their code is not the project's or a plugin's).
 _FOREIGN = ("numba", "numpy", "llvmlite", "math", "cmath", "builtins")
-
-
-def cache_dir() -> Path:
-    """Where generated loop modules (and numba's cache of them) live."""
-    env = os.environ.get("SAWDRIFT_CACHE_DIR")
-    if env:
-        return Path(env)
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "sawdrift"
-
-
-def importable_origin(force: Any) -> tuple[str, str] | None:
-    """``(module, name)`` under which a compiled function can be imported again, or None.
-
-    A generated module can only bind functions it can import by name.
-    """
-    func = getattr(force, "py_func", None)
-    if func is None:
-        return None
-    module, name = func.__module__, func.__name__
-    if module in (None, "__main__") or "<" in name:
-        return None
-    try:
-        if getattr(importlib.import_module(module), name, None) is not force:
-            return None
-    except Exception:  # noqa: BLE001 - not importable by name: no disk cache
-        return None
-    return module, name
-
-
-# -- the code that goes into a compiled function ----------------------------------------------
 
 _FILES: dict[str, tuple[int, int, str]] = {}
 
@@ -259,84 +211,3 @@ def refresh_stale_caches(roots: Iterable[Any] | _Walk) -> list[str]:
             pass  # an unwritable cache folder: numba will not write its index either
     return refreshed
 
-
-# -- generated modules ---------------------------------------------------------------------------
-
-
-def load_generated(prefix: str, source: str, code: str = "") -> types.ModuleType | None:
-    """Write ``source`` to the cache folder as a module and import it (numba then caches it).
-
-    The name is ``prefix`` plus a hash of the sawdrift version, the code layout setting
-    (:mod:`sawdrift._codegen`), the source and ``code`` (the :func:`code_digest` of the compiled
-    functions the module binds), so a change of any generates a new module; a module already
-    imported is returned as it is. None if the folder cannot be written or the module does not
-    load (the caller compiles in memory).
-    """
-    from .. import __version__
-    from .._codegen import align_branches
-
-    tag = align_branches()  # the code layout setting is part of what the cache holds
-    digest = hashlib.sha1(f"{__version__}\n{tag}\n{code}\n{source}".encode()).hexdigest()[:16]
-    modname = f"{prefix}{digest}"
-    if modname in sys.modules:
-        return sys.modules[modname]
-    folder = cache_dir()
-    path = folder / f"{modname}.py"
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-        if not path.exists() or path.read_text() != source:
-            tmp = path.with_suffix(f".{os.getpid()}.tmp")
-            tmp.write_text(source)
-            os.replace(tmp, path)
-    except OSError:
-        return None
-    spec = importlib.util.spec_from_file_location(modname, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[modname] = module  # numba's cache records the module by name
-    try:
-        spec.loader.exec_module(module)
-    except Exception:  # noqa: BLE001 - a broken cache file must not break a run
-        sys.modules.pop(modname, None)
-        return None
-    return module
-
-
-def _public(module: types.ModuleType) -> dict[str, Any]:
-    """What ``from module import *`` binds."""
-    names = getattr(module, "__all__", None)
-    if names is None:
-        names = [n for n in vars(module) if not n.startswith("_")]
-    return {n: getattr(module, n) for n in names}
-
-
-def _source(module: str, name: str, body: Callable[..., Any], imports: str) -> str:
-    """A module that binds ``module.name`` as ``force`` and defines ``body`` under ``@njit``."""
-    text = textwrap.dedent(inspect.getsource(body))
-    return (
-        f'"""Generated by sawdrift: {body.__name__} bound to {module}.{name}. Do not edit."""\n'
-        "import math  # noqa: F401\n\n"
-        "from numba import njit\n\n"
-        f"{imports}"
-        f"from {module} import {name} as force  # noqa: F401\n\n\n"
-        "@njit(cache=True)\n" + text
-    )
-
-
-def cached_loop(force: Any, body: Callable[..., Any], imports: str,
-                namespace: dict[str, Any]) -> Callable[..., None] | None:
-    """The disk-cached compiled ``body`` with the kernel ``force`` bound in, or None.
-
-    ``imports`` are the generated module's import lines that give ``body`` its global names,
-    ``namespace`` the same names as values (they key the cache). Every compiled function that
-    goes in (the kernel, what it calls, the loop's helpers) is first brought in line with its
-    code (:func:`refresh_stale_caches`), also when the loop is then compiled in memory; the
-    generated module is keyed by all that code (:func:`code_digest`). None if the kernel cannot
-    be imported by name (the caller compiles in memory).
-    """
-    walk, code = walk_code([force], namespace, [body])
-    refresh_stale_caches(walk)
-    origin = importable_origin(force)
-    if origin is None:
-        return None
-    module = load_generated("sawdrift_loop_", _source(*origin, body, imports), code)
-    return None if module is None else getattr(module, body.__name__)
