@@ -20,14 +20,11 @@ from . import rigid as rg
 
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
 _FUNCTIONS = (rg._tangential_mass, rg._tangential_load, rg._normal, rg._least_normal_inside,
-              rg._stick_margin, rg._sticks, rg._t_req, rg._slip_state, rg._slip_velocity, rg._gap,
-              rg._log, rg._free_tangential, rg._landing_time, rg._flight, rg._impact, rg._rebounds,
-              rg._land, rg._lift, rg._contact_end, rg._follow, rg._stick, rg._slip, rg._contact,
-              rg._resolve_step, rg._step_forces, rg._end_step, rg.rigid_loop)
+              rg._stick_margin, rg._sticks,
+              rg._t_req, rg._slip_state, rg._slip_velocity, rg._gap, rg._log, rg.rigid_loop)
 _IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
     "from sawdrift.dynamics.evidence import *  # noqa: F403\n"
-    "from sawdrift.dynamics.rolling import *  # noqa: F403\n"
     "from sawdrift.dynamics.rigid import (  # noqa: F401\n"
     "    _BISECT, _GOLDEN, _GRAZE, _MAX_EVENTS, _ZENO, EV_MARGIN_RIGID, N_PRM_RIGID, P_RESTITUTION,\n"
     "    P_UY, P_VINERTIA, P_XQ,\n"
@@ -37,10 +34,10 @@ _LOOPS: dict[str, Callable[..., None]] = {}
 
 
 def _namespace(kinematics: Any) -> dict[str, Any]:
-    from . import adams_bashforth, evidence, rolling
+    from . import adams_bashforth, evidence
 
     ns: dict[str, Any] = {"math": math, "njit": njit}
-    for module in (adams_bashforth, evidence, rolling):
+    for module in (adams_bashforth, evidence):
         ns.update({n: v for n, v in vars(module).items() if not n.startswith("_")})
     ns.update({n: getattr(rg, n) for n in ("_BISECT", "_GOLDEN", "_GRAZE", "_MAX_EVENTS", "_ZENO",
                                           "EV_MARGIN_RIGID", "N_PRM_RIGID", "P_RESTITUTION",
