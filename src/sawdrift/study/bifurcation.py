@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .._version import __version__
 from ..errors import SceneError
 from ..scene.schema import Scene, Wave, build_scene, get_dotted
 from .axes import parse_values
@@ -285,8 +286,6 @@ def _hysteresis(points: dict[tuple[str, str], list[Point]], models: list[str]) -
 def _summary(field_name: str, axis: list[float], models: list[str], samples: int, direction: str,
              locate: bool, tolerance: float, points: dict[tuple[str, str], list[Point]],
              found: list[dict[str, Any]], hyst: list[dict[str, Any]], scene: Scene) -> dict[str, Any]:
-    from .. import __version__
-
     return {
         "field": field_name, "values": axis, "models": models, "samples": samples,
         "direction": direction, "locate": locate, "tolerance": tolerance,
@@ -300,8 +299,6 @@ def _summary(field_name: str, axis: list[float], models: list[str], samples: int
 
 def _table(points: dict[tuple[str, str], list[Point]], field_name: str,
            hyst: list[dict[str, Any]]) -> pd.DataFrame:
-    from .. import __version__
-
     frames = []
     for (name, d), pts in points.items():
         spans = [(h["from"], h["to"]) for h in hyst if h["model"] == name]

@@ -22,6 +22,7 @@ from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 from typing import Any
 
+from .._version import __version__
 from ..errors import SawdriftError, SceneError
 from ..scene.schema import Scene
 from .branch import (
@@ -56,8 +57,6 @@ def _scene_at(base: Scene, field: str) -> Callable[[float], Scene]:
 
 def header(task: dict[str, Any]) -> dict[str, Any]:
     """The journal header of a branch task: its spec and the code behind it."""
-    from .. import __version__
-
     spec = {key: task[key] for key in _SPEC_KEYS}
     return {"header": spec, "code_hash": code_hash([task["model"]]), "version": __version__}
 
@@ -135,8 +134,6 @@ def run_branch(task: dict[str, Any], on_value: Callable[[dict[str, Any]], None] 
     budget = Budget.for_scene(base, int(task["samples"]), task.get("transient"))
     engine = task.get("engine", "compiled")
     hash_ = code_hash([task["model"]])
-    from .. import __version__
-
     first = next((i for i in range(len(values)) if i not in done), len(values))
     stepper = None
     if 0 < first < len(values) and done[first - 1].get("state"):

@@ -16,6 +16,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from .._version import __version__
 from ..errors import SawdriftError
 
 #: the hex digits of a code hash kept in tables and identifiers
@@ -150,8 +151,6 @@ def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[
     if other:
         theirs = sorted({f"sawdrift {r.get('version')} code {r.get('code_hash') or 'unrecorded'}"
                          for r in other})
-        from .. import __version__
-
         raise TableProvenanceError(
             f"table {str(table)!r} holds {len(other)} rows computed by other code "
             f"({'; '.join(theirs[:3])}; this is sawdrift {__version__} code "

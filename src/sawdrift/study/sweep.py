@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .._version import __version__
 from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
@@ -56,8 +57,6 @@ def cell_id(scene: Scene) -> str:
     The code is :func:`~sawdrift.study.provenance.code_hash` of the scene's model (sawdrift's
     source and the model's plugin): a cell computed by other code has another identifier.
     """
-    from .. import __version__
-
     key = f"{__version__}\n{code_hash([scene.model])}\n{scene.model_dump_json()}"
     return hashlib.sha1(key.encode()).hexdigest()[:16]
 
@@ -219,8 +218,6 @@ def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] |
     """
     import pyarrow as pa
     import pyarrow.parquet as pq
-
-    from .. import __version__
 
     arrow = pa.Table.from_pandas(frame, preserve_index=False)
     meta = dict(arrow.schema.metadata or {})

@@ -12,6 +12,9 @@ from typing import Any, Literal
 
 import numpy as np
 
+from .._version import __version__
+from ..errors import SawdriftError
+
 #: Case groups, in report order: key -> heading.
 GROUPS: dict[str, str] = {
     "material_point": "1. Material point against the analytic results",
@@ -51,8 +54,6 @@ def default_cases_dir() -> Path:
     pyproject maps to that package.
     """
     from importlib.resources import files
-
-    from ..errors import SawdriftError
 
     try:
         root = files("sawdrift.validation.cases")
@@ -382,10 +383,8 @@ def _one_line(exc: BaseException) -> str:
 def _environment() -> dict[str, str]:
     import numba
 
-    import sawdrift
-
     return {
-        "sawdrift": sawdrift.__version__,
+        "sawdrift": __version__,
         "python": platform.python_version(),
         "numpy": np.__version__,
         "numba": numba.__version__,
