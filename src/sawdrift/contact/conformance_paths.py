@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..scene.parts import polyline
 from .base import ContactHistory, ContactModel
 
 #: samples per straight side of a cycle
@@ -48,8 +49,6 @@ class Path:
 
 def path(vertices: list[tuple[float, float]], per_side: int = SIDE) -> Path:
     """The straight sides through ``vertices``, ``per_side`` samples each, in unit time each."""
-    from ..dynamics.prescribed import polyline
-
     a, b = polyline(vertices, per_side)
     return Path(a, b, np.diff(a, prepend=a[0]) * per_side, np.diff(b, prepend=b[0]) * per_side,
                 1.0 / per_side)

@@ -15,17 +15,8 @@ import numpy as np
 from ..contact.base import ContactHistory, ContactModel
 from ..errors import NonFiniteStateError
 from ..result.result import Result
+from ..scene.parts import polyline
 from ..scene.schema import Prescribed, Scene
-
-
-def polyline(vertices: list[tuple[float, float]], per_side: int) -> tuple[np.ndarray, np.ndarray]:
-    """Samples a*(k), b*(k) along straight sides through ``vertices``, ``per_side`` per side."""
-    av, bv = [vertices[0][0]], [vertices[0][1]]
-    s = np.arange(1, per_side + 1) / per_side
-    for (a0, b0), (a1, b1) in zip(vertices[:-1], vertices[1:], strict=True):
-        av.extend(a0 + (a1 - a0) * s)
-        bv.extend(b0 + (b1 - b0) * s)
-    return np.asarray(av), np.asarray(bv)
 
 
 def prescribed_history(drive: Prescribed) -> tuple[np.ndarray, np.ndarray]:

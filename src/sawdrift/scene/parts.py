@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any, Literal
 
+import numpy as np
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from .profiles import Profile
@@ -216,6 +217,16 @@ class Prescribed(BaseModel):
         return self
 
 
+def polyline(vertices: list[tuple[float, float]], per_side: int) -> tuple[np.ndarray, np.ndarray]:
+    """Samples a*(k), b*(k) along straight sides through ``vertices``, ``per_side`` per side."""
+    av, bv = [vertices[0][0]], [vertices[0][1]]
+    s = np.arange(1, per_side + 1) / per_side
+    for (a0, b0), (a1, b1) in zip(vertices[:-1], vertices[1:], strict=True):
+        av.extend(a0 + (a1 - a0) * s)
+        bv.extend(b0 + (b1 - b0) * s)
+    return np.asarray(av), np.asarray(bv)
+
+
 class Impact(BaseModel):
     """A free normal impact: the particle touches the substrate (a* = 0) moving into it.
 
@@ -354,5 +365,3 @@ def format_validation_error(exc: ValidationError, source: str | None = None) -> 
     if msg.startswith("model_params."):
         return f"{where}{msg}"
     return f"{where}scene: {msg}"
-
-
