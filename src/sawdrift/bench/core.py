@@ -17,6 +17,7 @@ from ..contact.registry import get_model
 from ..dynamics.runner import prescribed_history
 from ..errors import SceneError
 from ..scene.schema import Prescribed, Scene
+from ..study.progress import counter
 
 T = TypeVar("T")
 
@@ -172,8 +173,6 @@ def fit_order(x: Iterable[float], err: Iterable[float], floor: float = 0.0,
 
 def _progress(total: int, desc: str, enabled: bool):
     """A progress counter: a tqdm bar on a terminal, plain lines in a log (``study.progress``)."""
-    from ..study.progress import counter
-
     return counter(total, desc, "run", enabled=enabled, leave=False)
 
 

@@ -13,6 +13,10 @@ import tempfile
 import time
 from pathlib import Path
 
+from ..dynamics.runner import run
+from ..scene.schema import Scene
+from ..study.adaptive import adaptive_sweep, misclassified_area
+from ..study.sweep import sweep
 from .targets import Target, _target
 
 
@@ -44,9 +48,6 @@ def speed_cold_start(quick: bool = False) -> list[Target]:
 
 def speed_steady(quick: bool = False) -> Target:
     """--settle on a heavy particle (mmd, m* = 3000, A* = 0.7, mu = 0.1): reported run time."""
-    from ..dynamics.runner import run
-    from ..scene.schema import Scene
-
     m = 300.0 if quick else 3000.0
     scene = Scene(model="mmd", particle={"m_star": m}, material={"mu": 0.1},
                   drive={"amplitude": 0.7}, numerics={"settle": True, "max_periods": 1e6})
@@ -66,9 +67,6 @@ def speed_adaptive(quick: bool = False, progress: bool = True) -> Target:
     refined three times. Quick (a smoke test): the material point on a 33 x 33 grid from a 9 x 9
     base, with 45 % of the cells and a 5 % limit (a coarse base grid misses small regions).
     """
-    from ..study.adaptive import adaptive_sweep, misclassified_area
-    from ..study.sweep import sweep
-
     model, m_rng, a_rng = ("material_point", (1e-3, 1e2), (1e-2, 10.0)) if quick else (
         "mmd", (1e-3, 1e4), (1e-2, 10.0))
     base, levels = (9, 2) if quick else (21, 3)

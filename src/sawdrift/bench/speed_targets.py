@@ -17,6 +17,7 @@ import numpy as np
 
 from ..contact.registry import get_model
 from ..dynamics.runner import run
+from ..study.progress import counter
 from ..study.sweep import sweep
 from .core import (
     WAVE_AMPLITUDE,
@@ -201,7 +202,6 @@ def speed(quick: bool = False, *, progress: bool = True, out: str | Path | None 
         ``{"quick", "machine", "targets": {name: {...}}, "all_passed"}``; every target has
         ``measured``, ``unit``, ``limit``, ``comparison``, ``passed`` and ``details``.
     """
-    from ..study.progress import counter
     from . import speed_more
 
     # the sweep goes first: its worker processes are forked from this one, so it must not

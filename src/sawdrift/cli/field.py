@@ -9,6 +9,7 @@ from typing import Annotated, Any
 import typer
 
 from .._startup import fast_start
+from ..study.progress import notice
 from .app import (
     Engine,
     Param,
@@ -86,8 +87,6 @@ def field_cmd(
     study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
                         progress=progress, engine=engine)
     if direct:
-        from ..study.progress import notice
-
         periods = float(direct_periods or 2000.0)
         with notice(f"field: direct run of {periods:g} periods through the field", 2.0, progress):
             study.direct = direct_run(scene, start, periods, study.fields[0], engine=engine)

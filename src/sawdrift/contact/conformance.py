@@ -70,11 +70,14 @@ import numpy as np
 
 from ..errors import SceneError
 from ..scene.profiles import Profile
+from ..scene.schema import format_validation_error
 from .base import ContactHistory, ContactModel
 from .conformance_paths import LARGE_A, Path, cycles, histories, loop_work_parts, path
 from .conformance_paths import SIDE as SIDE  # re-exported: the paths are part of this interface
 from .conformance_paths import loop_works as loop_works
 from .conformance_paths import random_history as random_history
+from .registry import get_model
+from .slots import _SlotKernel
 
 #: exponent of the representative ``power`` profile
 POWER_EXPONENT = 2.5
@@ -330,8 +333,6 @@ def _replay(model: ContactModel) -> Check:
 def _normal_slot(model: ContactModel) -> Check:
     import inspect
 
-    from .slots import _SlotKernel
-
     if not isinstance(inspect.getattr_static(type(model), "kernel", None), _SlotKernel):
         return Check("normal_slot", "skipped", math.nan, math.nan,
                      "a whole contact kernel: its N* is its own")
@@ -377,9 +378,6 @@ def check_model(name: str, profile: str | Profile | None = None, **params: Any) 
         If a parameter or the profile is unknown or out of range (one line naming it).
     """
     from pydantic import ValidationError
-
-    from ..scene.schema import format_validation_error
-    from .registry import get_model
 
     cls = get_model(name)
     try:

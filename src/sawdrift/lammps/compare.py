@@ -5,7 +5,8 @@ from __future__ import annotations
 from typing import Any
 
 from ..dynamics.runner import run
-from ..scene.schema import Scene
+from ..scene.schema import Scene, build_scene
+from .engine import available
 from .single import run_scene
 
 
@@ -38,8 +39,6 @@ def _dem(m_star: float, amplitude: float, mu: float, rotation: bool) -> Scene:
 
 def saw_motor(periods: float = 200.0) -> Scene:
     """examples/saw_linear_motor.toml with the DEM law, a fixed run at 512 steps per period."""
-    from ..scene.schema import build_scene
-
     return build_scene({
         "model": "hertz_mindlin_dem",
         "device": {"frequency": "9.6 MHz", "amplitude": "10 nm", "orbit": "retrograde",
@@ -70,8 +69,6 @@ VALIDATION_SCENES: dict[str, list[tuple[str, Any]]] = {
 
 def lammps_missing() -> str | None:
     """None if LAMMPS runs here, else the one-line reason."""
-    from .engine import available
-
     ok, why = available()
     return None if ok else why
 

@@ -25,7 +25,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ..dynamics.drives.travelling import phase_of, unit_phase
 from ..errors import SceneError
+from ..scene.device import normalized
 from ..scene.schema import Scene, Wave
 
 #: models with a LAMMPS equivalent (pair granular hertz/material + mindlin_rescale/force or
@@ -127,14 +129,10 @@ def check_equivalent(scene: Scene) -> None:
 
 def realize(scene: Scene) -> Realization:
     """The SI realization of ``scene`` (module docstring): the device's values, or a chosen one."""
-    from ..dynamics.drives.travelling import phase_of, unit_phase
-
     check_equivalent(scene)
     m_star = scene.particle.m_star
     theta = scene.theta
     if scene.device is not None:
-        from ..scene.device import normalized
-
         norm = normalized(scene.device)
         radius = float(scene.device.particle.radius)
         mass, weight, a0 = norm["mass_kg"], norm["weight_n"], norm["a0_m"]

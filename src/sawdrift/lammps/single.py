@@ -35,13 +35,18 @@ from typing import Any
 import numpy as np
 
 from ..dynamics import evidence as ev
+from ..dynamics import steady
 from ..dynamics import window as window_mod
 from ..dynamics.assembly import steps_per_period
+from ..dynamics.drives.travelling import TravellingWave
 from ..dynamics.steady import assess_fixed, relaxation_periods
 from ..dynamics.window import Window, orbit_period, periodicity
+from ..errors import SawdriftError
 from ..result.regimes import Synchrony, classify, synchrony
 from ..result.result import Result
+from ..scene.device import device_outputs
 from ..scene.schema import Scene
+from ..study.progress import counter
 from .engine import open_lammps
 from .realize import LAMMPS_EQUIVALENT, WALL_NU, Realization, realize
 
@@ -162,8 +167,6 @@ def simulate(scene: Scene, *, record_from: int | None = None, progress: bool | N
         ``record_from`` (included) to the end; ``info`` holds the realization, ``k_per``, the
         steps, the window's first step, the wall time and the input script.
     """
-    from ..study.progress import counter
-
     real = realize(scene)
     k_per = steps_per_period(scene)
     n_measure = scene.measure_periods() * k_per
@@ -184,8 +187,6 @@ def simulate(scene: Scene, *, record_from: int | None = None, progress: bool | N
             _run_steps(lmp, n_total - start, True, bar)  # set-up again: the new fix joins
             lmp.command("unfix rec")
         except Exception as exc:  # noqa: BLE001 - LAMMPS reports its errors as Exception
-            from ..errors import SawdriftError
-
             raise SawdriftError(f"LAMMPS failed: {str(exc).splitlines()[0]}") from None
         finally:
             wall = time.perf_counter() - t0
@@ -196,8 +197,6 @@ def simulate(scene: Scene, *, record_from: int | None = None, progress: bool | N
     _, first_rows = np.unique(table[:, 0], return_index=True)
     table = table[first_rows]
     if table.shape[0] != n_total - table[0, 0] + 1 or table[0, 0] > start:
-        from ..errors import SawdriftError
-
         raise SawdriftError(f"LAMMPS wrote {table.shape[0]} records for steps {start} to "
                             f"{n_total}; the run did not complete")
     start = int(table[0, 0])
@@ -260,8 +259,6 @@ def _settle_asked(scene: Scene, speed: float) -> bool:
     """Whether the native engine would settle ``scene`` (``numerics.settle``, or its default)."""
     asked = scene.numerics.settle
     if asked is None:  # the default: settle where the drift relaxes slowly (dynamics.steady)
-        from ..dynamics import steady
-
         rule = getattr(steady, "settles", None)
         return bool(rule(scene, speed)) if rule is not None else False
     return bool(asked)
@@ -270,8 +267,6 @@ def _settle_asked(scene: Scene, speed: float) -> bool:
 def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: bool = False
               ) -> Result:
     """The native :class:`~sawdrift.result.Result` of a LAMMPS record (module docstring)."""
-    from ..dynamics.drives.travelling import TravellingWave
-
     real: Realization = info["real"]
     k_per = info["k_per"]
     rec_all = normalized_record(rows, real)
@@ -324,8 +319,6 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
         extra["lammps_note"] = (f"numerics.settle is not continued in LAMMPS: a fixed run of "
                                 f"{info['steps'] / k_per:g} periods")
     if scene.device is not None:
-        from ..scene.device import device_outputs
-
         extra.update(device_outputs(scene.device, drift, regime, None))
     frame = None
     if trajectory:

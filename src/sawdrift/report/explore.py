@@ -29,7 +29,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..errors import SceneError
+from ..errors import SawdriftError, SceneError
+from ..scene.device import Device, normalized
+from ..scene.schema import set_dotted
 from ..study.sweep import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
 from .diagrams import COLOURS
@@ -182,9 +184,6 @@ def voronoi_cells(u: np.ndarray, w: np.ndarray, box: tuple[float, float, float, 
 
 def _speed_scale(rows: pd.DataFrame, meta: dict[str, Any]) -> np.ndarray | None:
     """a0 f (m/s per unit x*') of each row of a device table; None for a normalized table."""
-    from ..scene.device import Device, normalized
-    from ..scene.schema import set_dotted
-
     base = meta.get("base_scene") or {}
     if not isinstance(base.get("device"), dict):
         return None
@@ -275,8 +274,6 @@ def disagreement(codes: np.ndarray, selected: list[int]) -> np.ndarray:
 
 
 def _traces_for(traces: Any, table: Any) -> dict[str, Trace]:
-    from ..errors import SawdriftError
-
     if isinstance(traces, Mapping):
         return dict(traces)
     try:

@@ -19,6 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ..scene.device import normalized
 from ..study.field import PERIOD, Field, FieldStudy, field_shift, wavelength_star  # noqa: E402
 from .diagrams import COLOURS  # noqa: E402
 
@@ -37,7 +38,6 @@ def field_units(fld: Field) -> tuple[float, str, float, str]:
     sc = fld.scene
     if sc.device is None:
         return 1.0, "xi = X / wavelength", 1.0, "V (x* per period)"
-    from ..scene.device import normalized
 
     norm = normalized(sc.device)
     v_scale = norm["a0_m"] * norm["frequency_hz"] * 1e3

@@ -26,7 +26,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from ..errors import SceneError
+from ..errors import SawdriftError, SceneError
 from .device import FIELD_KIND, UNITS, Device, normalized
 from .parts import format_validation_error, get_dotted, set_dotted
 from .profiles import Profile
@@ -238,8 +238,6 @@ def check_model_params(model: str, params: Mapping[str, Any], source: str | None
 
     An unknown model is left to the registry's own error.
     """
-    from ..errors import SawdriftError
-
     try:
         from ..contact.registry import get_model
 

@@ -35,6 +35,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from ..errors import SawdriftError
 from .api import (  # noqa: F401 - the case API, re-exported for case files
     COMPLIANT_MODELS,
     DIAGRAM_MODELS,
@@ -65,8 +66,6 @@ def load_cases(cases_dir: Path | None = None) -> list[LoadedCase]:
     """
     cases_dir = Path(cases_dir) if cases_dir is not None else default_cases_dir()
     if not cases_dir.is_dir():
-        from ..errors import SawdriftError
-
         raise SawdriftError(f"validation cases folder {str(cases_dir)!r} does not exist")
     loaded: list[LoadedCase] = []
     for path in sorted(cases_dir.glob("*.py")):

@@ -9,6 +9,7 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from ..result.regimes import CONTACT_LOST
 from .api import DIAGRAM_MODELS, MU, NU
 
 # -- values shared between cases of one run ----------------------------------------------------
@@ -120,6 +121,4 @@ def regime_table(model: str):
 
 def regime_class(regime: str) -> str:
     """``lost`` for the contact-loss regimes (hopping, bouncing), else the regime itself."""
-    from ..result.regimes import CONTACT_LOST
-
     return "lost" if regime in CONTACT_LOST else regime
