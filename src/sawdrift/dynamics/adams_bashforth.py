@@ -28,6 +28,7 @@ import numpy as np
 from numba import njit
 
 from ..codegen import Generated, generate
+from . import evidence
 from .evidence import (
     BAD_NONFINITE,
     EV_MARGIN,
@@ -336,8 +337,6 @@ def _public(module: types.ModuleType) -> dict[str, Any]:
 
 def _loop_namespace(force: Callable[..., Any], drive_surface: Callable[..., Any]) -> dict[str, Any]:
     """The global names the loop body runs with (the values of the generated module's imports)."""
-    from . import evidence
-
     ns = {**_public(sys.modules[__name__]), **_public(evidence)}
     ns.update(drive_surface=drive_surface, force=force, ab=AB_COEFFS)
     return ns

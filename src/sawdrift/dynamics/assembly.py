@@ -12,8 +12,11 @@ from dataclasses import dataclass
 from typing import Literal
 
 from ..contact.base import ContactModel
+from ..contact.registry import get_model
 from ..errors import SceneError
+from ..scene.device import explain_device
 from ..scene.schema import Impact, Prescribed, Scene, Wave
+from .adams_bashforth import MIN_RESTITUTION, damping_ratio, restitution_damping
 from .drives import Drive, drive_of
 
 Engine = Literal["compiled", "python"]
@@ -35,8 +38,6 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     if scene.numerics.steps_per_period is not None:
         return scene.numerics.steps_per_period
     if rigid is None:
-        from ..contact.registry import get_model
-
         rigid = get_model(scene.model).capabilities.rigid
     if rigid:
         return 256
@@ -324,8 +325,6 @@ def _restitution(scene: Scene, model: ContactModel,
     contact a normal damping that rebounds a free impact with ratio e at any speed; on the rigid
     point its Newton restitution (``model_params.restitution`` may only repeat it).
     """
-    from .adams_bashforth import MIN_RESTITUTION, damping_ratio, restitution_damping
-
     e = scene.material.restitution
     if model.capabilities.rigid:
         given = scene.model_params.get("restitution")
@@ -381,7 +380,5 @@ def explain(scene: Scene, engine: Engine = "compiled") -> str:
                                                        if k != "x_q"))
     lines.append("outputs: " + ", ".join(plan.outputs))
     if scene.device is not None:
-        from ..scene.device import explain_device
-
         lines += explain_device(scene.device, scene.material.mu)
     return "\n".join(lines)

@@ -15,6 +15,7 @@ import numpy as np
 from ..contact.base import ContactModel
 from ..result.regimes import classify
 from ..result.result import Result
+from ..scene.device import device_outputs
 from ..scene.schema import Impact, Scene, Wave
 from .assembly import Assembly, Engine, assemble, explain
 from .prescribed import prescribed_history, run_prescribed
@@ -112,8 +113,6 @@ def _run_wave(
                       gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
     extra: dict[str, object] = {}
     if scene.device is not None:
-        from ..scene.device import device_outputs
-
         extra.update(device_outputs(scene.device, win.drift, regime, t90 if settle_on else None))
     return Result(
         model=scene.model,

@@ -29,12 +29,14 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
+from ..contact.registry import get_model
 from ..errors import SceneError
 from ..scene.schema import Scene, Wave, build_scene, get_dotted
 from .axes import parse_values
 from .bifurcation_tasks import changes, run_branches
 from .branch import SAMPLE_COLUMNS, Point
 from .provenance import check_resume, code_hash
+from .sweep import META_BASE_SCENE, META_CODE, META_VERSION, table_metadata
 
 #: Names of the outputs in the output folder.
 TABLE, SUMMARY, FIGURE, JOURNALS = "bifurcation.parquet", "bifurcation.json", "bifurcation.png", "journal"
@@ -103,8 +105,6 @@ def _values(values: str | Sequence[Any], field_name: str) -> list[float]:
 
 def _model_scenes(scene: Scene, models: str | Sequence[str] | None, field_name: str,
                   values: list[float]) -> dict[str, Scene]:
-    from ..contact.registry import get_model
-
     names = ([m.strip() for m in models.split(",")] if isinstance(models, str)
              else list(models) if models is not None else [scene.model])
     if not names or any(not n for n in names) or len(set(names)) != len(names):
@@ -337,7 +337,6 @@ def _check_table(folder: Path, scene: Scene, force: bool) -> None:
     path = folder / TABLE
     if not path.exists():
         return
-    from .sweep import table_metadata
 
     try:
         rows = pd.read_parquet(path, columns=["model", "version", "code_hash"])
@@ -353,8 +352,6 @@ def _write(folder: Path, result: BifurcationResult, scene: Scene, figure: bool) 
     """Write the table (atomically, with provenance metadata), the summary and the figure."""
     import pyarrow as pa
     import pyarrow.parquet as pq
-
-    from .sweep import META_BASE_SCENE, META_CODE, META_VERSION
 
     folder.mkdir(parents=True, exist_ok=True)
     s = result.summary

@@ -36,6 +36,7 @@ from .branch import (
     save_state,
     transitions,
 )
+from .progress import counter
 from .provenance import TableProvenanceError, code_hash
 
 #: Fractions of a bracket tried in turn when a midpoint's run fails (a step it cannot resolve).
@@ -254,8 +255,6 @@ def run_branches(tasks: list[dict[str, Any]], workers: int, scheduler: Any, prog
     Serially, in local processes (one per branch, progress read from the journals) or on dask.
     ``on_value`` sees every newly computed record.
     """
-    from .progress import counter
-
     total = sum(len(t["values"]) for t in tasks)
     held = [set(read_journal(Path(t["journal"]) if t["journal"] else None, t,
                              bool(t["force"]))["points"]) for t in tasks]
@@ -303,8 +302,6 @@ def changes(tasks: list[dict[str, Any]], records: list[Any],
     journaled are read back; the others run as independent tasks (in parallel where workers
     allow) and are journaled as they finish.
     """
-    from .progress import counter
-
     found: list[dict[str, Any]] = []
     todo: list[dict[str, Any]] = []
     for task, rec in zip(tasks, records, strict=True):

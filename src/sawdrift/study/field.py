@@ -28,9 +28,11 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamics.assembly import steps_per_period
 from ..dynamics.drives.two_wave import TwoWaves, field_shift
+from ..dynamics.runner import run
 from ..errors import SceneError
-from ..scene.device import device_wavelength, rayleigh_wavelength
+from ..scene.device import device_wavelength, normalized, rayleigh_wavelength
 from ..scene.schema import Scene, Wave, build_scene, set_dotted
 
 __all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_field", "field_shift",
@@ -48,8 +50,6 @@ def wavelength_star(scene: Scene) -> float | None:
     if isinstance(wave, Wave) and wave.wavelength is not None:
         return wave.wavelength
     if scene.device is not None:
-        from ..scene.device import normalized
-
         lam = device_wavelength(scene.device)
         if lam is not None:
             return lam / normalized(scene.device)["a0_m"]
@@ -378,8 +378,6 @@ def direct_run(scene: Scene, start: float, periods: float, fld: Field | None = N
     wavelengths) and, given the field ``fld`` of the same scene, ``"predicted"``: the path of
     :func:`predict_path` on the same times, its final position and the trap nearest to it.
     """
-    from ..dynamics.runner import run
-
     lstar = wavelength if wavelength is not None else wavelength_star(scene)
     if lstar is None:
         raise SceneError("a direct run needs the wavelength: drive.wavelength = L* (wavelength / "
@@ -391,7 +389,6 @@ def direct_run(scene: Scene, start: float, periods: float, fld: Field | None = N
     sc = scene.with_updates(**{"drive.wavelength": float(lstar), "drive.position": float(start),
                                "numerics.periods": float(periods), "numerics.settle": False,
                                "numerics.measure_periods": window})
-    from ..dynamics.assembly import steps_per_period
 
     every = max(1, int(steps_per_period(sc) * periods / max(samples, 2)))
     res = run(sc, trajectory=True, engine=engine, record_every=every)  # type: ignore[arg-type]

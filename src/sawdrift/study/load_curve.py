@@ -34,7 +34,9 @@ from typing import Any
 import numpy as np
 
 from ..dynamics.drives import drive_of
+from ..dynamics.runner import run
 from ..errors import SceneError
+from ..scene.device import normalized
 from ..scene.schema import Scene, Wave
 
 __all__ = ["LoadCurve", "load_curve"]
@@ -47,8 +49,6 @@ G_N = 9.80665  # standard gravity, for start-up accelerations in g
 
 def _run_load(scene_json: str, engine: str) -> dict[str, Any]:
     """Run one loaded scene (in a worker process) and keep its summary fields."""
-    from ..dynamics.runner import run
-
     result = run(Scene.model_validate_json(scene_json), engine=engine)  # type: ignore[arg-type]
     summary = result.summary()
     return {key: summary.get(key) for key in _KEPT}
@@ -145,8 +145,6 @@ class _Runner:
         self.pool: ProcessPoolExecutor | None = None
         dev = scene.device
         if dev is not None:
-            from ..scene.device import normalized
-
             norm = normalized(dev)
             self.newtons = norm["weight_n"]
             self.background = norm["load"] - dev.load / norm["weight_n"]
@@ -296,7 +294,6 @@ def _curve(scene: Scene, runner: _Runner, speed: float, n: int, tolerance: float
 def _device_scales(scene: Scene) -> dict[str, float] | None:
     if scene.device is None:
         return None
-    from ..scene.device import normalized
 
     norm = normalized(scene.device)
     return {"force_n": norm["weight_n"], "speed_m_s": norm["a0_m"] * norm["frequency_hz"],

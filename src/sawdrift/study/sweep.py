@@ -27,11 +27,13 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
+from ..dynamics.runner import run
 from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
 from .axes import parse_axis, parse_values
 from .journal import records
+from .progress import progress as make_progress
 from .provenance import check_resume, code_hash
 from .traces import append_trace, consolidate_traces, read_traces, run_traced
 
@@ -117,8 +119,6 @@ def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) ->
     A model that raises or returns NaN fails only its own cell. With ``traces`` the row also
     holds ``"trace"``, the cell's last periods (:func:`sawdrift.study.traces.run_traced`).
     """
-    from ..dynamics.runner import run
-
     scene = Scene.model_validate_json(scene_json)
     row: dict[str, Any] = {key: None for key in TABLE_COLUMNS}
     row["cell_id"] = cell_id(scene)
@@ -432,8 +432,6 @@ def sweep(
         path.parent.mkdir(parents=True, exist_ok=True)
     bar = None
     if progress and todo:
-        from .progress import progress as make_progress
-
         bar = make_progress(len(wanted), "sweep", "cell", initial=len(rows))
     fh = None
     if journal is not None and todo:

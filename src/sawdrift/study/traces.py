@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..dynamics.assembly import steps_per_period
+from ..dynamics.runner import run
 from ..errors import SawdriftError
 from .journal import records
 
@@ -106,8 +107,6 @@ def run_traced(scene: Scene, engine: str = "compiled", periods: float = DEFAULT_
 
     The result is the one ``run(scene)`` gives (recording does not change the integration).
     """
-    from ..dynamics.runner import run
-
     result = run(scene, engine=engine, trajectory=True,  # type: ignore[arg-type]
                  record_every=record_every(scene, periods, samples))
     return result, trace_of(result, periods, samples)
