@@ -19,6 +19,7 @@ from ..contact.registry import get_model
 from ..dynamics.runner import run
 from ..study.progress import counter
 from ..study.sweep import sweep
+from . import speed_more
 from .core import (
     WAVE_AMPLITUDE,
     WAVE_M_STAR,
@@ -202,8 +203,6 @@ def speed(quick: bool = False, *, progress: bool = True, out: str | Path | None 
         ``{"quick", "machine", "targets": {name: {...}}, "all_passed"}``; every target has
         ``measured``, ``unit``, ``limit``, ``comparison``, ``passed`` and ``details``.
     """
-    from . import speed_more
-
     # the sweep goes first: its worker processes are forked from this one, so it must not
     # inherit loops compiled by the other targets (a user's sweep compiles them in each worker)
     steps: list[tuple[str, Callable[[], Target]]] = [
