@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from ..codegen import Generated, generate
+from ..codegen import Generated, generate, rebind
 from . import evidence
 from .evidence import (
     BAD_NONFINITE,
@@ -355,7 +355,7 @@ def wave_loop(force: Callable[..., Any], drive: Any, compiled: bool) -> Callable
     surface = drive.functions()[0]
     if not compiled:
         scope = dict(_loop_namespace(force, surface), force=force)
-        return types.FunctionType(wave_loop_body.__code__, scope, "wave_loop_body")
+        return rebind((wave_loop_body,), scope)["wave_loop_body"]
     key = (force, drive.module)
     fn = _COMPILED.get(key)
     if fn is None:

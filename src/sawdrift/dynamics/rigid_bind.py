@@ -15,7 +15,7 @@ from typing import Any
 
 from numba import njit
 
-from ..codegen import Generated, generate
+from ..codegen import Generated, generate, rebind
 from . import rigid as rg
 
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
@@ -72,10 +72,4 @@ def rigid_python_loop(drive: Any) -> Callable[..., None]:
     Built from :mod:`.rigid`'s functions and globals at call time, with the drive's compiled
     ``kinematics``: the readable scheme that the compiled one is tested against.
     """
-    import types
-
-    ns = dict(vars(rg))
-    ns["drive_kinematics"] = drive.functions()[1]
-    for func in _FUNCTIONS:
-        ns[func.__name__] = types.FunctionType(func.__code__, ns, func.__name__)
-    return ns["rigid_loop"]
+    return rebind(_FUNCTIONS, {**vars(rg), "drive_kinematics": drive.functions()[1]})["rigid_loop"]
