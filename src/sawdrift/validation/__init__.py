@@ -233,6 +233,7 @@ from .oracles import (  # noqa: E402, F401
     cattaneo_mindlin,
     clear_shared,
     heavy_sliding_v,
+    lammps_case,
     loop_area,
     masing_unloading,
     mindlin_loop,

