@@ -48,6 +48,7 @@ from .evidence import (
     log_full,
     observe_step,
 )
+from .rolling import centre_at, integrates_psi, to_centre, to_contact_point
 
 #: Extra slots of the parameter vector used by the rigid scheme, after the compliant loop's
 #: :data:`~.adams_bashforth.PRM_NAMES`; the drive's own parameters follow from N_PRM_RIGID on.
@@ -212,23 +213,297 @@ def _gap(t0, y0, v0, t, prm):
     return y0 + v0 * dt + 0.5 * dt * dt / prm[P_M] - k[3]
 
 
-def _log(st, kind, tc, y, t, od, odv, gd, roll):
-    """Log an event at ``tc`` in the step from ``t`` at the centre, from the contact point in ``y``.
+def _log(st, kind, tc, y, frame):
+    """Log an event at ``tc`` at the centre, from the contact point held in ``y``.
 
-    x = (s + od) / c with the offset od = c x - s advanced to ``tc`` (see :func:`rigid_loop`);
-    without rotation (``roll`` = 0) ``y`` holds the point itself. ``y`` is restored exactly.
+    ``frame`` = (od, od', od'', c, t): the step's start t and the offset od = c x* - s* there
+    (:func:`~.rolling.centre_at`); without rotation (c = 0) ``y`` holds the point itself.
+    ``y`` is restored exactly.
     """
-    if roll <= 0.0:
+    if frame[3] <= 0.0:
         event(st, kind, tc, y, 0.0)
         return
     xs = y[0]
     vs = y[1]
-    dt = tc - t
-    y[0] = (xs + od + odv * dt + 0.5 * gd * dt * dt) / roll
-    y[1] = (vs + odv + gd * dt) / roll
+    y[0], y[1] = centre_at(xs, vs, frame, tc)
     event(st, kind, tc, y, 0.0)
     y[0] = xs
     y[1] = vs
+
+
+def _free_tangential(y, prm, dt):
+    """Advance the tangential motion by ``dt`` without friction: m* x*'' = L (flight, friction off)."""
+    g_load = prm[P_LOAD] / prm[P_M]
+    y[0] += y[1] * dt
+    if g_load != 0.0:
+        y[0] += 0.5 * g_load * dt * dt
+        y[1] += g_load * dt
+
+
+def _landing_time(y, prm, tau, t_end):
+    """The landing time in (tau, t_end] of a flight from ``tau``, or ``t_end`` if none (bisection on
+    the gap, :func:`_gap`)."""
+    tc = t_end
+    if _gap(tau, y[2], y[3], t_end, prm) >= 0.0:
+        lo, hi = tau, t_end
+        for _i in range(_BISECT):
+            mid = 0.5 * (lo + hi)
+            if _gap(tau, y[2], y[3], mid, prm) < 0.0:
+                lo = mid
+            else:
+                hi = mid
+        tc = hi
+        kk = drive_kinematics(tc, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+        if y[3] + (tc - tau) / prm[P_M] - kk[4] <= 0.0 and _normal(tc, prm) < 0.0:
+            # a 'landing' that rounding finds right after a lift-off: the point does not
+            # approach the surface, which accelerates away (N* < 0): no landing
+            tc = t_end
+    return tc
+
+
+def _flight(y, ctr, st, prm, tau, t_end, frame):
+    """Fly from ``tau`` to the landing (then the impact) or to ``t_end``; (time reached, flight time).
+
+    m* y*'' = 1 and m* x*'' = L in flight (module docstring).
+    """
+    m = prm[P_M]
+    tc = _landing_time(y, prm, tau, t_end)
+    dt = tc - tau if tc < t_end else t_end - tau
+    _free_tangential(y, prm, dt)
+    if tc >= t_end:
+        y[2] += y[3] * dt + 0.5 * dt * dt / m
+        y[3] += dt / m
+        return t_end, dt
+    _impact(y, ctr, st, prm, y[3] + dt / m, tc, frame)
+    return tc, dt
+
+
+def _impact(y, ctr, st, prm, vy, tc, frame):
+    """The impact at ``tc`` with vertical velocity ``vy``: Newton restitution e and a
+    Coulomb-limited tangential impulse, then a rebound or the landing (:func:`_rebounds`)."""
+    m = prm[P_M]
+    e = prm[P_RESTITUTION]
+    kk = drive_kinematics(tc, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    vn = vy - kk[4]
+    if vn < 0.0:
+        vn = 0.0
+    y[2] = kk[3]
+    if prm[P_FRICTION] > 0.0:
+        # a tangential impulse J moves the contact point by J / (tangential mass)
+        s = y[1] - kk[1]
+        jv = min(abs(s), prm[P_MU] * (1.0 + e) * vn * m / _tangential_mass(prm))
+        y[1] -= math.copysign(jv, s) if s != 0.0 else 0.0
+    _log(st, EV_LANDING, tc, y, frame)
+    if _rebounds(prm, tc, e * vn):
+        y[3] = kk[4] - e * vn
+        _log(st, EV_LIFT_OFF, tc, y, frame)
+        st[S_LIFTS] += 1.0
+    else:
+        _land(y, ctr, st, prm, tc, kk, frame)
+
+
+def _rebounds(prm, tc, ev_n):
+    """The impact at ``tc`` rebounds with the normal speed ``ev_n`` = e v_n.
+
+    Restitution applies to every impact, also where N* <= 0 would lift at once. An inelastic
+    collapse (rebounds shrinking geometrically) ends in landing once the next flight 2 e vn m*/N*
+    is shorter than _ZENO steps (the remaining flights sum to less than _ZENO h / (1 - e)), or once
+    e vn is below the speed that the gap function resolves: its rounding error
+    eps ~ 1e-14 (1 + A*) puts a floor sqrt(eps N*/m*) under located impact speeds; 10x that floor
+    is kept.
+    """
+    m = prm[P_M]
+    n_imp = _normal(tc, prm)
+    return ev_n > 0.0 and (
+        n_imp <= 0.0
+        or (2.0 * ev_n * m > _ZENO * prm[P_H] * n_imp
+            and ev_n * ev_n * m > 1e-12 * (1.0 + prm[P_UY]) * n_imp)
+    )
+
+
+def _land(y, ctr, st, prm, tc, kk, frame):
+    """Stay on the surface after the impact at ``tc`` (``kk`` its kinematics): stick or slip."""
+    ctr[1] = 0
+    y[3] = kk[4]
+    s = y[1] - kk[1]
+    if not prm[P_FRICTION] > 0.0:
+        ctr[3] = 0
+    elif abs(s) <= 1e-14 and _sticks(tc, prm):
+        ctr[3] = 1
+        y[1] = kk[1]
+        _log(st, EV_STICK_START, tc, y, frame)
+    else:
+        ctr[3] = 0
+        ctr[4] = 1 if (s > 0.0 or (s == 0.0 and _t_req(tc, prm) > 0.0)) else -1
+        _log(st, EV_SLIP_START, tc, y, frame)
+
+
+def _lift(y, ctr, st, prm, tc, frame):
+    """Contact is lost at ``tc``: a slip ends there, and the flight begins."""
+    if prm[P_FRICTION] > 0.0 and ctr[3] == 0:
+        _log(st, EV_SLIP_END, tc, y, frame)
+    ctr[1] = 1
+    _log(st, EV_LIFT_OFF, tc, y, frame)
+    st[S_LIFTS] += 1.0
+
+
+def _contact_end(prm, tau, t_end, n_tau):
+    """(end, lift): where contact holds until in [tau, t_end] (N* >= -_GRAZE), and whether it is
+    lost there (N* below -_GRAZE at the step's end, or dipping inside it)."""
+    n_end = _normal(t_end, prm)
+    if n_end < -_GRAZE:
+        lo, hi = tau, t_end
+        for _i in range(_BISECT):
+            mid = 0.5 * (lo + hi)
+            if _normal(mid, prm) >= -_GRAZE:
+                lo = mid
+            else:
+                hi = mid
+        return lo, True
+    if prm[P_VINERTIA] > 0.0:
+        dip = _least_normal_inside(tau, t_end, n_tau, n_end, prm)
+        if dip >= 0.0:
+            return dip, True
+    return t_end, False
+
+
+def _follow(y, prm, t0, t1):
+    """Stick from ``t0`` to ``t1``: the point follows the substrate."""
+    k0 = drive_kinematics(t0, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    k1 = drive_kinematics(t1, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    y[0] += k1[0] - k0[0]
+    y[1] = k1[1]
+
+
+def _stick(y, ctr, st, prm, tau, seg_end, frame):
+    """Stick from ``tau`` towards ``seg_end``; (time reached, whether the stick broke there)."""
+    if _sticks(seg_end, prm):
+        _follow(y, prm, tau, seg_end)
+        return seg_end, False
+    lo, hi = tau, seg_end
+    for _i in range(_BISECT):
+        mid = 0.5 * (lo + hi)
+        if _sticks(mid, prm):
+            lo = mid
+        else:
+            hi = mid
+    _follow(y, prm, tau, hi)
+    ctr[3] = 0
+    ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
+    _log(st, EV_SLIP_START, hi, y, frame)
+    return hi, True
+
+
+def _slip(y, ctr, st, prm, tau, seg_end, frame):
+    """Slip with sgn(s) = sigma from ``tau`` towards ``seg_end``; (time reached, whether the slip
+    stopped there: then it sticks or reverses)."""
+    sigma = float(ctr[4])
+    if sigma * _slip_velocity(tau, y[0], y[1], seg_end, sigma, prm) > 0.0:
+        xs, vs = _slip_state(tau, y[0], y[1], seg_end, sigma, prm)
+        y[0] = xs
+        y[1] = vs
+        return seg_end, False
+    lo, hi = tau, seg_end
+    for _i in range(_BISECT):
+        mid = 0.5 * (lo + hi)
+        if sigma * _slip_velocity(tau, y[0], y[1], mid, sigma, prm) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    xs, _vs = _slip_state(tau, y[0], y[1], hi, sigma, prm)
+    k1 = drive_kinematics(hi, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    y[0] = xs
+    y[1] = k1[1]
+    if _sticks(hi, prm):
+        ctr[3] = 1
+        _log(st, EV_SLIP_END, hi, y, frame)
+        _log(st, EV_STICK_START, hi, y, frame)
+    else:
+        ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
+    return hi, True
+
+
+def _contact(y, ctr, st, prm, tau, t_end, frame):
+    """In contact from ``tau``: stick, slip or (friction off) the free tangential motion until the
+    next event, contact loss or ``t_end``; (time reached, time slipped)."""
+    n_tau = _normal(tau, prm)
+    if n_tau < -_GRAZE:
+        _lift(y, ctr, st, prm, tau, frame)
+        return tau, 0.0
+    seg_end, lift = _contact_end(prm, tau, t_end, n_tau)
+    slipped = 0.0
+    if not prm[P_FRICTION] > 0.0:
+        _free_tangential(y, prm, seg_end - tau)
+    else:
+        if ctr[3] == 1:
+            reached, stopped = _stick(y, ctr, st, prm, tau, seg_end, frame)
+        else:
+            reached, stopped = _slip(y, ctr, st, prm, tau, seg_end, frame)
+            slipped = reached - tau
+        if stopped:
+            return reached, slipped
+    kk = drive_kinematics(seg_end, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    y[2] = kk[3]
+    y[3] = kk[4]
+    if lift:
+        _lift(y, ctr, st, prm, seg_end, frame)
+    return seg_end, slipped
+
+
+def _resolve_step(y, ctr, st, prm, t, frame):
+    """Resolve the events of the step from ``t``; (time reached, time out of contact, time slipped).
+
+    The time reached is the step's end unless more than _MAX_EVENTS events stopped it.
+    """
+    t_end = t + prm[P_H]
+    tau = t
+    out_time = 0.0
+    slip_time = 0.0
+    guard = 0
+    while tau < t_end and guard < _MAX_EVENTS:
+        guard += 1
+        if ctr[1] == 1:
+            tau, flown = _flight(y, ctr, st, prm, tau, t_end, frame)
+            out_time += flown
+        else:
+            tau, slipped = _contact(y, ctr, st, prm, tau, t_end, frame)
+            slip_time += slipped
+    return tau, out_time, slip_time
+
+
+def _step_forces(ctr, prm, t_end):
+    """(N*, T*) at the step's end: zero in flight, T* = T_req while stuck, sigma N* in slip."""
+    if ctr[1] == 1:
+        return 0.0, 0.0
+    nf = max(_normal(t_end, prm), 0.0)
+    if not prm[P_FRICTION] > 0.0:
+        return nf, 0.0
+    if ctr[3] == 1:
+        return nf, _t_req(t_end, prm)
+    return nf, nf * ctr[4]
+
+
+def _end_step(y, ctr, st, prm, t_end, times, rec, rec_every):
+    """The step's bookkeeping at ``t_end``: evidence, trajectory row, the step counter; True if the
+    loop must return (a non-finite state, or an event log to grow). ``times`` = (out of contact,
+    slipped) within the step."""
+    k = ctr[0]
+    h = prm[P_H]
+    kk = drive_kinematics(t_end, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    a = y[2] - kk[3] if ctr[1] == 1 else 0.0
+    nf, tf = _step_forces(ctr, prm, t_end)
+    if k >= int(prm[P_KRAMP]):
+        out_time, slip_time = times
+        out = min(1.0, out_time / h) if out_time > 0.0 else (1.0 if ctr[1] == 1 else 0.0)
+        observe_step(st, out, slip_time / h, a)
+    if rec_every > 0 and (k + 1) % rec_every == 0:
+        record(rec, ctr, t_end, y, a, math.nan, nf, tf)
+    ctr[0] = k + 1
+    if not math.isfinite(y[0] + y[1] + y[2] + y[3]):
+        st[S_BAD] = BAD_NONFINITE
+        st[S_BADSTEP] = k
+        return True
+    return log_full(st, EV_MARGIN_RIGID)  # the stepper grows the event log and goes on
 
 
 def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
@@ -239,262 +514,28 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
     ``ctr`` = (step index, mode 0 contact / 1 flight, record index, stick flag, sigma). The drive
     (``drive_kinematics``, bound per drive in the generated module) is evaluated at the centre's
     x* at the step's start: within a step the closed forms take the surface motion at one place.
+    Within a step a rolling sphere's contact point s* = x* + psi is integrated, a particle of mass
+    m*/c (:mod:`.rolling`).
     """
     h = prm[P_H]
-    m = prm[P_M]
-    mu = prm[P_MU]
-    e = prm[P_RESTITUTION]
-    friction = prm[P_FRICTION] > 0.0
-    k_ramp = int(prm[P_KRAMP])
-    amp = prm[P_UY]
-    dp = prm[N_PRM_RIGID:]
-    # the load's acceleration L/m* of the free (flight, frictionless) tangential motion
-    g_load = prm[P_LOAD] / m
     roll = prm[P_ROLL]
+    g_load = prm[P_LOAD] / prm[P_M]  # the load's acceleration L/m* of the free tangential motion
     for _ in range(n_steps):
         k = ctr[0]
         t = k * h
-        prm[P_XQ] = y[0]  # the centre: the drive acts where the sphere is
-        # A rolling sphere: y[0], y[1] hold the centre x, x' between steps (as in the compliant
-        # loop); within the step the closed forms integrate the contact point s = x + psi (psi =
-        # R phi / a0), a particle of mass m*/c. Without a load, from rest, psi = (c - 1) x and
-        # s = c x. A load pulls the centre without turning it: then psi is integrated (y[4],
-        # y[5]) and the offset od = c x - s obeys od'' = (c - 1) L/m* in every phase (impulses
-        # change c x' and s' alike), so it is advanced in closed form.
-        od = 0.0
-        odv = 0.0
-        gd = 0.0
-        turning = roll > 0.0 and (g_load != 0.0 or y[4] != 0.0 or y[5] != 0.0)
-        if roll > 0.0:
-            if turning:
-                od = (roll - 1.0) * y[0] - y[4]
-                odv = (roll - 1.0) * y[1] - y[5]
-                gd = (roll - 1.0) * g_load
-                y[0] += y[4]
-                y[1] += y[5]
-            else:
-                y[0] *= roll
-                y[1] *= roll
         t_end = t + h
-        tau = t
-        out_time = 0.0
-        slip_time = 0.0
-        guard = 0
-        while tau < t_end and guard < _MAX_EVENTS:
-            guard += 1
-            if ctr[1] == 1:  # flight
-                tc = t_end
-                if _gap(tau, y[2], y[3], t_end, prm) >= 0.0:
-                    lo, hi = tau, t_end
-                    for _i in range(_BISECT):
-                        mid = 0.5 * (lo + hi)
-                        if _gap(tau, y[2], y[3], mid, prm) < 0.0:
-                            lo = mid
-                        else:
-                            hi = mid
-                    tc = hi
-                    kk = drive_kinematics(tc, prm[P_XQ], dp)  # noqa: F821
-                    if y[3] + (tc - tau) / m - kk[4] <= 0.0 and _normal(tc, prm) < 0.0:
-                        # a 'landing' that rounding finds right after a lift-off: the point does
-                        # not approach the surface, which accelerates away (N* < 0): no landing
-                        tc = t_end
-                if tc >= t_end:
-                    dt = t_end - tau
-                    y[0] += y[1] * dt
-                    if g_load != 0.0:
-                        y[0] += 0.5 * g_load * dt * dt
-                        y[1] += g_load * dt
-                    y[2] += y[3] * dt + 0.5 * dt * dt / m
-                    y[3] += dt / m
-                    out_time += dt
-                    tau = t_end
-                    break
-                dt = tc - tau
-                out_time += dt
-                y[0] += y[1] * dt
-                if g_load != 0.0:
-                    y[0] += 0.5 * g_load * dt * dt
-                    y[1] += g_load * dt
-                vy = y[3] + dt / m
-                kk = drive_kinematics(tc, prm[P_XQ], dp)  # noqa: F821
-                vn = vy - kk[4]
-                if vn < 0.0:
-                    vn = 0.0
-                y[2] = kk[3]
-                if friction:
-                    # a tangential impulse J moves the contact point by J / (tangential mass)
-                    s = y[1] - kk[1]
-                    jv = min(abs(s), mu * (1.0 + e) * vn * m / _tangential_mass(prm))
-                    y[1] -= math.copysign(jv, s) if s != 0.0 else 0.0
-                tau = tc
-                _log(st, EV_LANDING, tc, y, t, od, odv, gd, roll)
-                # Restitution applies to every impact, also where N* <= 0 would lift at once.
-                # An inelastic collapse (rebounds shrinking geometrically) ends in landing once
-                # the next flight 2 e vn m*/N* is shorter than _ZENO steps (the remaining flights
-                # sum to less than _ZENO h / (1 - e)), or once e vn is below the speed that the
-                # gap function resolves: its rounding error eps ~ 1e-14 (1 + A*) puts a floor
-                # sqrt(eps N*/m*) under located impact speeds; 10x that floor is kept.
-                n_imp = _normal(tc, prm)
-                ev_n = e * vn
-                if ev_n > 0.0 and (
-                    n_imp <= 0.0
-                    or (2.0 * ev_n * m > _ZENO * h * n_imp
-                        and ev_n * ev_n * m > 1e-12 * (1.0 + amp) * n_imp)
-                ):
-                    y[3] = kk[4] - e * vn
-                    _log(st, EV_LIFT_OFF, tc, y, t, od, odv, gd, roll)
-                    st[S_LIFTS] += 1.0
-                else:
-                    ctr[1] = 0
-                    y[3] = kk[4]
-                    s = y[1] - kk[1]
-                    if not friction:
-                        ctr[3] = 0
-                    elif abs(s) <= 1e-14 and _sticks(tc, prm):
-                        ctr[3] = 1
-                        y[1] = kk[1]
-                        _log(st, EV_STICK_START, tc, y, t, od, odv, gd, roll)
-                    else:
-                        ctr[3] = 0
-                        ctr[4] = 1 if (s > 0.0 or (s == 0.0 and _t_req(tc, prm) > 0.0)) else -1
-                        _log(st, EV_SLIP_START, tc, y, t, od, odv, gd, roll)
-                continue
-            # ---- contact ----
-            n_tau = _normal(tau, prm)
-            if n_tau < -_GRAZE:
-                if friction and ctr[3] == 0:
-                    _log(st, EV_SLIP_END, tau, y, t, od, odv, gd, roll)
-                ctr[1] = 1
-                _log(st, EV_LIFT_OFF, tau, y, t, od, odv, gd, roll)
-                st[S_LIFTS] += 1.0
-                continue
-            seg_end = t_end
-            lift = False
-            n_end = _normal(t_end, prm)
-            if n_end < -_GRAZE:
-                lo, hi = tau, t_end
-                for _i in range(_BISECT):
-                    mid = 0.5 * (lo + hi)
-                    if _normal(mid, prm) >= -_GRAZE:
-                        lo = mid
-                    else:
-                        hi = mid
-                seg_end = lo
-                lift = True
-            elif prm[P_VINERTIA] > 0.0:
-                dip = _least_normal_inside(tau, t_end, n_tau, n_end, prm)
-                if dip >= 0.0:
-                    seg_end = dip
-                    lift = True
-            if not friction:
-                dt = seg_end - tau
-                y[0] += y[1] * dt
-                if g_load != 0.0:
-                    y[0] += 0.5 * g_load * dt * dt
-                    y[1] += g_load * dt
-            elif ctr[3] == 1:  # stick: follows the substrate
-                if not _sticks(seg_end, prm):
-                    lo, hi = tau, seg_end
-                    for _i in range(_BISECT):
-                        mid = 0.5 * (lo + hi)
-                        if _sticks(mid, prm):
-                            lo = mid
-                        else:
-                            hi = mid
-                    k0 = drive_kinematics(tau, prm[P_XQ], dp)  # noqa: F821
-                    k1 = drive_kinematics(hi, prm[P_XQ], dp)  # noqa: F821
-                    y[0] += k1[0] - k0[0]
-                    y[1] = k1[1]
-                    ctr[3] = 0
-                    ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
-                    tau = hi
-                    _log(st, EV_SLIP_START, hi, y, t, od, odv, gd, roll)
-                    continue
-                k0 = drive_kinematics(tau, prm[P_XQ], dp)  # noqa: F821
-                k1 = drive_kinematics(seg_end, prm[P_XQ], dp)  # noqa: F821
-                y[0] += k1[0] - k0[0]
-                y[1] = k1[1]
-            else:  # slip with sgn(s) = sigma
-                sigma = float(ctr[4])
-                if sigma * _slip_velocity(tau, y[0], y[1], seg_end, sigma, prm) <= 0.0:
-                    lo, hi = tau, seg_end
-                    for _i in range(_BISECT):
-                        mid = 0.5 * (lo + hi)
-                        if sigma * _slip_velocity(tau, y[0], y[1], mid, sigma, prm) > 0.0:
-                            lo = mid
-                        else:
-                            hi = mid
-                    xs, _vs = _slip_state(tau, y[0], y[1], hi, sigma, prm)
-                    k1 = drive_kinematics(hi, prm[P_XQ], dp)  # noqa: F821
-                    y[0] = xs
-                    y[1] = k1[1]
-                    slip_time += hi - tau
-                    if _sticks(hi, prm):
-                        ctr[3] = 1
-                        _log(st, EV_SLIP_END, hi, y, t, od, odv, gd, roll)
-                        _log(st, EV_STICK_START, hi, y, t, od, odv, gd, roll)
-                    else:
-                        ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
-                    tau = hi
-                    continue
-                slip_time += seg_end - tau
-                xs, vs = _slip_state(tau, y[0], y[1], seg_end, sigma, prm)
-                y[0] = xs
-                y[1] = vs
-            kk = drive_kinematics(seg_end, prm[P_XQ], dp)  # noqa: F821
-            y[2] = kk[3]
-            y[3] = kk[4]
-            tau = seg_end
-            if lift:
-                if friction and ctr[3] == 0:
-                    _log(st, EV_SLIP_END, seg_end, y, t, od, odv, gd, roll)
-                ctr[1] = 1
-                _log(st, EV_LIFT_OFF, seg_end, y, t, od, odv, gd, roll)
-                st[S_LIFTS] += 1.0
+        prm[P_XQ] = y[0]  # the centre: the drive acts where the sphere is
+        turning = integrates_psi(roll, 0.0, g_load, y)
+        od, odv, gd = to_contact_point(y, roll, turning, g_load) if roll > 0.0 else (0.0, 0.0, 0.0)
+        tau, out_time, slip_time = _resolve_step(y, ctr, st, prm, t, (od, odv, gd, roll, t))
         if roll > 0.0:
-            # back to the centre (and the rolling angle, where it is integrated), at tau: the
-            # step's end, or where a step with too many events stopped
-            xs = y[0]
-            if turning:
-                hh = h if tau >= t_end else tau - t
-                od += odv * hh + 0.5 * gd * hh * hh
-                odv += gd * hh
-                y[0] = (xs + od) / roll
-                y[4] = xs - y[0]
-                vs = y[1]
-                y[1] = (vs + odv) / roll
-                y[5] = vs - y[1]
-            else:
-                y[0] = xs / roll
-                y[1] /= roll
+            # back to the centre (and psi, where it is integrated), at tau: the step's end, or
+            # where a step with too many events stopped
+            to_centre(y, roll, turning, (od, odv, gd), h if tau >= t_end else tau - t)
         if tau < t_end:
             # more events in one step than the scheme resolves: never fall behind silently
             st[S_BAD] = BAD_EVENTS
             st[S_BADSTEP] = k
             return
-        # ---- bookkeeping at the end of the step ----
-        kk = drive_kinematics(t_end, prm[P_XQ], dp)  # noqa: F821
-        a = y[2] - kk[3] if ctr[1] == 1 else 0.0
-        if ctr[1] == 1:
-            nf = 0.0
-            tf = 0.0
-        else:
-            nf = max(_normal(t_end, prm), 0.0)
-            if not friction:
-                tf = 0.0
-            elif ctr[3] == 1:
-                tf = _t_req(t_end, prm)
-            else:
-                tf = nf * ctr[4]
-        if k >= k_ramp:
-            out = min(1.0, out_time / h) if out_time > 0.0 else (1.0 if ctr[1] == 1 else 0.0)
-            observe_step(st, out, slip_time / h, a)
-        if rec_every > 0 and (k + 1) % rec_every == 0:
-            record(rec, ctr, t_end, y, a, math.nan, nf, tf)
-        ctr[0] = k + 1
-        if not math.isfinite(y[0] + y[1] + y[2] + y[3]):
-            st[S_BAD] = BAD_NONFINITE
-            st[S_BADSTEP] = k
+        if _end_step(y, ctr, st, prm, t_end, (out_time, slip_time), rec, rec_every):
             return
-        if log_full(st, EV_MARGIN_RIGID):
-            return  # the stepper grows the event log and goes on from the next step

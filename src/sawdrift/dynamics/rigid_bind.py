@@ -20,24 +20,32 @@ from . import rigid as rg
 
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
 _FUNCTIONS = (rg._tangential_mass, rg._tangential_load, rg._normal, rg._least_normal_inside,
-              rg._stick_margin, rg._sticks,
-              rg._t_req, rg._slip_state, rg._slip_velocity, rg._gap, rg._log, rg.rigid_loop)
+              rg._stick_margin, rg._sticks, rg._t_req, rg._slip_state, rg._slip_velocity, rg._gap,
+              rg._log, rg._free_tangential, rg._landing_time, rg._flight, rg._impact, rg._rebounds,
+              rg._land, rg._lift, rg._contact_end, rg._follow, rg._stick, rg._slip, rg._contact,
+              rg._resolve_step, rg._step_forces, rg._end_step, rg.rigid_loop)
 _IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
     "from sawdrift.dynamics.evidence import *  # noqa: F403\n"
+    "from sawdrift.dynamics.rolling import *  # noqa: F403\n"
     "from sawdrift.dynamics.rigid import (  # noqa: F401\n"
     "    _BISECT, _GOLDEN, _GRAZE, _MAX_EVENTS, _ZENO, EV_MARGIN_RIGID, N_PRM_RIGID, P_RESTITUTION,\n"
     "    P_UY, P_VINERTIA, P_XQ,\n"
     ")\n"
 )
 _LOOPS: dict[str, Callable[..., None]] = {}
+#: numba options of the scheme's functions. The scheme allocates nothing, so it needs no reference
+#: counting: without it (``_nrt``) the arrays handed from function to function cost no atomic
+#: increments (the split loop ran 1.7-2.9x slower per step with them; 0.7-0.9x of the one-piece
+#: loop's time without), and an allocation would fail to compile instead of slowing the loop.
+_JIT = {"cache": True, "_nrt": False}
 
 
 def _namespace(kinematics: Any) -> dict[str, Any]:
-    from . import adams_bashforth, evidence
+    from . import adams_bashforth, evidence, rolling
 
     ns: dict[str, Any] = {"math": math, "njit": njit}
-    for module in (adams_bashforth, evidence):
+    for module in (adams_bashforth, evidence, rolling):
         ns.update({n: v for n, v in vars(module).items() if not n.startswith("_")})
     ns.update({n: getattr(rg, n) for n in ("_BISECT", "_GOLDEN", "_GRAZE", "_MAX_EVENTS", "_ZENO",
                                           "EV_MARGIN_RIGID", "N_PRM_RIGID", "P_RESTITUTION",
@@ -61,6 +69,7 @@ def rigid_loop_for(drive: Any) -> Callable[..., None]:
         prefix="sawdrift_rigid_", doc=f"the rigid scheme bound to {drive.module}",
         templates=_FUNCTIONS, namespace=_namespace(kinematics), imports=_IMPORTS,
         bind={"drive_kinematics": (drive.module, "kinematics")}, roots=(kinematics,),
+        decorator=f"njit(**{_JIT!r})", memory_options={k: v for k, v in _JIT.items() if k != "cache"},
     ))["rigid_loop"]
     _LOOPS[drive.module] = fn
     return fn
