@@ -114,12 +114,7 @@ def contact_force(fs, is_, pp, a, b, adot, bdot):
     if DAMPED:  # noqa: F821 - a normal-damping slot is filled
         n = normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, n)  # noqa: F821
     if CAP:  # noqa: F821 - a constant of the composition (TangentialLaw.coulomb_cap)
-        # the Coulomb bound holds for the total normal force, damping included (as in DEM
-        # codes); the law's committed history is left as it is
-        if t > n:
-            t = n
-        elif t < -n:
-            t = -n
+        t = coulomb_cap(t, n)  # noqa: F821 - |T*| <= N*, the total normal force (slot_kernels)
     return n, t
 
 
@@ -163,8 +158,11 @@ def _constants(step: Any, damp: Any, cap: bool) -> dict[str, Any]:
 def _namespace(step: Any, reset: Any, damp: Any, law_normal: Any,
                consts: dict[str, Any]) -> dict[str, Any]:
     """The composition's templates bound to the given slot functions (the python engine)."""
+    from .slot_kernels import coulomb_cap
+
     return rebind(_TEMPLATES, {"law_normal": law_normal, "tangential_step": step,
-                               "tangential_reset": reset, "normal_damping": damp, **consts})
+                               "tangential_reset": reset, "normal_damping": damp,
+                               "coulomb_cap": coulomb_cap.py_func, **consts})
 
 
 #: numba options of the step and damping functions as the composition sees them: inlined into
@@ -178,6 +176,7 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str
     from numba import njit
 
     from .normal import JIT_OPTIONS, law_normal
+    from .slot_kernels import coulomb_cap
 
     # the code of every slot function and of all they call keys the module (an edited law
     # compiles anew), and numba's own caches of those functions are brought in line with it;
@@ -188,18 +187,20 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str
         doc="a contact composed of slots",
         templates=_TEMPLATES,
         namespace={"law_normal": law_normal, "tangential_step": step, "tangential_reset": reset,
-                   "normal_damping": damp, **consts},
+                   "normal_damping": damp, "coulomb_cap": coulomb_cap, **consts},
         imports=("from sawdrift.contact.normal import JIT_OPTIONS, law_normal  # noqa: F401\n"
-                 "from sawdrift.contact.slots import HEADER, LAW  # noqa: F401\n"),
+                 "from sawdrift.contact.slots import HEADER, LAW  # noqa: F401\n"
+                 "from sawdrift.contact.slot_kernels import coulomb_cap as _cap  # noqa: F401\n"),
         bind={"_step": step, "tangential_reset": reset, "_damp": damp},
         preamble=(f"tangential_step = njit(**{_INLINE!r})(_step.py_func)\n"
                   f"normal_damping = njit(**{_INLINE!r})(_damp.py_func)\n"
+                  f"coulomb_cap = njit(**{_INLINE!r})(_cap.py_func)\n"
                   + "".join(f"{k} = {consts[k]!r}\n" for k in ("CAP", "STEP_NORMAL", "DAMPED"))),
         decorator="njit(**JIT_OPTIONS)",
         memory_options={k: v for k, v in JIT_OPTIONS.items() if k != "cache"},  # source has no file
         memory_namespace={"law_normal": law_normal, "tangential_step": njit(**_INLINE)(_py(step)),
                           "tangential_reset": reset, "normal_damping": njit(**_INLINE)(_py(damp)),
-                          **consts},
+                          "coulomb_cap": njit(**_INLINE)(coulomb_cap.py_func), **consts},
     ))
 
 

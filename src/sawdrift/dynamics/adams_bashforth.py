@@ -28,6 +28,7 @@ import numpy as np
 from numba import njit
 
 from ..codegen import Generated, generate, rebind
+from ..contact.slot_kernels import damped_contact
 from . import evidence
 from .evidence import (
     BAD_NONFINITE,
@@ -38,6 +39,15 @@ from .evidence import (
     log_full,
     observe_contact,
     observe_step,
+)
+from .rolling import (  # noqa: F401 - ROLL_DAMPING: the rolling spring's, named here too
+    JIT,
+    ROLL_DAMPING,
+    contact_point,
+    integrates_psi,
+    rolling_torque,
+    rotational_inertia,
+    slide_spring,
 )
 
 #: Adams-Bashforth coefficients, row k-1 for order k (Hairer, Norsett, Wanner, *Solving ODEs I*,
@@ -155,10 +165,6 @@ def restitution_damping(e: float, p: float, m_star: float) -> float:
 #: elastic rolling displacement psi_e of the spring.
 N_STATE = 7
 
-#: Damping ratio eta_r of the rolling spring's viscous term (Ai, Chen, Rotter and Ooi 2011, Powder
-#: Technol. 206, 269-282, eq. 15 and their recommended eta_r = 0.3): C_r = 2 eta_r sqrt(I_r K_r),
-#: acting while the spring is elastic (their f = 0 at full mobilization).
-ROLL_DAMPING = 0.3
 
 # The statistics vector ``st`` and its event log: see :mod:`sawdrift.dynamics.evidence`.
 
@@ -194,41 +200,65 @@ force: Callable[..., Any] | None = None
 ab = AB_COEFFS
 
 
-def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st):
-    """One integration segment; ``force``, ``drive_surface`` and ``ab`` are globals bound per
-    kernel and drive; ``dp`` is the drive's parameter vector."""
+@njit(**JIT)
+def push_derivatives(fh, y, ax, ay, ncomp, move_x):
+    """Shift the derivative history ``fh`` one step back and put the new derivatives in row 0.
+
+    Row 0 is (x*', x*'', y*', y*''): x*' only where x* moves (``move_x``: friction or a load);
+    a rolling sphere's (psi', psi'') follow in columns 4-5 (:func:`~.rolling.rolling_torque`).
+    """
+    for j in range(3, 0, -1):
+        for c in range(ncomp):
+            fh[j, c] = fh[j - 1, c]
+    fh[0, 0] = y[1] if move_x else 0.0
+    fh[0, 1] = ax
+    fh[0, 2] = y[3]
+    fh[0, 3] = ay
+
+
+@njit(**JIT)
+def ab_advance(y, fh, ctr, ab_coeffs, h, order, ncomp):
+    """y += h sum_j beta_j f_{n-j}: the Adams-Bashforth step of the order reached (at most
+    ``order``; Hairer, Norsett, Wanner, *Solving ODEs I*, III.1), ``ab_coeffs`` :data:`AB_COEFFS`."""
+    q = ctr[1] + 1
+    if q > order:
+        q = order
+    for c in range(ncomp):
+        acc = 0.0
+        for j in range(q):
+            acc += ab_coeffs[q - 1, j] * fh[j, c]
+        y[c] += h * acc
+    if ctr[1] < 4:
+        ctr[1] += 1
+
+
+def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
+    """One integration segment of eq. 5 (module docstring): ``n_steps`` Adams-Bashforth steps.
+
+    ``contact`` = (fs, is_, pp), the contact history's arrays that ``force`` reads and commits;
+    ``dp`` is the drive's parameter vector. ``force``, ``drive_surface`` and ``ab`` are globals
+    bound per kernel and drive. With rotation the contact point is s* = x* + psi
+    (:mod:`.rolling`); a constant load L acts on the centre, m* x*'' = -mu T* + L; the normal
+    damping and the Coulomb cap of the loop are :func:`~sawdrift.contact.slot_kernels.damped_contact`.
+    """
+    fs, is_, pp = contact
     m = prm[P_M]
     mx = prm[P_MX]
     mu = prm[P_MU]
     scale_b = 1.0 / (prm[P_THETA] * mu)
     h = prm[P_H]
-    order = int(prm[P_ORDER])
     friction = prm[P_FRICTION] > 0.0
     damp = prm[P_DAMP]
     k_ramp = int(prm[P_KRAMP])
-    # Rotation (I = kappa m R^2): m x'' = -T and I phi'' = -R T, so from rest the contact
-    # point s = x + R phi moves as s = c x with c = 1 + 1/kappa (docs/physics.md, Rotation).
     roll = prm[P_ROLL]
-    # Rolling resistance, an elastic-plastic rolling spring with its viscous term (EPSD type,
-    # Ai et al. 2011, Powder Technol. 206, 269-282): per R and per M g the torque is
-    # m_r = -K_r psi_e - C_r psi', |K_r psi_e| <= mu_r N*, with K_r = 2.25 mu_r^2 dN*/da* (their
-    # k_r = 2.25 k_n mu_r^2 R^2) and C_r = 2 eta_r sqrt(kappa m* K_r) while the spring is
-    # elastic (0 at full mobilization); psi = R phi / a0 obeys kappa m* psi'' = -mu T* + m_r.
-    # The rotational inertia follows the horizontal one (m*_x, reduced only by steady.settle),
-    # so both relax together.
     rr = prm[P_RR]
-    # A constant tangential load L acts on the centre: m* x'' = -mu T* + L (docs/physics.md,
-    # "Loads, inclines and restitution"). It exerts no torque, so with rotation the contact point
-    # no longer stays at s = c x: the rotation angle is then integrated (the rolling path below,
-    # with its spring only if mu_r > 0), and goes on being integrated once it is not (c - 1) x.
     load = prm[P_LOAD]
-    spin = roll > 0.0 and (rr > 0.0 or load != 0.0 or y[4] != 0.0 or y[5] != 0.0)
-    kappa_m = mx / (roll - 1.0) if roll > 0.0 else 0.0
+    spin = integrates_psi(roll, rr, load, y)
+    kappa_m = rotational_inertia(mx, roll)
     p_exp = prm[P_P]
-    # Restitution damping C a*^((p-1)/2) a*' = beta sqrt(m* dN*/da*) a*' for N* = a*^p: a free
-    # impact rebounds with the speed ratio e at every impact speed (see restitution_damping)
     rest = prm[P_REST]
     q_rest = 0.5 * (p_exp - 1.0)
+    order = int(prm[P_ORDER])
     ncomp = 6 if spin else 4
     for _ in range(n_steps):
         k = ctr[0]
@@ -237,36 +267,17 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
         a = y[2] - uy
         adot = y[3] - uyd
         if friction:
-            if spin:
-                b = (y[0] + y[4] - ux) * scale_b
-                bdot = (y[1] + y[5] - uxd) * scale_b
-            elif roll > 0.0:
-                b = (roll * y[0] - ux) * scale_b
-                bdot = (roll * y[1] - uxd) * scale_b
-            else:
-                b = (y[0] - ux) * scale_b
-                bdot = (y[1] - uxd) * scale_b
-            nf, tf = force(fs, is_, pp, a, b, adot, bdot)
+            s, sv = contact_point(y, roll, spin)
+            b = (s - ux) * scale_b
+            nf, tf = force(fs, is_, pp, a, b, adot, (sv - uxd) * scale_b)
         else:
             # friction off: ``force`` is the model's normal law alone (its normal slot)
             b = 0.0
             nf, tf = force(fs, is_, pp, a, 0.0, adot, 0.0)
             tf = 0.0
         if (damp > 0.0 or rest > 0.0) and a > 0.0:
-            if damp > 0.0:
-                nf += damp * adot
-            else:
-                nf += rest * a**q_rest * adot
-            if nf < 0.0:
-                nf = 0.0
-            # the Coulomb bound holds for the total normal force, damping included (as in DEM
-            # codes); the contact history is left as the law committed it
-            if tf > nf:
-                tf = nf
-            elif tf < -nf:
-                tf = -nf
+            nf, tf = damped_contact(nf, tf, a, adot, damp, rest, q_rest)
         ax = (-mu * tf + load) / mx if load != 0.0 else -mu * tf / mx
-        ay = (1.0 - nf) / m
         inside = a > 0.0
         slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
         observe_contact(st, t, y, a, inside, slipping)
@@ -274,43 +285,15 @@ def wave_loop_body(y, fh, ctr, fs, is_, pp, prm, dp, n_steps, rec, rec_every, st
             observe_step(st, 0.0 if inside else 1.0, 1.0 if slipping else 0.0, a)
         if rec_every > 0 and k % rec_every == 0:
             record(rec, ctr, t, y, a, b, nf, tf)
-        for j in range(3, 0, -1):
-            for c in range(ncomp):
-                fh[j, c] = fh[j - 1, c]
-        fh[0, 0] = y[1] if (friction or load != 0.0) else 0.0
-        fh[0, 1] = ax
-        fh[0, 2] = y[3]
-        fh[0, 3] = ay
+        push_derivatives(fh, y, ax, (1.0 - nf) / m, ncomp, friction or load != 0.0)
         if spin:
-            kr = 2.25 * rr * rr * p_exp * a ** (p_exp - 1.0) if a > 0.0 else 0.0
-            cap = rr * nf
-            mr = -kr * y[6]
-            if mr > cap:
-                mr = cap
-            elif mr < -cap:
-                mr = -cap
-            elif kr > 0.0:
-                mr -= 2.0 * ROLL_DAMPING * math.sqrt(kappa_m * kr) * y[5]
+            mr, kr, cap = rolling_torque(y, a, nf, rr, p_exp, kappa_m)
             fh[0, 4] = y[5]
             fh[0, 5] = (-mu * tf + mr) / kappa_m
             psi_old = y[4]
-        q = ctr[1] + 1
-        if q > order:
-            q = order
-        for c in range(ncomp):
-            acc = 0.0
-            for j in range(q):
-                acc += ab[q - 1, j] * fh[j, c]
-            y[c] += h * acc
+        ab_advance(y, fh, ctr, ab, h, order, ncomp)
         if spin:
-            # the spring takes the rotation increment, and slides (plastic) at its cap
-            y[6] += y[4] - psi_old
-            if kr > 0.0 and abs(kr * y[6]) > cap:
-                y[6] = math.copysign(cap / kr, y[6])
-            elif kr == 0.0:
-                y[6] = 0.0
-        if ctr[1] < 4:
-            ctr[1] += 1
+            slide_spring(y, psi_old, kr, cap)
         ctr[0] = k + 1
         if not (math.isfinite(y[0] + y[1] + y[2] + y[3]) and math.isfinite(nf + tf)):
             st[S_BAD] = BAD_NONFINITE

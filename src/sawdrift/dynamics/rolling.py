@@ -30,9 +30,10 @@ from numba import njit
 #: acting while the spring is elastic (their f = 0 at full mobilization).
 ROLL_DAMPING = 0.3
 
-#: numba options: the loops' helpers allocate nothing and take no reference counts (see
-#: :data:`sawdrift.dynamics.rigid_bind._JIT`)
-JIT = {"cache": True, "_nrt": False}
+#: numba options of the loops' helpers: inlined into the loop at numba's IR level (a call into
+#: another compiled module is not inlined by LLVM), no reference counts (they allocate nothing;
+#: see :data:`sawdrift.dynamics.rigid_bind._JIT`)
+JIT = {"cache": True, "_nrt": False, "inline": "always"}
 
 
 @njit(**JIT)

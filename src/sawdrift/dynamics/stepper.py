@@ -26,6 +26,7 @@ from . import evidence as ev
 from . import rigid as rg
 from . import rigid_bind
 from .assembly import assemble
+from .rolling import contact_point, psi_from_rest
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -159,7 +160,7 @@ class Stepper:
         if self.rigid:
             self.loop(self.y.copy(), self.ctr.copy(), self.prm, 0, rec, 0, st)
         else:
-            self.loop(self.y.copy(), self.fh.copy(), self.ctr.copy(), self.fs, self.is_, self.pp,
+            self.loop(self.y.copy(), self.fh.copy(), self.ctr.copy(), (self.fs, self.is_, self.pp),
                       self.prm, self.dp, 0, rec, 0, st)
         return time.perf_counter() - t0
 
@@ -184,7 +185,7 @@ class Stepper:
                 self.loop(self.y, self.ctr, self.prm, n, rec, self.rec_every, self.st)
             else:
                 self.loop(
-                    self.y, self.fh, self.ctr, self.fs, self.is_, self.pp, self.prm, self.dp, n,
+                    self.y, self.fh, self.ctr, (self.fs, self.is_, self.pp), self.prm, self.dp, n,
                     rec, self.rec_every, self.st,
                 )
             if self.record:
@@ -246,8 +247,8 @@ class Stepper:
         new.ctr[0] = int(round(t * new.k_per))
         if new.resist and not self.resist and new.roll > 0.0:
             # the rolling angle starts being integrated: from rest it was psi = (c - 1) x
-            new.y[4] = (new.roll - 1.0) * self.y[0]
-            new.y[5] = (new.roll - 1.0) * self.y[1]
+            new.y[4] = psi_from_rest(self.y[0], new.roll)
+            new.y[5] = psi_from_rest(self.y[1], new.roll)
         elif self.resist and new.roll > 0.0:
             new.resist = True  # psi, once apart from (c - 1) x, stays integrated (the loops
             # go on integrating it while it is nonzero)
@@ -334,13 +335,8 @@ class Stepper:
         """(a*, b*) of the present state, as the compliant loop computes them."""
         prm = self.prm
         ux, _, uy, _ = self.surface()
+        s, _ = contact_point.py_func(self.y, self.roll, self.resist)
         y = self.y
-        if self.resist:
-            s = y[0] + y[4]
-        elif self.roll > 0.0:
-            s = self.roll * y[0]
-        else:
-            s = y[0]
         return float(y[2] - uy), float((s - ux) / (prm[ig.P_THETA] * prm[ig.P_MU]))
 
     def twin(self, dy: np.ndarray | None = None) -> Stepper:
@@ -374,7 +370,7 @@ class Stepper:
         data = np.concatenate(self.rec_chunks) if self.rec_chunks else np.zeros((0, ig.N_REC))
         if self.roll > 0.0 and not self.resist:
             # from rest R phi = x / kappa = (c - 1) x (docs/physics.md, Rotation)
-            data[:, 9:11] = data[:, 1:3] * (self.roll - 1.0)
+            data[:, 9:11] = psi_from_rest(data[:, 1:3], self.roll)
         columns = list(ig.REC_COLUMNS)
         if self.roll <= 0.0:
             data = data[:, :9]

@@ -25,6 +25,7 @@ from ..result.regimes import (
     synchrony,
 )
 from . import evidence as ev
+from .rolling import psi_from_rest
 from .stepper import Stepper
 
 
@@ -162,7 +163,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         spin = (stepper.y[4] - psi0) / periods
     elif stepper.roll > 0.0:
         # R phi = x / kappa from rest
-        spin = (positions[-1] - positions[0]) / periods * (stepper.roll - 1.0)
+        spin = psi_from_rest((positions[-1] - positions[0]) / periods, stepper.roll)
     else:
         spin = math.nan
     st = stepper.st  # read after the window: the stepper may have grown its event log
