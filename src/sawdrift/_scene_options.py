@@ -40,4 +40,5 @@ OPTIONS = (
     ('rolling-resistance', 'effects.rolling_resistance', 'float', (), 'effects.rolling_resistance: rolling friction coefficient mu_r of an elastic-plastic rolling spring (needs rotation and a compliant model; 0: off); physically mu_r ~ (contact radius)/R = sqrt(a0/R) times a factor of order 1; in [0, inf); scene default 0.0'),
     ('rotation', 'effects.rotation', 'bool', (), "effects.rotation: the sphere turns: I phi'' = -R T with I = kappa m R^2 (particle.gyration); the contact point then moves like a mass m kappa / (1 + kappa). With a rigid model the particle is then a rigid sphere (a rigid point cannot turn)"),
     ('vertical-wave', 'effects.vertical_wave', 'bool', (), 'effects.vertical_wave: the vertical wave component u_y'),
+    ('air-drag', 'effects.air_drag', 'float', (), "effects.air_drag: linear air drag c on the centre, relative to still air (compliant models; 0: off): m* x*'' += -c x*', m* y*'' += -c y*'; c = c_d a0 f / (M g), c_d = 6 pi eta R for Stokes drag; in [0, inf); scene default 0.0"),
 )

@@ -30,6 +30,7 @@ from numba import njit
 from ..codegen import Generated, generate, rebind
 from ..contact.slot_kernels import damped_contact
 from . import evidence
+from .air_drag import drag_acceleration
 from .evidence import (
     BAD_NONFINITE,
     EV_MARGIN,
@@ -78,9 +79,10 @@ PRM_NAMES = (
     "m_x",  # horizontal inertia m*_x (m* itself, except in steady.settle's reduced inertia)
     "load",  # constant external tangential force L on the centre, in M g (0: off)
     "restitution_damping",  # C of the restitution damping C a*^((p-1)/2) a*' (0: off)
+    "air_drag",  # c of the linear air drag -c v on the centre (0: off), dynamics.air_drag
 )
 (P_M, P_MU, P_THETA, P_H, P_ORDER, P_FRICTION, P_DAMP, P_P, P_KRAMP, P_ROLL, P_RR,
- P_MX, P_LOAD, P_REST) = range(len(PRM_NAMES))
+ P_MX, P_LOAD, P_REST, P_DRAG) = range(len(PRM_NAMES))
 N_PRM = len(PRM_NAMES)
 
 
@@ -259,6 +261,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     rest = prm[P_REST]
     q_rest = 0.5 * (p_exp - 1.0)
     order = int(prm[P_ORDER])
+    drag = prm[P_DRAG]
     ncomp = 6 if spin else 4
     for _ in range(n_steps):
         k = ctr[0]
@@ -278,6 +281,11 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
         if (damp > 0.0 or rest > 0.0) and a > 0.0:
             nf, tf = damped_contact(nf, tf, a, adot, damp, rest, q_rest)
         ax = (-mu * tf + load) / mx if load != 0.0 else -mu * tf / mx
+        ay = (1.0 - nf) / m
+        if drag > 0.0:
+            dax, day = drag_acceleration(y, drag, mx, m)
+            ax += dax
+            ay += day
         inside = a > 0.0
         slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
         observe_contact(st, t, y, a, inside, slipping)
@@ -285,7 +293,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             observe_step(st, 0.0 if inside else 1.0, 1.0 if slipping else 0.0, a)
         if rec_every > 0 and k % rec_every == 0:
             record(rec, ctr, t, y, a, b, nf, tf)
-        push_derivatives(fh, y, ax, (1.0 - nf) / m, ncomp, friction or load != 0.0)
+        push_derivatives(fh, y, ax, ay, ncomp, friction or load != 0.0 or drag > 0.0)
         if spin:
             mr, kr, cap = rolling_torque(y, a, nf, rr, p_exp, kappa_m)
             fh[0, 4] = y[5]

@@ -16,6 +16,7 @@ from ..contact.registry import get_model
 from ..errors import SceneError
 from ..scene.device import explain_device
 from ..scene.schema import Impact, Prescribed, Scene, Wave
+from . import air_drag
 from .adams_bashforth import MIN_RESTITUTION, damping_ratio, restitution_damping
 from .drives import Drive, drive_of
 
@@ -140,6 +141,8 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
     if isinstance(drive, Impact):
         equations.append(f"start at a* = 0 with a*' = {drive.velocity:g}")
     params = _params(scene, k_per, ramp, rest_c)
+    params[air_drag.PARAM] = air_drag.parameter(scene, caps.rigid)  # a force: its module decides
+    equations += air_drag.describe(scene)
     if caps.rigid:
         # material.restitution, or the model's own parameter (_restitution checks they agree)
         e = restitution if restitution is not None else model.params.restitution

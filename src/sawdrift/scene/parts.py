@@ -316,6 +316,14 @@ class Effects(BaseModel):
         ),
     )
     vertical_wave: bool = Field(True, description="the vertical wave component u_y")
+    air_drag: NonNegative = Field(
+        0.0,
+        description=(
+            "linear air drag c on the centre, relative to still air (compliant models; 0: off): "
+            "m* x*'' += -c x*', m* y*'' += -c y*'; c = c_d a0 f / (M g), c_d = 6 pi eta R for "
+            "Stokes drag"
+        ),
+    )
 
 
 
