@@ -247,7 +247,7 @@ def test_field_shows_progress_by_default(monkeypatch, capsys):
     code, _, err = call(monkeypatch, capsys, "field", "--model", "material_point", "--backward",
                         "0.5", "--points", "4", "--refine", "0", "--periods", "10", "--workers", "1")
     assert code == 0, err
-    assert "4/4 cells (100%)" in err
+    assert "field: 4/4 points (100%)" in err  # the executor's label is the study's
 
 
 def test_load_curve_shows_progress_by_default(monkeypatch, capsys):

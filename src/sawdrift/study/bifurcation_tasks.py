@@ -18,12 +18,11 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Callable
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 from typing import Any
 
 from .._version import __version__
-from ..errors import SawdriftError, SceneError
+from ..errors import SawdriftError
 from ..scene.schema import Scene
 from .branch import (
     Budget,
@@ -36,6 +35,7 @@ from .branch import (
     save_state,
     transitions,
 )
+from .executor import Executor
 from .progress import counter
 from .provenance import TableProvenanceError, code_hash
 
@@ -196,46 +196,10 @@ def refine_task(task: dict[str, Any]) -> dict[str, Any]:
 
 def _executor(tasks: list[dict[str, Any]], fn: Callable[[dict[str, Any]], Any], workers: int,
               scheduler: Any) -> Any:
-    """Yield (index, result) of ``fn(task)`` for every task: serially, in processes, or on dask."""
-    if scheduler is not None:
-        try:
-            from distributed import Client
-            from distributed import as_completed as dask_completed
-        except ImportError:
-            raise SceneError("--scheduler needs dask.distributed: pip install 'sawdrift[dask]'") from None
-        try:
-            if isinstance(scheduler, Client):
-                client = scheduler
-            elif isinstance(scheduler, str):
-                client = Client(scheduler, timeout="10s")
-            else:
-                client = Client(scheduler)  # a cluster object
-        except OSError as exc:
-            raise SceneError(f"scheduler = {scheduler!r} could not be reached ({exc})") from None
-        try:
-            futures = {client.submit(fn, t, pure=False): i for i, t in enumerate(tasks)}
-            for fut in dask_completed(list(futures)):
-                yield futures[fut], fut.result()
-        finally:
-            if client is not scheduler:
-                client.close()
-        return
-    if workers == 1 or len(tasks) <= 1:
-        for i, t in enumerate(tasks):
-            yield i, fn(t)
-        return
-    with ProcessPoolExecutor(max_workers=min(workers, len(tasks))) as pool:
-        futures = {pool.submit(fn, t): i for i, t in enumerate(tasks)}
-        pending = set(futures)
-        try:
-            while pending:
-                finished, pending = wait(pending, timeout=0.5, return_when=FIRST_COMPLETED)
-                for fut in finished:
-                    yield futures[fut], fut.result()
-                yield None, None  # a tick: the caller may poll the journals
-        finally:
-            for fut in pending:
-                fut.cancel()
+    """Yield (index, result) of ``fn(task)`` for every task on the study executor; in local
+    processes also (None, None) every half second, a tick at which the caller polls the journals."""
+    with Executor(workers, scheduler) as executor:
+        yield from executor.imap(fn, tasks, tick=0.5)
 
 
 def _journal_lines(tasks: list[dict[str, Any]]) -> int:

@@ -34,6 +34,7 @@ from ..dynamics.runner import run
 from ..errors import SceneError
 from ..scene.device import device_wavelength, normalized, rayleigh_wavelength
 from ..scene.schema import Scene, Wave, build_scene, set_dotted
+from .executor import Executor
 
 __all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_field", "field_shift",
            "find_zeros", "nearest_zero", "predict_path", "rayleigh_wavelength", "wavelength_star"]
@@ -183,22 +184,13 @@ def species_scenes(base: Scene, axis: tuple[str, list[Any]] | None) -> list[tupl
     return out
 
 
-def _run_scenes(scenes: list[Scene], workers: int | None, engine: str) -> list[dict[str, Any]]:
-    """Rows of :func:`sawdrift.study.sweep.run_cell` for ``scenes``, in order (sweep executors)."""
-    import os
+def _run_scenes(scenes: list[Scene], executor: Executor, engine: str) -> list[dict[str, Any]]:
+    """Rows of :func:`sawdrift.study.sweep.run_cell` for ``scenes``, in order (the study executor)."""
+    from functools import partial
 
-    from .sweep import _processes, _serial, run_cell
+    from .sweep import run_cell
 
-    cells = [s.model_dump_json() for s in scenes]
-    workers = workers if workers is not None else (os.cpu_count() or 1)
-    executor = _serial if workers == 1 or len(cells) <= 1 else _processes
-    by_id: dict[str, dict[str, Any]] = {}
-    for row in executor(cells, workers, None, engine):
-        by_id[row["scene_id"]] = row
-    from .sweep import scene_id
-
-    return [by_id[scene_id(s)] if scene_id(s) in by_id else run_cell(c, engine)
-            for s, c in zip(scenes, cells, strict=True)]
+    return executor.map(partial(run_cell, engine=engine), [s.model_dump_json() for s in scenes])
 
 
 def drift_field(
@@ -240,8 +232,19 @@ def drift_field(
     axes: dict[str, Any] = {"drive.position": positions.tolist()}
     if axis is not None:
         axes[axis[0]] = axis[1]
-    frame = sweep([base.model], axes=axes, base=base, workers=workers, scheduler=scheduler,
-                  progress=progress, engine=engine)
+    with Executor(workers, scheduler) as executor:
+        frame = sweep([base.model], axes=axes, base=base, progress=progress, engine=engine,
+                      label=("field", "point"), executor=executor)
+        fields = _fields(frame, base, axis, positions)
+        _refine(fields, refine, executor, engine)
+    for f in fields:
+        f.summary = _summarize(f)
+    return FieldStudy(fields, axis[0] if axis is not None else None)
+
+
+def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
+            positions: np.ndarray) -> list[Field]:
+    """The fields of every species from the sweep's rows, with their zeros (not yet refined)."""
     species = species_scenes(base, axis)
     fields = []
     for label, sp in species:
@@ -266,10 +269,7 @@ def drift_field(
         ok = np.isfinite(f.drift_velocity)  # a failed run (its error is kept) is left out
         f.zeros = (find_zeros(f.positions[ok], f.drift_velocity[ok], _zero_eps(f.scene))
                    if ok.sum() >= 2 else [])
-    _refine(fields, refine, workers, engine)
-    for f in fields:
-        f.summary = _summarize(f)
-    return FieldStudy(fields, axis[0] if axis is not None else None)
+    return fields
 
 
 def _zero_eps(scene: Scene) -> float:
@@ -278,7 +278,7 @@ def _zero_eps(scene: Scene) -> float:
     return scene.numerics.drift_tolerance * TwoWaves.forward_speed(scene)
 
 
-def _refine(fields: list[Field], rounds: int, workers: int | None, engine: str) -> None:
+def _refine(fields: list[Field], rounds: int, executor: Executor, engine: str) -> None:
     """Regula falsi (Illinois) on every sign-change bracket, one run per zero and round."""
     jobs = [(f, z) for f in fields for z in f.zeros if "values" in z]
     for _ in range(rounds):
@@ -289,7 +289,7 @@ def _refine(fields: list[Field], rounds: int, workers: int | None, engine: str) 
             (x0, x1), (v0, v1) = z["bracket"], z["values"]
             z["position"] = x0 + v0 / (v0 - v1) * (x1 - x0)
             scenes.append(f.scene.with_updates(**{"drive.position": _wrap(z["position"], 0.0)}))
-        rows = _run_scenes(scenes, workers, engine)
+        rows = _run_scenes(scenes, executor, engine)
         for (_f, z), row in zip(jobs, rows, strict=True):
             vm = row["drift_velocity"]
             if vm is None or not math.isfinite(vm):

@@ -27,8 +27,8 @@ import math
 import os
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -38,6 +38,7 @@ from ..dynamics.runner import run
 from ..errors import SceneError
 from ..scene.device import normalized
 from ..scene.schema import Scene, Wave
+from .executor import Executor
 
 __all__ = ["LoadCurve", "load_curve"]
 
@@ -142,7 +143,8 @@ class _Runner:
         self.engine = engine
         self.workers = workers
         self.table: dict[float, dict[str, Any]] = {}
-        self.pool: ProcessPoolExecutor | None = None
+        #: the study executor, its process pool kept from round to round
+        self.executor = Executor(workers)
         dev = scene.device
         if dev is not None:
             norm = normalized(dev)
@@ -161,19 +163,12 @@ class _Runner:
     def run(self, applied: Sequence[float]) -> list[dict[str, Any]]:
         todo = [a for a in dict.fromkeys(applied) if a not in self.table]
         scenes = [self.loaded(a).model_dump_json() for a in todo]
-        if self.workers > 1 and len(todo) > 1:
-            if self.pool is None:
-                self.pool = ProcessPoolExecutor(max_workers=self.workers)
-            results = list(self.pool.map(_run_load, scenes, [self.engine] * len(scenes)))
-        else:
-            results = [_run_load(s, self.engine) for s in scenes]
+        results = self.executor.map(partial(_run_load, engine=self.engine), scenes)
         self.table.update(zip(todo, results, strict=True))
         return [self.table[a] for a in applied]
 
     def close(self) -> None:
-        if self.pool is not None:
-            self.pool.shutdown()
-            self.pool = None
+        self.executor.close()
 
 
 def _surface_speed(scene: Scene) -> float:

@@ -7,8 +7,9 @@ journal, skips every cell already there (cells are identified by a hash of their
 computes only the rest. At the end the rows are consolidated into the Parquet table with an atomic
 replace and the journal is removed.
 
-Executors: ``serial``; local processes (default, all cores); or an existing dask.distributed
-cluster (``scheduler=ADDRESS``). All run the same cell function, so they give identical values.
+Executors (:class:`sawdrift.study.executor.Executor`, shared by every study): ``serial``; local
+processes (default, all cores); or an existing dask.distributed cluster (``scheduler=ADDRESS``).
+All run the same cell function, so they give identical values.
 """
 
 from __future__ import annotations
@@ -18,8 +19,8 @@ import itertools
 import json
 import math
 import os
-from collections.abc import Callable, Iterable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from collections.abc import Callable, Iterable, Sequence
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -32,6 +33,7 @@ from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
 from .axes import parse_axis, parse_values
+from .executor import Executor, resolve_workers
 from .journal import records
 from .progress import progress as make_progress
 from .provenance import check_resume, code_hash
@@ -275,53 +277,6 @@ def _stored_base(table: Path) -> dict[str, Any] | None:
     return None
 
 
-# -- executors -------------------------------------------------------------------------------
-
-
-def _serial(cells: list[str], workers: int, scheduler: Any, engine: str,
-            traces: bool = False) -> Iterator[dict[str, Any]]:
-    for cell in cells:
-        yield run_cell(cell, engine, traces)
-
-
-def _processes(cells: list[str], workers: int, scheduler: Any, engine: str,
-               traces: bool = False) -> Iterator[dict[str, Any]]:
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(run_cell, cell, engine, traces) for cell in cells]
-        try:
-            for fut in as_completed(futures):
-                yield fut.result()
-        finally:
-            for fut in futures:
-                fut.cancel()
-
-
-def _dask(cells: list[str], workers: int, scheduler: Any, engine: str,
-          traces: bool = False) -> Iterator[dict[str, Any]]:
-    try:
-        from distributed import Client
-        from distributed import as_completed as dask_completed
-    except ImportError:
-        raise SceneError("--scheduler needs dask.distributed: pip install 'sawdrift[dask]'") from None
-    owned = not isinstance(scheduler, Client)  # a Client given by the caller stays open
-    try:
-        if not owned:
-            client = scheduler
-        elif isinstance(scheduler, str):
-            client = Client(scheduler, timeout="10s")
-        else:
-            client = Client(scheduler)  # a cluster object (LocalCluster, ...)
-    except OSError as exc:
-        raise SceneError(f"scheduler = {scheduler!r} could not be reached ({exc})") from None
-    try:
-        futures = client.map(run_cell, cells, engine=engine, traces=traces, pure=False)
-        for fut in dask_completed(futures):
-            yield fut.result()
-    finally:
-        if owned:
-            client.close()
-
-
 def sweep(
     models: str | Sequence[str],
     m_star: str | Sequence[float] | None = None,
@@ -339,6 +294,8 @@ def sweep(
     on_row: Callable[[dict[str, Any]], None] | None = None,
     force: bool = False,
     traces: bool = False,
+    label: tuple[str, str] = ("sweep", "cell"),
+    executor: Executor | None = None,
 ) -> pd.DataFrame:
     """Run a (model, m*, A*) grid and return one row per cell as a DataFrame.
 
@@ -378,6 +335,12 @@ def sweep(
     traces
         Also store each cell's last periods, decimated, in ``TABLE.traces.parquet``
         (:mod:`sawdrift.study.traces`); a cell of the table without one is run again for it.
+    label
+        (what, unit) of the progress line: ``sweep: k/N cells``; a drift field says
+        ``("field", "point")``.
+    executor
+        An open :class:`~sawdrift.study.executor.Executor` to run on (then ``workers`` and
+        ``scheduler`` are its own; the caller closes it); None opens one for this sweep.
     """
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
@@ -417,22 +380,16 @@ def sweep(
         if (cid not in done or rerun) and cid not in wanted:
             todo.append(scene.model_dump_json())
         wanted.add(cid)
-    workers = workers if workers is not None else (os.cpu_count() or 1)
-    if workers < 1:
-        raise SceneError(f"workers = {workers} must be >= 1")
-    if scheduler is not None:
-        executor = _dask
-    elif workers == 1 or len(todo) <= 1:
-        executor = _serial
-    else:
-        executor = _processes
+    own = executor is None
+    if executor is None:
+        executor = Executor(resolve_workers(workers), scheduler)
     rows = {cid: row for cid, row in done.items() if cid in wanted}
     journal = journal_path(path) if path is not None else None
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
     bar = None
     if progress and todo:
-        bar = make_progress(len(wanted), "sweep", "cell", initial=len(rows))
+        bar = make_progress(len(wanted), label[0], label[1], initial=len(rows))
     fh = None
     if journal is not None and todo:
         header = not journal.exists()
@@ -440,7 +397,7 @@ def sweep(
         if header:  # what the rows belong to, until the table's metadata records it
             fh.write(json.dumps({"base_scene": swept_from}) + "\n")
     try:
-        for row in executor(todo, workers, scheduler, engine, traces):
+        for _i, row in executor.imap(partial(run_cell, engine=engine, traces=traces), todo):
             trace = row.pop("trace", None)
             if trace is not None and path is not None:
                 append_trace(path, row["cell_id"], trace)
@@ -454,6 +411,8 @@ def sweep(
             if bar is not None:
                 bar.update(1)
     finally:
+        if own:
+            executor.close()
         if fh is not None:
             fh.close()
         if bar is not None:

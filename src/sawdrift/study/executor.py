@@ -1,0 +1,160 @@
+"""The one executor of every study: serial, local processes, or a dask.distributed cluster.
+
+Sweeps (and the adaptive maps and drift fields built on them), load curves and bifurcation
+diagrams hand their work here as a top-level function and a list of picklable items;
+:meth:`Executor.imap` yields ``(index, result)`` in completion order, :meth:`Executor.map` the
+results in order. The backend is chosen per batch, as the studies always did:
+
+* ``scheduler`` given (an address, a ``Client`` or a cluster object): dask.distributed;
+* ``workers == 1`` or a batch of at most one item: serially, in this process;
+* otherwise a local process pool of ``min(workers, items)`` processes, opened on the first
+  parallel batch and kept for the next ones (a load curve's rounds, a field's refinements) until
+  :meth:`Executor.close`.
+
+Every backend runs the same function on the same item, so the values are identical. On an
+exception or Ctrl-C in the consumer the batch's pending work is cancelled (the ``finally`` of
+:meth:`imap`); a ``Client`` given by the caller stays open, one made here is closed.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from typing import Any
+
+from ..errors import SceneError
+
+__all__ = ["Executor", "resolve_workers"]
+
+
+def resolve_workers(workers: int | None) -> int:
+    """``workers``, or every core when None; a one-line error below 1."""
+    workers = workers if workers is not None else (os.cpu_count() or 1)
+    if workers < 1:
+        raise SceneError(f"workers = {workers} must be >= 1")
+    return int(workers)
+
+
+class Executor:
+    """Runs a study's batches serially, in local processes, or on dask (module docstring).
+
+    Parameters
+    ----------
+    workers
+        1 runs serially; K > 1 uses up to K local processes; None: all cores.
+    scheduler
+        A dask.distributed scheduler address, ``Client`` or cluster object (then ``workers`` is
+        the cluster's business).
+    """
+
+    def __init__(self, workers: int | None = None, scheduler: Any = None) -> None:
+        self.workers = resolve_workers(workers)
+        self.scheduler = scheduler
+        self._pool: ProcessPoolExecutor | None = None
+        self._pool_size = 0
+        self._client: Any = None
+
+    def __enter__(self) -> Executor:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def backend(self, n_items: int) -> str:
+        """``"dask"``, ``"serial"`` or ``"processes"``: what a batch of ``n_items`` runs on."""
+        if self.scheduler is not None:
+            return "dask"
+        if self.workers == 1 or n_items <= 1:
+            return "serial"
+        return "processes"
+
+    def imap(self, fn: Callable[[Any], Any], items: Sequence[Any],
+             tick: float | None = None) -> Iterator[tuple[int | None, Any]]:
+        """``(index, fn(items[index]))`` for every item, in completion order.
+
+        With ``tick`` (seconds) a process batch also yields ``(None, None)`` whenever that long
+        has passed without a result, so that the caller may poll its journals in between.
+        """
+        kind = self.backend(len(items))
+        if kind == "serial":
+            for i, item in enumerate(items):
+                yield i, fn(item)
+        elif kind == "processes":
+            yield from self._processes(fn, items, tick)
+        else:
+            yield from self._dask(fn, items)
+
+    def map(self, fn: Callable[[Any], Any], items: Sequence[Any]) -> list[Any]:
+        """``[fn(item) for item in items]``, computed on this executor."""
+        out: list[Any] = [None] * len(items)
+        for i, res in self.imap(fn, items):
+            if i is not None:
+                out[i] = res
+        return out
+
+    def close(self) -> None:
+        """Shut the process pool down and close a dask client made here (a given one stays)."""
+        if self._pool is not None:
+            self._pool.shutdown(cancel_futures=True)  # after Ctrl-C: nothing more is started
+            self._pool, self._pool_size = None, 0
+        if self._client is not None and self._client is not self.scheduler:
+            self._client.close()
+        self._client = None
+
+    # -- backends ------------------------------------------------------------------------------
+
+    def _processes(self, fn: Callable[[Any], Any], items: Sequence[Any],
+                   tick: float | None) -> Iterator[tuple[int | None, Any]]:
+        size = min(self.workers, len(items))
+        if self._pool is not None and self._pool_size < size:
+            self._pool.shutdown()
+            self._pool = None
+        if self._pool is None:
+            self._pool, self._pool_size = ProcessPoolExecutor(max_workers=size), size
+        futures = {self._pool.submit(fn, item): i for i, item in enumerate(items)}
+        pending = set(futures)
+        try:
+            while pending:
+                finished, pending = wait(pending, timeout=tick, return_when=FIRST_COMPLETED)
+                for fut in finished:
+                    yield futures[fut], fut.result()
+                if tick is not None:
+                    yield None, None
+        finally:
+            for fut in pending:
+                fut.cancel()
+
+    def _dask(self, fn: Callable[[Any], Any], items: Sequence[Any]) -> Iterator[tuple[int, Any]]:
+        try:
+            from distributed import as_completed as dask_completed
+        except ImportError:
+            raise SceneError("--scheduler needs dask.distributed: pip install 'sawdrift[dask]'") from None
+        client = self._connect()
+        futures = client.map(fn, list(items), pure=False)
+        index = {fut.key: i for i, fut in enumerate(futures)}
+        try:
+            for fut in dask_completed(futures):
+                yield index[fut.key], fut.result()
+        finally:
+            for fut in futures:
+                if not fut.done():
+                    fut.cancel()
+
+    def _connect(self) -> Any:
+        """The dask client: the one given, or one made for the scheduler's address or cluster."""
+        from distributed import Client
+
+        if self._client is not None:
+            return self._client
+        scheduler = self.scheduler
+        try:
+            if isinstance(scheduler, Client):
+                self._client = scheduler
+            elif isinstance(scheduler, str):
+                self._client = Client(scheduler, timeout="10s")
+            else:
+                self._client = Client(scheduler)  # a cluster object (LocalCluster, ...)
+        except OSError as exc:
+            raise SceneError(f"scheduler = {scheduler!r} could not be reached ({exc})") from None
+        return self._client

@@ -1,0 +1,41 @@
+"""The one study executor (sawdrift.study.executor): every backend gives the same values."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from sawdrift.errors import SceneError
+from sawdrift.study.executor import Executor
+
+
+def _square(x: float) -> float:
+    return math.sqrt(x) * x
+
+
+def test_serial_and_processes_give_the_same_values_in_order():
+    items = [0.5 * k for k in range(7)]
+    with Executor(1) as serial, Executor(2) as pool:
+        assert serial.backend(len(items)) == "serial"
+        assert pool.backend(len(items)) == "processes"
+        assert pool.backend(1) == "serial"
+        assert serial.map(_square, items) == pool.map(_square, items) == [_square(x) for x in items]
+        # the pool is kept for the next batch
+        first = pool._pool
+        assert pool.map(_square, items[:3]) == [_square(x) for x in items[:3]]
+        assert pool._pool is first
+    assert pool._pool is None
+
+
+def test_imap_yields_every_index_once_and_ticks_only_when_asked():
+    with Executor(2) as ex:
+        got = [i for i, _ in ex.imap(_square, [1.0, 2.0, 3.0])]
+        assert sorted(got) == [0, 1, 2]
+        ticked = list(ex.imap(_square, [1.0, 2.0], tick=0.01))
+        assert sorted(i for i, _ in ticked if i is not None) == [0, 1]
+
+
+def test_workers_below_one_is_one_line_error():
+    with pytest.raises(SceneError, match="workers = 0"):
+        Executor(0)
