@@ -18,7 +18,7 @@ from ..scene.device import explain_device
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from . import air_drag
 from .adams_bashforth import MIN_RESTITUTION, damping_ratio, restitution_damping
-from .drives import Drive, drive_of
+from .drives import DRIVES, Drive, drive_of
 
 Engine = Literal["compiled", "python"]
 
@@ -43,7 +43,7 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     if rigid:
         return 256
     p = scene.particle.profile.p
-    amp = scene.drive.amplitude if isinstance(scene.drive, Wave) else 0.0
+    amp = scene.drive.amplitude if isinstance(scene.drive, Wave) else _vertical_amplitude(scene)
     a_ref = 1.0 + 2.0 * amp
     if isinstance(scene.drive, Impact):
         # largest compression from the energy balance with gravity:
@@ -65,6 +65,12 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     # (measured: mmd, m* = 0.01, c = 1 goes wrong at 295 steps); h c / m* <= 0.1 is kept
     damping = 10.0 * scene.effects.normal_damping / scene.particle.m_star
     return int(min(10_000_000, max(128, math.ceil(omega / 0.06), math.ceil(damping))))
+
+
+def _vertical_amplitude(scene: Scene) -> float:
+    """The registered drive's vertical amplitude (0 for a drive without one, e.g. prescribed)."""
+    part = DRIVES.get(scene.drive.kind)
+    return part.vertical_amplitude(scene) if part is not None else 0.0
 
 
 @dataclass(frozen=True)

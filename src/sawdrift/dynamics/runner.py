@@ -16,7 +16,7 @@ from ..contact.base import ContactModel
 from ..result.regimes import classify
 from ..result.result import Result
 from ..scene.device import device_outputs
-from ..scene.schema import Impact, Scene, Wave
+from ..scene.schema import Impact, Scene
 from .assembly import Assembly, Engine, assemble, explain
 from .prescribed import prescribed_history, run_prescribed
 from .steady import (
@@ -67,7 +67,7 @@ def _run_wave(
     scene: Scene, model: ContactModel, trajectory: bool, plan: Assembly, record_every: int | None
 ) -> Result:
     wave = scene.drive
-    assert isinstance(wave, Wave)
+    assert hasattr(wave, "amplitude") and hasattr(wave, "ramp_periods")  # any registered periodic drive
     num = scene.numerics
     n_periods = scene.measure_periods()
     stepper = Stepper(scene, model, plan, trajectory, event_periods=n_periods)

@@ -196,7 +196,7 @@ class Scene(BaseModel):
         """Whole periods at the end of the run over which the drift is averaged."""
         if self.numerics.measure_periods is not None:
             return self.numerics.measure_periods
-        ramp = self.drive.ramp_periods if isinstance(self.drive, Wave) else 0.0
+        ramp = float(getattr(self.drive, "ramp_periods", 0.0))  # a periodic drive's ramp
         return max(1, int((self.numerics.periods - ramp) // 2))
 
     # -- I/O ----------------------------------------------------------------------------------
