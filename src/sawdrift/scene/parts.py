@@ -181,6 +181,37 @@ class Wave(BaseModel):
         return self
 
 
+class Biharmonic(BaseModel):
+    """A vibrating plate, not a wave: the first two harmonics on each axis (Blekhman's asymmetric
+    excitation of vibrational transport)::
+
+        u_x = R(t*) (X1 cos(2 pi t*) + X2 cos(4 pi t* + phi_x))
+        u_y = R(t*) (Y1 cos(2 pi t*) + Y2 cos(4 pi t* + phi_y))
+
+    in units of a0, t* in periods of the fundamental, y* into the substrate, R(t*) the start-up
+    ramp. Each harmonic alone is symmetric under t* -> t* + 1/2 combined with a mirror; their sum
+    is not, which is what transports (I. I. Blekhman, Vibrational Mechanics, 2000, ch. 5).
+    """
+
+    model_config = FROZEN
+
+    kind: Literal["biharmonic"] = "biharmonic"
+    amplitude: NonNegative = Field(0.316, description="Y1: vertical fundamental amplitude / a0")
+    horizontal: Annotated[float, bounded(-1e6, 1e6)] = Field(
+        0.0, description="X1: horizontal fundamental amplitude / a0 (in phase with Y1)")
+    second: Annotated[float, bounded(-1e6, 1e6)] = Field(
+        0.0, description="Y2: vertical second-harmonic amplitude / a0")
+    second_horizontal: Annotated[float, bounded(-1e6, 1e6)] = Field(
+        0.0, description="X2: horizontal second-harmonic amplitude / a0")
+    second_phase: Annotated[float, bounded(-360.0, 360.0)] = Field(
+        0.0, description="phi_y: phase of the vertical second harmonic, degrees")
+    second_horizontal_phase: Annotated[float, bounded(-360.0, 360.0)] = Field(
+        0.0, description="phi_x: phase of the horizontal second harmonic, degrees")
+    ramp_periods: Annotated[float, bounded(0.0, 1e6)] = Field(
+        5.0, description="length of the smooth ramp R(t*) = sin^2(pi t* / (2 T_ramp)), periods"
+    )
+
+
 class Prescribed(BaseModel):
     """A prescribed contact history a*(t*), b*(t*): the contact law alone, no dynamics.
 

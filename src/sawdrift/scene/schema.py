@@ -30,6 +30,7 @@ from .device import Device
 from .overrides import DERIVED, apply_device, apply_overrides, strip_derived
 from .parts import (
     FROZEN,
+    Biharmonic,
     Effects,
     Impact,
     Material,
@@ -47,7 +48,7 @@ from .parts import (
 from .rayleigh import rayleigh_ratio, theta
 
 __all__ = [
-    "Effects", "Impact", "Material", "NonNegative", "Numerics", "Particle", "Positive",
+    "Biharmonic", "Effects", "Impact", "Material", "NonNegative", "Numerics", "Particle", "Positive",
     "Prescribed", "Scene", "Wave", "apply_overrides", "bounded", "build_scene",
     "format_validation_error", "get_dotted", "set_dotted",
 ]
@@ -75,7 +76,8 @@ class Scene(BaseModel):
     drive: Annotated[
         Annotated[Wave, Tag("wave")]
         | Annotated[Prescribed, Tag("prescribed")]
-        | Annotated[Impact, Tag("impact")],
+        | Annotated[Impact, Tag("impact")]
+        | Annotated[Biharmonic, Tag("biharmonic")],
         Discriminator(_drive_kind),
     ] = Field(default_factory=Wave)
     numerics: Numerics = Field(default_factory=Numerics)
