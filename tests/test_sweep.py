@@ -145,10 +145,11 @@ def test_mmd_diagram_shows_all_four_regimes():
 
 
 def test_sweep_table_says_which_cells_have_settled(tmp_path):
-    """m* = 100, A* = 0.3 is still on its approach after the default 60 periods (drift 0.006
-    against a steady 0.19); the table says so, a settled sweep reaches it, and the drift map draws
-    the unsettled cells."""
-    plain = sd.sweep("mmd", "0.1,100", "0.3,0.5", base=sd.Scene(model="mmd"), progress=False,
+    """m* = 100, A* = 0.3 is still on its approach after 60 fixed periods (drift 0.006 against a
+    steady 0.19); the table says so, a settled sweep reaches it (so does the default, which
+    settles a heavy cell), and the drift map draws the unsettled cells."""
+    fixed = sd.Scene(model="mmd", numerics={"settle": False})
+    plain = sd.sweep("mmd", "0.1,100", "0.3,0.5", base=fixed, progress=False,
                      workers=1, table=tmp_path / "plain.parquet")
     plain = plain[plain.amplitude == 0.3]
     settled = sd.sweep("mmd", "0.1,100", "0.3",
@@ -159,6 +160,8 @@ def test_sweep_table_says_which_cells_have_settled(tmp_path):
     assert by_m[100.0].settle_periods == 60.0
     heavy = settled[settled.m_star == 100.0].iloc[0]
     assert bool(heavy.settled) and heavy.drift_ratio > 0.15 > 0.01 > by_m[100.0].drift_ratio
+    default = sd.sweep("mmd", "100", "0.3", base=sd.Scene(model="mmd"), progress=False, workers=1)
+    assert bool(default.settled.iloc[0]) and default.drift_ratio.iloc[0] > 0.15
     png = sd.plot_drift_map(pd.read_parquet(tmp_path / "plain.parquet"), tmp_path / "d.png")
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
