@@ -354,6 +354,7 @@ def wave_loop(force: Callable[..., Any], drive: Any, compiled: bool) -> Callable
             prefix="sawdrift_loop_", doc=f"the wave loop bound to a kernel and to {drive.module}",
             templates=(wave_loop_body,), namespace=_loop_namespace(force, surface),
             imports=_LOOP_IMPORTS, bind={"force": force, "drive_surface": (drive.module, "surface")},
+            decorator="njit(cache=True, _nrt=False)", memory_options={"_nrt": False},
         ))["wave_loop_body"]
         _COMPILED[key] = fn
     return fn
