@@ -18,8 +18,10 @@ from ..result.result import Result
 from ..scene.device import device_outputs
 from ..scene.schema import Impact, Scene
 from .assembly import Assembly, Engine, assemble, explain
+from .drives import Drive
 from .prescribed import prescribed_history, run_prescribed
 from .steady import (
+    Settling,
     assess_fixed,
     default_max_periods,
     horizontal_inertia,
@@ -29,7 +31,7 @@ from .steady import (
     settles,
 )
 from .stepper import Stepper
-from .window import lyapunov, measure_window
+from .window import Window, lyapunov, measure_window
 
 __all__ = ["Assembly", "Engine", "assemble", "explain", "prescribed_history", "run"]
 
@@ -76,25 +78,12 @@ def _run_wave(
     if trajectory and record_every is not None:
         stepper.rec_every = max(1, int(record_every))
     k_per = stepper.k_per
-    n_measure = n_periods * k_per
-    n_total = max(int(round(num.periods * k_per)), n_measure)
     drive = plan.drive
-    speed = drive.horizontal_speed(scene)
     m_star = scene.particle.m_star
-    settle_on = settles(scene, speed)
-    cap = num.max_periods
-    if cap is None:
-        m_x = horizontal_inertia(m_star, stepper.rigid) if settle_on else m_star
-        cap = default_max_periods(m_star, relaxation_periods(scene, m_x, speed), stepper.rigid,
-                                  n_periods, rolling_frequency(scene, m_x))
-    n_max = max(n_total, int(round(cap * k_per)))
-    stepper.advance(n_total - n_measure)
+    speed = drive.horizontal_speed(scene)
     scale = drive.state_scale(scene)
-    settling = None
-    if settle_on:
-        win, settling = settle(stepper, scene, speed, scale, n_periods, n_max)
-    else:
-        win = measure_window(stepper, n_periods, speed, scale)
+    settle_on = settles(scene, speed)
+    win, settling = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     sync = win.sync
     hop_period = sync.hop_period if not chaotic else 0
@@ -103,14 +92,7 @@ def _run_wave(
                                 relaxation_periods(scene, m_star, speed), stepper.step / k_per,
                                 chaotic)
     t90 = settling.t90_periods if settle_on else math.nan
-    # without horizontal surface motion (r = 0) the drift ratio is undefined: it is reported as
-    # null, and the regime reads the drift against the vertical surface speed instead
-    drift_ratio = win.drift_ratio if speed > 0.0 else math.nan
-    vertical = 2.0 * math.pi * drive.vertical_amplitude(scene)
-    ratio_for_regime = (win.drift_ratio if speed > 0.0
-                        else (win.drift / vertical if vertical > 0.0 else 0.0))
-    regime = classify(win.contact_lost, ratio_for_regime, num.drift_tolerance,
-                      gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
+    drift_ratio, regime = _regime(scene, drive, win, speed, hop_period)
     extra: dict[str, object] = {}
     if scene.device is not None:
         extra.update(device_outputs(scene.device, win.drift, regime, t90 if settle_on else None))
@@ -160,6 +142,44 @@ def _run_wave(
         liftoff_phases=sync.phases if hop_period else (),
         extra=extra,
     )
+
+
+def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
+             settle_on: bool) -> tuple[Window, Settling | None]:
+    """Run to the measuring window and measure it: settled windows (``numerics.settle``, up to
+    the period cap) or the fixed run's last window. The settling is None for a fixed run."""
+    num = scene.numerics
+    n_periods = scene.measure_periods()
+    k_per = stepper.k_per
+    n_measure = n_periods * k_per
+    n_total = max(int(round(num.periods * k_per)), n_measure)
+    m_star = scene.particle.m_star
+    cap = num.max_periods
+    if cap is None:
+        m_x = horizontal_inertia(m_star, stepper.rigid) if settle_on else m_star
+        cap = default_max_periods(m_star, relaxation_periods(scene, m_x, speed), stepper.rigid,
+                                  n_periods, rolling_frequency(scene, m_x))
+    n_max = max(n_total, int(round(cap * k_per)))
+    stepper.advance(n_total - n_measure)
+    if settle_on:
+        return settle(stepper, scene, speed, scale, n_periods, n_max)
+    return measure_window(stepper, n_periods, speed, scale), None
+
+
+def _regime(scene: Scene, drive: Drive, win: Window, speed: float,
+            hop_period: int) -> tuple[float, str]:
+    """(drift ratio, regime) of the measured window.
+
+    Without horizontal surface motion (r = 0) the drift ratio is undefined: it is reported as
+    null (nan), and the regime reads the drift against the vertical surface speed instead.
+    """
+    drift_ratio = win.drift_ratio if speed > 0.0 else math.nan
+    vertical = 2.0 * math.pi * drive.vertical_amplitude(scene)
+    ratio_for_regime = (win.drift_ratio if speed > 0.0
+                        else (win.drift / vertical if vertical > 0.0 else 0.0))
+    regime = classify(win.contact_lost, ratio_for_regime, scene.numerics.drift_tolerance,
+                      gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
+    return drift_ratio, regime
 
 
 def _run_impact(scene: Scene, model: ContactModel, plan: Assembly, trajectory: bool) -> Result:
