@@ -240,9 +240,13 @@ def _free_tangential(y, prm, dt):
         y[1] += g_load * dt
 
 
-def _landing_time(y, prm, tau, t_end):
-    """The landing time in (tau, t_end] of a flight from ``tau``, or ``t_end`` if none (bisection on
-    the gap, :func:`_gap`)."""
+def _flight(y, ctr, st, prm, tau, t_end, frame):
+    """Fly from ``tau`` to the landing (then the impact) or to ``t_end``; (time reached, flight time).
+
+    m* y*'' = 1 and m* x*'' = L in flight (module docstring); the landing is located by bisection
+    on the gap (:func:`_gap`).
+    """
+    m = prm[P_M]
     tc = t_end
     if _gap(tau, y[2], y[3], t_end, prm) >= 0.0:
         lo, hi = tau, t_end
@@ -254,20 +258,10 @@ def _landing_time(y, prm, tau, t_end):
                 hi = mid
         tc = hi
         kk = drive_kinematics(tc, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
-        if y[3] + (tc - tau) / prm[P_M] - kk[4] <= 0.0 and _normal(tc, prm) < 0.0:
+        if y[3] + (tc - tau) / m - kk[4] <= 0.0 and _normal(tc, prm) < 0.0:
             # a 'landing' that rounding finds right after a lift-off: the point does not
             # approach the surface, which accelerates away (N* < 0): no landing
             tc = t_end
-    return tc
-
-
-def _flight(y, ctr, st, prm, tau, t_end, frame):
-    """Fly from ``tau`` to the landing (then the impact) or to ``t_end``; (time reached, flight time).
-
-    m* y*'' = 1 and m* x*'' = L in flight (module docstring).
-    """
-    m = prm[P_M]
-    tc = _landing_time(y, prm, tau, t_end)
     dt = tc - tau if tc < t_end else t_end - tau
     _free_tangential(y, prm, dt)
     if tc >= t_end:
@@ -280,7 +274,15 @@ def _flight(y, ctr, st, prm, tau, t_end, frame):
 
 def _impact(y, ctr, st, prm, vy, tc, frame):
     """The impact at ``tc`` with vertical velocity ``vy``: Newton restitution e and a
-    Coulomb-limited tangential impulse, then a rebound or the landing (:func:`_rebounds`)."""
+    Coulomb-limited tangential impulse, then a rebound or the landing (:func:`_land`).
+
+    Restitution applies to every impact, also where N* <= 0 would lift at once. An inelastic
+    collapse (rebounds shrinking geometrically) ends in landing once the next flight 2 e vn m*/N*
+    is shorter than _ZENO steps (the remaining flights sum to less than _ZENO h / (1 - e)), or once
+    e vn is below the speed that the gap function resolves: its rounding error
+    eps ~ 1e-14 (1 + A*) puts a floor sqrt(eps N*/m*) under located impact speeds; 10x that floor
+    is kept.
+    """
     m = prm[P_M]
     e = prm[P_RESTITUTION]
     kk = drive_kinematics(tc, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
@@ -294,31 +296,18 @@ def _impact(y, ctr, st, prm, vy, tc, frame):
         jv = min(abs(s), prm[P_MU] * (1.0 + e) * vn * m / _tangential_mass(prm))
         y[1] -= math.copysign(jv, s) if s != 0.0 else 0.0
     _log(st, EV_LANDING, tc, y, frame)
-    if _rebounds(prm, tc, e * vn):
+    n_imp = _normal(tc, prm)
+    ev_n = e * vn
+    if ev_n > 0.0 and (
+        n_imp <= 0.0
+        or (2.0 * ev_n * m > _ZENO * prm[P_H] * n_imp
+            and ev_n * ev_n * m > 1e-12 * (1.0 + prm[P_UY]) * n_imp)
+    ):
         y[3] = kk[4] - e * vn
         _log(st, EV_LIFT_OFF, tc, y, frame)
         st[S_LIFTS] += 1.0
     else:
         _land(y, ctr, st, prm, tc, kk, frame)
-
-
-def _rebounds(prm, tc, ev_n):
-    """The impact at ``tc`` rebounds with the normal speed ``ev_n`` = e v_n.
-
-    Restitution applies to every impact, also where N* <= 0 would lift at once. An inelastic
-    collapse (rebounds shrinking geometrically) ends in landing once the next flight 2 e vn m*/N*
-    is shorter than _ZENO steps (the remaining flights sum to less than _ZENO h / (1 - e)), or once
-    e vn is below the speed that the gap function resolves: its rounding error
-    eps ~ 1e-14 (1 + A*) puts a floor sqrt(eps N*/m*) under located impact speeds; 10x that floor
-    is kept.
-    """
-    m = prm[P_M]
-    n_imp = _normal(tc, prm)
-    return ev_n > 0.0 and (
-        n_imp <= 0.0
-        or (2.0 * ev_n * m > _ZENO * prm[P_H] * n_imp
-            and ev_n * ev_n * m > 1e-12 * (1.0 + prm[P_UY]) * n_imp)
-    )
 
 
 def _land(y, ctr, st, prm, tc, kk, frame):
@@ -367,27 +356,25 @@ def _contact_end(prm, tau, t_end, n_tau):
     return t_end, False
 
 
-def _follow(y, prm, t0, t1):
-    """Stick from ``t0`` to ``t1``: the point follows the substrate."""
-    k0 = drive_kinematics(t0, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
-    k1 = drive_kinematics(t1, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
-    y[0] += k1[0] - k0[0]
-    y[1] = k1[1]
-
-
 def _stick(y, ctr, st, prm, tau, seg_end, frame):
     """Stick from ``tau`` towards ``seg_end``; (time reached, whether the stick broke there)."""
-    if _sticks(seg_end, prm):
-        _follow(y, prm, tau, seg_end)
+    stopped = not _sticks(seg_end, prm)
+    hi = seg_end
+    if stopped:
+        lo, hi = tau, seg_end
+        for _i in range(_BISECT):
+            mid = 0.5 * (lo + hi)
+            if _sticks(mid, prm):
+                lo = mid
+            else:
+                hi = mid
+    # the point follows the substrate
+    k0 = drive_kinematics(tau, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    k1 = drive_kinematics(hi, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
+    y[0] += k1[0] - k0[0]
+    y[1] = k1[1]
+    if not stopped:
         return seg_end, False
-    lo, hi = tau, seg_end
-    for _i in range(_BISECT):
-        mid = 0.5 * (lo + hi)
-        if _sticks(mid, prm):
-            lo = mid
-        else:
-            hi = mid
-    _follow(y, prm, tau, hi)
     ctr[3] = 0
     ctr[4] = 1 if _t_req(hi, prm) > 0.0 else -1
     _log(st, EV_SLIP_START, hi, y, frame)
@@ -450,39 +437,6 @@ def _contact(y, ctr, st, prm, tau, t_end, frame):
     return seg_end, slipped
 
 
-def _resolve_step(y, ctr, st, prm, t, frame):
-    """Resolve the events of the step from ``t``; (time reached, time out of contact, time slipped).
-
-    The time reached is the step's end unless more than _MAX_EVENTS events stopped it.
-    """
-    t_end = t + prm[P_H]
-    tau = t
-    out_time = 0.0
-    slip_time = 0.0
-    guard = 0
-    while tau < t_end and guard < _MAX_EVENTS:
-        guard += 1
-        if ctr[1] == 1:
-            tau, flown = _flight(y, ctr, st, prm, tau, t_end, frame)
-            out_time += flown
-        else:
-            tau, slipped = _contact(y, ctr, st, prm, tau, t_end, frame)
-            slip_time += slipped
-    return tau, out_time, slip_time
-
-
-def _step_forces(ctr, prm, t_end):
-    """(N*, T*) at the step's end: zero in flight, T* = T_req while stuck, sigma N* in slip."""
-    if ctr[1] == 1:
-        return 0.0, 0.0
-    nf = max(_normal(t_end, prm), 0.0)
-    if not prm[P_FRICTION] > 0.0:
-        return nf, 0.0
-    if ctr[3] == 1:
-        return nf, _t_req(t_end, prm)
-    return nf, nf * ctr[4]
-
-
 def _end_step(y, ctr, st, prm, t_end, times, rec, rec_every):
     """The step's bookkeeping at ``t_end``: evidence, trajectory row, the step counter; True if the
     loop must return (a non-finite state, or an event log to grow). ``times`` = (out of contact,
@@ -491,7 +445,14 @@ def _end_step(y, ctr, st, prm, t_end, times, rec, rec_every):
     h = prm[P_H]
     kk = drive_kinematics(t_end, prm[P_XQ], prm[N_PRM_RIGID:])  # noqa: F821
     a = y[2] - kk[3] if ctr[1] == 1 else 0.0
-    nf, tf = _step_forces(ctr, prm, t_end)
+    # (N*, T*): zero in flight, T* = T_req while stuck, sigma N* in slip
+    nf = 0.0 if ctr[1] == 1 else max(_normal(t_end, prm), 0.0)
+    if ctr[1] == 1 or not prm[P_FRICTION] > 0.0:
+        tf = 0.0
+    elif ctr[3] == 1:
+        tf = _t_req(t_end, prm)
+    else:
+        tf = nf * ctr[4]
     if k >= int(prm[P_KRAMP]):
         out_time, slip_time = times
         out = min(1.0, out_time / h) if out_time > 0.0 else (1.0 if ctr[1] == 1 else 0.0)
@@ -527,7 +488,19 @@ def rigid_loop(y, ctr, prm, n_steps, rec, rec_every, st):
         prm[P_XQ] = y[0]  # the centre: the drive acts where the sphere is
         turning = integrates_psi(roll, 0.0, g_load, y)
         od, odv, gd = to_contact_point(y, roll, turning, g_load) if roll > 0.0 else (0.0, 0.0, 0.0)
-        tau, out_time, slip_time = _resolve_step(y, ctr, st, prm, t, (od, odv, gd, roll, t))
+        frame = (od, odv, gd, roll, t)
+        tau = t
+        out_time = 0.0
+        slip_time = 0.0
+        guard = 0
+        while tau < t_end and guard < _MAX_EVENTS:  # the step's events, one at a time
+            guard += 1
+            if ctr[1] == 1:
+                tau, flown = _flight(y, ctr, st, prm, tau, t_end, frame)
+                out_time += flown
+            else:
+                tau, slipped = _contact(y, ctr, st, prm, tau, t_end, frame)
+                slip_time += slipped
         if roll > 0.0:
             # back to the centre (and psi, where it is integrated), at tau: the step's end, or
             # where a step with too many events stopped

@@ -21,9 +21,8 @@ from . import rigid as rg
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
 _FUNCTIONS = (rg._tangential_mass, rg._tangential_load, rg._normal, rg._least_normal_inside,
               rg._stick_margin, rg._sticks, rg._t_req, rg._slip_state, rg._slip_velocity, rg._gap,
-              rg._log, rg._free_tangential, rg._landing_time, rg._flight, rg._impact, rg._rebounds,
-              rg._land, rg._lift, rg._contact_end, rg._follow, rg._stick, rg._slip, rg._contact,
-              rg._resolve_step, rg._step_forces, rg._end_step, rg.rigid_loop)
+              rg._log, rg._free_tangential, rg._flight, rg._impact, rg._land, rg._lift,
+              rg._contact_end, rg._stick, rg._slip, rg._contact, rg._end_step, rg.rigid_loop)
 _IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
     "from sawdrift.dynamics.evidence import *  # noqa: F403\n"
