@@ -193,7 +193,6 @@ def refine_task(task: dict[str, Any]) -> dict[str, Any]:
 # -- running the tasks -------------------------------------------------------------------------
 
 
-
 def _executor(tasks: list[dict[str, Any]], fn: Callable[[dict[str, Any]], Any], workers: int,
               scheduler: Any) -> Any:
     """Yield (index, result) of ``fn(task)`` for every task on the study executor; in local
@@ -225,7 +224,8 @@ def run_branches(tasks: list[dict[str, Any]], workers: int, scheduler: Any, prog
     before = sum(len(h) for h in held)
     bar = counter(total - before, "bifurcation", "value", enabled=progress and before < total)
     results: list[Any] = [None] * len(tasks)
-    serial = scheduler is None and (workers == 1 or len(tasks) <= 1)
+    # the executor's own choice, made here too: serially the bar counts each value as it comes
+    serial = Executor(workers, scheduler).backend(len(tasks)) == "serial"
 
     def tick(record: dict[str, Any]) -> None:
         bar.update(1)
