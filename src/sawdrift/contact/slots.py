@@ -49,6 +49,7 @@ Damping protocol: ``damp(dp, law, a, adot, n_elastic) -> N*`` with ``dp`` from
 
 from __future__ import annotations
 
+import copy
 from typing import Any, ClassVar
 
 import numpy as np
@@ -400,3 +401,21 @@ class SlotReference(KernelReference):
             step, reset = readable
         ns = _python_namespace(_py(step), _py(reset), _py(damp), cap)
         super().__init__(model, ns["contact_reset"], ns["contact_force"])
+        self._model = model
+
+    def __deepcopy__(self, memo: dict) -> SlotReference:
+        """An independent copy: its composed functions call its own readable reference.
+
+        The composition's ``step`` and ``reset`` close over the readable object, and a function
+        is copied by reference, so a plain deep copy would leave the copy driving the original's
+        readable: a twin trajectory (a Lyapunov estimate, a checkpoint) and its base then shared
+        one memory diagram. The copy is composed anew and given copies of the state.
+        """
+        new = type(self)(self._model)
+        memo[id(self)] = new
+        if self.readable is not None:
+            new.readable.__dict__.update(copy.deepcopy(self.readable.__dict__, memo))
+        new.fs[:] = self.fs
+        new.is_[:] = self.is_
+        new.pp = self.pp.copy()
+        return new
