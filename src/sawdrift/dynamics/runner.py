@@ -82,7 +82,7 @@ def _run_wave(
     m_star = scene.particle.m_star
     speed = drive.horizontal_speed(scene)
     scale = drive.state_scale(scene)
-    settle_on = settles(scene, speed)
+    settle_on = settles(scene, speed, stepper.rigid)
     win, settling = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     sync = win.sync

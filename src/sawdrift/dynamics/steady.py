@@ -44,6 +44,10 @@ from .window import Window, measure_window
 #: the horizontal inertia used for heavier particles (see the module docstring)
 HEAVY_MASS = 100.0
 
+#: Longest relaxation time (periods, at the integrated inertia) that ``numerics.settle`` left
+#: unset settles by default (:func:`settles`): its cap, 50 of them, is then at most 5e5 periods.
+AUTO_SETTLE_PERIODS = 1e4
+
 
 @dataclass(frozen=True)
 class Settling:
@@ -89,17 +93,24 @@ def relaxation_periods(scene, m_x: float, speed: float) -> float:
     return tau
 
 
-def settles(scene, speed: float) -> bool:
-    """Whether a run settles its drift: ``numerics.settle``, or by default where it must.
+def settles(scene, speed: float, rigid: bool) -> bool:
+    """Whether a run settles its drift: ``numerics.settle``, or by default where it must and can.
 
     Unset, a run settles when its horizontal relaxation time (:func:`horizontal_relaxation`, of
     order m*/mu periods) exceeds a third of ``numerics.periods``: a fixed run that short would end
-    before the drift had relaxed (the same bound :func:`assess_fixed` holds a fixed run to).
+    before the drift had relaxed (the same bound :func:`assess_fixed` holds a fixed run to). It
+    does not where even the reduced inertia (:func:`horizontal_inertia`) leaves a relaxation
+    longer than :data:`AUTO_SETTLE_PERIODS` (a vanishing friction, mu = 1e-6: 1e5 periods, a cap
+    of millions): that run stays fixed and reports ``settled = false``; ``settle = true`` asks
+    for it anyway.
     """
     given = scene.numerics.settle
     if given is not None:
         return bool(given)
-    return 3.0 * horizontal_relaxation(scene, scene.particle.m_star, speed) > scene.numerics.periods
+    m = scene.particle.m_star
+    if 3.0 * horizontal_relaxation(scene, m, speed) <= scene.numerics.periods:
+        return False
+    return horizontal_relaxation(scene, horizontal_inertia(m, rigid), speed) <= AUTO_SETTLE_PERIODS
 
 
 def horizontal_relaxation(scene, m_x: float, speed: float) -> float:

@@ -35,14 +35,12 @@ from typing import Any
 import numpy as np
 
 from ..dynamics import evidence as ev
-from ..dynamics import steady
-from ..dynamics import window as window_mod
 from ..dynamics.assembly import steps_per_period
 from ..dynamics.drives.travelling import TravellingWave
-from ..dynamics.steady import assess_fixed, relaxation_periods
-from ..dynamics.window import Window, orbit_period, periodicity
+from ..dynamics.steady import assess_fixed, relaxation_periods, settles
+from ..dynamics.window import Window, hop_synchrony, orbit_period, periodicity
 from ..errors import SawdriftError
-from ..result.regimes import Synchrony, classify, synchrony
+from ..result.regimes import classify
 from ..result.result import Result
 from ..scene.device import device_outputs
 from ..scene.schema import Scene
@@ -247,23 +245,6 @@ def _events(rec: dict[str, np.ndarray]) -> np.ndarray:
     return out
 
 
-def _synchrony(events: np.ndarray, t_start: float, periods: int, orbit: int) -> Synchrony:
-    """The window's lift-off synchrony by the native engine's own rule (dynamics.window)."""
-    if hasattr(window_mod, "hop_synchrony"):
-        return window_mod.hop_synchrony(events, t_start, periods, orbit)
-    lifts = window_mod.hop_liftoffs(events, t_start + periods)  # the rule before hop_synchrony
-    return synchrony(lifts, t_start, periods)
-
-
-def _settle_asked(scene: Scene, speed: float) -> bool:
-    """Whether the native engine would settle ``scene`` (``numerics.settle``, or its default)."""
-    asked = scene.numerics.settle
-    if asked is None:  # the default: settle where the drift relaxes slowly (dynamics.steady)
-        rule = getattr(steady, "settles", None)
-        return bool(rule(scene, speed)) if rule is not None else False
-    return bool(asked)
-
-
 def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: bool = False
               ) -> Result:
     """The native :class:`~sawdrift.result.Result` of a LAMMPS record (module docstring)."""
@@ -288,7 +269,7 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
     inside = a > 0.0
     slipping = inside & (np.abs(rec["T_star"]) >= rec["N_star"] * (1.0 - CAP_TOL))
     events = _events(rec)
-    sync = _synchrony(events, t_start, periods, orbit)
+    sync = hop_synchrony(events, t_start, periods, orbit)
     contact_lost = bool((~inside).any())
     n = a.size
     win = Window(
@@ -315,7 +296,7 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
                    "frequency_hz": real.frequency, "radius_m": real.radius,
                    "e_star_pa": real.e_star, "g_star_pa": real.g_star},
     }
-    if _settle_asked(scene, speed):
+    if settles(scene, speed, rigid=False):
         extra["lammps_note"] = (f"numerics.settle is not continued in LAMMPS: a fixed run of "
                                 f"{info['steps'] / k_per:g} periods")
     if scene.device is not None:
