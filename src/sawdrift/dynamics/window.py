@@ -17,6 +17,7 @@ from ..errors import NonFiniteStateError
 from ..result.regimes import (
     ALIGN_PERIODS,
     LYAPUNOV_D0,
+    LYAPUNOV_MAX_PERIODS,
     LYAPUNOV_PERIODS,
     MIN_FLIGHT,
     Synchrony,
@@ -229,14 +230,16 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
     """Largest Lyapunov exponent (per period) from the window's start, and whether it is chaos.
 
     :func:`stretching_logs` from the window's snapshot over the window's length (at least
-    :data:`~sawdrift.result.regimes.LYAPUNOV_PERIODS`), judged by
+    :data:`~sawdrift.result.regimes.LYAPUNOV_PERIODS`, at most
+    :data:`~sawdrift.result.regimes.LYAPUNOV_MAX_PERIODS`), judged by
     :func:`~sawdrift.result.regimes.lyapunov_statistics` and
     :func:`~sawdrift.result.regimes.is_chaotic`.
     """
     if window.snapshot is None:
         return math.nan, False
     try:
-        logs = stretching_logs(window.snapshot, scale, max(window.periods, LYAPUNOV_PERIODS))
+        periods = min(max(window.periods, LYAPUNOV_PERIODS), LYAPUNOV_MAX_PERIODS)
+        logs = stretching_logs(window.snapshot, scale, periods)
     except NonFiniteStateError:
         return math.nan, False
     lam, err = lyapunov_statistics(logs)

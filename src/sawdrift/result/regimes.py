@@ -65,6 +65,10 @@ ALIGN_PERIODS = 8
 #: Fewest periods a Lyapunov estimate averages over (longer windows use their own length).
 LYAPUNOV_PERIODS = 64
 
+#: Most periods a Lyapunov estimate averages over: a settle window of a heavy particle can last
+#: thousands of periods, and 256 stretchings already give 8 batches of 32.
+LYAPUNOV_MAX_PERIODS = 256
+
 #: Exponent (per period) below which a motion is not called chaotic, whatever the statistics
 #: (the chaotic motions of the diagrams here have 0.1 to 1). A regular motion whose separation
 #: grows linearly (a shear along a neutral direction) has renormalized stretchings
