@@ -145,7 +145,11 @@ def _least_normal_inside(t0, t1, n0, n1, prm):
     tmin = a_ if na < nb else b_
     if min(na, nb) >= -_GRAZE:
         return -1.0
-    lo, hi = t0, tmin
+    return _contact_lost_at(t0, tmin, prm)
+
+
+def _contact_lost_at(lo, hi, prm):
+    """Bisection for where N* falls below -_GRAZE in [lo, hi] (it holds at lo, not at hi)."""
     for _i in range(_BISECT):
         mid = 0.5 * (lo + hi)
         if _normal(mid, prm) >= -_GRAZE:
@@ -341,14 +345,7 @@ def _contact_end(prm, tau, t_end, n_tau):
     lost there (N* below -_GRAZE at the step's end, or dipping inside it)."""
     n_end = _normal(t_end, prm)
     if n_end < -_GRAZE:
-        lo, hi = tau, t_end
-        for _i in range(_BISECT):
-            mid = 0.5 * (lo + hi)
-            if _normal(mid, prm) >= -_GRAZE:
-                lo = mid
-            else:
-                hi = mid
-        return lo, True
+        return _contact_lost_at(tau, t_end, prm), True
     if prm[P_VINERTIA] > 0.0:
         dip = _least_normal_inside(tau, t_end, n_tau, n_end, prm)
         if dip >= 0.0:

@@ -20,6 +20,7 @@ from . import rigid as rg
 
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
 _FUNCTIONS = (rg._tangential_mass, rg._tangential_load, rg._normal, rg._least_normal_inside,
+              rg._contact_lost_at,
               rg._stick_margin, rg._sticks, rg._t_req, rg._slip_state, rg._slip_velocity, rg._gap,
               rg._log, rg._free_tangential, rg._flight, rg._impact, rg._land, rg._lift,
               rg._contact_end, rg._stick, rg._slip, rg._contact, rg._end_step, rg.rigid_loop)
