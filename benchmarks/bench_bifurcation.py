@@ -23,7 +23,8 @@ import time
 from pathlib import Path
 
 import sawdrift as sd
-from sawdrift.study.bifurcation import bifurcation
+from sawdrift.report.bifurcation_plot import plot_bifurcation
+from sawdrift.study.bifurcation import FIGURE, bifurcation
 
 HERE = Path(__file__).parent
 M_POINT = 0.1
@@ -33,10 +34,11 @@ EXACT = {"lift_off": 1.0, "sticking_lost": math.sqrt(1 + math.pi**2),
 
 def _timed(scene: sd.Scene, values: str, out: Path, **kwargs) -> tuple[float, object]:
     bifurcation(scene, "drive.amplitude", values.rsplit(":", 1)[0] + ":2", samples=4,
-                progress=False, figure=False, workers=kwargs.get("workers", 1))  # warm-up
+                progress=False, workers=kwargs.get("workers", 1))  # warm-up
     t0 = time.perf_counter()
     res = bifurcation(scene, "drive.amplitude", values, samples=64, out=out, progress=False,
                       **kwargs)
+    plot_bifurcation(res, out / FIGURE)
     return time.perf_counter() - t0, res
 
 

@@ -7,9 +7,9 @@ import math
 import pytest
 
 from sawdrift.dynamics.assembly import assemble, explain
-from sawdrift.dynamics.runner import run
 from sawdrift.dynamics.stepper import Stepper
 from sawdrift.errors import SceneError
+from sawdrift.result.runner import run
 from sawdrift.scene.schema import Scene
 
 MU = 0.1

@@ -110,7 +110,7 @@ def test_hysteresis_of_the_bouncing_ball_with_restitution():
 def test_interrupted_run_resumes_with_the_same_table(tmp_path):
     axis = "lin:3.5:4.0:10"
     whole = bifurcation(ball(), "drive.amplitude", axis, samples=8, out=tmp_path / "a",
-                        workers=1, progress=False, figure=False)
+                        workers=1, progress=False)
     seen = []
 
     def stop(record):
@@ -120,24 +120,24 @@ def test_interrupted_run_resumes_with_the_same_table(tmp_path):
 
     with pytest.raises(KeyboardInterrupt):
         bifurcation(ball(), "drive.amplitude", axis, samples=8, out=tmp_path / "b", workers=1,
-                    progress=False, figure=False, on_value=stop)
+                    progress=False, on_value=stop)
     again = bifurcation(ball(), "drive.amplitude", axis, samples=8, out=tmp_path / "b",
-                        workers=1, progress=False, figure=False)
+                        workers=1, progress=False)
     assert whole.computed == 10 and again.computed == 6
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "a" / TABLE),
                                   pd.read_parquet(tmp_path / "b" / TABLE))
     done = bifurcation(ball(), "drive.amplitude", axis, samples=8, out=tmp_path / "b",
-                       workers=1, progress=False, figure=False)
+                       workers=1, progress=False)
     assert done.computed == 0
 
 
 def test_a_folder_of_other_code_or_another_axis_is_refused(tmp_path):
     out = tmp_path / "d"
     bifurcation(ball(), "drive.amplitude", "3.5,3.6", samples=4, out=out, workers=1,
-                progress=False, figure=False)
+                progress=False)
     with pytest.raises(TableProvenanceError, match="another bifurcation diagram"):
         bifurcation(ball(), "drive.amplitude", "3.5,3.7", samples=4, out=out, workers=1,
-                    progress=False, figure=False)
+                    progress=False)
     journal = out / "journal" / "material_point-up.jsonl"
     lines = journal.read_text().splitlines()
     head = json.loads(lines[0])
@@ -146,9 +146,9 @@ def test_a_folder_of_other_code_or_another_axis_is_refused(tmp_path):
     (out / TABLE).unlink()
     with pytest.raises(TableProvenanceError, match="other code"):
         bifurcation(ball(), "drive.amplitude", "3.5,3.6", samples=4, out=out, workers=1,
-                    progress=False, figure=False)
+                    progress=False)
     res = bifurcation(ball(), "drive.amplitude", "3.5,3.6", samples=4, out=out, workers=1,
-                      progress=False, figure=False, force=True)
+                      progress=False, force=True)
     assert res.computed == 0 and len(res.table) == 8
 
 

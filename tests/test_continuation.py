@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import sawdrift as sd
-from sawdrift.dynamics.runner import assemble
+from sawdrift.dynamics.assembly import assemble
 from sawdrift.dynamics.stepper import Stepper
 
 

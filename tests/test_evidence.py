@@ -9,14 +9,9 @@ import pytest
 
 import sawdrift as sd
 from sawdrift.dynamics import rigid as rg
+from sawdrift.dynamics.lyapunov import ALIGN_PERIODS, LYAPUNOV_PERIODS, is_chaotic, lyapunov_statistics
+from sawdrift.dynamics.synchrony import synchrony
 from sawdrift.errors import NonFiniteStateError
-from sawdrift.result.regimes import (
-    ALIGN_PERIODS,
-    LYAPUNOV_PERIODS,
-    is_chaotic,
-    lyapunov_statistics,
-    synchrony,
-)
 
 
 @pytest.mark.parametrize("m_star, amplitude", [(0.3, 1.5), (10.0, 1.2), (3.0, 1.0)])

@@ -70,10 +70,6 @@ _SCENE_CONTACT = ("the scene validates and describes itself through the contact 
 _PROFILE_LAW = ("a Profile evaluates its normal law with contact.normal (read_table, table_descriptor, "
                 "law_normal/law_slope.py_func); the fix moves the table reader and the python law "
                 "into scene.profiles, and contact.normal compiles them")
-_DYNAMICS_RESULT = ("dynamics builds the Result and measures the window's synchrony and Lyapunov "
-                    "evidence with result.regimes; the fix moves those measurements (synchrony, "
-                    "lyapunov_statistics, is_chaotic and their constants) into dynamics.window and "
-                    "lets result wrap the measurement (dynamics helper's modules)")
 PENDING: dict[tuple[str, str], str] = {
     ("sawdrift.scene.schema", "sawdrift.contact.registry"): _SCENE_CONTACT,
     ("sawdrift.scene.overrides", "sawdrift.contact.registry"): _SCENE_CONTACT,
@@ -81,17 +77,9 @@ PENDING: dict[tuple[str, str], str] = {
         "check_known_fields defaults to the Scene schema, which imports overrides; the fix moves "
         "the field checks beside Scene (scene.schema) or makes callers pass the schema"),
     ("sawdrift.scene.profiles", "sawdrift.contact.normal"): _PROFILE_LAW,
-    ("sawdrift.dynamics.window", "sawdrift.result.regimes"): _DYNAMICS_RESULT,
-    ("sawdrift.dynamics.runner", "sawdrift.result.regimes"): _DYNAMICS_RESULT,
-    ("sawdrift.dynamics.runner", "sawdrift.result.result"): _DYNAMICS_RESULT,
-    ("sawdrift.dynamics.prescribed", "sawdrift.result.result"): _DYNAMICS_RESULT,
-    ("sawdrift.study.bifurcation", "sawdrift.report.bifurcation_plot"): (
-        "bifurcation(figure=True) draws; the fix draws in the caller (cli/study.py, the API docs)"),
     ("sawdrift.dynamics.rigid_bind", "*"): (
         "_namespace imports its own package's modules inside the function; being reworked with "
         "dynamics/rolling.py (uncommitted): import them at the top"),
-    ("sawdrift.lammps.many", "*"): (
-        "lammps/many.py is being reworked (uncommitted): its deferred light imports go to the top"),
 }
 
 

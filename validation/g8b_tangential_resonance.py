@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 import sawdrift as sd
-from sawdrift.dynamics.runner import assemble
+from sawdrift.dynamics.assembly import assemble
 from sawdrift.dynamics.stepper import Stepper
 from sawdrift.validation import Case, CaseResult
 

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..contact.base import ContactHistory
 from ..contact.registry import get_model
-from ..dynamics.runner import prescribed_history
+from ..dynamics.prescribed import prescribed_history
 from ..errors import SceneError
 from ..scene.schema import Prescribed, Scene
 from ..study.progress import counter

@@ -13,7 +13,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from ..dynamics.runner import run
+from ..result.runner import run
 from ..scene.schema import Scene
 from ..study.adaptive import adaptive_sweep, misclassified_area
 from ..study.sweep import sweep

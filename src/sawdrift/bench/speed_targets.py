@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..contact.registry import get_model
-from ..dynamics.runner import run
+from ..result.runner import run
 from ..study.progress import counter
 from ..study.sweep import sweep
 from . import speed_more

@@ -12,8 +12,8 @@ import pandas as pd
 
 from ..contact.registry import get_model
 from ..dynamics.assembly import steps_per_period
-from ..dynamics.runner import run
 from ..errors import NonFiniteStateError
+from ..result.runner import run
 from ..scene.schema import Numerics, Scene
 from .core import (
     WAVE_AMPLITUDE,

@@ -193,12 +193,14 @@ def bifurcation_cmd(
         sd.get_model(name)
     base = scene_from_options(
         scene_arg, named[0] if named else None, _parse_param(param), scene_overrides)
-    from sawdrift.study.bifurcation import bifurcation
+    from sawdrift.report.bifurcation_plot import plot_bifurcation
+    from sawdrift.study.bifurcation import FIGURE, bifurcation
 
     res = bifurcation(base, field, spec, models=named or None, samples=samples,
                       direction=direction, locate=locate, tolerance=tolerance, out=out,
                       workers=workers, scheduler=scheduler, progress=progress, force=force,
                       engine=engine)
+    plot_bifurcation(res, out / FIGURE)
     if as_json:
         typer.echo(json.dumps(res.summary))
         return

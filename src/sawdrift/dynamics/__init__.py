@@ -10,6 +10,8 @@
   scheme generated per drive;
 * :mod:`.stepper` - one integration advanced in segments (and warm starts for continuation);
 * :mod:`.evidence`, :mod:`.window` - what the loops observe (statistics, the event log) and the
-  measuring window read from it;
-* :mod:`.steady` - settling to the steady drift; :mod:`.runner` - a scene to a Result.
+  measuring window read from it; :mod:`.synchrony` and :mod:`.lyapunov` - the window's lift-off
+  synchrony and its chaos (largest Lyapunov exponent);
+* :mod:`.steady` - settling to the steady drift; :mod:`.integrate` - a scene integrated to its
+  measured window (the Result is built by :mod:`sawdrift.result.runner`).
 """

@@ -1,22 +1,25 @@
 """The prescribed-history scheme: a*(t*), b*(t*) fed straight into the contact law, no dynamics.
 
 The contact law alone, as in a displacement-controlled test: each sample advances the committed
-history along a straight path and commits. The result carries the sampled forces and the
-dissipated work, the integral of T* db* over the path (trapezoidal).
+history along a straight path and commits. The run returns the sampled forces and the dissipated
+work, the integral of T* db* over the path (trapezoidal).
 """
 
 from __future__ import annotations
 
-import math
 import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..contact.base import ContactHistory, ContactModel
 from ..errors import NonFiniteStateError
-from ..result.result import Result
 from ..scene.parts import polyline
 from ..scene.schema import Prescribed, Scene
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 
 def prescribed_history(drive: Prescribed) -> tuple[np.ndarray, np.ndarray]:
@@ -42,7 +45,30 @@ def prescribed_history(drive: Prescribed) -> tuple[np.ndarray, np.ndarray]:
     return path([(0.0, 0.0), *zip(a_v.tolist(), b_v.tolist(), strict=True)])
 
 
-def run_prescribed(scene: Scene, model: ContactModel, engine: str) -> Result:
+@dataclass
+class PrescribedRun:
+    """A prescribed history driven through the contact law (see :func:`run_prescribed`).
+
+    Attributes
+    ----------
+    a, b
+        The sampled a*(k), b*(k).
+    frame
+        Columns t (the sample index), a, b, N_star, T_star.
+    dissipated_work
+        The integral of T* db* over the path (trapezoidal).
+    wall_time_s
+        Driving the history.
+    """
+
+    a: np.ndarray
+    b: np.ndarray
+    frame: pd.DataFrame = field(repr=False)
+    dissipated_work: float
+    wall_time_s: float
+
+
+def run_prescribed(scene: Scene, model: ContactModel, engine: str) -> PrescribedRun:
     """Drive ``model`` through the scene's prescribed history (see :func:`prescribed_history`)."""
     drive = scene.drive
     assert isinstance(drive, Prescribed)
@@ -62,29 +88,5 @@ def run_prescribed(scene: Scene, model: ContactModel, engine: str) -> Result:
     # dissipated work: the integral of T* db*, trapezoidal over the sampled path
     work = float(np.sum(0.5 * (t_f[1:] + t_f[:-1]) * np.diff(b))) if a.size > 1 else 0.0
     frame = pd.DataFrame({"t": np.arange(a.size, dtype=float), "a": a, "b": b, "N_star": n_f, "T_star": t_f})
-    nan = math.nan
-    return Result(
-        model=scene.model,
-        engine=engine,
-        m_star=scene.particle.m_star,
-        amplitude=nan,
-        mu=scene.material.mu,
-        nu=scene.material.nu,
-        horizontal_ratio=nan,
-        profile=scene.particle.profile.shape,
-        steps_per_period=0,
-        periods=0.0,
-        ramp_periods=0.0,
-        measure_periods=0,
-        drift_velocity=nan,
-        drift_ratio=nan,
-        regime="prescribed",
-        contact_lost=bool(np.any(a <= 0.0)),
-        out_of_contact_fraction=float(np.mean(a <= 0.0)),
-        min_compression=float(a.min()) if a.size else nan,
-        steps=int(a.size),
-        wall_time_s=time.perf_counter() - t0,
-        scene=scene.model_dump(mode="json"),
-        trajectory=frame,
-        extra={"dissipated_work": work},
-    )
+    return PrescribedRun(a=a, b=b, frame=frame, dissipated_work=work,
+                         wall_time_s=time.perf_counter() - t0)

@@ -14,20 +14,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import NonFiniteStateError
-from ..result.regimes import (
+from . import evidence as ev
+from .lyapunov import (
     ALIGN_PERIODS,
     LYAPUNOV_D0,
     LYAPUNOV_MAX_PERIODS,
     LYAPUNOV_PERIODS,
-    MIN_FLIGHT,
-    Synchrony,
     is_chaotic,
     lyapunov_statistics,
-    synchrony,
 )
-from . import evidence as ev
 from .rolling import psi_from_rest
 from .stepper import Stepper
+from .synchrony import MIN_FLIGHT, Synchrony, synchrony
 
 
 @dataclass
@@ -93,7 +91,7 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = 12, last
 
 def hop_liftoffs(events: np.ndarray, t_start: float, t_end: float,
                  rebounds_only: bool = True) -> np.ndarray:
-    """Times of the lift-offs that count as hops (see :data:`~sawdrift.result.regimes.MIN_FLIGHT`).
+    """Times of the lift-offs that count as hops (see :data:`~sawdrift.dynamics.synchrony.MIN_FLIGHT`).
 
     A flight ends at the next landing, or at ``t_end`` (the window's end) if none follows. With
     ``rebounds_only`` a flight shorter than MIN_FLIGHT is left out only if it is a rebound: its
@@ -230,10 +228,10 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
     """Largest Lyapunov exponent (per period) from the window's start, and whether it is chaos.
 
     :func:`stretching_logs` from the window's snapshot over the window's length (at least
-    :data:`~sawdrift.result.regimes.LYAPUNOV_PERIODS`, at most
-    :data:`~sawdrift.result.regimes.LYAPUNOV_MAX_PERIODS`), judged by
-    :func:`~sawdrift.result.regimes.lyapunov_statistics` and
-    :func:`~sawdrift.result.regimes.is_chaotic`.
+    :data:`~sawdrift.dynamics.lyapunov.LYAPUNOV_PERIODS`, at most
+    :data:`~sawdrift.dynamics.lyapunov.LYAPUNOV_MAX_PERIODS`), judged by
+    :func:`~sawdrift.dynamics.lyapunov.lyapunov_statistics` and
+    :func:`~sawdrift.dynamics.lyapunov.is_chaotic`.
     """
     if window.snapshot is None:
         return math.nan, False

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..dynamics.runner import run
+from ..result.runner import run
 from ..scene.schema import Scene, build_scene
 from .engine import available
 from .single import run_scene

@@ -63,8 +63,11 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from ..dynamics.assembly import steps_per_period
 from ..errors import SawdriftError, SceneError
+from ..result.runner import run
+from ..scene.device import to_si
 from ..scene.parts import format_validation_error
 from ..scene.schema import Scene
+from ..study.progress import counter
 from .engine import INSTALL_HINT, LammpsUnavailableError, load_lammps, mpirun
 from .realize import Realization, realize
 from .single import LONG_RUN, granular_model, wave_variables
@@ -100,8 +103,6 @@ class Particles(BaseModel):
     @field_validator("radius")
     @classmethod
     def _lengths(cls, value: list[float | str]) -> list[float | str]:
-        from ..scene.device import to_si
-
         if len(value) not in (1, 2):
             raise ValueError(f"has {len(value)} values: give one or two radii (one or two species)")
         for item in value:
@@ -118,8 +119,6 @@ class Particles(BaseModel):
 
     def radii_m(self) -> list[float]:
         """The radii in m."""
-        from ..scene.device import to_si
-
         return [to_si(r, "length") for r in self.radius]
 
     def counts(self) -> list[int]:
@@ -427,8 +426,6 @@ def run_particles(scene: Scene, particles: Particles | dict[str, Any], *,
     workdir
         Keep the input, log and dump here (default: a temporary folder).
     """
-    from ..study.progress import counter
-
     spec = particles if isinstance(particles, Particles) else parse_particles(particles)
     check_many(scene)
     real = realize(scene)
@@ -530,8 +527,6 @@ def dilute_prediction(scene: Scene, result: ManyResult) -> list[dict[str, Any]]:
     The single run uses the mixture's steps per period and periods; ``relative_difference`` is
     (V_mixture - V_single) / |V_single| of the drift ratios.
     """
-    from ..dynamics.runner import run
-
     out = []
     for row in result.species:
         sp = Species(row["radius_m"], 0.0, row["a0_m"], row["m_star"], row["amplitude"], row["count"])

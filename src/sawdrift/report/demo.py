@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from ..dynamics.runner import run
+from ..result.runner import run
 from ..scene.schema import Scene
 from ..study.progress import notice
 from ..study.provenance import TableProvenanceError

@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ..dynamics.runner import run  # noqa: E402
+from ..result.runner import run  # noqa: E402
 from ..scene.schema import Scene  # noqa: E402
 from .plots import unsettled_mark  # noqa: E402
 

@@ -10,8 +10,10 @@ workers allow) and marks where the two branches end on different attractors (hys
 ``locate=True`` bisects every change between neighbouring values to a relative tolerance.
 
 Outputs in ``out``: ``bifurcation.parquet`` (one row per sample, the code hash in its metadata as
-for sweep tables), ``bifurcation.json`` (the summary), ``bifurcation.png`` (the figure) and
-``journal/`` (one journal per branch: an interrupted run resumes from it exactly).
+for sweep tables), ``bifurcation.json`` (the summary) and ``journal/`` (one journal per branch: an
+interrupted run resumes from it exactly). The figure is drawn from the result by
+:func:`sawdrift.report.bifurcation_plot.plot_bifurcation` (``sawdrift bifurcation -o`` writes it
+as ``bifurcation.png``, :data:`FIGURE`).
 """
 
 from __future__ import annotations
@@ -149,7 +151,6 @@ def bifurcation(
     force: bool = False,
     engine: str = "compiled",
     transient: int | None = None,
-    figure: bool = True,
     on_value: Callable[[dict[str, Any]], None] | None = None,
 ) -> BifurcationResult:
     """A bifurcation diagram of ``scene`` along ``field`` for one or more models.
@@ -174,9 +175,10 @@ def bifurcation(
         Bisect every change between neighbouring values (of the orbit period, of lift-off, of a
         resting phase) to the relative ``tolerance``.
     out
-        Output folder: ``bifurcation.parquet``, ``bifurcation.json``, ``bifurcation.png`` and the
-        branches' journals; a run stopped and started again resumes. Refused when it holds
-        another diagram or one of other code, unless ``force``.
+        Output folder: ``bifurcation.parquet``, ``bifurcation.json`` and the branches' journals;
+        a run stopped and started again resumes. Refused when it holds another diagram or one
+        of other code, unless ``force``. The figure is drawn apart, by
+        :func:`~sawdrift.report.bifurcation_plot.plot_bifurcation`.
     workers, scheduler
         Local processes for the branches and the refinements (default: all cores; 1 serial),
         or a dask.distributed scheduler address / client.
@@ -187,8 +189,6 @@ def bifurcation(
     transient
         Periods run at each value before its first window (default 100); a value runs on while
         its motion still converges, up to ``numerics.max_periods`` (default: the settle cap).
-    figure
-        Draw ``bifurcation.png`` when ``out`` is given.
     on_value
         Called with every newly computed value's record (``{"i", "value", "point", ...}``).
 
@@ -241,7 +241,7 @@ def bifurcation(
     result = BifurcationResult(table, summary, folder, computed, time.perf_counter() - t0)
     summary["seconds"] = round(result.seconds, 3)  # the computation, before the files
     if folder is not None:
-        _write(folder, result, scene, figure)
+        _write(folder, result, scene)
     return result
 
 
@@ -348,8 +348,8 @@ def _check_table(folder: Path, scene: Scene, force: bool) -> None:
                  json.loads(scene.model_dump_json()), force)
 
 
-def _write(folder: Path, result: BifurcationResult, scene: Scene, figure: bool) -> None:
-    """Write the table (atomically, with provenance metadata), the summary and the figure."""
+def _write(folder: Path, result: BifurcationResult, scene: Scene) -> None:
+    """Write the table (atomically, with provenance metadata) and the summary."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -366,7 +366,3 @@ def _write(folder: Path, result: BifurcationResult, scene: Scene, figure: bool) 
     pq.write_table(arrow.replace_schema_metadata(meta), tmp)
     os.replace(tmp, folder / TABLE)
     (folder / SUMMARY).write_text(json.dumps(s, indent=1) + "\n")
-    if figure:
-        from ..report.bifurcation_plot import plot_bifurcation
-
-        plot_bifurcation(result, folder / FIGURE)

@@ -21,8 +21,8 @@ from typing import Any
 
 import numpy as np
 
+from ..dynamics.assembly import assemble
 from ..dynamics.drives import drive_of
-from ..dynamics.runner import assemble
 from ..dynamics.steady import default_max_periods, relaxation_periods, rolling_frequency
 from ..dynamics.stepper import Stepper, StepperState
 from ..dynamics.window import Window, hop_liftoffs, measure_window, stretching_logs
@@ -262,7 +262,7 @@ def largest_lyapunov(stepper: Stepper, scale: np.ndarray, periods: int, d0: floa
     """Largest Lyapunov exponent per period, renormalized each period (Benettin et al. 1980).
 
     The mean of :func:`~sawdrift.dynamics.window.stretching_logs` after
-    :data:`~sawdrift.result.regimes.ALIGN_PERIODS`: ln |lambda| on a stable periodic orbit,
+    :data:`~sawdrift.dynamics.lyapunov.ALIGN_PERIODS`: ln |lambda| on a stable periodic orbit,
     > 0 on a chaotic one, -inf when an inelastic landing or a sticking phase erases the
     perturbation (a superstable orbit). ``stepper`` itself is not advanced.
     """

@@ -30,8 +30,8 @@ import numpy as np
 
 from ..dynamics.assembly import steps_per_period
 from ..dynamics.drives.two_wave import TwoWaves, field_shift
-from ..dynamics.runner import run
 from ..errors import SceneError
+from ..result.runner import run
 from ..scene.device import device_wavelength, normalized, rayleigh_wavelength
 from ..scene.schema import Scene, Wave, build_scene, set_dotted
 from .executor import Executor

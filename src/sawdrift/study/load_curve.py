@@ -34,8 +34,8 @@ from typing import Any
 import numpy as np
 
 from ..dynamics.drives import drive_of
-from ..dynamics.runner import run
 from ..errors import SceneError
+from ..result.runner import run
 from ..scene.device import normalized
 from ..scene.schema import Scene, Wave
 from .executor import Executor

@@ -28,9 +28,9 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
-from ..dynamics.runner import run
 from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
+from ..result.runner import run
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
 from .axes import parse_axis, parse_values
 from .executor import Executor, resolve_workers

@@ -28,8 +28,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..dynamics.assembly import steps_per_period
-from ..dynamics.runner import run
 from ..errors import SawdriftError
+from ..result.runner import run
 from .journal import records
 
 if TYPE_CHECKING:

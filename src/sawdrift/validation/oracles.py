@@ -68,7 +68,7 @@ def prescribed(model: str, drive: Mapping[str, Any], *, profile: Mapping[str, An
 
     ``drive`` holds the fields of :class:`sawdrift.scene.Prescribed` (``kind`` is added).
     """
-    from ..dynamics.runner import run
+    from ..result.runner import run
     from ..scene.schema import Scene
 
     scene = Scene(model=model, model_params=dict(model_params or {}),

@@ -1,0 +1,193 @@
+"""Integrate one scene and measure it: the dynamics half of a run (the Result is built above).
+
+Compliant models go through the Adams-Bashforth loop of :mod:`sawdrift.dynamics.adams_bashforth`;
+rigid ones through the unilateral-contact scheme of :mod:`sawdrift.dynamics.rigid`; a prescribed
+drive feeds a*(t*), b*(t*) straight into the contact law (:mod:`sawdrift.dynamics.prescribed`).
+Each scheme returns what it measured (:class:`WaveRun`, :class:`ImpactRun`,
+:class:`~sawdrift.dynamics.prescribed.PrescribedRun`); :func:`sawdrift.result.runner.run` names the
+regime and builds the :class:`~sawdrift.result.Result` from it.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..contact.base import ContactModel
+from ..scene.schema import Impact, Scene
+from .assembly import Assembly
+from .steady import (
+    Settling,
+    assess_fixed,
+    default_max_periods,
+    horizontal_inertia,
+    relaxation_periods,
+    rolling_frequency,
+    settle,
+    settles,
+)
+from .stepper import Stepper
+from .window import Window, lyapunov, measure_window
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = ["ImpactRun", "WaveRun", "integrate_impact", "integrate_wave"]
+
+
+@dataclass
+class WaveRun:
+    """A periodic drive's run, integrated to its measuring window and measured.
+
+    Attributes
+    ----------
+    stepper
+        The integration, at the window's end.
+    window
+        What the measuring window saw (drift, contact, slip, lift-offs, events).
+    settling
+        How the drift settled (or was judged, for a fixed run).
+    settle_on
+        Whether the run settled (``numerics.settle``, or its default).
+    speed
+        Amplitude of the horizontal surface speed, 2 pi r A* for the wave.
+    lyapunov, chaotic
+        Largest Lyapunov exponent per period (NaN when contact was kept) and the verdict.
+    hop_period
+        k of the synchronous lift-off pattern; 0 if none or chaotic.
+    compile_s
+        Compilation or compile-cache load before the run, apart from ``wall_time_s``.
+    wall_time_s
+        The integration and its measurements.
+    trajectory
+        The time series when asked for.
+    """
+
+    stepper: Stepper
+    window: Window
+    settling: Settling
+    settle_on: bool
+    speed: float
+    lyapunov: float
+    chaotic: bool
+    hop_period: int
+    compile_s: float
+    wall_time_s: float
+    trajectory: pd.DataFrame | None = field(default=None, repr=False)
+
+
+def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory: bool,
+                   record_every: int | None) -> WaveRun:
+    """Integrate a periodic drive to its measuring window and measure it (see :class:`WaveRun`).
+
+    Settled windows (``numerics.settle``, by default where the drift relaxes within the period
+    cap, :func:`~sawdrift.dynamics.steady.settles`) or the fixed run's last window; the Lyapunov
+    estimate only for windows that lost contact.
+    """
+    num = scene.numerics
+    n_periods = scene.measure_periods()
+    stepper = Stepper(scene, model, plan, trajectory, event_periods=n_periods)
+    compile_s = stepper.warm_up()  # compilation or disk-cache load, reported apart
+    t0 = time.perf_counter()
+    if trajectory and record_every is not None:
+        stepper.rec_every = max(1, int(record_every))
+    drive = plan.drive
+    speed = drive.horizontal_speed(scene)
+    scale = drive.state_scale(scene)
+    settle_on = settles(scene, speed, stepper.rigid)
+    win, settling = _measure(stepper, scene, speed, scale, settle_on)
+    lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
+    if settling is None:
+        settling = assess_fixed(win, speed, num.settle_tolerance,
+                                relaxation_periods(scene, scene.particle.m_star, speed),
+                                stepper.step / stepper.k_per, chaotic)
+    wall = time.perf_counter() - t0
+    return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
+                   speed=speed, lyapunov=lyap, chaotic=chaotic,
+                   hop_period=win.sync.hop_period if not chaotic else 0, compile_s=compile_s,
+                   wall_time_s=wall, trajectory=stepper.trajectory() if trajectory else None)
+
+
+def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
+             settle_on: bool) -> tuple[Window, Settling | None]:
+    """Run to the measuring window and measure it: settled windows (``numerics.settle``, up to
+    the period cap) or the fixed run's last window. The settling is None for a fixed run."""
+    num = scene.numerics
+    n_periods = scene.measure_periods()
+    k_per = stepper.k_per
+    n_measure = n_periods * k_per
+    n_total = max(int(round(num.periods * k_per)), n_measure)
+    m_star = scene.particle.m_star
+    cap = num.max_periods
+    if cap is None:
+        m_x = horizontal_inertia(m_star, stepper.rigid) if settle_on else m_star
+        cap = default_max_periods(m_star, relaxation_periods(scene, m_x, speed), stepper.rigid,
+                                  n_periods, rolling_frequency(scene, m_x))
+    n_max = max(n_total, int(round(cap * k_per)))
+    stepper.advance(n_total - n_measure)
+    if settle_on:
+        return settle(stepper, scene, speed, scale, n_periods, n_max)
+    return measure_window(stepper, n_periods, speed, scale), None
+
+
+@dataclass
+class ImpactRun:
+    """A free normal impact, from first touch until contact is lost (see :func:`integrate_impact`).
+
+    Attributes
+    ----------
+    stepper
+        The integration, one step after the separation (or at the step limit).
+    separated
+        Whether contact was lost within ``numerics.periods``.
+    rebound_ratio
+        |v_out / v_in| of the normal velocity (NaN if not separated).
+    contact_duration
+        Time in contact, in the scene's time unit (NaN if not separated).
+    trajectory
+        Every step, from first touch.
+    wall_time_s
+        The integration.
+    """
+
+    stepper: Stepper
+    separated: bool
+    rebound_ratio: float
+    contact_duration: float
+    trajectory: pd.DataFrame = field(repr=False)
+    wall_time_s: float
+
+
+def integrate_impact(scene: Scene, model: ContactModel, plan: Assembly) -> ImpactRun:
+    """A free normal impact: integrate from first touch until contact is lost again."""
+    drive = scene.drive
+    assert isinstance(drive, Impact)
+    t0 = time.perf_counter()
+    stepper = Stepper(scene, model, plan, record=True, preload=False)
+    stepper.rec_every = 1
+    stepper.y[:4] = (0.0, drive.tangential_velocity, 0.0, drive.velocity)
+    chunk = max(8, stepper.k_per // 8)
+    n_max = int(round(scene.numerics.periods * stepper.k_per))
+    separated = False
+    while stepper.step < n_max and not separated:
+        stepper.advance(chunk)
+        separated = bool(stepper.y[2] < 0.0 and stepper.step > 1)
+    if separated:
+        stepper.advance(1)  # records the first state out of contact (rows are taken before a step)
+    tr = stepper.trajectory()
+    rebound = math.nan
+    duration = math.nan
+    if separated:
+        a = tr["a"].to_numpy()
+        k = int(np.nonzero((a[:-1] > 0.0) & (a[1:] <= 0.0))[0][-1])
+        w = a[k] / (a[k] - a[k + 1])
+        v_out = (1 - w) * tr["vy"].iloc[k] + w * tr["vy"].iloc[k + 1]
+        rebound = float(abs(v_out) / drive.velocity)
+        duration = float((k + w) * stepper.h)
+    return ImpactRun(stepper=stepper, separated=separated, rebound_ratio=rebound,
+                     contact_duration=duration, trajectory=tr,
+                     wall_time_s=time.perf_counter() - t0)

@@ -1,0 +1,119 @@
+"""Lift-off synchrony: does a window's pattern of lift-offs repeat every k wave periods?
+
+A motion that loses contact is *hopping* when its lift-offs repeat every k whole periods (the same
+number n >= 1 of lift-offs in every block of k periods, each of them at a phase that repeats:
+circular resultant length of its phases mod k at least :data:`PHASE_COHERENCE`) and it is not
+chaotic (:mod:`sawdrift.dynamics.lyapunov`); anything else that loses contact is *bouncing*
+(:func:`sawdrift.result.regimes.classify` reads the hop period measured here).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: Minimum circular resultant length of the lift-off phases of a synchronous (hopping) motion.
+#: 0.9 is a circular standard deviation sqrt(-2 ln 0.9) = 0.46 rad = 0.073 of the period.
+PHASE_COHERENCE = 0.9
+
+#: Rebounds shorter than this (in wave periods) that leave the surface within this time of a
+#: landing are left out of the synchrony test: the micro-rebounds of an inelastic collapse are
+#: part of their landing, and their number varies with rounding. A take-off from sustained
+#: contact is a hop however short its flight (just above the onset Gz = 1 the point's flight
+#: lasts ~sqrt(Gz - 1) of a period).
+MIN_FLIGHT = 0.01
+
+#: Largest hop period k (in wave periods) looked for.
+MAX_HOP_PERIOD = 4
+
+
+@dataclass(frozen=True)
+class Synchrony:
+    """Lift-off synchrony of a window (see :func:`synchrony`).
+
+    Attributes
+    ----------
+    hop_period
+        k, the number of wave periods after which the lift-off pattern repeats; 0 if none
+        (k <= :data:`MAX_HOP_PERIOD`).
+    liftoffs_per_hop
+        n, lift-offs in each block of k periods.
+    phase
+        Wave phase t* mod 1 of the block's first lift-off (circular mean over the blocks, in
+        [0, 1)); NaN if none.
+    spread
+        Circular standard deviation sqrt(-2 ln R) of those phases, in fractions of the block.
+    coherence
+        The smallest circular resultant length R over the n lift-off slots.
+    phases
+        Wave phase t* mod 1 of each of the n lift-offs of a block, in the order they occur
+        (each a circular mean over the blocks): the take-off phases of the orbit.
+    """
+
+    hop_period: int
+    liftoffs_per_hop: int
+    phase: float
+    spread: float
+    coherence: float
+    phases: tuple[float, ...] = ()
+
+
+def _circular(phases: np.ndarray) -> tuple[float, float, float]:
+    """(mean phase in [0, 1), resultant length R, circular std in fractions) of phases in [0, 1)."""
+    z = np.exp(2j * math.pi * phases).mean()
+    r = min(float(abs(z)), 1.0)
+    mean = (math.atan2(z.imag, z.real) / (2 * math.pi)) % 1.0
+    spread = math.sqrt(-2.0 * math.log(r)) / (2 * math.pi) if r > 0 else math.inf
+    return mean, r, spread
+
+
+def synchrony(liftoff_times: np.ndarray, t_start: float, periods: int,
+              orbit_period: int = 0) -> Synchrony:
+    """Look for a lift-off pattern that repeats every k whole periods of the window.
+
+    Parameters
+    ----------
+    liftoff_times
+        t* of every lift-off in the window [t_start, t_start + periods).
+    t_start
+        Start of the window, at a whole period.
+    periods
+        Length of the window in wave periods.
+    orbit_period
+        p when the stroboscopic state repeats after p periods (0: not known to): k = p is tried
+        first, so a period-2 orbit whose two take-off phases lie close together is a hop of
+        period 2 with both phases, not a period-1 hop at their mean.
+    """
+    t = np.sort(np.asarray(liftoff_times, dtype=float))
+    none = Synchrony(0, 0, math.nan, math.nan, 0.0)
+    if t.size == 0:
+        return none
+    rel = t - t_start
+    first = [orbit_period] if 1 <= orbit_period <= MAX_HOP_PERIOD else []
+    for k in first + [k for k in range(1, MAX_HOP_PERIOD + 1) if k not in first]:
+        # blocks of k periods start in the middle of the widest gap between lift-off phases,
+        # so a lift-off that jitters about a block boundary is not split between two blocks
+        ps = np.unique((rel / k) % 1.0)
+        gaps = np.diff(np.concatenate([ps, [ps[0] + 1.0]]))
+        g = int(np.argmax(gaps))
+        origin = ((ps[g] + 0.5 * gaps[g]) % 1.0) * k
+        blocks = int(math.floor((periods - origin) / k))
+        if blocks < 3:
+            continue
+        block = np.floor((rel - origin) / k).astype(int)
+        inside = (block >= 0) & (block < blocks)
+        counts = np.bincount(block[inside], minlength=blocks)
+        n = int(counts[0])
+        if n == 0 or not np.all(counts == n):
+            continue
+        phases = ((rel[inside] - origin) / k) % 1.0
+        slots = phases.reshape(blocks, n)
+        stats = [_circular(slots[:, j]) for j in range(n)]
+        coherence = min(s[1] for s in stats)
+        if coherence >= PHASE_COHERENCE:
+            wave = t[inside].reshape(blocks, n) % 1.0
+            phases = tuple(_circular(wave[:, j])[0] for j in range(n))
+            return Synchrony(k, n, phases[0], stats[0][2], coherence, phases)
+    return none

@@ -1,0 +1,164 @@
+"""Run one scene: assemble only what its effects need, integrate, and summarize in a Result.
+
+The dynamics layer integrates and measures (:mod:`sawdrift.dynamics.integrate`, the prescribed
+scheme of :mod:`sawdrift.dynamics.prescribed`); this module names the regime from those
+measurements (:func:`~sawdrift.result.regimes.classify`), adds a device's SI outputs and builds
+the :class:`~sawdrift.result.Result`.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..dynamics.assembly import Engine, assemble
+from ..dynamics.drives import Drive
+from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate_wave
+from ..dynamics.prescribed import PrescribedRun, run_prescribed
+from ..dynamics.window import Window
+from ..scene.device import device_outputs
+from ..scene.schema import Scene
+from .regimes import classify
+from .result import Result
+
+__all__ = ["run"]
+
+
+def run(
+    scene: Scene,
+    *,
+    trajectory: bool = False,
+    engine: Engine = "compiled",
+    record_every: int | None = None,
+) -> Result:
+    """Run ``scene`` and return its :class:`~sawdrift.result.Result`.
+
+    Parameters
+    ----------
+    scene
+        The experiment.
+    trajectory
+        Also return the time series (t, x, vx, y, vy, a, b, N, T) as a DataFrame.
+    engine
+        ``"compiled"`` (numba kernels) or ``"python"`` (the readable reference implementations).
+    record_every
+        Record the trajectory every this many steps (default: about 200 samples per period).
+    """
+    model = scene.model_instance()
+    plan = assemble(scene, engine, model)
+    if plan.scheme == "prescribed":
+        return _prescribed_result(scene, plan.engine, run_prescribed(scene, model, plan.engine))
+    if plan.scheme == "impact":
+        return _impact_result(scene, plan.engine, integrate_impact(scene, model, plan), trajectory)
+    return _wave_result(scene, plan.engine, plan.drive,
+                        integrate_wave(scene, model, plan, trajectory, record_every))
+
+
+def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Result:
+    """The Result of a periodic drive's run: the regime named from the window's evidence."""
+    wave = scene.drive
+    assert hasattr(wave, "amplitude") and hasattr(wave, "ramp_periods")  # any periodic drive
+    win, settling, sync = out.window, out.settling, out.window.sync
+    hop_period = out.hop_period
+    t90 = settling.t90_periods if out.settle_on else math.nan
+    drift_ratio, regime = _regime(scene, drive, win, out.speed, hop_period)
+    extra: dict[str, object] = {}
+    if scene.device is not None:
+        extra.update(device_outputs(scene.device, win.drift, regime, t90 if out.settle_on else None))
+    stepper = out.stepper
+    k_per = stepper.k_per
+    return Result(
+        model=scene.model,
+        engine=engine,
+        m_star=scene.particle.m_star,
+        amplitude=wave.amplitude,
+        mu=scene.material.mu,
+        nu=scene.material.nu,
+        horizontal_ratio=scene.horizontal_ratio,
+        profile=scene.particle.profile.shape,
+        steps_per_period=k_per,
+        periods=stepper.step / k_per,
+        ramp_periods=wave.ramp_periods,
+        measure_periods=win.periods,
+        drift_velocity=win.drift,
+        drift_ratio=drift_ratio,
+        regime=regime,
+        orbit=drive.orbit_name(scene),
+        contact_lost=win.contact_lost,
+        out_of_contact_fraction=win.out_of_contact_fraction,
+        min_compression=win.min_compression,
+        steps=stepper.step,
+        wall_time_s=out.wall_time_s,
+        gross_slip_fraction=win.gross_slip_fraction,
+        liftoffs_per_period=win.liftoffs_per_period,
+        hop_period=hop_period,
+        liftoff_phase=sync.phase,
+        liftoff_phase_spread=sync.spread,
+        lyapunov=out.lyapunov,
+        spin_rate=win.spin_rate,
+        periodicity=win.periodicity,
+        scene=scene.model_dump(mode="json"),
+        trajectory=out.trajectory,
+        event_rows=win.events,
+        chaotic=out.chaotic,
+        events_dropped=win.events_dropped,
+        compile_s=out.compile_s,
+        orbit_period=win.orbit_period,
+        settled=settling.settled,
+        settle_method=settling.method,
+        settle_periods=settling.periods,
+        t90_periods=t90,
+        horizontal_inertia=settling.horizontal_inertia if out.settle_on else math.nan,
+        liftoffs_per_hop=sync.liftoffs_per_hop if hop_period else math.nan,
+        liftoff_phases=sync.phases if hop_period else (),
+        extra=extra,
+    )
+
+
+def _regime(scene: Scene, drive: Drive, win: Window, speed: float,
+            hop_period: int) -> tuple[float, str]:
+    """(drift ratio, regime) of the measured window.
+
+    Without horizontal surface motion (r = 0) the drift ratio is undefined: it is reported as
+    null (nan), and the regime reads the drift against the vertical surface speed instead.
+    """
+    drift_ratio = win.drift_ratio if speed > 0.0 else math.nan
+    vertical = 2.0 * math.pi * drive.vertical_amplitude(scene)
+    ratio_for_regime = (win.drift_ratio if speed > 0.0
+                        else (win.drift / vertical if vertical > 0.0 else 0.0))
+    regime = classify(win.contact_lost, ratio_for_regime, scene.numerics.drift_tolerance,
+                      gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
+    return drift_ratio, regime
+
+
+def _impact_result(scene: Scene, engine: str, out: ImpactRun, trajectory: bool) -> Result:
+    """The Result of a free normal impact: its rebound ratio, contact time and deepest overlap."""
+    nan = math.nan
+    stepper = out.stepper
+    return Result(
+        model=scene.model, engine=engine, m_star=scene.particle.m_star, amplitude=0.0,
+        mu=scene.material.mu, nu=scene.material.nu, horizontal_ratio=nan,
+        profile=scene.particle.profile.shape, steps_per_period=stepper.k_per,
+        periods=stepper.step / stepper.k_per, ramp_periods=0.0, measure_periods=0,
+        drift_velocity=nan, drift_ratio=nan, regime="impact", contact_lost=out.separated,
+        out_of_contact_fraction=nan, min_compression=nan, steps=stepper.step,
+        wall_time_s=out.wall_time_s, scene=scene.model_dump(mode="json"),
+        trajectory=out.trajectory if trajectory else None,
+        extra={"rebound_ratio": out.rebound_ratio, "contact_duration": out.contact_duration,
+               "max_compression": float(out.trajectory["a"].max())},
+    )
+
+
+def _prescribed_result(scene: Scene, engine: str, out: PrescribedRun) -> Result:
+    """The Result of a prescribed history: the sampled forces and the dissipated work."""
+    nan = math.nan
+    a = out.a
+    return Result(
+        model=scene.model, engine=engine, m_star=scene.particle.m_star, amplitude=nan,
+        mu=scene.material.mu, nu=scene.material.nu, horizontal_ratio=nan,
+        profile=scene.particle.profile.shape, steps_per_period=0, periods=0.0, ramp_periods=0.0,
+        measure_periods=0, drift_velocity=nan, drift_ratio=nan, regime="prescribed",
+        contact_lost=bool((a <= 0.0).any()), out_of_contact_fraction=float((a <= 0.0).mean()),
+        min_compression=float(a.min()) if a.size else nan, steps=int(a.size),
+        wall_time_s=out.wall_time_s, scene=scene.model_dump(mode="json"), trajectory=out.frame,
+        extra={"dissipated_work": out.dissipated_work},
+    )
