@@ -12,7 +12,6 @@ from __future__ import annotations
 import base64
 import copy
 import io
-import pickle
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -40,6 +39,10 @@ RECORDS_PER_PERIOD = 200
 #: whenever a loop finds it nearly full, so no event is ever dropped (see :meth:`Stepper.advance`).
 EVENTS_PER_PERIOD = 64
 
+#: Keys of the contact history's snapshot in a :class:`StepperState`
+#: (:meth:`~sawdrift.contact.base.ContactHistory.state`).
+_HISTORY_KEYS = ("fs", "is", "ref")
+
 #: Most event rows one window may hold (7 floats a row: 280 MB); more is an error, not a silent cut.
 MAX_EVENT_ROWS = 5_000_000
 
@@ -50,8 +53,9 @@ class StepperState:
     puts back (mechanical state, step counters, Adams-Bashforth derivative history, contact memory).
 
     ``arrays`` holds ``y``, ``ctr``, with a compliant scheme ``fh``, and the contact history's
-    live state (``fs``, ``is``; or ``ref``, the python reference pickled). :meth:`to_text` and
-    :meth:`from_text` carry it through a JSON journal (base64 of an ``.npz``), bit for bit.
+    snapshot (:meth:`~sawdrift.contact.base.ContactHistory.state`: ``fs``, ``is``; or ``ref``, the
+    python reference pickled). :meth:`to_text` and :meth:`from_text` carry it through a JSON
+    journal (base64 of an ``.npz``), bit for bit.
     """
 
     arrays: dict[str, np.ndarray]
@@ -295,13 +299,8 @@ class Stepper:
         arrays: dict[str, np.ndarray] = {"y": self.y.copy(), "ctr": self.ctr.copy()}
         if not self.rigid:
             arrays["fh"] = self.fh.copy()
-        hist = self.history
-        if hist is not None:
-            if hist._ref is None:
-                nf, ni = hist.model.live_sizes(hist._fs, hist._is)
-                arrays["fs"], arrays["is"] = hist._fs[:nf].copy(), hist._is[:ni].copy()
-            else:
-                arrays["ref"] = np.frombuffer(pickle.dumps(hist._ref), dtype=np.uint8)
+        if self.history is not None:
+            arrays.update(self.history.state())
         return StepperState(arrays)
 
     def restore(self, state: StepperState) -> None:
@@ -311,13 +310,9 @@ class Stepper:
         self.ctr[:] = data["ctr"]
         if "fh" in data:
             self.fh[:] = data["fh"]
-        hist = self.history
-        if hist is not None and "fs" in data:
-            hist._fs[: data["fs"].size] = data["fs"]
-            hist._is[: data["is"].size] = data["is"]
-        elif hist is not None and "ref" in data:
-            hist._ref = pickle.loads(data["ref"].tobytes())  # noqa: S301 - our own snapshot
-            self._bind_history()
+        if self.history is not None:
+            # in place: the loop stays bound to the history (ContactHistory.set_state)
+            self.history.set_state({k: data[k] for k in _HISTORY_KEYS if k in data})
 
     def set_horizontal_inertia(self, m_x: float) -> None:
         """Integrate the horizontal motion with the inertia ``m_x`` (the rotation's follows, kappa
