@@ -25,7 +25,7 @@ from . import evidence as ev
 from . import rigid as rg
 from . import rigid_bind
 from .assembly import assemble
-from .rolling import contact_point, psi_from_rest
+from .rolling import contact_point, integrates_psi, psi_from_rest
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -110,13 +110,14 @@ class Stepper:
         #: c = 1 + 1/kappa with rotation (contact point s = c x from rest), else 0: not computed
         self.roll = named["roll"]
         prm = ig.pack(named)
-        #: the rolling angle psi = R phi / a0 is integrated (state y[4], y[5]): with rolling
-        #: resistance, or under a load (which turns the centre's motion away from s = c x)
-        self.resist = prm[ig.P_RR] > 0.0 or (self.roll > 0.0 and plan.load != 0.0)
+        self.y = np.zeros(ig.N_STATE)
+        #: the rolling angle psi = R phi / a0 is integrated (state y[4], y[5]), as the loops
+        #: decide it (:func:`~.rolling.integrates_psi`): with rolling resistance, or under a load
+        #: (which turns the centre's motion away from s = c x)
+        self.resist = self._integrates_psi(prm)
         self.ev_margin = rg.EV_MARGIN_RIGID if self.rigid else ev.EV_MARGIN
         self.st = ev.new_stats(max(EVENTS_PER_PERIOD * max(1, event_periods) + 64,
                                    2 * self.ev_margin))
-        self.y = np.zeros(ig.N_STATE)
         self.record = record
         self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
         self.rec_chunks: list[np.ndarray] = []
@@ -148,6 +149,11 @@ class Stepper:
                 self.is_ = np.zeros(1, dtype=np.int64)
                 self.loop = ig.wave_loop(normal if self.compiled else normal.py_func, self.drive,
                                          self.compiled)
+
+    def _integrates_psi(self, prm: np.ndarray) -> bool:
+        """Whether the loops integrate psi from the present state, with the parameters ``prm``
+        (the common ones lead both schemes' vectors): :func:`~.rolling.integrates_psi`."""
+        return bool(integrates_psi.py_func(self.roll, prm[ig.P_RR], prm[ig.P_LOAD], self.y))
 
     def _bind_history(self) -> None:
         assert self.history is not None
@@ -253,9 +259,8 @@ class Stepper:
             # the rolling angle starts being integrated: from rest it was psi = (c - 1) x
             new.y[4] = psi_from_rest(self.y[0], new.roll)
             new.y[5] = psi_from_rest(self.y[1], new.roll)
-        elif self.resist and new.roll > 0.0:
-            new.resist = True  # psi, once apart from (c - 1) x, stays integrated (the loops
-            # go on integrating it while it is nonzero)
+        # psi, once apart from (c - 1) x, stays integrated (the loops go on integrating it)
+        new.resist = new._integrates_psi(new.prm)
         if self.rigid:
             return new
         if new.k_per == self.k_per:
