@@ -29,7 +29,8 @@ trial can never corrupt the committed history.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import pickle
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, ClassVar, Protocol
 
@@ -164,6 +165,9 @@ class ReferenceContact(Protocol):
     def force(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
         """Advance along a straight path to (a*, b*), commit, and return (N*, T*)."""
 
+    # Optional: ``state() -> picklable snapshot`` and ``set_state(snapshot)`` (in place), as
+    # :class:`KernelReference` has; without them ContactHistory.state pickles the whole object.
+
 
 class ContactModel:
     """Base class of every contact model plugin.
@@ -287,6 +291,7 @@ class KernelReference:
             reset = getattr(model.kernel.reset, "py_func", model.kernel.reset)
             force = getattr(model.kernel.force, "py_func", model.kernel.force)
         self._reset, self._force = reset, force
+        self._model = model
         self.fs = np.zeros(nf, dtype=np.float64)
         self.is_ = np.zeros(ni, dtype=np.int64)
         self.pp = model.packed_params()
@@ -300,6 +305,31 @@ class KernelReference:
         """Advance along a straight path to (a*, b*), commit, return (N*, T*)."""
         n, t = self._force(self.fs, self.is_, self.pp, float(a), float(b), float(adot), float(bdot))
         return float(n), float(t)
+
+    def state(self) -> dict[str, Any]:
+        """A snapshot of the committed history: copies of the live part of the state arrays.
+
+        Returns
+        -------
+        dict
+            ``{"fs": ..., "is": ...}``, the leading entries :meth:`ContactModel.live_sizes`
+            counts (the rest is never read before it is written); picklable, :meth:`set_state`
+            puts it back. A subclass whose functions keep state elsewhere adds it.
+        """
+        nf, ni = self._model.live_sizes(self.fs, self.is_)
+        return {"fs": self.fs[:nf].copy(), "is": self.is_[:ni].copy()}
+
+    def set_state(self, state: Mapping[str, Any]) -> None:
+        """Put back a snapshot of :meth:`state` (same model), in place.
+
+        Parameters
+        ----------
+        state
+            What :meth:`state` returned on a reference of the same model.
+        """
+        fs, is_ = np.asarray(state["fs"]), np.asarray(state["is"])
+        self.fs[: fs.size] = fs
+        self.is_[: is_.size] = is_
 
 
 class ContactHistory:
@@ -355,16 +385,77 @@ class ContactHistory:
 
         An integrator loop calls ``force(fs, is_, pp, a, b, adot, bdot)`` and thereby advances
         this history. For the python engine ``force`` drives the reference and the arrays are
-        placeholders.
+        placeholders. The call stays bound to this history across :meth:`set_state`.
         """
         if self._ref is None:
             return self.model.kernel.force, self._fs, self._is, self._pp
-        ref = self._ref
+        history = self
 
         def force(fs, is_, pp, a, b, adot, bdot):
-            return ref.force(a, b, adot, bdot)
+            # the reference this history holds at the call (set_state may replace it)
+            return history._ref.force(a, b, adot, bdot)
 
         return force, np.zeros(1), np.zeros(1, dtype=np.int64), np.zeros(1)
+
+    def state(self) -> dict[str, np.ndarray]:
+        """A snapshot of the committed history, as arrays (copies): :meth:`set_state` puts it back.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            For the compiled engine ``{"fs": ..., "is": ...}``, the live part of the float64 and
+            int64 state arrays (:meth:`ContactModel.live_sizes`); for the python engine
+            ``{"ref": ...}``, as uint8 the pickle of the reference contact's own snapshot
+            (its ``state()``, which :class:`KernelReference` has) or, for a reference without
+            one, of the reference itself. Either goes through ``numpy.savez`` and back bit for
+            bit (the bifurcation journals keep it as text).
+        """
+        if self._ref is None:
+            nf, ni = self.model.live_sizes(self._fs, self._is)
+            return {"fs": self._fs[:nf].copy(), "is": self._is[:ni].copy()}
+        own = getattr(self._ref, "state", None)
+        snapshot = own() if callable(own) else self._ref
+        return {"ref": np.frombuffer(pickle.dumps(snapshot), dtype=np.uint8)}
+
+    def set_state(self, state: Mapping[str, np.ndarray]) -> None:
+        """Put back a snapshot of :meth:`state`, taken on a history of the same model and engine.
+
+        The compiled engine's arrays and the python engine's reference (by its ``set_state``)
+        are written in place; a reference without one is replaced. A :meth:`kernel_call` taken
+        before thus goes on driving this history, and advancing from here continues bit for bit
+        as the history the snapshot was taken of would have.
+
+        Parameters
+        ----------
+        state
+            The mapping :meth:`state` returned (or its arrays read back from ``numpy.savez``).
+
+        Raises
+        ------
+        ValueError
+            If the snapshot is of the other engine, or larger than this history's state arrays.
+        """
+        if self._ref is None:
+            if "fs" not in state or "is" not in state:
+                raise ValueError("a compiled contact history needs a snapshot with 'fs' and 'is' "
+                                 f"(got {sorted(state)})")
+            fs, is_ = np.asarray(state["fs"]), np.asarray(state["is"])
+            if fs.size > self._fs.size or is_.size > self._is.size:
+                raise ValueError(f"a contact snapshot of sizes ({fs.size}, {is_.size}) does not fit "
+                                 f"the state arrays ({self._fs.size}, {self._is.size}) of "
+                                 f"model {self.model.name!r}")
+            self._fs[: fs.size] = fs
+            self._is[: is_.size] = is_
+            return
+        if "ref" not in state:
+            raise ValueError("a python-engine contact history needs a snapshot with 'ref' "
+                             f"(got {sorted(state)})")
+        snapshot = pickle.loads(np.asarray(state["ref"]).tobytes())  # noqa: S301 - our snapshot
+        own = getattr(self._ref, "set_state", None)
+        if callable(own):
+            own(snapshot)  # in place: the reference's composed functions stay bound to it
+        else:
+            self._ref = snapshot
 
     def trial(self, a: float, b: float, adot: float = 0.0, bdot: float = 0.0) -> tuple[float, float]:
         """The forces ``advance`` would return, computed on a copy: the history is unchanged."""

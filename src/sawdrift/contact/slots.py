@@ -400,8 +400,7 @@ class SlotReference(KernelReference):
         elif readable is not None:
             step, reset = readable
         ns = _python_namespace(_py(step), _py(reset), _py(damp), cap)
-        super().__init__(model, ns["contact_reset"], ns["contact_force"])
-        self._model = model
+        super().__init__(model, ns["contact_reset"], ns["contact_force"])  # keeps the model
 
     def __deepcopy__(self, memo: dict) -> SlotReference:
         """An independent copy: its composed functions call its own readable reference.
@@ -419,3 +418,21 @@ class SlotReference(KernelReference):
         new.is_[:] = self.is_
         new.pp = self.pp.copy()
         return new
+
+    def state(self) -> dict[str, Any]:
+        """A snapshot of the committed history: the state arrays and the readable's state.
+
+        The readable reference's attributes are its state (as for :meth:`__deepcopy__`); the
+        composed functions are not part of it, so the snapshot pickles.
+        """
+        out = super().state()
+        if self.readable is not None:
+            out["readable"] = copy.deepcopy(self.readable.__dict__)
+        return out
+
+    def set_state(self, state: dict[str, Any]) -> None:
+        """Put back a snapshot of :meth:`state` in place (the composed functions call this
+        reference's readable object, which therefore stays the same object)."""
+        super().set_state(state)
+        if self.readable is not None:
+            self.readable.__dict__.update(copy.deepcopy(state["readable"]))

@@ -12,7 +12,6 @@ from __future__ import annotations
 import base64
 import copy
 import io
-import pickle
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -26,7 +25,7 @@ from . import evidence as ev
 from . import rigid as rg
 from . import rigid_bind
 from .assembly import assemble
-from .rolling import contact_point, psi_from_rest
+from .rolling import contact_point, integrates_psi, psi_from_rest
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -40,6 +39,10 @@ RECORDS_PER_PERIOD = 200
 #: whenever a loop finds it nearly full, so no event is ever dropped (see :meth:`Stepper.advance`).
 EVENTS_PER_PERIOD = 64
 
+#: Keys of the contact history's snapshot in a :class:`StepperState`
+#: (:meth:`~sawdrift.contact.base.ContactHistory.state`).
+_HISTORY_KEYS = ("fs", "is", "ref")
+
 #: Most event rows one window may hold (7 floats a row: 280 MB); more is an error, not a silent cut.
 MAX_EVENT_ROWS = 5_000_000
 
@@ -50,8 +53,9 @@ class StepperState:
     puts back (mechanical state, step counters, Adams-Bashforth derivative history, contact memory).
 
     ``arrays`` holds ``y``, ``ctr``, with a compliant scheme ``fh``, and the contact history's
-    live state (``fs``, ``is``; or ``ref``, the python reference pickled). :meth:`to_text` and
-    :meth:`from_text` carry it through a JSON journal (base64 of an ``.npz``), bit for bit.
+    snapshot (:meth:`~sawdrift.contact.base.ContactHistory.state`: ``fs``, ``is``; or ``ref``, the
+    python reference pickled). :meth:`to_text` and :meth:`from_text` carry it through a JSON
+    journal (base64 of an ``.npz``), bit for bit.
     """
 
     arrays: dict[str, np.ndarray]
@@ -106,13 +110,14 @@ class Stepper:
         #: c = 1 + 1/kappa with rotation (contact point s = c x from rest), else 0: not computed
         self.roll = named["roll"]
         prm = ig.pack(named)
-        #: the rolling angle psi = R phi / a0 is integrated (state y[4], y[5]): with rolling
-        #: resistance, or under a load (which turns the centre's motion away from s = c x)
-        self.resist = prm[ig.P_RR] > 0.0 or (self.roll > 0.0 and plan.load != 0.0)
+        self.y = np.zeros(ig.N_STATE)
+        #: the rolling angle psi = R phi / a0 is integrated (state y[4], y[5]), as the loops
+        #: decide it (:func:`~.rolling.integrates_psi`): with rolling resistance, or under a load
+        #: (which turns the centre's motion away from s = c x)
+        self.resist = self._integrates_psi(prm)
         self.ev_margin = rg.EV_MARGIN_RIGID if self.rigid else ev.EV_MARGIN
         self.st = ev.new_stats(max(EVENTS_PER_PERIOD * max(1, event_periods) + 64,
                                    2 * self.ev_margin))
-        self.y = np.zeros(ig.N_STATE)
         self.record = record
         self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
         self.rec_chunks: list[np.ndarray] = []
@@ -144,6 +149,11 @@ class Stepper:
                 self.is_ = np.zeros(1, dtype=np.int64)
                 self.loop = ig.wave_loop(normal if self.compiled else normal.py_func, self.drive,
                                          self.compiled)
+
+    def _integrates_psi(self, prm: np.ndarray) -> bool:
+        """Whether the loops integrate psi from the present state, with the parameters ``prm``
+        (the common ones lead both schemes' vectors): :func:`~.rolling.integrates_psi`."""
+        return bool(integrates_psi.py_func(self.roll, prm[ig.P_RR], prm[ig.P_LOAD], self.y))
 
     def _bind_history(self) -> None:
         assert self.history is not None
@@ -249,9 +259,8 @@ class Stepper:
             # the rolling angle starts being integrated: from rest it was psi = (c - 1) x
             new.y[4] = psi_from_rest(self.y[0], new.roll)
             new.y[5] = psi_from_rest(self.y[1], new.roll)
-        elif self.resist and new.roll > 0.0:
-            new.resist = True  # psi, once apart from (c - 1) x, stays integrated (the loops
-            # go on integrating it while it is nonzero)
+        # psi, once apart from (c - 1) x, stays integrated (the loops go on integrating it)
+        new.resist = new._integrates_psi(new.prm)
         if self.rigid:
             return new
         if new.k_per == self.k_per:
@@ -295,13 +304,8 @@ class Stepper:
         arrays: dict[str, np.ndarray] = {"y": self.y.copy(), "ctr": self.ctr.copy()}
         if not self.rigid:
             arrays["fh"] = self.fh.copy()
-        hist = self.history
-        if hist is not None:
-            if hist._ref is None:
-                nf, ni = hist.model.live_sizes(hist._fs, hist._is)
-                arrays["fs"], arrays["is"] = hist._fs[:nf].copy(), hist._is[:ni].copy()
-            else:
-                arrays["ref"] = np.frombuffer(pickle.dumps(hist._ref), dtype=np.uint8)
+        if self.history is not None:
+            arrays.update(self.history.state())
         return StepperState(arrays)
 
     def restore(self, state: StepperState) -> None:
@@ -311,13 +315,9 @@ class Stepper:
         self.ctr[:] = data["ctr"]
         if "fh" in data:
             self.fh[:] = data["fh"]
-        hist = self.history
-        if hist is not None and "fs" in data:
-            hist._fs[: data["fs"].size] = data["fs"]
-            hist._is[: data["is"].size] = data["is"]
-        elif hist is not None and "ref" in data:
-            hist._ref = pickle.loads(data["ref"].tobytes())  # noqa: S301 - our own snapshot
-            self._bind_history()
+        if self.history is not None:
+            # in place: the loop stays bound to the history (ContactHistory.set_state)
+            self.history.set_state({k: data[k] for k in _HISTORY_KEYS if k in data})
 
     def set_horizontal_inertia(self, m_x: float) -> None:
         """Integrate the horizontal motion with the inertia ``m_x`` (the rotation's follows, kappa

@@ -15,13 +15,13 @@ from typing import Annotated, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from .normal_law import law_normal, law_slope, read_table, table_descriptor
+
 _NAMED_EXPONENTS = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}
 
 
 @lru_cache(maxsize=32)
 def _table_law(path: str, mtime_ns: int) -> tuple[float, ...]:  # noqa: ARG001 - cache key
-    from ..contact.normal import read_table, table_descriptor
-
     a, n = read_table(path)
     return tuple(table_descriptor(a, n).tolist())
 
@@ -70,7 +70,7 @@ class Profile(BaseModel):
         return _NAMED_EXPONENTS[self.shape]
 
     def law(self) -> np.ndarray:
-        """The normal-law descriptor of :mod:`sawdrift.contact.normal` (``[p]`` for a power law)."""
+        """The normal-law descriptor of :mod:`.normal_law` (``[p]`` for a power law)."""
         if self.shape != "table":
             return np.array([self.p], dtype=np.float64)
         path = Path(self.file or "")
@@ -85,9 +85,7 @@ def normal_force(a: float, law: float | np.ndarray) -> float:
     """N*(a*) for a* > 0, else 0; ``law`` is an exponent p or a normal-law descriptor."""
     if np.ndim(law) == 0:
         return a ** float(law) if a > 0.0 else 0.0
-    from ..contact.normal import law_normal
-
-    return float(law_normal.py_func(a, law, 0))
+    return float(law_normal(a, law, 0))
 
 
 def normal_stiffness(a: float, law: float | np.ndarray) -> float:
@@ -95,6 +93,4 @@ def normal_stiffness(a: float, law: float | np.ndarray) -> float:
     if np.ndim(law) == 0:
         p = float(law)
         return p * a ** (p - 1.0) if a > 0.0 else 0.0
-    from ..contact.normal import law_slope
-
-    return float(law_slope.py_func(a, law, 0))
+    return float(law_slope(a, law, 0))
