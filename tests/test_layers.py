@@ -67,16 +67,12 @@ HEAVY = frozenset({
 _SCENE_CONTACT = ("the scene validates and describes itself through the contact registry (model "
                   "parameters, rigid or compliant); the fix moves that check up to the contact layer "
                   "(the registry validates a Scene's model_params) and leaves scene.schema the fields")
-_PROFILE_LAW = ("a Profile evaluates its normal law with contact.normal (read_table, table_descriptor, "
-                "law_normal/law_slope.py_func); the fix moves the table reader and the python law "
-                "into scene.profiles, and contact.normal compiles them")
 PENDING: dict[tuple[str, str], str] = {
     ("sawdrift.scene.schema", "sawdrift.contact.registry"): _SCENE_CONTACT,
     ("sawdrift.scene.overrides", "sawdrift.contact.registry"): _SCENE_CONTACT,
     ("sawdrift.scene.overrides", "sawdrift.scene.schema"): (
         "check_known_fields defaults to the Scene schema, which imports overrides; the fix moves "
         "the field checks beside Scene (scene.schema) or makes callers pass the schema"),
-    ("sawdrift.scene.profiles", "sawdrift.contact.normal"): _PROFILE_LAW,
     ("sawdrift.dynamics.rigid_bind", "*"): (
         "_namespace imports its own package's modules inside the function; being reworked with "
         "dynamics/rolling.py (uncommitted): import them at the top"),

@@ -86,11 +86,12 @@ class MemoryDiagramModel(TangentialLaw):
     @staticmethod
     def memory_points(history: ContactHistory) -> np.ndarray:
         """The committed memory points of ``history`` as a (k, 2) array of (z, v)."""
-        if history._ref is not None:
-            return np.array(history._ref.readable.kinks, dtype=np.float64).reshape(-1, 2)
+        if history.reference is not None:
+            return np.array(history.reference.readable.kinks, dtype=np.float64).reshape(-1, 2)
         from . import mmd_kernel
 
-        return mmd_kernel.memory_points(history._fs[HEADER:], history._is)
+        state = history.state()
+        return mmd_kernel.memory_points(state["fs"][HEADER:], state["is"])
 
 
 @hookimpl

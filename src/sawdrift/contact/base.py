@@ -380,6 +380,11 @@ class ContactHistory:
         n, t = self.model.kernel.force(self._fs, self._is, self._pp, a, b, adot, bdot)
         return float(n), float(t)
 
+    @property
+    def reference(self) -> ReferenceContact | None:
+        """The python engine's live reference contact (its readable state); None when compiled."""
+        return self._ref
+
     def kernel_call(self) -> tuple[Callable[..., tuple[float, float]], np.ndarray, np.ndarray, np.ndarray]:
         """``(force, fs, is_, pp)``: this history behind the kernel's call signature.
 
