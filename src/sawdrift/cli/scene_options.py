@@ -113,7 +113,8 @@ def _check_keys(scene_file: Path, model: str | None) -> None:
     """
     import tomllib
 
-    from ..scene.overrides import check_known_fields, check_model_params
+    from ..scene.overrides import check_model_params
+    from ..scene.schema import check_known_fields
 
     try:
         data = tomllib.loads(Path(scene_file).read_text(encoding="utf-8"))

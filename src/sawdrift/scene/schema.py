@@ -4,12 +4,16 @@ All quantities are the normalized ones of docs/physics.md (paper eq. 4-5): t* = 
 wave period is one unit of t*; m* = a0 m f^2 / (M g); A* = A_y / a0. The parts (material,
 particle, drives, numerics, effects) are in :mod:`sawdrift.scene.parts`; a ``[device]`` table in
 physical units is converted by :mod:`sawdrift.scene.device` under the rule of
-:mod:`sawdrift.scene.overrides`, on every path that makes a Scene.
+:mod:`sawdrift.scene.overrides`, on every path that makes a Scene. Beside the Scene are the
+checks of field names (:func:`check_known_fields`, with the nearest valid name) and
+:func:`apply_overrides`, which sets dotted fields.
 """
 
 from __future__ import annotations
 
 import tomllib
+import typing
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -27,7 +31,7 @@ from pydantic import (
 
 from ..errors import SceneError
 from .device import Device
-from .overrides import DERIVED, apply_device, apply_overrides, strip_derived
+from .overrides import DERIVED, apply_device, nearest, plain_section, strip_derived
 from .parts import (
     FROZEN,
     Biharmonic,
@@ -49,8 +53,8 @@ from .rayleigh import rayleigh_ratio, theta
 
 __all__ = [
     "Biharmonic", "Effects", "Impact", "Material", "NonNegative", "Numerics", "Particle", "Positive",
-    "Prescribed", "Scene", "Wave", "apply_overrides", "bounded", "build_scene",
-    "format_validation_error", "get_dotted", "set_dotted",
+    "Prescribed", "Scene", "Wave", "apply_overrides", "bounded", "build_scene", "check_dotted",
+    "check_known_fields", "format_validation_error", "get_dotted", "set_dotted",
 ]
 
 
@@ -285,3 +289,112 @@ def build_scene(data: dict[str, Any], source: str | None = None) -> Scene:
         return Scene.model_validate(data)
     except ValidationError as exc:
         raise SceneError(format_validation_error(exc, source)) from None
+
+
+# -- the fields of a scene, by name: checks and dotted overrides -------------------------------
+
+#: tables of a scene file that another command reads, not the Scene
+_ELSEWHERE = {"particles": "a [particles] table (many spheres) is read by `sawdrift lammps` only"}
+
+
+def _models_in(annotation: Any) -> list[type[BaseModel]]:
+    """The pydantic models an annotation can hold (through Optional, Union and Annotated)."""
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return [annotation]
+    found: list[type[BaseModel]] = []
+    for arg in typing.get_args(annotation):
+        for cls in _models_in(arg):
+            if cls not in found:
+                found.append(cls)
+    return found
+
+
+def check_known_fields(data: Mapping[str, Any], source: str | None = None,
+                       models: list[type[BaseModel]] | None = None, prefix: str = "") -> None:
+    """Raise a one-line SceneError naming the first key of ``data`` that is no scene field.
+
+    Walks the Scene schema (``[device.particle]`` and the drives included), or ``models``, and
+    suggests the nearest valid name of the same table: ``particle.m_stra is not a known field;
+    did you mean 'm_star'?``. Values are not checked here (the schema does that);
+    ``model_params`` belong to the model and are checked against it by
+    :func:`sawdrift.contact.binding.check_model_params`.
+    """
+    fields: dict[str, Any] = {}
+    for cls in models if models is not None else [Scene]:
+        for name, info in cls.model_fields.items():
+            fields.setdefault(name, []).append(info.annotation)
+    where = f"{source}: " if source else ""
+    for key, value in data.items():
+        path = f"{prefix}{key}"
+        if key not in fields:
+            if path in _ELSEWHERE:
+                raise SceneError(f"{where}{path} is not a scene field: {_ELSEWHERE[path]}")
+            raise SceneError(f"{where}{path} is not a known field{nearest(str(key), list(fields))}")
+        if path == "model_params" or not isinstance(value, Mapping):
+            continue
+        inner = [cls for ann in fields[key] for cls in _models_in(ann)]
+        if inner:
+            check_known_fields(value, source, inner, f"{path}.")
+
+
+def check_dotted(dotted: str, source: str | None = None) -> None:
+    """:func:`check_known_fields` for one dotted field (``"material.mu"``, an ``--axis``)."""
+    node: Any = None
+    for key in reversed(dotted.split(".")):
+        node = {key: node}
+    check_known_fields(node, source)
+
+
+def apply_overrides(data: Mapping[str, Any] | BaseModel,
+                    overrides: Mapping[str, Any]) -> dict[str, Any]:
+    """A scene dict with dotted-path ``overrides`` set, by the rule for device scenes.
+
+    This is the one function the command line and the sweeps use to set scene fields:
+    ``apply_overrides(scene_dict, {"particle.m_star": 2.0, "device.amplitude": "5 nm"})``.
+    Validate the result with :func:`sawdrift.scene.build_scene`. The rule for device scenes is
+    :mod:`sawdrift.scene.overrides`'.
+
+    Parameters
+    ----------
+    data
+        A scene as a nested dict (TOML, ``model_dump``) or a Scene; it is not changed.
+    overrides
+        Dotted field paths and their values; None values are skipped. On a device scene a
+        derived field may only repeat the device's value (``drive.orbit = "retrograde"`` on a
+        retrograde device); any other value is an error.
+
+    Returns
+    -------
+    dict
+        A new nested dict. For a device scene its derived fields are left out (they are derived
+        again, from the possibly new device fields, when the dict is validated).
+
+    Raises
+    ------
+    SceneError
+        One line naming the field: a field the Scene does not have (with the nearest one); on a
+        device scene (one with a ``device`` table, in ``data`` or among the overrides) a derived
+        field set to another value than the device derives names the device field to set
+        instead; a bad device field names its unit.
+    """
+    if isinstance(data, BaseModel):
+        out: dict[str, Any] = data.model_dump(exclude_none=True)
+    else:
+        out = {key: plain_section(value) for key, value in data.items()}
+    if out.get("device") is not None:
+        # check the given scene against its own device, then drop what the device derives: the
+        # overrides may change the device
+        out = strip_derived(apply_device(out))
+    for key, value in overrides.items():
+        if value is None:
+            continue
+        try:
+            set_dotted(out, key, value)
+        except (AttributeError, TypeError):
+            raise SceneError(f"{key} is not a known field: {key.rsplit('.', 1)[0]} is not a "
+                             "table") from None
+    for key in overrides:
+        check_dotted(key)  # a misspelled field is named with the nearest one
+    if out.get("device") is not None:
+        out = strip_derived(apply_device(out))  # an overridden derived field must agree
+    return out
