@@ -27,7 +27,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from ..errors import SawdriftError, SceneError
+from ..errors import SceneError
 from .device import FIELD_KIND, UNITS, Device, normalized
 from .parts import format_validation_error, get_dotted, set_dotted
 from .profiles import Profile
@@ -175,22 +175,3 @@ def nearest(key: str, known: list[str], listing: bool = True) -> str:
     if close:
         return f"; did you mean {close[0]!r}?"
     return f" (known: {', '.join(sorted(known))})" if known and listing else ""
-
-
-def check_model_params(model: str, params: Mapping[str, Any], source: str | None = None) -> None:
-    """A one-line SceneError for a parameter ``model`` does not take, with the nearest name.
-
-    An unknown model is left to the registry's own error.
-    """
-    try:
-        from ..contact.registry import get_model
-
-        known = list(get_model(model).Params.model_fields)
-    except (SawdriftError, ImportError, AttributeError):
-        return
-    where = f"{source}: " if source else ""
-    for key in params:
-        if key not in known:
-            raise SceneError(f"{where}model_params.{key} is not a known parameter of model "
-                             f"{model!r}{nearest(str(key), known, False)} (it takes: "
-                             f"{', '.join(known) or 'none'})")

@@ -6,7 +6,8 @@ particle, drives, numerics, effects) are in :mod:`sawdrift.scene.parts`; a ``[de
 physical units is converted by :mod:`sawdrift.scene.device` under the rule of
 :mod:`sawdrift.scene.overrides`, on every path that makes a Scene. Beside the Scene are the
 checks of field names (:func:`check_known_fields`, with the nearest valid name) and
-:func:`apply_overrides`, which sets dotted fields.
+:func:`apply_overrides`, which sets dotted fields. The scene knows no contact model: its
+``model`` and ``model_params`` are checked one layer up, by :func:`sawdrift.contact.binding.bind`.
 """
 
 from __future__ import annotations
@@ -68,7 +69,11 @@ def _drive_kind(value: Any) -> str:
 class Scene(BaseModel):
     """One experiment: material, particle, drive, numerics, effects, and the contact model.
 
-    The model's parameters are validated by the model's own ``Params`` schema.
+    ``model`` names a registered contact model and ``model_params`` are its parameters, held as
+    given: the scene knows no contact model. :func:`sawdrift.contact.binding.bind` checks them
+    against the model's own ``Params`` schema and capabilities and fills the defaults; every
+    path that runs a scene (:func:`sawdrift.run`, the sweeps and studies, the command line)
+    binds it first.
     """
 
     model_config = FROZEN
@@ -110,43 +115,9 @@ class Scene(BaseModel):
         return out
 
     @model_validator(mode="after")
-    def _model_schema(self) -> Scene:
-        from ..contact.registry import get_model
-
-        cls = get_model(self.model)
-        try:
-            params = cls.Params.model_validate(self.model_params)
-        except ValidationError as exc:
-            line = format_validation_error(exc)
-            known = ", ".join(cls.Params.model_fields) or "no parameters"
-            raise ValueError(f"model_params.{line} (model {self.model!r} takes: {known})") from None
-        object.__setattr__(self, "model_params", params.model_dump())
-        shape = self.particle.profile.shape
-        if shape not in cls.capabilities.profiles:
-            raise ValueError(
-                f"model {self.model!r} does not support profile {shape!r}; it supports "
-                + ", ".join(cls.capabilities.profiles)
-            )
-        rigid = cls.capabilities.rigid
+    def _consistent(self) -> Scene:
+        # checks that need no contact model; the model's are sawdrift.contact.binding.bind's
         eff = self.effects
-        if isinstance(self.drive, (Prescribed, Impact)) and rigid:
-            raise ValueError(
-                f"model {self.model!r} is rigid: a {self.drive.kind} drive needs a compliant model"
-            )
-        if not eff.vertical_inertia and not rigid:
-            raise ValueError(
-                "effects.vertical_inertia = false applies to a rigid point only; a compliant "
-                f"model ({self.model!r}) gets its normal force from the contact compression"
-            )
-        if eff.normal_damping > 0.0 and rigid:
-            raise ValueError(
-                f"effects.normal_damping needs a compliant model; {self.model!r} is rigid"
-            )
-        if eff.rolling_resistance > 0.0 and (rigid or not eff.rotation):
-            raise ValueError(
-                "effects.rolling_resistance needs effects.rotation = true and a compliant model"
-                + (f"; {self.model!r} is rigid" if rigid else "")
-            )
         kappa = self.particle.gyration
         if not eff.rotation and kappa != Particle.model_fields["gyration"].default:
             raise ValueError(
@@ -173,30 +144,6 @@ class Scene(BaseModel):
         if isinstance(drive, Wave) and drive.horizontal_ratio is not None:
             return drive.horizontal_ratio
         return rayleigh_ratio(self.material.nu)
-
-    @property
-    def body(self) -> str:
-        """What the particle is, in a few words: a rigid model with rotation is a rigid sphere.
-
-        ``rigid point`` (a rigid model, not turning), ``rigid sphere turning, kappa = ...``,
-        or the compliant profile (``sphere``, ``cone``, ...), turning or not.
-        """
-        from ..contact.registry import get_model
-
-        kappa = self.particle.gyration
-        turning = f"turning, kappa = {kappa:g}" if self.effects.rotation else "not turning"
-        if get_model(self.model).capabilities.rigid:
-            return f"rigid sphere, {turning}" if self.effects.rotation else "rigid point"
-        profile = self.particle.profile
-        shape = "flat punch" if profile.shape == "flat" else profile.shape
-        return f"compliant {shape} (N* = a*^p, p = {profile.p:g}), {turning}"
-
-    def model_instance(self):
-        """The configured ContactModel instance."""
-        from ..contact.registry import get_model
-
-        cls = get_model(self.model)
-        return cls(cls.Params.model_validate(self.model_params), self.particle.profile)
 
     def measure_periods(self) -> int:
         """Whole periods at the end of the run over which the drift is averaged."""
@@ -278,8 +225,9 @@ def _drop_none(obj: Any) -> Any:
 def build_scene(data: dict[str, Any], source: str | None = None) -> Scene:
     """Validate a nested dict into a Scene; errors become a one-line SceneError.
 
-    A ``device`` table is converted by the rule of :mod:`sawdrift.scene.overrides`. A
-    SawdriftError raised inside validation (an unknown model) passes through unchanged.
+    A ``device`` table is converted by the rule of :mod:`sawdrift.scene.overrides`. The contact
+    model is not looked at here: :func:`sawdrift.contact.binding.bind` checks ``model`` and
+    ``model_params`` against it (and fills the defaults) before a scene runs.
     """
     try:
         data = apply_device(data)
