@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from sawdrift.contact.binding import model_for
 from sawdrift.dynamics.assembly import assemble, explain
 from sawdrift.dynamics.stepper import Stepper
 from sawdrift.errors import SceneError
@@ -61,7 +62,7 @@ def test_free_fall_reaches_the_terminal_velocity():
     c, m = 2.0, 0.1
     scene = Scene(model="mmd", particle={"m_star": m}, drive={"amplitude": 0.0},
                   effects={"air_drag": c})
-    model = scene.model_instance()
+    model = model_for(scene)
     stepper = Stepper(scene, model, assemble(scene, "compiled", model), record=False)
     stepper.y[2] = -1e3
     half = stepper.k_per // 2

@@ -11,7 +11,7 @@ from sawdrift.dynamics.stepper import Stepper
 
 
 def _stepper(scene: sd.Scene) -> Stepper:
-    model = scene.model_instance()
+    model = sd.model_for(scene)
     return Stepper(scene, model, assemble(scene, "compiled", model), record=False)
 
 

@@ -132,7 +132,7 @@ def test_the_loop_runs_with_the_parameters_the_assembly_prints():
     for data in ({"particle": {"load": 0.02}, "effects": {"rotation": True}},
                  {"model": "material_point", "effects": {"rotation": True}}):
         scene = sd.Scene(**data)
-        model = scene.model_instance()
+        model = sd.model_for(scene)
         plan = assemble(scene, "compiled", model)
         st = Stepper(scene, model, plan, record=False)
         names = ig.PRM_NAMES + (rg.RIGID_PRM_NAMES if st.rigid else ())

@@ -134,8 +134,9 @@ def test_coarse_step_error_names_time_state_and_cause():
     ],
 )
 def test_impossible_combinations_are_refused_before_the_run(fields, needle):
+    # the scene's own checks (build_scene), then its model's (bind): both before any run
     with pytest.raises(SceneError, match=needle):
-        sd.scene.build_scene(fields)
+        sd.bind(sd.scene.build_scene(fields))
 
 
 def test_explain_lists_only_what_is_on():

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import sawdrift as sd
+from sawdrift.contact.binding import model_for
 from sawdrift.dynamics.assembly import assemble
 from sawdrift.dynamics.stepper import Stepper, StepperState
 
@@ -89,7 +90,7 @@ def test_a_snapshot_of_the_other_engine_is_refused():
 
 
 def _stepper(scene: sd.Scene, engine: str) -> Stepper:
-    model = scene.model_instance()
+    model = model_for(scene)
     return Stepper(scene, model, assemble(scene, engine, model), record=False)
 
 

@@ -64,15 +64,7 @@ HEAVY = frozenset({
 #: part of issue 32 is reworking: (importing module, imported module) -> what the fix is. The list
 #: can only shrink: an entry that no longer matches a violation fails the test. Target "*": every
 #: violation of that module.
-_SCENE_CONTACT = ("the scene validates and describes itself through the contact registry (model "
-                  "parameters, rigid or compliant); the fix moves that check up to the contact layer "
-                  "(the registry validates a Scene's model_params) and leaves scene.schema the fields")
 PENDING: dict[tuple[str, str], str] = {
-    ("sawdrift.scene.schema", "sawdrift.contact.registry"): _SCENE_CONTACT,
-    ("sawdrift.scene.overrides", "sawdrift.contact.registry"): _SCENE_CONTACT,
-    ("sawdrift.scene.overrides", "sawdrift.scene.schema"): (
-        "check_known_fields defaults to the Scene schema, which imports overrides; the fix moves "
-        "the field checks beside Scene (scene.schema) or makes callers pass the schema"),
     ("sawdrift.dynamics.rigid_bind", "*"): (
         "_namespace imports its own package's modules inside the function; being reworked with "
         "dynamics/rolling.py (uncommitted): import them at the top"),

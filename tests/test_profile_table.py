@@ -52,7 +52,7 @@ def test_tabulated_cone_meets_the_general_monotonic_oracle(tmp_path):
 
 def test_compiled_kernel_agrees_with_reference_on_a_table(sphere_csv):
     prof = {"shape": "table", "file": sphere_csv}
-    model = sd.Scene(model="mmd", particle={"profile": prof}).model_instance()
+    model = sd.model_for(sd.Scene(model="mmd", particle={"profile": prof}))
     rng = np.random.default_rng(3)
     a = np.concatenate([[0.0], np.abs(np.cumsum(rng.normal(0, 0.2, 400))) - 0.1])
     b = np.cumsum(rng.normal(0, 0.2, a.size))
@@ -81,8 +81,8 @@ def test_missing_table_and_unsupported_model(tmp_path, sphere_csv):
         sd.scene.build_scene({"particle": {"profile": {"shape": "table",
                                                         "file": str(tmp_path / "no.csv")}}})
     with pytest.raises(sd.SceneError, match="does not support profile 'table'"):
-        sd.scene.build_scene({"model": "jaeger",
-                              "particle": {"profile": {"shape": "table", "file": sphere_csv}}})
+        sd.bind(sd.scene.build_scene({"model": "jaeger",
+                                      "particle": {"profile": {"shape": "table", "file": sphere_csv}}}))
 
 
 def test_scene_file_finds_its_table_next_to_it(tmp_path, sphere_csv):

@@ -98,7 +98,7 @@ def test_rolling_resistance_spans_free_rolling_and_locked_rotation():
 
 def test_rolling_resistance_needs_rotation_and_a_compliant_model():
     with pytest.raises(sd.SceneError, match="rolling_resistance"):
-        sd.scene.build_scene({"effects": {"rolling_resistance": 0.1}})
+        sd.bind(sd.scene.build_scene({"effects": {"rolling_resistance": 0.1}}))
     with pytest.raises(sd.SceneError, match="rigid"):
-        sd.scene.build_scene({"model": "material_point",
-                              "effects": {"rotation": True, "rolling_resistance": 0.1}})
+        sd.bind(sd.scene.build_scene({"model": "material_point",
+                                      "effects": {"rotation": True, "rolling_resistance": 0.1}}))

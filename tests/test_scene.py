@@ -7,6 +7,7 @@ import math
 import pytest
 
 import sawdrift as sd
+from sawdrift.contact.binding import bind, check_model_params, describe_body, model_for
 from sawdrift.dynamics.assembly import steps_per_period
 from sawdrift.errors import ModelNotFoundError, SceneError
 from sawdrift.scene import build_scene
@@ -43,14 +44,46 @@ def test_scene_is_frozen():
     ],
 )
 def test_bad_fields_give_one_line_naming_the_field(data, pattern):
+    # the scene's own fields (build_scene), then the model's parameters (bind)
     with pytest.raises(SceneError, match=pattern) as info:
-        build_scene(data)
+        bind(build_scene(data))
     assert "\n" not in str(info.value)
 
 
 def test_unknown_model_names_known_ones():
     with pytest.raises(ModelNotFoundError, match="known models: .*material_point"):
-        build_scene({"model": "no_such_model"})
+        bind(build_scene({"model": "no_such_model"}))
+
+
+def test_the_scene_holds_model_params_as_given_and_bind_checks_and_fills_them():
+    # the scene layer knows no contact model: a wrong parameter is the binding's error, with
+    # the text build_scene gave when the scene checked it itself
+    raw = sd.Scene(model="mdr", model_params={"strip": 3})
+    assert raw.model_params == {"strip": 3}
+    with pytest.raises(SceneError) as info:
+        bind(raw, "f.toml")
+    assert str(info.value) == ("f.toml: model_params.strip is not a known field (model 'mdr' "
+                               "takes: strips, z_max)")
+    with pytest.raises(SceneError, match=r"^model_params\.strips = 1: .*\(model 'mdr' takes"):
+        bind(sd.Scene(model="mdr", model_params={"strips": 1}))
+    with pytest.raises(SceneError, match=r"^scene: model 'material_point' is rigid: a prescribed"):
+        bind(sd.Scene(model="material_point", drive={"kind": "prescribed"}))
+    bound = bind(sd.Scene(model="mdr"))
+    assert set(bound.model_params) == {"strips", "z_max"}
+    assert bind(bound) is bound  # binding is idempotent
+    assert bound == bind(build_scene(bound.model_dump()))
+    model = model_for(bound)
+    assert type(model).name == "mdr" and model.params.strips == bound.model_params["strips"]
+    with pytest.raises(SceneError, match="model_params.strip "):
+        sd.run(raw)  # the run binds the scene before any work
+
+
+def test_check_model_params_names_the_nearest_parameter():
+    with pytest.raises(SceneError, match=r"model_params\.strip is not a known parameter of model "
+                                         r"'mdr'; did you mean 'strips'\? \(it takes: strips, z_max\)"):
+        check_model_params("mdr", {"strip": 3})
+    check_model_params("mdr", {"strips": 3})
+    check_model_params("no_such_model", {"x": 1})  # left to the registry's own error
 
 
 def test_toml_round_trip(tmp_path):
@@ -97,10 +130,11 @@ def test_gyration_without_rotation_is_an_error_naming_both_fields():
 
 def test_a_rigid_model_with_rotation_is_labelled_a_rigid_sphere():
     point = sd.Scene(model="material_point")
-    assert point.body == "rigid point"
+    assert describe_body(point) == "rigid point"
     spun = point.with_updates(**{"effects.rotation": True, "particle.gyration": 2 / 3})
-    assert spun.body == "rigid sphere, turning, kappa = 0.666667"
-    assert sd.Scene(model="mmd").body == "compliant sphere (N* = a*^p, p = 1.5), not turning"
+    assert describe_body(spun) == "rigid sphere, turning, kappa = 0.666667"
+    assert describe_body(sd.Scene(model="mmd")) == "compliant sphere (N* = a*^p, p = 1.5), not turning"
+    assert "(rigid sphere, turning, kappa = 0.666667)" in sd.explain(spun)
 
 
 def test_schema_module_is_split_below_500_lines_and_keeps_its_imports():

@@ -41,7 +41,7 @@ def frequency(rotation: bool, kappa: float) -> tuple[float, float]:
     scene = sd.Scene(model="mmd", particle={"m_star": M_STAR, **({"gyration": kappa} if rotation else {})},
                      drive={"amplitude": 0.0, "ramp_periods": 0.0},
                      effects={"rotation": rotation}, numerics={"steps_per_period": 2048})
-    model = scene.model_instance()
+    model = sd.model_for(scene)
     stepper = Stepper(scene, model, assemble(scene, "compiled", model), record=True)
     stepper.rec_every = 1
     c = 1.0 + 1.0 / kappa if rotation else 1.0

@@ -6,7 +6,8 @@ The public API; the CLI uses nothing else. Names are imported on first use, so t
 The package follows the pipeline::
 
     scene/     Scene (normalized), profiles, the Rayleigh ratio
-    contact/   the contact-model interface, committed histories, the plugin registry
+    contact/   the contact-model interface, committed histories, the plugin registry,
+               a Scene bound to its model (bind, model_for)
     dynamics/  wave kinematics, one integration scheme per module, the runner
     result/    Result, evidence, regimes
     study/     sweeps and their resumable tables
@@ -39,6 +40,8 @@ _LAZY: dict[str, str] = {
     "classify": "result.regimes",
     "get_model": "contact.registry",
     "registry": "contact.registry",
+    "bind": "contact.binding",
+    "model_for": "contact.binding",
     "SUMMARY_FIELDS": "result.result",
     "Result": "result.result",
     "Assembly": "dynamics.assembly",

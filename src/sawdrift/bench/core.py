@@ -13,6 +13,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 from ..contact.base import ContactHistory
+from ..contact.binding import model_for
 from ..contact.registry import get_model
 from ..dynamics.prescribed import prescribed_history
 from ..errors import SceneError
@@ -195,7 +196,7 @@ def _is_rigid(model: str) -> bool:
 
 def _history(model: str, params: dict[str, Any] | None, engine: str = "compiled") -> ContactHistory:
     scene = Scene(model=model, model_params=params or {}, drive={"kind": "prescribed"})
-    inst = scene.model_instance()
+    inst = model_for(scene)
     if engine == "compiled" and not inst.capabilities.compiled:
         engine = "python"
     return ContactHistory(inst, engine)

@@ -97,7 +97,7 @@ def out_kind(path: Path, files: tuple[str, ...], what: str, option: str = "-o") 
 
 def _split_axis(item: str, form: str, example: str) -> tuple[str, str]:
     """``FIELD`` and ``SPEC`` of an ``--axis FIELD=SPEC`` option, or one line and exit 2."""
-    from ..scene.overrides import check_dotted
+    from ..scene.schema import check_dotted
 
     field, sep, spec = item.partition("=")
     if not sep or not field.strip() or not spec.strip():

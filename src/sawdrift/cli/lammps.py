@@ -18,7 +18,8 @@ from .scene_options import with_scene_options
 
 def _scene_and_particles(scene_file: Path | None, model: str | None, params: dict[str, Any],
                          overrides: dict[str, Any]) -> tuple[sd.Scene, dict[str, Any] | None]:
-    """The scene (file, then command-line values) and its ``[particles]`` table, if any."""
+    """The scene (file, then command-line values), bound to its model, and its ``[particles]``
+    table, if any."""
     data: dict[str, Any] = {}
     particles = None
     source = str(scene_file) if scene_file is not None else None
@@ -30,7 +31,7 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
         except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
             raise sd.SceneError(f"scene file {source!r} is not valid UTF-8 TOML: {exc}") from None
         particles = data.pop("particles", None)
-        data = sd.scene.build_scene(data, source=source).model_dump(exclude_none=True)
+        data = sd.bind(sd.scene.build_scene(data, source=source), source).model_dump(exclude_none=True)
     values = dict(overrides)
     if model is not None:
         values["model"] = model
@@ -40,7 +41,7 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
         data["model_params"] = {}
     if params:
         data.setdefault("model_params", {}).update(params)
-    return sd.scene.build_scene(data, source=source), particles
+    return sd.bind(sd.scene.build_scene(data, source=source), source), particles
 
 
 @app.command("lammps")

@@ -78,21 +78,24 @@ def with_scene_options(exclude: Iterable[str] = ()) -> Callable[[Callable[..., A
 def scene_from_options(scene_file: Path | None, model: str | None = None,
                        params: dict[str, Any] | None = None,
                        overrides: dict[str, Any] | None = None) -> sd.Scene:
-    """Load a scene file (or the defaults) and apply the command-line values.
+    """Load a scene file (or the defaults), apply the command-line values, bind it to its model.
 
     ``overrides`` maps dotted scene fields to values; ``model`` and ``params`` set the model
     and its parameters (a file's parameters belong to the file's model and are dropped when
-    another model is named).
+    another model is named). The scene is returned bound
+    (:func:`sawdrift.contact.binding.bind`): a parameter the model does not take, a value out
+    of its range or something the model cannot do is one line (exit 2) before any work.
     """
     if scene_file is not None:
         _check_keys(scene_file, model)
-    base = sd.Scene.from_toml(scene_file) if scene_file is not None else None
+    # the file's scene is checked against its own model first, as a file run alone would be
+    base = sd.bind(sd.Scene.from_toml(scene_file), str(scene_file)) if scene_file is not None else None
     data = base.model_dump(exclude_none=True) if base is not None else {}
     values = dict(overrides or {})
     if model is not None:
         values["model"] = model
     if params:
-        from ..scene.overrides import check_model_params
+        from ..contact.binding import check_model_params
 
         check_model_params(model or (base.model if base is not None else "mmd"), params)
     # one rule for every path: on a device scene a derived (normalized) field is an error
@@ -102,7 +105,8 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
         data["model_params"] = {}
     if params:
         data.setdefault("model_params", {}).update(params)
-    return sd.scene.build_scene(data, source=str(scene_file) if scene_file else None)
+    source = str(scene_file) if scene_file else None
+    return sd.bind(sd.scene.build_scene(data, source=source), source)
 
 
 def _check_keys(scene_file: Path, model: str | None) -> None:
@@ -113,7 +117,8 @@ def _check_keys(scene_file: Path, model: str | None) -> None:
     """
     import tomllib
 
-    from ..scene.overrides import check_known_fields, check_model_params
+    from ..contact.binding import check_model_params
+    from ..scene.schema import check_known_fields
 
     try:
         data = tomllib.loads(Path(scene_file).read_text(encoding="utf-8"))

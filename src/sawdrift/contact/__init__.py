@@ -1,4 +1,5 @@
-"""The contact layer: the model interface, committed histories and the plugin registry."""
+"""The contact layer: the model interface, committed histories, the plugin registry, and the
+binding of a Scene to its model (:mod:`sawdrift.contact.binding`)."""
 
 from .base import (
     Capabilities,
@@ -9,8 +10,9 @@ from .base import (
     NoParams,
     ReferenceContact,
 )
+from .binding import bind, check_model_params, describe_body, model_for
 
 __all__ = [
     "Capabilities", "ContactHistory", "ContactModel", "Kernel", "KernelPair", "NoParams",
-    "ReferenceContact",
+    "ReferenceContact", "bind", "check_model_params", "describe_body", "model_for",
 ]

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from ..contact.base import ContactModel
+from ..contact.binding import describe_body, model_for
 from ..contact.registry import get_model
 from ..errors import SceneError
 from ..scene.device import explain_device
@@ -114,12 +115,13 @@ class Assembly:
 def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | None = None) -> Assembly:
     """Decide the scheme, the slots that are on, and the engine for ``scene``.
 
-    ``model`` is the scene's model instance when the caller has already built it.
+    ``model`` is the scene's model instance when the caller has already built it
+    (:func:`sawdrift.contact.binding.model_for`).
     """
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
     if model is None:
-        model = scene.model_instance()
+        model = model_for(scene)
     caps = model.capabilities
     eff = scene.effects
     drive = scene.drive
@@ -336,7 +338,7 @@ def _restitution(scene: Scene, model: ContactModel,
     """
     e = scene.material.restitution
     if model.capabilities.rigid:
-        given = scene.model_params.get("restitution")
+        given = getattr(model.params, "restitution", None)  # the model's, defaults filled
         if e is None:
             return (float(given) if given is not None else None), 0.0, []
         field = type(model).Params.model_fields.get("restitution")
@@ -379,7 +381,7 @@ def _restitution(scene: Scene, model: ContactModel,
 def explain(scene: Scene, engine: Engine = "compiled") -> str:
     """A readable description of the system :func:`run` assembles for ``scene``."""
     plan = assemble(scene, engine)
-    lines = [f"model {scene.model!r} ({scene.body}), scheme {plan.scheme}, engine {plan.engine}",
+    lines = [f"model {scene.model!r} ({describe_body(scene)}), scheme {plan.scheme}, engine {plan.engine}",
              "equations:"]
     lines += [f"  {eq}" for eq in plan.equations]
     lines.append("calls:")

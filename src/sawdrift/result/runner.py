@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from ..contact.binding import bind, model_for
 from ..dynamics.assembly import Engine, assemble
 from ..dynamics.drives import Drive
 from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate_wave
@@ -43,7 +44,8 @@ def run(
     record_every
         Record the trajectory every this many steps (default: about 200 samples per period).
     """
-    model = scene.model_instance()
+    scene = bind(scene)
+    model = model_for(scene)
     plan = assemble(scene, engine, model)
     if plan.scheme == "prescribed":
         return _prescribed_result(scene, plan.engine, run_prescribed(scene, model, plan.engine))

@@ -1,6 +1,6 @@
 """The Scene: one whole experiment, validated and frozen (TOML in and out)."""
 
-from .overrides import DERIVED, apply_overrides
+from .overrides import DERIVED
 from .profiles import Profile
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio, theta
 from .schema import (
@@ -12,6 +12,7 @@ from .schema import (
     Prescribed,
     Scene,
     Wave,
+    apply_overrides,
     build_scene,
     format_validation_error,
     get_dotted,

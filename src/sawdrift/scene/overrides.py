@@ -1,4 +1,4 @@
-"""The one rule for a scene with a ``[device]`` table, and the one way to override scene fields.
+"""The one rule for a scene with a ``[device]`` table (the overrides of scene fields follow it).
 
 A device (``sawdrift.scene.device``) is the source of truth for the normalized fields it
 derives: ``particle.m_star``, ``particle.profile``, ``particle.preload``, ``particle.load``,
@@ -14,7 +14,8 @@ and ``material.theta`` (:data:`DERIVED`). On a device scene:
 
 Every path applies this rule through :func:`apply_device`: :func:`sawdrift.scene.build_scene`,
 ``Scene(**data)`` and ``Scene.model_validate`` (a before-validator), ``Scene.with_updates``, and
-:func:`apply_overrides`, the function the command line and the sweeps call to set dotted fields.
+:func:`sawdrift.scene.apply_overrides` (beside the Scene, in :mod:`sawdrift.scene.schema`, whose
+fields it checks), the function the command line and the sweeps call to set dotted fields.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from ..errors import SawdriftError, SceneError
+from ..errors import SceneError
 from .device import FIELD_KIND, UNITS, Device, normalized
 from .parts import format_validation_error, get_dotted, set_dotted
 from .profiles import Profile
@@ -93,7 +94,7 @@ def derived_error(field: str, value: Any, derived: Any) -> SceneError:
                       f"[device] table (here {_shown(derived)}); set {DERIVED[field]} instead")
 
 
-def _plain(value: Any) -> Any:
+def plain_section(value: Any) -> Any:
     """A deep copy of a scene section as plain dicts (a model gives the fields it was given)."""
     if isinstance(value, BaseModel):
         out = value.model_dump(exclude_unset=True)
@@ -134,7 +135,7 @@ def apply_device(data: Mapping[str, Any]) -> dict[str, Any]:
     if block is None:
         return data  # type: ignore[return-value]
     device = validate_device(block)
-    out = {key: (_plain(value) if key in _SECTIONS else value) for key, value in data.items()}
+    out = {key: (plain_section(value) if key in _SECTIONS else value) for key, value in data.items()}
     for section in _SECTIONS:
         if out.get(section) is None:
             out[section] = {}
@@ -165,24 +166,6 @@ def strip_derived(data: dict[str, Any]) -> dict[str, Any]:
     return data
 
 
-#: tables of a scene file that another command reads, not the Scene
-_ELSEWHERE = {"particles": "a [particles] table (many spheres) is read by `sawdrift lammps` only"}
-
-
-def _models_in(annotation: Any) -> list[type[BaseModel]]:
-    """The pydantic models an annotation can hold (through Optional, Union and Annotated)."""
-    import typing
-
-    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-        return [annotation]
-    found: list[type[BaseModel]] = []
-    for arg in typing.get_args(annotation):
-        for cls in _models_in(arg):
-            if cls not in found:
-                found.append(cls)
-    return found
-
-
 def nearest(key: str, known: list[str], listing: bool = True) -> str:
     """``"; did you mean 'x'?"`` for the known name nearest to ``key`` (difflib), or the list
     (``listing``)."""
@@ -192,114 +175,3 @@ def nearest(key: str, known: list[str], listing: bool = True) -> str:
     if close:
         return f"; did you mean {close[0]!r}?"
     return f" (known: {', '.join(sorted(known))})" if known and listing else ""
-
-
-def check_known_fields(data: Mapping[str, Any], source: str | None = None,
-                       models: list[type[BaseModel]] | None = None, prefix: str = "") -> None:
-    """Raise a one-line SceneError naming the first key of ``data`` that is no scene field.
-
-    Walks the Scene schema (``[device.particle]`` and the drives included) and suggests the
-    nearest valid name of the same table: ``particle.m_stra is not a known field; did you mean
-    'm_star'?``. Values are not checked here (the schema does that); ``model_params`` belong to
-    the model and are checked against it by :func:`check_model_params`.
-    """
-    if models is None:
-        from .schema import Scene
-
-        models = [Scene]
-    fields: dict[str, Any] = {}
-    for cls in models:
-        for name, info in cls.model_fields.items():
-            fields.setdefault(name, []).append(info.annotation)
-    where = f"{source}: " if source else ""
-    for key, value in data.items():
-        path = f"{prefix}{key}"
-        if key not in fields:
-            if path in _ELSEWHERE:
-                raise SceneError(f"{where}{path} is not a scene field: {_ELSEWHERE[path]}")
-            raise SceneError(f"{where}{path} is not a known field{nearest(str(key), list(fields))}")
-        if path == "model_params" or not isinstance(value, Mapping):
-            continue
-        inner = [cls for ann in fields[key] for cls in _models_in(ann)]
-        if inner:
-            check_known_fields(value, source, inner, f"{path}.")
-
-
-def check_dotted(dotted: str, source: str | None = None) -> None:
-    """:func:`check_known_fields` for one dotted field (``"material.mu"``, an ``--axis``)."""
-    node: Any = None
-    for key in reversed(dotted.split(".")):
-        node = {key: node}
-    check_known_fields(node, source)
-
-
-def check_model_params(model: str, params: Mapping[str, Any], source: str | None = None) -> None:
-    """A one-line SceneError for a parameter ``model`` does not take, with the nearest name.
-
-    An unknown model is left to the registry's own error.
-    """
-    try:
-        from ..contact.registry import get_model
-
-        known = list(get_model(model).Params.model_fields)
-    except (SawdriftError, ImportError, AttributeError):
-        return
-    where = f"{source}: " if source else ""
-    for key in params:
-        if key not in known:
-            raise SceneError(f"{where}model_params.{key} is not a known parameter of model "
-                             f"{model!r}{nearest(str(key), known, False)} (it takes: "
-                             f"{', '.join(known) or 'none'})")
-
-
-def apply_overrides(data: Mapping[str, Any] | BaseModel,
-                    overrides: Mapping[str, Any]) -> dict[str, Any]:
-    """A scene dict with dotted-path ``overrides`` set, by the rule for device scenes.
-
-    This is the one function the command line and the sweeps use to set scene fields:
-    ``apply_overrides(scene_dict, {"particle.m_star": 2.0, "device.amplitude": "5 nm"})``.
-    Validate the result with :func:`sawdrift.scene.build_scene`.
-
-    Parameters
-    ----------
-    data
-        A scene as a nested dict (TOML, ``model_dump``) or a Scene; it is not changed.
-    overrides
-        Dotted field paths and their values; None values are skipped. On a device scene a
-        derived field may only repeat the device's value (``drive.orbit = "retrograde"`` on a
-        retrograde device); any other value is an error.
-
-    Returns
-    -------
-    dict
-        A new nested dict. For a device scene its derived fields are left out (they are derived
-        again, from the possibly new device fields, when the dict is validated).
-
-    Raises
-    ------
-    SceneError
-        One line naming the field: on a device scene (one with a ``device`` table, in ``data``
-        or among the overrides) a derived field set to another value than the device derives
-        names the device field to set instead; a bad device field names its unit.
-    """
-    if isinstance(data, BaseModel):
-        out: dict[str, Any] = data.model_dump(exclude_none=True)
-    else:
-        out = {key: _plain(value) for key, value in data.items()}
-    if out.get("device") is not None:
-        # check the given scene against its own device, then drop what the device derives: the
-        # overrides may change the device
-        out = strip_derived(apply_device(out))
-    for key, value in overrides.items():
-        if value is None:
-            continue
-        try:
-            set_dotted(out, key, value)
-        except (AttributeError, TypeError):
-            raise SceneError(f"{key} is not a known field: {key.rsplit('.', 1)[0]} is not a "
-                             "table") from None
-    for key in overrides:
-        check_dotted(key)  # a misspelled field is named with the nearest one
-    if out.get("device") is not None:
-        out = strip_derived(apply_device(out))  # an overridden derived field must agree
-    return out

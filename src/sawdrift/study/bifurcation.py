@@ -31,6 +31,7 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
+from ..contact.binding import bind
 from ..contact.registry import get_model
 from ..errors import SceneError
 from ..scene.schema import Scene, Wave, build_scene, get_dotted
@@ -117,9 +118,9 @@ def _model_scenes(scene: Scene, models: str | Sequence[str] | None, field_name: 
         data = scene.model_dump(exclude_none=True)
         if name != scene.model:
             data["model"], data["model_params"] = name, {}
-        base = build_scene(data)
+        base = bind(build_scene(data))
         for v in (values[0], values[-1]):
-            base.with_updates(**{field_name: v})  # the field exists and takes both ends
+            bind(base.with_updates(**{field_name: v}))  # the field exists and takes both ends
         out[name] = base
     return out
 
@@ -200,7 +201,7 @@ def bifurcation(
         contact_fraction, contact, periods, hysteresis, error, field, code_hash, version.
     """
     t0 = time.perf_counter()
-    scene = scene if scene is not None else Scene()
+    scene = bind(scene if scene is not None else Scene())
     if not isinstance(scene.drive, Wave):
         raise SceneError(f"a bifurcation diagram needs a wave drive; the scene has a "
                          f"{scene.drive.kind} drive")

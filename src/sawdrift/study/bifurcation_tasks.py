@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from .._version import __version__
+from ..contact.binding import bind
 from ..errors import SawdriftError
 from ..scene.schema import Scene
 from .branch import (
@@ -51,7 +52,7 @@ _SPEC_KEYS = ("model", "direction", "field", "values", "samples", "transient", "
 
 def _scene_at(base: Scene, field: str) -> Callable[[float], Scene]:
     def at(value: float) -> Scene:
-        return base.with_updates(**{field: value})
+        return bind(base.with_updates(**{field: value}))  # bound: its model's checks, defaults
 
     return at
 

@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from ..contact.binding import bind, model_for
 from ..dynamics.assembly import assemble
 from ..dynamics.drives import drive_of
 from ..dynamics.steady import default_max_periods, relaxation_periods, rolling_frequency
@@ -133,7 +134,8 @@ class Point:
 
 def new_stepper(scene: Scene, engine: str = "compiled") -> Stepper:
     """A stepper at t* = 0 for ``scene``, as the runner builds it (compiled or loaded)."""
-    model = scene.model_instance()
+    scene = bind(scene)
+    model = model_for(scene)
     stepper = Stepper(scene, model, assemble(scene, engine, model), record=False,  # type: ignore[arg-type]
                       event_periods=MIN_WINDOW)
     stepper.warm_up()
@@ -149,7 +151,8 @@ def continue_to(stepper: Stepper, scene: Scene) -> Stepper:
     history - carry over unchanged.
     """
     before = stepper.surface()
-    new = stepper.continued(scene)
+    scene = bind(scene)
+    new = stepper.continued(scene, model_for(scene))
     new.follow_surface(before)
     return new
 
@@ -184,7 +187,7 @@ class Budget:
         window = max(int(samples), MIN_WINDOW)
         cap = scene.numerics.max_periods
         if cap is None:
-            rigid = scene.model_instance().capabilities.rigid
+            rigid = model_for(scene).capabilities.rigid
             speed = drive_of(scene).horizontal_speed(scene) if isinstance(scene.drive, Wave) else 0.0
             m = scene.particle.m_star
             cap = default_max_periods(m, relaxation_periods(scene, m, speed), rigid, window,

@@ -28,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from ..contact.binding import bind
 from ..dynamics.assembly import steps_per_period
 from ..dynamics.drives.two_wave import TwoWaves, field_shift
 from ..errors import SceneError
@@ -162,13 +163,17 @@ def _wrap(xi: float, origin: float) -> float:
 
 
 def _field_base(scene: Scene) -> Scene:
-    """The scene of the field's local orbits: no wavelength, no phase ramp (psi as given)."""
+    """The scene of the field's local orbits: no wavelength, no phase ramp (psi as given).
+
+    Bound to its model (:func:`sawdrift.contact.binding.bind`): a wrong model parameter is one
+    line before any position runs.
+    """
     if not isinstance(scene.drive, Wave):
         raise SceneError(f"drive.kind = {scene.drive.kind!r}: a drift field needs a wave drive")
     data = json.loads(json.dumps(scene.model_dump(exclude_none=True)))
     data["drive"].pop("wavelength", None)
     data["drive"].update(backward_phase_rate=0.0, position=0.0)
-    return build_scene(data)
+    return bind(build_scene(data))
 
 
 def species_scenes(base: Scene, axis: tuple[str, list[Any]] | None) -> list[tuple[str, Scene]]:
@@ -180,7 +185,7 @@ def species_scenes(base: Scene, axis: tuple[str, list[Any]] | None) -> list[tupl
     for value in values:
         cell = json.loads(json.dumps(base.model_dump(exclude_none=True)))
         set_dotted(cell, name, value)
-        out.append((f"{name}={value}", build_scene(cell)))
+        out.append((f"{name}={value}", bind(build_scene(cell))))
     return out
 
 

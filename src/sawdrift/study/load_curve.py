@@ -33,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from ..contact.binding import bind
 from ..dynamics.drives import drive_of
 from ..errors import SceneError
 from ..result.runner import run
@@ -226,6 +227,7 @@ def load_curve(
     speed = _surface_speed(scene)
     if settle is not None:
         scene = scene.with_updates(**{"numerics.settle": bool(settle)})
+    scene = bind(scene)  # a wrong model parameter: one line before any run
     workers = max(1, int(workers if workers is not None else (os.cpu_count() or 1)))
     t0 = time.perf_counter()
     runner = _Runner(scene, engine, workers)

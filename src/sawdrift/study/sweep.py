@@ -28,6 +28,7 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
+from ..contact.binding import bind
 from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..result.runner import run
@@ -90,7 +91,9 @@ def grid(
 ) -> list[Scene]:
     """The scenes of a grid: models x m* x A* x every other axis (a dotted scene field each).
 
-    All other fields come from ``base`` and ``overrides``.
+    All other fields come from ``base`` and ``overrides``. Each scene is bound to its model
+    (:func:`sawdrift.contact.binding.bind`): a wrong model parameter or one the model cannot take
+    is a one-line error before any cell runs.
     """
     data = base.model_dump(exclude_none=True) if base is not None else {}
     for dotted, value in (overrides or {}).items():
@@ -111,7 +114,7 @@ def grid(
             cell = json.loads(json.dumps(per_model))
             for field, value in zip(all_axes, combo, strict=True):
                 set_dotted(cell, field, value)
-            scenes.append(build_scene(cell))
+            scenes.append(bind(build_scene(cell)))
     return scenes
 
 
@@ -226,7 +229,7 @@ def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] |
     meta[META_VERSION] = __version__.encode()
     meta[META_CODE] = code_hash(str(m) for m in frame["model"].dropna().unique()).encode()
     if not isinstance(base, dict):
-        base = json.loads((base if base is not None else Scene()).model_dump_json())
+        base = json.loads(bind(base if base is not None else Scene()).model_dump_json())
     meta[META_BASE_SCENE] = json.dumps(base).encode()
     tmp = table.with_name(f".{table.name}.{os.getpid()}.tmp")
     pq.write_table(arrow.replace_schema_metadata(meta), tmp)
@@ -259,7 +262,7 @@ def _base_json(base: Scene | None, overrides: dict[str, Any] | None) -> dict[str
         for dotted, value in overrides.items():
             set_dotted(data, dotted, value)
         scene = build_scene(data)
-    return json.loads(scene.model_dump_json())
+    return json.loads(bind(scene).model_dump_json())
 
 
 def _stored_base(table: Path) -> dict[str, Any] | None:
