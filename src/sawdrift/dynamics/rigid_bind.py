@@ -16,6 +16,7 @@ from typing import Any
 from numba import njit
 
 from ..codegen import Generated, generate, rebind
+from . import adams_bashforth, evidence, rolling
 from . import rigid as rg
 
 #: the scheme's functions, compiled together per drive (they call ``drive_kinematics``)
@@ -42,8 +43,6 @@ _JIT = {"cache": True, "_nrt": False}
 
 
 def _namespace(kinematics: Any) -> dict[str, Any]:
-    from . import adams_bashforth, evidence, rolling
-
     ns: dict[str, Any] = {"math": math, "njit": njit}
     for module in (adams_bashforth, evidence, rolling):
         ns.update({n: v for n, v in vars(module).items() if not n.startswith("_")})
