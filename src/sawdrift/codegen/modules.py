@@ -115,9 +115,24 @@ def rebind(templates: tuple[Callable[..., Any], ...], namespace: Mapping[str, An
     return ns
 
 
-def template_source(templates: tuple[Callable[..., Any], ...], decorator: str) -> str:
-    """The source of ``templates``, each under ``@decorator``, as a generated module holds them."""
-    return "\n\n".join(f"@{decorator}\n" + textwrap.dedent(inspect.getsource(f)) for f in templates)
+def _with_options(decorator: str, options: Mapping[str, Any] | None) -> str:
+    """``decorator`` (a call such as ``njit(cache=True)`` or a bare ``njit``) given ``options`` too."""
+    if not options:
+        return decorator
+    if decorator.endswith(")"):
+        return f"{decorator[:-1]}, **{dict(options)!r})"
+    return f"{decorator}(**{dict(options)!r})"
+
+
+def template_source(templates: tuple[Callable[..., Any], ...], decorator: str,
+                    options: Mapping[str, Mapping[str, Any]] | None = None) -> str:
+    """The source of ``templates``, each under ``@decorator``, as a generated module holds them.
+
+    ``options`` adds numba options to some templates, by name (e.g. ``{"f": {"inline": "always"}}``).
+    """
+    options = options or {}
+    return "\n\n".join(f"@{_with_options(decorator, options.get(f.__name__))}\n"
+                       + textwrap.dedent(inspect.getsource(f)) for f in templates)
 
 
 @dataclass(frozen=True)
@@ -150,6 +165,10 @@ class Generated:
         The numba options of the in-memory compilation (its source has no file: no cache).
     memory_namespace
         Globals of the in-memory compilation if not ``namespace`` (e.g. inlined slot functions).
+    options
+        Further numba options of some templates, by name, in the file and in memory: e.g.
+        ``{"helper": {"inline": "always"}}`` inlines ``helper`` into its callers at numba's IR
+        level, so it is not compiled (nor cached) as a function of its own.
     """
 
     prefix: str
@@ -163,6 +182,7 @@ class Generated:
     decorator: str = "njit(cache=True)"
     memory_options: Mapping[str, Any] = field(default_factory=dict)
     memory_namespace: Mapping[str, Any] | None = None
+    options: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
 
     def source(self, origins: Mapping[str, tuple[str, str]]) -> str:
         """The generated module's text, the bound functions imported from ``origins``."""
@@ -173,7 +193,7 @@ class Generated:
                 "from numba import njit\n\n"
                 f"{self.imports}{binds}\n"
                 + (f"{self.preamble}\n" if self.preamble else "")
-                + "\n" + template_source(self.templates, self.decorator))
+                + "\n" + template_source(self.templates, self.decorator, self.options))
 
 
 def _origin(value: Any) -> tuple[str, str] | None:
@@ -202,5 +222,6 @@ def generate(spec: Generated) -> dict[str, Any]:
 
     ns = rebind(spec.templates, spec.memory_namespace or spec.namespace)
     for func in spec.templates:
-        ns[func.__name__] = njit(**spec.memory_options)(ns[func.__name__])
+        opts = {**spec.memory_options, **spec.options.get(func.__name__, {})}
+        ns[func.__name__] = njit(**opts)(ns[func.__name__])
     return ns

@@ -44,7 +44,10 @@ BAD_NONFINITE, BAD_EVENTS = 1.0, 2.0
 # event buffer
 EV_W = 7
 EVENT_KINDS = ("lift_off", "landing", "slip_start", "slip_end", "stick_start")
-EV_LIFT_OFF, EV_LANDING, EV_SLIP_START, EV_SLIP_END, EV_STICK_START = 0, 1, 2, 3, 4
+#: The kinds' codes are numpy integers, not Python ints: numba types a global Python int as a
+#: literal and compiles a function it is passed to once per value (``event`` and the rigid
+#: scheme's ``_log`` five times each, 0.1 s a compilation); an ``int64`` is one type.
+EV_LIFT_OFF, EV_LANDING, EV_SLIP_START, EV_SLIP_END, EV_STICK_START = (np.int64(k) for k in range(5))
 EVENT_COLUMNS = ("t", "kind", "x", "vx", "y", "vy", "a")
 
 #: relative tolerance of the gross-slip test |T*| >= (1 - SLIP_RTOL) N*
