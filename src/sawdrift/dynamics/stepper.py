@@ -360,6 +360,33 @@ class Stepper:
                 new.fs, new.is_ = self.fs.copy(), self.is_.copy()
         return new
 
+    def restart_from(self, other: Stepper, dy: np.ndarray | None = None) -> None:
+        """Put this twin at ``other``'s state (+ ``dy``) in place, with an empty event log.
+
+        What :meth:`twin` copies, without building a stepper: the mechanical state, the
+        integrator's history, the counters and the contact memory (through
+        :meth:`ContactHistory.state`), so advancing from here is bit for bit what advancing
+        ``other.twin(dy)`` would be. The window statistics are ``other``'s; the event log starts
+        empty (no event is read back from a twin). Both must be twins of one integration (the
+        Lyapunov estimate restarts one twin this way every period).
+        """
+        np.copyto(self.y, other.y)
+        if dy is not None:
+            self.y[: dy.size] += dy
+        np.copyto(self.ctr, other.ctr)
+        self.st[: ev.N_ST] = other.st[: ev.N_ST]
+        self.st[ev.S_NEV] = 0.0
+        self.st[ev.S_EVCAP] = (self.st.size - ev.N_ST) // ev.EV_W
+        self.resist = other.resist
+        if self.rigid:
+            return
+        np.copyto(self.fh, other.fh)
+        if self.history is not None and other.history is not None:
+            self.history.set_state(other.history.state())
+        else:
+            np.copyto(self.fs, other.fs)
+            np.copyto(self.is_, other.is_)
+
     def trajectory(self) -> pd.DataFrame:
         """The recorded rows (columns ``t, x, vx, y, vy, a, b, N_star, T_star``); x is the centre.
 

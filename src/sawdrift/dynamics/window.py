@@ -210,8 +210,10 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
     dy = np.zeros(4)
     dy[3] = d0 * scale[2]
     logs = np.empty(periods)
+    twin = base.twin(dy)
     for j in range(align + periods):
-        twin = base.twin(dy)
+        if j:
+            twin.restart_from(base, dy)  # in place: the same state a new twin would have
         base.advance(base.k_per)
         twin.advance(twin.k_per)
         sep = (twin.y[1:4] - base.y[1:4]) / scale
