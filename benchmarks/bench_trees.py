@@ -58,7 +58,11 @@ def wave(model, periods):
 def history(model, params):
     from sawdrift.contact.base import ContactHistory
     scene = Scene(model=model, model_params=params, drive={"kind": "prescribed"})
-    return ContactHistory(scene.model_instance(), "compiled")
+    try:  # the scene binds to its model in the contact layer (trees after 2026-11-25)
+        from sawdrift.contact.binding import model_for
+    except ImportError:
+        return ContactHistory(scene.model_instance(), "compiled")
+    return ContactHistory(model_for(scene), "compiled")
 
 if what == "wave":
     short = wave(model, 2.0)

@@ -2,7 +2,7 @@
 
 A drive is one module: a :class:`Drive` subclass (its scene kind, its named parameters, how the
 drift ratio is scaled, its lines of ``--explain``) and two compiled functions the integrators
-call, bound in per drive when the loops are generated (:mod:`sawdrift.dynamics.loop_cache`)::
+call, bound in per drive when the loops are generated (:mod:`sawdrift.codegen`)::
 
     surface(t, x, dp)     -> (u_x, u_x', u_y, u_y')
     kinematics(t, x, dp)  -> (u_x, u_x', u_x'', u_y, u_y', u_y'')
