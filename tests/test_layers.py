@@ -268,3 +268,38 @@ def test_a_deferred_light_import_is_caught(tmp_path, monkeypatch):
     monkeypatch.setitem(EDGES, "sawdrift.scene.light", imports_of("sawdrift.scene.light"))
     bad = [m for _, _, m in deferral_violations() if "light.py" in m]
     assert len(bad) == 1 and "defers nothing heavy" in bad[0], bad
+
+
+#: Largest function of ``dynamics/`` in lines and in parameters (issue 32: the integrators read as
+#: pieces with names, not as one loop of hundreds of lines).
+MAX_LINES, MAX_PARAMS = 80, 10
+
+
+def _functions(folder: Path, root: Path = ROOT) -> list[tuple[str, int, int]]:
+    """(``file:line name``, lines, parameters) of every function below ``folder``."""
+    out = []
+    for path in sorted(folder.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+                a = node.args
+                params = (len(a.posonlyargs) + len(a.args) + len(a.kwonlyargs)
+                          + (a.vararg is not None) + (a.kwarg is not None))
+                where = f"{path.relative_to(root)}:{node.lineno} {node.name}"
+                out.append((where, node.end_lineno - node.lineno + 1, params))
+    return out
+
+
+def test_dynamics_functions_are_short_and_take_few_parameters():
+    functions = _functions(ROOT / "src" / "sawdrift" / "dynamics")
+    assert len(functions) > 100  # the scan sees the package
+    bad = [f"{where}: {lines} lines, {params} parameters" for where, lines, params in functions
+           if lines > MAX_LINES or params > MAX_PARAMS]
+    assert not bad, (f"functions of dynamics/ over {MAX_LINES} lines or {MAX_PARAMS} "
+                     "parameters:\n" + "\n".join(bad))
+
+
+def test_a_long_function_is_caught(tmp_path):
+    body = "\n".join(f"    x{i} = {i}" for i in range(MAX_LINES))
+    (tmp_path / "long.py").write_text(f"def f(a, b, c, d, e, f, g, h, i, j, *, k):\n{body}\n")
+    ((where, lines, params),) = _functions(tmp_path, tmp_path)
+    assert where == "long.py:1 f" and lines == MAX_LINES + 1 and params == MAX_PARAMS + 1
