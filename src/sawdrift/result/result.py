@@ -121,13 +121,16 @@ class Result:
     orbit_period: int = 0
     #: whether the reported drift is the steady one (see dynamics.steady)
     settled: bool | None = None
-    #: how ``settled`` was decided: "fixed", "windows" or "reduced_inertia"
+    #: how ``settled`` was decided: "fixed" (a run of fixed length, judged after the fact),
+    #: "windows_full" (windows at full inertia) or "reduced_then_full" (a reduced-inertia
+    #: approach, then windows at full inertia; see dynamics.full_inertia)
     settle_method: str | None = None
     #: periods after which the drift was assessed (settle runs: periods spent settling)
     settle_periods: float = math.nan
     #: settle runs: periods to reach 90 % of the steady drift (full inertia)
     t90_periods: float = math.nan
-    #: settle runs: the horizontal (and rotational) inertia m*_x that was integrated
+    #: settle runs: the horizontal (and rotational) inertia m*_x of the first, approaching stage
+    #: (the drift is always measured at the full m*)
     horizontal_inertia: float = math.nan
     #: hopping: lift-offs in one hop period
     liftoffs_per_hop: float = math.nan

@@ -1,0 +1,190 @@
+"""The steady drift at full inertia: the last stage of ``numerics.settle``.
+
+The reduced-inertia approach (:func:`~sawdrift.dynamics.steady.settle`, first stage) reaches the
+fixed point of the period-averaged friction force <T*>(v) quickly, but its fast motion is not the
+particle's: with the horizontal inertia reduced to m*_x, the small horizontal oscillation of the
+particle about its mean speed, whose amplitude scales as 1/m*, is m*/m*_x times too large. Where
+the contact slides as a whole that biases the drift by up to 1 %; where it is partly stuck (creep
+near the stick boundary) the oscillation *is* the mechanism of the drift, and the reduced-inertia
+value can be 10-70 times too large.
+
+This stage therefore puts the full m* back and measures windows of W periods until the drift has
+settled at full inertia. W spans at least three periods of the free vertical oscillation
+(2 pi sqrt(m*/1.5), undamped, it modulates the friction) and two of the tangential contact
+oscillation (2 pi sqrt(theta m*/1.5), the particle on its tangential contact stiffness 1.5/theta),
+so a window mean is not a sample of either.
+
+Two kinds of approach remain, told apart by the window's gross slip:
+
+* **A sliding or hopping contact** (gross slip or contact loss in at least half the window). The
+  mean velocity is a slow variable: it relaxes as v* + c exp(-lambda t) with lambda = mu F'/m*
+  (F' the slope of the force-velocity curve at its zero). lambda is known from the first stage
+  (its relaxation rate there, times m*_x / m*). From two consecutive window means D1, D2 the
+  distance still to go is (D2 - D1) q / (1 - q) with q = exp(-lambda W) (Aitken's extrapolation
+  with a known ratio); when it exceeds the tolerance the particle's velocity is moved by it
+  (projective integration: only the mean speed jumps; the vertical motion and the contact memory
+  are kept, and re-adapt within a few periods, far less than W).
+* **A partly stuck contact** (creep). The mean velocity is held by the tangential contact
+  stiffness; the relaxation is the damped contact oscillation, a few of its periods, so the
+  windows converge by themselves. No jump is made.
+
+The run stops when :data:`STEADY_CHANGES` consecutive changes of the window mean and the
+estimated remaining distance are all within half the tolerance (relative to the drift, with an absolute floor of 2 % of the tolerance
+in drift-ratio units); the reported drift is the last window's, measured at full inertia.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .stepper import Stepper
+from .window import Window, measure_window
+
+#: fraction of a window in gross slip from which its mean speed is a slow variable (a contact
+#: that is partly stuck most of the time relaxes with its tangential oscillation instead)
+SLIDING_FRACTION = 0.1
+
+#: a drift ratio below which the tolerance is absolute (tol * ABS_FLOOR)
+ABS_FLOOR = 0.02
+
+#: windows the full-inertia stage may take at most
+MAX_WINDOWS = 60
+
+#: consecutive window changes within the accuracy that a settled drift needs (a hopping particle
+#: can drift on a slow mode whose changes grow before they decay)
+STEADY_CHANGES = 3
+
+#: windows the full-inertia stage may always take, even past the settle cap
+MIN_WINDOWS = 12
+
+
+@dataclass(frozen=True)
+class FullInertia:
+    """How the full-inertia stage ended."""
+
+    settled: bool
+    window_periods: int
+    windows: int
+    jumps: int
+    periods: float
+    history: tuple[float, ...]
+
+
+def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = False) -> int:
+    """W: three free vertical periods 2 pi sqrt(m*/1.5) and two tangential contact periods
+    2 pi sqrt(theta m*/1.5), at least ``minimum`` (see the module docstring); a rigid point has
+    neither oscillation: ``minimum``."""
+    if rigid:
+        return int(minimum)
+    vertical = 2.0 * math.pi * math.sqrt(m_star / 1.5)
+    tangential = 2.0 * math.pi * math.sqrt(theta * m_star / 1.5)
+    return max(int(minimum), int(math.ceil(3.0 * vertical)), int(math.ceil(2.0 * tangential)))
+
+
+def accuracy(drift_ratio: float, tol: float) -> float:
+    """Half the tolerance, relative to the drift ratio with the floor :data:`ABS_FLOOR`."""
+    return 0.5 * tol * max(abs(drift_ratio), ABS_FLOOR)
+
+
+def relaxation_rate(history: tuple[float, ...], window: int, m_x: float, m_star: float,
+                    mu: float) -> float:
+    """lambda at full inertia (per period) from the first stage's window means.
+
+    Three window means v1, v2, v3 of a relaxation give q = (v3 - v2) / (v2 - v1) = exp(-lambda_x W)
+    at the inertia m*_x; lambda = lambda_x m*_x / m*. Without a usable ratio, mu / m* (a slope F'
+    of one).
+    """
+    lam = mu / m_star
+    if len(history) >= 3:
+        d1 = history[-2] - history[-3]
+        d2 = history[-1] - history[-2]
+        if d1 != 0.0 and 0.0 < d2 / d1 < 1.0:
+            lam = -math.log(d2 / d1) / window * m_x / m_star
+    return lam
+
+
+def remaining_distance(c1: float | None, c2: float, q_pred: float) -> float:
+    """Distance still to go after two consecutive window changes ``c1``, ``c2`` (Aitken).
+
+    A monotone approach (0 < c2/c1 < 1) is extrapolated with the ratio q = min(c2/c1, q_pred):
+    the measured ratio, but never slower than the predicted relaxation ``q_pred`` = exp(-lambda W),
+    so window noise near a ratio of one cannot make a jump of many times the change. A single
+    change (``c1`` None) is extrapolated with ``q_pred`` (conservative: it only delays the
+    verdict, no jump is made on it). Alternating signs or growth (the windows are at their noise,
+    or in a fast transient): the last change itself. ``q_pred`` = 0 turns extrapolation off (a
+    partly stuck contact, whose mean speed is not a slow variable).
+    """
+    if q_pred <= 0.0 or c2 == 0.0:
+        return c2
+    if c1 is None:
+        return c2 * q_pred / (1.0 - q_pred)
+    if c1 == 0.0 or not 0.0 < c2 / c1 < 1.0:
+        return c2
+    q = min(c2 / c1, q_pred)
+    return c2 * q / (1.0 - q)
+
+
+def shift_speed(stepper: Stepper, dv: float) -> None:
+    """Move the particle's horizontal velocity by ``dv`` (and its Adams-Bashforth history of x*')."""
+    stepper.y[1] += dv
+    if not stepper.rigid:
+        stepper.fh[:, 0] += dv
+
+
+def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
+                max_steps: int, lam: float) -> tuple[Window, FullInertia]:
+    """Measure full-inertia windows until the drift has settled (module docstring).
+
+    Parameters
+    ----------
+    stepper
+        The integration, with the full m* restored.
+    speed
+        2 pi r A*, the drift ratio's scale.
+    lam
+        Relaxation rate of the mean speed at full inertia, per period (:func:`relaxation_rate`).
+    max_steps
+        The settle cap: no window starts that would end past it.
+    """
+    m = scene.particle.m_star
+    tol = scene.numerics.settle_tolerance
+    w = full_window_length(m, scene.theta, minimum_window, stepper.rigid)
+    q = math.exp(-lam * w)
+    start = stepper.step
+    # the stage may outlast the first stage's cap by MIN_WINDOWS windows
+    max_steps = max(max_steps, start + MIN_WINDOWS * w * stepper.k_per)
+    values: list[float] = []
+    jumps = 0
+    settled = False
+    win = measure_window(stepper, w, speed, scale)
+    values.append(win.drift_ratio)
+    prev: float | None = win.drift_ratio
+    last_change: float | None = None
+    steady_run = 0  # consecutive window changes within the accuracy
+    while len(values) < MAX_WINDOWS and stepper.step + w * stepper.k_per <= max_steps:
+        win = measure_window(stepper, w, speed, scale)
+        d = win.drift_ratio
+        values.append(d)
+        if prev is None:
+            prev, last_change = d, None
+            continue
+        change = d - prev
+        slow = win.contact_lost or win.gross_slip_fraction >= SLIDING_FRACTION
+        remaining = remaining_distance(last_change, change, q if slow else 0.0)
+        eps = accuracy(d, tol)
+        steady_run = steady_run + 1 if abs(change) <= eps else 0
+        if steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
+            settled = True
+            break
+        if slow and abs(remaining) > eps and speed > 0.0 and last_change is not None:
+            shift_speed(stepper, remaining * speed)
+            jumps += 1
+            prev, steady_run = None, 0  # the next window re-adapts; compare the two after it
+            continue
+        prev, last_change = d, change
+    info = FullInertia(settled, w, len(values), jumps, (stepper.step - start) / stepper.k_per,
+                       tuple(values))
+    return win, info

@@ -1,0 +1,74 @@
+"""The default run's steady drift is the full-inertia one (creep and sliding heavy cells).
+
+Each reference is a brute-force run at full inertia computed here (no settle, N >= 40 m*/mu +
+2000 periods, measured over its last 30 %), never a number from the settle code. The reduced
+horizontal inertia used alone gave 1.075e-3 against 7.0e-5 (creep, m* = 1e3) and 0.127061
+against 0.128047 (sliding, m* = 100): both fail these tests.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+import sawdrift as sd
+from sawdrift.dynamics.full_inertia import full_window_length, remaining_distance
+
+
+def scene(model: str, m: float, a: float, mu: float, **numerics) -> sd.Scene:
+    return sd.Scene(model=model, particle={"m_star": m}, material={"mu": mu},
+                    drive={"amplitude": a}, numerics=numerics)
+
+
+def brute(model: str, m: float, a: float, mu: float) -> sd.Result:
+    n = int(40 * m / mu) + 2000
+    return sd.run(scene(model, m, a, mu, settle=False, periods=n, measure_periods=int(0.3 * n),
+                        max_periods=n))
+
+
+def agrees(value: float, ref: float) -> bool:
+    """The acceptance bound: 1e-3 relative or 2e-5 absolute in drift ratio."""
+    return abs(value - ref) <= max(1e-3 * abs(ref), 2e-5)
+
+
+@pytest.mark.slow
+def test_creep_near_the_stick_boundary_is_the_full_inertia_creep():
+    """mmd, m* = 1e3, A* = 0.5, mu = 0.5: partial slip creeps at about 7e-5, not 1e-3."""
+    ref = brute("mmd", 1e3, 0.5, 0.5)
+    res = sd.run(scene("mmd", 1e3, 0.5, 0.5))
+    assert 3e-5 < ref.drift_ratio < 1.5e-4  # a creep, far below the drift tolerance
+    assert res.settled is True and res.settle_method == "reduced_then_full"
+    assert agrees(res.drift_ratio, ref.drift_ratio), (res.drift_ratio, ref.drift_ratio)
+    assert res.regime == ref.regime == "oscillating_slip"
+
+
+def test_a_sliding_heavy_cell_is_not_biased_low():
+    """mmd, m* = 100, A* = 0.5, mu = 0.3: within 1e-3 relative of a 15333-period run."""
+    ref = brute("mmd", 100.0, 0.5, 0.3)
+    res = sd.run(scene("mmd", 100.0, 0.5, 0.3))
+    assert ref.drift_ratio > 0.1 and ref.regime == "drift_with"
+    assert res.settled is True
+    assert agrees(res.drift_ratio, ref.drift_ratio), (res.drift_ratio, ref.drift_ratio)
+    assert res.regime == ref.regime
+
+
+def test_the_window_spans_the_slow_vertical_and_tangential_oscillations():
+    """W >= 3 vertical periods 2 pi sqrt(m*/1.5) and 2 tangential ones 2 pi sqrt(theta m*/1.5)."""
+    m, theta = 1e4, 1.2142857142857142
+    w = full_window_length(m, theta, 60)
+    assert w >= 3 * 6.283185307179586 * (m / 1.5) ** 0.5
+    assert w >= 2 * 6.283185307179586 * (theta * m / 1.5) ** 0.5
+    assert full_window_length(0.1, theta, 60) == 60
+
+
+def test_remaining_distance_is_aitken_with_a_bounded_ratio():
+    """Geometric changes c, c q: the remaining sum is c q^2 / (1 - q); noise is not amplified."""
+    c, q = 1e-3, 0.5
+    assert remaining_distance(c, c * q, 0.9) == pytest.approx(c * q * q / (1 - q), rel=1e-12)
+    # a ratio near one (window noise) is capped by the predicted relaxation q_pred
+    assert remaining_distance(1e-4, 0.99e-4, 0.5) == pytest.approx(0.99e-4, rel=1e-12)
+    # alternating signs: the last change itself
+    assert remaining_distance(1e-4, -1e-4, 0.9) == -1e-4
+    # a single change: extrapolated with the predicted ratio (q / (1 - q) = 9 at q = 0.9)
+    assert remaining_distance(None, 1e-4, 0.9) == pytest.approx(9e-4, rel=1e-12)
+    # extrapolation off (a partly stuck contact)
+    assert remaining_distance(1e-4, 0.5e-4, 0.0) == 0.5e-4
