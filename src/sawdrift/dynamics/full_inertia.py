@@ -29,8 +29,9 @@ Two kinds of approach remain, told apart by the window's gross slip:
   windows converge by themselves. No jump is made.
 
 The run stops when :data:`STEADY_CHANGES` consecutive changes of the window mean and the
-estimated remaining distance are all within half the tolerance (relative to the drift, with an absolute floor of 2 % of the tolerance
-in drift-ratio units); the reported drift is the last window's, measured at full inertia.
+estimated remaining distance are all within half the tolerance (relative to the drift, with an
+absolute floor of 2 % of the tolerance in drift-ratio units); the reported drift is the last
+window's, measured at full inertia.
 """
 
 from __future__ import annotations
