@@ -14,8 +14,9 @@ from typing import Any
 #: named here (a new model's or drive's extra output) goes to "evidence"
 GROUPS: dict[str, tuple[str, ...]] = {
     "regime": ("regime", "direction", "hop_period", "liftoffs_per_hop", "liftoff_phases",
-               "orbit_period", "chaotic", "contact_lost"),
-    "drift": ("drift_speed_m_s", "drift_velocity", "drift_ratio", "t90_s", "load_n", "power_w",
+               "orbit_period", "chaotic", "contact_lost", "mean_acceleration", "detach_time",
+               "detach_phase", "warnings"),
+    "drift": ("drift_speed_m_s", "drift_velocity", "drift_ratio", "drift_ratio_se", "t90_s", "load_n", "power_w",
               "rebound_ratio", "contact_duration", "max_compression", "dissipated_work"),
     "settled": ("settled", "settle_method", "settle_periods", "t90_periods", "horizontal_inertia"),
     "evidence": ("out_of_contact_fraction", "min_compression", "gross_slip_fraction",
@@ -67,6 +68,13 @@ def _flat(summary: dict[str, Any]) -> dict[str, Any]:
 
 def unsettled_text(summary: dict[str, Any], mark: str = "NOT settled") -> str:
     """Why the drift is not the steady one, short enough to stand beside a number."""
+    regime = summary.get("regime")
+    if regime == "runaway":
+        return (f"{mark}: no steady state, the mean speed grows by "
+                f"{value_text(summary.get('mean_acceleration'))} per period")
+    if regime == "ejected":
+        return (f"{mark}: no steady state, out of contact since t* = "
+                f"{value_text(summary.get('detach_time'))}")
     if summary.get("chaotic"):
         return f"{mark}: chaotic, an average over the window"
     return f"{mark} after {value_text(summary.get('periods'))} periods"
@@ -80,7 +88,8 @@ def _line(key: str, value: Any, summary: dict[str, Any], width: int) -> str:
     if key in DRIFTS and summary.get("settled") is False:
         text += f"  <- {unsettled_text(summary)}"
     if key == "settled" and value is False:
-        text = unsettled_text(summary, "NO, still changing")
+        no_state = summary.get("regime") in ("runaway", "ejected")
+        text = unsettled_text(summary, "NO" if no_state else "NO, still changing")
     return f"  {key:<{width}}  {text}"
 
 

@@ -31,6 +31,8 @@ S_LIFTS, S_PREVIN = 6, 7  # lift-offs in the window; contact at the last step (1
 S_SLIP, S_PREVSLIP = 8, 9  # steps (fraction-weighted) in gross slip; gross slip at the last step
 S_NEV, S_EVCAP = 10, 11  # events written, capacity of the buffer (rows)
 S_EVDROP = 12  # events not written because the buffer was full
+S_LASTLIFT = 13  # t* of the last lift-off since t* = 0 (-1: none), kept across windows
+S_EVOLD = 14  # events of the transient before the window, counted and not kept
 N_ST = 16
 
 #: Rows an integration step may still need in the event log: the loops return after a step that
@@ -58,6 +60,7 @@ def new_stats(event_capacity: int) -> np.ndarray:
     """A statistics vector with room for ``event_capacity`` events, in contact, window open."""
     st = np.zeros(N_ST + EV_W * max(0, int(event_capacity)))
     st[S_PREVIN] = 1.0
+    st[S_LASTLIFT] = -1.0
     st[S_EVCAP] = max(0, int(event_capacity))
     open_window(st)
     return st
@@ -83,6 +86,13 @@ def log_full(st, margin):
     return st[S_NEV] + margin > st[S_EVCAP]
 
 
+def forget_transient(st: np.ndarray) -> None:
+    """Empty the event log before the measuring window opens, counting what it held
+    (``st[S_EVOLD]``): the log of a run of any length stays bounded."""
+    st[S_EVOLD] += st[S_NEV]
+    st[S_NEV] = 0.0
+
+
 def open_window(st: np.ndarray) -> None:
     """Start the measurement window: clear every statistic and the event log (not the state)."""
     for i in (S_LOST, S_OUT, S_COUNT, S_LIFTS, S_SLIP, S_NEV, S_EVDROP):
@@ -93,6 +103,8 @@ def open_window(st: np.ndarray) -> None:
 @njit(cache=True)
 def event(st, kind, t, y, a):
     """Append one event row (see :data:`EVENT_COLUMNS`), or count it as dropped when full."""
+    if kind == EV_LIFT_OFF:
+        st[S_LASTLIFT] = t
     i = int(st[S_NEV])
     if i >= st[S_EVCAP]:
         st[S_EVDROP] += 1.0

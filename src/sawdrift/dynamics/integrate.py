@@ -30,6 +30,7 @@ from .steady import (
     settle,
     settles,
 )
+from .evidence import S_LASTLIFT
 from .stepper import Stepper
 from .window import Window, lyapunov, measure_window
 
@@ -65,6 +66,8 @@ class WaveRun:
         The integration and its measurements.
     trajectory
         The time series when asked for.
+    last_liftoff
+        t* of the last lift-off since t* = 0 (-1: none), kept across windows.
     """
 
     stepper: Stepper
@@ -78,6 +81,7 @@ class WaveRun:
     compile_s: float
     wall_time_s: float
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
+    last_liftoff: float = -1.0
 
 
 def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory: bool,
@@ -109,7 +113,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
                    hop_period=win.sync.hop_period if not chaotic else 0, compile_s=compile_s,
-                   wall_time_s=wall, trajectory=stepper.trajectory() if trajectory else None)
+                   wall_time_s=wall, trajectory=stepper.trajectory() if trajectory else None,
+                   last_liftoff=float(stepper.st[S_LASTLIFT]))
 
 
 def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,

@@ -120,10 +120,22 @@ def settles(scene, speed: float, rigid: bool) -> bool:
     given = scene.numerics.settle
     if given is not None:
         return bool(given)
+    if runs_away(scene):
+        return False  # no steady drift to settle on
     m = scene.particle.m_star
     if 3.0 * horizontal_relaxation(scene, m, speed) <= scene.numerics.periods:
         return False
     return horizontal_relaxation(scene, horizontal_inertia(m, rigid), speed) <= AUTO_SETTLE_PERIODS
+
+
+def runs_away(scene) -> bool:
+    """A tangential load that friction cannot hold on average: |L| > mu (the period-averaged normal
+    force is the weight), or any load without friction, and no air drag to bound the speed."""
+    load = scene.particle.load
+    eff = scene.effects
+    if load == 0.0 or eff.air_drag > 0.0:
+        return False
+    return (not eff.friction) or abs(load) > scene.material.mu
 
 
 def horizontal_relaxation(scene, m_x: float, speed: float) -> float:

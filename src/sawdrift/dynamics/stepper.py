@@ -120,6 +120,9 @@ class Stepper:
         self.st = ev.new_stats(max(EVENTS_PER_PERIOD * max(1, event_periods) + 64,
                                    2 * self.ev_margin))
         self.record = record
+        #: keep every event (the measuring window); before it the log is emptied whenever full,
+        #: so a run of any length holds at most one window's events (measure_window sets it)
+        self.keep_events = False
         self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
         self.rec_chunks: list[np.ndarray] = []
         self.compiled = engine == "compiled"
@@ -183,8 +186,10 @@ class Stepper:
     def advance(self, n_steps: int) -> None:
         """Advance ``n_steps`` steps; raise a one-line error if the scheme cannot go on.
 
-        The loops return early when the event log is nearly full; the log is then grown and the
-        integration goes on, so every event of a window of any length is kept.
+        The loops return early when the event log is nearly full; in the measuring window
+        (:attr:`keep_events`) the log is then grown and the integration goes on, so every event
+        of the window is kept; before it the log is emptied (its events counted), so the memory
+        of a run does not grow with its length.
         """
         target = self.step + max(0, int(n_steps))
         while self.step < target:
@@ -210,6 +215,9 @@ class Stepper:
                     f"{self.step * self.h:.6g}; the regime evidence would be incomplete"
                 )
             if ev.log_full(self.st, self.ev_margin):
+                if not self.keep_events:
+                    ev.forget_transient(self.st)  # before the window: counted, not kept
+                    continue
                 if self.st[ev.S_EVCAP] >= MAX_EVENT_ROWS:
                     raise NonFiniteStateError(
                         f"more than {MAX_EVENT_ROWS} events in one measuring window (t* = "

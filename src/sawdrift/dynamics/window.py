@@ -150,6 +150,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         :func:`state_scale` of the scene, for the stroboscopic evidence and the twin's distance.
     """
     ev.open_window(stepper.st)
+    stepper.keep_events = True
     t_start = stepper.step * stepper.h
     snapshot = stepper.twin()
     x0, psi0 = stepper.y[0], stepper.y[4]

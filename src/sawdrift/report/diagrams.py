@@ -27,6 +27,8 @@ COLOURS = {
     "drift_against": "#e6550d",
     "hopping": "#756bb1",
     "bouncing": "#bcbddc",
+    "runaway": "#636363",
+    "ejected": "#fec44f",
     "error": "#000000",
 }
 _ORDER = list(COLOURS)

@@ -12,6 +12,14 @@ every piece of evidence comes from that one window), never the runner's internal
     chaotic;
   - ``bouncing`` - anything else: irregular, quasi-periodic or chaotic lift-offs;
 
+* no steady state (checked first, :func:`outcome`):
+
+  - ``runaway`` - the mean horizontal speed keeps growing: a tangential load above the largest
+    mean friction mu <N*> = mu (the period-averaged normal force is the weight), or a window
+    whose mean speed exceeds the largest surface speed and still grows in its own direction;
+  - ``ejected`` - out of contact through the whole window (no lift-off and no landing in it):
+    thrown off, or, on a real device, removed;
+
 * permanent contact, by the drift ratio V = <x*'> / (2 pi r A*) (scaled by the horizontal surface
   speed amplitude) and the fraction of the window in gross slip:
 
@@ -29,7 +37,13 @@ motion has no hop period). This module only names the regime from those measurem
 
 from __future__ import annotations
 
-REGIMES = ("stick", "oscillating_slip", "drift_with", "drift_against", "hopping", "bouncing")
+REGIMES = ("stick", "oscillating_slip", "drift_with", "drift_against", "hopping", "bouncing",
+           "runaway", "ejected")
+
+#: Outcomes without a steady drift: the mean speed keeps growing (``runaway``), or the particle
+#: is out of contact through the whole measuring window (``ejected``). Neither has a drift speed
+#: to report; see :func:`outcome`.
+NO_STEADY_STATE = ("runaway", "ejected")
 
 #: Regimes in which contact is lost in the measurement window.
 CONTACT_LOST = ("hopping", "bouncing")
@@ -66,3 +80,31 @@ def classify(
     if gross_slip_fraction > 0.0:
         return "oscillating_slip"
     return "stick"
+
+
+def outcome(load: float, mu: float, friction: bool, air_drag: float, out_fraction: float,
+            liftoffs: float, drift: float, acceleration: float, surface_speed: float) -> str:
+    """``"runaway"``, ``"ejected"`` or ``""`` (a steady state may exist): see the module docstring.
+
+    Parameters
+    ----------
+    load, mu, friction, air_drag
+        The scene's tangential load (in M g), friction coefficient, whether friction is on, and
+        the linear air drag (which always bounds the speed).
+    out_fraction, liftoffs
+        The window's fraction out of contact and its lift-offs per period.
+    drift, acceleration
+        The window's mean horizontal speed and its mean acceleration (per period squared).
+    surface_speed
+        The largest horizontal surface speed (2 pi r A* for the wave), 0 without horizontal motion.
+    """
+    if out_fraction >= 1.0 and liftoffs == 0.0:
+        return "ejected"
+    if air_drag > 0.0:
+        return ""
+    if load != 0.0 and (not friction or abs(load) > mu):
+        return "runaway"  # the mean friction is at most mu times the weight
+    relative = abs(drift) - surface_speed
+    if relative > 0.5 * max(surface_speed, 1e-12) and drift * acceleration > 0.0:
+        return "runaway"
+    return ""

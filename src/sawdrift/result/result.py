@@ -62,6 +62,11 @@ EVIDENCE_FIELDS = (
     "horizontal_inertia",
     "liftoffs_per_hop",
     "liftoff_phases",
+    "drift_ratio_se",
+    "mean_acceleration",
+    "detach_time",
+    "detach_phase",
+    "warnings",
 )
 
 
@@ -137,6 +142,17 @@ class Result:
     #: hopping: the wave phase t* mod 1 of each lift-off of a hop period, in order (a period-2
     #: orbit has two take-off phases; ``liftoff_phase`` is the first)
     liftoff_phases: tuple[float, ...] = ()
+    #: standard error of ``drift_ratio`` (irregular motion: batch means over decorrelated
+    #: windows); NaN where the drift is a fixed point's or a periodic orbit's
+    drift_ratio_se: float = math.nan
+    #: ``runaway``: the window's mean horizontal acceleration, x* per period squared
+    mean_acceleration: float = math.nan
+    #: ``ejected``: t* of the last lift-off (the detachment) and its wave phase t* mod 1
+    detach_time: float = math.nan
+    detach_phase: float = math.nan
+    #: conditions under which the model's assumptions are stretched or do not hold (a device's
+    #: compression below 1 nm, strain or speed near their bounds), one sentence each
+    warnings: tuple[str, ...] = ()
     scene: dict[str, Any] = field(default_factory=dict, repr=False)
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
     event_rows: np.ndarray | None = field(default=None, repr=False)

@@ -16,9 +16,9 @@ from ..dynamics.drives import Drive
 from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate_wave
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
 from ..dynamics.window import Window
-from ..scene.device import device_outputs
+from ..scene.device import device_outputs, device_warnings
 from ..scene.schema import Scene
-from .regimes import classify
+from .regimes import classify, outcome
 from .result import Result
 
 __all__ = ["run"]
@@ -63,9 +63,21 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     hop_period = out.hop_period
     t90 = settling.t90_periods if out.settle_on else math.nan
     drift_ratio, regime = _regime(scene, drive, win, out.speed, hop_period)
+    acceleration = mean_acceleration(win.positions)
+    ending = outcome(scene.particle.load, scene.material.mu, scene.effects.friction,
+                     scene.effects.air_drag, win.out_of_contact_fraction, win.liftoffs_per_period,
+                     win.drift, acceleration, out.speed)
+    drift = win.drift
+    settled = settling.settled
+    detach = math.nan
+    if ending:
+        regime, drift, drift_ratio, settled = ending, math.nan, math.nan, False
+        t90 = math.nan
+        detach = out.last_liftoff if ending == "ejected" else math.nan
     extra: dict[str, object] = {}
+    warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
     if scene.device is not None:
-        extra.update(device_outputs(scene.device, win.drift, regime, t90 if out.settle_on else None))
+        extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None))
     stepper = out.stepper
     k_per = stepper.k_per
     return Result(
@@ -81,7 +93,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         periods=stepper.step / k_per,
         ramp_periods=wave.ramp_periods,
         measure_periods=win.periods,
-        drift_velocity=win.drift,
+        drift_velocity=drift,
         drift_ratio=drift_ratio,
         regime=regime,
         orbit=drive.orbit_name(scene),
@@ -105,15 +117,31 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         events_dropped=win.events_dropped,
         compile_s=out.compile_s,
         orbit_period=win.orbit_period,
-        settled=settling.settled,
+        settled=settled,
         settle_method=settling.method,
         settle_periods=settling.periods,
         t90_periods=t90,
         horizontal_inertia=settling.horizontal_inertia if out.settle_on else math.nan,
         liftoffs_per_hop=sync.liftoffs_per_hop if hop_period else math.nan,
         liftoff_phases=sync.phases if hop_period else (),
+        mean_acceleration=acceleration if ending == "runaway" else math.nan,
+        detach_time=detach,
+        warnings=warnings,
+        detach_phase=detach % 1.0 if math.isfinite(detach) and detach >= 0.0 else math.nan,
         extra=extra,
     )
+
+
+def mean_acceleration(positions) -> float:
+    """Mean horizontal acceleration over a window, per period squared: twice the quadratic
+    coefficient of a least-squares fit to the positions at the period ends."""
+    import numpy as np
+
+    x = np.asarray(positions, dtype=float)
+    if x.size < 3:
+        return math.nan
+    t = np.arange(x.size) - 0.5 * (x.size - 1)
+    return float(2.0 * np.polyfit(t, x - x[0], 2)[0])
 
 
 def _regime(scene: Scene, drive: Drive, win: Window, speed: float,

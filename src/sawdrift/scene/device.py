@@ -399,7 +399,8 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
     """Physical outputs of a run of a device scene (see ``sawdrift run device.toml --json``)."""
     norm = normalized(device)
     speed = drift_velocity * norm["a0_m"] * norm["frequency_hz"]
-    moving = regime not in ("stick", "oscillating_slip") and speed != 0.0
+    moving = (regime not in ("stick", "oscillating_slip", "runaway", "ejected")
+              and math.isfinite(speed) and speed != 0.0)
     out = {
         "normalized": {k: norm[k] for k in ("m_star", "amplitude", "theta", "horizontal_ratio", "a0_m")},
         "drift_speed_m_s": speed,
@@ -412,6 +413,27 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
         # delivers against it, -F v (positive while it advances against the load)
         out["load_n"] = norm["load_n"]
         out["power_w"] = -norm["load_n"] * speed
+    return out
+
+
+def device_warnings(device: Device) -> list[str]:
+    """Where the scene leaves the model's assumptions, one sentence each (also in every Result).
+
+    A static compression below 1 nm (adhesion and roughness then set the contact, not gravity
+    and preload), a sphere's contact radius above 0.1 R (beyond small strain), a cone's
+    half-angle below 60 deg (Sneddon's small-slope solution).
+    """
+    n = normalized(device)
+    part = device.particle
+    out = []
+    if n["a0_m"] < 1e-9:
+        out.append(f"a0 < 1 nm (a0 = {n['a0_m']:.3g} m): adhesion and roughness, not gravity and "
+                   "preload, then set the contact; the model's assumptions do not hold")
+    if part.shape == "sphere" and n["contact_radius_m"] > 0.1 * float(part.radius):
+        out.append("contact radius above 0.1 R: beyond Hertz's small-strain theory")
+    if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
+        out.append("half-angle below 60 deg: Sneddon's small-slope solution underestimates the "
+                   "contact radius (by 27 % at 42 deg)")
     return out
 
 
@@ -445,14 +467,7 @@ def explain_device(device: Device, mu: float) -> list[str]:
     approach = n["m_star"] / mu
     lines.append(f"  expected approach to the steady drift ~ m*/mu = {approach:.4g} periods = "
                  f"{approach / f:.4g} s")
-    if n["a0_m"] < 1e-9:
-        lines.append("  WARNING: a0 < 1 nm: adhesion and roughness, not gravity and preload, then "
-                     "set the contact; the model's assumptions do not hold")
-    if part.shape == "sphere" and n["contact_radius_m"] > 0.1 * float(part.radius):
-        lines.append("  WARNING: contact radius above 0.1 R: beyond Hertz's small-strain theory")
-    if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
-        lines.append("  WARNING: half-angle below 60 deg: Sneddon's small-slope solution "
-                     "underestimates the contact radius (by 27 % at 42 deg)")
+    lines.extend(f"  WARNING: {w}" for w in device_warnings(device))
     if n["amplitude"] > 1.0:
         lines.append("  note: A* > 1: the substrate moves further than the static compression; "
                      "expect contact loss for a heavy particle")

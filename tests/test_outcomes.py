@@ -1,0 +1,84 @@
+"""No steady state is an answer: ``runaway`` and ``ejected``, never a settled drift speed.
+
+Also: validity warnings travel with the Result, and the event log of a long run stays bounded.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import sawdrift as sd
+from sawdrift.contact.binding import bind, model_for
+from sawdrift.dynamics import evidence as ev
+from sawdrift.dynamics.assembly import assemble
+from sawdrift.dynamics.stepper import Stepper
+
+
+def test_a_load_above_friction_runs_away_with_its_exact_acceleration():
+    """Material point, no wave, L = 0.2 > mu = 0.1: m* x'' = L - mu, 1 per period^2 at m* = 0.1.
+
+    The old code reported a settled drift velocity of 46.5 (91.5 with --periods 120)."""
+    res = sd.run(sd.Scene(model="material_point", particle={"m_star": 0.1, "load": 0.2},
+                          material={"mu": 0.1}, drive={"amplitude": 0.0}))
+    assert res.regime == "runaway"
+    assert res.settled is False
+    assert math.isnan(res.drift_velocity) and math.isnan(res.drift_ratio)
+    assert abs(res.mean_acceleration - (0.2 - 0.1) / 0.1) <= 1e-9
+
+
+def test_vertical_vibration_with_a_load_above_friction_runs_away():
+    """A* = 0.2, r = 0, L = 0.2 > mu: the mean friction is at most mu times the weight."""
+    res = sd.run(sd.Scene(model="material_point", particle={"m_star": 0.1, "load": 0.2},
+                          material={"mu": 0.1},
+                          drive={"amplitude": 0.2, "horizontal_ratio": 0.0}))
+    assert res.regime == "runaway" and res.settled is False
+    assert res.mean_acceleration > 0.5  # (L - mu <N*>) / m*, <N*> = 1 over whole periods
+
+
+def test_a_load_below_friction_is_not_a_runaway():
+    """L = 0.05 < mu = 0.1 with a wave: a steady drift exists (the load curve's range)."""
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1, "load": 0.05},
+                          material={"mu": 0.1}, drive={"amplitude": 0.316}))
+    assert res.regime not in ("runaway", "ejected")
+    assert math.isfinite(res.drift_ratio)
+
+
+DEVICE = {
+    "model": "mmd",
+    "device": {"frequency": "20 MHz", "amplitude": "1 nm", "orbit": "retrograde",
+               "friction": 0.3,
+               "particle": {"radius": "5 um", "density": "2200 kg/m^3",
+                            "youngs_modulus": "73 GPa", "poisson": 0.17},
+               "substrate": {"youngs_modulus": "200 GPa", "poisson": 0.3}},
+}
+
+
+def test_a_thrown_off_micro_particle_is_ejected_without_a_speed():
+    """10 um silica on 20 MHz LiNbO3 at 1 nm (A* ~ 6000): thrown off in the ramp, never lands.
+
+    The old code gave "bouncing" at -2.82 mm/s; the a0 < 1 nm warning only with --explain."""
+    res = sd.run(sd.Scene.model_validate(DEVICE))
+    assert res.regime == "ejected" and res.settled is False
+    assert math.isnan(res.drift_velocity) and math.isnan(res.drift_ratio)
+    assert res.drift_speed_m_s != res.drift_speed_m_s  # NaN: no speed in m/s either
+    assert res.out_of_contact_fraction == 1.0
+    # detached during the 5-period ramp, at a phase in [0, 1)
+    assert 0.0 < res.detach_time < res.ramp_periods and 0.0 <= res.detach_phase < 1.0
+    assert any("a0 < 1 nm" in w for w in res.warnings)
+
+
+def test_the_event_log_of_a_long_run_is_bounded():
+    """mmd, m* = 1e4, A* = 0.5, mu = 0.5 slips every period: 20000 periods before the window
+    leave the log at its first size, the transient's events counted, not kept."""
+    scene = bind(sd.Scene(model="mmd", particle={"m_star": 1e4}, material={"mu": 0.5},
+                          drive={"amplitude": 0.5}))
+    model = model_for(scene)
+    stepper = Stepper(scene, model, assemble(scene, "compiled", model), False, event_periods=1)
+    size = stepper.st.size
+    stepper.advance(20000 * stepper.k_per)
+    assert stepper.st.size == size
+    assert stepper.st[ev.S_EVOLD] > 20000  # at least one event a period was seen and counted
+    assert int(stepper.st[ev.S_NEV]) <= int(stepper.st[ev.S_EVCAP])
+    assert np.all(np.isfinite(stepper.y))
