@@ -20,6 +20,7 @@ import numpy as np
 from ..contact.base import ContactModel
 from ..scene.schema import Impact, Scene
 from .assembly import Assembly
+from .evidence import S_LASTLIFT
 from .steady import (
     Settling,
     assess_fixed,
@@ -30,7 +31,6 @@ from .steady import (
     settle,
     settles,
 )
-from .evidence import S_LASTLIFT
 from .stepper import Stepper
 from .window import Window, lyapunov, measure_window
 
