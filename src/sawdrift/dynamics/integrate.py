@@ -20,6 +20,7 @@ import numpy as np
 from ..contact.base import ContactModel
 from ..scene.schema import Impact, Scene
 from .assembly import Assembly
+from .batch_means import BatchMeans, long_time_mean
 from .evidence import S_LASTLIFT
 from .steady import (
     Settling,
@@ -68,6 +69,8 @@ class WaveRun:
         The time series when asked for.
     last_liftoff
         t* of the last lift-off since t* = 0 (-1: none), kept across windows.
+    long_mean
+        A chaotic window's long-time mean drift and its standard error (batch means), or None.
     """
 
     stepper: Stepper
@@ -82,6 +85,7 @@ class WaveRun:
     wall_time_s: float
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
     last_liftoff: float = -1.0
+    long_mean: BatchMeans | None = None
 
 
 def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory: bool,
@@ -105,6 +109,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     settle_on = settles(scene, speed, stepper.rigid)
     win, settling = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
+    chaos = long_time_mean(stepper, win) if chaotic else None
     if settling is None:
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, scene.particle.m_star, speed),
@@ -114,7 +119,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
                    hop_period=win.sync.hop_period if not chaotic else 0, compile_s=compile_s,
                    wall_time_s=wall, trajectory=stepper.trajectory() if trajectory else None,
-                   last_liftoff=float(stepper.st[S_LASTLIFT]))
+                   last_liftoff=float(stepper.st[S_LASTLIFT]), long_mean=chaos)
 
 
 def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,

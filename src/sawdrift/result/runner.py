@@ -69,6 +69,12 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
                      win.drift, acceleration, out.speed)
     drift = win.drift
     settled = settling.settled
+    drift_se = math.nan
+    if out.long_mean is not None and out.speed > 0.0:
+        # irregular motion: the long-time mean with its batch-means error, not one window's sample
+        drift = out.long_mean.mean
+        drift_ratio = drift / out.speed
+        drift_se = out.long_mean.se / out.speed
     detach = math.nan
     if ending:
         regime, drift, drift_ratio, settled = ending, math.nan, math.nan, False
@@ -125,6 +131,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         liftoffs_per_hop=sync.liftoffs_per_hop if hop_period else math.nan,
         liftoff_phases=sync.phases if hop_period else (),
         mean_acceleration=acceleration if ending == "runaway" else math.nan,
+        drift_ratio_se=drift_se,
         detach_time=detach,
         warnings=warnings,
         detach_phase=detach % 1.0 if math.isfinite(detach) and detach >= 0.0 else math.nan,
