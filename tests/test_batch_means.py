@@ -36,7 +36,7 @@ def test_a_chaotic_cell_reports_a_mean_consistent_with_a_ten_times_longer_run():
             "drive": {"amplitude": 1.0}}
     short = sd.run(sd.Scene.model_validate(base))
     long = sd.run(sd.Scene.model_validate({**base, "numerics": {
-        "settle": False, "periods": 20060, "measure_periods": 20000}}))
+        "periods": 20060, "measure_periods": 20000}}))
     assert short.chaotic and long.chaotic
     assert short.regime == long.regime == "bouncing"
     assert math.isfinite(short.drift_ratio_se) and short.drift_ratio_se > 0.0

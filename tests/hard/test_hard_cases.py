@@ -78,7 +78,10 @@ def test_finite_and_convergent(name, rotation):
     results = [_run(_scene(CASES[name], steps=k * f, rotation=rotation)) for f in (1, 2, 8)]
     for res in results:
         assert np.isfinite(res.trajectory[["x", "vx", "y", "vy", "N_star", "T_star"]].to_numpy()).all()
-        assert math.isfinite(res.drift_ratio)
+        # a flight through the whole (one-period) window is the ``ejected`` outcome, which has no
+        # drift by design; any other NaN would be a numerical failure
+        assert math.isfinite(res.drift_ratio) or (
+            res.regime == "ejected" and res.out_of_contact_fraction == 1.0)
     ref = _state(results[-1])
     # each component scaled by its size over the run (a final value may sit near zero)
     scale = np.maximum(np.abs(results[-1].trajectory[["x", "vx", "y", "vy"]].to_numpy()).max(axis=0),

@@ -109,7 +109,10 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     settle_on = settles(scene, speed, stepper.rigid)
     win, settling = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
-    chaos = long_time_mean(stepper, win) if chaotic else None
+    # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
+    # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
+    chaos = (long_time_mean(stepper.twin(), win)
+             if chaotic and num.settle is not False else None)
     if settling is None:
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, scene.particle.m_star, speed),
