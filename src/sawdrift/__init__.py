@@ -28,7 +28,7 @@ from .hookspecs import hookimpl
 #: public name -> module (relative to the package) that defines it
 _LAZY: dict[str, str] = {
     "Capabilities": "contact.base",
-    "ContactHistory": "contact.base",
+    "ContactHistory": "contact.history",
     "ContactModel": "contact.base",
     "KernelPair": "contact.base",
     "NoParams": "contact.base",

@@ -12,8 +12,8 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from ..contact.base import ContactHistory
 from ..contact.binding import model_for
+from ..contact.history import ContactHistory
 from ..contact.registry import get_model
 from ..dynamics.prescribed import prescribed_history
 from ..errors import SceneError

@@ -3,7 +3,6 @@ binding of a Scene to its model (:mod:`sawdrift.contact.binding`)."""
 
 from .base import (
     Capabilities,
-    ContactHistory,
     ContactModel,
     Kernel,
     KernelPair,
@@ -11,6 +10,7 @@ from .base import (
     ReferenceContact,
 )
 from .binding import bind, check_model_params, describe_body, model_for
+from .history import ContactHistory
 
 __all__ = [
     "Capabilities", "ContactHistory", "ContactModel", "Kernel", "KernelPair", "NoParams",

@@ -71,11 +71,12 @@ import numpy as np
 from ..errors import SceneError
 from ..scene.profiles import Profile
 from ..scene.schema import format_validation_error
-from .base import ContactHistory, ContactModel
+from .base import ContactModel
 from .conformance_paths import LARGE_A, Path, cycles, histories, loop_work_parts, path
 from .conformance_paths import SIDE as SIDE  # re-exported: the paths are part of this interface
 from .conformance_paths import loop_works as loop_works
 from .conformance_paths import random_history as random_history
+from .history import ContactHistory
 from .registry import get_model
 from .slots import _SlotKernel
 

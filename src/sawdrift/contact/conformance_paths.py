@@ -12,7 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..scene.parts import polyline
-from .base import ContactHistory, ContactModel
+from .base import ContactModel
+from .history import ContactHistory
 
 #: samples per straight side of a cycle
 SIDE = 400

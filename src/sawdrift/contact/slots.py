@@ -35,7 +35,7 @@ offset 0; the view runs on past it) and ``tp`` holds the law's parameters
 (:meth:`TangentialLaw.tangential_params`). ``step`` is only called in contact (a > 0);
 ``a0 = 0`` exactly when the contact is new and the history has just been reset. ``reset`` is
 called on a zeroed ``is_`` for a new history (:meth:`ContactHistory.reset
-<sawdrift.contact.base.ContactHistory.reset>`) and on the live state, once, on the step that
+<sawdrift.contact.history.ContactHistory.reset>`) and on the live state, once, on the step that
 loses contact, so a law can keep what outlives a contact (a high-water mark, a set-up grid).
 
 The composition inlines ``step`` and ``damp`` (numba IR inlining, :data:`_INLINE`), so a law in
@@ -56,7 +56,8 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, create_model
 
 from ..codegen import Generated, generate, rebind
-from .base import ContactModel, KernelPair, KernelReference, LazyFunction, NoParams
+from .base import ContactModel, KernelPair, LazyFunction, NoParams
+from .history import KernelReference
 
 #: Float entries the framework keeps in front of the law's state: committed a*, committed b*,
 #: and 1.0 while the tangential history belongs to a contact (0.0: fresh).

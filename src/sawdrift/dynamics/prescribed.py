@@ -13,7 +13,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..contact.base import ContactHistory, ContactModel
+from ..contact.base import ContactModel
+from ..contact.history import ContactHistory
 from ..errors import NonFiniteStateError
 from ..scene.parts import polyline
 from ..scene.schema import Prescribed, Scene

@@ -17,8 +17,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..contact.base import ContactHistory, ContactModel
+from ..contact.base import ContactModel
 from ..contact.binding import model_for
+from ..contact.history import ContactHistory
 from ..errors import NonFiniteStateError
 from ..scene.schema import Scene
 from . import adams_bashforth as ig
@@ -41,7 +42,7 @@ RECORDS_PER_PERIOD = 200
 EVENTS_PER_PERIOD = 64
 
 #: Keys of the contact history's snapshot in a :class:`StepperState`
-#: (:meth:`~sawdrift.contact.base.ContactHistory.state`).
+#: (:meth:`~sawdrift.contact.history.ContactHistory.state`).
 _HISTORY_KEYS = ("fs", "is", "ref")
 
 #: Most event rows one window may hold (7 floats a row: 280 MB); more is an error, not a silent cut.
@@ -54,7 +55,7 @@ class StepperState:
     puts back (mechanical state, step counters, Adams-Bashforth derivative history, contact memory).
 
     ``arrays`` holds ``y``, ``ctr``, with a compliant scheme ``fh``, and the contact history's
-    snapshot (:meth:`~sawdrift.contact.base.ContactHistory.state`: ``fs``, ``is``; or ``ref``, the
+    snapshot (:meth:`~sawdrift.contact.history.ContactHistory.state`: ``fs``, ``is``; or ``ref``, the
     python reference pickled). :meth:`to_text` and :meth:`from_text` carry it through a JSON
     journal (base64 of an ``.npz``), bit for bit.
     """
