@@ -109,6 +109,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     settle_on = settles(scene, speed, stepper.rigid)
     win, settling = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
+    if settling is None and num.settle is not False and not chaotic:
+        win = _find_orbit(stepper, win, speed, scale)
     # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
     chaos = (long_time_mean(stepper.twin(), win)
@@ -145,6 +147,27 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
     if settle_on:
         return settle(stepper, scene, speed, scale, n_periods, n_max)
     return measure_window(stepper, n_periods, speed, scale), None
+
+
+#: periods a regular (not chaotic) window that lost contact may run on to reach its periodic orbit
+ORBIT_PERIODS = 300
+
+
+def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray) -> Window:
+    """Run on, window after window, until a regular window that lost contact is on its orbit.
+
+    A motion with contact loss that is not chaotic settles on a periodic orbit (or is still on
+    its way, or is quasi-periodic): its hop period and take-off phases are the orbit's
+    (:func:`~sawdrift.dynamics.synchrony.orbit_pattern`), and a window before the orbit is reached
+    can show a slowly decaying or growing alternation that looks like a hop of another period
+    (the inelastic bouncing ball just past its period doubling: lift-offs at 0.3765 and 0.3034
+    alternately, which 60 periods averaged into one phase). At most :data:`ORBIT_PERIODS` more.
+    """
+    spent = 0
+    while win.contact_lost and win.orbit_period == 0 and spent < ORBIT_PERIODS:
+        win = measure_window(stepper, win.periods, speed, scale)
+        spent += win.periods
+    return win
 
 
 @dataclass

@@ -259,6 +259,18 @@ def _t90(values: list[float], ends: list[float]) -> float:
             return t
     return ends[-1]
 
+def growing(samples: np.ndarray, scale: np.ndarray) -> bool:
+    """Whether the period-to-period change of the stroboscopic state (y*, y*', scaled) grows
+    across a window: its largest value over the last third above 1.05 times that over the first
+    (a growing orbit, like a period doubling still unfolding, is not a steady motion)."""
+    s = np.asarray(samples)[:, 2:4] / np.asarray(scale)[1:3]
+    if s.shape[0] < 7:
+        return False
+    d = np.abs(np.diff(s, axis=0)).max(axis=1)
+    third = d.size // 3
+    return float(d[-third:].max()) > 1.05 * float(d[:third].max())
+
+
 #: relaxation times a drifting run must last before its window change is believed (see below)
 APPROACH_TIMES = 3.0
 
@@ -290,6 +302,14 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
     flight, is never steady. Otherwise this is deliberately conservative: a run it
     calls unsettled may be steady, which ``numerics.settle`` then confirms.
     """
+    if win.orbit_period > 0 and not chaotic and not in_flight(win):
+        # an exact periodic orbit (the stroboscopic state repeats to round-off, x*' included):
+        # its drift, measured over whole orbits, is the steady one
+        return Settling(True, "fixed", math.nan, win.periods, periods_run, math.nan, ())
+    if win.contact_lost and not chaotic and growing(win.samples, win.scale):
+        # lost contact, regular, no orbit, and the stroboscopic state moves more from period
+        # to period at the window's end than at its start: still leaving (a growing alternation)
+        return Settling(False, "fixed", math.nan, win.periods, periods_run, math.nan, ())
     unit = max(win.orbit_period, 1)
     parts = (win.periods // unit) // 3
     n = parts * unit

@@ -69,6 +69,29 @@ def _circular(phases: np.ndarray) -> tuple[float, float, float]:
     return mean, r, spread
 
 
+def orbit_pattern(t: np.ndarray, t_start: float, periods: int, p: int) -> Synchrony | None:
+    """The hop of an exact periodic orbit of ``p`` periods, read from its last whole orbit.
+
+    The stroboscopic state repeats after p periods (to round-off), so the lift-offs repeat too:
+    hop period p, the lift-offs of the window's last p periods, their phases t* mod 1. The
+    block before must hold as many lift-offs (a check against a lift-off that grazes a block
+    boundary); None if it does not, if the window is shorter than p, or if no lift-off falls in
+    the last orbit (an orbit that keeps contact).
+    """
+    end = t_start + periods
+    if periods < p:
+        return None
+    last = t[(t >= end - p) & (t < end)]
+    if last.size == 0:
+        return None
+    if periods >= 2 * p:
+        before = t[(t >= end - 2 * p) & (t < end - p)]
+        if before.size != last.size or np.max(np.abs((last - before) - p)) > 1e-6 * p:
+            return None
+    phases = tuple(float(v) for v in (last % 1.0))
+    return Synchrony(p, int(last.size), phases[0], 0.0, 1.0, phases)
+
+
 def synchrony(liftoff_times: np.ndarray, t_start: float, periods: int,
               orbit_period: int = 0) -> Synchrony:
     """Look for a lift-off pattern that repeats every k whole periods of the window.
@@ -82,14 +105,19 @@ def synchrony(liftoff_times: np.ndarray, t_start: float, periods: int,
     periods
         Length of the window in wave periods.
     orbit_period
-        p when the stroboscopic state repeats after p periods (0: not known to): k = p is tried
-        first, so a period-2 orbit whose two take-off phases lie close together is a hop of
-        period 2 with both phases, not a period-1 hop at their mean.
+        p when the stroboscopic state repeats after p periods (0: not known to): the hop is
+        then read from the orbit itself (:func:`orbit_pattern`), for any p, so a period-2 orbit
+        whose two take-off phases lie close together is a hop of period 2 with both phases, not
+        a period-1 hop at their mean; otherwise k = 1 .. :data:`MAX_HOP_PERIOD` are tried.
     """
     t = np.sort(np.asarray(liftoff_times, dtype=float))
     none = Synchrony(0, 0, math.nan, math.nan, 0.0)
     if t.size == 0:
         return none
+    if orbit_period >= 1:
+        exact = orbit_pattern(t, t_start, periods, orbit_period)
+        if exact is not None:
+            return exact
     rel = t - t_start
     first = [orbit_period] if 1 <= orbit_period <= MAX_HOP_PERIOD else []
     for k in first + [k for k in range(1, MAX_HOP_PERIOD + 1) if k not in first]:

@@ -50,6 +50,7 @@ class Window:
     orbit_period: int  # see orbit_period(); 0: not periodic
     positions: np.ndarray = field(repr=False)  # centre x* at the start and at each period's end
     snapshot: Stepper | None = field(default=None, repr=False)
+    scale: np.ndarray | None = field(default=None, repr=False)  # state_scale of the samples
 
 
 def state_scale(amp: float, r: float) -> np.ndarray:
@@ -72,7 +73,12 @@ def periodicity(samples: np.ndarray, scale: np.ndarray, last: int = 10) -> float
 PERIODIC_TOL = 1e-8
 
 
-def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = 12, last: int = 8) -> int:
+#: longest periodic orbit looked for, in wave periods
+LONGEST_ORBIT = 24
+
+
+def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_ORBIT,
+                 last: int = 8) -> int:
     """Smallest p <= ``longest`` after which the stroboscopic state (x*', y*, y*') repeats.
 
     The state at the ends of the last ``last`` periods must equal the state p periods earlier to
@@ -193,6 +199,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         orbit_period=orbit,
         positions=positions,
         snapshot=snapshot,
+        scale=scale,
     )
 
 

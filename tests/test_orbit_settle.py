@@ -1,0 +1,98 @@
+"""Periodic orbits settle on their exact period; a growing orbit is not settled.
+
+References are closed forms or the orbit itself: the stroboscopic state repeating to round-off.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import sawdrift as sd
+from sawdrift.dynamics.synchrony import orbit_pattern
+
+
+def _run(model: str, m: float, amp: float, mu: float = 0.1, **drive) -> sd.Result:
+    return sd.run(sd.Scene(model=model, particle={"m_star": m}, material={"mu": mu},
+                           drive={"amplitude": amp, **drive}))
+
+
+def _period_two_phases(gamma: float) -> tuple[float, float]:
+    """Take-off phases of the period-2 orbit of the completely inelastic bouncing ball.
+
+    Plate u = Gamma sin(tau) (units g / omega^2), take-off where Gamma sin(tau) = 1 with the
+    plate decelerating; free flight x(t) = u(t0) + u'(t0)(t - t0) - (t - t0)^2 / 2; landing at the
+    first later crossing with the plate, then a take-off at once if Gamma sin(tau_land) > 1, else
+    at the next phase with Gamma sin = 1. The period-2 orbit is the fixed point of the map
+    iterated twice (found by iterating from the period-1 orbit's neighbourhood)."""
+    def flight(t0: float) -> float:
+        x0, v0 = gamma * math.sin(t0), gamma * math.cos(t0)
+        t = t0 + 1e-9
+        gap = lambda s: x0 + v0 * (s - t0) - 0.5 * (s - t0) ** 2 - gamma * math.sin(s)  # noqa: E731
+        h = 1e-3
+        while gap(t + h) > 0.0:
+            t += h
+        lo, hi = t, t + h
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if gap(mid) > 0.0 else (lo, mid)
+        return 0.5 * (lo + hi)
+
+    def take_off(t_land: float) -> float:
+        if gamma * math.sin(t_land) >= 1.0:
+            return t_land
+        base = math.asin(1.0 / gamma)
+        k = math.ceil((t_land - base) / (2 * math.pi))
+        return base + 2 * math.pi * k
+
+    t = math.asin(1.0 / gamma) + 0.05
+    phases = []
+    for _ in range(4000):
+        t = take_off(flight(t))
+        # the scene's surface height is -A cos(2 pi t*) = A sin(2 pi t* - pi/2): tau = 2 pi t* - pi/2
+        phases.append((t / (2 * math.pi) + 0.25) % 1.0)
+    return phases[-2], phases[-1]
+
+
+def test_the_bouncing_ball_past_its_period_doubling_hops_with_period_two():
+    """Gamma = 4 pi^2 m* A* = 3.8 > sqrt(4 + pi^2) = 3.724: take-offs alternate between two
+    phases (0.3765 and 0.3034); the old default averaged them into one period-1 phase, 0.340."""
+    m = 0.025330295910584444
+    res = _run("material_point", m, 3.8, horizontal_ratio=0.0)
+    assert abs(4 * math.pi**2 * m * 3.8 - 3.8) < 1e-12
+    assert res.regime == "hopping" and res.hop_period == 2 and res.orbit_period == 2
+    assert res.settled is True
+    expected = sorted(_period_two_phases(3.8))
+    got = sorted(res.liftoff_phases)
+    assert len(got) == 2
+    assert np.allclose(got, expected, atol=1e-4), (got, expected)
+
+
+def test_a_growing_period_two_hop_is_not_settled_and_then_found():
+    """hertz_tsuji, m* = 0.1, A* = 0.536: after 60 periods the alternation still grows (not
+    settled, the old code said settled); run on, it reaches an exact period-2 orbit."""
+    short = sd.run(sd.Scene(model="hertz_tsuji", particle={"m_star": 0.1},
+                            drive={"amplitude": 0.536}, numerics={"settle": False}))
+    assert short.settled is False
+    res = _run("hertz_tsuji", 0.1, 0.536)
+    assert res.orbit_period == 2 and res.hop_period == 2 and res.regime == "hopping"
+    assert res.settled is True
+
+
+def test_a_period_ten_orbit_is_a_hop_of_period_ten():
+    """Material point, m* = 100, A* = 0.005, mu = 0.1: the state repeats after 10 periods (the
+    old default called it bouncing, which means irregular)."""
+    res = _run("material_point", 100.0, 0.005)
+    assert res.orbit_period == 10
+    assert res.regime == "hopping" and res.hop_period == 10 and res.settled is True
+    assert res.liftoffs_per_hop == len(res.liftoff_phases) >= 1
+
+
+def test_orbit_pattern_reads_the_last_orbit_and_checks_the_one_before():
+    t = np.array([0.3, 2.25, 10.3, 12.25, 20.3, 22.25])
+    sync = orbit_pattern(t, 0.0, 30, 10)
+    assert sync is not None and sync.hop_period == 10 and sync.liftoffs_per_hop == 2
+    assert np.allclose(sync.phases, (0.3, 0.25))
+    # the orbit before does not match: no pattern claimed
+    assert orbit_pattern(np.array([0.3, 2.25, 10.3, 20.3, 22.25]), 0.0, 30, 10) is None
