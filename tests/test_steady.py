@@ -76,7 +76,8 @@ def test_a_flight_longer_than_the_window_is_not_taken_for_steady():
     res = sd.run(scene("material_point", 30.0, 4.0, 0.1, settle=True, max_periods=1e5))
     assert res.settled is True
     assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-3
-    assert abs(short.drift_ratio - ref.drift_ratio) > 0.05  # the flight's drift was not steady
+    # the 60-period window is one flight: no drift is claimed for it (the ejected outcome)
+    assert short.regime == "ejected" and short.drift_ratio != short.drift_ratio
 
 
 def test_the_drift_of_a_period_two_hop_is_measured_over_whole_hops():

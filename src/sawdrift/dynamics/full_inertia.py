@@ -41,8 +41,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .evidence import EV_LANDING, EV_LIFT_OFF
 from .stepper import Stepper
-from .window import Window, measure_window
+from .window import Window, in_flight, measure_window
 
 #: fraction of a window in gross slip from which its mean speed is a slow variable (a contact
 #: that is partly stuck most of the time relaxes with its tangential oscillation instead)
@@ -135,9 +136,35 @@ def shift_speed(stepper: Stepper, dv: float) -> None:
         stepper.fh[:, 0] += dv
 
 
+def longest_flight(win: Window) -> float:
+    """The longest flight of a window, in periods: lift-off to the next landing (or the window's
+    end); the whole window if it was spent in one flight."""
+    if win.out_of_contact_fraction >= 1.0:
+        return float(win.periods)
+    ev = win.events
+    if ev.size == 0:
+        return 0.0
+    t, kind = ev[:, 0], ev[:, 1]
+    end = win.t_start + win.periods
+    longest = 0.0
+    lift = None
+    for ti, ki in zip(t, kind, strict=True):
+        if ki == EV_LIFT_OFF:
+            lift = ti
+        elif ki == EV_LANDING and lift is not None:
+            longest = max(longest, ti - lift)
+            lift = None
+    if lift is not None:
+        longest = max(longest, end - lift)
+    return float(longest)
+
+
 def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
-                max_steps: int, lam: float) -> tuple[Window, FullInertia]:
+                max_steps: int, lam: float, last: Window | None = None) -> tuple[Window, FullInertia]:
     """Measure full-inertia windows until the drift has settled (module docstring).
+
+    Windows span at least three of the longest flight of ``last`` (the first stage's final
+    window); a window spent in one flight is not compared, and the next ones are twice as long.
 
     Parameters
     ----------
@@ -153,6 +180,9 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     m = scene.particle.m_star
     tol = scene.numerics.settle_tolerance
     w = full_window_length(m, scene.theta, minimum_window, stepper.rigid)
+    if last is not None:
+        # flights of many periods (a heavy point thrown by one impact): windows of three of them
+        w = max(w, int(math.ceil(3.0 * longest_flight(last))))
     q = math.exp(-lam * w)
     start = stepper.step
     # the stage may outlast the first stage's cap by MIN_WINDOWS windows
@@ -169,6 +199,11 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         win = measure_window(stepper, w, speed, scale)
         d = win.drift_ratio
         values.append(d)
+        if in_flight(win):
+            # one flight spans the window: its constant drift says nothing; longer windows
+            w = 2 * w
+            prev, last_change, steady_run = None, None, 0
+            continue
         if prev is None:
             prev, last_change = d, None
             continue

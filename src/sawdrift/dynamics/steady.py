@@ -47,7 +47,7 @@ from . import adams_bashforth as ig
 from .evidence import EV_LANDING
 from .full_inertia import relaxation_rate, settle_full
 from .stepper import Stepper
-from .window import Window, measure_window
+from .window import Window, in_flight, measure_window
 
 #: the horizontal inertia used for heavier particles (see the module docstring)
 HEAVY_MASS = 100.0
@@ -224,17 +224,13 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     # second stage: the full inertia back, windows until the drift has settled there
     lam = relaxation_rate(tuple(values), w, m_x, m, scene.material.mu)
     stepper.set_horizontal_inertia(m)
-    win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam)
+    win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
+                            last=win)
     method = "reduced_then_full" if m_x < m else "windows_full"
     info = Settling(full.settled, method, m_x, full.window_periods,
                     (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history,
                     first_stage=win_first, first_settled=settled, jumps=full.jumps)
     return win, info
-
-
-def in_flight(win: Window) -> bool:
-    """The whole window was one flight: out of contact throughout, without a lift-off in it."""
-    return win.out_of_contact_fraction >= 1.0 and win.liftoffs_per_period == 0.0
 
 
 def _converged(v: list[float], tol: float) -> bool:

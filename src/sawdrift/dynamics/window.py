@@ -53,6 +53,24 @@ class Window:
     scale: np.ndarray | None = field(default=None, repr=False)  # state_scale of the samples
 
 
+def in_flight(win: Window) -> bool:
+    """The whole window was one flight: out of contact throughout, without a lift-off in it."""
+    return win.out_of_contact_fraction >= 1.0 and win.liftoffs_per_period == 0.0
+
+
+def ballistic_return(y: float, vy: float, m_star: float, amplitude: float) -> float:
+    """Periods until a particle in free flight can touch the surface again (0: it can now).
+
+    In flight m* y*'' = 1 (gravity and preload push y* into the substrate); contact needs
+    a* = y* - u_y > 0 and |u_y| <= ``amplitude``, so not before y* reaches -amplitude:
+    the positive root of y + vy t + t^2 / (2 m*) = -amplitude.
+    """
+    c = y + amplitude
+    if c >= 0.0:
+        return 0.0
+    return m_star * (-vy + math.sqrt(vy * vy - 2.0 * c / m_star))
+
+
 def state_scale(amp: float, r: float) -> np.ndarray:
     """Natural sizes of (x*', y*, y*'): 2 pi r A*, 1 + A*, 2 pi (1 + A*)."""
     return np.array([2 * math.pi * max(abs(r) * amp, 1e-12), 1.0 + amp, 2 * math.pi * (1.0 + amp)])

@@ -17,8 +17,10 @@ every piece of evidence comes from that one window), never the runner's internal
   - ``runaway`` - the mean horizontal speed keeps growing: a tangential load above the largest
     mean friction mu <N*> = mu (the period-averaged normal force is the weight), or a window
     whose mean speed exceeds the largest surface speed and still grows in its own direction;
-  - ``ejected`` - out of contact through the whole window (no lift-off and no landing in it):
-    thrown off, or, on a real device, removed;
+  - ``ejected`` - out of contact through the whole window (no lift-off and no landing in it),
+    and in free flight it cannot touch the surface again within as many periods as the run has
+    lasted: thrown off, or, on a real device, removed (a shorter flight that merely spans the
+    window is ``bouncing``, not settled);
 
 * permanent contact, by the drift ratio V = <x*'> / (2 pi r A*) (scaled by the horizontal surface
   speed amplitude) and the fraction of the window in gross slip:
@@ -82,8 +84,9 @@ def classify(
     return "stick"
 
 
-def outcome(load: float, mu: float, friction: bool, air_drag: float, out_fraction: float,
-            liftoffs: float, drift: float, acceleration: float, surface_speed: float) -> str:
+def outcome(load: float, mu: float, friction: bool, air_drag: float, flight: bool,
+            return_time: float, elapsed: float, drift: float, acceleration: float,
+            surface_speed: float) -> str:
     """``"runaway"``, ``"ejected"`` or ``""`` (a steady state may exist): see the module docstring.
 
     Parameters
@@ -91,20 +94,25 @@ def outcome(load: float, mu: float, friction: bool, air_drag: float, out_fractio
     load, mu, friction, air_drag
         The scene's tangential load (in M g), friction coefficient, whether friction is on, and
         the linear air drag (which always bounds the speed).
-    out_fraction, liftoffs
-        The window's fraction out of contact and its lift-offs per period.
+    flight
+        The whole window was spent out of contact, with no lift-off in it.
+    return_time
+        Periods until the particle, in free flight from the window's end, can touch the surface
+        again (0: it can now), :func:`~sawdrift.dynamics.window.ballistic_return`.
+    elapsed
+        Periods run so far: a flight that outlasts it again leaves the run nothing to measure.
     drift, acceleration
         The window's mean horizontal speed and its mean acceleration (per period squared).
     surface_speed
         The largest horizontal surface speed (2 pi r A* for the wave), 0 without horizontal motion.
     """
-    if out_fraction >= 1.0 and liftoffs == 0.0:
+    if flight and return_time > elapsed:
         return "ejected"
     if air_drag > 0.0:
         return ""
     if load != 0.0 and (not friction or abs(load) > mu):
         return "runaway"  # the mean friction is at most mu times the weight
     relative = abs(drift) - surface_speed
-    if relative > 0.5 * max(surface_speed, 1e-12) and drift * acceleration > 0.0:
+    if surface_speed > 0.0 and relative > 0.5 * surface_speed and drift * acceleration > 0.0:
         return "runaway"
     return ""

@@ -15,7 +15,7 @@ from ..dynamics.assembly import Engine, assemble
 from ..dynamics.drives import Drive
 from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate_wave
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
-from ..dynamics.window import Window
+from ..dynamics.window import Window, ballistic_return, in_flight
 from ..scene.device import device_outputs, device_warnings
 from ..scene.schema import Scene
 from .regimes import classify, outcome
@@ -64,8 +64,11 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     t90 = settling.t90_periods if out.settle_on else math.nan
     drift_ratio, regime = _regime(scene, drive, win, out.speed, hop_period)
     acceleration = mean_acceleration(win.positions)
+    stepper = out.stepper
+    ret = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
+                           drive.vertical_amplitude(scene))
     ending = outcome(scene.particle.load, scene.material.mu, scene.effects.friction,
-                     scene.effects.air_drag, win.out_of_contact_fraction, win.liftoffs_per_period,
+                     scene.effects.air_drag, in_flight(win), ret, stepper.step / stepper.k_per,
                      win.drift, acceleration, out.speed)
     drift = win.drift
     settled = settling.settled
