@@ -14,6 +14,13 @@ Each cell is labelled by what the fixed run measured: ``hopping`` (contact lost 
 ``drifting`` (|drift ratio| above the drift tolerance 1e-3: steady sliding drift) or ``creep``
 (|drift ratio| at most 1e-3 but above 1e-7, without contact loss: a partly stuck contact that
 creeps, near the stick boundary); a cell below 1e-7 would be ``stick`` (none is in the list).
+The stored drift ratio is the run at the default steps per period (128 for these cells), the
+resolution the default run also uses. Measured on 2026-11-26: it is within 7e-4 relative of
+the step-converged value on drifting cells (jaeger m* 300, A* 0.8, mu 0.5: 0.1229428 at 128,
+0.1230184 at 256, 0.1230305 at 1024 steps; mmd m* 100, A* 0.5, mu 0.3: 0.1280521, 0.1280560,
+0.1280563), and within 0.5 % (5e-7 absolute) on creep cells (mmd m* 300 at A* = mu = 0.5:
+1.2748e-4, 1.2762e-4, 1.2808e-4 at 128, 256, 512 steps; 1.2792e-4 at 128 steps and 4x N).
+
 Writes ``validation/data/steady_reference.json`` after every cell; cells already in the file are
 skipped (the script resumes). Run from the repository root:
 
