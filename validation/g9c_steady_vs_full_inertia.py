@@ -1,0 +1,146 @@
+"""Steady drift of heavy particles: the default run against full-inertia brute force.
+
+The reference is ``validation/data/steady_reference.json``, made by
+``benchmarks/steady_reference.py``: for heavy cells (mmd, hertz_mindlin_dem, jaeger; m* = 30 to
+1e4) a plain run at full inertia of at least 40 m*/mu + 2000 periods, measured over its last
+30 % (and at least three periods of the free vertical oscillation, 2 pi sqrt(m*/1.5)), checked
+against a run half as long and one with twice the steps per period. The cells are labelled
+``creep`` (a partly stuck contact creeping at the stick boundary, drift ratio below 1e-3),
+``drifting`` (steady sliding drift) and ``hopping`` (contact lost, synchronous).
+
+For each cell the DEFAULT :func:`sawdrift.run` of the scene (no numerics set: a heavy particle
+settles its drift by itself) must agree with the reference within 1e-3 relative or 2e-5
+absolute in drift ratio, and report the same regime. Value: the worst relative error among the
+cells outside the absolute bound (0 if every cell is within it); the message also names the
+worst relative error over all cells. The quick subset runs the cheapest cell of each kind.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+import sawdrift as sd
+from sawdrift.validation import Case, CaseResult
+
+#: the stored reference (benchmarks/steady_reference.py writes it)
+DATA = Path(__file__).parent / "data" / "steady_reference.json"
+#: agreement: within REL relative or ABS absolute in drift ratio
+REL, ABS = 1e-3, 2e-5
+KIND_COLOURS = {"creep": "#3182bd", "drifting": "#31a354", "hopping": "#e6550d", "stick": "0.5"}
+
+CASE = Case(
+    name="steady_vs_full_inertia",
+    group="steady",
+    title="Default run of heavy cells (mmd, hertz_mindlin_dem, jaeger; m* 30 to 1e4; creep, "
+    "drifting, hopping) against stored full-inertia brute force: within 1e-3 relative or 2e-5 "
+    "absolute, same regime; value: worst relative error outside the absolute bound",
+    tolerance=REL,
+    quick=True,
+)
+
+
+def load_reference(path: Path = DATA) -> list[dict]:
+    """The reference cells of ``path``, in file order.
+
+    Parameters
+    ----------
+    path
+        The JSON file written by ``benchmarks/steady_reference.py``.
+
+    Returns
+    -------
+    list of dict
+        One record per cell (model, m_star, amplitude, mu, drift_ratio, regime, kind, ...).
+    """
+    return json.loads(Path(path).read_text())["cells"]
+
+
+def quick_cells(cells: list[dict]) -> list[dict]:
+    """The cheapest cell (fewest reference periods) of each kind."""
+    chosen: dict[str, dict] = {}
+    for cell in sorted(cells, key=lambda c: (c["periods"], c["m_star"])):
+        chosen.setdefault(cell["kind"], cell)
+    return list(chosen.values())
+
+
+def default_run(cell: dict) -> sd.Result:
+    """The default run of a cell's scene: no numerics set."""
+    return sd.run(sd.Scene(model=cell["model"], particle={"m_star": cell["m_star"]},
+                           drive={"amplitude": cell["amplitude"]}, material={"mu": cell["mu"]}))
+
+
+def run(quick: bool = False) -> CaseResult:
+    """Run every reference cell (or the quick subset) with the default numerics."""
+    if not DATA.exists():
+        return CASE.skip(f"no reference data at {DATA.name}: run benchmarks/steady_reference.py")
+    cells = load_reference()
+    if quick:
+        cells = quick_cells(cells)
+    rows = []
+    for cell in cells:
+        res = default_run(cell)
+        ref, got = cell["drift_ratio"], res.drift_ratio
+        err = abs(got - ref)
+        rel = err / abs(ref) if ref != 0.0 else math.inf
+        rows.append({"key": cell["key"], "kind": cell["kind"], "reference": ref, "default": got,
+                     "abs_error": err, "rel_error": rel, "within": err <= max(REL * abs(ref), ABS),
+                     "regime_ref": cell["regime"], "regime": res.regime,
+                     "same_regime": res.regime == cell["regime"], "settled": res.settled,
+                     "settle_method": res.settle_method, "settle_periods": res.settle_periods,
+                     "wall_s": res.wall_time_s})
+    outside = [r["rel_error"] for r in rows if r["abs_error"] > ABS]
+    value = max(outside, default=0.0)
+    worst = max(rows, key=lambda r: r["rel_error"])
+    missed = [r for r in rows if not r["within"]]
+    regimes = [r for r in rows if not r["same_regime"]]
+    msg = (f"{len(rows)} cells: {len(missed)} outside 1e-3 rel / 2e-5 abs, "
+           f"{len(regimes)} with another regime; worst relative error {worst['rel_error']:.2e} at "
+           f"{worst['key']} ({worst['kind']}: default {worst['default']:.6g}, reference "
+           f"{worst['reference']:.6g})")
+    if regimes:
+        msg += "; regimes: " + ", ".join(f"{r['key']} {r['regime']} vs {r['regime_ref']}"
+                                         for r in regimes[:3])
+    return CASE.result(value, require=not missed and not regimes, message=msg,
+                       figure=_figure(rows), details={"cells": rows})
+
+
+def _figure(rows: list[dict]):
+    import matplotlib.pyplot as plt
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10.0, 4.0), layout="constrained")
+    ref = np.array([r["reference"] for r in rows])
+    got = np.array([r["default"] for r in rows])
+    colours = [KIND_COLOURS.get(r["kind"], "k") for r in rows]
+    lim = 1.5 * max(np.abs(ref).max(), np.abs(got).max())
+    ax1.plot([-lim, lim], [-lim, lim], color="0.6", lw=0.8)
+    ax1.scatter(ref, got, c=colours, s=28, zorder=3)
+    ax1.set_xscale("symlog", linthresh=1e-5)
+    ax1.set_yscale("symlog", linthresh=1e-5)
+    ax1.tick_params(labelsize=7)
+    ax1.set_xlabel("reference drift ratio (full-inertia brute force)")
+    ax1.set_ylabel("default run drift ratio")
+    ax1.set_title("default vs reference", fontsize=9)
+    # error in units of the allowed error max(1e-3 |V|, 2e-5): above 1 fails
+    score = np.array([r["abs_error"] / max(REL * abs(r["reference"]), ABS) for r in rows])
+    x = np.arange(len(rows))
+    ax2.axhspan(1e-4, 1.0, color="0.92")
+    ax2.axhline(1.0, color="k", lw=0.8)
+    ax2.scatter(x, np.maximum(score, 1e-4), c=colours, s=28, zorder=3)
+    for xi, r in zip(x, rows, strict=True):
+        if not r["same_regime"]:
+            ax2.annotate("regime", (xi, max(score[xi], 1e-4)), textcoords="offset points",
+                         xytext=(0, 6), ha="center", fontsize=6)
+    ax2.set_yscale("log")
+    ax2.set_xticks(x, [r["key"].replace("hertz_mindlin_dem", "hmd") for r in rows], rotation=90,
+                   fontsize=6)
+    ax2.set_ylabel("|error| / max(1e-3 |ref|, 2e-5)")
+    ax2.set_title("error per cell (grey: within the bound)", fontsize=9)
+    for kind, colour in KIND_COLOURS.items():
+        if any(r["kind"] == kind for r in rows):
+            ax1.scatter([], [], c=colour, s=28, label=kind)
+    ax1.legend(fontsize=8, loc="upper left")
+    return fig
