@@ -66,6 +66,8 @@ def test_remaining_distance_is_aitken_with_a_bounded_ratio():
     assert remaining_distance(c, c * q, 0.9) == pytest.approx(c * q * q / (1 - q), rel=1e-12)
     # a ratio near one (window noise) is capped by the predicted relaxation q_pred
     assert remaining_distance(1e-4, 0.99e-4, 0.5) == pytest.approx(0.99e-4, rel=1e-12)
+    # a ratio above one on a slow approach: the predicted ratio (q / (1 - q) = 1 at q = 0.5)
+    assert remaining_distance(1e-4, 2e-4, 0.5) == pytest.approx(2e-4, rel=1e-12)
     # alternating signs: the last change itself
     assert remaining_distance(1e-4, -1e-4, 0.9) == -1e-4
     # a single change: extrapolated with the predicted ratio (q / (1 - q) = 9 at q = 0.9)
