@@ -3,7 +3,8 @@
 :mod:`.app` holds the application, its one-line errors and exit statuses; the commands live in
 :mod:`.run` (models, check-model, run), :mod:`.study` (sweeps), :mod:`.report` (diagrams,
 comparison, export, demo, validation, benchmarks), :mod:`.field` (two-wave drift fields) and
-:mod:`.load_curve` (speed and power against a load).
+:mod:`.load_curve` (speed and power against a load), :mod:`.force_velocity` (the mean friction
+force against the steady speed).
 Scene options are generated from the Scene schema (:mod:`.scene_options`).
 """
 
@@ -14,6 +15,7 @@ from . import study  # noqa: F401
 from . import report  # noqa: F401
 from . import field  # noqa: F401
 from . import load_curve  # noqa: F401
+from . import force_velocity  # noqa: F401
 from . import lammps  # noqa: F401
 # isort: on
 from .app import INTERNAL_FAILURE, app, main
