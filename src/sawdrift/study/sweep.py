@@ -44,8 +44,29 @@ from .traces import append_trace, consolidate_traces, read_traces, run_traced
 #: (its evidence is then incomplete), ``code_hash`` names the code that computed the row
 #: (:func:`sawdrift.study.provenance.code_hash`).
 TABLE_COLUMNS = tuple(dict.fromkeys(("cell_id", "scene_id", *SUMMARY_FIELDS, "settled",
-                                     "settle_periods", "orbit_period", "events_dropped", "code_hash",
-                                     "error")))
+                                     "settle_periods", "orbit_period", "chaotic", "drift_ratio_se",
+                                     "mean_acceleration", "resolved_as", "warnings",
+                                     "events_dropped", "code_hash", "error")))
+
+
+def resolved_as(row: dict[str, Any]) -> str:
+    """How a cell's steady state was resolved, or why not (the ``resolved_as`` column).
+
+    ``periodic_orbit`` (settled, the state repeats after ``orbit_period`` periods),
+    ``fixed_point`` (settled otherwise: a steady drift or sticking), ``chaotic_mean`` (a chaotic
+    window's long-time mean with its standard error), ``runaway`` or ``ejected`` (no steady
+    state, named), else ``not_settled`` (the run ended before its drift had settled: a slow
+    approach, or a regular motion that found no periodic orbit within its budget).
+    """
+    regime = row.get("regime")
+    if regime in ("runaway", "ejected"):
+        return str(regime)
+    if row.get("settled"):
+        return "periodic_orbit" if (row.get("orbit_period") or 0) > 0 else "fixed_point"
+    se = row.get("drift_ratio_se")
+    if row.get("chaotic") and se is not None and se == se:
+        return "chaotic_mean"
+    return "not_settled"
 
 #: Parquet metadata keys of a sweep table (provenance).
 META_VERSION, META_BASE_SCENE, META_CODE = b"sawdrift_version", b"base_scene", b"sawdrift_code"
@@ -136,6 +157,8 @@ def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) ->
         else:
             result = run(scene, engine=engine)  # type: ignore[arg-type]
         row.update(result.summary())
+        row["warnings"] = "; ".join(row.get("warnings") or ()) or None
+        row["resolved_as"] = resolved_as(row)
         row["events_dropped"] = int(getattr(result, "events_dropped",
                                             result.extra.get("events_dropped", 0)))
         row["error"] = None
