@@ -36,7 +36,9 @@ BEFORE_LOADS = _before_loads()
 def test_load_zero_gives_the_results_of_before_bit_for_bit(name):
     data, before = BEFORE_LOADS[name]
     particle = {**data.get("particle", {}), "load": 0.0}
-    res = sd.run(sd.Scene(**{**data, "particle": particle}))
+    # the fixed 60-period run the hexes were taken from (the default now runs on to a periodic
+    # orbit or a chaotic cell's long-time mean, which changes what is reported, not the loops)
+    res = sd.run(sd.Scene(**{**data, "particle": particle, "numerics": {"settle": False}}))
     assert res.drift_velocity.hex() == before
 
 
@@ -291,6 +293,14 @@ def test_the_python_engine_runs_the_same_load_terms(model, effects):
     scene = sd.Scene(model=model, effects=effects, particle={"m_star": 0.3, "load": 0.03},
                      material=material, drive={"amplitude": 0.5}, numerics={"periods": 12})
     a, b = sd.run(scene), sd.run(scene, engine="python")
+    assert a.regime == b.regime
+    if a.regime == "runaway":
+        # the rotating point rolls away under any load: rolling without slip (x*'' + psi'' = 0,
+        # kappa m* psi'' = F) gives x*'' = L / (m* (1 + kappa)) = 0.03 / (0.3 * 1.4) per period^2;
+        # compared through its acceleration
+        assert a.mean_acceleration == pytest.approx(0.03 / (0.3 * 1.4), rel=1e-6)
+        assert b.mean_acceleration == pytest.approx(a.mean_acceleration, rel=1e-12, abs=0.0)
+        return
     assert a.drift_velocity != 0.0
     assert b.drift_velocity == pytest.approx(a.drift_velocity, rel=1e-12, abs=0.0)
 

@@ -57,7 +57,10 @@ def test_a_rigid_rolling_sphere_keeps_its_momentum_balance_through_impacts(load)
     # x*' - kappa psi' - L t / m* is constant
     res = _hopping(load)
     tr = res.trajectory
-    assert res.regime == "hopping"
+    # impacts in the window; under a load above mu (0.2 > 0.1) there is no steady drift at all:
+    # the mean friction is at most mu times the weight, so the sphere runs away
+    assert res.contact_lost
+    assert res.regime == ("hopping" if load == 0.0 else "runaway")
     kappa, m = 0.4, 0.1
     inv = tr["vx"] - kappa * tr["spin"] - load * tr["t"] / m
     scale = float(np.abs(tr["vx"]).max())

@@ -54,7 +54,10 @@ def run() -> CaseResult:
     differ, parts = [], []
     for name, (data, before) in BEFORE_LOADS.items():
         particle = {**data.get("particle", {}), "load": 0.0}
-        got = sd.run(sd.Scene(**{**data, "particle": particle})).drift_velocity
+        # the fixed 60-period run the hexes were taken from (the default now runs on to a
+        # periodic orbit or a chaotic cell's long-time mean: what is reported, not the loops)
+        got = sd.run(sd.Scene(**{**data, "particle": particle,
+                                 "numerics": {"settle": False}})).drift_velocity
         if got.hex() != before:
             differ.append(name)
         parts.append(f"{name}: {got:.17g}")

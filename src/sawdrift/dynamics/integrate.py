@@ -109,8 +109,13 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     settle_on = settles(scene, speed, stepper.rigid)
     win, settling = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
-    if settling is None and num.settle is not False and not chaotic:
-        win = _find_orbit(stepper, win, speed, scale)
+    periods_run = stepper.step / stepper.k_per
+    if settling is None and num.settle is not False and not chaotic and win.contact_lost:
+        # on a twin, like the chaotic mean below: the run (its trajectory, its periods) ends
+        # where it was asked to; the measurement may go on
+        twin = stepper.twin()
+        win = _find_orbit(twin, win, speed, scale)
+        periods_run = twin.step / twin.k_per
     # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
     chaos = (long_time_mean(stepper.twin(), win)
@@ -118,7 +123,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     if settling is None:
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, scene.particle.m_star, speed),
-                                stepper.step / stepper.k_per, chaotic)
+                                periods_run, chaotic)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,

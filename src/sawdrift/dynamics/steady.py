@@ -255,11 +255,15 @@ def _t90(values: list[float], ends: list[float]) -> float:
             return t
     return ends[-1]
 
-def growing(samples: np.ndarray, scale: np.ndarray) -> bool:
+def growing(samples: np.ndarray, scale: np.ndarray | None) -> bool:
     """Whether the period-to-period change of the stroboscopic state (y*, y*', scaled) grows
     across a window: its largest value over the last third above 1.05 times that over the first
     (a growing orbit, like a period doubling still unfolding, is not a steady motion)."""
-    s = np.asarray(samples)[:, 2:4] / np.asarray(scale)[1:3]
+    samples = np.asarray(samples)
+    if samples.ndim != 2 or samples.shape[0] < 7:
+        return False
+    unit = np.asarray(scale)[1:3] if scale is not None else np.ones(2)
+    s = samples[:, 2:4] / unit
     if s.shape[0] < 7:
         return False
     d = np.abs(np.diff(s, axis=0)).max(axis=1)

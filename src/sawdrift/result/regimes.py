@@ -48,7 +48,7 @@ REGIMES = ("stick", "oscillating_slip", "drift_with", "drift_against", "hopping"
 NO_STEADY_STATE = ("runaway", "ejected")
 
 #: Regimes in which contact is lost in the measurement window.
-CONTACT_LOST = ("hopping", "bouncing")
+CONTACT_LOST = ("hopping", "bouncing", "ejected")
 
 
 def classify(
