@@ -101,8 +101,9 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_
 
     The state at the ends of the last ``last`` periods (fewer in a window shorter than p +
     ``last``, at least one) must equal the state p periods earlier to :data:`PERIODIC_TOL`
-    (scaled by :func:`state_scale`); 0 if no such p (not periodic, or not yet). The equations are autonomous at the stroboscopic times, so a repeating state is a
-    periodic orbit: the drift over whole multiples of p is the steady drift.
+    (scaled by :func:`state_scale`); 0 if no such p (not periodic, or not yet). The equations
+    are autonomous at the stroboscopic times, so a repeating state is a periodic orbit: the drift
+    over whole multiples of p is the steady drift.
     """
     s = np.asarray(samples)[:, 1:4] / scale
     for p in range(1, longest + 1):
