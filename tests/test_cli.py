@@ -58,7 +58,9 @@ def test_an_unsettled_run_says_so_on_stderr():
 
 
 def test_run_writes_parquet_and_png(tmp_path):
-    cli("run", "--model", "material_point", "--periods", "10", "-o", str(tmp_path), check=True)
+    # a fixed run (the default would go on to the hop's periodic orbit, past the 10 periods)
+    cli("run", "--model", "material_point", "--periods", "10", "--no-settle", "-o", str(tmp_path),
+        check=True)
     frame = pd.read_parquet(tmp_path / "trajectory.parquet")
     assert {"t", "x", "a", "N_star", "T_star"} <= set(frame.columns)
     assert frame["t"].iloc[-1] == pytest.approx(10.0, abs=0.01)

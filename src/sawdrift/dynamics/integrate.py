@@ -109,13 +109,11 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     settle_on = settles(scene, speed, stepper.rigid)
     win, settling = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
-    periods_run = stepper.step / stepper.k_per
     if settling is None and num.settle is not False and not chaotic and win.contact_lost:
-        # on a twin, like the chaotic mean below: the run (its trajectory, its periods) ends
-        # where it was asked to; the measurement may go on
-        twin = stepper.twin()
-        win = _find_orbit(twin, win, speed, scale)
-        periods_run = twin.step / twin.k_per
+        # the run goes on to its periodic orbit (its events and trajectory with it), as a
+        # settling run goes on to its steady drift
+        win = _find_orbit(stepper, win, speed, scale)
+    periods_run = stepper.step / stepper.k_per
     # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
     chaos = (long_time_mean(stepper.twin(), win)
