@@ -99,18 +99,17 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_
                  last: int = 8) -> int:
     """Smallest p <= ``longest`` after which the stroboscopic state (x*', y*, y*') repeats.
 
-    The state at the ends of the last ``last`` periods (fewer in a window shorter than p +
-    ``last``, at least one) must equal the state p periods earlier to :data:`PERIODIC_TOL`
-    (scaled by :func:`state_scale`); 0 if no such p (not periodic, or not yet). The equations
+    The state at the ends of the last ``last`` periods must equal the state p periods earlier to
+    :data:`PERIODIC_TOL` (scaled by :func:`state_scale`); 0 if no such p (not periodic, or not
+    yet; a window shorter than p + ``last`` cannot tell). The equations
     are autonomous at the stroboscopic times, so a repeating state is a periodic orbit: the drift
     over whole multiples of p is the steady drift.
     """
     s = np.asarray(samples)[:, 1:4] / scale
     for p in range(1, longest + 1):
-        n = min(last, s.shape[0] - p)  # a short window compares what it has (at least once)
-        if n < 1:
+        if s.shape[0] < p + last:
             return 0
-        if float(np.abs(s[-n:] - s[-n - p : -p]).max()) <= PERIODIC_TOL:
+        if float(np.abs(s[-last:] - s[-last - p : -p]).max()) <= PERIODIC_TOL:
             return p
     return 0
 
