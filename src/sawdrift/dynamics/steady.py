@@ -68,11 +68,6 @@ class Settling:
     periods: float
     t90_periods: float
     history: tuple[float, ...]
-    #: drift ratio where the first (reduced-inertia) stage ended, and whether it had settled there
-    first_stage: float = math.nan
-    first_settled: bool = False
-    #: projective jumps of the mean speed in the full-inertia stage
-    jumps: int = 0
 
 
 def horizontal_inertia(m_star: float, rigid: bool) -> float:
@@ -129,13 +124,17 @@ def settles(scene, speed: float, rigid: bool) -> bool:
 
 
 def runs_away(scene) -> bool:
+    """:func:`load_runs_away` of the scene's load, friction and air drag."""
+    eff = scene.effects
+    return load_runs_away(scene.particle.load, scene.material.mu, eff.friction, eff.air_drag)
+
+
+def load_runs_away(load: float, mu: float, friction: bool, air_drag: float) -> bool:
     """A tangential load that friction cannot hold on average: |L| > mu (the period-averaged normal
     force is the weight), or any load without friction, and no air drag to bound the speed."""
-    load = scene.particle.load
-    eff = scene.effects
-    if load == 0.0 or eff.air_drag > 0.0:
+    if load == 0.0 or air_drag > 0.0:
         return False
-    return (not eff.friction) or abs(load) > scene.material.mu
+    return (not friction) or abs(load) > mu
 
 
 def horizontal_relaxation(scene, m_x: float, speed: float) -> float:
@@ -203,7 +202,6 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     start = stepper.step
     values: list[float] = []
     ends: list[float] = []
-    settled = False
     win = measure_window(stepper, w, speed, scale)
     values.append(win.drift_ratio)
     ends.append(stepper.step / stepper.k_per)
@@ -214,12 +212,9 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
         if in_flight(win):
             continue  # one flight longer than the window: its constant drift says nothing
         if len(values) >= 3 and _converged(values[-3:], tol):
-            settled = True
-            break
+            break  # near the steady drift: the full-inertia stage decides whether it settled
         if len(values) == 2 and m_x == m and abs(values[-1] - values[-2]) <= 0.1 * tol:
-            settled = True  # a light particle already steady from the first windows
-            break
-    win_first = win.drift_ratio
+            break  # a light particle already steady from the first windows
     t90 = _t90(values, ends) * (m / m_x)
     # second stage: the full inertia back, windows until the drift has settled there
     lam = relaxation_rate(tuple(values), w, m_x, m, scene.material.mu)
@@ -228,8 +223,7 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
                             last=win)
     method = "reduced_then_full" if m_x < m else "windows_full"
     info = Settling(full.settled, method, m_x, full.window_periods,
-                    (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history,
-                    first_stage=win_first, first_settled=settled, jumps=full.jumps)
+                    (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history)
     return win, info
 
 
@@ -264,8 +258,6 @@ def growing(samples: np.ndarray, scale: np.ndarray | None) -> bool:
         return False
     unit = np.asarray(scale)[1:3] if scale is not None else np.ones(2)
     s = samples[:, 2:4] / unit
-    if s.shape[0] < 7:
-        return False
     d = np.abs(np.diff(s, axis=0)).max(axis=1)
     third = d.size // 3
     return float(d[-third:].max()) > 1.05 * float(d[:third].max())

@@ -107,11 +107,14 @@ def outcome(load: float, mu: float, friction: bool, air_drag: float, flight: boo
     surface_speed
         The largest horizontal surface speed (2 pi r A* for the wave), 0 without horizontal motion.
     """
+    # the dynamics layer (numba) stays out of this module's import: it is read by light tools
+    from ..dynamics.steady import load_runs_away
+
     if flight and return_time > elapsed:
         return "ejected"
     if air_drag > 0.0:
         return ""
-    if load != 0.0 and (not friction or abs(load) > mu):
+    if load_runs_away(load, mu, friction, air_drag):
         return "runaway"  # the mean friction is at most mu times the weight
     # measured: only under a load, the one source of a lasting push (a light particle pumped
     # into long flights by an undamped contact can move faster than the surface for a while,

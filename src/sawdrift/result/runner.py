@@ -87,7 +87,6 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None))
-    stepper = out.stepper
     k_per = stepper.k_per
     return Result(
         model=scene.model,
