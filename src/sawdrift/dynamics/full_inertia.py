@@ -66,6 +66,14 @@ MAX_WINDOWS = 60
 #: can drift on a slow mode whose changes grow before they decay)
 STEADY_CHANGES = 3
 
+#: the largest jump, in window changes: q / (1 - q) at most this, so a ratio q measured near one
+#: (a secant across a jump on a noisy, hopping window) cannot throw the speed far past its fixed
+#: point; a slower approach takes several jumps
+LONGEST_JUMP = 20.0
+
+#: windows may grow to this many times their first length (changes that alternate in sign)
+LONGEST_WINDOW = 16
+
 #: windows the full-inertia stage may always take, even past the settle cap
 MIN_WINDOWS = 12
 
@@ -80,16 +88,19 @@ class FullInertia:
     jumps: int
     periods: float
     history: tuple[float, ...]
+    ratio: float = math.nan
 
 
-def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = False) -> int:
+def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = False,
+                       m_x: float | None = None) -> int:
     """W: three free vertical periods 2 pi sqrt(m*/1.5) and two tangential contact periods
-    2 pi sqrt(theta m*/1.5), at least ``minimum`` (see the module docstring); a rigid point has
-    neither oscillation: ``minimum``."""
+    2 pi sqrt(theta m*_x/1.5) (m*_x the integrated horizontal inertia, m* unless given), at least
+    ``minimum`` (see the module docstring); a rigid point has neither oscillation: ``minimum``."""
     if rigid:
         return int(minimum)
+    m_x = m_star if m_x is None else m_x
     vertical = 2.0 * math.pi * math.sqrt(m_star / 1.5)
-    tangential = 2.0 * math.pi * math.sqrt(theta * m_star / 1.5)
+    tangential = 2.0 * math.pi * math.sqrt(theta * m_x / 1.5)
     return max(int(minimum), int(math.ceil(3.0 * vertical)), int(math.ceil(2.0 * tangential)))
 
 
@@ -129,6 +140,7 @@ def remaining_distance(c1: float | None, c2: float, q_pred: float) -> float:
     """
     if q_pred <= 0.0 or c2 == 0.0:
         return c2
+    q_pred = min(q_pred, LONGEST_JUMP / (1.0 + LONGEST_JUMP))
     if c1 is None:
         return c2 * q_pred / (1.0 - q_pred)
     if c1 == 0.0 or c2 / c1 <= 0.0:
@@ -150,6 +162,26 @@ def learned_ratio(before: tuple[float, float], after: tuple[float, float], q: fl
         return q
     k = (c1 - c0) / (d1 - d0)
     return 1.0 + k if -1.0 < k < 0.0 else q
+
+
+def tapered_drift_ratio(win: Window, speed: float) -> float:
+    """The window's drift ratio as a Hann-weighted mean of its per-period displacements.
+
+    A box mean of x* over W periods leaks a slow oscillation (the free vertical one, or the
+    particle ringing on its tangential contact stiffness, periods 2 pi sqrt(m*/1.5) and
+    2 pi sqrt(theta m*/1.5)) into the drift in proportion to P / W; with the weights
+    sin^2(pi (k + 1/2) / W) the leak falls as (P / W)^3 (the Hann window's sidelobes), while a
+    constant or linearly changing speed gives the same mean as the box. A periodic orbit of
+    several periods keeps the box mean over whole orbits (its displacements repeat exactly).
+    """
+    if speed <= 0.0:
+        return 0.0
+    if win.orbit_period > 1:
+        return win.drift_ratio
+    steps = np.diff(win.positions)
+    n = steps.size
+    weights = np.sin(np.pi * (np.arange(n) + 0.5) / n) ** 2
+    return float(np.dot(weights, steps) / weights.sum() / speed)
 
 
 def shift_speed(stepper: Stepper, dv: float) -> None:
@@ -183,7 +215,8 @@ def longest_flight(win: Window) -> float:
 
 
 def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
-                max_steps: int, lam: float, last: Window | None = None) -> tuple[Window, FullInertia]:
+                max_steps: int, lam: float, last: Window | None = None, m_x: float | None = None,
+                coarse: float = 1.0) -> tuple[Window, FullInertia]:
     """Measure full-inertia windows until the drift has settled (module docstring).
 
     Windows span at least three of the longest flight of ``last`` (the first stage's final
@@ -199,10 +232,13 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         Relaxation rate of the mean speed at full inertia, per period (:func:`relaxation_rate`).
     max_steps
         The settle cap: no window starts that would end past it.
+    m_x, coarse
+        The first stage runs the same windows at the reduced horizontal inertia ``m_x`` and
+        stops at ``coarse`` times the accuracy; the last stage leaves both at their defaults.
     """
     m = scene.particle.m_star
-    tol = scene.numerics.settle_tolerance
-    w = full_window_length(m, scene.theta, minimum_window, stepper.rigid)
+    tol = coarse * scene.numerics.settle_tolerance
+    w = full_window_length(m, scene.theta, minimum_window, stepper.rigid, m_x)
     if last is not None:
         # flights of many periods (a heavy point thrown by one impact): windows of three of them
         w = max(w, int(math.ceil(3.0 * longest_flight(last))))
@@ -214,14 +250,16 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     jumps = 0
     settled = False
     win = measure_window(stepper, w, speed, scale)
-    values.append(win.drift_ratio)
-    prev: float | None = win.drift_ratio
+    values.append(tapered_drift_ratio(win, speed))
+    prev: float | None = values[-1]
     last_change: float | None = None
     before: tuple[float, float] | None = None  # (window mean, change) where the last jump began
     steady_run = 0  # consecutive window changes within the accuracy
+    flips = 0  # consecutive changes of alternating sign
+    w0 = w
     while len(values) < MAX_WINDOWS and stepper.step + w * stepper.k_per <= max_steps:
         win = measure_window(stepper, w, speed, scale)
-        d = win.drift_ratio
+        d = tapered_drift_ratio(win, speed)
         values.append(d)
         if in_flight(win):
             # one flight spans the window: its constant drift says nothing; longer windows
@@ -241,14 +279,25 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         steady_run = steady_run + 1 if abs(change) <= eps else 0
         if steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
             settled = True
+            # the tapered mean is the measured drift (the box mean carries the slow ringing)
+            win.drift_ratio = d
+            win.drift = d * speed
             break
-        if slow and abs(remaining) > eps and speed > 0.0 and last_change is not None:
+        monotone = last_change is not None and change * last_change > 0.0
+        if slow and monotone and abs(remaining) > eps and speed > 0.0:
             shift_speed(stepper, remaining * speed)
             jumps += 1
             before = (d, change)
             prev, steady_run = None, 0  # the next window re-adapts; compare the two after it
             continue
+        flips = flips + 1 if (last_change is not None and change * last_change < 0.0) else 0
+        if flips >= 2 and w < LONGEST_WINDOW * w0:
+            # changes that alternate in sign are a slow oscillation beating against the window
+            # (a quasi-periodic motion), not an approach: longer windows average it out
+            w, flips = 2 * w, 0
+            prev, last_change, steady_run = None, None, 0
+            continue
         prev, last_change = d, change
     info = FullInertia(settled, w, len(values), jumps, (stepper.step - start) / stepper.k_per,
-                       tuple(values))
+                       tuple(values), q)
     return win, info

@@ -22,6 +22,7 @@ from ..scene.schema import Impact, Scene
 from .assembly import Assembly
 from .batch_means import BatchMeans, long_time_mean
 from .evidence import S_LASTLIFT
+from .full_inertia import settle_full
 from .steady import (
     Settling,
     assess_fixed,
@@ -33,7 +34,7 @@ from .steady import (
     settles,
 )
 from .stepper import Stepper
-from .window import Window, lyapunov, measure_window
+from .window import Window, in_flight, lyapunov, measure_window
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -122,6 +123,10 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, scene.particle.m_star, speed),
                                 periods_run, chaotic)
+        if (not settling.settled and num.settle is None and not chaotic
+                and not _leaving(scene, win, speed)):
+            # a default run that its own window could not confirm goes on to the steady drift
+            win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
@@ -150,6 +155,39 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
     if settle_on:
         return settle(stepper, scene, speed, scale, n_periods, n_max)
     return measure_window(stepper, n_periods, speed, scale), None
+
+
+def _leaving(scene: Scene, win: Window, speed: float) -> bool:
+    """A window that may have no steady drift to settle on: one flight (a particle thrown off),
+    or any load, whose accelerating window a short run cannot tell from a runaway (a sphere
+    rolling without slip under a load speeds up for ever); the Result judges both."""
+    return in_flight(win) or scene.particle.load != 0.0
+
+
+#: periods a default fixed run its window did not confirm may run on (:func:`_settle_on`)
+SETTLE_ON_PERIODS = 1000
+
+
+def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win: Window,
+               periods_run: float) -> tuple[Window, Settling]:
+    """Full-inertia windows from where a default fixed run ended unconfirmed
+    (:func:`~sawdrift.dynamics.full_inertia.settle_full`; ``settle_method``
+    "fixed_then_windows"), for at most :data:`SETTLE_ON_PERIODS` more periods (the run was
+    fixed because its drift relaxes fast: what has not settled by then drifts on a slow mode of
+    its own, and says so) and within ``numerics.max_periods`` if given."""
+    m_star = scene.particle.m_star
+    mu = scene.material.mu
+    n_periods = scene.measure_periods()
+    cap = scene.numerics.max_periods
+    n_max = stepper.step + int(round(SETTLE_ON_PERIODS * stepper.k_per))
+    if cap is not None:
+        n_max = min(n_max, int(round(cap * stepper.k_per)))
+    lam = mu / m_star if mu > 0.0 else 0.0
+    start = stepper.step
+    win, full = settle_full(stepper, scene, speed, scale, n_periods, n_max, lam, last=win)
+    info = Settling(full.settled, "fixed_then_windows", m_star, full.window_periods,
+                    periods_run + (stepper.step - start) / stepper.k_per, math.nan, full.history)
+    return win, info
 
 
 #: periods a regular (not chaotic) window that lost contact may run on to reach its periodic orbit

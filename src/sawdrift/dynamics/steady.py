@@ -192,14 +192,45 @@ def default_max_periods(m_star: float, tau: float, rigid: bool, minimum_window: 
 def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
            max_steps: int) -> tuple[Window, Settling]:
     """Measure windows until the drift has settled (see the module docstring)."""
-    num = scene.numerics
     m = scene.particle.m_star
     m_x = horizontal_inertia(m, stepper.rigid)
+    start = stepper.step
+    if m_x < m:
+        values, w, t90, last = _reduced_stage(stepper, scene, speed, scale, minimum_window,
+                                              max_steps, m_x)
+        lam = relaxation_rate(tuple(values), w, m_x, m, scene.material.mu)
+        stepper.set_horizontal_inertia(m)
+    else:
+        # no reduction to make: the full-inertia stage's jumps do the approach from rest; its
+        # windows span the rolling spring's mode too, which modulates the drift while it decays
+        values, t90, last = [], math.nan, None
+        lam = scene.material.mu / m if scene.material.mu > 0.0 else 0.0
+        omega = rolling_frequency(scene, m)
+        if omega > 0.0:
+            minimum_window = max(minimum_window, int(math.ceil(2.0 * math.pi / omega)))
+    win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
+                            last=last)
+    if m_x == m and 0.0 < full.ratio < 1.0 and full.jumps > 0:
+        # the approach a free particle would make: ln 10 / lambda with the rate measured
+        t90 = math.log(10.0) * full.window_periods / -math.log(full.ratio)
+    method = "reduced_then_full" if m_x < m else "windows_full"
+    info = Settling(full.settled, method, m_x, full.window_periods,
+                    (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history)
+    return win, info
+
+
+def _reduced_stage(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
+                   max_steps: int, m_x: float) -> tuple[list[float], int, float, Window]:
+    """The first stage: windows at the reduced inertia ``m_x`` until their means converge.
+
+    Returns the window means, the window length, the time to 90 % of the drift scaled back to the
+    full inertia, and the last window.
+    """
+    m = scene.particle.m_star
     stepper.set_horizontal_inertia(m_x)
     w = window_length(m, relaxation_periods(scene, m_x, speed), minimum_window, stepper.rigid,
                       rolling_frequency(scene, m_x))
-    tol = num.settle_tolerance
-    start = stepper.step
+    tol = scene.numerics.settle_tolerance
     values: list[float] = []
     ends: list[float] = []
     win = measure_window(stepper, w, speed, scale)
@@ -213,18 +244,7 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
             continue  # one flight longer than the window: its constant drift says nothing
         if len(values) >= 3 and _converged(values[-3:], tol):
             break  # near the steady drift: the full-inertia stage decides whether it settled
-        if len(values) == 2 and m_x == m and abs(values[-1] - values[-2]) <= 0.1 * tol:
-            break  # a light particle already steady from the first windows
-    t90 = _t90(values, ends) * (m / m_x)
-    # second stage: the full inertia back, windows until the drift has settled there
-    lam = relaxation_rate(tuple(values), w, m_x, m, scene.material.mu)
-    stepper.set_horizontal_inertia(m)
-    win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
-                            last=win)
-    method = "reduced_then_full" if m_x < m else "windows_full"
-    info = Settling(full.settled, method, m_x, full.window_periods,
-                    (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history)
-    return win, info
+    return values, w, _t90(values, ends) * (m / m_x), win
 
 
 def _converged(v: list[float], tol: float) -> bool:

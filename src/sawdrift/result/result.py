@@ -127,7 +127,8 @@ class Result:
     #: whether the reported drift is the steady one (see dynamics.steady)
     settled: bool | None = None
     #: how ``settled`` was decided: "fixed" (a run of fixed length, judged after the fact),
-    #: "windows_full" (windows at full inertia) or "reduced_then_full" (a reduced-inertia
+    #: "windows_full" (windows at full inertia), "fixed_then_windows" (a default fixed run its own
+    #: window could not confirm, continued in such windows) or "reduced_then_full" (a reduced-inertia
     #: approach, then windows at full inertia; see dynamics.full_inertia)
     settle_method: str | None = None
     #: periods after which the drift was assessed (settle runs: periods spent settling)
