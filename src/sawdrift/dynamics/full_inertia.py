@@ -47,6 +47,9 @@ from .evidence import EV_LANDING, EV_LIFT_OFF
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
 
+#: free vertical periods per window
+VERTICALS = 3.0
+
 #: fraction of a window in gross slip from which its mean speed is a slow variable (a contact
 #: that is partly stuck most of the time relaxes with its tangential oscillation instead)
 SLIDING_FRACTION = 0.05
@@ -101,7 +104,7 @@ def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = 
     m_x = m_star if m_x is None else m_x
     vertical = 2.0 * math.pi * math.sqrt(m_star / 1.5)
     tangential = 2.0 * math.pi * math.sqrt(theta * m_x / 1.5)
-    return max(int(minimum), int(math.ceil(3.0 * vertical)), int(math.ceil(2.0 * tangential)))
+    return max(int(minimum), int(math.ceil(VERTICALS * vertical)), int(math.ceil(2.0 * tangential)))
 
 
 def accuracy(drift_ratio: float, tol: float) -> float:

@@ -127,6 +127,10 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                 and not _leaving(scene, win, speed)):
             # a default run that its own window could not confirm goes on to the steady drift
             win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
+            if not settling.settled and win.contact_lost and not in_flight(win):
+                # irregular without a positive exponent (quasi-periodic, intermittent): its drift
+                # is a long-time mean too, with its error
+                chaos = long_time_mean(stepper.twin(), win)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,

@@ -52,6 +52,11 @@ from .window import Window, in_flight, measure_window
 #: the horizontal inertia used for heavier particles (see the module docstring)
 HEAVY_MASS = 100.0
 
+#: the slope F' of the force-velocity curve at its zero assumed before one is measured: the mean
+#: speed relaxes at lambda = F' mu / m* per period; measured relaxation times to 90 % of 2.7 to
+#: 7.7 m*/mu (``benchmarks/bench_steady.py``) put F' between 0.3 and 0.85
+SLOPE = 0.5
+
 #: Longest relaxation time (periods, at the integrated inertia) that ``numerics.settle`` left
 #: unset settles by default (:func:`settles`): its cap, 50 of them, is then at most 5e5 periods.
 AUTO_SETTLE_PERIODS = 1e4
@@ -204,7 +209,7 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
         # no reduction to make: the full-inertia stage's jumps do the approach from rest; its
         # windows span the rolling spring's mode too, which modulates the drift while it decays
         values, t90, last = [], math.nan, None
-        lam = scene.material.mu / m if scene.material.mu > 0.0 else 0.0
+        lam = SLOPE * scene.material.mu / m if scene.material.mu > 0.0 else 0.0
         omega = rolling_frequency(scene, m)
         if omega > 0.0:
             minimum_window = max(minimum_window, int(math.ceil(2.0 * math.pi / omega)))

@@ -54,7 +54,9 @@ def resolved_as(row: dict[str, Any]) -> str:
 
     ``periodic_orbit`` (settled, the state repeats after ``orbit_period`` periods),
     ``fixed_point`` (settled otherwise: a steady drift or sticking), ``chaotic_mean`` (a chaotic
-    window's long-time mean with its standard error), ``runaway`` or ``ejected`` (no steady
+    window's long-time mean with its standard error), ``long_time_mean`` (the same for an
+    irregular motion that lost contact, found no orbit and did not settle, without a positive
+    Lyapunov exponent), ``runaway`` or ``ejected`` (no steady
     state, named), else ``not_settled`` (the run ended before its drift had settled: a slow
     approach, or a regular motion that found no periodic orbit within its budget).
     """
@@ -64,8 +66,8 @@ def resolved_as(row: dict[str, Any]) -> str:
     if row.get("settled"):
         return "periodic_orbit" if (row.get("orbit_period") or 0) > 0 else "fixed_point"
     se = row.get("drift_ratio_se")
-    if row.get("chaotic") and se is not None and se == se:
-        return "chaotic_mean"
+    if se is not None and se == se:
+        return "chaotic_mean" if row.get("chaotic") else "long_time_mean"
     return "not_settled"
 
 #: Parquet metadata keys of a sweep table (provenance).
