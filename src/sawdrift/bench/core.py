@@ -180,8 +180,8 @@ def _progress(total: int, desc: str, enabled: bool):
 def _wave_scene(model: str, *, order: int | None = None, steps_per_period: int | None = None,
                 periods: float = 60.0, m_star: float = WAVE_M_STAR,
                 amplitude: float = WAVE_AMPLITUDE,
-                model_params: dict[str, Any] | None = None) -> Scene:
-    numerics: dict[str, Any] = {"periods": periods}
+                model_params: dict[str, Any] | None = None, settle: bool | None = None) -> Scene:
+    numerics: dict[str, Any] = {"periods": periods, "settle": settle}
     if order is not None:
         numerics["order"] = order
     if steps_per_period is not None:

@@ -113,11 +113,13 @@ def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[
 
     def reference(model: str, params: dict[str, Any] | None = None) -> tuple[float, float, str]:
         coarse, fine = cfg.reference_steps
+        # runs of fixed length throughout the ladders: each step size sees the same window (a
+        # default run could go on settling for a different number of periods at each)
         r1 = run(_wave_scene(model, order=4, steps_per_period=coarse, periods=periods,
-                             model_params=params))
+                             model_params=params, settle=False))
         bar.update(1)
         r2 = run(_wave_scene(model, order=4, steps_per_period=fine, periods=periods,
-                             model_params=params))
+                             model_params=params, settle=False))
         bar.update(1)
         return r2.drift_ratio, abs(r2.drift_ratio - r1.drift_ratio), r2.regime
 
@@ -129,7 +131,7 @@ def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[
                    default_spp: int, params: dict[str, Any] | None = None, ladder: str = "steps",
                    strips: int | None = None, note: str = "") -> None:
         scene = _wave_scene(model, order=order, steps_per_period=spp, periods=periods,
-                            model_params=params)
+                            model_params=params, settle=False)
         try:
             wall, res = _drift(scene, cfg.repeats)
             value, steps, regime = res.drift_ratio, res.steps, res.regime
@@ -164,7 +166,7 @@ def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[
                 ladder_row(model, order, spp, ref, unc, ref_regime, default_spp, strips=strips)
     if "mdr" in compliant:
         # strip ladder at the default numerics, against mmd run with identical numerics
-        base = _wave_scene("mmd", periods=periods)
+        base = _wave_scene("mmd", periods=periods, settle=False)
         default_spp = steps_per_period(base)
         mmd_same = run(base)
         bar.update(1)
