@@ -91,7 +91,7 @@ def test_input_is_the_dem_law_without_damping():
     ({"model": "mmd"}, "model = 'mmd' has no LAMMPS equivalent"),
     ({"particle": {"profile": {"shape": "cone"}}}, "LAMMPS has spheres only"),
     ({"effects": {"rotation": True, "rolling_resistance": 1e-4}}, "rolling_resistance"),
-    ({"material": {"restitution": 0.8}}, "undamped"),
+    ({"material": {"restitution": 0.1}}, "has no LAMMPS equivalent: give e above 0.1353"),
 ])
 def test_scenes_without_an_equivalent_are_refused(fields, needle):
     data = {"model": "hertz_mindlin_dem", **fields}
