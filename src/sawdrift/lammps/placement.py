@@ -20,6 +20,9 @@ resting spheres touch at the centre distance sqrt((R_i + R_j)^2 - (z_i - z_j)^2)
 a0_s: zero overlap, no force; a small sphere between two large ones lets the large ones touch
 each other and rattles in the gap under them); the rows are ``spacing`` largest diameters
 apart in y, and a largest diameter of free plane closes each row at the periodic boundary.
+``positions = [[x, y, species], ...]`` places each sphere by hand (x, y lengths; species 0 or 1,
+the index into ``radius``), for chains and validation cases; :func:`touching_row` gives the x of
+a row of given species that touch (zero overlap, no force) from the start.
 """
 
 from __future__ import annotations
@@ -59,6 +62,41 @@ class Particles(BaseModel):
     row: Annotated[int, Field(ge=1, le=100_000)] | None = Field(
         None, description="spheres per row with packing = 'rows' (default: ceil(sqrt(count)))")
     seed: int = Field(0, description="seed of the placement and the species' assignment")
+    positions: list[list[float | str]] | None = Field(
+        None, description="explicit placement [[x, y, species], ...]: x, y lengths inside the "
+        "box, species 0 or 1 (the index into radius); replaces packing, count follows from it")
+    box: list[float | str] | None = Field(
+        None, description="[lx, ly], the periodic box with explicit positions (default: the "
+        "positions' extent and two largest diameters of free plane along x)")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _count_of_positions(cls, data: Any) -> Any:
+        if isinstance(data, dict) and isinstance(data.get("positions"), list):
+            n = len(data["positions"])
+            if "count" in data and data["count"] != n:
+                raise ValueError(f"count = {data['count']} but {n} positions are given; give one "
+                                 "of them")
+            data = {**data, "count": n}
+        return data
+
+    @field_validator("positions")
+    @classmethod
+    def _triples(cls, value: list[list[float | str]] | None) -> list[list[float | str]] | None:
+        for i, item in enumerate(value or []):
+            if len(item) != 3 or not float(item[2]).is_integer():
+                raise ValueError(f"entry {i} = {item!r}: give [x, y, species] (lengths and 0 or 1)")
+            for v in item[:2]:
+                if not math.isfinite(to_si(v, "length")) or to_si(v, "length") < 0.0:
+                    raise ValueError(f"entry {i} = {item!r}: x and y are lengths >= 0")
+        return value
+
+    @field_validator("box")
+    @classmethod
+    def _box(cls, value: list[float | str] | None) -> list[float | str] | None:
+        if value is not None and (len(value) != 2 or min(to_si(v, "length") for v in value) <= 0):
+            raise ValueError(f"{value!r}: give [lx, ly], two positive lengths")
+        return value
 
     @field_validator("radius", mode="before")
     @classmethod
@@ -78,6 +116,13 @@ class Particles(BaseModel):
 
     @model_validator(mode="after")
     def _both_species(self) -> Particles:
+        if self.positions is not None:
+            bad = [float(p[2]) for p in self.positions
+                   if int(float(p[2])) not in range(len(self.radius))]
+            if bad:
+                raise ValueError(f"positions: species {bad[0]:g} is not an index into radius "
+                                 f"(0 to {len(self.radius) - 1})")
+            return self
         if len(self.radius) == 2 and self.count < 2:
             raise ValueError("two radii need count >= 2")
         return self
@@ -86,8 +131,18 @@ class Particles(BaseModel):
         """The radii in m."""
         return [to_si(r, "length") for r in self.radius]
 
+    def kinds(self) -> np.ndarray | None:
+        """The species index of each explicit position (None without positions)."""
+        if self.positions is None:
+            return None
+        return np.array([int(float(p[2])) for p in self.positions], dtype=int)
+
     def counts(self) -> list[int]:
-        """Spheres of each species: round(fraction count) of the first (at least one of each)."""
+        """Spheres of each species: round(fraction count) of the first (at least one of each);
+        with explicit positions, those of each index."""
+        kinds = self.kinds()
+        if kinds is not None:
+            return [int((kinds == k).sum()) for k in range(len(self.radius))]
         if len(self.radius) == 1:
             return [self.count]
         first = min(max(1, round(self.fraction * self.count)), self.count - 1)
@@ -155,6 +210,52 @@ def check_many(scene: Scene) -> None:
                          "4/3 pi R^3 rho)")
 
 
+def touching_row(species: list[Species], kinds: np.ndarray | list[int]) -> np.ndarray:
+    """x of a row of spheres of ``kinds`` in this order, each touching the one that limits it.
+
+    The first sphere's centre is at its radius; each next one sits as close to the ones before
+    as it can without overlap, at rest on the plane (centre height R_s - a0_s): the centre
+    distance to sphere i is sqrt((R + R_i)^2 - (z - z_i)^2), zero overlap and no force (a small
+    sphere under two large ones lets them touch each other).
+    """
+    kinds = np.asarray(kinds, dtype=int)
+    r = np.array([species[k].radius for k in kinds])
+    z = np.array([species[k].radius - species[k].a0 for k in kinds])
+    xs = np.empty(kinds.size)
+    xs[0] = r[0]
+    for j in range(1, kinds.size):
+        reach = np.sqrt(np.maximum((r[j] + r[:j]) ** 2 - (z[j] - z[:j]) ** 2, 0.0))
+        xs[j] = float(np.max(xs[:j] + reach))
+    return xs
+
+
+def _explicit(spec: Particles, species: list[Species]) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """Explicit positions, their species and the box; overlapping spheres are a SceneError."""
+    assert spec.positions is not None
+    kinds = spec.kinds()
+    assert kinds is not None
+    xy = np.array([[to_si(p[0], "length"), to_si(p[1], "length")] for p in spec.positions])
+    r = np.array([species[k].radius for k in kinds])
+    z = np.array([species[k].radius - species[k].a0 for k in kinds])
+    r_max = float(r.max())
+    if spec.box is not None:
+        lx, ly = (to_si(v, "length") for v in spec.box)
+    else:
+        lx = float((xy[:, 0] + r).max()) + 2.0 * r_max
+        ly = max(float((xy[:, 1] + r).max()), 2.0 * r_max * spec.spacing)
+    if (xy[:, 0] >= lx).any() or (xy[:, 1] >= ly).any():
+        raise SceneError(f"particles.positions: every x, y must lie inside the box [{lx:g}, {ly:g}] m")
+    if kinds.size <= 2000:
+        d2 = ((xy[:, None, :] - xy[None, :, :]) ** 2).sum(axis=2) + (z[:, None] - z[None, :]) ** 2
+        gap = np.sqrt(d2) - (r[:, None] + r[None, :])
+        np.fill_diagonal(gap, np.inf)
+        i, j = np.unravel_index(int(np.argmin(gap)), gap.shape)
+        if gap[i, j] < -1e-9 * r_max:
+            raise SceneError(f"particles.positions: spheres {min(i, j)} and {max(i, j)} overlap by "
+                             f"{-gap[i, j]:.3g} m; place them at least R_i + R_j apart")
+    return xy, kinds, lx, ly
+
+
 def placement(spec: Particles, species: list[Species]) -> tuple[np.ndarray, np.ndarray, float, float]:
     """Positions (x, y), species index of each sphere and the box (lx, ly).
 
@@ -167,24 +268,18 @@ def placement(spec: Particles, species: list[Species]) -> tuple[np.ndarray, np.n
     r_max = max(s.radius for s in species)
     cell = 2.0 * r_max * spec.spacing
     n = spec.count
+    if spec.positions is not None:
+        return _explicit(spec, species)
     kinds = np.repeat(np.arange(len(species)), [s.count for s in species])
     if spec.packing == "rows":
         rng.shuffle(kinds)
         per_row = spec.row if spec.row is not None else max(1, math.ceil(math.sqrt(n)))
-        radius = np.array([species[k].radius for k in kinds])
-        height = np.array([species[k].radius - species[k].a0 for k in kinds])  # resting centres
         xy = np.empty((n, 2))
         longest = 0.0
         for start in range(0, n, per_row):
             idx = np.arange(start, min(n, start + per_row))
-            r, z = radius[idx], height[idx]
-            xs = np.empty(idx.size)
-            xs[0] = r[0]
-            for j in range(1, idx.size):
-                # the closest place that overlaps none of the row before: touching the one that
-                # limits it (a small sphere under two large ones lets them touch each other)
-                reach = np.sqrt(np.maximum((r[j] + r[:j]) ** 2 - (z[j] - z[:j]) ** 2, 0.0))
-                xs[j] = float(np.max(xs[:j] + reach))
+            xs = touching_row(species, kinds[idx])
+            r = np.array([species[k].radius for k in kinds[idx]])
             xy[idx, 0] = xs
             xy[idx, 1] = (start // per_row + 0.5) * cell
             longest = max(longest, float(xs[-1] + r[-1]))
