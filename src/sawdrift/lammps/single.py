@@ -4,8 +4,9 @@ The LAMMPS model is the law the native ``hertz_mindlin_dem`` integrates
 (plugins/sawdrift_builtin/hertz_mindlin_dem.py): ``fix wall/gran/region granular hertz/material
 E_w 0 nu_w tangential mindlin_rescale/force k_t 0 mu`` (Hertz normal force, Mindlin's initial
 tangential stiffness 8 G* a, the stored force rescaled by a/a_old while the contact shrinks, the
-Coulomb cap mu N, no damping) against a plane region moved by ``region ... move v_dx NULL v_dz``
-with the scene's orbit and ramp (docs/physics.md, "The wave and its orbit"):
+Coulomb cap mu N; damped by the scene's restitution, see :mod:`.realize`) against a plane
+region moved by ``region ... move v_dx NULL v_dz`` with the scene's orbit and ramp
+(docs/physics.md, "The wave and its orbit"):
 
     u_y* = A* R(t*) cos(2 pi t*)        u_x* = r A* R(t*) cos(2 pi t* + phase)
 
@@ -359,7 +360,8 @@ def run_scene(scene: Scene, *, trajectory: bool = False, progress: bool | None =
     ----------
     scene
         A scene with a LAMMPS equivalent (:func:`sawdrift.lammps.realize.refusal`): model
-        ``hertz_mindlin_dem``, a wave drive, a sphere, no damping; rotation on or off.
+        ``hertz_mindlin_dem``, a wave drive, a sphere, damped (restitution above 0.135) or
+        not; rotation on or off.
     trajectory
         Also return the time series (t, x, vx, y, vy, a, b, N_star, T_star), about 200 rows per
         period, as ``Result.trajectory``.
