@@ -91,7 +91,7 @@ def test_input_is_the_dem_law_without_damping():
     ({"model": "mmd"}, "model = 'mmd' has no LAMMPS equivalent"),
     ({"particle": {"profile": {"shape": "cone"}}}, "LAMMPS has spheres only"),
     ({"effects": {"rotation": True, "rolling_resistance": 1e-4}}, "rolling_resistance"),
-    ({"material": {"restitution": 0.8}}, "undamped"),
+    ({"material": {"restitution": 0.1}}, "has no LAMMPS equivalent: give e above 0.1353"),
 ])
 def test_scenes_without_an_equivalent_are_refused(fields, needle):
     data = {"model": "hertz_mindlin_dem", **fields}
@@ -387,13 +387,16 @@ def test_rotating_trajectory_has_the_contact_point_columns():
 @pytest.mark.slow
 @needs_lammps
 def test_packed_example_has_contacts_that_change_the_drift():
-    """examples/mixture.toml (200 beads touching in rows) against mixture_dilute.toml (the same
-    beads apart), 100 periods each (2.3 s and 1.9 s of LAMMPS on one core).
+    """examples/mixture.toml (200 beads touching in rows, restitution 0.9) against
+    mixture_dilute.toml (the same beads apart), 100 periods each.
 
-    Dilute: no pair touches, each size drifts as alone within 5 % (measured -8.1e-4, +8.0e-5),
-    S = 1. Packed: about 100 pairs touch (>= 50 required), the 1 mm beads keep their drift within
-    2 % (measured -0.17 %), the 0.2 mm beads are carried backwards by them (drift ratio -0.163
-    against +0.366 alone: the sign changes), and S drops below 0.8 (measured 0.42)."""
+    Dilute: no pair touches, S = 1; the 0.2 mm beads drift as alone natively within 5 %
+    (measured -0.18 %), the 1 mm beads within 10 % (measured +8.2 %: the damped contact's
+    Coulomb rule differs between the engines, docs/lammps.md). Packed: about 98 pairs touch at
+    non-zero force (>= 50 required), the 1 mm beads keep their dilute LAMMPS drift within 2 %
+    (measured -0.8 %), the 0.2 mm beads are carried backwards by them (-0.050 against +0.379
+    alone: the sign changes), and S drops below 0.9 (measured 0.75); the positions are still
+    the random placement (purity index within 0.1 of 0: measured 0.012)."""
     from sawdrift.lammps.many import dilute_prediction, run_particles
 
     runs = {}
@@ -405,11 +408,12 @@ def test_packed_example_has_contacts_that_change_the_drift():
         runs[name] = (result, dilute_prediction(scene, result))
     dilute, alone = runs["mixture_dilute.toml"]
     assert dilute.window_pairs == 0.0 and dilute.contact_pairs.max() == 0.0
-    assert all(abs(row["relative_difference"]) < 0.05 for row in alone)
+    assert abs(alone[0]["relative_difference"]) < 0.05 and abs(alone[1]["relative_difference"]) < 0.1
     assert dilute.segregation[-1] == pytest.approx(1.0, abs=1e-9)
     packed, alone = runs["mixture.toml"]
     assert packed.window_pairs >= 50.0
     small, large = alone
     assert small["single_drift_ratio"] > 0.0 > small["mixture_drift_ratio"]
-    assert abs(large["relative_difference"]) < 0.02
-    assert packed.segregation[-1] < 0.8
+    assert large["mixture_drift_ratio"] == pytest.approx(dilute.species[1]["drift_ratio"], rel=0.02)
+    assert packed.segregation[-1] < 0.9
+    assert abs(packed.positions["purity_index"][-1]) < 0.1

