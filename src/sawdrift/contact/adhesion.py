@@ -122,14 +122,16 @@ def adhesive_model(cls: type[ContactModel]) -> type[ContactModel]:
         self.adhesion = adhesion if adhesion is not None else Adhesion("jkr", 1.0)
 
     @classmethod
-    def _adhesive_functions(owner) -> tuple[Any, Any]:
+    def _adhesive_functions(owner) -> tuple[Any, Any, Any]:
         step = _load(owner.adhesive_step)
         reset = getattr(owner, "adhesive_reset", None)
         if reset is None:
             from .slot_kernels import zero_reset
 
             reset = zero_reset
-        return step, _load(reset)
+        # ``adhesive_law``: another normal law (N*, c*) = law(a*, ad) in place of
+        # adhesion_law.adhesive_normal (the conformance tests' wrong laws)
+        return step, _load(reset), getattr(owner, "adhesive_law", None)
 
     def state_sizes(self) -> tuple[int, int]:
         sizes = getattr(self, "adhesive_sizes", None)

@@ -114,9 +114,14 @@ _INLINE = {"inline": "always", "_nrt": False}
 _COMPOSED: dict[tuple[Any, Any], dict[str, Any]] = {}
 
 
-def compiled(step: Any, reset: Any) -> dict[str, Any]:
-    """The adhesive composition with ``step`` and ``reset`` (numba functions), disk-cached."""
-    key = (step, reset)
+def compiled(step: Any, reset: Any, law: Any = None) -> dict[str, Any]:
+    """The adhesive composition with ``step`` and ``reset`` (numba functions), disk-cached.
+
+    ``law`` replaces the normal law :func:`adhesive_normal` (same signature, ``(N*, c*)``);
+    the conformance suite's tests use it to show that a wrong law fails.
+    """
+    law = adhesive_normal if law is None else law
+    key = (step, reset, law)
     ns = _COMPOSED.get(key)
     if ns is not None:
         return ns
@@ -125,17 +130,17 @@ def compiled(step: Any, reset: Any) -> dict[str, Any]:
         prefix="sawdrift_contact_",
         doc="an adhesive contact composed of its normal law and a tangential step",
         templates=_TEMPLATES,
-        namespace={"adhesive_normal": adhesive_normal, "entry_radius": entry_radius,
+        namespace={"adhesive_normal": law, "entry_radius": entry_radius,
                    "adhesive_tangential_step": step, "adhesive_tangential_reset": reset, **consts},
         imports=("from sawdrift.contact.normal import JIT_OPTIONS  # noqa: F401\n"
                  "from sawdrift.contact.adhesion_kernels import ADH_HEADER, LAW  # noqa: F401\n"
-                 "from sawdrift.contact.adhesion_kernels import adhesive_normal  # noqa: F401\n"
                  "from sawdrift.contact.adhesion_kernels import entry_radius  # noqa: F401\n"),
-        bind={"_step": step, "adhesive_tangential_reset": reset},
-        preamble=f"adhesive_tangential_step = njit(**{_INLINE!r})(_step.py_func)\n",
+        bind={"_step": step, "adhesive_tangential_reset": reset, "_law": law},
+        preamble=(f"adhesive_tangential_step = njit(**{_INLINE!r})(_step.py_func)\n"
+                  f"adhesive_normal = njit(**{_INLINE!r})(_law.py_func)\n"),
         decorator="njit(**JIT_OPTIONS)",
         memory_options={k: v for k, v in JIT_OPTIONS.items() if k != "cache"},
-        memory_namespace={"adhesive_normal": adhesive_normal, "entry_radius": entry_radius,
+        memory_namespace={"adhesive_normal": law, "entry_radius": entry_radius,
                           "adhesive_tangential_step": njit(**_INLINE)(step.py_func),
                           "adhesive_tangential_reset": reset, **consts},
     ))
@@ -143,11 +148,12 @@ def compiled(step: Any, reset: Any) -> dict[str, Any]:
     return ns
 
 
-def python(step: Any, reset: Any) -> dict[str, Any]:
-    """The same composition as plain Python: the readable law of :mod:`.adhesion_law` and the
-    step's own Python code (the python engine)."""
+def python(step: Any, reset: Any, law: Any = None) -> dict[str, Any]:
+    """The same composition as plain Python: the readable law of :mod:`.adhesion_law` (or
+    ``law``'s Python code) and the step's own Python code (the python engine)."""
+    law = adhesion_law.adhesive_normal if law is None else getattr(law, "py_func", law)
     return rebind(_TEMPLATES, {
-        "adhesive_normal": adhesion_law.adhesive_normal, "entry_radius": adhesion_law.entry_radius,
+        "adhesive_normal": law, "entry_radius": adhesion_law.entry_radius,
         "jkr_root": adhesion_law.jkr_root, "DMT": adhesion_law.DMT,
         "NEWTON_MAX": adhesion_law.NEWTON_MAX, "math": math,
         "adhesive_tangential_step": getattr(step, "py_func", step),
