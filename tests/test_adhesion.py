@@ -197,3 +197,22 @@ def test_rigid_removal_threshold_in_the_stiff_limit(law):
     4 pi^2 m* A* = 1 + F*_pull, within 1.5 % below and 1 % above (measured: 0.997-0.999)."""
     assert not removal_lost(law, 1e-5, 0.985)
     assert removal_lost(law, 1e-5, 1.01)
+
+
+def test_example_drifts_below_removal_and_is_ejected_above():
+    """examples/micro_silica_on_linbo3.toml: held and drifting at 0.01 nm, removed at 0.2 nm."""
+    from pathlib import Path
+
+    import sawdrift as sd
+    from sawdrift.scene.schema import Scene
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml"
+    scene = Scene.from_toml(path)
+    held = sd.run(scene)
+    assert held.regime == "drift_against" and held.settled and not held.contact_lost
+    speed = held.extra["drift_speed_m_s"]
+    assert -1e-5 < speed < -1e-7  # m/s, against the propagation direction
+    assert not any("a0 < 1 nm" in w for w in held.extra.get("warnings", []))
+    thrown = sd.run(scene.with_updates(**{"device.amplitude": "0.2 nm"}))
+    assert thrown.regime == "ejected" and thrown.detach_time > 0.0
+    assert 0.0 <= thrown.detach_phase < 1.0

@@ -434,14 +434,14 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
 def device_warnings(device: Device) -> list[str]:
     """Where the scene leaves the model's assumptions, one sentence each (also in every Result).
 
-    A static compression below 1 nm (adhesion and roughness then set the contact, not gravity
-    and preload), a sphere's contact radius above 0.1 R (beyond small strain), a cone's
-    half-angle below 60 deg (Sneddon's small-slope solution).
+    A static compression below 1 nm without device.adhesion (adhesion and roughness then set
+    the contact, not gravity and preload), a sphere's contact radius above 0.1 R (beyond small
+    strain), a cone's half-angle below 60 deg (Sneddon's small-slope solution).
     """
     n = normalized(device)
     part = device.particle
     out = []
-    if n["a0_m"] < 1e-9:
+    if n["a0_m"] < 1e-9 and device.adhesion == 0.0:
         out.append(f"a0 < 1 nm (a0 = {n['a0_m']:.3g} m): adhesion and roughness, not gravity and "
                    "preload, then set the contact; the model's assumptions do not hold")
     if part.shape == "sphere" and n["contact_radius_m"] > 0.1 * float(part.radius):
