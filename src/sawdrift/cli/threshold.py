@@ -24,6 +24,8 @@ def threshold_cmd(
                                       "above it is NaN)")] = "10 nm",
     per_decade: Annotated[int, typer.Option("--per-decade", help="scan points per decade")] = 4,
     bisections: Annotated[int, typer.Option("--bisections", help="halvings of each bracket")] = 8,
+    periods: Annotated[float, typer.Option("--periods", help="wave periods of each run: removed "
+                                           "means thrown off and not back by its end")] = 200.0,
     engine: Engine = "compiled",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
@@ -35,7 +37,7 @@ def threshold_cmd(
     For each value (a particle radius, typically) the wave's amplitude is raised on a geometric
     grid from --start times the rigid removal amplitude (F_pull + m g) / (m (2 pi f)^2) until the
     contact first slides as a whole (or loses contact), and until the run first ends 'ejected';
-    each first crossing is then located by bisection. Fixed runs of numerics.periods. The table
+    each first crossing is then located by bisection. Fixed runs of --periods periods. The table
     is in SI; the figure is log-log with the fitted slopes.
     """
     from ..report.threshold_plot import plot_thresholds
@@ -45,8 +47,9 @@ def threshold_cmd(
 
     fast_start()
     check_engine(engine)
-    if not 0.0 < start < 1e3 or per_decade < 1 or not 0 <= bisections <= 60:
-        _fail("--start must be in (0, 1000), --per-decade >= 1, --bisections in [0, 60]")
+    if not 0.0 < start < 1e3 or per_decade < 1 or not 0 <= bisections <= 60 or not periods >= 10:
+        _fail("--start must be in (0, 1000), --per-decade >= 1, --bisections in [0, 60], "
+              "--periods >= 10")
     try:
         stop_m = to_si(stop, "length")
     except ValueError as exc:
@@ -56,7 +59,7 @@ def threshold_cmd(
     scene = Scene.from_toml(scene_arg)
     name, values = parse_device_axis(axis)
     study = thresholds(scene, name, values, start=start, stop=stop_m, per_decade=per_decade,
-                       bisections=bisections, engine=engine)
+                       bisections=bisections, periods=periods, engine=engine)
     data = study.to_json()
     if out is not None:
         write_outputs(out, "threshold", data, lambda path: plot_thresholds(study, path), scene)

@@ -17,7 +17,8 @@ until its inertial force m (2 pi f)^2 A exceeds the pull-off force plus its weig
 
     A_rigid = (F_pull + m g) / (m (2 pi f)^2)      (about F_pull / (m (2 pi f)^2) ~ 1 / R^2)
 
-Every run is a fixed run (``numerics.settle = false``) of the scene's ``numerics.periods``.
+Every run is a fixed run (``numerics.settle = false``) of the scene's ``numerics.periods`` (or
+``periods``): "removed" means thrown off and not back by the end of that run.
 """
 
 from __future__ import annotations
@@ -152,12 +153,15 @@ def first_crossing(crosses: Callable[[float], bool], start: float, factor: float
 
 def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float = 0.01,
                stop: float = 1e-8, per_decade: int = 4, bisections: int = 8,
-               engine: str = "compiled", show: bool = True) -> ThresholdStudy:
+               periods: float | None = None, engine: str = "compiled",
+               show: bool = True) -> ThresholdStudy:
     """Sliding and removal amplitudes at each value of the device field ``name`` (module text).
 
     The scan starts at ``start`` times the rigid removal amplitude and ends at the amplitude
     ``stop`` (m; a threshold above it is NaN), ``per_decade`` grid points per decade, then
-    ``bisections`` halvings (in log) of the bracket.
+    ``bisections`` halvings (in log) of the bracket. ``periods`` replaces the scene's
+    ``numerics.periods``: a particle counts as removed when it has not come back by the run's end,
+    so a longer run removes at lower amplitudes where the contact is pumped slowly.
     """
     if scene.device is None or scene.effects.adhesion == "none":
         raise SceneError("sawdrift threshold needs a device scene with effects.adhesion = 'dmt' "
@@ -166,7 +170,10 @@ def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float
     study = ThresholdStudy(name)
     bar = counter(len(values), "threshold", "value", enabled=show)
     for value in values:
-        base = bind(scene.with_updates(**{name: value, "numerics.settle": False}))
+        update = {name: value, "numerics.settle": False}
+        if periods is not None:
+            update["numerics.periods"] = periods
+        base = bind(scene.with_updates(**update))
         a_rigid, pull, weight = rigid_removal(base)
         cache: dict[float, Any] = {}
 
