@@ -27,9 +27,10 @@ from typing import Any
 
 import numpy as np
 
-from ..contact.adhesion import adhesion_of
+from ..contact.adhesion import Adhesion, adhesion_of
 from ..dynamics.assembly import steps_per_period
 from ..errors import SawdriftError, SceneError
+from ..result.runner import run
 from ..scene.schema import Scene
 from .engine import open_lammps
 from .realize import WALL_NU, Realization, realize
@@ -115,8 +116,6 @@ def run_wall_frame(scene: Scene, periods: int) -> dict[str, Any]:
 
     Returns ``{"x": x* at the end of every period, "a": a* at every step, "k_per", "real"}``.
     """
-    from ..contact.adhesion import Adhesion
-
     adhesion = adhesion_of(scene)
     if adhesion is None:
         raise SceneError("the scene has no adhesion")
@@ -146,8 +145,6 @@ def run_wall_frame(scene: Scene, periods: int) -> dict[str, Any]:
 def compare(scene: Scene, periods: int = 60) -> dict[str, float]:
     """Drift per period (x* over the second half of the run) in LAMMPS and natively, and whether
     each is out of contact for the whole second half (removed)."""
-    from ..result.runner import run
-
     twin = native_twin(scene).with_updates(**{"numerics.periods": periods,
                                               "numerics.settle": False})
     lam = run_wall_frame(twin, periods)
