@@ -115,6 +115,16 @@ class HertzMindlinDEM(TangentialLaw):
         profiles=("sphere", "cone", "flat", "power", "table"),
     )
     step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.dem_kernel", "dem_step")
+    #: with effects.adhesion (sawdrift.contact.adhesion): LAMMPS mindlin_rescale/force on jkr/dmt
+    adhesive_step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.adhesive_kernels",
+                                                         "dem_adhesive_step")
+    adhesive_summary: ClassVar[str] = (
+        "dmt, jkr: stiffness 1.5 c* (8 G* c, c the adhesive contact radius), sliding at "
+        "|N* + 2 F*_pull|, stored force rescaled by c/c_old while the contact shrinks (LAMMPS "
+        "jkr/dmt with tangential mindlin_rescale/force)")
+    adhesive_deviations: ClassVar[tuple[tuple[str, str], ...]] = (
+        ("split_invariance", "with adhesion the stiffness is taken at the step's end, as LAMMPS "
+         "does: a straight move split in steps differs by O(dc* db*) per step"),)
 
     def declared_deviations(self) -> tuple[tuple[str, str], ...]:
         """Without rescaling: not passive. With it, on a tabulated law: split-dependent at the cap."""

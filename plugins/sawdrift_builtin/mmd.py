@@ -65,6 +65,27 @@ class MemoryDiagramModel(TangentialLaw):
     reset_state: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.mmd_kernel", "mmd_reset")
     #: |v(z)| <= a* - z on every strip bounds |T*| by N* (T* = N* in full sliding, to rounding)
     coulomb_cap: ClassVar[bool] = False
+    #: with effects.adhesion (sawdrift.contact.adhesion): the diagram of the equivalent Hertz
+    #: contact (sawdrift_builtin.adhesive_kernels.mmd_adhesive_step)
+    adhesive_step: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.adhesive_kernels",
+                                                         "mmd_adhesive_step")
+    adhesive_reset: ClassVar[LazyFunction] = LazyFunction("sawdrift_builtin.adhesive_kernels",
+                                                          "mmd_adhesive_reset")
+    adhesive_summary: ClassVar[str] = (
+        "dmt, jkr: assumes the adhesive contact slips as the Hertz contact with its sliding "
+        "force |N* + 2 F*_pull| and its initial stiffness 1.5 c* (c the adhesive contact "
+        "radius): the exact diagram of that equivalent contact, its displacement scaled by "
+        "c*/sqrt(a_e)")
+    adhesive_deviations: ClassVar[tuple[tuple[str, str], ...]] = (
+        ("split_invariance", "with adhesion the displacement scale c*/sqrt(a_e) changes along a "
+         "step (taken trapezoidally): a straight move split in steps differs slightly"),)
+    #: floats of the adhesive step in front of the diagram (b', a_e)
+    adhesive_extra: ClassVar[int] = 2
+
+    def adhesive_sizes(self) -> tuple[int, int]:
+        """The diagram's state and the adhesive step's b' and a_e."""
+        nf, ni = self.tangential_sizes()
+        return nf + self.adhesive_extra, ni
 
     def tangential_sizes(self) -> tuple[int, int]:
         """Sizes of the diagram's state (layout in :mod:`sawdrift_builtin.mmd_kernel`)."""

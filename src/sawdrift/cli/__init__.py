@@ -17,6 +17,7 @@ from . import field  # noqa: F401
 from . import load_curve  # noqa: F401
 from . import force_velocity  # noqa: F401
 from . import lammps  # noqa: F401
+from . import threshold  # noqa: F401
 # isort: on
 from .app import INTERNAL_FAILURE, app, main
 from .scene_options import scene_from_options

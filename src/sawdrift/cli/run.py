@@ -48,6 +48,8 @@ def models_cmd(
             typer.echo(f"{'':<{width}}  --param {pname}{shown}{text}")
         for check, reason in r["deviations"].items():
             typer.echo(f"{'':<{width}}  declared deviation, {check}: {reason}")
+        if r.get("adhesion"):
+            typer.echo(f"{'':<{width}}  adhesion (effects.adhesion) {r['adhesion']}")
     for name, reason in sorted(sd.registry.failed.items()):
         typer.echo(f"{name:<{width}}  unavailable: {reason}")
 

@@ -274,6 +274,8 @@ class ContactModel:
             "history": caps.history,
             "profiles": list(caps.profiles),
             "deviations": {check: reason for check, reason in cls().declared_deviations()},
+            # the adhesive laws (effects.adhesion) the model takes, and what it assumes with them
+            "adhesion": getattr(cls, "adhesive_summary", ""),
             "parameters": params,
         }
 

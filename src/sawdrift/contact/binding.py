@@ -25,6 +25,7 @@ from ..errors import SawdriftError, SceneError
 from ..scene.overrides import nearest
 from ..scene.parts import Impact, Prescribed, format_validation_error
 from ..scene.schema import Scene
+from .adhesion import adhesion_of, adhesive_model, supports_adhesion
 from .base import ContactModel
 from .registry import get_model
 
@@ -56,6 +57,9 @@ def _capability_problem(cls: type[ContactModel], scene: Scene) -> str | None:
                 f"model ({scene.model!r}) gets its normal force from the contact compression")
     if eff.normal_damping > 0.0 and rigid:
         return f"effects.normal_damping needs a compliant model; {scene.model!r} is rigid"
+    if eff.adhesion != "none" and not supports_adhesion(cls):
+        return (f"effects.adhesion = {eff.adhesion!r} needs a compliant model with an adhesive "
+                f"tangential law (hertz_mindlin_dem, mmd); {scene.model!r} has none")
     if eff.rolling_resistance > 0.0 and (rigid or not eff.rotation):
         return ("effects.rolling_resistance needs effects.rotation = true and a compliant model"
                 + (f"; {scene.model!r} is rigid" if rigid else ""))
@@ -118,6 +122,9 @@ def model_for(scene: Scene) -> ContactModel:
     The scene is checked as by :func:`bind` (the same one-line errors).
     """
     cls, params = _checked(scene, None)
+    adhesion = adhesion_of(scene)
+    if adhesion is not None:
+        return adhesive_model(cls)(params, scene.particle.profile, adhesion)
     return cls(params, scene.particle.profile)
 
 

@@ -29,9 +29,10 @@ Checks (docs/physics.md, "Passivity" and "Contact laws"):
     Over a closed path in (a*, b*) a passive contact does no net work on the particle: the loop
     work W = closed integral of (N* da* + T* db*) is >= 0 for every cycle, in both orientations,
     at the cycle's velocities (so a normal damping that adds energy fails, and an elastic normal
-    law contributes zero). Seven cycle shapes (a pure normal loading/unloading, rectangle,
+    law contributes zero). Eight cycle shapes (a pure normal loading/unloading, rectangle,
     diamond, ellipse, a cycle into full sliding, a cycle through contact loss, a rectangle at
-    a* from 5 to 15), each driven ten times round after a straight approach from (0, 0); the
+    a* from 5 to 15, a normal loading through contact loss to a* = -0.4), each driven ten times
+    round after a straight approach from (0, 0); the
     value is the most negative loop work of a single cycle (the trapezoidal rule on 400 samples
     per side). Tolerance: 1e-6 of the cycle's gross work sum (|N*| |da*| + |T*| |db*|) plus the
     rule's error estimate, sum (|da*| |d2 N*| + |db*| |d2 T*|) / 12 with d2 the second
@@ -71,6 +72,7 @@ import numpy as np
 from ..errors import SceneError
 from ..scene.profiles import Profile
 from ..scene.schema import format_validation_error
+from .adhesion import Adhesion, adhesive_model, pulloff, supports_adhesion
 from .base import ContactModel
 from .conformance_paths import LARGE_A, Path, cycles, histories, loop_work_parts, path
 from .conformance_paths import SIDE as SIDE  # re-exported: the paths are part of this interface
@@ -221,12 +223,27 @@ def _diff(f1: tuple[np.ndarray, np.ndarray], f2: tuple[np.ndarray, np.ndarray]) 
 
 
 def _normalization(model: ContactModel) -> Check:
+    if pulloff(model) > 0.0:
+        return _pulloff_normalization(model)
     p = path([(0.0, 0.0), (1.0, 0.0)], 100).still()
     n, _ = p.drive(ContactHistory(model, _engine(model)))
     err = abs(float(n[-1]) - 1.0)
     return _check(model, "normalization", err <= 1e-6, err, 1e-6,
                   f"N*(1) = {float(n[-1]):.9g} after a quasi-static loading from 0; must be 1 "
                   "(N* = N/(M g), a0 the static compression)")
+
+
+def _pulloff_normalization(model: ContactModel) -> Check:
+    """An adhesive law: the largest tensile force of a quasi-static retraction is F*_pull."""
+    pull = pulloff(model)
+    low = model.adhesion.detach_overlap - 0.05  # type: ignore[attr-defined]
+    p = path([(0.0, 0.0), (1.0, 0.0), (low, 0.0)], 20000).still()
+    n, _ = p.drive(ContactHistory(model, _engine(model)))
+    err = abs(-float(n.min()) - pull)
+    tol = 1e-6 * (1.0 + pull)
+    return _check(model, "normalization", err <= tol, err, tol,
+                  f"pull-off {-float(n.min()):.9g} on a quasi-static retraction; must be the law's "
+                  f"F*_pull = {pull:.9g} (material.adhesion, the pull-off over M g)")
 
 
 def _passivity(model: ContactModel) -> Check:
@@ -249,13 +266,16 @@ def _passivity(model: ContactModel) -> Check:
 
 def _coulomb(model: ContactModel) -> Check:
     excess, n_max = -math.inf, 0.0
+    pull2 = 2.0 * pulloff(model)  # an adhesive contact slides at |N* + 2 F*_pull|
     for p in histories(range(3)):
         n, t = p.drive(ContactHistory(model, _engine(model)))
-        excess = max(excess, float(np.max(np.abs(t) - n)))
+        limit = np.where((n != 0.0) | (t != 0.0), np.abs(n + pull2), 0.0)
+        excess = max(excess, float(np.max(np.abs(t) - limit)))
         n_max = max(n_max, float(n.max()))
-    tol = 1e-9 * (1.0 + n_max)
+    tol = 1e-9 * (1.0 + n_max + pull2)
+    bound = "|N* + 2 F*_pull|" if pull2 else "N*"
     return _check(model, "coulomb_bound", excess <= tol, excess, tol,
-                  f"max (|T*| - N*) on 6 random histories up to a* = {LARGE_A:g}")
+                  f"max (|T*| - {bound}) on 6 random histories up to a* = {LARGE_A:g}")
 
 
 def _kernel_vs_reference(model: ContactModel) -> Check:
@@ -306,8 +326,10 @@ def _split(model: ContactModel) -> Check:
 
 
 def _contact_loss(model: ContactModel) -> Check:
-    p1 = path([(0.0, 0.0), (1.5, 0.4), (1.0, -0.6), (2.0, 0.3), (-0.1, 0.5)], 50)
-    p2 = path([(-0.1, 0.5), (0.0, 0.7), (1.2, 1.4), (0.8, 0.2), (1.6, 0.9)], 50)
+    # an adhesive contact holds on to its detach overlap: the path goes below it
+    out = min(-0.1, getattr(getattr(model, "adhesion", None), "detach_overlap", 0.0) - 0.05)
+    p1 = path([(0.0, 0.0), (1.5, 0.4), (1.0, -0.6), (2.0, 0.3), (out, 0.5)], 50)
+    p2 = path([(out, 0.5), (0.0, 0.7), (1.2, 1.4), (0.8, 0.2), (1.6, 0.9)], 50)
     used = ContactHistory(model, _engine(model))
     p1.drive(used)
     n_used, t_used = p2[1:].drive(used)
@@ -357,7 +379,8 @@ CHECK_NAMES = ("normalization", "passivity", "coulomb_bound", "kernel_vs_referen
                "normal_slot")
 
 
-def check_model(name: str, profile: str | Profile | None = None, **params: Any) -> Conformance:
+def check_model(name: str, profile: str | Profile | None = None,
+                adhesion: Adhesion | None = None, **params: Any) -> Conformance:
     """Run the conformance suite on the registered model ``name`` with parameters ``params``.
 
     Parameters
@@ -368,6 +391,10 @@ def check_model(name: str, profile: str | Profile | None = None, **params: Any) 
         One profile to check: a shape the model declares (``"sphere"``, ``"cone"``, ``"flat"``,
         ``"power"`` (exponent :data:`POWER_EXPONENT`), ``"table"`` (:func:`table_law`)) or a
         :class:`Profile`. Default: every profile in ``capabilities.profiles``.
+    adhesion
+        An adhesive normal law (:class:`~sawdrift.contact.adhesion.Adhesion`): the model's
+        adhesive variant is checked, on the sphere (the suite then holds N* to the pull-off, and
+        T* to |N* + 2 F*_pull|). The model must have an adhesive tangential law.
     **params
         The model's parameters.
 
@@ -386,6 +413,10 @@ def check_model(name: str, profile: str | Profile | None = None, **params: Any) 
     except ValidationError as exc:
         raise SceneError("model_params." + format_validation_error(exc)) from None
     declared = cls.capabilities.profiles
+    if adhesion is not None:
+        if not supports_adhesion(cls):
+            raise SceneError(f"model {name!r} has no adhesive tangential law")
+        cls, declared = adhesive_model(cls), ("sphere",)
     shape = profile.shape if isinstance(profile, Profile) else profile
     if shape is not None and shape not in declared:
         raise SceneError(f"profile = {shape!r} is not declared by model {name!r}; "
@@ -400,7 +431,8 @@ def check_model(name: str, profile: str | Profile | None = None, **params: Any) 
         if isinstance(profile, Profile):
             built = {profile.shape: profile}
         for label, prof in built.items():
-            model = cls(model_params, prof)
+            model = (cls(model_params, prof) if adhesion is None
+                     else cls(model_params, prof, adhesion))  # type: ignore[call-arg]
             laws.append((label, describe_profile(prof, not isinstance(profile, Profile))))
             checks.extend(replace(check(model), profile=label) for check in CHECKS)
     return Conformance(name, tuple(checks), tuple(laws))

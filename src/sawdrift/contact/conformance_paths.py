@@ -68,6 +68,9 @@ def cycles() -> dict[str, list[tuple[float, float]]]:
         "contact_loss": [(1.0, 0.0), (1.0, 0.5), (-0.2, 0.5), (-0.2, -0.5), (1.5, -0.5),
                          (1.0, 0.0)],
         "large": [(5.0, 0.0), (5.0, 1.5), (15.0, 1.5), (15.0, 0.0), (5.0, 0.0)],
+        # in and out of contact along a* alone: an adhesive law's hysteresis (made at a* = 0,
+        # broken below it) must lose energy here, not make it
+        "normal_contact_loss": [(1.0, 0.0), (-0.4, 0.0), (1.0, 0.0)],
     }
 
 

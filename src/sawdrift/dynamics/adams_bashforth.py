@@ -80,9 +80,10 @@ PRM_NAMES = (
     "load",  # constant external tangential force L on the centre, in M g (0: off)
     "restitution_damping",  # C of the restitution damping C a*^((p-1)/2) a*' (0: off)
     "air_drag",  # c of the linear air drag -c v on the centre (0: off), dynamics.air_drag
+    "pulloff",  # F*_pull of an adhesive contact: it slides at |T*| = N* + 2 F*_pull (0: none)
 )
 (P_M, P_MU, P_THETA, P_H, P_ORDER, P_FRICTION, P_DAMP, P_P, P_KRAMP, P_ROLL, P_RR,
- P_MX, P_LOAD, P_REST, P_DRAG) = range(len(PRM_NAMES))
+ P_MX, P_LOAD, P_REST, P_DRAG, P_PULL) = range(len(PRM_NAMES))
 N_PRM = len(PRM_NAMES)
 
 
@@ -262,6 +263,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     q_rest = 0.5 * (p_exp - 1.0)
     order = int(prm[P_ORDER])
     drag = prm[P_DRAG]
+    pull2 = 2.0 * prm[P_PULL]
     ncomp = 6 if spin else 4
     for _ in range(n_steps):
         k = ctr[0]
@@ -286,8 +288,11 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             dax, day = drag_acceleration(y, drag, mx, m)
             ax += dax
             ay += day
-        inside = a > 0.0
-        slipping = friction and inside and nf > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * nf
+        # an adhesive contact holds on while it pulls (N* < 0 at a* <= 0); the sliding limit is
+        # N* + 2 F*_pull (pull2 = 0 without adhesion)
+        inside = a > 0.0 or nf != 0.0
+        limit = nf + pull2
+        slipping = friction and inside and limit > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * limit
         observe_contact(st, t, y, a, inside, slipping)
         if k >= k_ramp:
             observe_step(st, 0.0 if inside else 1.0, 1.0 if slipping else 0.0, a)

@@ -11,6 +11,7 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
+from ..contact.adhesion import adhesive_stiffness
 from ..contact.base import ContactModel
 from ..contact.binding import describe_body, model_for
 from ..contact.registry import get_model
@@ -57,6 +58,9 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     # sqrt(c) higher
     c = 1.0 + 1.0 / scene.particle.gyration if scene.effects.rotation else 1.0
     k = p * a_ref ** (p - 1.0) * max(1.0, c / scene.theta)
+    if scene.effects.adhesion != "none":
+        # the adhesive contact's stiffness, about 1.5 c* (sawdrift.contact.adhesion_law)
+        k = adhesive_stiffness(scene, amp) * max(1.0, c / scene.theta)
     if scene.effects.rotation and scene.effects.rolling_resistance > 0.0:
         # the rolling spring 2.25 mu_r^2 dN*/da* acts on the rotational inertia kappa m*
         mu_r = scene.effects.rolling_resistance
@@ -299,6 +303,7 @@ def _params(scene: Scene, k_per: int, ramp: float, rest_c: float) -> dict[str, f
         "roll": 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0,
         "rolling_resistance": eff.rolling_resistance if eff.rotation else 0.0,
         "m_x": m, "load": scene.particle.load, "restitution_damping": rest_c,
+        "pulloff": scene.material.adhesion,
     }
 
 

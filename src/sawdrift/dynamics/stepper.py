@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..contact.adhesion import rest_compression
 from ..contact.base import ContactModel
 from ..contact.binding import model_for
 from ..contact.history import ContactHistory
@@ -140,11 +141,13 @@ class Stepper:
             self.ctr = np.zeros(3, dtype=np.int64)
             self.fh = np.zeros((4, 6))
             # a* = 1: static compression under M g (docs/physics.md); an impact starts at 0
-            self.y[2] = 1.0 if preload else 0.0
+            # (an adhesive contact rests where its law carries M g: sawdrift.contact.adhesion)
+            rest = rest_compression(model)
+            self.y[2] = rest if preload else 0.0
             if plan.tangential_law:
                 self.history = ContactHistory(model, engine)
                 if preload:
-                    self.history.advance(1.0, 0.0)
+                    self.history.advance(rest, 0.0)
                 self._bind_history()
             else:
                 # Friction off: the tangential slot is empty and never called; the loop calls

@@ -64,13 +64,15 @@ UNITS = {
     "mass": ("[mass]", "kg", "'4.1 mg'"),
     "acceleration": ("[length] / [time] ** 2", "m/s^2", "'9.81 m/s^2'"),
     "angle": ("", "rad", "'80 deg'"),
+    "surface energy": ("[mass] / [time] ** 2", "J/m^2", "'0.05 J/m^2'"),
 }
 
 #: the kind of quantity of each device field, for messages about a missing one
 FIELD_KIND = {"frequency": "frequency", "amplitude": "length", "radius": "length",
               "youngs_modulus": "pressure", "density": "density", "mass": "mass",
               "gravity": "acceleration", "preload": "force", "half_angle": "angle",
-              "load": "force", "incline": "angle", "wavelength": "length"}
+              "load": "force", "incline": "angle", "wavelength": "length",
+              "adhesion": "surface energy"}
 
 
 @lru_cache(maxsize=1)
@@ -237,8 +239,18 @@ class Device(BaseModel):
     wavelength: Annotated[float, _quantity("length")] | None = Field(
         None, description="surface wavelength; overrides c_R/f from device.substrate.density "
         "(anisotropic crystals)")
+    adhesion: Annotated[float, _quantity("surface energy", allow_zero=True)] = Field(
+        0.0, description="work of adhesion w of the particle-substrate pair (J/m^2, e.g. "
+        "'0.05 J/m^2'); with effects.adhesion = 'dmt' or 'jkr' it sets material.adhesion")
     particle: DeviceParticle
     substrate: DeviceSubstrate
+
+    @model_validator(mode="after")
+    def _adhesive_sphere(self) -> Device:
+        if self.adhesion > 0.0 and self.particle.shape != "sphere":
+            raise ValueError(f"adhesion = {self.adhesion:g} J/m^2 needs particle.shape = 'sphere', "
+                             f"not {self.particle.shape!r}")
+        return self
 
     @model_validator(mode="after")
     def _held_down(self) -> Device:
@@ -387,7 +399,10 @@ def normalized(device: Device) -> dict[str, float]:
         "contact_radius_m": contact,
         "load": (device.load - slope) / weight,
         "load_n": device.load - slope,
+        # the DMT pull-off 2 pi R w (JKR's is 3/4 of it): sawdrift.scene.adhesion
+        "pulloff_dmt_n": 2.0 * math.pi * float(p.radius or 0.0) * device.adhesion,
     }
+
 
 
 #: exponent p of N / (M g) = (delta / a0)^p of each device shape (sawdrift.scene.profiles)
@@ -419,14 +434,14 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
 def device_warnings(device: Device) -> list[str]:
     """Where the scene leaves the model's assumptions, one sentence each (also in every Result).
 
-    A static compression below 1 nm (adhesion and roughness then set the contact, not gravity
-    and preload), a sphere's contact radius above 0.1 R (beyond small strain), a cone's
-    half-angle below 60 deg (Sneddon's small-slope solution).
+    A static compression below 1 nm without device.adhesion (adhesion and roughness then set
+    the contact, not gravity and preload), a sphere's contact radius above 0.1 R (beyond small
+    strain), a cone's half-angle below 60 deg (Sneddon's small-slope solution).
     """
     n = normalized(device)
     part = device.particle
     out = []
-    if n["a0_m"] < 1e-9:
+    if n["a0_m"] < 1e-9 and device.adhesion == 0.0:
         out.append(f"a0 < 1 nm (a0 = {n['a0_m']:.3g} m): adhesion and roughness, not gravity and "
                    "preload, then set the contact; the model's assumptions do not hold")
     if part.shape == "sphere" and n["contact_radius_m"] > 0.1 * float(part.radius):

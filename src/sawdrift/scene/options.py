@@ -98,9 +98,13 @@ def _range(field: Any) -> str:
     return f"{left}, {right}"
 
 
+#: options named otherwise than their field's leaf (two leaves would clash)
+RENAMED = {"particle.profile.shape": "profile", "material.adhesion": "pulloff"}
+
+
 def _name(dotted: str) -> str:
-    if dotted == "particle.profile.shape":
-        return "profile"
+    if dotted in RENAMED:
+        return RENAMED[dotted]
     if dotted.startswith("particle.profile."):
         return "profile-" + dotted.rsplit(".", 1)[1].replace("_", "-")
     return dotted.rsplit(".", 1)[1].replace("_", "-")

@@ -28,6 +28,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from ..errors import SceneError
+from .adhesion import normalized_adhesion
 from .device import FIELD_KIND, UNITS, Device, normalized
 from .parts import format_validation_error, get_dotted, set_dotted
 from .profiles import Profile
@@ -46,14 +47,17 @@ DERIVED: dict[str, str] = {
     "material.mu": "device.friction",
     "material.nu": "device.substrate.poisson",
     "material.theta": "device.particle and device.substrate youngs_modulus and poisson",
+    "material.adhesion": "device.adhesion (the work of adhesion, e.g. '0.05 J/m^2') with "
+                         "effects.adhesion",
 }
 
 #: The sections of a scene that hold derived fields.
 _SECTIONS = ("particle", "drive", "material")
 
 
-def derived_values(device: Device) -> dict[str, Any]:
-    """The value of every :data:`DERIVED` field for ``device`` (docs/devices.md)."""
+def derived_values(device: Device, adhesion: str = "none") -> dict[str, Any]:
+    """The value of every :data:`DERIVED` field for ``device`` (docs/devices.md); ``adhesion``
+    is the scene's ``effects.adhesion`` (the pull-off force depends on the law)."""
     norm = normalized(device)
     return {
         "particle.m_star": norm["m_star"],
@@ -66,6 +70,7 @@ def derived_values(device: Device) -> dict[str, Any]:
         "material.mu": device.friction,
         "material.nu": device.substrate.poisson,
         "material.theta": norm["theta"],
+        "material.adhesion": normalized_adhesion(device, adhesion),
     }
 
 
@@ -145,7 +150,12 @@ def apply_device(data: Mapping[str, Any]) -> dict[str, Any]:
     if kind != "wave":
         raise SceneError(f"drive.kind = {kind!r}: a device scene is driven by its wave; remove "
                          "the [device] table for a prescribed or impact drive")
-    values = derived_values(device)
+    effects = plain_section(out.get("effects")) or {}
+    law = effects.get("adhesion", "none") if isinstance(effects, dict) else "none"
+    if device.adhesion > 0.0 and law == "none":
+        raise SceneError(f"device.adhesion = {device.adhesion:g} J/m^2 needs effects.adhesion = "
+                         "'dmt' or 'jkr'")
+    values = derived_values(device, law)
     for field, derived in values.items():
         given = get_dotted(out, field)
         if given is not None and not _same(given, derived, field):

@@ -79,6 +79,15 @@ class Material(BaseModel):
             "models); default none, the undamped contact"
         ),
     )
+    adhesion: Annotated[float, bounded(0.0, 1e12)] = Field(
+        0.0,
+        description=(
+            "adhesion as the pull-off force of the law in effects.adhesion over the static "
+            "normal load M g (JKR 1.5 pi R w, DMT 2 pi R w, w the work of adhesion), >= 0; "
+            "needs effects.adhesion = 'dmt' or 'jkr'; on a device scene derived from "
+            "device.adhesion"
+        ),
+    )
 
 
 class Particle(BaseModel):
@@ -353,6 +362,23 @@ class Effects(BaseModel):
             "linear air drag c on the centre, relative to still air (compliant models; 0: off): "
             "m* x*'' += -c x*', m* y*'' += -c y*'; c = c_d a0 f / (M g), c_d = 6 pi eta R for "
             "Stokes drag"
+        ),
+    )
+    adhesion: Literal["none", "dmt", "jkr"] = Field(
+        "none",
+        description=(
+            "adhesive normal law of a compliant sphere (material.adhesion > 0): 'dmt' Hertz minus "
+            "the constant pull-off while in contact (stiff, small particles), 'jkr' the "
+            "Johnson-Kendall-Roberts contact with its hysteresis (soft, large ones); 'none' "
+            "computes nothing adhesive"
+        ),
+    )
+    adhesion_detach: Literal["instability", "pulloff"] = Field(
+        "instability",
+        description=(
+            "JKR only: where a receding contact breaks: 'instability' at the overlap where the "
+            "contact radius can shrink no further (JKR's fixed-grip limit), 'pulloff' at the "
+            "overlap of the largest tensile force (the LAMMPS convention)"
         ),
     )
 

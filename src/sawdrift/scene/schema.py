@@ -31,6 +31,7 @@ from pydantic import (
 )
 
 from ..errors import SceneError
+from .adhesion import adhesion_consistent
 from .device import Device
 from .overrides import DERIVED, apply_device, nearest, plain_section, strip_derived
 from .parts import (
@@ -126,6 +127,7 @@ class Scene(BaseModel):
             )
         if isinstance(self.drive, Prescribed) and not eff.friction:
             raise ValueError("effects.friction = false leaves nothing to compute for a prescribed drive")
+        adhesion_consistent(self)
         _ = self.particle.profile.p
         return self
 

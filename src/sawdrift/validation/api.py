@@ -30,6 +30,7 @@ GROUPS: dict[str, str] = {
     "loads": "11. Loads, inclines and restitution",
     "fields": "12. Two-wave drift fields: traps, phase shifts, direct runs, moving traps",
     "lammps": "13. LAMMPS: the same law in a DEM engine",
+    "adhesion": "14. Adhesion: DMT and JKR against their closed forms, removal thresholds",
 }
 
 #: The compliant models the oracle cases run for by default.

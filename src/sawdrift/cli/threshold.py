@@ -1,0 +1,78 @@
+"""Sliding and removal thresholds of an adhesive particle: sawdrift threshold."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from .._startup import fast_start
+from .app import Engine, _fail, _writable, app, check_engine, write_outputs
+
+
+@app.command("threshold")
+def threshold_cmd(
+    scene_arg: Annotated[Path, typer.Argument(help="device scene TOML with effects.adhesion")],
+    axis: Annotated[str, typer.Option(
+        "--axis", help="device field and values, FIELD=START:STOP:N (log-spaced, with units) or a "
+        "comma list, e.g. 'device.particle.radius=1 um:50 um:15'")],
+    start: Annotated[float, typer.Option("--start", help="first amplitude of the scan, in units "
+                                         "of the rigid removal amplitude")] = 0.01,
+    stop: Annotated[str, typer.Option("--stop", help="last amplitude of the scan (a threshold "
+                                      "above it is NaN)")] = "10 nm",
+    per_decade: Annotated[int, typer.Option("--per-decade", help="scan points per decade")] = 4,
+    bisections: Annotated[int, typer.Option("--bisections", help="halvings of each bracket")] = 8,
+    periods: Annotated[float, typer.Option("--periods", help="wave periods of each run: removed "
+                                           "means thrown off and not back by its end")] = 200.0,
+    engine: Engine = "compiled",
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    out: Annotated[Path | None, typer.Option(
+        "-o", "--out", help="a folder: threshold.csv, threshold.parquet, threshold.json, "
+        "threshold.png, scene.toml")] = None,
+) -> None:
+    """The amplitude where sliding starts and the amplitude of removal, against a device field.
+
+    For each value (a particle radius, typically) the wave's amplitude is raised on a geometric
+    grid from --start times the rigid removal amplitude (F_pull + m g) / (m (2 pi f)^2) until the
+    contact first slides as a whole (or loses contact), and until the run first ends 'ejected';
+    each first crossing is then located by bisection. Fixed runs of --periods periods. The table
+    is in SI; the figure is log-log with the fitted slopes.
+    """
+    from ..report.threshold_plot import plot_thresholds
+    from ..scene.device import to_si
+    from ..scene.schema import Scene
+    from ..study.threshold import parse_device_axis, thresholds
+
+    fast_start()
+    check_engine(engine)
+    if not 0.0 < start < 1e3 or per_decade < 1 or not 0 <= bisections <= 60 or not periods >= 10:
+        _fail("--start must be in (0, 1000), --per-decade >= 1, --bisections in [0, 60], "
+              "--periods >= 10")
+    try:
+        stop_m = to_si(stop, "length")
+    except ValueError as exc:
+        _fail(f"--stop = {stop!r} {exc}")
+    if out is not None:
+        _writable(out, folder=True)
+    scene = Scene.from_toml(scene_arg)
+    name, values = parse_device_axis(axis)
+    study = thresholds(scene, name, values, start=start, stop=stop_m, per_decade=per_decade,
+                       bisections=bisections, periods=periods, engine=engine)
+    data = study.to_json()
+    if out is not None:
+        write_outputs(out, "threshold", data, lambda path: plot_thresholds(study, path), scene)
+        table = study.table()
+        table.to_csv(out / "threshold.csv", index=False)
+        table.to_parquet(out / "threshold.parquet")
+    if as_json:
+        typer.echo(json.dumps(data, indent=1))
+        return
+    typer.echo(f"{name:>24}  {'slides at (m)':>14}  {'removed at (m)':>14}  {'rigid (m)':>11}")
+    for r in study.rows:
+        typer.echo(f"{r.value:>24.4g}  {r.slide_amplitude_m:>14.4g}  "
+                   f"{r.removal_amplitude_m:>14.4g}  {r.rigid_removal_m:>11.4g}")
+    for column, slope in data["slopes"].items():
+        typer.echo(f"slope of log {column} against log {name.rsplit('.', 1)[-1]}: "
+                   f"{slope['all']:.3g} (smallest {data['small_rows']} values: {slope['small']:.3g})")

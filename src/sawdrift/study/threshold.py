@@ -1,0 +1,196 @@
+"""Sliding and removal thresholds of an adhesive particle against one device field (its radius).
+
+For each value of the field (``device.particle.radius`` typically) the study locates two
+amplitudes of the wave (``device.amplitude``):
+
+* **sliding**: the smallest amplitude at which the contact slides as a whole (gross slip) in the
+  measuring window, or loses contact;
+* **removal**: the smallest amplitude at which the run ends ``ejected`` (out of contact through
+  the whole window and not coming back).
+
+Removal need not be monotonic in the amplitude (an undamped contact can be pumped near its
+resonance, and a particle thrown off at one amplitude may hop on at a higher one), so each is a
+*first crossing located from below*: amplitudes on a geometric grid from ``start`` times the
+rigid removal amplitude upwards, until the first that crosses, then bisection between it and the
+last that did not. The rigid removal amplitude is that of a particle that follows the surface
+until its inertial force m (2 pi f)^2 A exceeds the pull-off force plus its weight:
+
+    A_rigid = (F_pull + m g) / (m (2 pi f)^2)      (about F_pull / (m (2 pi f)^2) ~ 1 / R^2)
+
+Every run is a fixed run (``numerics.settle = false``) of the scene's ``numerics.periods`` (or
+``periods``): "removed" means thrown off and not back by the end of that run.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..contact.binding import bind
+from ..errors import SceneError
+from ..result.runner import run
+from ..scene.adhesion import normalized_adhesion
+from ..scene.device import FIELD_KIND, normalized, to_si
+from ..scene.schema import Scene, check_dotted
+from .progress import counter
+
+
+@dataclass(frozen=True)
+class ThresholdRow:
+    """The thresholds at one value of the field (SI units)."""
+
+    value: float
+    slide_amplitude_m: float
+    removal_amplitude_m: float
+    rigid_removal_m: float
+    pulloff_n: float
+    weight_n: float
+    runs: int
+
+
+@dataclass
+class ThresholdStudy:
+    """The rows of :func:`thresholds`, the field, and the fitted log-log slopes."""
+
+    field: str
+    rows: list[ThresholdRow] = field(default_factory=list)
+
+    def table(self):
+        """The rows as a pandas DataFrame (SI columns; the field's values in ``value``)."""
+        import pandas as pd
+
+        return pd.DataFrame([asdict(r) for r in self.rows])
+
+    def slope(self, column: str, first: int | None = None) -> float:
+        """The least-squares slope of log(column) against log(value), over the ``first`` rows."""
+        rows = self.rows[:first] if first else self.rows
+        x = np.log([r.value for r in rows])
+        y = np.array([getattr(r, column) for r in rows], dtype=float)
+        ok = np.isfinite(y) & (y > 0.0)
+        if ok.sum() < 2:
+            return math.nan
+        return float(np.polyfit(x[ok], np.log(y[ok]), 1)[0])
+
+    def to_json(self) -> dict[str, Any]:
+        """The rows and the slopes (all rows, and the smallest third: the small-particle end)."""
+        small = max(2, len(self.rows) // 3)
+        return {"field": self.field, "rows": [asdict(r) for r in self.rows],
+                "slopes": {c: {"all": self.slope(c), "small": self.slope(c, small)}
+                           for c in ("slide_amplitude_m", "removal_amplitude_m",
+                                     "rigid_removal_m")},
+                "small_rows": small}
+
+
+def parse_device_axis(spec: str) -> tuple[str, list[float]]:
+    """``FIELD=START:STOP:N`` (log-spaced, ends with units, e.g. ``1 um:50 um:15``) or a comma list;
+    values in SI. One line naming the axis on bad input."""
+    if "=" not in spec:
+        raise SceneError(f"--axis {spec!r} must be FIELD=START:STOP:N, e.g. "
+                         "device.particle.radius=1 um:50 um:15")
+    name, _, values = (part.strip() for part in spec.partition("="))
+    check_dotted(name)
+    if not name.startswith("device."):
+        raise SceneError(f"--axis {name}: a threshold study sweeps a [device] field (in SI "
+                         "units), e.g. device.particle.radius")
+    kind = FIELD_KIND.get(name.rsplit(".", 1)[-1])
+
+    def si(text: str) -> float:
+        try:
+            return to_si(text.strip(), kind) if kind else float(text)
+        except ValueError as exc:
+            raise SceneError(f"--axis {name}: {text.strip()!r} {exc}") from None
+
+    parts = values.split(":")
+    if len(parts) == 3:
+        try:
+            n = int(parts[2])
+        except ValueError:
+            raise SceneError(f"--axis {name}: N = {parts[2]!r} must be an integer") from None
+        lo, hi = si(parts[0]), si(parts[1])
+        if not (lo > 0 and hi > 0 and 1 <= n <= 1000):
+            raise SceneError(f"--axis {name}: START, STOP must be > 0 and 1 <= N <= 1000")
+        return name, np.geomspace(lo, hi, n).tolist() if n > 1 else [lo]
+    out = [si(v) for v in values.split(",") if v.strip()]
+    if not out:
+        raise SceneError(f"--axis {name} must hold at least one value")
+    return name, out
+
+
+def rigid_removal(scene: Scene) -> tuple[float, float, float]:
+    """(A_rigid in m, F_pull in N, M g in N) of a device scene with adhesion (module text)."""
+    dev = scene.device
+    n = normalized(dev)
+    pull = normalized_adhesion(dev, scene.effects.adhesion) * n["weight_n"]
+    omega = 2.0 * math.pi * n["frequency_hz"]
+    return (pull + n["weight_n"]) / (n["mass_kg"] * omega**2), pull, n["weight_n"]
+
+
+def first_crossing(crosses: Callable[[float], bool], start: float, factor: float,
+                   stop: float, bisections: int) -> tuple[float, int]:
+    """The smallest amplitude where ``crosses`` turns True, from below (module text); NaN if none
+    up to ``stop``. Returns (amplitude, runs)."""
+    lo, amp, runs = math.nan, start, 0
+    while amp <= stop:
+        runs += 1
+        if crosses(amp):
+            break
+        lo, amp = amp, amp * factor
+    else:
+        return math.nan, runs
+    hi = amp
+    if math.isnan(lo):
+        return hi, runs  # already crossed at the start: an upper bound
+    for _ in range(bisections):
+        mid = math.sqrt(lo * hi)
+        runs += 1
+        lo, hi = (lo, mid) if crosses(mid) else (mid, hi)
+    return math.sqrt(lo * hi), runs
+
+
+def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float = 0.01,
+               stop: float = 1e-8, per_decade: int = 4, bisections: int = 8,
+               periods: float | None = None, engine: str = "compiled",
+               show: bool = True) -> ThresholdStudy:
+    """Sliding and removal amplitudes at each value of the device field ``name`` (module text).
+
+    The scan starts at ``start`` times the rigid removal amplitude and ends at the amplitude
+    ``stop`` (m; a threshold above it is NaN), ``per_decade`` grid points per decade, then
+    ``bisections`` halvings (in log) of the bracket. ``periods`` replaces the scene's
+    ``numerics.periods``: a particle counts as removed when it has not come back by the run's end,
+    so a longer run removes at lower amplitudes where the contact is pumped slowly.
+    """
+    if scene.device is None or scene.effects.adhesion == "none":
+        raise SceneError("sawdrift threshold needs a device scene with effects.adhesion = 'dmt' "
+                         "or 'jkr' and device.adhesion > 0")
+    factor = 10.0 ** (1.0 / per_decade)
+    study = ThresholdStudy(name)
+    bar = counter(len(values), "threshold", "value", enabled=show)
+    for value in values:
+        update = {name: value, "numerics.settle": False}
+        if periods is not None:
+            update["numerics.periods"] = periods
+        base = bind(scene.with_updates(**update))
+        a_rigid, pull, weight = rigid_removal(base)
+        cache: dict[float, Any] = {}
+
+        def result(amp: float, base: Scene = base, cache: dict = cache) -> Any:
+            if amp not in cache:
+                cache[amp] = run(base.with_updates(**{"device.amplitude": amp}), engine=engine)
+            return cache[amp]
+
+        def slides(amp: float) -> bool:
+            res = result(amp)
+            return bool(res.contact_lost or res.gross_slip_fraction > 0.0)
+
+        slide, _ = first_crossing(slides, start * a_rigid, factor, stop, bisections)
+        removal, _ = first_crossing(lambda amp: result(amp).regime == "ejected",
+                                    start * a_rigid, factor, stop, bisections)
+        study.rows.append(ThresholdRow(float(value), slide, removal, a_rigid, pull, weight,
+                                       len(cache)))
+        bar.update(1)
+    bar.close()
+    return study
