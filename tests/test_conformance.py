@@ -65,7 +65,10 @@ DECLARED = {
     "mdr": {"split_invariance"},
     "jaeger": {"passivity"},
     "hertz_mindlin_dem": {"split_invariance"},
-    "hertz_tsuji": {"split_invariance"},
+    # the DEM spring bounds its stored force by the total N*: while unloading, Tsuji's dashpot
+    # lowers that bound, and the check's histories stay on it through every step (measured
+    # 9e-16 on the table profile, 7e-8 declared there with the dashpot off)
+    "hertz_tsuji": set(),
 }
 
 

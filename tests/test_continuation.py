@@ -70,3 +70,23 @@ def test_continuing_a_rolling_sphere_moves_its_contact_point_with_the_surface(mo
     after = (slip(new), *new.displacements())
     assert new.surface()[1] != a.surface()[1]  # the surface velocity really changed
     np.testing.assert_allclose(after, before, rtol=0, atol=1e-12)
+
+
+def test_continuation_in_restitution_applies_the_new_damping_to_the_dem_spring():
+    # hertz_mindlin_dem carries the restitution damping in its contact: a warm start from e = 0.5
+    # at e = 0.8 must damp with the new e. Its attractor is the cold run's at e = 0.8 (drift
+    # velocity +0.42 a0 per period there against -0.42 at e = 0.5); to 1e-6
+    base = sd.Scene(model="hertz_mindlin_dem", particle={"m_star": 0.067},
+                    drive={"amplitude": 0.31}, material={"restitution": 0.5},
+                    numerics={"steps_per_period": 256})
+    a = _stepper(base)
+    a.advance(30 * a.k_per)
+    target = base.with_updates(**{"material.restitution": 0.8, "numerics.periods": 100,
+                                  "numerics.measure_periods": 40, "numerics.settle": False})
+    warm = a.continued(target)
+    warm.advance(60 * warm.k_per)
+    x1 = warm.y[0]
+    warm.advance(40 * warm.k_per)
+    cold = sd.run(target)
+    assert (warm.y[0] - x1) / 40 == pytest.approx(cold.drift_velocity, rel=1e-6)
+    assert sd.run(base).drift_velocity < 0.0 < cold.drift_velocity

@@ -273,3 +273,48 @@ def test_registered_and_schema() -> None:
     # slots layout: [start of tp, start of dp, normal-law descriptor (p), tp (rescale flag)]
     np.testing.assert_array_equal(HertzMindlinDEM(params=RESCALE).packed_params(), [3, 4, 1.5, 1.0])
     assert isinstance(HertzMindlinDEM(profile=CONE).reference(), SlotReference)
+
+
+# -- with a normal damping the stored spring is bounded by the total normal force (as LAMMPS) --
+
+
+def _damped_dem(restitution_c: float, engine: str) -> ContactHistory:
+    from sawdrift.contact.scene_damping import damped_law
+
+    model = damped_law(HertzMindlinDEM(), 0.0, restitution_c, 0.25)
+    assert model is not None
+    return ContactHistory(model, engine)
+
+
+@pytest.mark.parametrize("engine", ["compiled", "python"])
+def test_stored_spring_is_bounded_by_the_total_normal_force(engine: str) -> None:
+    """Sphere, damping N* = a^1.5 + C a^(1/4) a', C = 0.5. Loading in gross slip stores the
+    total N*, more than the elastic a^1.5; a step back at rest then unloads the spring from there
+    by k_t db (k_t = 1.5 a^(1/2)). Unloading fast stores the lowered total. The elastic bound
+    would store 1.2^1.5 and 1, and give 0.493 and 0.7 after the steps back."""
+    h = _damped_dem(0.5, engine)
+    h.advance(1.0, 0.0)
+    n, t = h.advance(1.2, 2.0, 1.0)
+    total = 1.2**1.5 + 0.5 * 1.2**0.25
+    assert n == pytest.approx(total, rel=1e-14) and t == pytest.approx(total, rel=1e-14)
+    _, t = h.advance(1.2, 1.5, 0.0)
+    assert t == pytest.approx(total - 1.5 * 1.2**0.5 * 0.5, rel=1e-12)  # 1.017; elastic: 0.493
+    n, t = h.advance(1.0, 3.0, -1.0)  # rescale, then the bound 1 - 0.5 = 0.5
+    assert n == pytest.approx(0.5, rel=1e-14) and t == pytest.approx(0.5, rel=1e-14)
+    _, t = h.advance(1.0, 2.8, 0.0)
+    assert t == pytest.approx(0.5 - 1.5 * 0.2, rel=1e-12)  # 0.2; elastic: 0.7
+
+
+def test_only_a_law_that_takes_the_normal_force_gets_the_damping_in_its_slot() -> None:
+    """The memory-diagram laws keep their elastic history (the loop adds the damping); the DEM
+    spring takes the scene's damping into its slot, and none when nothing damps."""
+    from sawdrift.contact.scene_damping import damped_law
+
+    for name in ("mmd", "mdr", "jaeger"):
+        assert damped_law(get_model(name)(), 0.0, 0.5, 0.25) is None
+    assert damped_law(HertzMindlinDEM(), 0.0, 0.0, 0.25) is None
+    viscous = damped_law(HertzMindlinDEM(PLAIN), 0.3, 0.0, 0.25)
+    assert viscous is not None and viscous.params.rescale is False
+    h = ContactHistory(viscous)
+    h.advance(1.0, 0.0)
+    assert h.advance(1.0, 5.0, 2.0) == pytest.approx((1.6, 1.6), rel=1e-14)  # 1 + 0.3 * 2

@@ -159,3 +159,26 @@ def test_a_restitution_outside_0_1_is_one_line_exit_2(value, monkeypatch, capsys
     err = capsys.readouterr().err.strip().splitlines()
     assert exc.value.code == 2 and len(err) == 1
     assert err[0].startswith(f"error: material.restitution = {float(value)!r} is outside")
+
+
+def test_the_dem_spring_takes_the_loops_damping_to_the_bit():
+    # hertz_mindlin_dem takes the restitution damping into its contact (it bounds its stored
+    # spring by the total N*); mmd keeps it in the loop. Without a horizontal wave T* = 0 and the
+    # two runs are the same normal motion: equal to the last bit
+    runs = [sd.run(sd.Scene(model=model, material={"restitution": 0.5},
+                            effects={"horizontal_wave": False}, drive={"amplitude": 0.5},
+                            numerics={"periods": 8}), trajectory=True).trajectory
+            for model in ("hertz_mindlin_dem", "mmd")]
+    assert (runs[0]["N_star"] > runs[0]["a"].clip(lower=0.0) ** 1.5 + 1e-3).any()  # damped
+    for col in ("y", "vy", "N_star", "T_star"):
+        np.testing.assert_array_equal(runs[0][col].to_numpy(), runs[1][col].to_numpy())
+
+
+def test_the_python_engine_runs_the_damped_dem_spring():
+    # the readable DEM step, handed the same total normal force, to round-off
+    scene = sd.Scene(model="hertz_mindlin_dem", material={"restitution": 0.5},
+                     particle={"m_star": 0.067}, drive={"amplitude": 0.31},
+                     numerics={"periods": 8, "settle": False})
+    a, b = sd.run(scene, trajectory=True), sd.run(scene, engine="python", trajectory=True)
+    np.testing.assert_allclose(a.trajectory[["x", "y", "T_star"]].to_numpy(),
+                               b.trajectory[["x", "y", "T_star"]].to_numpy(), rtol=0, atol=1e-9)

@@ -11,6 +11,7 @@ import math
 from numba import njit
 
 from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
+from sawdrift.contact.slots import takes_normal
 
 
 @njit(**JIT_OPTIONS)
@@ -30,10 +31,15 @@ def secant_slope(law, a0: float, a1: float) -> float:
     return (law_normal(a1, law, 0) - law_normal(a0, law, 0)) / h
 
 
+@takes_normal
 @njit(**JIT_OPTIONS)
-def dem_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float) -> float:
-    """T* at the end of the straight path (a0, b0) -> (a, b) from the stored T* = ts[0]."""
-    n = law_normal(a, law, 0)
+def dem_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float, n: float) -> float:
+    """T* at the end of the straight path (a0, b0) -> (a, b) from the stored T* = ts[0].
+
+    ``n`` is the total normal force the slots hand in (:func:`~sawdrift.contact.slots.
+    takes_normal`): N*(a*), plus the normal damping if there is one; the stored force is
+    bounded by it, floored at 0 (module docstring of :mod:`sawdrift_builtin.hertz_mindlin_dem`).
+    """
     if tp[0] != 0.0 and 0.0 < a < a0:
         # mindlin_rescale: the stored force shrinks with the stiffness
         k0 = law_slope(a0, law, 0)
@@ -41,9 +47,10 @@ def dem_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float) -> floa
         t = ts[0] * (k1 / k0) + k1 * (b - b0)
     else:
         t = ts[0] + (b - b0) * secant_slope(law, a0, a)
-    if t > n:
-        t = n
-    elif t < -n:
-        t = -n
+    bound = n if n > 0.0 else 0.0  # the Coulomb bound of the stored force: total N*, >= 0
+    if t > bound:
+        t = bound
+    elif t < -bound:
+        t = -bound
     ts[0] = t
     return t

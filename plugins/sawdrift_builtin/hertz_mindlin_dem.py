@@ -7,6 +7,28 @@ mindlin/force`` and ``mindlin_rescale/force``; LIGGGHTS ``tangential history``; 
     dT* = k_t(a*) db*,   k_t(a*) = N*'(a*) = p a*^(p-1)   (Mindlin 1949 initial stiffness),
     |T*| <= N*(a*) = a*^p,  a spring that would exceed the cap is reset onto it.
 
+Normal damping. With a normal damping (``material.restitution``, ``effects.normal_damping``, or a
+damping slot such as ``hertz_tsuji``'s) N* is the total normal force, N*(a*) plus the dashpot,
+clamped at 0, and the *stored* spring is bounded by it, |T*| <= N*: LAMMPS bounds the history of
+``mindlin*/force`` by mu |Fntot|, Fntot the normal plus the damping force after
+``limit_damping`` (src/GRANULAR/granular_model.cpp, ``set_fncrit``). While the contact loads,
+the dashpot raises the bound and a slipping contact carries more friction than N*(a*); while it
+unloads fast, the bound drops and the spring is cut back to it. The slots hand the step that
+total force (:func:`sawdrift.contact.slots.takes_normal`; the scene's damping is moved into the
+contact for it, :mod:`sawdrift.contact.scene_damping`). Without damping it is N*(a*).
+
+This is the rule of this law only. The memory-diagram laws (``mmd``, ``mdr``, ``jaeger``) keep
+their history against the elastic local limits |v(z)| <= a* - z (Mindlin and Deresiewicz's
+limits of the elastic pressure at each radius) and have only their transmitted force capped by
+the total one. The restitution damping is one lumped force, chosen for its rebound ratio; it
+says nothing about where in the contact it acts, and bounding the strips by it needs such a
+distribution: scaling every strip's limit by N*_total / N*(a*) gives limits steeper than the
+unit slope the diagram's clip relies on, shifting them uniformly gives the strips at the edge a
+negative limit while the contact unloads, and a dashpot on every strip damps in proportion to
+N*'(a*), not to the sqrt(m* N*') that makes the rebound ratio speed-independent. The DEM spring
+has one stored force and one bound, so none of these choices arises, and it is the rule the
+LAMMPS comparison checks (docs/lammps.md).
+
 With ``rescale = True`` the stored force is also scaled with the stiffness when the contact
 shrinks (LAMMPS ``mindlin_rescale``, which multiplies the stored tangential history by a/a_old,
 the contact-radius ratio, i.e. by k_t(new)/k_t(old) for a Hertz contact; here generalized to
@@ -48,7 +70,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field
 
 from sawdrift.contact import Capabilities
-from sawdrift.contact.slots import LazyFunction, TangentialLaw
+from sawdrift.contact.slots import LazyFunction, TangentialLaw, takes_normal
 from sawdrift.hookspecs import hookimpl
 
 
@@ -67,29 +89,32 @@ class HertzMindlinDEMParams(BaseModel):
     )
 
 
-def reference_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float) -> float:
+@takes_normal
+def reference_step(ts, is_, law, tp, a0: float, b0: float, a: float, b: float,
+                   n_total: float) -> float:
     """Readable pure-Python tangential step (power laws; the python engine's reference).
 
-    ``law[0]`` is the exponent p of N* = a*^p, ``tp[0]`` the rescale flag.
+    ``law[0]`` is the exponent p of N* = a*^p, ``tp[0]`` the rescale flag, ``n_total`` the total
+    normal force (a*^p, plus the normal damping if any), which bounds the stored force.
     """
     p = float(law[0])
 
     def stiffness(x: float) -> float:  # Mindlin's initial stiffness k_t = N*'(a*)
         return p * x ** (p - 1.0)
 
-    n = a**p
     if tp[0] != 0.0 and a < a0:
         t = ts[0] * stiffness(a) / stiffness(a0) + stiffness(a) * (b - b0)
     elif a == a0:
         t = ts[0] + stiffness(a) * (b - b0)
     elif a0 <= 0.0:
         # a new contact: integral of N*'(a) db along the line from a* = 0 is (db/da) N*(a)
-        t = (b - b0) / a * n
+        t = (b - b0) / a * a**p
     else:
         # integral of N*'(a) db along the line: (db/da) [N*(a) - N*(a0)], free of cancellation
         h = a - a0
         t = ts[0] + (b - b0) * a0**p * math.expm1(p * math.log1p(h / a0)) / h
-    ts[0] = min(max(t, -n), n)
+    bound = max(n_total, 0.0)  # the Coulomb bound of the stored force (module docstring)
+    ts[0] = min(max(t, -bound), bound)
     return ts[0]
 
 

@@ -14,9 +14,10 @@ cannot pull: late in the rebound the dashpot would otherwise make N* negative.
 
 This package adds only the damping slot: one parameter schema and one compiled function
 (:func:`sawdrift_tsuji.kernel.tsuji_damp`). The model ``hertz_tsuji`` is the built-in
-``hertz_mindlin_dem`` tangential law with this slot filled. The framework caps the friction force
-by the *total* normal force, |T*| <= N* with the dashpot included (as LAMMPS does by default), so
-a fast unloading that lowers N* also lowers the largest friction force.
+``hertz_mindlin_dem`` tangential law with this slot filled. Its stored tangential spring is
+bounded by the *total* normal force, |T*| <= N* with the dashpot included (as LAMMPS bounds its
+tangential history), so a fast unloading that lowers N* also lowers the largest friction force,
+and a loading that raises it lets a slipping contact carry more than the elastic N*(a*).
 """
 
 from __future__ import annotations

@@ -27,6 +27,10 @@ Tangential step protocol (numba ``@njit`` functions)::
 A step that computes N*(a*) anyway (``mmd``'s top kink stores it) may return ``(T*, N*)``
 instead, N* bit for bit :func:`~sawdrift.contact.normal.law_normal`'s, if it is marked with
 :func:`gives_normal`; the slots then take N* from it instead of evaluating the law again.
+A step marked with :func:`takes_normal` is instead handed the total normal force N* (the normal
+slot's, through the normal-damping slot if one is filled) as a last argument,
+``step(ts, is_, law, tp, a0, b0, a, b, n)``, and bounds its stored force by it (the DEM spring
+of ``hertz_mindlin_dem``, as LAMMPS bounds its tangential history by the total normal force).
 
 ``ts`` (float64) and ``is_`` (int64) are the law's own state (sizes from
 :meth:`TangentialLaw.tangential_sizes`), ``law`` starts with the normal-law descriptor (read it
@@ -104,17 +108,23 @@ def contact_force(fs, is_, pp, a, b, adot, bdot):
             b0 = b0 + (b - b0) * (-a0 / (a - a0))
         a0 = 0.0
         fs[2] = 1.0
-    # STEP_NORMAL, DAMPED and CAP are constants of the composition: numba prunes the branches
-    # not taken before it inlines the step, so an empty slot is never computed
+    # STEP_NORMAL, TAKES_NORMAL, DAMPED and CAP are constants of the composition: numba prunes
+    # the branches not taken before it inlines the step, so an empty slot is never computed
     if STEP_NORMAL:  # noqa: F821 - the step gives N*(a*) with T* (gives_normal)
         t, n = tangential_step(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])],  # noqa: F821
                                a0, b0, a, b)
+        if DAMPED:  # noqa: F821 - a normal-damping slot is filled
+            n = normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, n)  # noqa: F821
     else:
-        t = tangential_step(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])],  # noqa: F821
-                            a0, b0, a, b)
         n = law_normal(a, pp, LAW)  # noqa: F821
-    if DAMPED:  # noqa: F821 - a normal-damping slot is filled
-        n = normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, n)  # noqa: F821
+        if DAMPED:  # noqa: F821
+            n = normal_damping(pp[int(pp[1]):], pp[LAW:], a, adot, n)  # noqa: F821
+        if TAKES_NORMAL:  # noqa: F821 - the step bounds its stored force by N* (takes_normal)
+            t = tangential_step(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])],  # noqa: F821
+                                a0, b0, a, b, n)
+        else:
+            t = tangential_step(fs[HEADER:], is_, pp[LAW:], pp[int(pp[0]):int(pp[1])],  # noqa: F821
+                                a0, b0, a, b)
     if CAP:  # noqa: F821 - a constant of the composition (TangentialLaw.coulomb_cap)
         t = coulomb_cap(t, n)  # noqa: F821 - |T*| <= N*, the total normal force (slot_kernels)
     return n, t
@@ -149,12 +159,33 @@ def _gives_normal(step: Any) -> bool:
     return bool(getattr(step, "gives_normal", False))
 
 
+def takes_normal(step: Any) -> Any:
+    """Mark a tangential step as taking the total normal force N* as a last argument; returns it.
+
+    The slots then compute N* (the normal slot, and the normal-damping slot if one is filled)
+    before the step and pass it: ``step(ts, is_, law, tp, a0, b0, a, b, n) -> T*``. The law
+    bounds its committed history by it (module docstring); the slots still cap the T* it
+    returns. A step cannot both give and take N*.
+    """
+    if _gives_normal(step):
+        raise ValueError("a tangential step cannot both give N* (gives_normal) and take it")
+    step.takes_normal = True
+    py = getattr(step, "py_func", None)
+    if py is not None:
+        py.takes_normal = True
+    return step
+
+
+def _takes_normal(step: Any) -> bool:
+    return bool(getattr(step, "takes_normal", False))
+
+
 def _constants(step: Any, damp: Any, cap: bool) -> dict[str, Any]:
     """The constants of a composition: layout, and which branches of the templates it takes."""
     from .slot_kernels import no_damping
 
     return {"HEADER": HEADER, "LAW": LAW, "CAP": cap, "STEP_NORMAL": _gives_normal(step),
-            "DAMPED": _py(damp) is not _py(no_damping)}
+            "TAKES_NORMAL": _takes_normal(step), "DAMPED": _py(damp) is not _py(no_damping)}
 
 
 def _namespace(step: Any, reset: Any, damp: Any, law_normal: Any,
@@ -197,7 +228,8 @@ def _compiled_namespace(step: Any, reset: Any, damp: Any, cap: bool) -> dict[str
         preamble=(f"tangential_step = njit(**{_INLINE!r})(_step.py_func)\n"
                   f"normal_damping = njit(**{_INLINE!r})(_damp.py_func)\n"
                   f"coulomb_cap = njit(**{_INLINE!r})(_cap.py_func)\n"
-                  + "".join(f"{k} = {consts[k]!r}\n" for k in ("CAP", "STEP_NORMAL", "DAMPED"))),
+                  + "".join(f"{k} = {consts[k]!r}\n"
+                            for k in ("CAP", "STEP_NORMAL", "TAKES_NORMAL", "DAMPED"))),
         decorator="njit(**JIT_OPTIONS)",
         memory_options={k: v for k, v in JIT_OPTIONS.items() if k != "cache"},  # source has no file
         memory_namespace={"law_normal": law_normal, "tangential_step": njit(**_INLINE)(_py(step)),
@@ -284,7 +316,8 @@ class TangentialLaw(ContactModel):
     #: The slots cap |T*| by N* after the step (the law's committed history is left as it is).
     #: A law whose T* meets the Coulomb bound by construction (T* = N* in full sliding, as the
     #: memory diagram) may set False to get its own T* bit for bit; with a normal-damping slot
-    #: the cap applies anyway, the total N* being one the law does not know.
+    #: the cap applies anyway, the total N* being one the law does not know (a step that takes
+    #: it, :func:`takes_normal`, bounds its stored force by it as well).
     coulomb_cap: ClassVar[bool] = True
 
     # -- what a law provides ---------------------------------------------------------------
@@ -387,19 +420,22 @@ class SlotReference(KernelReference):
 
     def __init__(self, model: TangentialLaw) -> None:
         step, reset, damp, cap = model._key()
+        takes = _takes_normal(step)
         readable = model.reference_step()
         #: the law's readable reference, when it is an object with ``reset()`` and ``step()``
         self.readable = readable if hasattr(readable, "step") else None
         if self.readable is not None:
             obj = self.readable
 
-            def step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signature
-                return obj.step(float(a0), float(b0), float(a), float(b))
+            def step(ts, is_, law, tp, a0, b0, a, b, *n):  # noqa: ARG001 - the slot signature
+                return obj.step(float(a0), float(b0), float(a), float(b), *n)
 
             def reset(ts, is_, law, tp):  # noqa: ARG001
                 obj.reset()
         elif readable is not None:
             step, reset = readable
+        if takes:
+            takes_normal(step)  # the readable is handed N* as the kernel's step is
         ns = _python_namespace(_py(step), _py(reset), _py(damp), cap)
         super().__init__(model, ns["contact_reset"], ns["contact_force"])  # keeps the model
 

@@ -21,6 +21,7 @@ from ..contact.adhesion import rest_compression
 from ..contact.base import ContactModel
 from ..contact.binding import model_for
 from ..contact.history import ContactHistory
+from ..contact.scene_damping import damped_law
 from ..errors import NonFiniteStateError
 from ..scene.schema import Scene
 from . import adams_bashforth as ig
@@ -110,6 +111,7 @@ class Stepper:
         self.h = 1.0 / self.k_per
         self.rigid = model.capabilities.rigid
         named = dict(plan.params)  # the scheme's parameters, decided by the assembly
+        contact_model = self._contact_model(model, plan, named)
         #: c = 1 + 1/kappa with rotation (contact point s = c x from rest), else 0: not computed
         self.roll = named["roll"]
         prm = ig.pack(named)
@@ -145,7 +147,7 @@ class Stepper:
             rest = rest_compression(model)
             self.y[2] = rest if preload else 0.0
             if plan.tangential_law:
-                self.history = ContactHistory(model, engine)
+                self.history = ContactHistory(contact_model, engine)
                 if preload:
                     self.history.advance(rest, 0.0)
                 self._bind_history()
@@ -157,6 +159,20 @@ class Stepper:
                 self.is_ = np.zeros(1, dtype=np.int64)
                 self.loop = ig.wave_loop(normal if self.compiled else normal.py_func, self.drive,
                                          self.compiled)
+
+    @staticmethod
+    def _contact_model(model: ContactModel, plan: Assembly, named: dict[str, float]) -> ContactModel:
+        """The model the contact history runs: with the scene's normal damping in its slot for a
+        law that bounds its stored force by the total N* (:mod:`sawdrift.contact.scene_damping`);
+        ``named`` then loses the loop's damping (set to 0 in place), so it is added once."""
+        if plan.scheme == "rigid" or not plan.tangential_law:
+            return model
+        damped = damped_law(model, named["damping"], named["restitution_damping"],
+                            0.5 * (named["p"] - 1.0))  # q of the loop's q_rest
+        if damped is None:
+            return model
+        named["damping"] = named["restitution_damping"] = 0.0
+        return damped
 
     def _integrates_psi(self, prm: np.ndarray) -> bool:
         """Whether the loops integrate psi from the present state, with the parameters ``prm``
@@ -286,9 +302,9 @@ class Stepper:
         same = (old.model_params == scene.model_params and old.particle.profile == scene.particle.profile
                 and old.theta * old.material.mu == scene.theta * scene.material.mu)
         if same:
-            # b* = (x* - u_x) / (theta mu) keeps its scale: the memory carries over exactly
-            new.history = self.history.copy()
-            new._bind_history()
+            # b* = (x* - u_x) / (theta mu) keeps its scale: the memory carries over exactly (into
+            # the new history, whose parameters may hold another normal damping of the scene)
+            new.history.set_state(self.history.state())
         else:
             # another scale of b* or another law layout: a fresh contact at the present (a*, b*)
             a, b = new.displacements()

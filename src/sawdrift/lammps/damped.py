@@ -2,23 +2,26 @@
 
 With a restitution e the normal force of a compliant contact is N* = N*_el(a*) + C a*^(1/4) a*'
 (Hertz, clamped at 0; :func:`sawdrift.dynamics.adams_bashforth.restitution_damping`), and the
-friction force is bounded by it, |T*| <= N*. The DEM spring of ``hertz_mindlin_dem`` stores a
-tangential force T_s; the two engines differ in which bound they apply to the *stored* force:
+friction force is bounded by it, |T*| <= N*. A DEM spring stores a tangential force T_s; two
+rules differ in which bound they apply to the *stored* force:
 
-* ``"elastic"`` (the native loop, :func:`sawdrift.contact.slot_kernels.coulomb_cap`): the spring
-  is clipped to the elastic force, |T_s| <= N*_el, and only the transmitted force is capped by
-  the total one, T* = clip(T_s, +-N*). While the contact is loaded (a*' > 0, N* > N*_el) the
-  friction force therefore never exceeds N*_el;
-* ``"total"`` (LAMMPS ``pair granular``: ``Fscrit = mu |Fntot|`` caps the stored history,
-  src/GRANULAR/gran_sub_mod_tangential.cpp): the spring itself is clipped to the total force,
-  T* = T_s = clip(T_s, +-N*).
+* ``"total"`` (LAMMPS ``pair granular``: ``Fscrit = mu Fncrit``, Fncrit = |Fntot| after
+  ``limit_damping``, caps the stored history, src/GRANULAR/granular_model.cpp and
+  gran_sub_mod_tangential.cpp; and the native ``hertz_mindlin_dem``,
+  :func:`sawdrift_builtin.dem_kernel.dem_step`): the spring itself is clipped to the total
+  force, T* = T_s = clip(T_s, +-N*);
+* ``"elastic"`` (the rule the memory-diagram laws keep for their history, and the native DEM
+  spring's before it took the total force): the spring is clipped to the elastic force,
+  |T_s| <= N*_el, and only the transmitted force is capped by the total one,
+  T* = clip(T_s, +-N*). While the contact is loaded (a*' > 0, N* > N*_el) the friction force
+  therefore never exceeds N*_el.
 
 Without damping the two are the same law. With damping they give different drifts whenever the
 spring reaches the bound while the contact is loading (gross slip in the loading half of a
 period). :func:`cap_rule_drift` integrates one sphere on the wave-driven plane with either rule
 (velocity Verlet, as LAMMPS, in the normalized variables of docs/physics.md; plain Python, about
-0.3 s per 50 000 steps), so each engine can be checked against its own rule and the size of the
-difference stated.
+0.3 s per 50 000 steps), an integrator independent of both engines, against which each is
+checked and the size of the difference stated.
 """
 
 from __future__ import annotations
