@@ -48,8 +48,10 @@ def test_integrated_spin_is_drift_over_kappa():
     # I phi'' = -R T and m x'' = -T give R phi' = x*' / kappa from rest. With a rolling spring of
     # negligible strength (mu_r = 1e-12) the loop integrates psi = R phi / a0 as a state of its
     # own (kappa m* psi'' = -mu T* + m_r), so its spin and the centre's drift are two independent
-    # integrals of the same T*: they must agree to the step's truncation error
-    base = dict(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
+    # integrals of the same T*: they must agree to the step's truncation error. Both runs are
+    # fixed (60 periods): the same window, which a default run of either could extend differently
+    base = dict(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316},
+                numerics={"settle": False})
     free = sd.run(sd.Scene(**base, effects={"rotation": True}))
     tiny = sd.run(sd.Scene(**base, effects={"rotation": True, "rolling_resistance": 1e-12}),
                   trajectory=True)
@@ -85,8 +87,10 @@ def test_gyration_is_validated():
 
 def test_rolling_resistance_spans_free_rolling_and_locked_rotation():
     # mu_r -> 0: the rolling spring vanishes and the sphere rolls freely; mu_r -> infinity: the
-    # spring locks the rotation and the drift tends to the run without rotation
-    base = dict(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
+    # spring locks the rotation and the drift tends to the run without rotation (all over the
+    # same fixed 60-period window)
+    base = dict(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316},
+                numerics={"settle": False})
     plain = sd.run(sd.Scene(**base))
     free = sd.run(sd.Scene(**base, effects={"rotation": True}))
     weak = sd.run(sd.Scene(**base, effects={"rotation": True, "rolling_resistance": 1e-6}))

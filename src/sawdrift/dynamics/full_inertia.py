@@ -94,16 +94,14 @@ class FullInertia:
     ratio: float = math.nan
 
 
-def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = False,
-                       m_x: float | None = None) -> int:
+def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = False) -> int:
     """W: three free vertical periods 2 pi sqrt(m*/1.5) and two tangential contact periods
-    2 pi sqrt(theta m*_x/1.5) (m*_x the integrated horizontal inertia, m* unless given), at least
-    ``minimum`` (see the module docstring); a rigid point has neither oscillation: ``minimum``."""
+    2 pi sqrt(theta m*/1.5), at least ``minimum`` (see the module docstring); a rigid point has
+    neither oscillation: ``minimum``."""
     if rigid:
         return int(minimum)
-    m_x = m_star if m_x is None else m_x
     vertical = 2.0 * math.pi * math.sqrt(m_star / 1.5)
-    tangential = 2.0 * math.pi * math.sqrt(theta * m_x / 1.5)
+    tangential = 2.0 * math.pi * math.sqrt(theta * m_star / 1.5)
     return max(int(minimum), int(math.ceil(VERTICALS * vertical)), int(math.ceil(2.0 * tangential)))
 
 
@@ -217,9 +215,60 @@ def longest_flight(win: Window) -> float:
     return float(longest)
 
 
+@dataclass
+class _Approach:
+    """The window-to-window bookkeeping of :func:`settle_full`: what to do after each window."""
+
+    w: int
+    q: float
+    tol: float
+    w0: int = 0
+    prev: float | None = None
+    last_change: float | None = None
+    before: tuple[float, float] | None = None  # (window mean, change) where the last jump began
+    steady_run: int = 0  # consecutive window changes within the accuracy
+    flips: int = 0  # consecutive changes of alternating sign
+    jumps: int = 0
+
+    def restart(self, longer: bool) -> None:
+        """Compare afresh from the next window (after a jump, or in windows twice as long)."""
+        if longer:
+            self.w, self.flips = 2 * self.w, 0
+        self.prev, self.last_change, self.steady_run = None, None, 0
+
+    def judge(self, d: float, win: Window) -> tuple[str, float]:
+        """("settled" | "jump" | "longer" | "next", the jump in drift ratio) after a window."""
+        if in_flight(win):
+            return "longer", 0.0  # one flight spans the window: its constant drift says nothing
+        if self.prev is None:
+            self.prev, self.last_change = d, None
+            return "next", 0.0
+        change = d - self.prev
+        if self.before is not None:
+            self.q = learned_ratio(self.before, (d, change), self.q)
+            self.before = None
+        slow = win.contact_lost or win.gross_slip_fraction >= SLIDING_FRACTION
+        last = self.last_change
+        remaining = remaining_distance(last, change, self.q if slow else 0.0)
+        eps = accuracy(d, self.tol)
+        self.steady_run = self.steady_run + 1 if abs(change) <= eps else 0
+        if self.steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
+            return "settled", 0.0
+        if slow and last is not None and change * last > 0.0 and abs(remaining) > eps:
+            self.jumps += 1
+            self.before = (d, change)
+            return "jump", remaining  # the next window re-adapts; compare the two after it
+        self.flips = self.flips + 1 if (last is not None and change * last < 0.0) else 0
+        if self.flips >= 2 and self.w < LONGEST_WINDOW * self.w0:
+            # changes that alternate in sign are a slow oscillation beating against the window
+            # (a quasi-periodic motion), not an approach: longer windows average it out
+            return "longer", 0.0
+        self.prev, self.last_change = d, change
+        return "next", 0.0
+
+
 def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
-                max_steps: int, lam: float, last: Window | None = None, m_x: float | None = None,
-                coarse: float = 1.0) -> tuple[Window, FullInertia]:
+                max_steps: int, lam: float, last: Window | None = None) -> tuple[Window, FullInertia]:
     """Measure full-inertia windows until the drift has settled (module docstring).
 
     Windows span at least three of the longest flight of ``last`` (the first stage's final
@@ -235,72 +284,30 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         Relaxation rate of the mean speed at full inertia, per period (:func:`relaxation_rate`).
     max_steps
         The settle cap: no window starts that would end past it.
-    m_x, coarse
-        The first stage runs the same windows at the reduced horizontal inertia ``m_x`` and
-        stops at ``coarse`` times the accuracy; the last stage leaves both at their defaults.
     """
-    m = scene.particle.m_star
-    tol = coarse * scene.numerics.settle_tolerance
-    w = full_window_length(m, scene.theta, minimum_window, stepper.rigid, m_x)
+    w = full_window_length(scene.particle.m_star, scene.theta, minimum_window, stepper.rigid)
     if last is not None:
         # flights of many periods (a heavy point thrown by one impact): windows of three of them
         w = max(w, int(math.ceil(3.0 * longest_flight(last))))
-    q = math.exp(-lam * w)
+    state = _Approach(w=w, q=math.exp(-lam * w), tol=scene.numerics.settle_tolerance, w0=w)
     start = stepper.step
     # the stage may outlast the first stage's cap by MIN_WINDOWS windows
     max_steps = max(max_steps, start + MIN_WINDOWS * w * stepper.k_per)
-    values: list[float] = []
-    jumps = 0
     settled = False
     win = measure_window(stepper, w, speed, scale)
-    values.append(tapered_drift_ratio(win, speed))
-    prev: float | None = values[-1]
-    last_change: float | None = None
-    before: tuple[float, float] | None = None  # (window mean, change) where the last jump began
-    steady_run = 0  # consecutive window changes within the accuracy
-    flips = 0  # consecutive changes of alternating sign
-    w0 = w
-    while len(values) < MAX_WINDOWS and stepper.step + w * stepper.k_per <= max_steps:
-        win = measure_window(stepper, w, speed, scale)
-        d = tapered_drift_ratio(win, speed)
-        values.append(d)
-        if in_flight(win):
-            # one flight spans the window: its constant drift says nothing; longer windows
-            w = 2 * w
-            prev, last_change, steady_run = None, None, 0
-            continue
-        if prev is None:
-            prev, last_change = d, None
-            continue
-        change = d - prev
-        if before is not None:
-            q = learned_ratio(before, (d, change), q)
-            before = None
-        slow = win.contact_lost or win.gross_slip_fraction >= SLIDING_FRACTION
-        remaining = remaining_distance(last_change, change, q if slow else 0.0)
-        eps = accuracy(d, tol)
-        steady_run = steady_run + 1 if abs(change) <= eps else 0
-        if steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
+    values = [tapered_drift_ratio(win, speed)]
+    state.prev = values[-1]
+    while len(values) < MAX_WINDOWS and stepper.step + state.w * stepper.k_per <= max_steps:
+        win = measure_window(stepper, state.w, speed, scale)
+        values.append(tapered_drift_ratio(win, speed))
+        action, jump = state.judge(values[-1], win)
+        if action == "settled":
             settled = True
-            # the tapered mean is the measured drift (the box mean carries the slow ringing)
-            win.drift_ratio = d
-            win.drift = d * speed
             break
-        monotone = last_change is not None and change * last_change > 0.0
-        if slow and monotone and abs(remaining) > eps and speed > 0.0:
-            shift_speed(stepper, remaining * speed)
-            jumps += 1
-            before = (d, change)
-            prev, steady_run = None, 0  # the next window re-adapts; compare the two after it
-            continue
-        flips = flips + 1 if (last_change is not None and change * last_change < 0.0) else 0
-        if flips >= 2 and w < LONGEST_WINDOW * w0:
-            # changes that alternate in sign are a slow oscillation beating against the window
-            # (a quasi-periodic motion), not an approach: longer windows average it out
-            w, flips = 2 * w, 0
-            prev, last_change, steady_run = None, None, 0
-            continue
-        prev, last_change = d, change
-    info = FullInertia(settled, w, len(values), jumps, (stepper.step - start) / stepper.k_per,
-                       tuple(values), q)
+        if action == "jump" and speed > 0.0:
+            shift_speed(stepper, jump * speed)
+        if action != "next":
+            state.restart(longer=action == "longer")
+    info = FullInertia(settled, state.w, len(values), state.jumps,
+                       (stepper.step - start) / stepper.k_per, tuple(values), state.q)
     return win, info

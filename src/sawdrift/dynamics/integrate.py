@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..contact.base import ContactModel
-from ..scene.schema import Impact, Scene
+from ..scene.schema import Impact, Numerics, Scene
 from .assembly import Assembly
 from .batch_means import BatchMeans, long_time_mean
 from .evidence import S_LASTLIFT
@@ -123,9 +123,10 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, scene.particle.m_star, speed),
                                 periods_run, chaotic)
-        if (not settling.settled and num.settle is None and not chaotic
-                and not _leaving(scene, win, speed)):
-            # a default run that its own window could not confirm goes on to the steady drift
+        if (not settling.settled and num.settle is None and num.periods == DEFAULT_PERIODS
+                and not chaotic and not _leaving(scene, win, speed)):
+            # a default run that its own window could not confirm goes on to the steady drift (a
+            # run given another length keeps it)
             win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
             if not settling.settled and win.contact_lost and not in_flight(win):
                 # irregular without a positive exponent (quasi-periodic, intermittent): its drift
@@ -167,6 +168,9 @@ def _leaving(scene: Scene, win: Window, speed: float) -> bool:
     rolling without slip under a load speeds up for ever); the Result judges both."""
     return in_flight(win) or scene.particle.load != 0.0
 
+
+#: the default ``numerics.periods``: a fixed run of another length was asked for as it is
+DEFAULT_PERIODS = Numerics.model_fields["periods"].default
 
 #: periods a default fixed run its window did not confirm may run on (:func:`_settle_on`)
 SETTLE_ON_PERIODS = 1000
