@@ -44,7 +44,8 @@ def sweep_cmd(
         list[str] | None,
         typer.Option("--axis", help="FIELD=SPEC, repeatable: a dotted scene field (material.mu, "
                      "device.amplitude, effects.rotation) and a,b,c | START:STOP:N (log) | "
-                     "lin:START:STOP:N; device values may carry units ('5 nm,10 nm')"),
+                     "log:START:STOP:N | lin:START:STOP:N; device values may carry units "
+                     "('5 nm,10 nm', '2 MHz:30 MHz:15', units on both ends)"),
     ] = None,
     adaptive: Annotated[
         bool, typer.Option("--adaptive", help="refine only where neighbouring cells disagree in regime "

@@ -11,26 +11,101 @@ import numpy as np
 from ..errors import SceneError
 
 
+def field_kind(name: str) -> str | None:
+    """The kind of quantity (``"length"``, ``"frequency"``, ...) of a dotted device field, or None.
+
+    ``device.particle.radius`` is a length, ``device.frequency`` a frequency
+    (:data:`sawdrift.scene.device.FIELD_KIND`); a normalized field (``drive.amplitude``) or a
+    pure number of a device (``device.friction``) has none.
+    """
+    from ..scene.device import FIELD_KIND
+
+    if not name.startswith("device."):
+        return None
+    return FIELD_KIND.get(name.rsplit(".", 1)[-1])
+
+
+def _end(text: str, spec: str, name: str, kind: str | None) -> tuple[float, bool]:
+    """(SI value, had a unit) of one end of a range; one line naming ``name`` if it is not one."""
+    from ..scene.device import to_si
+
+    try:
+        return float(text), False
+    except ValueError:
+        pass
+    if kind is None:
+        raise SceneError(f"{name} = {spec!r}: {text.strip()!r} is not a number ({name} takes no "
+                         "units; device fields do, e.g. device.frequency=2 MHz:30 MHz:15)")
+    try:
+        return to_si(text, kind), True
+    except ValueError as exc:
+        raise SceneError(f"{name} = {spec!r}: {text.strip()!r} {exc}") from None
+
+
+def parse_range(spec: str, name: str = "axis") -> list[float] | None:
+    """The values of a range ``[lin:|log:]START:STOP:N``, or None if ``spec`` is not a range.
+
+    Without a prefix, and with ``log:``, N log-spaced values (ends included, both > 0); with
+    ``lin:`` N evenly spaced ones. On a device field both ends may carry units
+    (``2 MHz:30 MHz:15``); the values are then in SI units (Hz, m, N, Pa, kg, rad: what a bare
+    number of that field means). A unit on one end only, or two of different dimensions, is one
+    line naming the field.
+    """
+    if ":" not in spec:
+        return None
+    head, _, rest = spec.partition(":")
+    way = head.strip().lower() if head.strip().lower() in ("lin", "log") else "log"
+    parts = (rest if head.strip().lower() in ("lin", "log") else spec).split(":")
+    form = f"{'lin:' if way == 'lin' else ''}START:STOP:N"
+    if len(parts) != 3:
+        raise SceneError(f"{name} = {spec!r} must be {form} ({'evenly' if way == 'lin' else 'log'}"
+                         "-spaced values), e.g. 1e-3:1e2:11 or lin:0.1:1.5:15")
+    kind = field_kind(name)
+    (start, unit_a), (stop, unit_b) = (_end(p, spec, name, kind) for p in parts[:2])
+    if unit_a != unit_b:
+        raise SceneError(f"{name} = {spec!r}: give units on both ends or on neither (a bare "
+                         f"number of {name} is in {_si_unit(kind)})")
+    try:
+        n = int(parts[2])
+    except ValueError:
+        raise SceneError(f"{name} = {spec!r}: N = {parts[2].strip()!r} must be an integer") from None
+    if not 1 <= n <= 100_000:
+        raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
+    if not (math.isfinite(start) and math.isfinite(stop)):
+        raise SceneError(f"{name} = {spec!r}: START and STOP must be finite")
+    if way == "lin":
+        return _tidy(np.linspace(start, stop, n))
+    if not (start > 0 and stop > 0):
+        raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis "
+                         "(lin:START:STOP:N spaces them evenly)")
+    return _tidy(np.geomspace(start, stop, n) if n > 1 else np.array([start]))
+
+
+def _tidy(values: np.ndarray) -> list[float]:
+    """The values to 12 significant digits: 3e-08, not 3.0000000000000004e-08 (a column's name)."""
+    return [float(f"{v:.12g}") for v in values]
+
+
+def _si_unit(kind: str | None) -> str:
+    from ..scene.device import UNITS
+
+    return UNITS[kind][1] if kind is not None else "normalized units"
+
+
 def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
     """Values of one ``--axis FIELD=SPEC``: numbers, booleans, or strings with units.
 
-    ``START:STOP:N`` gives N log-spaced numbers, ``lin:START:STOP:N`` N evenly spaced ones; a comma
-    list gives its items: numbers, ``true``/``false``, or quantities with units ("5 nm") that the
-    scene's device block converts.
+    A range (:func:`parse_range`): ``START:STOP:N`` or ``log:START:STOP:N`` gives N log-spaced
+    numbers, ``lin:START:STOP:N`` N evenly spaced ones, with units on both ends for a device
+    field (``device.frequency=2 MHz:30 MHz:15``, values in SI units). A comma list gives its
+    items: numbers, ``true``/``false``, or quantities with units ("5 nm") that the scene's
+    device block converts.
     """
     if not isinstance(spec, str):
         return list(spec)
-    if spec.startswith("lin:"):
-        parts = spec.split(":")[1:]
-        try:
-            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
-            if len(parts) != 3 or not 1 <= n <= 100_000:
-                raise ValueError
-        except (ValueError, IndexError):
-            raise SceneError(f"{name} = {spec!r} must be lin:START:STOP:N with 1 <= N <= 100000") from None
-        return np.linspace(start, stop, n).tolist()
-    if ":" in spec:
-        return parse_axis(spec, name).tolist()
+    values = parse_range(spec, name)
+    if values is not None:
+        return values
     out: list[Any] = []
     for item in (v.strip() for v in spec.split(",")):
         if not item:
