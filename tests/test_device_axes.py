@@ -47,3 +47,74 @@ def test_a_bad_range_is_one_line_naming_the_field(spec, words, monkeypatch, caps
 def test_units_on_a_normalized_field_are_refused():
     with pytest.raises(SceneError, match="drive.amplitude"):
         parse_values("lin:1 nm:2 nm:2", "drive.amplitude")
+
+
+# -- item 3: SI columns ----------------------------------------------------------------------
+
+QUICK = {"numerics.settle": False, "numerics.periods": 4, "numerics.steps_per_period": 64}
+
+
+def _motor(**updates):
+    import sawdrift as sd
+
+    return sd.Scene.from_toml(MOTOR).with_updates(**QUICK, **updates)
+
+
+def _hertz_a0(radius: float = 0.5e-3, preload: float = 7.35e-3) -> float:
+    e_star = 1.0 / ((1 - 0.3**2) / 210e9 + (1 - 0.25**2) / 170e9)
+    weight = 7850.0 * 4.0 / 3.0 * math.pi * radius**3 * 9.81 + preload
+    return (9.0 * weight**2 / (16.0 * radius * e_star**2)) ** (1.0 / 3.0)
+
+
+@pytest.fixture(scope="module")
+def device_table(tmp_path_factory):
+    import sawdrift as sd
+
+    path = tmp_path_factory.mktemp("si") / "t.parquet"
+    sd.sweep(["mmd"], axes={"device.amplitude": "lin:10 nm:20 nm:2",
+                            "device.load": "0 mN,-0.1 mN"},
+             base=_motor(), table=path, workers=1, progress=False)
+    return path
+
+
+def test_device_tables_carry_si_columns_with_units(device_table):
+    import pandas as pd
+
+    from sawdrift.study.sweep import table_metadata
+
+    frame = pd.read_parquet(device_table)
+    a0 = _hertz_a0()
+    assert frame["a0_m"].to_numpy() == pytest.approx(a0, rel=1e-9)
+    # a normalized speed x*' is x*' a0 f in m/s
+    assert frame["drift_speed_m_s"].to_numpy() == pytest.approx(
+        frame["drift_velocity"].to_numpy() * a0 * 9.6e6, rel=1e-12)
+    assert sorted(set(frame["device.amplitude"])) == pytest.approx([1e-8, 2e-8], rel=1e-12)
+    assert sorted(set(frame["load_N"])) == pytest.approx([-1e-4, 0.0], abs=1e-15)
+    units = table_metadata(device_table)["units"]
+    assert units == {"device.amplitude": "m", "device.load": "N", "drift_speed_m_s": "m/s",
+                     "a0_m": "m", "load_N": "N"}
+
+
+def test_export_and_figures_label_device_axes_with_units(device_table, tmp_path, monkeypatch):
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    import sawdrift as sd
+
+    ds = sd.write_grid(device_table, tmp_path / "g.nc")
+    assert set(ds.sizes) == {"device.amplitude", "device.load"}
+    assert ds["device.amplitude"].attrs["units"] == "m"
+    assert ds["drift_speed_m_s"].attrs["units"] == "m/s"
+    # A* = A_y / a0: a coordinate over the amplitude alone, not a third dimension
+    assert ds["amplitude"].dims == ("device.amplitude",)
+    assert ds["amplitude"].to_numpy() == pytest.approx(np.array([1e-8, 2e-8]) / _hertz_a0(),
+                                                      rel=1e-9)
+    kept = []
+    monkeypatch.setattr(plt, "close", lambda fig=None: kept.append(fig))
+    frame = pd.read_parquet(device_table)
+    frame = frame[frame["device.load"] < 0].assign(**{"device.load": -1e-4})
+    two = pd.concat([frame.assign(**{"device.preload": 7.35e-3}),
+                     frame.assign(**{"device.preload": 8e-3})], ignore_index=True)
+    sd.plot_phase_diagram(two, tmp_path / "p.png", x="device.amplitude", y="device.preload")
+    ax = kept[-1].axes[0]
+    assert ax.get_xlabel() == "device.amplitude (m)" and ax.get_ylabel() == "device.preload (N)"

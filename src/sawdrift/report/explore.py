@@ -107,7 +107,9 @@ DEVICE_UNITS = {"frequency": "Hz", "amplitude": "m", "radius": "m", "youngs_modu
 
 
 def _device_unit(column: str) -> str:
-    return DEVICE_UNITS.get(column.rsplit(".", 1)[-1], "")
+    from ..study.axes import column_unit
+
+    return column_unit(column) or DEVICE_UNITS.get(column.rsplit(".", 1)[-1], "")
 
 
 def _numeric(frame: pd.DataFrame, column: str) -> bool:

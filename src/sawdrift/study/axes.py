@@ -155,3 +155,35 @@ def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
     if values.size == 0 or not np.all(np.isfinite(values)):
         raise SceneError(f"{name} = {spec!r} must hold at least one finite value")
     return values
+
+
+#: SI units of the device columns a sweep table adds (:func:`sawdrift.study.sweep.run_cell`)
+SI_COLUMNS = {"drift_speed_m_s": "m/s", "a0_m": "m", "load_N": "N"}
+
+#: how the normalized columns are written on an axis
+NORMALIZED_LABELS = {"amplitude": "A*", "m_star": "m*", "drift_ratio": "drift ratio",
+                     "drift_velocity": "drift velocity x*' (a0 f)"}
+
+_LONG = {"drift_speed_m_s": "drift speed", "a0_m": "static compression a0",
+         "load_N": "tangential load on the particle, along +x"}
+
+
+def column_unit(column: str) -> str | None:
+    """The SI unit of a table column (a device field, ``drift_speed_m_s``, ``a0_m``, ``load_N``),
+    or None for a normalized or dimensionless one. An angle is in rad (a bare number of it)."""
+    if column in SI_COLUMNS:
+        return SI_COLUMNS[column]
+    kind = field_kind(column)
+    return None if kind is None else _si_unit(kind)
+
+
+def column_label(column: str) -> str:
+    """An axis label: ``A*``, ``m*``, ``drift speed (m/s)``, ``device.frequency (Hz)``."""
+    unit = column_unit(column)
+    name = _LONG.get(column, NORMALIZED_LABELS.get(column, column))
+    return f"{name} ({unit})" if unit else name
+
+
+def long_name(column: str) -> str | None:
+    """A CF ``long_name`` of an SI column (None where the column's name says it)."""
+    return _LONG.get(column)

@@ -33,7 +33,7 @@ from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..result.runner import run
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
-from .axes import parse_axis, parse_values
+from .axes import column_unit, parse_axis, parse_values
 from .executor import Executor, resolve_workers
 from .journal import records
 from .progress import progress as make_progress
@@ -180,6 +180,29 @@ def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) ->
     return out
 
 
+def device_columns(scene: Scene) -> tuple[dict[str, float], float]:
+    """The SI columns of a device cell (``a0_m``, ``load_N``) and its speed scale a0 f in m/s.
+
+    A normalized speed x*' is x*' a0 f in m/s (:mod:`sawdrift.scene.device`); ``load_N`` is the
+    tangential load F = device.load - m g sin(alpha) along +x.
+    """
+    from ..scene.device import normalized
+
+    norm = normalized(scene.device)  # type: ignore[arg-type]
+    return ({"a0_m": norm["a0_m"], "load_N": norm["load_n"]},
+            norm["a0_m"] * norm["frequency_hz"])
+
+
+def add_columns(row: dict[str, Any], columns: dict[str, Any]) -> None:
+    """Add a cell's swept-field and SI columns to its row; ``drift_speed_m_s`` = x*' a0 f."""
+    extra = dict(columns)
+    scale = extra.pop("_speed_scale", None)
+    row.update(extra)
+    if scale is not None:
+        v = row.get("drift_velocity")
+        row["drift_speed_m_s"] = v * scale if v is not None else None
+
+
 # -- the resumable table ---------------------------------------------------------------------
 
 
@@ -248,6 +271,10 @@ def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] |
     import pyarrow.parquet as pq
 
     arrow = pa.Table.from_pandas(frame, preserve_index=False)
+    # each column in SI units says which (Parquet field metadata, read by table_metadata)
+    fields = [f.with_metadata({b"units": unit.encode()}) if (unit := column_unit(f.name)) else f
+              for f in arrow.schema]
+    arrow = arrow.cast(pa.schema(fields, metadata=arrow.schema.metadata))
     meta = dict(arrow.schema.metadata or {})
     meta[META_VERSION] = __version__.encode()
     meta[META_CODE] = code_hash(str(m) for m in frame["model"].dropna().unique()).encode()
@@ -262,12 +289,17 @@ def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] |
 def table_metadata(table: str | Path) -> dict[str, Any]:
     """The provenance of a sweep table: ``{"sawdrift_version", "code_hash", "base_scene"}``.
 
-    A key the table does not record (a table written before it existed) is None.
+    A key the table does not record (a table written before it existed) is None; ``units``
+    maps each column in SI units to its unit (``{"drift_speed_m_s": "m/s", "device.frequency":
+    "Hz"}``).
     """
     import pyarrow.parquet as pq
 
-    meta = pq.read_schema(table).metadata or {}
-    out: dict[str, Any] = {"sawdrift_version": None, "code_hash": None, "base_scene": None}
+    schema = pq.read_schema(table)
+    meta = schema.metadata or {}
+    out: dict[str, Any] = {"sawdrift_version": None, "code_hash": None, "base_scene": None,
+                           "units": {f.name: f.metadata[b"units"].decode() for f in schema
+                                     if f.metadata and b"units" in f.metadata}}
     if META_VERSION in meta:
         out["sawdrift_version"] = meta[META_VERSION].decode()
     if META_CODE in meta:
@@ -393,8 +425,10 @@ def sweep(
     held = {r["scene_id"]: cid for cid, r in done.items() if r.get("scene_id")} if force else {}
     todo: list[str] = []
     wanted: set[str] = set()
-    # the swept fields' values of each cell, as the validated scene holds them (SI for devices)
+    # the swept fields' values of each cell, as the validated scene holds them (SI for devices),
+    # and a device's SI columns
     columns: dict[str, dict[str, Any]] = {}
+    loaded = any(s.device is not None and device_columns(s)[0].get("load_N") for s in scenes)
     for scene in scenes:
         cid = cell_id(scene)
         if cid not in done and held:
@@ -402,6 +436,11 @@ def sweep(
         if extra_axes:
             dumped = scene.model_dump()
             columns[cid] = {f: get_dotted(dumped, f) for f in extra_axes}
+        if scene.device is not None:
+            si, scale = device_columns(scene)
+            if not loaded:
+                si.pop("load_N")
+            columns.setdefault(cid, {}).update(si, _speed_scale=scale)
         rerun = traces and cid in done and cid not in have and not done[cid].get("error")
         if (cid not in done or rerun) and cid not in wanted:
             todo.append(scene.model_dump_json())
@@ -427,7 +466,7 @@ def sweep(
             trace = row.pop("trace", None)
             if trace is not None and path is not None:
                 append_trace(path, row["cell_id"], trace)
-            row.update(columns.get(row["cell_id"], {}))
+            add_columns(row, columns.get(row["cell_id"], {}))
             rows[row["cell_id"]] = row
             if fh is not None:
                 fh.write(json.dumps(row) + "\n")
