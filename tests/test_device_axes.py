@@ -118,3 +118,77 @@ def test_export_and_figures_label_device_axes_with_units(device_table, tmp_path,
     sd.plot_phase_diagram(two, tmp_path / "p.png", x="device.amplitude", y="device.preload")
     ax = kept[-1].axes[0]
     assert ax.get_xlabel() == "device.amplitude (m)" and ax.get_ylabel() == "device.preload (N)"
+
+
+# -- item 4: one-dimensional studies -------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def frequency_table(tmp_path_factory):
+    import sawdrift as sd
+
+    path = tmp_path_factory.mktemp("one") / "f.parquet"
+    sd.sweep(["mmd"], axes={"device.frequency": "5 MHz:20 MHz:3"}, base=_motor(), table=path,
+             workers=1, progress=False)
+    return path
+
+
+def test_export_of_a_one_field_sweep_has_one_dimension(frequency_table, tmp_path):
+    import sawdrift as sd
+
+    ds = sd.write_grid(frequency_table, tmp_path / "g.nc")
+    assert dict(ds.sizes) == {"device.frequency": 3}
+    # m* = a0 m f^2 / (M g) with a0 independent of f: a coordinate growing as f^2
+    f = ds["device.frequency"].to_numpy()
+    assert f == pytest.approx([5e6, 1e7, 2e7], rel=1e-11)
+    m = ds["m_star"].to_numpy()
+    assert ds["m_star"].dims == ("device.frequency",)
+    assert m / m[0] == pytest.approx((f / f[0]) ** 2, rel=1e-12)
+    assert "amplitude" not in ds.coords  # A* does not change with f: no coordinate, no dimension
+
+
+def test_phase_diagram_of_a_one_field_sweep_is_a_line_plot(frequency_table, tmp_path, monkeypatch):
+    import matplotlib.pyplot as plt
+    import pandas as pd
+    from matplotlib.collections import QuadMesh
+    from matplotlib.colors import to_hex
+
+    import sawdrift as sd
+    from sawdrift.report.diagrams import COLOURS
+
+    kept = []
+    monkeypatch.setattr(plt, "close", lambda fig=None: kept.append(fig))
+    frame = pd.read_parquet(frequency_table)
+    settled = frame.index == 0  # one settled cell, two still on their approach
+    frame = frame.assign(settled=settled)
+    sd.plot_phase_diagram(frame, tmp_path / "p.png")
+    ax = kept[-1].axes[0]
+    assert not any(isinstance(c, QuadMesh) for c in ax.collections)  # no 2-D rectangle
+    dots = [ln for ln in ax.lines if ln.get_marker() == "o"]
+    assert len(dots) == len(frame) == 3
+    by_x = {float(d.get_xdata()[0]): d for d in dots}
+    for row in frame.itertuples():
+        dot = by_x[float(frame.loc[row.Index, "device.frequency"])]
+        colour = to_hex(COLOURS[row.regime])
+        assert float(dot.get_ydata()[0]) == pytest.approx(row.drift_speed_m_s)
+        if row.settled:
+            assert to_hex(dot.get_markerfacecolor()) == colour
+        else:  # open: white face, the regime's colour around it
+            assert to_hex(dot.get_markerfacecolor()) == "#ffffff"
+            assert to_hex(dot.get_markeredgecolor()) == colour
+    assert ax.get_xlabel() == "device.frequency (Hz)" and ax.get_ylabel() == "drift speed (m/s)"
+
+
+def test_a_one_field_sweep_prints_its_points_and_draws_them(monkeypatch, capsys, tmp_path):
+    out = tmp_path / "amp.parquet"
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sweep", str(MOTOR), "--axis",
+                                      "device.amplitude=10 nm,20 nm", "--no-settle", "--periods",
+                                      "4", "--steps-per-period", "64", "--workers", "1",
+                                      "--no-progress", "-o", str(out)])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    text = capsys.readouterr().out
+    assert exc.value.code == 0
+    assert (tmp_path / "amp.png").stat().st_size > 10_000
+    assert "device.amplitude (m)" in text and "drift speed (m/s)" in text
+    assert "2e-08" in text and "(line plot)" in text

@@ -72,6 +72,9 @@ def sweep_cmd(
 ) -> None:
     """Run a grid (models x axes) into a resumable Parquet table.
 
+    A sweep over one field (e.g. --axis "device.amplitude=10 nm,20 nm,30 nm") also prints its
+    points (a device's speed in m/s) and draws them as a line plot beside the table (TABLE.png).
+
     The grid is the (m*, A*) plane, by default m* in [1e-3, 1e2] and A* in [1e-2, 10] with 11
     log-spaced values each, times every --axis; an axis over particle.m_star or drive.amplitude
     replaces that default. A device scene has no default plane: give its axes (device.*).
@@ -126,13 +129,28 @@ def sweep_cmd(
         typer.echo(f"{name:>20} {regime:>14}: {int(row['size'])}"
                    + (f" ({loose} NOT settled)" if loose else ""))
     errors = int(frame["error"].notna().sum())
+    line = None if adaptive else _line_plot(frame, out)
     if adaptive:
         # the table holds the computed points; the inferred ones only complete the diagram
         typer.echo(f"wrote {out} ({frame.attrs['computed']} cells computed, {errors} with errors; "
                    f"{frame.attrs['inferred']} more inferred from their neighbours, "
                    f"{frame.attrs['wrong_guesses']} wrong guesses found by the check sample)")
     else:
-        typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)")
+        typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)"
+                   + (f" and {line} (line plot)" if line is not None else ""))
+
+
+def _line_plot(frame: Any, out: Path) -> Path | None:
+    """A sweep over one field: print its points and draw them beside the table (TABLE.png)."""
+    from ..report.diagrams import COLOURS
+    from ..report.line_plot import line_rows, plot_line, swept_field
+
+    field = swept_field(frame)
+    if field is None:
+        return None
+    for text in line_rows(frame, field):
+        typer.echo(text)
+    return plot_line(frame, out.with_suffix(".png"), None, field, colours=COLOURS)
 
 
 @app.command("bifurcation")

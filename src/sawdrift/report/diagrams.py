@@ -19,6 +19,7 @@ from matplotlib.patches import Patch  # noqa: E402
 
 from ..errors import SceneError  # noqa: E402
 from ..study.axes import column_label  # noqa: E402
+from .line_plot import plot_line, swept_field  # noqa: E402
 
 #: Regime colours, in legend order.
 COLOURS = {
@@ -176,7 +177,12 @@ def _material_label(table: pd.DataFrame) -> str:
 
 def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None = None,
                        x: str = "amplitude", y: str = "m_star") -> Path:
-    """Regimes over two swept axes (default A*, m*) on log axes, one colour per regime (Fig. 3)."""
+    """Regimes over two swept axes (default A*, m*) on log axes, one colour per regime (Fig. 3).
+
+    A table swept over one field only gets the line plot of :mod:`sawdrift.report.line_plot`.
+    """
+    if swept_field(table) is not None:
+        return plot_line(table, path, model, colours=COLOURS)
     models = sorted(table["model"].dropna().unique())
     if model is None:
         if len(models) != 1:

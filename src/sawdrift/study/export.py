@@ -30,6 +30,7 @@ import pandas as pd
 
 from ..errors import SceneError
 from ..result.regimes import REGIMES
+from .axes import column_unit, long_name
 
 #: per-cell variables exported when present
 VARIABLES = (
@@ -138,8 +139,6 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
 
 def _describe(ds) -> None:
     """``long_name`` and ``units`` of the normalized and SI coordinates and variables."""
-    from .axes import column_unit, long_name
-
     names = {"m_star": "m* = a0 m f^2 / (M g)", "amplitude": "A* = A_y / a0"}
     for name in [*ds.coords, *ds.data_vars]:
         text = names.get(str(name)) or long_name(str(name))

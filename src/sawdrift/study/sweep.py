@@ -32,6 +32,7 @@ from ..contact.binding import bind
 from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..result.runner import run
+from ..scene.device import normalized
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
 from .axes import column_unit, parse_axis, parse_values
 from .executor import Executor, resolve_workers
@@ -186,8 +187,6 @@ def device_columns(scene: Scene) -> tuple[dict[str, float], float]:
     A normalized speed x*' is x*' a0 f in m/s (:mod:`sawdrift.scene.device`); ``load_N`` is the
     tangential load F = device.load - m g sin(alpha) along +x.
     """
-    from ..scene.device import normalized
-
     norm = normalized(scene.device)  # type: ignore[arg-type]
     return ({"a0_m": norm["a0_m"], "load_N": norm["load_n"]},
             norm["a0_m"] * norm["frequency_hz"])
