@@ -146,6 +146,6 @@ def line_rows(table: pd.DataFrame, field: str, value: str | None = None) -> list
     for data in table.sort_values(["model", field]).to_dict(orient="records"):
         v = pd.to_numeric(pd.Series([data.get(value)]), errors="coerce").iloc[0]
         shown = f"{v:18.6g}" if np.isfinite(v) else f"{'none':>18}"
-        mark = " (NOT settled)" if data.get("settled") is False or data.get("settled") == 0 else ""
+        mark = " (not settled)" if data.get("settled") is False or data.get("settled") == 0 else ""
         lines.append(f"{data['model']:>20} {data[field]:>{width}.6g} {shown}  {data['regime']}{mark}")
     return lines

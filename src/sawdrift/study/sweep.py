@@ -35,6 +35,7 @@ from ..result.runner import run
 from ..scene.device import normalized
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
 from .axes import column_unit, parse_axis, parse_values
+from .estimate import Estimate, announce, check, estimate
 from .executor import Executor, resolve_workers
 from .journal import records
 from .progress import progress as make_progress
@@ -68,6 +69,9 @@ def resolved_as(row: dict[str, Any]) -> str:
     if row.get("chaotic") and se is not None and se == se:
         return "chaotic_mean"
     return "not_settled"
+
+#: cells from which building a sweep's grid shows a progress bar of its own
+PREPARE_BAR = 2000
 
 #: Parquet metadata keys of a sweep table (provenance).
 META_VERSION, META_BASE_SCENE, META_CODE = b"sawdrift_version", b"base_scene", b"sawdrift_code"
@@ -110,10 +114,12 @@ def grid(
     base: Scene | None = None,
     overrides: dict[str, Any] | None = None,
     axes: dict[str, Sequence[Any]] | None = None,
+    tick: Callable[[], None] | None = None,
 ) -> list[Scene]:
     """The scenes of a grid: models x m* x A* x every other axis (a dotted scene field each).
 
-    All other fields come from ``base`` and ``overrides``. Each scene is bound to its model
+    All other fields come from ``base`` and ``overrides``; ``tick`` is called after each scene
+    (a progress bar over a large grid). Each scene is bound to its model
     (:func:`sawdrift.contact.binding.bind`): a wrong model parameter or one the model cannot take
     is a one-line error before any cell runs.
     """
@@ -137,7 +143,42 @@ def grid(
             for field, value in zip(all_axes, combo, strict=True):
                 set_dotted(cell, field, value)
             scenes.append(bind(build_scene(cell)))
+            if tick is not None:
+                tick()
     return scenes
+
+
+def _sample(values: Sequence[Any] | None) -> list[Any] | None:
+    """First, middle and last of an axis's values (a sample for the size estimate)."""
+    if values is None:
+        return None
+    values = list(values)
+    picks = sorted({0, len(values) // 2, len(values) - 1})
+    return [values[i] for i in picks]
+
+
+def estimate_sweep(names: Sequence[str], m_star: Sequence[float] | None,
+                   amplitude: Sequence[float] | None, extra_axes: dict[str, list[Any]],
+                   points: Sequence[tuple[float, float]] | None, base: Scene | None,
+                   overrides: dict[str, Any] | None, workers: int | None, engine: str,
+                   what: str = "sweep") -> Estimate:
+    """The size of a sweep (:mod:`sawdrift.study.estimate`) before its grid is built.
+
+    Cells: models x every axis's length (or the points); steps: the mean over a sample of
+    cells (each axis's first, middle and last value; the first model only when the sample would
+    pass 64 cells); the rate from a calibration run of the first sampled cell.
+    """
+    lengths = [len(v) for v in extra_axes.values()]
+    if points is not None:
+        lengths.append(len(points))
+        m_star, amplitude = [p[0] for p in points], [p[1] for p in points]
+    else:
+        lengths += [len(v) for v in (m_star, amplitude) if v is not None]
+    cells = len(names) * math.prod(lengths)
+    picked = {f: _sample(v) for f, v in extra_axes.items()}
+    sample_models = list(names) if len(names) * 27 ** (len(lengths) / 3) <= 64 else list(names[:1])
+    sample = grid(sample_models, _sample(m_star), _sample(amplitude), base, overrides, picked)
+    return estimate(what, sample, cells, resolve_workers(workers), engine)
 
 
 def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) -> dict[str, Any]:
@@ -353,6 +394,8 @@ def sweep(
     traces: bool = False,
     label: tuple[str, str] = ("sweep", "cell"),
     executor: Executor | None = None,
+    size: bool = False,
+    yes: bool = False,
 ) -> pd.DataFrame:
     """Run a (model, m*, A*) grid and return one row per cell as a DataFrame.
 
@@ -398,6 +441,12 @@ def sweep(
     executor
         An open :class:`~sawdrift.study.executor.Executor` to run on (then ``workers`` and
         ``scheduler`` are its own; the caller closes it); None opens one for this sweep.
+    size
+        Estimate the work before the grid is built (:func:`estimate_sweep`), print it on stderr
+        (with ``progress``) and refuse it, a one-line SceneError, above
+        :data:`~sawdrift.study.estimate.MAX_SECONDS` unless ``yes``.
+    yes
+        Start a sweep whose estimate is above the bound.
     """
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
@@ -405,13 +454,26 @@ def sweep(
     if not names or any(not n for n in names):
         raise SceneError(f"models = {models!r} must name at least one model")
     extra_axes = {field: parse_values(spec, field) for field, spec in (axes or {}).items()}
+    m_values = None if m_star is None else parse_axis(m_star, "m_star")
+    a_values = None if amplitude is None else parse_axis(amplitude, "amplitude")
+    cells = expected = None
+    if size:
+        est = estimate_sweep(names, m_values, a_values, extra_axes, points, base, overrides,
+                             workers, engine, label[0])
+        check(est, yes, smaller="fewer cells or periods")
+        if progress:
+            announce(est)
+        cells, expected = est.cells, est.seconds
+    prep = (make_progress(cells, f"{label[0]}: preparing", label[1])
+            if progress and cells is not None and cells >= PREPARE_BAR else None)
+    tick = prep.update if prep is not None else None
     if points is not None:
         scenes = [s for m, a in points
-                  for s in grid(names, [m], [a], base, overrides, extra_axes)]
+                  for s in grid(names, [m], [a], base, overrides, extra_axes, tick)]
     else:
-        scenes = grid(names, None if m_star is None else parse_axis(m_star, "m_star"),
-                      None if amplitude is None else parse_axis(amplitude, "amplitude"), base,
-                      overrides, extra_axes)
+        scenes = grid(names, m_values, a_values, base, overrides, extra_axes, tick)
+    if prep is not None:
+        prep.close()
     path = Path(table) if table is not None else None
     done = read_rows(path) if path is not None else {}
     if traces and path is None:
@@ -453,7 +515,7 @@ def sweep(
         path.parent.mkdir(parents=True, exist_ok=True)
     bar = None
     if progress and todo:
-        bar = make_progress(len(wanted), label[0], label[1], initial=len(rows))
+        bar = make_progress(len(wanted), label[0], label[1], initial=len(rows), expected=expected)
     fh = None
     if journal is not None and todo:
         header = not journal.exists()
