@@ -191,4 +191,4 @@ def test_a_one_field_sweep_prints_its_points_and_draws_them(monkeypatch, capsys,
     assert exc.value.code == 0
     assert (tmp_path / "amp.png").stat().st_size > 10_000
     assert "device.amplitude (m)" in text and "drift speed (m/s)" in text
-    assert "2e-08" in text and "(line plot)" in text
+    assert "20 nm" in text and "(line plot)" in text

@@ -20,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.ticker import EngFormatter  # noqa: E402
+from matplotlib.ticker import EngFormatter, MaxNLocator  # noqa: E402
 
 from ..errors import SceneError  # noqa: E402
 from ..study.axes import column_label, column_unit  # noqa: E402
@@ -98,6 +98,8 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
                     mfc="white" if is_open else colour, mew=2.0 if is_open else 0.6)
     if _log(table[field].to_numpy(float)):
         ax.set_xscale("log")
+    else:  # few ticks: a unit on each must not collide with the next
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
     # SI ticks with prefixes: 5 MHz, -120 um/s (not 5e6, -0.00012)
     for axis, column in ((ax.xaxis, field), (ax.yaxis, value)):
         unit = column_unit(column)
@@ -142,10 +144,13 @@ def line_rows(table: pd.DataFrame, field: str, value: str | None = None) -> list
     value = value or value_column(table)
     head_x, head_v = column_label(field), column_label(value)
     width = max(len(head_x), 14)
+    unit = column_unit(field)
+    fmt = EngFormatter(unit=unit, sep=" ") if unit and unit != "rad" else None
     lines = [f"{'model':>20} {head_x:>{width}} {head_v:>18}  regime"]
     for data in table.sort_values(["model", field]).to_dict(orient="records"):
         v = pd.to_numeric(pd.Series([data.get(value)]), errors="coerce").iloc[0]
         shown = f"{v:18.6g}" if np.isfinite(v) else f"{'none':>18}"
         mark = " (not settled)" if data.get("settled") is False or data.get("settled") == 0 else ""
-        lines.append(f"{data['model']:>20} {data[field]:>{width}.6g} {shown}  {data['regime']}{mark}")
+        where = fmt(data[field]) if fmt is not None else f"{data[field]:.6g}"
+        lines.append(f"{data['model']:>20} {where:>{width}} {shown}  {data['regime']}{mark}")
     return lines
