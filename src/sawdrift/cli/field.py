@@ -87,7 +87,10 @@ def field_cmd(
             _fail("--direct needs the wavelength: --wavelength L* (wavelength / a0), or a device "
                   "with device.wavelength or device.substrate.density")
     from ..study.estimate import size_check
-    from ..study.field import species_scenes
+    from ..study.field import MIN_POINTS, species_scenes
+
+    if points < MIN_POINTS or refine < 0:  # the study's own one-line errors, before the estimate
+        drift_field(scene, points, refine=refine, progress=False)
 
     sample = [sp for _, sp in species_scenes(scene, species)]
     size_check("field", sample, points * len(sample), workers=workers, engine=engine, yes=yes,

@@ -111,8 +111,9 @@ def sweep_cmd(
 
         corners = [base.with_updates(**{"particle.m_star": m, "drive.amplitude": a})
                    for m in (m_axis[0], m_axis[-1]) for a in (a_axis[0], a_axis[-1])]
+        # refused above the bound; not printed (the study checks its own options after this)
         size_check("sweep --adaptive", corners, budget, workers=workers, engine=engine, yes=yes,
-                   show=progress, smaller="a smaller --budget")
+                   show=False, smaller="a smaller --budget")
         frame = sd.adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
                                budget=budget, base=int(m_axis.size), levels=levels, scene=base,
                                table=out, workers=workers, scheduler=scheduler, progress=progress,

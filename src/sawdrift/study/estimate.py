@@ -70,8 +70,10 @@ class Estimate:
                  else "")
         most = f" (at most {self.most:.2g})" if self.most > 1.5 * self.steps else ""
         where = f" on {min(self.workers, self.cells)} workers" if min(self.workers, self.cells) > 1 else ""
-        return (f"{self.what}: {cells}about {self.steps:.2g} steps{most}, about "
-                f"{duration(self.seconds)}{where} at {self.rate:.3g} steps/s (calibrated)")
+        took = duration(self.seconds)
+        took = took if took.startswith("under") else f"about {took}"
+        return (f"{self.what}: {cells}about {self.steps:.2g} steps{most}, {took}{where} at "
+                f"{self.rate:.3g} steps/s (calibrated)")
 
 
 def duration(seconds: float) -> str:

@@ -456,24 +456,6 @@ def sweep(
     extra_axes = {field: parse_values(spec, field) for field, spec in (axes or {}).items()}
     m_values = None if m_star is None else parse_axis(m_star, "m_star")
     a_values = None if amplitude is None else parse_axis(amplitude, "amplitude")
-    cells = expected = None
-    if size:
-        est = estimate_sweep(names, m_values, a_values, extra_axes, points, base, overrides,
-                             workers, engine, label[0])
-        check(est, yes, smaller="fewer cells or periods")
-        if progress:
-            announce(est)
-        cells, expected = est.cells, est.seconds
-    prep = (make_progress(cells, f"{label[0]}: preparing", label[1])
-            if progress and cells is not None and cells >= PREPARE_BAR else None)
-    tick = prep.update if prep is not None else None
-    if points is not None:
-        scenes = [s for m, a in points
-                  for s in grid(names, [m], [a], base, overrides, extra_axes, tick)]
-    else:
-        scenes = grid(names, m_values, a_values, base, overrides, extra_axes, tick)
-    if prep is not None:
-        prep.close()
     path = Path(table) if table is not None else None
     done = read_rows(path) if path is not None else {}
     if traces and path is None:
@@ -482,6 +464,28 @@ def sweep(
     swept_from = _base_json(base, overrides)
     if path is not None:
         check_resume(path, done.values(), _stored_base(path), swept_from, force)
+    cells = expected = None
+    if size:
+        est = estimate_sweep(names, m_values, a_values, extra_axes, points, base, overrides,
+                             workers, engine, label[0])
+        check(est, yes, smaller="fewer cells or periods")
+        cells, expected = est.cells, est.seconds
+    # a large grid takes a while to build: its size first, then a bar; a small one is built
+    # (and every cell checked, one line for a bad one) before its size is printed
+    large = progress and cells is not None and cells >= PREPARE_BAR
+    if large:
+        announce(est)
+    prep = make_progress(cells, f"{label[0]}: preparing", label[1]) if large else None
+    tick = prep.update if prep is not None else None
+    if points is not None:
+        scenes = [s for m, a in points
+                  for s in grid(names, [m], [a], base, overrides, extra_axes, tick)]
+    else:
+        scenes = grid(names, m_values, a_values, base, overrides, extra_axes, tick)
+    if prep is not None:
+        prep.close()
+    if size and progress and not large:
+        announce(est)
     # with force, a scene the table holds keeps its row, whatever code computed it
     held = {r["scene_id"]: cid for cid, r in done.items() if r.get("scene_id")} if force else {}
     todo: list[str] = []
