@@ -9,6 +9,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import SceneError
+from ..scene.device import FIELD_KIND, UNITS, normalized, to_si
+from ..scene.schema import Scene
 
 
 def field_kind(name: str) -> str | None:
@@ -18,8 +20,6 @@ def field_kind(name: str) -> str | None:
     (:data:`sawdrift.scene.device.FIELD_KIND`); a normalized field (``drive.amplitude``) or a
     pure number of a device (``device.friction``) has none.
     """
-    from ..scene.device import FIELD_KIND
-
     if not name.startswith("device."):
         return None
     return FIELD_KIND.get(name.rsplit(".", 1)[-1])
@@ -27,8 +27,6 @@ def field_kind(name: str) -> str | None:
 
 def _end(text: str, spec: str, name: str, kind: str | None) -> tuple[float, bool]:
     """(SI value, had a unit) of one end of a range; one line naming ``name`` if it is not one."""
-    from ..scene.device import to_si
-
     try:
         return float(text), False
     except ValueError:
@@ -87,8 +85,6 @@ def _tidy(values: np.ndarray) -> list[float]:
 
 
 def _si_unit(kind: str | None) -> str:
-    from ..scene.device import UNITS
-
     return UNITS[kind][1] if kind is not None else "normalized units"
 
 
@@ -187,3 +183,24 @@ def column_label(column: str) -> str:
 def long_name(column: str) -> str | None:
     """A CF ``long_name`` of an SI column (None where the column's name says it)."""
     return _LONG.get(column)
+
+
+def device_columns(scene: Scene) -> tuple[dict[str, float], float]:
+    """The SI columns of a device cell (``a0_m``, ``load_N``) and its speed scale a0 f in m/s.
+
+    A normalized speed x*' is x*' a0 f in m/s (:mod:`sawdrift.scene.device`); ``load_N`` is the
+    tangential load F = device.load - m g sin(alpha) along +x.
+    """
+    norm = normalized(scene.device)  # type: ignore[arg-type]
+    return ({"a0_m": norm["a0_m"], "load_N": norm["load_n"]},
+            norm["a0_m"] * norm["frequency_hz"])
+
+
+def add_columns(row: dict[str, Any], columns: dict[str, Any]) -> None:
+    """Add a cell's swept-field and SI columns to its row; ``drift_speed_m_s`` = x*' a0 f."""
+    extra = dict(columns)
+    scale = extra.pop("_speed_scale", None)
+    row.update(extra)
+    if scale is not None:
+        v = row.get("drift_velocity")
+        row["drift_speed_m_s"] = v * scale if v is not None else None

@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 import sys
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -177,3 +178,36 @@ def size_check(what: str, scenes: list[Scene], cells: int, *, workers: int | Non
     if show:
         announce(est)
     return est
+
+
+def _sample(values: Sequence[Any] | None) -> list[Any] | None:
+    """First, middle and last of an axis's values (a sample for the size estimate)."""
+    if values is None:
+        return None
+    values = list(values)
+    picks = sorted({0, len(values) // 2, len(values) - 1})
+    return [values[i] for i in picks]
+
+
+def estimate_sweep(grid: Callable[..., list[Scene]], names: Sequence[str], m_star: Sequence[float] | None,
+                   amplitude: Sequence[float] | None, extra_axes: dict[str, list[Any]],
+                   points: Sequence[tuple[float, float]] | None, base: Scene | None,
+                   overrides: dict[str, Any] | None, workers: int | None, engine: str,
+                   what: str = "sweep") -> Estimate:
+    """The size of a sweep before its grid is built (``grid``: :func:`sawdrift.study.sweep.grid`).
+
+    Cells: models x every axis's length (or the points); steps: the mean over a sample of
+    cells (each axis's first, middle and last value; the first model only when the sample would
+    pass 64 cells); the rate from a calibration run of the first sampled cell.
+    """
+    lengths = [len(v) for v in extra_axes.values()]
+    if points is not None:
+        lengths.append(len(points))
+        m_star, amplitude = [p[0] for p in points], [p[1] for p in points]
+    else:
+        lengths += [len(v) for v in (m_star, amplitude) if v is not None]
+    cells = len(names) * math.prod(lengths)
+    picked = {f: _sample(v) for f, v in extra_axes.items()}
+    sample_models = list(names) if len(names) * 27 ** (len(lengths) / 3) <= 64 else list(names[:1])
+    sample = grid(sample_models, _sample(m_star), _sample(amplitude), base, overrides, picked)
+    return estimate(what, sample, cells, resolve_workers(workers), engine)

@@ -32,10 +32,9 @@ from ..contact.binding import bind
 from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..result.runner import run
-from ..scene.device import normalized
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
-from .axes import column_unit, parse_axis, parse_values
-from .estimate import Estimate, announce, check, estimate
+from .axes import add_columns, column_unit, device_columns, parse_axis, parse_values
+from .estimate import announce, check, estimate_sweep
 from .executor import Executor, resolve_workers
 from .journal import records
 from .progress import progress as make_progress
@@ -148,39 +147,6 @@ def grid(
     return scenes
 
 
-def _sample(values: Sequence[Any] | None) -> list[Any] | None:
-    """First, middle and last of an axis's values (a sample for the size estimate)."""
-    if values is None:
-        return None
-    values = list(values)
-    picks = sorted({0, len(values) // 2, len(values) - 1})
-    return [values[i] for i in picks]
-
-
-def estimate_sweep(names: Sequence[str], m_star: Sequence[float] | None,
-                   amplitude: Sequence[float] | None, extra_axes: dict[str, list[Any]],
-                   points: Sequence[tuple[float, float]] | None, base: Scene | None,
-                   overrides: dict[str, Any] | None, workers: int | None, engine: str,
-                   what: str = "sweep") -> Estimate:
-    """The size of a sweep (:mod:`sawdrift.study.estimate`) before its grid is built.
-
-    Cells: models x every axis's length (or the points); steps: the mean over a sample of
-    cells (each axis's first, middle and last value; the first model only when the sample would
-    pass 64 cells); the rate from a calibration run of the first sampled cell.
-    """
-    lengths = [len(v) for v in extra_axes.values()]
-    if points is not None:
-        lengths.append(len(points))
-        m_star, amplitude = [p[0] for p in points], [p[1] for p in points]
-    else:
-        lengths += [len(v) for v in (m_star, amplitude) if v is not None]
-    cells = len(names) * math.prod(lengths)
-    picked = {f: _sample(v) for f, v in extra_axes.items()}
-    sample_models = list(names) if len(names) * 27 ** (len(lengths) / 3) <= 64 else list(names[:1])
-    sample = grid(sample_models, _sample(m_star), _sample(amplitude), base, overrides, picked)
-    return estimate(what, sample, cells, resolve_workers(workers), engine)
-
-
 def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) -> dict[str, Any]:
     """Run one cell from its scene JSON and return its table row; an error fills ``error``.
 
@@ -220,27 +186,6 @@ def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) ->
     if trace is not None and row["error"] is None:
         out["trace"] = trace
     return out
-
-
-def device_columns(scene: Scene) -> tuple[dict[str, float], float]:
-    """The SI columns of a device cell (``a0_m``, ``load_N``) and its speed scale a0 f in m/s.
-
-    A normalized speed x*' is x*' a0 f in m/s (:mod:`sawdrift.scene.device`); ``load_N`` is the
-    tangential load F = device.load - m g sin(alpha) along +x.
-    """
-    norm = normalized(scene.device)  # type: ignore[arg-type]
-    return ({"a0_m": norm["a0_m"], "load_N": norm["load_n"]},
-            norm["a0_m"] * norm["frequency_hz"])
-
-
-def add_columns(row: dict[str, Any], columns: dict[str, Any]) -> None:
-    """Add a cell's swept-field and SI columns to its row; ``drift_speed_m_s`` = x*' a0 f."""
-    extra = dict(columns)
-    scale = extra.pop("_speed_scale", None)
-    row.update(extra)
-    if scale is not None:
-        v = row.get("drift_velocity")
-        row["drift_speed_m_s"] = v * scale if v is not None else None
 
 
 # -- the resumable table ---------------------------------------------------------------------
@@ -442,8 +387,9 @@ def sweep(
         An open :class:`~sawdrift.study.executor.Executor` to run on (then ``workers`` and
         ``scheduler`` are its own; the caller closes it); None opens one for this sweep.
     size
-        Estimate the work before the grid is built (:func:`estimate_sweep`), print it on stderr
-        (with ``progress``) and refuse it, a one-line SceneError, above
+        Estimate the work before the grid is built
+        (:func:`~sawdrift.study.estimate.estimate_sweep`), print it on stderr (with
+        ``progress``) and refuse it, a one-line SceneError, above
         :data:`~sawdrift.study.estimate.MAX_SECONDS` unless ``yes``.
     yes
         Start a sweep whose estimate is above the bound.
@@ -466,8 +412,8 @@ def sweep(
         check_resume(path, done.values(), _stored_base(path), swept_from, force)
     cells = expected = None
     if size:
-        est = estimate_sweep(names, m_values, a_values, extra_axes, points, base, overrides,
-                             workers, engine, label[0])
+        est = estimate_sweep(grid, names, m_values, a_values, extra_axes, points, base,
+                             overrides, workers, engine, label[0])
         check(est, yes, smaller="fewer cells or periods")
         cells, expected = est.cells, est.seconds
     # a large grid takes a while to build: its size first, then a bar; a small one is built
