@@ -75,17 +75,50 @@ def test_benchmark_progress_on_a_terminal_is_a_tqdm_bar():
 
 
 def test_a_slow_counter_prints_a_line_every_so_many_seconds(monkeypatch, capsys):
-    """Fewer than a tenth done, but more than ``every`` seconds since the last line: a line."""
+    """Fewer than a tenth done, but more than ``every`` (2) seconds since the last line: a line."""
     from sawdrift.study import progress as pg
 
-    clock = iter([0.0, 5.0, 31.0, 40.0, 62.0, 70.0])
+    assert pg.EVERY <= 2.0  # issue 37: at least every 2 s, not per tenth of the cells
+    clock = iter([0.0, 0.5, 2.5, 3.0, 4.6, 7.0])
     monkeypatch.setattr(pg.time, "perf_counter", lambda: next(clock))
     bar = pg._Lines(1000, 0, "cell", "sweep")  # t0 = 0
-    for _ in range(5):  # at 5 s, 31 s, 40 s, 62 s, 70 s
+    for _ in range(5):  # at 0.5 s, 2.5 s, 3.0 s, 4.6 s, 7.0 s
         bar.update(1)
     lines = capsys.readouterr().err.strip().splitlines()
-    assert [LINE.match(x).group(2) for x in lines] == ["2", "4"]  # at 31 s and at 62 s
+    assert [LINE.match(x).group(2) for x in lines] == ["2", "4", "5"]  # at 2.5, 4.6 and 7.0 s
     assert "ETA" in lines[0] and lines[0].startswith("sweep: 2/1000 cells (0%)")
+
+
+SLOW = """
+import time
+from sawdrift.study import progress as pg
+pg.FIRST, pg.EVERY = 0.2, 0.4   # the clock of 1 s and 2 s, five times faster
+bar = pg.progress(3, "sweep", "cell", expected=1.8)
+time.sleep(0.66)          # no cell done yet: the clock still draws the bar
+bar.update(1)
+time.sleep(0.46)
+bar.close()
+"""
+
+
+def test_a_bar_moves_from_the_first_second_before_any_cell_is_done():
+    err = _run(SLOW, tty=False)
+    lines = err.strip().splitlines()
+    first = [x for x in lines if x.startswith("sweep: 0/3")]
+    # a line after FIRST, then every EVERY: at about 0.2 and 0.6 s before the first cell
+    assert len(first) == 2, lines
+    assert "(estimate)" in first[0]
+    eta = float(first[0].split("ETA ")[1].split(" s")[0])
+    assert 1.4 <= eta <= 1.65  # 1.8 s expected, 0.2 s gone
+    assert any(x.startswith("sweep: 1/3") for x in lines), lines
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="pseudo-terminal")
+def test_a_terminal_bar_is_redrawn_while_no_cell_finishes():
+    err = _run(SLOW, tty=True)
+    frames = [f for f in err.split("\r") if "sweep:" in f and "0/3" in f]
+    assert len(frames) >= 3, frames  # drawn at 0, about 0.2 and 0.6 s: the clock redraws it
+    assert any("estimate" in f for f in frames), frames
 
 
 def test_a_disabled_counter_prints_nothing():

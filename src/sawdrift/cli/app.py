@@ -32,6 +32,8 @@ Workers = Annotated[int | None, typer.Option("--workers", help="local processes"
 Scheduler = Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")]
 Engine = Annotated[str, typer.Option("--engine", help="compiled or python")]
 Progress = Annotated[bool, typer.Option("--progress/--no-progress")]
+Yes = Annotated[bool, typer.Option("--yes", help="start even when the size estimate (printed "
+                                   "before the work) is above 1 h")]
 
 #: exit status of an unexpected internal failure (1 is a failed check, 2 bad input)
 INTERNAL_FAILURE = 3

@@ -15,6 +15,7 @@ from .app import (
     Param,
     Progress,
     Workers,
+    Yes,
     _fail,
     _parse_param,
     _split_axis,
@@ -51,6 +52,7 @@ def field_cmd(
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: field.json, field.png, scene.toml; or NAME.csv: the field "
         "only (species, position, drift_velocity, regime, settled)")] = None,
+    yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
@@ -84,6 +86,15 @@ def field_cmd(
         if wavelength_star(scene) is None:
             _fail("--direct needs the wavelength: --wavelength L* (wavelength / a0), or a device "
                   "with device.wavelength or device.substrate.density")
+    from ..study.estimate import size_check
+    from ..study.field import MIN_POINTS, species_scenes
+
+    if points < MIN_POINTS or refine < 0:  # the study's own one-line errors, before the estimate
+        drift_field(scene, points, refine=refine, progress=False)
+
+    sample = [sp for _, sp in species_scenes(scene, species)]
+    size_check("field", sample, points * len(sample), workers=workers, engine=engine, yes=yes,
+               show=progress, unit="point", smaller="fewer --points")
     study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
                         progress=progress, engine=engine)
     if direct:

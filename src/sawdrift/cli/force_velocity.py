@@ -10,7 +10,7 @@ from typing import Annotated, Any
 import typer
 
 from .._startup import fast_start
-from .app import Engine, Param, _fail, _parse_param, _writable, app, check_engine, write_outputs
+from .app import Engine, Param, Yes, _fail, _parse_param, _writable, app, check_engine, write_outputs
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -29,6 +29,7 @@ def force_velocity_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: force_velocity.json, force_velocity.png, scene.toml")] = None,
+    yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
@@ -52,7 +53,10 @@ def force_velocity_cmd(
     if out is not None:
         _writable(out, folder=True)
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
-    typer.echo(f"force-velocity: {points + 1} steady runs", err=True)
+    from ..study.estimate import size_check
+
+    size_check("force-velocity", [scene], points + 1, workers=workers, engine=engine, yes=yes,
+               unit="steady run", smaller="fewer --points")
     curve = force_velocity(scene, points=points, workers=workers, engine=engine)
     data = curve.to_json()
     if out is not None:

@@ -13,7 +13,7 @@ import sawdrift as sd
 
 from .._startup import fast_start
 from .app import Param, _fail, _parse_param, _writable, app
-from .scene_options import with_scene_options
+from .scene_options import apply_options, with_scene_options
 
 
 def _scene_and_particles(scene_file: Path | None, model: str | None, params: dict[str, Any],
@@ -36,7 +36,7 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
     if model is not None:
         values["model"] = model
     base_model = data.get("model")
-    data = sd.scene.apply_overrides(data, values)
+    data = apply_options(data, values, overrides)
     if model not in (None, base_model) and base_model is not None:
         data["model_params"] = {}
     if params:

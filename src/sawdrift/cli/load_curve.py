@@ -14,6 +14,7 @@ from .app import (
     Engine,
     Param,
     Progress,
+    Yes,
     _fail,
     _parse_param,
     _split_axis,
@@ -47,6 +48,7 @@ def load_curve_cmd(
     axis: Annotated[str | None, typer.Option(
         "--axis", help="FIELD=a,b: one curve per value of a particle field, overlaid (sorting), "
         "e.g. particle.m_star=0.05,0.5 or 'device.particle.radius=0.2 mm,1 mm'")] = None,
+    yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
@@ -78,6 +80,7 @@ def load_curve_cmd(
 
         name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
         species = len(parse_values(spec, name))
+    _size(scene, axis, loads, workers, engine, yes, progress)
     bar = counter(species * _stages(workers), "load-curve", "stage", enabled=progress)
     note = _noter(bar)
     if axis is not None:
@@ -157,6 +160,27 @@ def _stages(workers: int | None, tolerance: float = 1e-3) -> int:
 
     k = max(1, workers if workers is not None else (os.cpu_count() or 1)) + 1
     return 2 + math.ceil(math.log(1.0 / tolerance) / math.log(k) - 1e-9)
+
+
+def _size(scene: Any, axis: str | None, loads: int, workers: int | None, engine: str, yes: bool,
+          show: bool) -> None:
+    """A load curve's size: per species the unloaded run, the stall rounds (one run per worker
+    each) and the curve's loads."""
+    import os
+
+    from ..study.estimate import size_check
+    from ..study.field import species_scenes
+
+    sample = [scene]
+    if axis is not None:
+        from ..study.axes import parse_values
+
+        name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
+        sample = [sp for _, sp in species_scenes(scene, (name, parse_values(spec, name)))]
+    k = max(1, workers if workers is not None else (os.cpu_count() or 1))
+    runs = 1 + (_stages(workers) - 2) * k + loads
+    size_check("load-curve", sample, runs * len(sample), workers=workers, engine=engine, yes=yes,
+               show=show, unit="run", smaller="fewer --loads")
 
 
 def _noter(bar: Any) -> Any:

@@ -12,7 +12,7 @@ import sawdrift as sd
 
 from .._startup import fast_start
 from ..study.progress import notice
-from .app import Engine, Param, _fail, _parse_param, _writable, app, check_engine, out_kind
+from .app import Engine, Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
 from .run_text import grouped, side_by_side
 from .scene_options import scene_from_options, with_scene_options
 
@@ -96,6 +96,7 @@ def run_cmd(
         "scene.toml, result.json; or NAME.csv / NAME.parquet: the trajectory only (t, x, vx, y, "
         "vy, a, b, N_star, T_star, ...; with several models a 'model' column first)")] = None,
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
+    yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
@@ -124,6 +125,8 @@ def run_cmd(
             return
         typer.echo("\n\n".join(sd.explain(sc, engine) for sc in scenes))  # type: ignore[arg-type]
         return
+    if engine != "lammps":
+        _size(scenes, engine, yes)
     if out is not None:
         _writable(out, folder=kind == "folder")
     results = []
@@ -149,6 +152,16 @@ def run_cmd(
             typer.echo(head + _unsettled_note(summary, sc.particle.m_star / sc.material.mu), err=True)
     if out is not None:
         typer.echo(f"wrote {written}")
+
+
+def _size(scenes: list[Any], engine: str, yes: bool) -> None:
+    """A run of more than QUIET_STEPS steps says its size first; above 1 h it needs --yes."""
+    from ..study.estimate import QUIET_STEPS, cell_steps, size_check
+
+    for sc in scenes:
+        if cell_steps(sc)[0] > QUIET_STEPS:
+            size_check(f"run: {sc.model}", [sc], 1, workers=1, engine=engine, yes=yes,
+                       smaller="fewer --periods or --steps-per-period")
 
 
 def _run_one(scene: Any, engine: str, trajectory: bool) -> Any:

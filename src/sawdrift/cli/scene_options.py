@@ -4,10 +4,13 @@
 :mod:`sawdrift.scene.options`, checked by a test) gives one option per scene field with its name,
 help and allowed range; :func:`with_scene_options` adds them to a command, so ``run``, ``sweep``
 and the studies share them, and a new scene field is a new option without editing the command
-line. The values reach the command as ``scene_overrides``, a ``{dotted field: value}`` dict of
-the options that were given, which :func:`scene_from_options` applies to the scene file (or the
-defaults) through :func:`sawdrift.scene.apply_overrides`, the one rule for every path (a
-normalized field on a device scene is an error naming the device field to set instead).
+line. ``--set FIELD=VALUE`` (repeatable) sets any dotted scene field the same way, the device
+fields with their units (``--set device.amplitude="20 nm"``). The values reach the command as
+``scene_overrides``, a ``{dotted field: value}`` dict (:class:`Overrides`, which also remembers
+how each was typed) of the options that were given, which :func:`scene_from_options` applies to
+the scene file (or the defaults) through :func:`sawdrift.scene.apply_overrides`, the one rule
+for every path (a normalized field on a device scene is an error naming the ``--set`` of the
+device field to give instead).
 """
 
 from __future__ import annotations
@@ -26,17 +29,80 @@ from .._scene_options import OPTIONS
 
 _TYPES: dict[str, Any] = {"float": float, "int": int, "choice": str}
 
+#: the keyword of the ``--set`` option in a decorated command's signature
+_SET = "set_fields"
+
+
+def _whole(text: str) -> int:
+    """An integer option that also takes ``1e7`` (a whole number written as a float)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise typer.BadParameter(f"{text!r} is not a number") from None
+    if not value.is_integer():
+        raise typer.BadParameter(f"{text!r} is not a whole number")
+    return int(value)
+
 
 def _parameter(name: str, kind: str, help_text: str) -> inspect.Parameter:
     ident = name.replace("-", "_")
     if kind == "bool":
         option = typer.Option(f"--{name}/--no-{name}", help=help_text, show_default=False)
         annotation: Any = Annotated[bool | None, option]
+    elif kind == "int":
+        option = typer.Option(f"--{name}", help=help_text, show_default=False, parser=_whole,
+                              metavar="INTEGER")
+        annotation = Annotated[int | None, option]
     else:
         option = typer.Option(f"--{name}", help=help_text, show_default=False)
         annotation = Annotated[_TYPES[kind] | None, option]
     return inspect.Parameter(ident, inspect.Parameter.KEYWORD_ONLY, default=None,
                              annotation=annotation)
+
+
+def _set_parameter() -> inspect.Parameter:
+    option = typer.Option(
+        "--set", show_default=False,
+        help="FIELD=VALUE, repeatable: any dotted scene field, checked like the scene file; "
+             "device fields take units, e.g. --set device.amplitude=\"20 nm\" --set "
+             "device.particle.radius=\"0.2 mm\"")
+    return inspect.Parameter(_SET, inspect.Parameter.KEYWORD_ONLY, default=None,
+                             annotation=Annotated[list[str] | None, option])
+
+
+class Overrides(dict):
+    """``{dotted field: value}`` of the scene options given, and how each was typed (``given``)."""
+
+    def __init__(self, values: dict[str, Any], given: dict[str, str]) -> None:
+        super().__init__(values)
+        self.given = given
+
+
+def parse_set(item: str) -> tuple[str, Any]:
+    """``(dotted field, value)`` of one ``--set FIELD=VALUE``; one line (exit 2) if malformed.
+
+    The value is read as JSON where it is one (numbers, ``true``/``false``), else kept as text
+    (``"20 nm"``, ``prograde``), which the scene's validation converts or refuses.
+    """
+    import json
+
+    from ..scene.schema import check_dotted
+
+    field, sep, raw = item.partition("=")
+    field, raw = field.strip(), raw.strip()
+    if not sep or not field or not raw:
+        raise sd.SceneError(f"--set {item!r} must look like FIELD=VALUE (e.g. "
+                            "device.amplitude='20 nm' or material.mu=0.2)")
+    check_dotted(field)  # a misspelled field: one line naming the nearest valid one
+    if len(raw) >= 2 and raw[0] == raw[-1] and raw[0] in "'\"":
+        return field, raw[1:-1]
+    if raw.lower() in ("true", "false"):
+        return field, raw.lower() == "true"
+    try:
+        value = json.loads(raw)
+    except json.JSONDecodeError:
+        return field, raw
+    return field, value if isinstance(value, (int, float)) else raw
 
 
 def with_scene_options(exclude: Iterable[str] = ()) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
@@ -56,15 +122,26 @@ def with_scene_options(exclude: Iterable[str] = ()) -> Callable[[Callable[..., A
         if clash:
             raise TypeError(f"{func.__name__} defines scene options itself: {sorted(clash)}")
         extra = [_parameter(name, kind, text) for name, _dotted, kind, text in rows]
+        extra.append(_set_parameter())
 
         @functools.wraps(func)
         def command(**kwargs: Any) -> Any:
-            overrides = {}
+            overrides: dict[str, Any] = {}
+            given: dict[str, str] = {}
             for name, dotted, _kind, _text in rows:
                 value = kwargs.pop(name.replace("-", "_"), None)
                 if value is not None:
                     overrides[dotted] = value
-            return func(**kwargs, scene_overrides=overrides)
+                    shown = f"{value:g}" if isinstance(value, float) else str(value)
+                    given[dotted] = f"--{name} {shown}"
+            for item in kwargs.pop(_SET, None) or []:
+                dotted, value = parse_set(item)
+                if dotted in given:
+                    raise sd.SceneError(f"--set {item!r}: {given[dotted]} already sets {dotted}; "
+                                        "give it once")
+                overrides[dotted] = value
+                given[dotted] = f"--set {item}"
+            return func(**kwargs, scene_overrides=Overrides(overrides, given))
 
         params = own + extra
         command.__signature__ = sig.replace(parameters=params)  # type: ignore[attr-defined]
@@ -100,13 +177,37 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
         check_model_params(model or (base.model if base is not None else "mmd"), params)
     # one rule for every path: on a device scene a derived (normalized) field is an error
     # naming the device field to set instead (sawdrift.scene.apply_overrides)
-    data = sd.scene.apply_overrides(data, values)
+    data = apply_options(data, values, overrides)
     if base is not None and model not in (None, base.model):
         data["model_params"] = {}
     if params:
         data.setdefault("model_params", {}).update(params)
     source = str(scene_file) if scene_file else None
     return sd.bind(sd.scene.build_scene(data, source=source), source)
+
+
+def apply_options(data: dict[str, Any], values: dict[str, Any],
+                  overrides: dict[str, Any] | None) -> dict[str, Any]:
+    """:func:`sawdrift.scene.apply_overrides` with the command line's words in its errors.
+
+    A derived field set on a device scene (``run --amplitude 20`` on the SAW motor) names the
+    option as typed and the ``--set device.FIELD=...`` to give instead, one line (exit 2).
+    """
+    from ..scene.overrides import SET_INSTEAD, DerivedFieldError
+
+    try:
+        return sd.scene.apply_overrides(data, values)
+    except DerivedFieldError as exc:
+        typed = getattr(overrides, "given", {}).get(exc.field)
+        if typed is None:
+            raise
+        shown = f"{exc.derived:.6g}" if isinstance(exc.derived, float) else repr(exc.derived)
+        line = (f"{typed}: a device scene derives {exc.field} from its [device] table (here "
+                f"{shown}); set the device field with its unit instead: --set "
+                f"{SET_INSTEAD[exc.field]}")
+        if exc.field == "drive.amplitude" and isinstance(exc.value, (int, float)):
+            line += f" (A* = {exc.value:g} is {exc.value * exc.a0_m * 1e9:.4g} nm on this device)"
+        raise sd.SceneError(line) from None
 
 
 def _check_keys(scene_file: Path, model: str | None) -> None:

@@ -17,6 +17,7 @@ from .app import (
     Progress,
     Scheduler,
     Workers,
+    Yes,
     _fail,
     _looks_like_file,
     _parse_param,
@@ -44,7 +45,8 @@ def sweep_cmd(
         list[str] | None,
         typer.Option("--axis", help="FIELD=SPEC, repeatable: a dotted scene field (material.mu, "
                      "device.amplitude, effects.rotation) and a,b,c | START:STOP:N (log) | "
-                     "lin:START:STOP:N; device values may carry units ('5 nm,10 nm')"),
+                     "log:START:STOP:N | lin:START:STOP:N; device values may carry units "
+                     "('5 nm,10 nm', '2 MHz:30 MHz:15', units on both ends)"),
     ] = None,
     adaptive: Annotated[
         bool, typer.Option("--adaptive", help="refine only where neighbouring cells disagree in regime "
@@ -66,10 +68,14 @@ def sweep_cmd(
         bool, typer.Option("--traces", help="also store each cell's last periods (TABLE.traces.parquet) "
                            "for the click panel of `sawdrift explore`")
     ] = False,
+    yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
     """Run a grid (models x axes) into a resumable Parquet table.
+
+    A sweep over one field (e.g. --axis "device.amplitude=10 nm,20 nm,30 nm") also prints its
+    points (a device's speed in m/s) and draws them as a line plot beside the table (TABLE.png).
 
     The grid is the (m*, A*) plane, by default m* in [1e-3, 1e2] and A* in [1e-2, 10] with 11
     log-spaced values each, times every --axis; an axis over particle.m_star or drive.amplitude
@@ -101,6 +107,13 @@ def sweep_cmd(
         a_axis = sd.parse_axis(amplitude or "1e-2:10:21", "amplitude")
         if m_axis.size != a_axis.size or m_axis.size < 2:
             _fail("--adaptive needs --m-star and --amplitude as START:STOP:N with the same N >= 2")
+        from ..study.estimate import size_check
+
+        corners = [base.with_updates(**{"particle.m_star": m, "drive.amplitude": a})
+                   for m in (m_axis[0], m_axis[-1]) for a in (a_axis[0], a_axis[-1])]
+        # refused above the bound; not printed (the study checks its own options after this)
+        size_check("sweep --adaptive", corners, budget, workers=workers, engine=engine, yes=yes,
+                   show=False, smaller="a smaller --budget")
         frame = sd.adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
                                budget=budget, base=int(m_axis.size), levels=levels, scene=base,
                                table=out, workers=workers, scheduler=scheduler, progress=progress,
@@ -115,7 +128,7 @@ def sweep_cmd(
                 amplitude = "1e-2:10:11"
         frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
                          workers=workers, scheduler=scheduler, progress=progress, engine=engine,
-                         force=force, traces=traces)
+                         force=force, traces=traces, size=True, yes=yes)
     from ..report.diagrams import unsettled_cells
 
     frame = frame.assign(_unsettled=unsettled_cells(frame))
@@ -125,13 +138,28 @@ def sweep_cmd(
         typer.echo(f"{name:>20} {regime:>14}: {int(row['size'])}"
                    + (f" ({loose} NOT settled)" if loose else ""))
     errors = int(frame["error"].notna().sum())
+    line = None if adaptive else _line_plot(frame, out)
     if adaptive:
         # the table holds the computed points; the inferred ones only complete the diagram
         typer.echo(f"wrote {out} ({frame.attrs['computed']} cells computed, {errors} with errors; "
                    f"{frame.attrs['inferred']} more inferred from their neighbours, "
                    f"{frame.attrs['wrong_guesses']} wrong guesses found by the check sample)")
     else:
-        typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)")
+        typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)"
+                   + (f" and {line} (line plot)" if line is not None else ""))
+
+
+def _line_plot(frame: Any, out: Path) -> Path | None:
+    """A sweep over one field: print its points and draw them beside the table (TABLE.png)."""
+    from ..report.diagrams import COLOURS
+    from ..report.line_plot import line_rows, plot_line, swept_field
+
+    field = swept_field(frame)
+    if field is None:
+        return None
+    for text in line_rows(frame, field):
+        typer.echo(text)
+    return plot_line(frame, out.with_suffix(".png"), None, field, colours=COLOURS)
 
 
 @app.command("bifurcation")
@@ -174,6 +202,7 @@ def bifurcation_cmd(
                            "are then mixed) or restart one holding another diagram")
     ] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print the summary as one JSON object")] = False,
+    yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
 ) -> None:
@@ -195,6 +224,9 @@ def bifurcation_cmd(
         scene_arg, named[0] if named else None, _parse_param(param), scene_overrides)
     from sawdrift.report.bifurcation_plot import plot_bifurcation
     from sawdrift.study.bifurcation import FIGURE, bifurcation
+
+    _bifurcation_size(base, field, spec, len(named) or 1, direction, samples, workers, engine,
+                      yes, progress)
 
     res = bifurcation(base, field, spec, models=named or None, samples=samples,
                       direction=direction, locate=locate, tolerance=tolerance, out=out,
@@ -220,3 +252,24 @@ def bifurcation_cmd(
         typer.echo(f"{h['model']:>20} both: hysteresis from {h['from']:.6g} to {h['to']:.6g}")
     typer.echo(f"wrote {out}/bifurcation.parquet, bifurcation.json, bifurcation.png "
                f"({res.computed} values computed)")
+
+
+def _bifurcation_size(base: Any, field: str, spec: str, models: int, direction: str,
+                      samples: int, workers: int | None, engine: str, yes: bool,
+                      show: bool) -> None:
+    """A bifurcation diagram's size: values x branches, each value a run and its samples; the
+    branches (model x direction) run in parallel, each one's values in turn."""
+    from ..dynamics.assembly import steps_per_period
+    from ..study.axes import parse_values
+    from ..study.estimate import size_check
+
+    values = [v for v in parse_values(spec, field) if isinstance(v, int | float)]
+    if not values:
+        return  # the study's own checks name what is wrong with the axis
+    branches = models * (2 if direction == "both" else 1)
+    picks = sorted({0, len(values) // 2, len(values) - 1})
+    sample = [sd.bind(base.with_updates(**{field: values[i]})) for i in picks]
+    size_check("bifurcation", sample, len(values) * branches,
+               workers=min(workers or branches, branches), engine=engine, yes=yes, show=show,
+               extra_steps=samples * steps_per_period(sample[0]), unit="value",
+               smaller="fewer values or --samples")

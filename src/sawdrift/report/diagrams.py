@@ -18,6 +18,8 @@ from matplotlib.colors import ListedColormap  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
 from ..errors import SceneError  # noqa: E402
+from ..study.axes import column_label  # noqa: E402
+from .line_plot import plot_line, swept_field  # noqa: E402
 
 #: Regime colours, in legend order.
 COLOURS = {
@@ -93,7 +95,6 @@ def unsettled_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str
     return mask
 
 
-_LABELS = {"amplitude": "A*", "m_star": "m*"}
 
 #: the hatching of cells whose drift has not settled, in every regime figure and the drift map
 HATCH = "////"
@@ -138,8 +139,8 @@ def _draw(ax, amps, masses, codes, title: str, x: str = "amplitude", y: str = "m
     note = _hatch_cells(ax, amps, masses, unsettled) if unsettled is not None else ""
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel(_LABELS.get(x, x))
-    ax.set_ylabel(_LABELS.get(y, y))
+    ax.set_xlabel(column_label(x))
+    ax.set_ylabel(column_label(y))
     ax.set_title(f"{title}\n{note}" if note else title, fontsize=10)
 
 
@@ -176,7 +177,12 @@ def _material_label(table: pd.DataFrame) -> str:
 
 def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None = None,
                        x: str = "amplitude", y: str = "m_star") -> Path:
-    """Regimes over two swept axes (default A*, m*) on log axes, one colour per regime (Fig. 3)."""
+    """Regimes over two swept axes (default A*, m*) on log axes, one colour per regime (Fig. 3).
+
+    A table swept over one field only gets the line plot of :mod:`sawdrift.report.line_plot`.
+    """
+    if swept_field(table) is not None:
+        return plot_line(table, path, model, colours=COLOURS)
     models = sorted(table["model"].dropna().unique())
     if model is None:
         if len(models) != 1:
@@ -275,8 +281,8 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
         ax.set_yscale("log")
         ax.set_xlim(ext[0], ext[1])
         ax.set_ylim(ext[2], ext[3])
-        ax.set_xlabel(_LABELS.get(x, x))
-        ax.set_ylabel(_LABELS.get(y, y))
+        ax.set_xlabel(column_label(x))
+        ax.set_ylabel(column_label(y))
         ax.set_title(title, fontsize=10)
     ax1.plot(10**lx, 10**ly, ",", color="k", alpha=0.3)
     _legend(fig, [np.unique(codes)], bool(unsettled.any()))
@@ -329,7 +335,7 @@ def plot_compare(table: pd.DataFrame, models: list[str], path: str | Path, by: s
                   shading="flat")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel(_LABELS.get(x, x))
+    ax.set_xlabel(column_label(x))
     ax.set_title(f"cells where they disagree ({int(differ.sum())} of {differ.size})", fontsize=10)
     _legend(fig, [g[2] for g in grids], any(m.any() for m in masks))
     fig.suptitle(f"{' vs '.join(p[0] for p in panels)}: {_material_label(table)}")

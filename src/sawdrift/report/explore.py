@@ -32,6 +32,7 @@ import pandas as pd
 from ..errors import SawdriftError, SceneError
 from ..scene.device import Device, normalized
 from ..scene.schema import set_dotted
+from ..study.axes import column_unit
 from ..study.sweep import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
 from .diagrams import COLOURS
@@ -107,7 +108,7 @@ DEVICE_UNITS = {"frequency": "Hz", "amplitude": "m", "radius": "m", "youngs_modu
 
 
 def _device_unit(column: str) -> str:
-    return DEVICE_UNITS.get(column.rsplit(".", 1)[-1], "")
+    return column_unit(column) or DEVICE_UNITS.get(column.rsplit(".", 1)[-1], "")
 
 
 def _numeric(frame: pd.DataFrame, column: str) -> bool:

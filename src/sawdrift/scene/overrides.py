@@ -51,6 +51,34 @@ DERIVED: dict[str, str] = {
                          "effects.adhesion",
 }
 
+#: For each derived field, the device field to set instead, as a command-line example.
+SET_INSTEAD: dict[str, str] = {
+    "particle.m_star": 'device.particle.radius="0.2 mm" (or device.frequency, device.preload, '
+                       "device.particle.density)",
+    "particle.profile": "device.particle.shape=cone",
+    "particle.preload": 'device.preload="5 mN"',
+    "particle.load": 'device.load="-1 mN" (or device.incline="2 deg")',
+    "drive.amplitude": 'device.amplitude="20 nm"',
+    "drive.horizontal_ratio": "device.horizontal_ratio=0.68",
+    "drive.orbit": "device.orbit=prograde",
+    "material.mu": "device.friction=0.2",
+    "material.nu": "device.substrate.poisson=0.25",
+    "material.theta": 'device.particle.youngs_modulus="210 GPa" (or a poisson ratio)',
+}
+
+
+class DerivedFieldError(SceneError):
+    """A derived field given another value than its device derives (one line, see the module).
+
+    Carries the ``field``, the ``value`` given, the ``derived`` value and the device's static
+    compression ``a0_m`` (in m), so that the command line can name its own option.
+    """
+
+    def __init__(self, message: str, field: str, value: Any, derived: Any, a0_m: float) -> None:
+        super().__init__(message)
+        self.field, self.value, self.derived, self.a0_m = field, value, derived, a0_m
+
+
 #: The sections of a scene that hold derived fields.
 _SECTIONS = ("particle", "drive", "material")
 
@@ -92,11 +120,12 @@ def _shown(value: Any) -> str:
     return f"{value:.6g}" if isinstance(value, float) else repr(value)
 
 
-def derived_error(field: str, value: Any, derived: Any) -> SceneError:
+def derived_error(field: str, value: Any, derived: Any, a0_m: float = math.nan) -> DerivedFieldError:
     """The one-line error for a derived ``field`` given as ``value`` on a device scene."""
     given = value.model_dump(exclude_none=True) if isinstance(value, BaseModel) else value
-    return SceneError(f"{field} = {_shown(given)}: a device scene derives {field} from its "
-                      f"[device] table (here {_shown(derived)}); set {DERIVED[field]} instead")
+    return DerivedFieldError(f"{field} = {_shown(given)}: a device scene derives {field} from its "
+                             f"[device] table (here {_shown(derived)}); set {DERIVED[field]} "
+                             "instead", field, given, derived, a0_m)
 
 
 def plain_section(value: Any) -> Any:
@@ -159,7 +188,7 @@ def apply_device(data: Mapping[str, Any]) -> dict[str, Any]:
     for field, derived in values.items():
         given = get_dotted(out, field)
         if given is not None and not _same(given, derived, field):
-            raise derived_error(field, given, derived)
+            raise derived_error(field, given, derived, normalized(device)["a0_m"])
     out["device"] = device.model_dump()
     for field, derived in values.items():
         set_dotted(out, field, copy.deepcopy(derived))

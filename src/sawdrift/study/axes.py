@@ -9,28 +9,99 @@ from typing import Any
 import numpy as np
 
 from ..errors import SceneError
+from ..scene.device import FIELD_KIND, UNITS, normalized, to_si
+from ..scene.schema import Scene
+
+
+def field_kind(name: str) -> str | None:
+    """The kind of quantity (``"length"``, ``"frequency"``, ...) of a dotted device field, or None.
+
+    ``device.particle.radius`` is a length, ``device.frequency`` a frequency
+    (:data:`sawdrift.scene.device.FIELD_KIND`); a normalized field (``drive.amplitude``) or a
+    pure number of a device (``device.friction``) has none.
+    """
+    if not name.startswith("device."):
+        return None
+    return FIELD_KIND.get(name.rsplit(".", 1)[-1])
+
+
+def _end(text: str, spec: str, name: str, kind: str | None) -> tuple[float, bool]:
+    """(SI value, had a unit) of one end of a range; one line naming ``name`` if it is not one."""
+    try:
+        return float(text), False
+    except ValueError:
+        pass
+    if kind is None:
+        raise SceneError(f"{name} = {spec!r}: {text.strip()!r} is not a number ({name} takes no "
+                         "units; device fields do, e.g. device.frequency=2 MHz:30 MHz:15)")
+    try:
+        return to_si(text, kind), True
+    except ValueError as exc:
+        raise SceneError(f"{name} = {spec!r}: {text.strip()!r} {exc}") from None
+
+
+def parse_range(spec: str, name: str = "axis") -> list[float] | None:
+    """The values of a range ``[lin:|log:]START:STOP:N``, or None if ``spec`` is not a range.
+
+    Without a prefix, and with ``log:``, N log-spaced values (ends included, both > 0); with
+    ``lin:`` N evenly spaced ones. On a device field both ends may carry units
+    (``2 MHz:30 MHz:15``); the values are then in SI units (Hz, m, N, Pa, kg, rad: what a bare
+    number of that field means). A unit on one end only, or two of different dimensions, is one
+    line naming the field.
+    """
+    if ":" not in spec:
+        return None
+    head, _, rest = spec.partition(":")
+    way = head.strip().lower() if head.strip().lower() in ("lin", "log") else "log"
+    parts = (rest if head.strip().lower() in ("lin", "log") else spec).split(":")
+    form = f"{'lin:' if way == 'lin' else ''}START:STOP:N"
+    if len(parts) != 3:
+        raise SceneError(f"{name} = {spec!r} must be {form} ({'evenly' if way == 'lin' else 'log'}"
+                         "-spaced values), e.g. 1e-3:1e2:11 or lin:0.1:1.5:15")
+    kind = field_kind(name)
+    (start, unit_a), (stop, unit_b) = (_end(p, spec, name, kind) for p in parts[:2])
+    if unit_a != unit_b:
+        raise SceneError(f"{name} = {spec!r}: give units on both ends or on neither (a bare "
+                         f"number of {name} is in {_si_unit(kind)})")
+    try:
+        n = int(parts[2])
+    except ValueError:
+        raise SceneError(f"{name} = {spec!r}: N = {parts[2].strip()!r} must be an integer") from None
+    if not 1 <= n <= 100_000:
+        raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
+    if not (math.isfinite(start) and math.isfinite(stop)):
+        raise SceneError(f"{name} = {spec!r}: START and STOP must be finite")
+    if way == "lin":
+        return _tidy(np.linspace(start, stop, n))
+    if not (start > 0 and stop > 0):
+        raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis "
+                         "(lin:START:STOP:N spaces them evenly)")
+    return _tidy(np.geomspace(start, stop, n) if n > 1 else np.array([start]))
+
+
+def _tidy(values: np.ndarray) -> list[float]:
+    """The values to 12 significant digits: 3e-08, not 3.0000000000000004e-08 (a column's name)."""
+    return [float(f"{v:.12g}") for v in values]
+
+
+def _si_unit(kind: str | None) -> str:
+    return UNITS[kind][1] if kind is not None else "normalized units"
 
 
 def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
     """Values of one ``--axis FIELD=SPEC``: numbers, booleans, or strings with units.
 
-    ``START:STOP:N`` gives N log-spaced numbers, ``lin:START:STOP:N`` N evenly spaced ones; a comma
-    list gives its items: numbers, ``true``/``false``, or quantities with units ("5 nm") that the
-    scene's device block converts.
+    A range (:func:`parse_range`): ``START:STOP:N`` or ``log:START:STOP:N`` gives N log-spaced
+    numbers, ``lin:START:STOP:N`` N evenly spaced ones, with units on both ends for a device
+    field (``device.frequency=2 MHz:30 MHz:15``, values in SI units). A comma list gives its
+    items: numbers, ``true``/``false``, or quantities with units ("5 nm") that the scene's
+    device block converts.
     """
     if not isinstance(spec, str):
         return list(spec)
-    if spec.startswith("lin:"):
-        parts = spec.split(":")[1:]
-        try:
-            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
-            if len(parts) != 3 or not 1 <= n <= 100_000:
-                raise ValueError
-        except (ValueError, IndexError):
-            raise SceneError(f"{name} = {spec!r} must be lin:START:STOP:N with 1 <= N <= 100000") from None
-        return np.linspace(start, stop, n).tolist()
-    if ":" in spec:
-        return parse_axis(spec, name).tolist()
+    values = parse_range(spec, name)
+    if values is not None:
+        return values
     out: list[Any] = []
     for item in (v.strip() for v in spec.split(",")):
         if not item:
@@ -80,3 +151,56 @@ def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
     if values.size == 0 or not np.all(np.isfinite(values)):
         raise SceneError(f"{name} = {spec!r} must hold at least one finite value")
     return values
+
+
+#: SI units of the device columns a sweep table adds (:func:`sawdrift.study.sweep.run_cell`)
+SI_COLUMNS = {"drift_speed_m_s": "m/s", "a0_m": "m", "load_N": "N"}
+
+#: how the normalized columns are written on an axis
+NORMALIZED_LABELS = {"amplitude": "A*", "m_star": "m*", "drift_ratio": "drift ratio",
+                     "drift_velocity": "drift velocity x*' (a0 f)"}
+
+_LONG = {"drift_speed_m_s": "drift speed", "a0_m": "static compression a0",
+         "load_N": "tangential load on the particle, along +x"}
+
+
+def column_unit(column: str) -> str | None:
+    """The SI unit of a table column (a device field, ``drift_speed_m_s``, ``a0_m``, ``load_N``),
+    or None for a normalized or dimensionless one. An angle is in rad (a bare number of it)."""
+    if column in SI_COLUMNS:
+        return SI_COLUMNS[column]
+    kind = field_kind(column)
+    return None if kind is None else _si_unit(kind)
+
+
+def column_label(column: str) -> str:
+    """An axis label: ``A*``, ``m*``, ``drift speed (m/s)``, ``device.frequency (Hz)``."""
+    unit = column_unit(column)
+    name = _LONG.get(column, NORMALIZED_LABELS.get(column, column))
+    return f"{name} ({unit})" if unit else name
+
+
+def long_name(column: str) -> str | None:
+    """A CF ``long_name`` of an SI column (None where the column's name says it)."""
+    return _LONG.get(column)
+
+
+def device_columns(scene: Scene) -> tuple[dict[str, float], float]:
+    """The SI columns of a device cell (``a0_m``, ``load_N``) and its speed scale a0 f in m/s.
+
+    A normalized speed x*' is x*' a0 f in m/s (:mod:`sawdrift.scene.device`); ``load_N`` is the
+    tangential load F = device.load - m g sin(alpha) along +x.
+    """
+    norm = normalized(scene.device)  # type: ignore[arg-type]
+    return ({"a0_m": norm["a0_m"], "load_N": norm["load_n"]},
+            norm["a0_m"] * norm["frequency_hz"])
+
+
+def add_columns(row: dict[str, Any], columns: dict[str, Any]) -> None:
+    """Add a cell's swept-field and SI columns to its row; ``drift_speed_m_s`` = x*' a0 f."""
+    extra = dict(columns)
+    scale = extra.pop("_speed_scale", None)
+    row.update(extra)
+    if scale is not None:
+        v = row.get("drift_velocity")
+        row["drift_speed_m_s"] = v * scale if v is not None else None

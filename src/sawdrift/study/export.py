@@ -1,8 +1,14 @@
 """Sweep tables as gridded datasets: xarray, netCDF (CF conventions), zarr.
 
 A sweep table has one row per cell. :func:`to_dataset` turns it into an ``xarray.Dataset`` whose
-dimensions are the swept fields (the columns that vary across cells: m_star, amplitude, every
-``--axis`` field, and model when the table holds several), with
+dimensions are the swept fields (:func:`dimensions`: the columns that vary across cells and are
+not fixed by the others: every ``--axis`` field, m_star and amplitude when swept themselves, and
+model when the table holds several), with
+
+* the columns a swept field fixes (m* and A* of a device swept over its frequency) as
+  non-dimension coordinates over the fields that fix them, not as more dimensions;
+* the SI columns of a device sweep (``drift_speed_m_s``, ``a0_m``, ``load_N``) and the device
+  fields with their ``units`` in ``attrs``;
 
 * ``regime`` as an integer variable carrying CF ``flag_values`` / ``flag_meanings`` (-1: no cell);
 * the drift (``drift_ratio``, ``drift_velocity``) and the evidence of each cell as variables;
@@ -24,23 +30,65 @@ import pandas as pd
 
 from ..errors import SceneError
 from ..result.regimes import REGIMES
+from .axes import column_unit, long_name
 
 #: per-cell variables exported when present
 VARIABLES = (
     "drift_ratio", "drift_velocity", "gross_slip_fraction", "liftoffs_per_period", "hop_period",
     "liftoff_phase", "liftoff_phase_spread", "lyapunov", "periodicity", "out_of_contact_fraction",
     "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s", "settled",
-    "settle_periods", "events_dropped",
+    "settle_periods", "events_dropped", "drift_speed_m_s", "a0_m", "load_N",
 )
 
 #: regime codes: flag_values are 0..n-1 in the order of sawdrift.result.regimes.REGIMES
 REGIME_FLAGS = (*REGIMES, "error")
 
 
+def _candidates(table: pd.DataFrame) -> list[str]:
+    """Columns that may be swept, the explicit axes (dotted fields) before m* and A*."""
+    out = ["model", *[c for c in table.columns if "." in c], "m_star", "amplitude"]
+    return [c for c in out if c in table.columns and table[c].nunique(dropna=True) > 1]
+
+
+def _fixed_by(table: pd.DataFrame, column: str, by: list[str]) -> bool:
+    """Whether ``column`` takes one value for each combination of the columns ``by``."""
+    if not by:
+        return table[column].nunique(dropna=True) <= 1
+    counts = table.groupby(by, dropna=False)[column].nunique(dropna=True)
+    return bool((counts <= 1).all())
+
+
 def dimensions(table: pd.DataFrame) -> list[str]:
-    """The swept columns: the candidate axes that take more than one value."""
-    candidates = ["model", "m_star", "amplitude", *[c for c in table.columns if "." in c]]
-    return [c for c in candidates if c in table.columns and table[c].nunique(dropna=True) > 1]
+    """The swept columns: those that vary and are not fixed by the swept columns before them.
+
+    The explicit axes (dotted fields: ``device.frequency``) come first; m* and A* are
+    dimensions only where they vary on their own (a normalized sweep), not where a device field
+    fixes them (a sweep over ``device.frequency`` changes m*: m* is then a coordinate,
+    :func:`derived`).
+    """
+    dims: list[str] = []
+    for column in _candidates(table):
+        if column == "model" or not _fixed_by(table, column, dims):
+            dims.append(column)
+    return dims
+
+
+def derived(table: pd.DataFrame, dims: list[str] | None = None) -> dict[str, list[str]]:
+    """``{column: the dimensions that fix it}`` of each varying column that is no dimension."""
+    from itertools import combinations
+
+    dims = dimensions(table) if dims is None else dims
+    out: dict[str, list[str]] = {}
+    for column in _candidates(table):
+        if column in dims:
+            continue
+        for size in range(1, len(dims) + 1):
+            found = next((list(c) for c in combinations(dims, size)
+                          if _fixed_by(table, column, list(c))), None)
+            if found is not None:
+                out[column] = found
+                break
+    return out
 
 
 def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
@@ -74,10 +122,10 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
     if "settled" in ds:
         ds["settled"].attrs.update(long_name="1 if the drift is the steady one, 0 if still on "
                                    "its approach (NaN: no cell)")
-    names = {"m_star": "m* = a0 m f^2 / (M g)", "amplitude": "A* = A_y / a0"}
-    for dim in dims:
-        if dim in names:
-            ds[dim].attrs["long_name"] = names[dim]
+    for column, over in derived(table, dims).items():
+        values = frame.groupby(over)[column].first().to_xarray()
+        ds = ds.assign_coords({column: values})
+    _describe(ds)
     meta = metadata or {}
     ds.attrs.update(
         Conventions="CF-1.8",
@@ -87,6 +135,18 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
         base_scene=json.dumps(meta["base_scene"]) if meta.get("base_scene") else "",
     )
     return ds
+
+
+def _describe(ds) -> None:
+    """``long_name`` and ``units`` of the normalized and SI coordinates and variables."""
+    names = {"m_star": "m* = a0 m f^2 / (M g)", "amplitude": "A* = A_y / a0"}
+    for name in [*ds.coords, *ds.data_vars]:
+        text = names.get(str(name)) or long_name(str(name))
+        if text:
+            ds[name].attrs["long_name"] = text
+        unit = column_unit(str(name))
+        if unit:
+            ds[name].attrs["units"] = unit
 
 
 def _codes(table: pd.DataFrame) -> str:

@@ -6,6 +6,12 @@ whenever another tenth of the work is done, or :data:`EVERY` seconds have passed
 line, and at the end, with the rate and an estimate of the time left:
 ``sweep: 441/882 cells (50%), 612.3 cells/s, ETA 0.7 s``.
 
+Cells of seconds each must not leave the user staring at a still line: the bars of
+:func:`progress` are redrawn by a clock (:class:`_Ticking`), not only when a cell finishes, the
+first time after :data:`FIRST` s and then every :data:`EVERY` s at most, with the elapsed time
+and the time left; before the first cell is done the time left comes from the study's size
+estimate (``expected`` seconds, :mod:`sawdrift.study.estimate`), marked ``(estimate)``.
+
 :func:`progress` (the sweeps') returns None when disabled; :func:`counter` (the benchmarks')
 returns a counter that prints nothing instead, so callers need no test.
 """
@@ -18,8 +24,11 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
-#: seconds between two plain progress lines at most (while work is being done)
-EVERY = 30.0
+#: seconds between two progress lines (or redraws of a bar) at most, while work is being done
+EVERY = 2.0
+
+#: seconds before the first line (or redraw) of a bar whose first unit is not done yet
+FIRST = 1.0
 
 #: seconds a step may take silently before :func:`notice` says what it is doing
 NOTICE_AFTER = 1.0
@@ -28,14 +37,23 @@ NOTICE_AFTER = 1.0
 class _Lines:
     """A tqdm-like counter that logs plain lines (``update``, ``set_postfix_str``, ``close``)."""
 
-    def __init__(self, total: int, initial: int, unit: str, desc: str, every: float = EVERY) -> None:
+    def __init__(self, total: int, initial: int, unit: str, desc: str, every: float | None = None,
+                 expected: float | None = None) -> None:
         self.total, self.n, self.unit, self.desc = total, initial, unit, desc
         self.start_n = initial
-        self.every = every
+        self.every = EVERY if every is None else every
+        self.expected = expected
         self.t0 = self.last = time.perf_counter()
         self.next_tenth = (10 * initial) // max(total, 1) + 1
         self.postfix = ""
         self.closed = False
+        self.lines = 0
+
+    def tick(self) -> None:
+        """A line if none came for :attr:`every` s (:data:`FIRST` s for the first one)."""
+        now = time.perf_counter()
+        if not self.closed and now - self.last >= (self.every if self.lines else FIRST):
+            self._line(now)
 
     def update(self, k: int = 1) -> None:
         """Count ``k`` more units done; print a line at each tenth or after :attr:`every` s."""
@@ -53,14 +71,18 @@ class _Lines:
 
     def _line(self, now: float) -> None:
         self.last = now
+        self.lines += 1
         dt = now - self.t0
         done = self.n - self.start_n
         rate = done / dt if dt > 0 else float("nan")
         eta = (self.total - self.n) / rate if rate > 0 else float("nan")
+        guess = ""
+        if done == 0 and self.expected is not None:
+            eta, guess = max(self.expected - dt, 0.0), " (estimate)"
         pct = 100.0 * self.n / self.total if self.total else 100.0
         note = f" [{self.postfix}]" if self.postfix else ""
         sys.stderr.write(f"{self.desc}: {self.n}/{self.total} {self.unit}s ({pct:.0f}%), "
-                         f"{rate:.1f} {self.unit}s/s, ETA {eta:.1f} s{note}\n")
+                         f"{rate:.1f} {self.unit}s/s, ETA {eta:.1f} s{guess}{note}\n")
         sys.stderr.flush()
 
     def close(self) -> None:
@@ -95,20 +117,86 @@ class _Off:
         pass
 
 
+class _Ticking:
+    """A bar redrawn by a clock thread (:data:`FIRST`, then every :data:`EVERY` s at most).
+
+    Wraps a tqdm bar (redrawn with its elapsed time and, before the first unit is done, the
+    estimated time left) or :class:`_Lines` (a line when none came for that long); ``update``,
+    ``set_postfix_str`` and ``close`` go to the bar.
+    """
+
+    def __init__(self, bar: Any, expected: float | None = None) -> None:
+        import threading
+
+        self.bar, self.expected = bar, expected
+        self.t0 = time.perf_counter()
+        self._stop = threading.Event()
+        self._lock = threading.Lock()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        wait = FIRST
+        while not self._stop.wait(wait):
+            with self._lock:
+                self._tick()
+            wait = min(EVERY, 0.5)
+
+    def _tick(self) -> None:
+        bar = self.bar
+        if isinstance(bar, _Lines):
+            bar.tick()
+            return
+        if bar.n == bar.initial and self.expected is not None:
+            left = max(self.expected - (time.perf_counter() - self.t0), 0.0)
+            bar.set_postfix_str(f"ETA ~{left:.0f} s (estimate)", refresh=False)
+        elif self.expected is not None:
+            bar.set_postfix_str(getattr(self, "_note", ""), refresh=False)
+            self.expected = None
+        bar.refresh()
+
+    def update(self, k: int = 1) -> None:
+        """Count ``k`` more units done."""
+        with self._lock:
+            self.bar.update(k)
+
+    def set_postfix_str(self, text: str, refresh: bool = True) -> None:
+        """A note shown with the bar (the item being worked on)."""
+        with self._lock:
+            self._note = text
+            self.bar.set_postfix_str(text, refresh=refresh)
+
+    def close(self) -> None:
+        """Stop the clock and close the bar."""
+        self._stop.set()
+        with self._lock:
+            self.bar.close()
+
+    def __enter__(self) -> _Ticking:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
 def progress(total: int, desc: str, unit: str, initial: int = 0, enabled: bool = True,
-             leave: bool = True) -> Any:
+             leave: bool = True, expected: float | None = None) -> Any:
     """A progress counter with ``update(k)`` and ``close()``, or None when disabled.
 
-    A tqdm bar when stderr is a terminal, plain lines (:class:`_Lines`) otherwise.
+    A tqdm bar when stderr is a terminal, plain lines (:class:`_Lines`) otherwise, both redrawn
+    by a clock (:class:`_Ticking`) at least every :data:`EVERY` s from the first :data:`FIRST`
+    s; ``expected`` (seconds, a size estimate) gives the time left before the first unit is done.
     """
     if not enabled or total <= 0:
         return None
     if sys.stderr.isatty():
         from tqdm import tqdm
 
-        return tqdm(total=total, initial=initial, unit=unit, desc=desc, dynamic_ncols=True,
-                    leave=leave)
-    return _Lines(total, initial, unit, desc)
+        bar: Any = tqdm(total=total, initial=initial, unit=unit, desc=desc, dynamic_ncols=True,
+                        leave=leave, mininterval=0.5, maxinterval=EVERY)
+    else:
+        bar = _Lines(total, initial, unit, desc, expected=expected)
+    return _Ticking(bar, expected)
 
 
 def counter(total: int, desc: str, unit: str, enabled: bool = True, leave: bool = True) -> Any:

@@ -33,7 +33,8 @@ from ..errors import SawdriftError, SceneError
 from ..result.result import SUMMARY_FIELDS
 from ..result.runner import run
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
-from .axes import parse_axis, parse_values
+from .axes import add_columns, column_unit, device_columns, parse_axis, parse_values
+from .estimate import announce, check, estimate_sweep
 from .executor import Executor, resolve_workers
 from .journal import records
 from .progress import progress as make_progress
@@ -69,6 +70,9 @@ def resolved_as(row: dict[str, Any]) -> str:
     if se is not None and se == se:
         return "chaotic_mean" if row.get("chaotic") else "long_time_mean"
     return "not_settled"
+
+#: cells from which building a sweep's grid shows a progress bar of its own
+PREPARE_BAR = 2000
 
 #: Parquet metadata keys of a sweep table (provenance).
 META_VERSION, META_BASE_SCENE, META_CODE = b"sawdrift_version", b"base_scene", b"sawdrift_code"
@@ -111,10 +115,12 @@ def grid(
     base: Scene | None = None,
     overrides: dict[str, Any] | None = None,
     axes: dict[str, Sequence[Any]] | None = None,
+    tick: Callable[[], None] | None = None,
 ) -> list[Scene]:
     """The scenes of a grid: models x m* x A* x every other axis (a dotted scene field each).
 
-    All other fields come from ``base`` and ``overrides``. Each scene is bound to its model
+    All other fields come from ``base`` and ``overrides``; ``tick`` is called after each scene
+    (a progress bar over a large grid). Each scene is bound to its model
     (:func:`sawdrift.contact.binding.bind`): a wrong model parameter or one the model cannot take
     is a one-line error before any cell runs.
     """
@@ -138,6 +144,8 @@ def grid(
             for field, value in zip(all_axes, combo, strict=True):
                 set_dotted(cell, field, value)
             scenes.append(bind(build_scene(cell)))
+            if tick is not None:
+                tick()
     return scenes
 
 
@@ -250,6 +258,10 @@ def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] |
     import pyarrow.parquet as pq
 
     arrow = pa.Table.from_pandas(frame, preserve_index=False)
+    # each column in SI units says which (Parquet field metadata, read by table_metadata)
+    fields = [f.with_metadata({b"units": unit.encode()}) if (unit := column_unit(f.name)) else f
+              for f in arrow.schema]
+    arrow = arrow.cast(pa.schema(fields, metadata=arrow.schema.metadata))
     meta = dict(arrow.schema.metadata or {})
     meta[META_VERSION] = __version__.encode()
     meta[META_CODE] = code_hash(str(m) for m in frame["model"].dropna().unique()).encode()
@@ -264,12 +276,17 @@ def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] |
 def table_metadata(table: str | Path) -> dict[str, Any]:
     """The provenance of a sweep table: ``{"sawdrift_version", "code_hash", "base_scene"}``.
 
-    A key the table does not record (a table written before it existed) is None.
+    A key the table does not record (a table written before it existed) is None; ``units``
+    maps each column in SI units to its unit (``{"drift_speed_m_s": "m/s", "device.frequency":
+    "Hz"}``).
     """
     import pyarrow.parquet as pq
 
-    meta = pq.read_schema(table).metadata or {}
-    out: dict[str, Any] = {"sawdrift_version": None, "code_hash": None, "base_scene": None}
+    schema = pq.read_schema(table)
+    meta = schema.metadata or {}
+    out: dict[str, Any] = {"sawdrift_version": None, "code_hash": None, "base_scene": None,
+                           "units": {f.name: f.metadata[b"units"].decode() for f in schema
+                                     if f.metadata and b"units" in f.metadata}}
     if META_VERSION in meta:
         out["sawdrift_version"] = meta[META_VERSION].decode()
     if META_CODE in meta:
@@ -324,6 +341,8 @@ def sweep(
     traces: bool = False,
     label: tuple[str, str] = ("sweep", "cell"),
     executor: Executor | None = None,
+    size: bool = False,
+    yes: bool = False,
 ) -> pd.DataFrame:
     """Run a (model, m*, A*) grid and return one row per cell as a DataFrame.
 
@@ -369,6 +388,13 @@ def sweep(
     executor
         An open :class:`~sawdrift.study.executor.Executor` to run on (then ``workers`` and
         ``scheduler`` are its own; the caller closes it); None opens one for this sweep.
+    size
+        Estimate the work before the grid is built
+        (:func:`~sawdrift.study.estimate.estimate_sweep`), print it on stderr (with
+        ``progress``) and refuse it, a one-line SceneError, above
+        :data:`~sawdrift.study.estimate.MAX_SECONDS` unless ``yes``.
+    yes
+        Start a sweep whose estimate is above the bound.
     """
     if engine not in ("compiled", "python"):
         raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
@@ -376,13 +402,8 @@ def sweep(
     if not names or any(not n for n in names):
         raise SceneError(f"models = {models!r} must name at least one model")
     extra_axes = {field: parse_values(spec, field) for field, spec in (axes or {}).items()}
-    if points is not None:
-        scenes = [s for m, a in points
-                  for s in grid(names, [m], [a], base, overrides, extra_axes)]
-    else:
-        scenes = grid(names, None if m_star is None else parse_axis(m_star, "m_star"),
-                      None if amplitude is None else parse_axis(amplitude, "amplitude"), base,
-                      overrides, extra_axes)
+    m_values = None if m_star is None else parse_axis(m_star, "m_star")
+    a_values = None if amplitude is None else parse_axis(amplitude, "amplitude")
     path = Path(table) if table is not None else None
     done = read_rows(path) if path is not None else {}
     if traces and path is None:
@@ -391,12 +412,36 @@ def sweep(
     swept_from = _base_json(base, overrides)
     if path is not None:
         check_resume(path, done.values(), _stored_base(path), swept_from, force)
+    cells = expected = None
+    if size:
+        est = estimate_sweep(grid, names, m_values, a_values, extra_axes, points, base,
+                             overrides, workers, engine, label[0])
+        check(est, yes, smaller="fewer cells or periods")
+        cells, expected = est.cells, est.seconds
+    # a large grid takes a while to build: its size first, then a bar; a small one is built
+    # (and every cell checked, one line for a bad one) before its size is printed
+    large = progress and cells is not None and cells >= PREPARE_BAR
+    if large:
+        announce(est)
+    prep = make_progress(cells, f"{label[0]}: preparing", label[1]) if large else None
+    tick = prep.update if prep is not None else None
+    if points is not None:
+        scenes = [s for m, a in points
+                  for s in grid(names, [m], [a], base, overrides, extra_axes, tick)]
+    else:
+        scenes = grid(names, m_values, a_values, base, overrides, extra_axes, tick)
+    if prep is not None:
+        prep.close()
+    if size and progress and not large:
+        announce(est)
     # with force, a scene the table holds keeps its row, whatever code computed it
     held = {r["scene_id"]: cid for cid, r in done.items() if r.get("scene_id")} if force else {}
     todo: list[str] = []
     wanted: set[str] = set()
-    # the swept fields' values of each cell, as the validated scene holds them (SI for devices)
+    # the swept fields' values of each cell, as the validated scene holds them (SI for devices),
+    # and a device's SI columns
     columns: dict[str, dict[str, Any]] = {}
+    loaded = any(s.device is not None and device_columns(s)[0].get("load_N") for s in scenes)
     for scene in scenes:
         cid = cell_id(scene)
         if cid not in done and held:
@@ -404,6 +449,11 @@ def sweep(
         if extra_axes:
             dumped = scene.model_dump()
             columns[cid] = {f: get_dotted(dumped, f) for f in extra_axes}
+        if scene.device is not None:
+            si, scale = device_columns(scene)
+            if not loaded:
+                si.pop("load_N")
+            columns.setdefault(cid, {}).update(si, _speed_scale=scale)
         rerun = traces and cid in done and cid not in have and not done[cid].get("error")
         if (cid not in done or rerun) and cid not in wanted:
             todo.append(scene.model_dump_json())
@@ -417,7 +467,7 @@ def sweep(
         path.parent.mkdir(parents=True, exist_ok=True)
     bar = None
     if progress and todo:
-        bar = make_progress(len(wanted), label[0], label[1], initial=len(rows))
+        bar = make_progress(len(wanted), label[0], label[1], initial=len(rows), expected=expected)
     fh = None
     if journal is not None and todo:
         header = not journal.exists()
@@ -429,7 +479,7 @@ def sweep(
             trace = row.pop("trace", None)
             if trace is not None and path is not None:
                 append_trace(path, row["cell_id"], trace)
-            row.update(columns.get(row["cell_id"], {}))
+            add_columns(row, columns.get(row["cell_id"], {}))
             rows[row["cell_id"]] = row
             if fh is not None:
                 fh.write(json.dumps(row) + "\n")

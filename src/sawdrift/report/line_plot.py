@@ -1,0 +1,156 @@
+"""One-dimensional studies: the drift against the one swept field, as a line plot.
+
+A sweep over one field (a device's speed against its frequency, radius or amplitude; the drift
+ratio against A* at one m*) has no plane to colour: :func:`plot_line` draws the value (the speed
+in m/s for a device table, else the drift ratio) against the field, one line per model, each
+point a marker in its regime's colour (the colours of every regime figure,
+:data:`sawdrift.report.diagrams.COLOURS`), an unsettled point open (its drift is still on its
+approach). :func:`swept_field` says whether a table is one-dimensional;
+:func:`sawdrift.report.diagrams.plot_phase_diagram` draws this plot for such a table.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.ticker import EngFormatter, MaxNLocator  # noqa: E402
+
+from ..errors import SceneError  # noqa: E402
+from ..study.axes import column_label, column_unit  # noqa: E402
+from ..study.export import dimensions  # noqa: E402
+
+#: marker size (points) of a cell
+SIZE = 7.0
+
+
+def swept_field(table: pd.DataFrame) -> str | None:
+    """The one swept column of a table (besides the model), or None (none, or several).
+
+    A column a swept device field fixes (m*, A*) does not count (:func:`dimensions`).
+    """
+    dims = [d for d in dimensions(table) if d != "model"]
+    return dims[0] if len(dims) == 1 else None
+
+
+def value_column(table: pd.DataFrame) -> str:
+    """What a line plot shows: the speed in m/s of a device table, else the drift ratio."""
+    if "drift_speed_m_s" in table.columns and table["drift_speed_m_s"].notna().any():
+        return "drift_speed_m_s"
+    return "drift_ratio"
+
+
+def _unsettled(sub: pd.DataFrame) -> np.ndarray:
+    if "settled" not in sub.columns:
+        return np.zeros(len(sub), dtype=bool)
+    return (sub["settled"].astype("boolean").fillna(True) == False).to_numpy(bool)  # noqa: E712
+
+
+def _log(values: np.ndarray) -> bool:
+    """A log axis for positive values spanning a factor 20 or more."""
+    v = values[np.isfinite(values)]
+    return bool(v.size and v.min() > 0 and v.max() / v.min() >= 20.0)
+
+
+def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
+              field: str | None = None, value: str | None = None, *,
+              colours: dict[str, str]) -> Path:
+    """The value (default :func:`value_column`) against the swept ``field``; one line per model.
+
+    Markers take their regime's colour from ``colours`` (the regime figures',
+    :data:`sawdrift.report.diagrams.COLOURS`, in legend order, with an ``"error"`` entry); a
+    cell whose drift has not settled is drawn open, a cell that failed is left out and counted
+    in the title.
+    """
+    field = field or swept_field(table)
+    if field is None or field not in table.columns:
+        raise SceneError("a line plot needs a table swept over one field (besides the model)")
+    value = value or value_column(table)
+    models = [model] if model is not None else sorted(table["model"].dropna().unique())
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
+    used: set[str] = set()
+    loose = failed = total = 0
+    for name in models:
+        sub = table[table["model"] == name].sort_values(field)
+        if sub.empty:
+            known = ", ".join(sorted(table["model"].dropna().unique()))
+            raise SceneError(f"model {name!r} is not in the table; it holds: {known}")
+        x = sub[field].to_numpy(float)
+        y = pd.to_numeric(sub[value], errors="coerce").to_numpy(float)
+        ok = np.isfinite(x) & np.isfinite(y)
+        open_ = _unsettled(sub)
+        total += len(sub)
+        failed += int((~ok).sum())
+        loose += int((open_ & ok).sum())
+        ax.plot(x[ok], y[ok], "-", color="0.55", lw=1.0, zorder=1,
+                label=name if len(models) > 1 else None)
+        for xi, yi, regime, is_open in zip(x[ok], y[ok], sub["regime"].to_numpy()[ok],
+                                           open_[ok], strict=True):
+            colour = colours.get(str(regime), colours["error"])
+            used.add(str(regime) if str(regime) in colours else "error")
+            ax.plot(xi, yi, "o", ms=SIZE, zorder=2, mec=colour if is_open else "k",
+                    mfc="white" if is_open else colour, mew=2.0 if is_open else 0.6)
+    if _log(table[field].to_numpy(float)):
+        ax.set_xscale("log")
+    else:  # few ticks: a unit on each must not collide with the next
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
+    # SI ticks with prefixes: 5 MHz, -120 um/s (not 5e6, -0.00012)
+    for axis, column in ((ax.xaxis, field), (ax.yaxis, value)):
+        unit = column_unit(column)
+        if unit and unit != "rad":
+            axis.set_major_formatter(EngFormatter(unit=unit, sep=" "))
+    ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
+    ax.set_xlabel(column_label(field))
+    ax.set_ylabel(column_label(value) if column_unit(value) else _normalized_label(value))
+    notes = [f"open: not settled ({loose} of {total})" if loose else "",
+             f"{failed} failed (not drawn)" if failed else ""]
+    note = "; ".join(n for n in notes if n)
+    title = f"{', '.join(models)}: {_normalized_label(value)} against {field}"
+    ax.set_title(f"{title}\n{note}" if note else title, fontsize=10)
+    _legend(fig, ax, used, bool(loose), len(models) > 1, colours)
+    path = Path(path)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def _normalized_label(value: str) -> str:
+    return {"drift_speed_m_s": "drift speed", "drift_ratio": "drift ratio <x*'> / (2 pi r A*)",
+            "drift_velocity": "drift velocity x*' (a0 f)"}.get(value, value)
+
+
+def _legend(fig, ax, used: set[str], loose: bool, models: bool, colours: dict[str, str]) -> None:
+    """The regimes drawn (and the open marker) below the axes, in the regime figures' order."""
+    handles = [Line2D([], [], ls="", marker="o", ms=SIZE, mfc=colours[r], mec="k", mew=0.6,
+                      label=r) for r in colours if r in used]
+    if loose:
+        handles.append(Line2D([], [], ls="", marker="o", ms=SIZE, mfc="white", mec="0.3", mew=2.0,
+                              label="not settled"))
+    if handles:
+        fig.legend(handles=handles, loc="outside lower center", ncol=min(len(handles), 4),
+                   frameon=False)
+    if models:
+        ax.legend(loc="best", fontsize=8, frameon=False)
+
+
+def line_rows(table: pd.DataFrame, field: str, value: str | None = None) -> list[str]:
+    """The points of a one-dimensional table as text: field, value, regime (per model)."""
+    value = value or value_column(table)
+    head_x, head_v = column_label(field), column_label(value)
+    width = max(len(head_x), 14)
+    unit = column_unit(field)
+    fmt = EngFormatter(unit=unit, sep=" ") if unit and unit != "rad" else None
+    lines = [f"{'model':>20} {head_x:>{width}} {head_v:>18}  regime"]
+    for data in table.sort_values(["model", field]).to_dict(orient="records"):
+        v = pd.to_numeric(pd.Series([data.get(value)]), errors="coerce").iloc[0]
+        shown = f"{v:18.6g}" if np.isfinite(v) else f"{'none':>18}"
+        mark = " (not settled)" if data.get("settled") is False or data.get("settled") == 0 else ""
+        where = fmt(data[field]) if fmt is not None else f"{data[field]:.6g}"
+        lines.append(f"{data['model']:>20} {where:>{width}} {shown}  {data['regime']}{mark}")
+    return lines

@@ -1,0 +1,90 @@
+"""``--set FIELD=VALUE`` on every command that takes a scene (issue 37, item 1)."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+import pytest
+
+from sawdrift.cli import app, main
+
+MOTOR = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
+SHORT = ("--no-settle", "--periods", "2", "--steps-per-period", "64", "--json")
+
+
+def call(monkeypatch, capsys, *args: str) -> tuple[int, str, str]:
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *args])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    out = capsys.readouterr()
+    return int(exc.value.code or 0), out.out, out.err
+
+
+def _hertz(radius: float) -> tuple[float, float]:
+    """(a0, m*) of the motor's steel ball of ``radius`` by Hertz (a0 = (9 W^2/(16 R E*^2))^(1/3))."""
+    e_star = 1.0 / ((1 - 0.3**2) / 210e9 + (1 - 0.25**2) / 170e9)
+    mass = 7850.0 * 4.0 / 3.0 * math.pi * radius**3
+    weight = mass * 9.81 + 7.35e-3
+    a0 = (9.0 * weight**2 / (16.0 * radius * e_star**2)) ** (1.0 / 3.0)
+    return a0, a0 * mass * 9.6e6**2 / weight
+
+
+def test_set_changes_device_fields_with_units(monkeypatch, capsys):
+    code, out, err = call(monkeypatch, capsys, "run", str(MOTOR), "--set", "device.amplitude=20 nm",
+                          "--set", "device.particle.radius='0.2 mm'", *SHORT)
+    assert code == 0, err
+    data = json.loads(out)
+    a0, m_star = _hertz(0.2e-3)
+    assert data["normalized"]["a0_m"] == pytest.approx(a0, rel=1e-9)
+    assert data["m_star"] == pytest.approx(m_star, rel=1e-9)
+    assert data["amplitude"] == pytest.approx(20e-9 / a0, rel=1e-9)
+
+
+def test_a_derived_option_on_a_device_scene_points_at_set(monkeypatch, capsys):
+    code, _, err = call(monkeypatch, capsys, "run", str(MOTOR), "--amplitude", "20")
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1
+    assert lines[0].startswith("error: --amplitude 20: ")
+    assert '--set device.amplitude="20 nm"' in lines[0]
+    # A* = 20 on the motor (a0 = 18.13 nm) is 20 a0
+    assert f"{20 * _hertz(0.5e-3)[0] * 1e9:.4g} nm" in lines[0]
+
+
+@pytest.mark.parametrize(("item", "words"), [
+    ("device.amplitude=20 MHz", ("device.amplitude", "length")),
+    ("device.ampltude=20 nm", ("device.ampltude", "'amplitude'")),
+    ("device.amplitude", ("FIELD=VALUE",)),
+    ("material.mu=-1", ("material.mu",)),
+])
+def test_a_bad_set_is_one_line_naming_the_field(item, words, monkeypatch, capsys):
+    scene = str(MOTOR) if item.startswith("device") else None
+    args = ["run", *([scene] if scene else []), "--set", item, *SHORT]
+    code, _, err = call(monkeypatch, capsys, *args)
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1 and lines[0].startswith("error: "), lines
+    assert all(w in lines[0] for w in words), lines[0]
+
+
+def test_every_command_that_takes_a_scene_has_set():
+    import typer.main
+
+    group = typer.main.get_command(app)
+    takes_scene = [name for name, cmd in group.commands.items()
+                   if any("--mu" in p.opts for p in getattr(cmd, "params", []))]
+    assert {"run", "sweep", "load-curve", "force-velocity", "field", "bifurcation",
+            "lammps"} <= set(takes_scene)
+    for name in takes_scene:
+        opts = {o for p in group.commands[name].params for o in p.opts}
+        assert "--set" in opts, name
+
+
+def test_integer_options_take_a_float_written_whole_number(monkeypatch, capsys):
+    code, out, err = call(monkeypatch, capsys, "run", "--steps-per-period", "1e2", "--periods", "2",
+                          "--no-settle", "--json")
+    assert code == 0, err
+    assert json.loads(out)["steps_per_period"] == 100
+    code, _, err = call(monkeypatch, capsys, "run", "--steps-per-period", "64.5")
+    assert code == 2 and "whole number" in err

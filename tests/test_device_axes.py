@@ -1,0 +1,194 @@
+"""Device studies in SI units: axis ranges with units (issue 37, item 2)."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from sawdrift.cli import main
+from sawdrift.errors import SceneError
+from sawdrift.study.axes import parse_values
+
+MOTOR = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
+
+
+def test_ranges_with_units_are_in_si():
+    # log-spaced: the geometric mean of 2 and 30 MHz in the middle
+    assert parse_values("2 MHz:30 MHz:3", "device.frequency") == pytest.approx(
+        [2e6, math.sqrt(2e6 * 30e6), 30e6], rel=1e-12)
+    assert parse_values("log:2 MHz:30000 kHz:3", "device.frequency") == pytest.approx(
+        [2e6, math.sqrt(2e6 * 30e6), 30e6], rel=1e-12)
+    assert parse_values("lin:10 nm:30 nm:3", "device.amplitude") == [1e-8, 2e-8, 3e-8]
+    assert parse_values("lin:-5 deg:5 deg:3", "device.incline") == pytest.approx(
+        np.radians([-5.0, 0.0, 5.0]).tolist(), rel=1e-11)
+    assert parse_values("1e-3:1e2:3", "particle.m_star") == pytest.approx([1e-3, 10**-0.5, 1e2])
+
+
+@pytest.mark.parametrize(("spec", "words"), [
+    ("device.frequency=2 MHz:30 nm:15", ("device.frequency", "'30 nm'", "frequency")),
+    ("device.frequency=2:30 MHz:15", ("device.frequency", "both ends")),
+    ("device.amplitude=lin:10 nm:30 nm", ("device.amplitude", "lin:START:STOP:N")),
+    ("material.mu=0.1 nm:0.2 nm:3", ("material.mu", "no units")),
+])
+def test_a_bad_range_is_one_line_naming_the_field(spec, words, monkeypatch, capsys, tmp_path):
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sweep", str(MOTOR), "--axis", spec,
+                                      "-o", str(tmp_path / "t.parquet")])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(lines) == 1 and lines[0].startswith("error: "), lines
+    assert all(w in lines[0] for w in words), lines[0]
+
+
+def test_units_on_a_normalized_field_are_refused():
+    with pytest.raises(SceneError, match="drive.amplitude"):
+        parse_values("lin:1 nm:2 nm:2", "drive.amplitude")
+
+
+# -- item 3: SI columns ----------------------------------------------------------------------
+
+QUICK = {"numerics.settle": False, "numerics.periods": 4, "numerics.steps_per_period": 64}
+
+
+def _motor(**updates):
+    import sawdrift as sd
+
+    return sd.Scene.from_toml(MOTOR).with_updates(**QUICK, **updates)
+
+
+def _hertz_a0(radius: float = 0.5e-3, preload: float = 7.35e-3) -> float:
+    e_star = 1.0 / ((1 - 0.3**2) / 210e9 + (1 - 0.25**2) / 170e9)
+    weight = 7850.0 * 4.0 / 3.0 * math.pi * radius**3 * 9.81 + preload
+    return (9.0 * weight**2 / (16.0 * radius * e_star**2)) ** (1.0 / 3.0)
+
+
+@pytest.fixture(scope="module")
+def device_table(tmp_path_factory):
+    import sawdrift as sd
+
+    path = tmp_path_factory.mktemp("si") / "t.parquet"
+    sd.sweep(["mmd"], axes={"device.amplitude": "lin:10 nm:20 nm:2",
+                            "device.load": "0 mN,-0.1 mN"},
+             base=_motor(), table=path, workers=1, progress=False)
+    return path
+
+
+def test_device_tables_carry_si_columns_with_units(device_table):
+    import pandas as pd
+
+    from sawdrift.study.sweep import table_metadata
+
+    frame = pd.read_parquet(device_table)
+    a0 = _hertz_a0()
+    assert frame["a0_m"].to_numpy() == pytest.approx(a0, rel=1e-9)
+    # a normalized speed x*' is x*' a0 f in m/s
+    assert frame["drift_speed_m_s"].to_numpy() == pytest.approx(
+        frame["drift_velocity"].to_numpy() * a0 * 9.6e6, rel=1e-12)
+    assert sorted(set(frame["device.amplitude"])) == pytest.approx([1e-8, 2e-8], rel=1e-12)
+    assert sorted(set(frame["load_N"])) == pytest.approx([-1e-4, 0.0], abs=1e-15)
+    units = table_metadata(device_table)["units"]
+    assert units == {"device.amplitude": "m", "device.load": "N", "drift_speed_m_s": "m/s",
+                     "a0_m": "m", "load_N": "N"}
+
+
+def test_export_and_figures_label_device_axes_with_units(device_table, tmp_path, monkeypatch):
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    import sawdrift as sd
+
+    ds = sd.write_grid(device_table, tmp_path / "g.nc")
+    assert set(ds.sizes) == {"device.amplitude", "device.load"}
+    assert ds["device.amplitude"].attrs["units"] == "m"
+    assert ds["drift_speed_m_s"].attrs["units"] == "m/s"
+    # A* = A_y / a0: a coordinate over the amplitude alone, not a third dimension
+    assert ds["amplitude"].dims == ("device.amplitude",)
+    assert ds["amplitude"].to_numpy() == pytest.approx(np.array([1e-8, 2e-8]) / _hertz_a0(),
+                                                      rel=1e-9)
+    kept = []
+    monkeypatch.setattr(plt, "close", lambda fig=None: kept.append(fig))
+    frame = pd.read_parquet(device_table)
+    frame = frame[frame["device.load"] < 0].assign(**{"device.load": -1e-4})
+    two = pd.concat([frame.assign(**{"device.preload": 7.35e-3}),
+                     frame.assign(**{"device.preload": 8e-3})], ignore_index=True)
+    sd.plot_phase_diagram(two, tmp_path / "p.png", x="device.amplitude", y="device.preload")
+    ax = kept[-1].axes[0]
+    assert ax.get_xlabel() == "device.amplitude (m)" and ax.get_ylabel() == "device.preload (N)"
+
+
+# -- item 4: one-dimensional studies -------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def frequency_table(tmp_path_factory):
+    import sawdrift as sd
+
+    path = tmp_path_factory.mktemp("one") / "f.parquet"
+    sd.sweep(["mmd"], axes={"device.frequency": "5 MHz:20 MHz:3"}, base=_motor(), table=path,
+             workers=1, progress=False)
+    return path
+
+
+def test_export_of_a_one_field_sweep_has_one_dimension(frequency_table, tmp_path):
+    import sawdrift as sd
+
+    ds = sd.write_grid(frequency_table, tmp_path / "g.nc")
+    assert dict(ds.sizes) == {"device.frequency": 3}
+    # m* = a0 m f^2 / (M g) with a0 independent of f: a coordinate growing as f^2
+    f = ds["device.frequency"].to_numpy()
+    assert f == pytest.approx([5e6, 1e7, 2e7], rel=1e-11)
+    m = ds["m_star"].to_numpy()
+    assert ds["m_star"].dims == ("device.frequency",)
+    assert m / m[0] == pytest.approx((f / f[0]) ** 2, rel=1e-12)
+    assert "amplitude" not in ds.coords  # A* does not change with f: no coordinate, no dimension
+
+
+def test_phase_diagram_of_a_one_field_sweep_is_a_line_plot(frequency_table, tmp_path, monkeypatch):
+    import matplotlib.pyplot as plt
+    import pandas as pd
+    from matplotlib.collections import QuadMesh
+    from matplotlib.colors import to_hex
+
+    import sawdrift as sd
+    from sawdrift.report.diagrams import COLOURS
+
+    kept = []
+    monkeypatch.setattr(plt, "close", lambda fig=None: kept.append(fig))
+    frame = pd.read_parquet(frequency_table)
+    settled = frame.index == 0  # one settled cell, two still on their approach
+    frame = frame.assign(settled=settled)
+    sd.plot_phase_diagram(frame, tmp_path / "p.png")
+    ax = kept[-1].axes[0]
+    assert not any(isinstance(c, QuadMesh) for c in ax.collections)  # no 2-D rectangle
+    dots = [ln for ln in ax.lines if ln.get_marker() == "o"]
+    assert len(dots) == len(frame) == 3
+    by_x = {float(d.get_xdata()[0]): d for d in dots}
+    for row in frame.itertuples():
+        dot = by_x[float(frame.loc[row.Index, "device.frequency"])]
+        colour = to_hex(COLOURS[row.regime])
+        assert float(dot.get_ydata()[0]) == pytest.approx(row.drift_speed_m_s)
+        if row.settled:
+            assert to_hex(dot.get_markerfacecolor()) == colour
+        else:  # open: white face, the regime's colour around it
+            assert to_hex(dot.get_markerfacecolor()) == "#ffffff"
+            assert to_hex(dot.get_markeredgecolor()) == colour
+    assert ax.get_xlabel() == "device.frequency (Hz)" and ax.get_ylabel() == "drift speed (m/s)"
+
+
+def test_a_one_field_sweep_prints_its_points_and_draws_them(monkeypatch, capsys, tmp_path):
+    out = tmp_path / "amp.parquet"
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sweep", str(MOTOR), "--axis",
+                                      "device.amplitude=10 nm,20 nm", "--no-settle", "--periods",
+                                      "4", "--steps-per-period", "64", "--workers", "1",
+                                      "--no-progress", "-o", str(out)])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    text = capsys.readouterr().out
+    assert exc.value.code == 0
+    assert (tmp_path / "amp.png").stat().st_size > 10_000
+    assert "device.amplitude (m)" in text and "drift speed (m/s)" in text
+    assert "20 nm" in text and "(line plot)" in text
