@@ -49,6 +49,7 @@ def cap_rule_positions(scene: Scene, rule: Rule, k_per: int | None = None,
     rx, sp, cp, tr = real.ratio * real.horizontal, real.sin_phase, real.cos_phase, real.ramp_periods
     ay = real.vertical
     e = real.restitution
+    load = real.load / real.weight  # a constant tangential load, units of the normal load
     c_damp = restitution_damping(e, 1.5, m) if e is not None else 0.0
     two_pi = 2.0 * math.pi
 
@@ -88,7 +89,7 @@ def cap_rule_positions(scene: Scene, rule: Rule, k_per: int | None = None,
         else:
             ts = 0.0
         a_old, b_old = max(a, 0.0), b
-        fx, fy = -mu * t_out, 1.0 - n_tot
+        fx, fy = -mu * t_out + load, 1.0 - n_tot
         vx, vy = vxh + 0.5 * h * fx / m, vyh + 0.5 * h * fy / m
         if (k + 1) % k_per == 0:
             out.append(x)
