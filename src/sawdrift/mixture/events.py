@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -90,10 +91,13 @@ class SlowModel:
         Force-velocity curves of each species (:mod:`.curves`).
     surface_speed
         The horizontal surface speed 2 pi f r A_y (m/s) that a drift ratio multiplies.
+    cache
+        Solved chains by composition, shared between runs on the same curves (optional).
     """
 
     def __init__(self, x: np.ndarray, y: np.ndarray, kinds: np.ndarray, beads: list[Bead],
-                 curves: list[SpeciesCurves], surface_speed: float) -> None:
+                 curves: list[SpeciesCurves], surface_speed: float,
+                 cache: dict[tuple, Any] | None = None) -> None:
         self.x = np.array(x, dtype=float)
         self.kinds = np.asarray(kinds, dtype=int)
         self.beads, self.curves, self.u = beads, curves, surface_speed
@@ -105,7 +109,7 @@ class SlowModel:
         self.chains = {i: _Chain([i], [], free[k]) for i, k in enumerate(self.kinds)}
         self.speed = np.array([free[k] for k in self.kinds])
         self.merges = self.splits = self.saturated = 0
-        self._cache: dict[tuple, list[tuple[list[int], list[tuple[int, int]], float, bool]]] = {}
+        self._cache: dict[tuple, Any] = {} if cache is None else cache
 
     def _pairs(self) -> None:
         """Candidate contacts (behind, front, centre distance along x) of each lane."""
