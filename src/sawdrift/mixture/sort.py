@@ -29,7 +29,7 @@ from .curves import Source, curves_for
 from .events import SlowModel, SlowRun
 from .segregation import lacey_segregation, purity, purity_index
 
-__all__ = ["VALIDATED", "SortResult", "sort_mixture", "time_to"]
+__all__ = ["VALIDATED", "SortResult", "slow_window", "sort_mixture", "time_to"]
 
 #: what the checks against damped LAMMPS showed (docs/lammps.md, validation case lammps_chains)
 VALIDATED = ("accuracy (chains placed by hand against damped LAMMPS, docs/lammps.md): to be "
@@ -107,13 +107,15 @@ class SortResult:
         }
 
 
-def _sample_periods(periods: float, samples: int) -> np.ndarray:
-    """0, then ``samples`` times from 1 period to ``periods``, evenly in log."""
-    return np.concatenate(([0.0], np.geomspace(1.0, periods, samples)))
+def _sample_periods(periods: float, per_decade: int) -> np.ndarray:
+    """0, then ``per_decade`` times a decade from 1 period (every decade itself) to ``periods``."""
+    grid = 10.0 ** (np.arange(0, int(math.floor(math.log10(periods) * per_decade + 1e-9)) + 1)
+                    / per_decade)
+    return np.concatenate(([0.0], grid, [periods] if grid[-1] < periods * (1 - 1e-12) else []))
 
 
 def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: int = 20,
-                 periods: float = 1e9, samples: int = 121, target: float = 0.9,
+                 periods: float = 1e9, samples: int = 12, target: float = 0.9,
                  source: Source = "native",
                  progress: Callable[[str], None] | None = None) -> SortResult:
     """Run ``seeds`` random placements of ``particles`` on ``scene`` with the slow model.
@@ -130,7 +132,7 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     periods
         Length of each run in wave periods (the slow model's cost does not grow with it).
     samples
-        Sample times after t = 0, logarithmic from one period.
+        Sample times per decade of periods after t = 0, from one period.
     target
         Purity whose first time is reported, in (0.5, 1].
     source
@@ -183,3 +185,24 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
                       measures={k: np.array(v) for k, v in values.items()}, target=target,
                       runs=runs, species=rows, wall_time_s=time.perf_counter() - t0,
                       curve_source=source, curve_wall_s=curve_wall)
+
+
+def slow_window(scene: Scene, spec: Particles, result: SortResult, periods: int) -> dict[str, Any]:
+    """The placement of ``spec`` moved by the slow model for ``periods`` periods, measured like a
+    LAMMPS run: each species' mean drift ratio over the last half, the purity at the end, the
+    chains (``result`` provides nothing but the scene's curves, already cached on disk)."""
+    real = realize(scene)
+    species = species_of(scene, spec, real)
+    g = scene.device.gravity if scene.device is not None else 9.81
+    beads = [Bead(s.radius, s.a0, s.mass * g) for s in species]
+    curves = curves_for(scene, [s.radius for s in species], source=result.curve_source)  # type: ignore[arg-type]
+    u = 2.0 * math.pi * real.frequency * real.ratio * real.amplitude * real.horizontal
+    xy, kinds, _, _ = placement(spec, species)
+    half = max(1, periods // 2)
+    t0 = time.perf_counter()
+    model = SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u)
+    run = model.run(np.array([periods - half, periods], dtype=float) / real.frequency)
+    disp = (run.x[1] - run.x[0]) * real.frequency / half / u
+    return {"drift_ratio": [float(disp[kinds == k].mean()) for k in range(len(species))],
+            "purity": purity(run.x[1], kinds), "chains": len(run.chains),
+            "wall_time_s": time.perf_counter() - t0}
