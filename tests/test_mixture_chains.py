@@ -149,3 +149,20 @@ def test_dilute_limit_is_each_single_bead_drift(tmp_path, monkeypatch):
                                               "numerics.settle": True}))
         speed = single.summary()["drift_speed_m_s"]
         assert run.x[0, k] / t == pytest.approx(speed, rel=1e-9)
+
+
+def test_offset_beads_meet_closer_or_pass():
+    """Two equal beads approaching each other: offset across the wave by dy < 2R they touch at
+    the centre distance sqrt(4 R^2 - dy^2) along x (Pythagoras), by dy >= 2R they pass freely."""
+    beads = [Bead(1e-3, 1e-9, 1.0), Bead(1e-3, 1e-9, 1.0)]
+    curves = [linear(0.3, 0.5), linear(-0.2, 0.25)]
+    u = 1.0
+    for dy, meets in ((1.2e-3, True), (2.0e-3, False)):
+        model = SlowModel(np.array([0.0, 5e-3]), np.array([0.0, dy]), np.array([0, 1]), beads,
+                          curves, u)
+        run = model.run(np.array([0.1]))
+        assert (run.merges == 1) == meets
+        if meets:
+            assert run.x[0, 1] - run.x[0, 0] == pytest.approx(math.sqrt(4e-6 - dy**2), rel=1e-9)
+        else:
+            assert run.x[0].tolist() == pytest.approx([0.3 * 0.1, 5e-3 - 0.2 * 0.1], rel=1e-12)

@@ -35,7 +35,7 @@ import numpy as np
 
 from .curves import SpeciesCurves
 
-__all__ = ["Bead", "ChainState", "contact_geometry", "solve_chain", "split_chain"]
+__all__ = ["Bead", "ChainState", "Edge", "contact_geometry", "solve_chain", "split_chain"]
 
 
 @dataclass(frozen=True)
@@ -52,12 +52,24 @@ class Bead:
         return self.radius - self.a0
 
 
-def contact_geometry(behind: Bead, front: Bead) -> tuple[float, float, float]:
-    """(horizontal centre distance, cos phi, sin phi) of two touching beads at rest (docstring)."""
+def contact_geometry(behind: Bead, front: Bead, dy: float = 0.0) -> tuple[float, float, float]:
+    """(centre distance along x, cos phi, sin phi) of two touching beads at rest (docstring).
+
+    ``dy`` is the offset of their centres across the wave: the distance along x is then
+    sqrt(d^2 - dz^2 - dy^2) and the normal's x part dx / d (its y part, dy / d, is left out: the
+    model is 1-D along the wave).
+    """
     d = behind.radius + front.radius
     dz = front.height - behind.height
-    dx = math.sqrt(max(d * d - dz * dz, 0.0))
+    dx = math.sqrt(max(d * d - dz * dz - dy * dy, 0.0))
     return dx, dx / d, dz / d
+
+
+Edge = tuple[int, int] | tuple[int, int, float]
+
+
+def _offset(edge: Edge) -> float:
+    return float(edge[2]) if len(edge) > 2 else 0.0  # type: ignore[misc]
 
 
 @dataclass
@@ -81,18 +93,19 @@ def _scale(state: ChainState) -> float:
     return float(np.abs(state.loads).max()) if state.loads.size else 1.0
 
 
-def _matrices(beads: list[Bead], edges: list[tuple[int, int]]) -> tuple[np.ndarray, np.ndarray]:
+def _matrices(beads: list[Bead], edges: list[Edge]) -> tuple[np.ndarray, np.ndarray]:
     n = len(beads)
     a = np.zeros((n, len(edges)))
     b = np.zeros((n, len(edges)))
-    for e, (i, j) in enumerate(edges):
-        _, c, s = contact_geometry(beads[i], beads[j])
+    for e, edge in enumerate(edges):
+        i, j = edge[0], edge[1]
+        _, c, s = contact_geometry(beads[i], beads[j], _offset(edge))
         a[i, e], a[j, e] = -c, c
         b[i, e], b[j, e] = s, -s
     return a, b
 
 
-def solve_chain(beads: list[Bead], kinds: list[int], edges: list[tuple[int, int]],
+def solve_chain(beads: list[Bead], kinds: list[int], edges: list[Edge],
                 curves: list[SpeciesCurves], *, tol: float = 1e-10,
                 max_iter: int = 200) -> ChainState:
     """The common speed, pair forces and normal loads of a chain (module docstring).
@@ -104,7 +117,8 @@ def solve_chain(beads: list[Bead], kinds: list[int], edges: list[tuple[int, int]
     kinds
         The species of each bead of the chain.
     edges
-        Contacts ``(behind, front)`` as indices into ``kinds``; a tree (every bead connected).
+        Contacts ``(behind, front)`` or ``(behind, front, dy)`` as indices into ``kinds`` (dy:
+        the offset of the centres across the wave); every bead connected.
     curves
         The force-velocity curves of each species.
     tol
@@ -153,7 +167,7 @@ def _first_zero(v: np.ndarray, total: np.ndarray) -> tuple[float, bool]:
     return float(v[k - 1] + (v[k] - v[k - 1]) * (-t0) / (t1 - t0)), False
 
 
-def _components(n: int, edges: list[tuple[int, int]]) -> list[list[int]]:
+def _components(n: int, edges: list[Edge]) -> list[list[int]]:
     """Connected components of ``n`` nodes under ``edges`` (sorted node lists)."""
     parent = list(range(n))
 
@@ -163,16 +177,16 @@ def _components(n: int, edges: list[tuple[int, int]]) -> list[list[int]]:
             i = parent[i]
         return i
 
-    for i, j in edges:
-        parent[find(i)] = find(j)
+    for edge in edges:
+        parent[find(edge[0])] = find(edge[1])
     groups: dict[int, list[int]] = {}
     for i in range(n):
         groups.setdefault(find(i), []).append(i)
     return sorted(groups.values())
 
 
-def split_chain(beads: list[Bead], kinds: list[int], edges: list[tuple[int, int]],
-                curves: list[SpeciesCurves]) -> list[tuple[list[int], list[tuple[int, int]], ChainState]]:
+def split_chain(beads: list[Bead], kinds: list[int], edges: list[Edge],
+                curves: list[SpeciesCurves]) -> list[tuple[list[int], list[Edge], ChainState]]:
     """The chain broken where it pulls: [(member indices, their edges, solution), ...].
 
     Solves the chain; while some pair force is tensile, the most tensile contact opens (the part
@@ -189,10 +203,12 @@ def split_chain(beads: list[Bead], kinds: list[int], edges: list[tuple[int, int]
     out = []
     for part in parts:
         index = {old: new for new, old in enumerate(part)}
-        sub_edges = [(index[i], index[j]) for i, j in rest if i in index]
+        sub_edges: list[Edge] = [(index[e[0]], index[e[1]], _offset(e)) for e in rest
+                                 if e[0] in index]
         for members, sub, sol in split_chain(beads, [kinds[i] for i in part], sub_edges, curves):
-            out.append(([part[m] for m in members], [(part[i], part[j]) for i, j in sub], sol))
-    behind, front = edges[worst]
+            out.append(([part[m] for m in members],
+                        [(part[e[0]], part[e[1]], _offset(e)) for e in sub], sol))
+    behind, front = edges[worst][0], edges[worst][1]
     v_of = {m: sol.speed for members, _, sol in out for m in members}
     if v_of[behind] > v_of[front] + 1e-12:
         return [(list(range(len(kinds))), list(edges), state)]

@@ -7,18 +7,20 @@ merge into one; the merged chain's balance (:func:`.chains.split_chain`) gives i
 or splits it where a pair force would pull (the part in front runs ahead). Nothing else changes a
 speed, so the cost grows with the number of contacts, not with the number of wave periods.
 
-Geometry (1-D along the wave). Beads interact only with beads of their own *lane*: the beads whose
-y-bands [y - R, y + R] overlap, linked (:func:`lanes`). Within a lane every contact is taken
-head-on, in the x-z plane: the centre distance along x of two touching beads at rest is
-sqrt((R_a + R_b)^2 - (z_b - z_a)^2) (:func:`.chains.contact_geometry`), and the order along x
-never changes. A bead can touch its neighbour in the lane and, where a smaller bead fits
-underneath, the bead beyond it (a 0.2 mm bead between two 1 mm beads lets them touch). The plate
-is an open line: the bed is a piece of a plate larger than it, with free plate around it.
+Geometry (1-D along the wave). Two beads meet only if their bands [y - R, y + R] across the wave
+overlap; then they cannot pass each other, and they touch at the centre distance along x
+sqrt((R_a + R_b)^2 - (z_b - z_a)^2 - (y_b - y_a)^2) (:func:`.chains.contact_geometry`). Beads
+whose bands do not overlap pass each other freely. Every bead moves along x only, and a pair
+force acts through the x and z parts of its contact normal (its y part is left out). A bead can
+touch any bead it meets, not only its neighbour along x (a 0.2 mm bead between two 1 mm beads
+lets them touch each other). The beads of one *lane* (:func:`lanes`: overlapping bands, linked)
+are those that can interact at all, directly or through others. The plate is an open line: the
+bed is a piece of a plate larger than it, with free plate around it.
 
-What 2-D (x and y) would add: contacts off the lane's axis, whose normal has a y part, so that a
-small bead pushed by (or pushing) a large one is also pushed sideways and can go around it; beads
-of neighbouring lanes that drift into each other; and the order along x of one lane could change.
-In 1-D a small bead that meets a large one stays behind it for ever.
+What 2-D (x and y) would add: the y part of an off-centre contact's normal, which pushes the
+two beads apart sideways, so that a small bead pushed by (or pushing) a large one slides around
+it instead of staying behind it; beads then change lanes, and the order along x of beads that
+meet could change. In 1-D a small bead that meets a large one stays behind it for ever.
 """
 
 from __future__ import annotations
@@ -72,7 +74,7 @@ class SlowRun:
 @dataclass
 class _Chain:
     members: list[int]
-    edges: list[tuple[int, int]]
+    edges: list[tuple[int, int, float]]  # (behind, front, offset across the wave)
     speed: float
 
 
@@ -99,6 +101,7 @@ class SlowModel:
                  curves: list[SpeciesCurves], surface_speed: float,
                  cache: dict[tuple, Any] | None = None) -> None:
         self.x = np.array(x, dtype=float)
+        self.y = np.array(y, dtype=float)
         self.kinds = np.asarray(kinds, dtype=int)
         self.beads, self.curves, self.u = beads, curves, surface_speed
         radius = np.array([beads[k].radius for k in self.kinds])
@@ -112,31 +115,32 @@ class SlowModel:
         self._cache: dict[tuple, Any] = {} if cache is None else cache
 
     def _pairs(self) -> None:
-        """Candidate contacts (behind, front, centre distance along x) of each lane."""
-        pi, pj, pd = [], [], []
-        for ln in np.unique(self.lane):
-            idx = np.flatnonzero(self.lane == ln)
-            idx = idx[np.argsort(self.x[idx], kind="stable")]
-            reach = [contact_geometry(self.beads[self.kinds[a]], self.beads[self.kinds[b]])[0]
-                     for a, b in zip(idx[:-1], idx[1:], strict=True)]
-            for k in range(idx.size - 1):
-                for step in (1, 2, 3):
-                    if k + step >= idx.size:
-                        break
-                    a, b = int(idx[k]), int(idx[k + step])
-                    d = contact_geometry(self.beads[self.kinds[a]], self.beads[self.kinds[b]])[0]
-                    # a bead beyond the neighbour matters only where it reaches past the chain of
-                    # touching beads in between (a small bead under two large ones)
-                    if step == 1 or d > sum(reach[k:k + step]) + TOUCH:
-                        pi.append(a)
-                        pj.append(b)
-                        pd.append(d)
-                gap = self.x[idx[k + 1]] - self.x[idx[k]] - reach[k]
-                if gap < -1e-9 * reach[k]:
-                    raise ValueError(f"beads {idx[k]} and {idx[k + 1]} overlap by {-gap:.3g} m")
+        """Candidate contacts (behind, front, centre distance along x, offset across the wave):
+        every two beads whose bands [y - R, y + R] overlap, in their order along x."""
+        y, radius = self.y, np.array([self.beads[k].radius for k in self.kinds])
+        order = np.argsort(y, kind="stable")
+        reach = 2.0 * float(radius.max()) if radius.size else 0.0
+        pi, pj, pd, py = [], [], [], []
+        for a_pos, a in enumerate(order):
+            for b in order[a_pos + 1:]:
+                dy = y[b] - y[a]
+                if dy >= reach:
+                    break
+                if dy >= radius[a] + radius[b]:
+                    continue
+                i, j = (a, b) if (self.x[a], a) < (self.x[b], b) else (b, a)
+                d = contact_geometry(self.beads[self.kinds[i]], self.beads[self.kinds[j]], dy)[0]
+                gap = self.x[j] - self.x[i] - d
+                if gap < -1e-9 * d:
+                    raise ValueError(f"beads {min(i, j)} and {max(i, j)} overlap by {-gap:.3g} m")
+                pi.append(int(i))
+                pj.append(int(j))
+                pd.append(d)
+                py.append(abs(float(dy)))
         self.pi = np.array(pi, dtype=int)
         self.pj = np.array(pj, dtype=int)
         self.pd = np.array(pd, dtype=float)
+        self.py = np.array(py, dtype=float)
 
     def _next_contact(self) -> tuple[float, int]:
         """(time to the next contact in s, its pair index), (inf, -1) if none."""
@@ -159,10 +163,10 @@ class SlowModel:
         ca, cb = self.chains.pop(a), self.chains.pop(b)
         members = sorted(ca.members + cb.members, key=lambda i: (self.x[i], i))
         local = {g: k for k, g in enumerate(members)}
-        edges = sorted({(local[i], local[j]) for i, j in
-                        [*ca.edges, *cb.edges, (int(self.pi[p]), int(self.pj[p]))]})
+        new = (int(self.pi[p]), int(self.pj[p]), float(self.py[p]))
+        edges = sorted({(local[e[0]], local[e[1]], e[2]) for e in [*ca.edges, *cb.edges, new]})
         kinds = [int(self.kinds[g]) for g in members]
-        key = (tuple(kinds), tuple(edges))
+        key = (tuple(kinds), tuple((i, j, round(dy, 12)) for i, j, dy in edges))
         parts = self._cache.get(key)
         if parts is None:
             parts = [(m, e, s.speed, s.saturated)
@@ -173,7 +177,8 @@ class SlowModel:
         for m, e, v, sat in parts:
             glob = [members[k] for k in m]
             cid = glob[0]
-            self.chains[cid] = _Chain(glob, [(members[i], members[j]) for i, j in e], v)
+            self.chains[cid] = _Chain(glob, [(members[k[0]], members[k[1]], float(k[2]))
+                                             for k in e], v)
             self.chain_of[glob] = cid
             self.speed[glob] = v
             self.saturated += int(sat)
