@@ -99,6 +99,7 @@ def test_chains_carry_small_beads_against_their_drift(monkeypatch):
 @pytest.mark.parametrize(("args", "needle"), [
     (["--purity", "0.3"], "--purity = 0.3"),
     (["--curves", "other"], "--curves = 'other'"),
+    (["--until", "0"], "--until = 0.0"),
 ])
 def test_bad_sort_options_are_one_line(args, needle, monkeypatch, capsys):
     monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"), *args])

@@ -154,7 +154,7 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     if not 0.5 < target <= 1.0:
         raise SceneError(f"--purity = {target!r}: give a purity in (0.5, 1]")
     if not periods >= 1.0 or not math.isfinite(periods):
-        raise SceneError(f"--periods = {periods!r}: give at least 1 period")
+        raise SceneError(f"--until = {periods!r}: give at least 1 wave period")
     if seeds < 1:
         raise SceneError(f"--seeds = {seeds}: give at least 1 placement")
     real = realize(scene)
