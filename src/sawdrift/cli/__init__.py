@@ -4,7 +4,7 @@
 :mod:`.run` (models, check-model, run), :mod:`.study` (sweeps), :mod:`.report` (diagrams,
 comparison, export, demo, validation, benchmarks), :mod:`.field` (two-wave drift fields) and
 :mod:`.load_curve` (speed and power against a load), :mod:`.force_velocity` (the mean friction
-force against the steady speed).
+force against the steady speed), :mod:`.sort` (sorting times of a mixture).
 Scene options are generated from the Scene schema (:mod:`.scene_options`).
 """
 
@@ -17,6 +17,7 @@ from . import field  # noqa: F401
 from . import load_curve  # noqa: F401
 from . import force_velocity  # noqa: F401
 from . import lammps  # noqa: F401
+from . import sort  # noqa: F401
 from . import threshold  # noqa: F401
 # isort: on
 from .app import INTERNAL_FAILURE, app, main

@@ -3,7 +3,11 @@ touching chains, and sorting times.
 
 * :mod:`.segregation`: how sorted a line of particles is (best-interface purity, its index and
   the Lacey index), from positions;
-* :mod:`.chains`: each bead's steady speed under tangential and normal loads, and chains of
-  touching beads moving at a common speed in slow time (events: contacts, merges, splits);
+* :mod:`.curves`: each bead's steady speed under a tangential and a normal load (force-velocity
+  curves over normal loads, cached on disk);
+* :mod:`.chains`: chains of touching beads at a common speed, pair forces along the inclined
+  contact normals, splits where a pair force would pull;
+* :mod:`.events`: beads in lanes along the wave moved from contact to contact in slow time;
+* :mod:`.check`: chains placed by hand, in LAMMPS and in the slow model;
 * :mod:`.sort`: ensembles of random placements run with the slow model (``sawdrift sort``).
 """

@@ -1,0 +1,172 @@
+"""sawdrift sort: sorting times of a two-size mixture from the slow model of touching chains."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+import sawdrift as sd
+
+from .._startup import fast_start
+from .app import _fail, _writable, app
+from .lammps import _scene_and_particles
+from .scene_options import with_scene_options
+
+
+@app.command("sort")
+@with_scene_options()
+def sort_cmd(
+    scene_file: Annotated[Path, typer.Argument(help="device scene TOML with a \\[particles] "
+                                               "table of two radii")],
+    seeds: Annotated[int, typer.Option("--seeds", min=1, help="random placements (seeds seed, "
+                                       "seed+1, ...); at least 20 for a spread")] = 20,
+    until: Annotated[float, typer.Option("--until", help="length of each run in wave periods "
+                                         "(the cost does not grow with it)")] = 1e9,
+    purity: Annotated[float, typer.Option("--purity", help="report the time to this purity of "
+                                          "the best interface, in (0.5, 1]")] = 0.9,
+    curves: Annotated[str, typer.Option("--curves", help="force-velocity curves: 'native' (the "
+                                        "engine) or 'lammps_rule' (LAMMPS's Coulomb rule)")] = "native",
+    check: Annotated[int, typer.Option("--check", min=0, help="also run the first placement in "
+                                       "LAMMPS for N periods and print both")] = 0,
+    progress: Annotated[bool, typer.Option("--progress/--no-progress",
+                                           help="a line per curve and placement on stderr")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="write sort.json, sort.png and "
+                                             "the scene here")] = None,
+    *,
+    scene_overrides: dict[str, Any],
+) -> None:
+    r"""Sorting times of a two-size mixture: random placements moved by the slow model.
+
+    Each bead drifts at the speed its force-velocity curves give under the loads of the beads it
+    touches (pair forces along the inclined contact normals, which press the smaller bead onto
+    the plate and lift the larger); touching beads move as chains at a common speed, merge on
+    contact and split where the front runs ahead, event by event in slow time, in lanes along
+    the wave (1-D). Reports the segregation of the positions (purity of the best interface, its
+    index, Lacey) against time with its spread over the placements, the time to --purity, the
+    final state, and the accuracy the checks against LAMMPS showed (docs/lammps.md).
+    """
+    fast_start()
+    from ..mixture.sort import sort_mixture
+
+    if curves not in ("native", "lammps_rule"):
+        _fail(f"--curves = {curves!r}: use 'native' or 'lammps_rule'")
+    scene, particles = _scene_and_particles(scene_file, None, {}, scene_overrides)
+    if particles is None:
+        _fail(f"{scene_file}: sort needs a [particles] table (two radii)")
+    if out is not None:
+        _writable(out)
+    note = (lambda line: typer.echo(line, err=True)) if progress else None
+    result = sort_mixture(scene, particles, seeds=seeds, periods=until, target=purity,
+                          source=curves, progress=note)  # type: ignore[arg-type]
+    data = result.summary()
+    if check:
+        data["check"] = _check(scene, particles, result, check)
+    if out is not None:
+        from ..report.sort_plot import plot_sort
+
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "sort.json").write_text(json.dumps(data, indent=1) + "\n")
+        plot_sort(result, out / "sort.png")
+        scene.to_toml(out / "scene.toml")
+    if as_json:
+        typer.echo(json.dumps(data))
+        return
+    for line in _lines(data):
+        typer.echo(line)
+    if out is not None:
+        typer.echo(f"wrote {out}/sort.json, sort.png, scene.toml")
+
+
+def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int) -> dict[str, Any]:
+    """The first placement in LAMMPS for ``periods`` periods, against the slow model's run."""
+    from ..lammps import refusal
+    from ..lammps.many import parse_particles, run_particles
+    from ..mixture.segregation import purity
+
+    why = refusal(scene)
+    if why is not None:
+        _fail(why)
+    spec = parse_particles(particles).model_copy(update={"seed": result.seeds[0]})
+    lmp = run_particles(scene.with_updates(**{"numerics.periods": float(periods),
+                                              "numerics.measure_periods": max(1, periods // 2)}),
+                        spec, progress=False)
+    from ..mixture.sort import slow_window
+
+    model = slow_window(scene, spec, result, periods)
+    rows = []
+    for k, row in enumerate(lmp.species):
+        rows.append({"radius_m": row["radius_m"], "lammps_drift_ratio": row["drift_ratio"],
+                     "model_drift_ratio": model["drift_ratio"][k]})
+    return {"periods": periods, "species": rows, "lammps_wall_time_s": lmp.wall_time_s,
+            "lammps_purity": purity(lmp.final_x, lmp.kinds), "model_purity": model["purity"],
+            "model_wall_time_s": model["wall_time_s"],
+            "lammps_touching_pairs": lmp.window_pairs, "model_chains": model["chains"]}
+
+
+def _fmt(x: float | None, spec: str = ".3g") -> str:
+    return "-" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
+
+
+def _lines(data: dict[str, Any]) -> list[str]:
+    """The text report of a sorting ensemble."""
+    f = data["frequency_hz"]
+    periods = data["periods"]
+    seeds = data["seeds"]
+    lines = [f"{data['count']} beads, {len(seeds)} placement(s) (seeds {seeds[0]}-{seeds[-1]}), "
+             f"slow model of chains in lanes along the wave, {periods[-1]:.3g} periods = "
+             f"{periods[-1] / f:.3g} s of device time at {f:.4g} Hz; {data['wall_time_s']:.3g} s "
+             f"(curves '{data['curve_source']}': {data['curve_wall_time_s']:.3g} s)"]
+    for row in data["species"]:
+        lines.append(f"  R = {row['radius_m'] * 1e3:.3g} mm ({row['count']}): free drift ratio "
+                     f"{row['free_drift_ratio']:+.4f} ({row['free_speed_m_s'] * 1e6:+.3g} um/s); "
+                     f"at the end {row['final_mean_drift_ratio']:+.4f} on average, "
+                     f"{row['carried_against_own_drift']:.0%} carried against their own drift")
+    lines.append("  segregation of positions, mean +- spread over the placements "
+                 "(0 random, 1 sorted):")
+    lines.append(f"  {'periods':>10} {'seconds':>10} {'purity':>16} {'purity index':>16} "
+                 f"{'Lacey':>16}")
+    over = data["over_time"]
+    wanted = [0] + [int(abs(np.log10(np.maximum(periods, 1e-300)) - d).argmin())
+                    for d in range(0, int(np.log10(periods[-1])) + 1)] + [len(periods) - 1]
+    for k in sorted(set(wanted)):
+        cells = [f"{_fmt(over[m]['mean'][k], '.3f')} +- {_fmt(over[m]['std'][k], '.3f')}"
+                 for m in ("purity", "purity_index", "lacey")]
+        lines.append(f"  {periods[k]:>10.3g} {periods[k] / f:>10.3g} {cells[0]:>16} "
+                     f"{cells[1]:>16} {cells[2]:>16}")
+    hit = data["time_to_target"]
+    target = data["target_purity"]
+    if hit["reached"]:
+        p, s = hit["periods"], hit["seconds"]
+        lines.append(f"  time to purity {target:g}: {_fmt(p['mean'])} +- {_fmt(p['std'])} periods "
+                     f"= {_fmt(s['mean'])} +- {_fmt(s['std'])} s (reached in {hit['reached']} "
+                     f"of {hit['of']} placements)")
+    else:
+        fin = data["final"]["purity"]
+        lines.append(f"  time to purity {target:g}: not reached within {periods[-1]:.3g} periods "
+                     f"in any placement (purity at the end {_fmt(fin['mean'], '.3f')} +- "
+                     f"{_fmt(fin['std'], '.3f')})")
+    fin = data["final"]
+    lines.append(f"  final: {_fmt(fin['chains']['mean'])} +- {_fmt(fin['chains']['std'])} chains "
+                 f"(mean size {_fmt(fin['mean_chain_size'])}, largest {fin['largest_chain']}), "
+                 f"{_fmt(fin['merges']['mean'])} merges and {_fmt(fin['splits']['mean'])} splits "
+                 "per placement")
+    lines.append(f"  {data['validated']}")
+    if "check" in data:
+        c = data["check"]
+        lines.append(f"  check, placement seed {seeds[0]}, {c['periods']} periods: LAMMPS "
+                     f"{c['lammps_wall_time_s']:.3g} s, slow model {c['model_wall_time_s']:.2g} s")
+        for row in c["species"]:
+            lines.append(f"    R = {row['radius_m'] * 1e3:.3g} mm: mean drift ratio LAMMPS "
+                         f"{_fmt(row['lammps_drift_ratio'], '+.4f')}, slow model "
+                         f"{_fmt(row['model_drift_ratio'], '+.4f')}")
+        lines.append(f"    purity LAMMPS {c['lammps_purity']:.3f}, slow model "
+                     f"{c['model_purity']:.3f}; touching pairs (LAMMPS) "
+                     f"{c['lammps_touching_pairs']:.3g}, chains (model) {c['model_chains']}")
+    return lines
+

@@ -1,0 +1,214 @@
+"""Sorting times of a mixture: an ensemble of random placements moved by the slow model of chains.
+
+For each placement seed the scene's ``[particles]`` table places the beads (random species order,
+:func:`sawdrift.lammps.placement.placement`), the slow model (:mod:`.events`) moves them in lanes
+from contact to contact, and the segregation of the positions (:mod:`.segregation`: the purity of
+the best interface, its index against random orders, the Lacey index) is measured at sample times
+spaced logarithmically from one period to the end. Over the ensemble: the mean and the spread
+(standard deviation) of each measure against time, in wave periods and in seconds of device
+time, the time at which the purity first reaches a target in each placement (linear between
+samples), and the final state (chains, their sizes, each species' mean speed).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import SceneError
+from ..lammps.placement import Particles, check_many, parse_particles, placement, species_of
+from ..lammps.realize import realize
+from ..scene.schema import Scene
+from .chains import Bead
+from .curves import Source, curves_for
+from .events import SlowModel, SlowRun
+from .segregation import lacey_segregation, purity, purity_index
+
+__all__ = ["VALIDATED", "SortResult", "slow_window", "sort_mixture", "time_to"]
+
+#: what the checks against damped LAMMPS showed (docs/lammps.md, validation case lammps_chains)
+VALIDATED = (
+    "accuracy (chains placed by hand in damped LAMMPS, curves of LAMMPS's Coulomb rule, "
+    "docs/mixtures.md): the large beads' speed within 0.2 % at e = 0.5 (six chains) and 1.9 % at "
+    "e = 0.9; their slowdown by the small beads within 1 % (10 small + 1 large, e = 0.5), 9 % "
+    "(the same, e = 0.9) and 25 % (a mixed chain of 20, e = 0.9). Not in the model: at e = 0.9 "
+    "LAMMPS's first impact knocks a small bead behind a large one into a backward drift (-0.96) "
+    "instead of a chain; native curves add the engines' damped Coulomb rule (1 mm bead -0.347 "
+    "native, -0.319 LAMMPS at e = 0.9)")
+
+MEASURES = ("purity", "purity_index", "lacey")
+
+
+def time_to(times: np.ndarray, values: np.ndarray, target: float) -> float:
+    """First time at which ``values`` reaches ``target`` (linear between samples); NaN if never."""
+    hit = np.flatnonzero(values >= target)
+    if hit.size == 0:
+        return math.nan
+    k = int(hit[0])
+    if k == 0:
+        return float(times[0])
+    v0, v1 = values[k - 1], values[k]
+    return float(times[k - 1] + (times[k] - times[k - 1]) * (target - v0) / (v1 - v0))
+
+
+@dataclass
+class SortResult:
+    """An ensemble of slow runs and its statistics (module docstring)."""
+
+    periods: np.ndarray  # sample times, wave periods
+    frequency: float
+    seeds: list[int]
+    measures: dict[str, np.ndarray]  # name -> (seeds, samples)
+    target: float
+    runs: list[SlowRun] = field(repr=False, default_factory=list)
+    species: list[dict[str, Any]] = field(default_factory=list)
+    wall_time_s: float = 0.0
+    curve_source: str = "native"
+    curve_wall_s: float = 0.0
+
+    @property
+    def seconds(self) -> np.ndarray:
+        return self.periods / self.frequency
+
+    def times_to_target(self) -> np.ndarray:
+        """Periods to reach the target purity, per seed (NaN: not within the run)."""
+        return np.array([time_to(self.periods, p, self.target) for p in self.measures["purity"]])
+
+    def summary(self) -> dict[str, Any]:
+        """JSON-ready: measures' mean and spread against time, time to the target, final state."""
+        hit = self.times_to_target()
+        ok = hit[np.isfinite(hit)]
+
+        def stat(v: np.ndarray) -> dict[str, Any]:
+            return {"mean": float(v.mean()) if v.size else None,
+                    "std": float(v.std(ddof=1)) if v.size > 1 else None}
+
+        final_chains = [len(r.chains) for r in self.runs]
+        sizes = [len(c) for r in self.runs for c in r.chains]
+        return {
+            "seeds": self.seeds, "count": int(self.runs[0].kinds.size) if self.runs else 0,
+            "frequency_hz": self.frequency, "periods": self.periods.tolist(),
+            "seconds": self.seconds.tolist(),
+            "over_time": {k: {"mean": v.mean(axis=0).tolist(), "std": v.std(axis=0, ddof=1).tolist()}
+                          for k, v in self.measures.items()},
+            "target_purity": self.target,
+            "time_to_target": {
+                "reached": int(ok.size), "of": int(hit.size),
+                "periods": stat(ok), "seconds": stat(ok / self.frequency),
+                "per_seed_periods": [float(h) if math.isfinite(h) else None for h in hit]},
+            "final": {**{k: stat(v[:, -1]) for k, v in self.measures.items()},
+                      "chains": stat(np.array(final_chains, dtype=float)),
+                      "mean_chain_size": float(np.mean(sizes)) if sizes else None,
+                      "largest_chain": int(max(sizes)) if sizes else None,
+                      "merges": stat(np.array([r.merges for r in self.runs], dtype=float)),
+                      "splits": stat(np.array([r.splits for r in self.runs], dtype=float))},
+            "species": self.species, "curve_source": self.curve_source,
+            "curve_wall_time_s": self.curve_wall_s, "wall_time_s": self.wall_time_s,
+            "validated": VALIDATED,
+        }
+
+
+def _sample_periods(periods: float, per_decade: int) -> np.ndarray:
+    """0, then ``per_decade`` times a decade from 1 period (every decade itself) to ``periods``."""
+    grid = 10.0 ** (np.arange(0, int(math.floor(math.log10(periods) * per_decade + 1e-9)) + 1)
+                    / per_decade)
+    return np.concatenate(([0.0], grid, [periods] if grid[-1] < periods * (1 - 1e-12) else []))
+
+
+def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: int = 20,
+                 periods: float = 1e9, samples: int = 12, target: float = 0.9,
+                 source: Source = "native",
+                 progress: Callable[[str], None] | None = None) -> SortResult:
+    """Run ``seeds`` random placements of ``particles`` on ``scene`` with the slow model.
+
+    Parameters
+    ----------
+    scene
+        A device scene (the slow model works in SI units) with a LAMMPS-style contact law.
+    particles
+        The ``[particles]`` table; its ``seed`` is the first placement's, then seed + 1, ...
+        Explicit positions run once (they have no seed).
+    seeds
+        Placements, >= 1 (>= 20 for a spread worth quoting).
+    periods
+        Length of each run in wave periods (the slow model's cost does not grow with it).
+    samples
+        Sample times per decade of periods after t = 0, from one period.
+    target
+        Purity whose first time is reported, in (0.5, 1].
+    source
+        ``"native"`` (the engine's force-velocity curves) or ``"lammps_rule"`` (LAMMPS's Coulomb
+        rule for the stored spring, :mod:`sawdrift.lammps.damped`).
+    """
+    spec = particles if isinstance(particles, Particles) else parse_particles(particles)
+    if scene.device is None:
+        raise SceneError("sort needs a device scene ([device]): the slow model works in SI units")
+    check_many(scene)
+    if len(spec.radius) != 2:
+        raise SceneError("particles.radius: sorting needs two species (two radii)")
+    if not 0.5 < target <= 1.0:
+        raise SceneError(f"--purity = {target!r}: give a purity in (0.5, 1]")
+    if not periods >= 1.0 or not math.isfinite(periods):
+        raise SceneError(f"--until = {periods!r}: give at least 1 wave period")
+    if seeds < 1:
+        raise SceneError(f"--seeds = {seeds}: give at least 1 placement")
+    real = realize(scene)
+    species = species_of(scene, spec, real)
+    g = scene.device.gravity
+    beads = [Bead(s.radius, s.a0, s.mass * g) for s in species]
+    t0 = time.perf_counter()
+    curves = curves_for(scene, [s.radius for s in species], source=source, progress=progress)
+    curve_wall = time.perf_counter() - t0
+    u = 2.0 * math.pi * real.frequency * real.ratio * real.amplitude * real.horizontal
+    grid = _sample_periods(periods, samples)
+    seed_list = [spec.seed] if spec.positions is not None else list(range(spec.seed, spec.seed + seeds))
+    cache: dict[tuple, Any] = {}
+    runs, values = [], {k: [] for k in MEASURES}
+    for seed in seed_list:
+        xy, kinds, _, _ = placement(spec.model_copy(update={"seed": seed}), species)
+        model = SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u, cache=cache)
+        run = model.run(grid / real.frequency)
+        runs.append(run)
+        for key, fn in (("purity", purity), ("purity_index", purity_index),
+                        ("lacey", lacey_segregation)):
+            values[key].append([fn(row, kinds) for row in run.x])
+        if progress is not None:
+            progress(f"seed {seed}: {run.merges} merges, {run.splits} splits, "
+                     f"{run.wall_time_s:.2g} s")
+    rows = []
+    for k, (sp, cv) in enumerate(zip(species, curves, strict=True)):
+        final = np.concatenate([r.speeds[r.kinds == k] for r in runs])
+        rows.append({"radius_m": sp.radius, "count": sp.count, "free_drift_ratio": cv.free,
+                     "free_speed_m_s": cv.free * u,
+                     "final_mean_drift_ratio": float(final.mean()),
+                     "carried_against_own_drift": float(np.mean(np.sign(final) != np.sign(cv.free)))})
+    return SortResult(periods=grid, frequency=real.frequency, seeds=seed_list,
+                      measures={k: np.array(v) for k, v in values.items()}, target=target,
+                      runs=runs, species=rows, wall_time_s=time.perf_counter() - t0,
+                      curve_source=source, curve_wall_s=curve_wall)
+
+
+def slow_window(scene: Scene, spec: Particles, result: SortResult, periods: int) -> dict[str, Any]:
+    """The placement of ``spec`` moved by the slow model for ``periods`` periods, measured like a
+    LAMMPS run: each species' mean drift ratio over the last half, the purity at the end, the
+    chains (``result`` provides nothing but the scene's curves, already cached on disk)."""
+    real = realize(scene)
+    species = species_of(scene, spec, real)
+    g = scene.device.gravity if scene.device is not None else 9.81
+    beads = [Bead(s.radius, s.a0, s.mass * g) for s in species]
+    curves = curves_for(scene, [s.radius for s in species], source=result.curve_source)  # type: ignore[arg-type]
+    u = 2.0 * math.pi * real.frequency * real.ratio * real.amplitude * real.horizontal
+    xy, kinds, _, _ = placement(spec, species)
+    half = max(1, periods // 2)
+    t0 = time.perf_counter()
+    model = SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u)
+    run = model.run(np.array([periods - half, periods], dtype=float) / real.frequency)
+    disp = (run.x[1] - run.x[0]) * real.frequency / half / u
+    return {"drift_ratio": [float(disp[kinds == k].mean()) for k in range(len(species))],
+            "purity": purity(run.x[1], kinds), "chains": len(run.chains),
+            "wall_time_s": time.perf_counter() - t0}
