@@ -44,7 +44,8 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("dynamics", ("sawdrift.dynamics",)),
     ("result", ("sawdrift.result",)),
     # many scenes into tables; beside them the LAMMPS bridge (it runs scenes into Results too)
-    ("study", ("sawdrift.study", "sawdrift.lammps")),
+    # and the slow model of mixtures, which tabulates studies and checks itself against LAMMPS
+    ("study", ("sawdrift.study", "sawdrift.lammps", "sawdrift.mixture")),
     ("report", ("sawdrift.report",)),
     # beside report, above it: they run studies and draw through report, which never imports them
     ("harness", ("sawdrift.bench", "sawdrift.validation")),

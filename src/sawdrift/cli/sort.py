@@ -13,6 +13,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
+from ..mixture.segregation import purity
 from .app import _fail, _writable, app
 from .lammps import _scene_and_particles
 from .scene_options import with_scene_options
@@ -87,7 +88,6 @@ def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int
     """The first placement in LAMMPS for ``periods`` periods, against the slow model's run."""
     from ..lammps import refusal
     from ..lammps.many import parse_particles, run_particles
-    from ..mixture.segregation import purity
 
     why = refusal(scene)
     if why is not None:

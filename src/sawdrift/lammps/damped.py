@@ -35,7 +35,9 @@ from numba import njit
 from ..dynamics.adams_bashforth import restitution_damping
 from ..dynamics.assembly import steps_per_period
 from ..scene.schema import Scene
+from .engine import open_lammps
 from .realize import realize
+from .single import granular_model
 
 Rule = Literal["elastic", "total"]
 
@@ -131,9 +133,6 @@ def free_impact(scene: Scene, speed: float = 1e-3, steps_per_contact: int = 2000
     with its damping). The time step is 1/``steps_per_contact`` of pi sqrt(m / k) at the impact's
     largest overlap; the run ends once the sphere has left the plane moving away.
     """
-    from .engine import open_lammps
-    from .single import granular_model
-
     real = realize(scene)
     radius, mass = real.radius, real.mass
     # Hertz: the largest overlap of an undamped impact, (15 m v^2 / (16 E* sqrt(R)))^(2/5)

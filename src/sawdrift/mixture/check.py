@@ -20,10 +20,14 @@ from typing import Any
 
 import numpy as np
 
+from ..lammps.many import run_particles
 from ..lammps.placement import parse_particles, species_of, touching_row
+from ..lammps.realize import realize
+from ..scene.device import to_si
 from ..scene.schema import Scene
 from .chains import Bead
 from .curves import SpeciesCurves
+from .events import SlowModel
 
 __all__ = ["CHAINS", "ChainCheck", "beads_of", "chain_positions", "lammps_chain", "model_chain"]
 
@@ -103,7 +107,6 @@ def chain_positions(scene: Scene, radii: list[str], order: list[int],
 
 def lammps_chain(scene: Scene, radii: list[str], order: list[int]) -> tuple[list[float], float]:
     """(mean drift ratio of each species, wall time) of the chain run in LAMMPS."""
-    from ..lammps.many import run_particles
 
     result = run_particles(scene, chain_positions(scene, radii, order), processes=1,
                            progress=False)
@@ -113,7 +116,6 @@ def lammps_chain(scene: Scene, radii: list[str], order: list[int]) -> tuple[list
 
 def lammps_free(scene: Scene, radii: list[str]) -> tuple[list[float], float]:
     """(free drift ratio of each species, wall time): one bead of each, far apart, in LAMMPS."""
-    from ..lammps.many import run_particles
 
     spread = 10.0 * max(_length(r) for r in radii)
     table = {"radius": list(radii),
@@ -123,7 +125,6 @@ def lammps_free(scene: Scene, radii: list[str]) -> tuple[list[float], float]:
 
 
 def _length(value: str) -> float:
-    from ..scene.device import to_si
 
     return to_si(value, "length")
 
@@ -137,8 +138,6 @@ def model_chain(scene: Scene, radii: list[str], curves: list[SpeciesCurves], ord
     ``measure_periods`` of ``numerics.periods``: a small bead in the gap under two large ones
     that touch each other drifts alone until it reaches one of them, in both engines.
     """
-    from ..lammps.realize import realize
-    from .events import SlowModel
 
     t0 = time.perf_counter()
     beads, _ = beads_of(scene, radii)

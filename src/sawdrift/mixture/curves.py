@@ -41,9 +41,12 @@ from typing import Any, Literal
 
 import numpy as np
 
+import sawdrift_builtin
+
 from .._version import __version__
 from ..codegen.modules import cache_dir
 from ..errors import SceneError
+from ..scene.device import normalized
 from ..scene.schema import Scene
 
 __all__ = ["SpeciesCurves", "curves_for", "isotonic", "normal_grid", "species_curves"]
@@ -204,7 +207,6 @@ def _curve_lammps_rule(scene: Scene, points: int) -> tuple[np.ndarray, np.ndarra
 
 
 def _weight(scene: Scene) -> float:
-    from ..scene.device import normalized
 
     assert scene.device is not None
     return normalized(scene.device)["weight_n"]
@@ -264,15 +266,13 @@ def _cache_path(scene: Scene, normal: tuple[float, ...], points: int, source: st
 
 
 def _kernel_digest() -> str:
-    """sha1 of the DEM kernel's source files: an edited contact law invalidates the tables."""
-    try:
-        import sawdrift_builtin
-    except ImportError:  # pragma: no cover - the built-in models ship with sawdrift
-        return ""
-    root = Path(sawdrift_builtin.__file__).parent
+    """sha1 of the DEM law's source files (the plugin's kernel and law, and the contact slots and
+    scene damping that hand it its normal force): an edited contact law invalidates the tables."""
     h = hashlib.sha1()
-    for name in ("dem_kernel.py", "hertz_mindlin_dem.py"):
-        p = root / name
+    builtin = Path(sawdrift_builtin.__file__).parent
+    contact = Path(__file__).parents[1] / "contact"
+    for p in (builtin / "dem_kernel.py", builtin / "hertz_mindlin_dem.py",
+              contact / "slots.py", contact / "slot_kernels.py", contact / "scene_damping.py"):
         h.update(p.read_bytes() if p.exists() else b"")
     return h.hexdigest()
 
