@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -60,7 +61,8 @@ def threshold_cmd(
     name, values = parse_device_axis(axis)
     study = thresholds(scene, name, values, start=start, stop=stop_m, per_decade=per_decade,
                        bisections=bisections, periods=periods, engine=engine)
-    data = study.to_json()
+    # a threshold above --stop is NaN in the table, null in JSON (NaN is not JSON), "> stop" in text
+    data = _nulls(study.to_json())
     if out is not None:
         write_outputs(out, "threshold", data, lambda path: plot_thresholds(study, path), scene)
         table = study.table()
@@ -70,9 +72,35 @@ def threshold_cmd(
         typer.echo(json.dumps(data, indent=1))
         return
     typer.echo(f"{name:>24}  {'slides at (m)':>14}  {'removed at (m)':>14}  {'rigid (m)':>11}")
+    above = f"> {stop.strip()}"
+
+    def amp(v: float) -> str:
+        return f"{v:>14.4g}" if math.isfinite(v) else f"{above:>14}"
+
     for r in study.rows:
-        typer.echo(f"{r.value:>24.4g}  {r.slide_amplitude_m:>14.4g}  "
-                   f"{r.removal_amplitude_m:>14.4g}  {r.rigid_removal_m:>11.4g}")
+        typer.echo(f"{r.value:>24.4g}  {amp(r.slide_amplitude_m)}  "
+                   f"{amp(r.removal_amplitude_m)}  {r.rigid_removal_m:>11.4g}")
     for column, slope in data["slopes"].items():
         typer.echo(f"slope of log {column} against log {name.rsplit('.', 1)[-1]}: "
-                   f"{slope['all']:.3g} (smallest {data['small_rows']} values: {slope['small']:.3g})")
+                   f"{_g(slope['all'])} (smallest {data['small_rows']} values: "
+                   f"{_g(slope['small'])})")
+    if any(not math.isfinite(v) for r in study.rows
+           for v in (r.slide_amplitude_m, r.removal_amplitude_m)):
+        typer.echo(f"'{above}': no crossing up to --stop {stop.strip()} (raise --stop to find it);"
+                   " 'n/a': a slope needs two thresholds")
+
+
+def _g(value: float | None) -> str:
+    """A slope, or 'n/a' where fewer than two thresholds were found."""
+    return f"{value:.3g}" if value is not None else "n/a"
+
+
+def _nulls(data):
+    """``data`` with every NaN float replaced by None (JSON null)."""
+    if isinstance(data, dict):
+        return {k: _nulls(v) for k, v in data.items()}
+    if isinstance(data, list):
+        return [_nulls(v) for v in data]
+    if isinstance(data, float) and not math.isfinite(data):
+        return None
+    return data
