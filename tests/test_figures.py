@@ -1,0 +1,163 @@
+"""Figures that explain themselves (issue 37, items 6 and 7): creep and the contact resonances
+marked, the drift map's outer cells whole, comparisons that keep model and rotation differences
+apart, a bounded width, signed load curves, the trajectory figures' labels."""
+
+from __future__ import annotations
+
+import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+import pytest
+from matplotlib.collections import PathCollection
+from PIL import Image
+
+import sawdrift as sd
+
+REGIMES = ["stick", "drift_with", "drift_against", "hopping"]
+
+
+@pytest.fixture
+def figures(monkeypatch):
+    """The figures the plotting code closes, kept open to be inspected."""
+    kept: list = []
+    close = plt.close
+    monkeypatch.setattr(plt, "close", lambda fig=None: kept.append(fig))
+    yield kept
+    close("all")
+
+
+def _table(model: str = "mmd", n: int = 4, seed: int = 0, **columns) -> pd.DataFrame:
+    """A synthetic n x n sweep table over A* in [1e-2, 10] and m* in [1e-2, 1] (a sphere)."""
+    rng = np.random.default_rng(seed)
+    amps, masses = np.geomspace(1e-2, 10, n), np.geomspace(1e-2, 1, n)
+    rows = []
+    for m in masses:
+        for a in amps:
+            regime = REGIMES[int(rng.integers(len(REGIMES)))]
+            rows.append({"model": model, "amplitude": a, "m_star": m, "regime": regime,
+                         "settled": True, "mu": 0.1, "nu": 0.3, "profile": "sphere",
+                         "drift_ratio": float(rng.normal(0, 0.2)),
+                         "gross_slip_fraction": float(rng.choice([0.0, 0.3]))})
+    frame = pd.DataFrame(rows)
+    for key, value in columns.items():
+        frame[key] = value
+    return frame
+
+
+def _legend_texts(fig) -> list[str]:
+    return [t.get_text() for leg in fig.legends for t in leg.get_texts()]
+
+
+def _flat_lines(ax) -> list[float]:
+    """y of every horizontal line of ``ax`` (axhline)."""
+    return [float(ln.get_ydata()[0]) for ln in ax.get_lines()
+            if len(set(np.asarray(ln.get_ydata(), float))) == 1 and len(ln.get_xdata()) == 2]
+
+
+# -- item 6: creep cells and the contact resonances are marked --------------------------------
+
+
+def test_phase_diagram_marks_creep_cells_and_both_contact_resonances(tmp_path, figures):
+    table = _table()
+    sd.plot_phase_diagram(table, tmp_path / "pd.png", "mmd")
+    fig = figures[-1]
+    ax = fig.axes[0]
+    # creep: drifting (with or against) with no gross slip, counted here from the table itself
+    creeping = table[table["regime"].isin(["drift_with", "drift_against"])
+                     & (table["gross_slip_fraction"] == 0.0)]
+    assert len(creeping) > 0
+    (dots,) = [c for c in ax.collections if isinstance(c, PathCollection)]
+    got = sorted(map(tuple, np.round(np.log10(dots.get_offsets()), 9)))
+    want = sorted(zip(np.round(np.log10(creeping["amplitude"]), 9),
+                      np.round(np.log10(creeping["m_star"]), 9), strict=True))
+    assert got == want
+    # the resonances of a Hertz contact, written out: omega^2 = 1.5 / m* (normal) and
+    # 1.5 / (theta m*) (tangential) equal to (2 pi)^2, theta = (2 - nu) / (2 (1 - nu))
+    theta = (2 - 0.3) / (2 * (1 - 0.3))
+    normal, tangential = 1.5 / (4 * math.pi**2), 1.5 / (4 * math.pi**2 * theta)
+    assert normal == pytest.approx(0.0380, abs=1e-4) and tangential == pytest.approx(0.0313, abs=1e-4)
+    np.testing.assert_allclose(sorted(_flat_lines(ax)), sorted([tangential, normal]), rtol=1e-12)
+    texts = _legend_texts(fig)
+    assert "creep: drift with no gross slip" in texts
+    assert "normal contact resonance, m* = 0.038" in texts
+    assert "tangential contact resonance, m* = 0.031" in texts
+    # every legend entry lies inside the saved figure
+    renderer = fig.canvas.get_renderer()
+    for leg in fig.legends:
+        for t in leg.get_texts():
+            bb = t.get_window_extent(renderer)
+            assert fig.bbox.x0 <= bb.x0 and bb.x1 <= fig.bbox.x1, t.get_text()
+
+
+def test_rigid_point_has_no_contact_resonance_and_a_creep_column_is_read(tmp_path, figures):
+    sd.plot_phase_diagram(_table("material_point"), tmp_path / "mp.png", "material_point")
+    assert _flat_lines(figures[-1].axes[0]) == []
+    assert not any("resonance" in t for t in _legend_texts(figures[-1]))
+    # a table's own creep column is what is marked (here: no cell creeps)
+    sd.plot_phase_diagram(_table(creep=False), tmp_path / "nc.png", "mmd")
+    assert not [c for c in figures[-1].axes[0].collections if isinstance(c, PathCollection)]
+    assert "creep: drift with no gross slip" not in _legend_texts(figures[-1])
+
+
+def test_turning_sphere_moves_the_tangential_resonance_by_one_plus_one_over_kappa(tmp_path,
+                                                                                   figures):
+    table = pd.concat([_table(**{"effects.rotation": False}), _table(**{"effects.rotation": True})])
+    sd.plot_compare(table, ["mmd"], tmp_path / "rot.png", by="effects.rotation")
+    off, on = figures[-1].axes[:2]
+    theta = (2 - 0.3) / (2 * (1 - 0.3))
+    tangential = 1.5 / (4 * math.pi**2 * theta)
+    assert min(_flat_lines(off)) == pytest.approx(tangential, rel=1e-12)
+    # a solid sphere (kappa = 2/5): the contact point is 1 + 1/kappa = 3.5 times lighter
+    assert max(_flat_lines(on)) == pytest.approx(3.5 * tangential, rel=1e-12)
+
+
+# -- item 7: the drift map, the comparisons --------------------------------------------------
+
+
+def test_drift_map_outer_cells_are_whole_and_grid_points_are_not_dotted(tmp_path, figures):
+    table = _table(n=5)
+    sd.plot_drift_map(table, tmp_path / "d.png", "mmd")
+    fig = figures[-1]
+    amps, masses = np.geomspace(1e-2, 10, 5), np.geomspace(1e-2, 1, 5)
+    half_a, half_m = math.sqrt(amps[1] / amps[0]), math.sqrt(masses[1] / masses[0])
+    for ax in fig.axes[:2]:
+        # the outer cells reach half a cell beyond the outer points, like the inner ones
+        np.testing.assert_allclose(ax.get_xlim(), [amps[0] / half_a, amps[-1] * half_a], rtol=1e-9)
+        np.testing.assert_allclose(ax.get_ylim(), [masses[0] / half_m, masses[-1] * half_m],
+                                   rtol=1e-9)
+    assert not [ln for ln in fig.axes[0].get_lines() if ln.get_marker() in (",", ".")]
+    assert "computed point" not in _legend_texts(fig)
+    # a scattered (adaptive) table dots its computed points and says what the dots are
+    scattered = pd.concat([table, table.iloc[[3]].assign(amplitude=0.05, m_star=0.05)])
+    sd.plot_drift_map(scattered, tmp_path / "s.png", "mmd")
+    assert "computed point" in _legend_texts(figures[-1])
+
+
+def test_rotation_comparison_is_narrow_and_keeps_model_and_rotation_differences_apart(tmp_path,
+                                                                                      figures):
+    parts = [_table(m, n=5, seed=k, **{"effects.rotation": r})
+             for k, (m, r) in enumerate([("material_point", False), ("material_point", True),
+                                         ("mmd", False), ("mmd", True)])]
+    table = pd.concat(parts)
+    path, _ = sd.plot_compare(table, ["material_point", "mmd"], tmp_path / "rot.png",
+                              by="effects.rotation")
+    assert Image.open(path).size[0] <= 1500
+    titles = [ax.get_title() for ax in figures[-1].axes]
+
+    def differ(a: pd.DataFrame, b: pd.DataFrame) -> int:
+        return int((a["regime"].to_numpy() != b["regime"].to_numpy()).sum())
+
+    for model, off, on in (("material_point", parts[0], parts[1]), ("mmd", parts[2], parts[3])):
+        assert f"cells where rotation changes {model}'s regime\n({differ(off, on)} of 25 cells)" in titles
+    for value, a, b in ((False, parts[0], parts[2]), (True, parts[1], parts[3])):
+        assert f"cells where the models disagree, rotation = {value}\n({differ(a, b)} of 25 cells)" in titles
+    assert not any(t.startswith("cells where they disagree") for t in titles)
+
+
+def test_model_comparison_wraps_to_a_bounded_width(tmp_path):
+    table = pd.concat([_table(m, seed=k) for k, m in enumerate(["a", "b", "c", "d"])])
+    path, md = sd.plot_compare(table, ["a", "b", "c", "d"], tmp_path / "four.png")
+    assert Image.open(path).size[0] <= 1500
+    assert md.count("\n") == 2 + 6  # header, rule, and the 6 pairs
