@@ -161,3 +161,42 @@ def test_model_comparison_wraps_to_a_bounded_width(tmp_path):
     path, md = sd.plot_compare(table, ["a", "b", "c", "d"], tmp_path / "four.png")
     assert Image.open(path).size[0] <= 1500
     assert md.count("\n") == 2 + 6  # header, rule, and the 6 pairs
+
+
+# -- item 7: the paper's Fig. 2 ---------------------------------------------------------------
+
+
+def test_fig2_drift_against_cell_settles():
+    from sawdrift.report.fig2 import CELLS, fig2_scene
+
+    (label, m, a), = [c for c in CELLS if c[0] == "drift against the wave"]
+    res = sd.run(fig2_scene(m, a))
+    assert res.regime == "drift_against" and res.settled is True
+    assert res.drift_ratio < -0.1
+
+
+def test_fig2_last_period_sits_beside_the_run_and_parameters_stay_off_the_curves(tmp_path,
+                                                                                  figures):
+    from sawdrift.report.fig2 import CELLS, plot_fig2
+
+    cells = tuple(c for c in CELLS if c[0].startswith("drift"))
+    plot_fig2(tmp_path / "fig2.png", cells=cells)
+    fig = figures[-1]
+    fig.canvas.draw()
+    axes = fig.get_axes()
+    mains = [ax for ax in axes if ax.get_xlabel().startswith("t* (wave")]
+    assert len(mains) == len(cells) == 2
+    for ax in mains:
+        box = ax.get_window_extent()
+        # no other axes (the last period's) covers any of the run, its last periods included
+        for other in axes:
+            if other is not ax:
+                assert not box.overlaps(other.get_window_extent()), other.get_title()
+        line = ax.get_lines()[0]
+        t_end = line.get_xdata()[-1]
+        assert ax.get_xlim()[1] >= t_end  # the run's end is inside the panel
+        # the parameters are in the panel's heading, not in a legend over the curve
+        assert ax.get_legend() is None and not ax.texts
+    headings = [sub._suptitle.get_text() for sub in fig.subfigs]
+    for (label, m, a), text in zip(cells, headings, strict=True):
+        assert text.startswith(f"{label}: m* = {m:g}, A* = {a:g}") and "settled after" in text
