@@ -200,3 +200,22 @@ def test_fig2_last_period_sits_beside_the_run_and_parameters_stay_off_the_curves
     headings = [sub._suptitle.get_text() for sub in fig.subfigs]
     for (label, m, a), text in zip(cells, headings, strict=True):
         assert text.startswith(f"{label}: m* = {m:g}, A* = {a:g}") and "settled after" in text
+
+
+# -- item 7: the default scene's trajectory figure ---------------------------------------------
+
+
+def test_trajectory_figure_names_its_ramp_band_and_defines_v(tmp_path, figures):
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316},
+                          numerics={"periods": 20}), trajectory=True)
+    sd.plot_trajectory(res, tmp_path / "t.png")
+    fig = figures[-1]
+    texts = _legend_texts(fig)
+    assert f"wave ramp: the amplitude rises from 0 to A* over {res.ramp_periods:g} periods" in texts
+    assert any(t.startswith("measuring window") for t in texts)
+    # the grey band spans the ramp, t* in [0, ramp_periods], on every row
+    for ax in fig.axes:
+        spans = [(round(p.get_x(), 9), round(p.get_x() + p.get_width(), 9)) for p in ax.patches]
+        assert (0.0, res.ramp_periods) in spans
+    title = fig._suptitle.get_text()
+    assert "V = <x*'> / (2 pi r A*)" in title and f"V = {res.drift_ratio:.3g}" in title
