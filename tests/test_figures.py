@@ -219,3 +219,40 @@ def test_trajectory_figure_names_its_ramp_band_and_defines_v(tmp_path, figures):
         assert (0.0, res.ramp_periods) in spans
     title = fig._suptitle.get_text()
     assert "V = <x*'> / (2 pi r A*)" in title and f"V = {res.drift_ratio:.3g}" in title
+
+
+# -- item 7: load curves, one sign convention ---------------------------------------------------
+
+
+def _curve(direction: int):
+    from sawdrift.study.load_curve import LoadCurve
+
+    loads = np.array([0.0, 0.02, 0.04, 0.06])
+    speeds = np.array([0.30, 0.21, 0.10, -0.02])  # along the unloaded drift: it stalls near 0.06
+    return LoadCurve(direction=direction, loads=loads, velocities=speeds,
+                     regimes=("drift_against",) * 4, settled=(True,) * 4, stall_load=0.06,
+                     stall_bracket=(0.04, 0.06), max_load=0.1, threshold=1e-3, m_star=10.0,
+                     runs=4, wall_time_s=0.1)
+
+
+@pytest.mark.parametrize("direction", [1, -1])
+def test_single_and_multi_load_curves_draw_the_same_signed_speeds(tmp_path, direction):
+    from sawdrift.report.load_curve_plot import plot_load_curve, plot_load_curves
+
+    curve = _curve(direction)
+    signed = direction * np.array([0.30, 0.21, 0.10, -0.02])  # along +x
+    single = plot_load_curve(curve)
+    multi = plot_load_curves([("slider", curve)])
+    for fig in (single, multi):
+        ax = fig.axes[0]
+        np.testing.assert_allclose(ax.get_lines()[0].get_ydata(), signed, rtol=0, atol=0)
+        assert "along +x" in ax.get_ylabel()
+        lo, hi = ax.get_ylim()
+        assert lo < min(signed) and max(signed) < hi  # every point is drawn
+        plt.close(fig)
+    # the power F v keeps its sign (positive while the particle advances against the load)
+    power = single.axes[1].get_lines()[0].get_ydata()
+    np.testing.assert_allclose(power, curve.loads * curve.velocities, rtol=1e-12)
+    # both of the single figure's zeros at the same height
+    (a0, a1), (b0, b1) = single.axes[0].get_ylim(), single.axes[1].get_ylim()
+    assert -a0 / (a1 - a0) == pytest.approx(-b0 / (b1 - b0), rel=1e-12)
