@@ -256,3 +256,18 @@ def test_single_and_multi_load_curves_draw_the_same_signed_speeds(tmp_path, dire
     # both of the single figure's zeros at the same height
     (a0, a1), (b0, b1) = single.axes[0].get_ylim(), single.axes[1].get_ylim()
     assert -a0 / (a1 - a0) == pytest.approx(-b0 / (b1 - b0), rel=1e-12)
+
+
+# -- item 7: the hatch means one thing --------------------------------------------------------
+
+
+def test_the_hatch_means_not_settled_whatever_the_regime_under_it(tmp_path, figures):
+    from sawdrift.report.demo import hatch_note
+    from sawdrift.report.diagrams import HATCH_LABEL
+
+    table = _table()
+    table.loc[table["regime"] == "drift_against", "settled"] = False  # a slow approach
+    sd.plot_phase_diagram(table, tmp_path / "h.png", "mmd")
+    assert HATCH_LABEL in _legend_texts(figures[-1])
+    note = hatch_note(3, 441)
+    assert HATCH_LABEL in note and "bouncing" not in note and note.startswith("3 of 441")
