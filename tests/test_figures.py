@@ -271,3 +271,30 @@ def test_the_hatch_means_not_settled_whatever_the_regime_under_it(tmp_path, figu
     assert HATCH_LABEL in _legend_texts(figures[-1])
     note = hatch_note(3, 441)
     assert HATCH_LABEL in note and "bouncing" not in note and note.startswith("3 of 441")
+
+
+# -- item 7: device axes -------------------------------------------------------------------------
+
+
+def test_device_axis_tick_labels_do_not_overlap_and_carry_units(tmp_path, figures):
+    amps, freqs = np.linspace(5e-9, 4e-8, 4), np.geomspace(5e6, 2e7, 5)
+    rows = [{"model": "mmd", "device.amplitude": a, "device.frequency": f, "regime": "stick",
+             "settled": True, "mu": 0.2, "nu": 0.25, "drift_ratio": 0.0, "m_star": 250.0,
+             "amplitude": 0.5} for a in amps for f in freqs]
+    table = pd.DataFrame(rows)
+    for plot in (sd.plot_phase_diagram,):  # the drift map formats its axes with the same call
+        plot(table, tmp_path / "dev.png", "mmd", x="device.amplitude", y="device.frequency")
+        fig = figures[-1]
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        for axis, unit in ((fig.axes[0].xaxis, "m"), (fig.axes[0].yaxis, "Hz")):
+            lo, hi = sorted(axis.get_view_interval())
+            k = int(axis is fig.axes[0].yaxis)
+            shown = [t for t in axis.get_majorticklabels() + axis.get_minorticklabels()
+                     if t.get_visible() and t.get_text() and lo <= t.get_position()[k] <= hi]
+            assert len(shown) >= 2
+            assert all(t.get_text().endswith(unit) for t in shown)
+            boxes = sorted((t.get_window_extent(renderer) for t in shown),
+                           key=lambda b: (b.x0, b.y0))
+            for a, b in zip(boxes, boxes[1:], strict=False):
+                assert not a.overlaps(b), [t.get_text() for t in shown]
