@@ -298,3 +298,24 @@ def test_device_axis_tick_labels_do_not_overlap_and_carry_units(tmp_path, figure
                            key=lambda b: (b.x0, b.y0))
             for a, b in zip(boxes, boxes[1:], strict=False):
                 assert not a.overlaps(b), [t.get_text() for t in shown]
+
+
+def test_explorer_circles_the_creep_cells(tmp_path):
+    from bokeh.models import Scatter
+
+    from sawdrift.report.explore import explorer_data
+    from sawdrift.report.explore_page import build_document
+
+    table = _table()
+    table["cell_id"] = [f"c{k:015d}" for k in range(len(table))]
+    data = explorer_data(table, traces={})
+    doc = build_document(data)
+    fig = doc.get_model_by_name("regimes-0")
+    (dots,) = [r for r in fig.renderers if isinstance(r.glyph, Scatter)]
+    src = data.sources[0]
+    want = [i for i, (r, g) in enumerate(zip(data.panels[0].rows["regime"],
+                                             data.panels[0].rows["gross_slip_fraction"],
+                                             strict=True))
+            if r in ("drift_with", "drift_against") and g == 0.0]
+    assert sorted(dots.view.filter.indices) == want and len(want) > 0
+    assert [src["creep"][i] for i in want] == ["yes"] * len(want)

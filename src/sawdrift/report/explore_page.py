@@ -157,6 +157,9 @@ def _swatches() -> str:
     items = [f'<span style="display:inline-block;width:12px;height:12px;background:{c};'
              f'border:1px solid #888;margin:0 4px 0 10px"></span>{html.escape(r)}'
              for r, c in COLOURS.items()]
+    items.append('<span style="display:inline-block;width:8px;height:8px;border-radius:50%;'
+                 'background:white;border:1px solid black;margin:0 4px 0 14px"></span>'
+                 "creep: drift with no gross slip")
     return "".join(items)
 
 
@@ -268,6 +271,12 @@ def build_document(page: Any) -> Document:
                 overlays.append(layer)
                 titles.append(fig.title)
                 base.append(f"{head}\nregimes")
+                creeping = [i for i, c in enumerate(data["creep"]) if c == "yes"]
+                if creeping:  # circled, as in the static figures
+                    dots = fig.scatter("xv", "yv", source=src, size=6, fill_color="white",
+                                       line_color="black", line_width=1,
+                                       view=CDSView(filter=IndexFilter(creeping)))
+                    dots.selection_glyph = dots.nonselection_glyph = dots.glyph
             else:
                 fig.add_layout(ColorBar(color_mapper=drift, width=10, title="drift ratio"), "right")
                 unsettled = [i for i, s in enumerate(data["settled"]) if s == "no"]
