@@ -319,3 +319,12 @@ def test_explorer_circles_the_creep_cells(tmp_path):
             if r in ("drift_with", "drift_against") and g == 0.0]
     assert sorted(dots.view.filter.indices) == want and len(want) > 0
     assert [src["creep"][i] for i in want] == ["yes"] * len(want)
+
+
+def test_a_table_that_turns_without_a_rotation_column_is_read_from_its_spin(tmp_path, figures):
+    # a sweep whose base scene turns has no effects.rotation column; its spin rate says it turns
+    sd.plot_phase_diagram(_table(spin_rate=0.3), tmp_path / "spin.png", "mmd")
+    theta = (2 - 0.3) / (2 * (1 - 0.3))
+    lines = sorted(_flat_lines(figures[-1].axes[0]))
+    assert lines == pytest.approx([1.5 / (4 * math.pi**2), 3.5 * 1.5 / (4 * math.pi**2 * theta)],
+                                  rel=1e-12)

@@ -14,7 +14,8 @@
       m*_T = p / (4 pi^2 theta)      (sphere, nu = 0.3, theta = 1.2143: 0.0313)
 
   and a sphere free to turn moves its contact point like a mass kappa / (1 + kappa) of the
-  particle's, which multiplies m*_T by 1 + 1/kappa (3.5 for a solid sphere). The normal one is
+  particle's, which multiplies m*_T by 1 + 1/kappa (3.5 for a solid sphere; kappa from a swept
+  ``particle.gyration`` column, else the default 2/5). The normal one is
   a dashed line, the tangential one a dotted line, both named in the legend.
 * **Device axes** (swept ``device.*`` fields, stored in SI units): engineering-prefixed tick
   labels (10 nm, 20 nm; 5 MHz) at 1-2-5 steps, instead of the colliding 2x10^-8 3x10^-8.
@@ -94,11 +95,25 @@ def resonances(rows: pd.DataFrame) -> dict[str, float]:
         theta = theta_of_nu(float(nu)) if nu is not None else None
     if theta is None:
         return out
-    turns = _single(rows, "effects.rotation")
+    turns = _turning(rows)
+    if turns is None:
+        return out  # some rows turn and some do not
     kappa = _single(rows, "particle.gyration") if turns else None
     gain = 1.0 + 1.0 / float(kappa if kappa is not None else 0.4) if turns else 1.0
     out["tangential"] = gain * p / (4.0 * math.pi**2 * float(theta))
     return out
+
+
+def _turning(rows: pd.DataFrame) -> bool | None:
+    """Whether the rows' sphere turns: a swept ``effects.rotation`` column, else the spin rate (a
+    number only for a turning sphere, whatever the base scene set); None where they differ."""
+    if "effects.rotation" in rows.columns:
+        values = rows["effects.rotation"].dropna().unique()
+        return bool(values[0]) if len(values) == 1 else None
+    if "spin_rate" not in rows.columns:
+        return False
+    spins = pd.to_numeric(rows["spin_rate"], errors="coerce").notna()
+    return bool(spins.iloc[0]) if spins.nunique() == 1 else None
 
 
 def draw_resonances(ax, rows: pd.DataFrame, x: str, y: str) -> list[Line2D]:
