@@ -354,10 +354,10 @@ def test_compared_panels_drive_the_disagreement_layer(browser, table, tmp_path):
     browser.execute_script("Bokeh.documents[0].get_model_by_name('compare').active = [1]")
     assert browser.execute_script(count) == [0, 0]
     title = "return Bokeh.documents[0].get_model_by_name('regimes-1').title.text"
-    assert browser.execute_script(title) == "mmd: regimes"
+    assert browser.execute_script(title) == "mmd\nregimes"
     browser.execute_script("Bokeh.documents[0].get_model_by_name('compare').active = [0, 1]")
     assert browser.execute_script(count) == [differ, differ]
-    assert browser.execute_script(title) == f"mmd: regimes (disagree: {differ} of {len(wide)})"
+    assert browser.execute_script(title) == f"mmd\nregimes (disagree: {differ} of {len(wide)})"
     assert _severe(browser) == []
 
 
@@ -423,3 +423,95 @@ def test_another_swept_field_gives_one_panel_per_value():
     wide = frame.pivot_table(index=["m_star", "amplitude"], columns="effects.rotation",
                              values="regime", aggfunc="first")
     assert [int(m.sum()) for m in data.marks] == [int((wide[False] != wide[True]).sum())] * 2
+
+
+# -- issue 37, item 7: titles that fit, device ticks that do not collide, the Lyapunov text ---
+
+
+def test_lyapunov_tooltip_says_why_a_kept_contact_has_none(table, tmp_path):
+    path, frame, _ = table
+    data = explorer_data(path)
+    for panel, src in zip(data.panels, data.sources, strict=True):
+        rows = panel.rows
+        kept = ~rows["contact_lost"].astype(bool).to_numpy()
+        assert kept.any()
+        # the exponent is estimated only for a window that lost contact
+        assert rows.loc[kept, "lyapunov"].isna().all()
+        assert set(src["lyapunov_text"][kept]) == {"not computed: kept contact"}
+        finite = np.isfinite(rows["lyapunov"].to_numpy(float))
+        np.testing.assert_allclose(src["lyapunov_text"][finite].astype(float),
+                                   rows.loc[finite, "lyapunov"], rtol=1e-3)
+    page = write_explorer(path, tmp_path / "lyap.html").read_text()
+    assert "Lyapunov exponent: @lyapunov_text" in page and "@lyapunov{custom}" not in page
+
+
+def test_hovered_stick_cell_names_the_missing_lyapunov_exponent(browser, table, tmp_path):
+    path, frame, _ = table
+    page = write_explorer(path, tmp_path / "explore.html")
+    _open(browser, page)
+    stick = frame[(frame["model"] == "mmd") & (frame["regime"] == "stick")].iloc[0]
+    spot = browser.execute_script(_CELL, "regimes-1", "cells-1", stick["cell_id"])
+    _pointer(browser, spot)
+    (tip,) = _wait(browser, _TIPS)
+    assert "Lyapunov exponent: not computed: kept contact" in tip and "NaN" not in tip
+    assert "creep (drift with no gross slip): n/a" in tip
+
+
+_TITLE_FITS = _VIEW + """
+const t = fig.title;
+const ctx = document.createElement("canvas").getContext("2d");
+ctx.font = `${t.text_font_style} ${t.text_font_size} ${t.text_font}`;
+const widest = Math.max(...t.text.split("\\n").map((line) => ctx.measureText(line).width));
+return [view.frame.bbox.left, widest, view.bbox.width, t.text];
+"""
+
+
+def test_titles_of_long_panel_labels_fit_their_figures_in_chromium(browser, tmp_path):
+    frame, traces = _synthetic_table(5)
+    both = pd.concat([frame.assign(**{"effects.rotation": False}),
+                      frame.assign(**{"effects.rotation": True},
+                                   cell_id=frame["cell_id"].str.replace("0", "9"))])
+    page = write_explorer(both, tmp_path / "long.html", traces={})
+    _open(browser, page)
+    for k in range(4):
+        for kind in ("regimes", "drift"):
+            left, widest, width, text = browser.execute_script(_TITLE_FITS, f"{kind}-{k}")
+            assert "effects.rotation = " in text
+            assert left + widest <= width, (text, left, widest, width)
+
+
+_TICKS = _VIEW + """
+const axis = arguments[1] === "x" ? fig.below[0] : fig.left[0];
+const av = view.owner.get_one(axis);
+const ticks = av.tick_coords.major[arguments[1] === "x" ? 0 : 1];
+const labels = av.compute_labels(ticks).items.map((l) => l.text ?? String(l));
+const ctx = document.createElement("canvas").getContext("2d");
+const m = axis;
+ctx.font = `${m.major_label_text_font_style} ${m.major_label_text_font_size} ${m.major_label_text_font}`;
+const scale = arguments[1] === "x" ? view.frame.x_scale : view.frame.y_scale;
+return [labels, labels.map((t) => ctx.measureText(t).width), ticks.map((t) => scale.compute(t))];
+"""
+
+
+def test_device_axis_tick_labels_do_not_collide_in_chromium(browser, tmp_path):
+    amps, freqs = np.linspace(5e-9, 4e-8, 6), np.linspace(5e6, 2e7, 6)
+    rows = [{"cell_id": f"dev{k:013d}", "model": "mmd", "m_star": 250.0, "amplitude": 0.5,
+             "device.amplitude": a, "device.frequency": f, "regime": "stick", "drift_ratio": 0.0,
+             "drift_velocity": 0.0, "settled": True, "version": "0.3.0"}
+            for k, (a, f) in enumerate((a, f) for a in amps for f in freqs)]
+    page = write_explorer(pd.DataFrame(rows), tmp_path / "dev.html", traces={})
+    _open(browser, page)
+    labels, widths, at = browser.execute_script(_TICKS, "regimes-0", "x")
+    assert len(labels) >= 3 and all(t.endswith(" nm") for t in labels)
+    # 1e-8 m reads 10 nm: every label is its tick's value in nanometres
+    for text, tick in zip(labels, browser.execute_script(
+            _VIEW + "return view.owner.get_one(fig.below[0]).tick_coords.major[0];", "regimes-0"),
+            strict=True):
+        assert float(text.split()[0]) == pytest.approx(tick * 1e9, rel=1e-3)
+    # neighbours leave at least one em (11 px, the label font's size) between them
+    for k in range(len(at) - 1):
+        gap = (at[k + 1] - at[k]) - 0.5 * (widths[k] + widths[k + 1])
+        assert gap >= 11.0, (labels[k], labels[k + 1], gap)
+    labels, _, _ = browser.execute_script(_TICKS, "regimes-0", "y")
+    assert all(t.endswith(" MHz") for t in labels)
+    assert _severe(browser) == []

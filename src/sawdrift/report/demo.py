@@ -12,9 +12,16 @@ from ..study.progress import notice
 from ..study.provenance import TableProvenanceError
 from ..study.sweep import journal_path, sweep
 from ..study.traces import traces_path
-from .diagrams import plot_compare, plot_drift_map, plot_phase_diagram, unsettled_cells
+from .diagrams import (
+    HATCH_LABEL,
+    plot_compare,
+    plot_drift_map,
+    plot_phase_diagram,
+    unsettled_cells,
+)
 from .explore import write_explorer
 from .fig2 import plot_fig2
+from .marks import creep_cells
 from .plots import plot_trajectory
 
 
@@ -33,6 +40,19 @@ def _sweep(echo: Callable[[str], None], table: Path, *args, **kwargs):
         return sweep(*args, table=table, **kwargs)
 
 
+def hatch_note(unsettled: int, total: int) -> str:
+    """What the hatching of the regime figures means, as the demo prints it.
+
+    One meaning in every figure: the cell's ``settled`` is false. Its run reached neither a fixed
+    point nor a periodic orbit within its cap: a slow approach, a motion that never repeats
+    (quasi-periodic, or irregular bouncing), so its drift is the mean of its last window. The
+    colour under the hatching is still the cell's regime, whatever it is.
+    """
+    return (f"{unsettled} of {total} did not within their cap (hatched, in every figure: "
+            f"{HATCH_LABEL}; the colour under it is still the cell's regime, and its drift the "
+            "mean of its last window)")
+
+
 def demo(out: Path, n: int = 21, workers: int | None = None,
          echo: Callable[[str], None] = print) -> None:
     """Write the demo's figures and tables to ``out``.
@@ -41,9 +61,11 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     mmd over m* in [1e-3, 1e2] and A* in [1e-2, 10] (n x n cells, each run until its drift has
     settled, at least 40 periods; mu = 0.1, nu = 0.3), their comparison and mmd's drift map, the
     explorer page of their table (``explore.html``), the four regimes' trajectories (Fig. 2), and
-    the same plane with rotation off and on ((n + 1)/2 cells per axis, settled likewise). Cells
-    that do not settle within their cap (irregular bouncing: its drift is an average over the
-    window) are hatched in every regime figure.
+    the same plane with rotation off and on ((n + 1)/2 cells per axis, settled likewise).
+
+    Every regime figure marks three things the same way: hatched cells did not settle (see
+    :func:`hatch_note`), circled cells creep (a drift with no gross slip), and on an m* axis a
+    dashed and a dotted line give the normal and the tangential contact resonance.
     """
     out.mkdir(parents=True, exist_ok=True)
     scene = Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 0.316})
@@ -65,14 +87,17 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     drift = plot_drift_map(frame, out / "drift_mmd.png", "mmd")
     mmd = frame[frame["model"] == "mmd"]
     unsettled = int(unsettled_cells(mmd).sum())
+    creeping = int(creep_cells(mmd).sum())
     echo(f"wrote {drift.name}: mmd's drift ratio under its regime boundaries; every cell ran "
-         f"until its drift settled; {unsettled} of {len(mmd)} did not within their cap "
-         "(hatched: irregular bouncing, whose drift is an average over its window)")
+         f"until its drift settled; {hatch_note(unsettled, len(mmd))}; {creeping} cells creep "
+         "(circled: a drift with no gross slip); the dashed and dotted lines are the normal and "
+         "tangential contact resonances")
     page = write_explorer(table, out / "explore.html")
     echo(f"wrote {page.name}: both phase diagrams to hover, click and compare in a browser "
          "(one file, works offline)")
     fig2 = plot_fig2(out / "fig2_regimes.png")
-    echo(f"wrote {fig2.name}: the four regimes' trajectories (the paper's Fig. 2)")
+    echo(f"wrote {fig2.name}: the four regimes' trajectories (the paper's Fig. 2), each run until "
+         "its drift settled")
     # rolling: the same plane with the sphere free to turn (kappa = 2/5), side by side
     rot_table = out / "rotation_table.parquet"
     m_rot = max(2, (n + 1) // 2)
@@ -82,4 +107,6 @@ def demo(out: Path, n: int = 21, workers: int | None = None,
     rpath, rmd = plot_compare(rot, ["material_point", "mmd"], out / "rotation_compare.png",
                               by="effects.rotation")
     echo(rmd)
-    echo(f"wrote {rot_table.name}, {rpath.name}: rotation off and on, side by side")
+    echo(f"wrote {rot_table.name}, {rpath.name}: rotation off and on, a row per model; the "
+         "last column marks where rotation changes a model's regime, the last row where the "
+         "models disagree")

@@ -5,7 +5,6 @@ Reads only the table (see :mod:`sawdrift.study.sweep`), never the runner.
 
 from __future__ import annotations
 
-from itertools import combinations
 from pathlib import Path
 
 import matplotlib
@@ -20,6 +19,14 @@ from matplotlib.patches import Patch  # noqa: E402
 from ..errors import SceneError  # noqa: E402
 from ..study.axes import column_label  # noqa: E402
 from .line_plot import plot_line, swept_field  # noqa: E402
+from .marks import (  # noqa: E402
+    CREEP_STYLE,
+    creep_cells,
+    creep_handle,
+    draw_resonances,
+    format_device_axes,
+    mark_creep,
+)
 
 #: Regime colours, in legend order.
 COLOURS = {
@@ -81,23 +88,39 @@ def regime_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = 
     return xs, ys, codes
 
 
-def unsettled_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = "m_star",
-                   where: dict | None = None) -> np.ndarray:
-    """True for each cell of :func:`regime_grid`'s grid whose drift has not settled ([y, x])."""
-    sub = select(table, model, where)
+def _cell_mask(sub: pd.DataFrame, flags: np.ndarray, x: str, y: str) -> np.ndarray:
+    """``flags`` (one per row of ``sub``) on :func:`regime_grid`'s grid ([y, x]), or-ed per cell."""
     xs = np.sort(sub[x].unique())
     ys = np.sort(sub[y].unique())
     mask = np.zeros((ys.size, xs.size), dtype=bool)
     ix = {v: i for i, v in enumerate(xs)}
     iy = {v: i for i, v in enumerate(ys)}
-    for vy, vx, bad in zip(sub[y], sub[x], unsettled_cells(sub), strict=True):
-        mask[iy[vy], ix[vx]] |= bool(bad)
+    for vy, vx, flag in zip(sub[y], sub[x], flags, strict=True):
+        mask[iy[vy], ix[vx]] |= bool(flag)
     return mask
 
+
+def unsettled_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = "m_star",
+                   where: dict | None = None) -> np.ndarray:
+    """True for each cell of :func:`regime_grid`'s grid whose drift has not settled ([y, x])."""
+    sub = select(table, model, where)
+    return _cell_mask(sub, unsettled_cells(sub), x, y)
+
+
+def creep_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = "m_star",
+               where: dict | None = None) -> np.ndarray:
+    """True for each cell of :func:`regime_grid`'s grid that creeps ([y, x], see
+    :func:`sawdrift.report.marks.creep_cells`)."""
+    sub = select(table, model, where)
+    return _cell_mask(sub, creep_cells(sub), x, y)
 
 
 #: the hatching of cells whose drift has not settled, in every regime figure and the drift map
 HATCH = "////"
+#: what the hatching means, in every legend: ``settled`` is false, i.e. the cell reached neither a
+#: fixed point nor a periodic orbit within its cap (a slow approach, or irregular bouncing whose
+#: drift is a long-time mean)
+HATCH_LABEL = "not settled: no steady drift found"
 
 
 def _hatch_unsettled(ax, xs: np.ndarray, ys: np.ndarray, mask: np.ndarray) -> str:
@@ -132,7 +155,10 @@ def _hatch_cells(ax, amps: np.ndarray, masses: np.ndarray, mask: np.ndarray) -> 
 
 
 def _draw(ax, amps, masses, codes, title: str, x: str = "amplitude", y: str = "m_star",
-          unsettled: np.ndarray | None = None) -> None:
+          unsettled: np.ndarray | None = None, creep: np.ndarray | None = None,
+          rows: pd.DataFrame | None = None) -> list:
+    """One regime panel: cells, hatching, creep markers and (from ``rows``) the contact
+    resonances. Returns the legend handles of the marks it drew."""
     cmap = ListedColormap(["white", *COLOURS.values()])
     ax.pcolormesh(_edges(amps), _edges(masses), codes + 1, cmap=cmap, vmin=0, vmax=len(COLOURS),
                   shading="flat", edgecolors="none")
@@ -142,10 +168,16 @@ def _draw(ax, amps, masses, codes, title: str, x: str = "amplitude", y: str = "m
     ax.set_xlabel(column_label(x))
     ax.set_ylabel(column_label(y))
     ax.set_title(f"{title}\n{note}" if note else title, fontsize=10)
+    handles = mark_creep(ax, amps, masses, creep) if creep is not None else []
+    if rows is not None:
+        handles += draw_resonances(ax, rows, x, y)
+    format_device_axes(ax, x, y)
+    return handles
 
 
-def _legend(fig, codes_list, unsettled: bool = False) -> None:
-    """The regimes used (and the hatching, if any cell is unsettled) below the panels.
+def _legend(fig, codes_list, unsettled: bool = False, marks: list | None = None) -> None:
+    """The regimes used (and the hatching, if any cell is unsettled, and the ``marks``' handles:
+    creep, resonances, computed points; once each) below the panels.
 
     As many columns as fit the figure's width: a single row of six regimes is wider than a
     one-panel figure and would be cut at both ends.
@@ -153,20 +185,23 @@ def _legend(fig, codes_list, unsettled: bool = False) -> None:
     used = sorted({int(c) for codes in codes_list for c in np.unique(codes) if c >= 0})
     handles = [Patch(color=COLOURS[_ORDER[c]], label=_ORDER[c]) for c in used]
     if unsettled:
-        handles.append(Patch(facecolor="white", edgecolor="k", hatch=HATCH, label="not settled"))
+        handles.append(Patch(facecolor="white", edgecolor="k", hatch=HATCH, label=HATCH_LABEL))
+    seen = {h.get_label() for h in handles}
+    for handle in marks or []:
+        if handle.get_label() not in seen:
+            seen.add(handle.get_label())
+            handles.append(handle)
     if not handles:
         return
-    ncol = len(handles)
-    leg = fig.legend(handles=handles, loc="outside lower center", ncol=ncol, frameon=False)
-    width = leg.get_window_extent(fig.canvas.get_renderer()).width
     room = 0.96 * fig.bbox.width
-    if width > room:
-        leg.remove()
-        per = width / ncol
-        ncol = max(1, int(room // per))
+    renderer = fig.canvas.get_renderer()
+    for ncol in range(len(handles), 0, -1):  # the most columns that fit (entries differ in width)
         rows = -(-len(handles) // ncol)
         ncol = -(-len(handles) // rows)  # balance the rows
-        fig.legend(handles=handles, loc="outside lower center", ncol=ncol, frameon=False)
+        leg = fig.legend(handles=handles, loc="outside lower center", ncol=ncol, frameon=False)
+        if ncol == 1 or leg.get_window_extent(renderer).width <= room:
+            return
+        leg.remove()
 
 
 def _material_label(table: pd.DataFrame) -> str:
@@ -191,32 +226,13 @@ def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None 
     amps, masses, codes = regime_grid(table, model, x, y)
     unsettled = unsettled_grid(table, model, x, y)
     fig, ax = plt.subplots(figsize=(6.4, 5.6), layout="constrained")
-    _draw(ax, amps, masses, codes, f"{model}: {_material_label(table)}", x, y, unsettled)
-    _legend(fig, [codes], bool(unsettled.any()))
+    marks = _draw(ax, amps, masses, codes, f"{model}: {_material_label(table)}", x, y, unsettled,
+                  creep_grid(table, model, x, y), select(table, model))
+    _legend(fig, [codes], bool(unsettled.any()), marks)
     path = Path(path)
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
-
-
-def agreement_from_grids(labels: list[str], codes: list[np.ndarray]) -> pd.DataFrame:
-    """Agreement of every pair of panels over the cells both computed."""
-    rows = []
-    for (la, ca), (lb, cb) in combinations(list(zip(labels, codes, strict=True)), 2):
-        both = (ca >= 0) & (cb >= 0)
-        same = int(np.sum((ca == cb) & both))
-        n = int(both.sum())
-        rows.append({"model_a": la, "model_b": lb, "cells": n, "same_regime": same,
-                     "agreement": same / n if n else float("nan")})
-    return pd.DataFrame(rows)
-
-
-def agreement_markdown(frame: pd.DataFrame) -> str:
-    """The agreement table as GitHub markdown."""
-    lines = ["| model A | model B | cells | same regime | agreement |", "|---|---|---:|---:|---:|"]
-    for r in frame.itertuples():
-        lines.append(f"| {r.model_a} | {r.model_b} | {r.cells} | {r.same_regime} | {r.agreement:.1%} |")
-    return "\n".join(lines) + "\n"
 
 
 def unsettled_cells(table: pd.DataFrame) -> np.ndarray:
@@ -226,16 +242,25 @@ def unsettled_cells(table: pd.DataFrame) -> np.ndarray:
     return (table["settled"].astype("boolean").fillna(True) == False).to_numpy(bool)  # noqa: E712
 
 
+def _padded(logs: np.ndarray) -> tuple[float, float]:
+    """The ends of a log axis that hold whole cells: half the median gap beyond the outer points."""
+    gaps = np.diff(np.unique(logs))
+    half = 0.5 * float(np.median(gaps)) if gaps.size else 0.5
+    return float(logs.min() - half), float(logs.max() + half)
+
+
 def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = None,
                    x: str = "amplitude", y: str = "m_star") -> Path:
     """The regime map and, beside it, the drift ratio coloured on a diverging scale.
 
     Works for uniform and scattered (adaptive) tables alike: each point's cell is the region of
-    the log-log plane nearest to it (Voronoi cells, drawn with ``tripcolor``'s flat shading on a
-    fine grid). Regime boundaries (where the regime changes between neighbouring points of that
-    grid) are drawn over the drift map.
+    the log-log plane nearest to it (Voronoi cells, drawn on a fine grid that reaches half a gap
+    beyond the outer points, so the outer cells are whole). Regime boundaries (where the regime
+    changes between neighbouring points of that grid) are drawn over the drift map. A scattered
+    table's computed points are dotted (a full grid's are the cell centres and are not).
     """
     from matplotlib.colors import TwoSlopeNorm
+    from matplotlib.lines import Line2D
     from scipy.spatial import cKDTree
 
     models = sorted(table["model"].dropna().unique())
@@ -248,8 +273,8 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
             raise SceneError(f"the drift map needs at least two values of {col!r}; the table has "
                              f"{sub[col].nunique()} for model {model!r}")
     lx, ly = np.log10(sub[x].to_numpy(float)), np.log10(sub[y].to_numpy(float))
-    gx = np.linspace(lx.min(), lx.max(), 400)
-    gy = np.linspace(ly.min(), ly.max(), 400)
+    gx = np.linspace(*_padded(lx), 400)
+    gy = np.linspace(*_padded(ly), 400)
     mx, my = np.meshgrid(gx, gy)
     _, idx = cKDTree(np.column_stack([lx, ly])).query(np.column_stack([mx.ravel(), my.ravel()]))
     codes = np.array([_ORDER.index(r) if r in COLOURS else _ORDER.index("error")
@@ -276,6 +301,7 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     if _hatch_unsettled(ax2, 10**gx, 10**gy, mask):
         _hatch_unsettled(ax1, 10**gx, 10**gy, mask)
         title2 += f"; hatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
+    marks: list = []
     for ax, title in ((ax1, f"{model}: regimes"), (ax2, title2)):
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -284,64 +310,28 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
         ax.set_xlabel(column_label(x))
         ax.set_ylabel(column_label(y))
         ax.set_title(title, fontsize=10)
-    ax1.plot(10**lx, 10**ly, ",", color="k", alpha=0.3)
-    _legend(fig, [np.unique(codes)], bool(unsettled.any()))
+        marks += draw_resonances(ax, sub, x, y)
+        format_device_axes(ax, x, y)
+    creeping = creep_cells(sub)
+    if creeping.any():
+        ax1.scatter(10 ** lx[creeping], 10 ** ly[creeping], **CREEP_STYLE, zorder=5)
+        marks.append(creep_handle())
+    if sub[[x, y]].drop_duplicates().shape[0] != sub[x].nunique() * sub[y].nunique():
+        ax1.plot(10**lx, 10**ly, ".", color="k", ms=2, alpha=0.5)
+        marks.append(Line2D([], [], ls="none", marker=".", color="k", ms=4, label="computed point"))
+    _legend(fig, [np.unique(codes)], bool(unsettled.any()), marks)
     path = Path(path)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
 
 
-def variants(table: pd.DataFrame, models: list[str], by: str | None) -> list[tuple[str, str, dict]]:
-    """(label, model, fixed columns) of each panel: one per model, or per model and value of ``by``."""
-    if by is None:
-        return [(m, m, {}) for m in models]
-    if by not in table.columns:
-        raise SceneError(f"--by {by!r} is not a column of the table (sweep it with --axis)")
-    values = sorted(table[by].dropna().unique().tolist())
-    return [(f"{m}, {by} = {v}", m, {by: v}) for m in models for v in values]
-
-
-def plot_compare(table: pd.DataFrame, models: list[str], path: str | Path, by: str | None = None,
-                 x: str = "amplitude", y: str = "m_star") -> tuple[Path, str]:
-    """Side-by-side phase diagrams on shared axes plus a panel of disagreeing cells.
-
-    ``by`` names a swept column (e.g. ``effects.rotation``): then every model gets one panel per
-    value of it. Returns the figure path and the markdown agreement table (also written next to
-    the figure as ``<name>.md``).
-    """
-    panels = variants(table, models, by)
-    if len(panels) < 2:
-        raise SceneError("compare needs at least two panels: two models, or a --by column")
-    grids = [regime_grid(table, m, x, y, where) for _, m, where in panels]
-    amps, masses = grids[0][0], grids[0][1]
-    for (label, _, _), (a2, m2, _) in zip(panels, grids, strict=True):
-        if a2.shape != amps.shape or m2.shape != masses.shape or not (
-            np.allclose(a2, amps) and np.allclose(m2, masses)
-        ):
-            raise SceneError(f"{label!r} was swept on a different grid; compare needs shared axes")
-    fig, axes = plt.subplots(1, len(panels) + 1, figsize=(4.6 * (len(panels) + 1), 4.8),
-                             sharex=True, sharey=True, layout="constrained")
-    masks = [unsettled_grid(table, m, x, y, where) for _, m, where in panels]
-    for ax, (label, _, _), (_, _, codes), mask in zip(axes, panels, grids, masks, strict=False):
-        _draw(ax, amps, masses, codes, label, x, y, mask)
-    stack = np.stack([g[2] for g in grids])
-    differ = np.any(stack != stack[0], axis=0)
-    missing = np.any(stack < 0, axis=0)
-    ax = axes[-1]
-    disagree = np.where(missing, -1, differ.astype(int))
-    ax.pcolormesh(_edges(amps), _edges(masses), disagree + 1,
-                  cmap=ListedColormap(["white", "#f0f0f0", "#d62728"]), vmin=0, vmax=2,
-                  shading="flat")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel(column_label(x))
-    ax.set_title(f"cells where they disagree ({int(differ.sum())} of {differ.size})", fontsize=10)
-    _legend(fig, [g[2] for g in grids], any(m.any() for m in masks))
-    fig.suptitle(f"{' vs '.join(p[0] for p in panels)}: {_material_label(table)}")
-    path = Path(path)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    md = agreement_markdown(agreement_from_grids([p[0] for p in panels], [g[2] for g in grids]))
-    path.with_suffix(".md").write_text(md)
-    return path, md
+# the comparison figure lives in its own module and is read from here too (its functions import
+# this module's, which are all defined by now)
+from .compare_plot import (  # noqa: E402, F401
+    agreement_from_grids,
+    agreement_markdown,
+    compare_figure,
+    plot_compare,
+    variants,
+)

@@ -30,6 +30,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import SawdriftError, SceneError
+from ..result.regimes import CONTACT_LOST, DRIFTING
 from ..scene.device import Device, normalized
 from ..scene.schema import set_dotted
 from ..study.axes import column_unit
@@ -37,6 +38,7 @@ from ..study.sweep import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
 from .diagrams import COLOURS
 from .explore_page import build_document
+from .marks import creep_cells
 
 #: Columns a sweep table must have for the page.
 REQUIRED = ("cell_id", "model", "regime", "m_star", "amplitude", "drift_ratio")
@@ -296,6 +298,7 @@ def _cell_columns(panel: Panel, xa: Axis, ya: Axis, scale: np.ndarray | None) ->
 
     settled = r["settled"].astype("boolean") if "settled" in r.columns else pd.Series([pd.NA] * len(r))
     blank = np.full(len(r), "")
+    creeping = creep_cells(r)
     cols: dict[str, Any] = {
         "xv": r[xa.column].to_numpy(float), "yv": r[ya.column].to_numpy(float),
         "regime": r["regime"].astype(str).to_numpy(), "drift_ratio": num("drift_ratio"),
@@ -303,6 +306,8 @@ def _cell_columns(panel: Panel, xa: Axis, ya: Axis, scale: np.ndarray | None) ->
         "settled": np.array(["n/a" if pd.isna(s) else ("yes" if s else "no") for s in settled]),
         "settle_periods": num("settle_periods"), "orbit_period": num("orbit_period"),
         "hop_period": num("hop_period"), "lyapunov": num("lyapunov"),
+        "lyapunov_text": lyapunov_text(r),
+        "creep": np.where(creeping, "yes", np.where(r["regime"].isin(DRIFTING), "no", "n/a")),
         "gross_slip": num("gross_slip_fraction"), "liftoffs": num("liftoffs_per_period"),
         "version": r["version"].astype(str).to_numpy() if "version" in r.columns else blank,
         "error": r["error"].fillna("").astype(str).to_numpy() if "error" in r.columns else blank,
@@ -312,6 +317,34 @@ def _cell_columns(panel: Panel, xa: Axis, ya: Axis, scale: np.ndarray | None) ->
         cols["speed"] = (num("drift_velocity") * scale).astype(np.float32)
     cols.update(panel.quads or panel.patches or {})
     return cols
+
+
+def lyapunov_text(rows: pd.DataFrame) -> np.ndarray:
+    """The tooltip's Lyapunov exponent of each row: its value, or why there is none.
+
+    The exponent is estimated only for a window that lost contact (the chaos test of bouncing,
+    :func:`sawdrift.dynamics.window.lyapunov`); a cell that kept contact has none by design.
+    """
+    nan = pd.Series(np.nan, index=rows.index)
+    value = pd.to_numeric(rows["lyapunov"], errors="coerce") if "lyapunov" in rows.columns else nan
+    if "contact_lost" in rows.columns:
+        kept = (rows["contact_lost"].astype("boolean").fillna(True) == False).to_numpy(bool)  # noqa: E712
+    else:
+        kept = ~rows["regime"].isin(CONTACT_LOST).to_numpy(bool)
+    out = []
+    for v, regime, contact in zip(value.to_numpy(float), rows["regime"].astype(str), kept,
+                                  strict=True):
+        if np.isfinite(v):
+            out.append(f"{v:.4g}")
+        elif v == -np.inf:
+            out.append("-inf (a perfectly inelastic landing erased the perturbation)")
+        elif regime == "error":
+            out.append("n/a: the cell failed")
+        elif contact:
+            out.append("not computed: kept contact")
+        else:
+            out.append("not computed for this run")
+    return np.array(out)
 
 
 @dataclass

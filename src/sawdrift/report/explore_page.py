@@ -111,10 +111,55 @@ window.__sawdrift_traces.then((buf) => {
 """
 
 
+#: characters of a title line: a 13 px bold title fits a 360 px figure (the regimes; 44 in the
+#: 430 px drift figure) with room to spare
+TITLE_CHARS, DRIFT_TITLE_CHARS = 36, 44
+
+# tick labels of a device axis (SI values): engineering prefixes, e.g. 1e-8 m -> "10 nm"
+_ENG_JS = """
+if (tick === 0) return "0";
+const e = Math.max(-12, Math.min(9, 3 * Math.floor(Math.log10(Math.abs(tick)) / 3)));
+const prefix = {"-12": "p", "-9": "n", "-6": "\u00b5", "-3": "m", "0": "", "3": "k", "6": "M", "9": "G"}[e];
+return String(Number((tick / 10 ** e).toPrecision(3))) + " " + prefix + unit;
+"""
+
+
+def wrap_title(label: str, width: int = TITLE_CHARS) -> str:
+    """``label`` broken into lines of at most ``width`` characters: between its ", "-separated
+    parts (a panel's model and fixed columns) where it can, else at spaces."""
+    import textwrap
+
+    lines: list[str] = []
+    for part in label.split(", "):
+        if lines and len(lines[-1]) + 2 + len(part) <= width:
+            lines[-1] += ", " + part
+        else:
+            if lines:
+                lines[-1] += ","
+            lines += textwrap.wrap(part, width, break_on_hyphens=False) or [part]
+    return "\n".join(lines)
+
+
+def _device_axes(fig: Any, xa: Any, ya: Any) -> None:
+    """Engineering tick labels (with the unit) and fewer ticks on the device axes of ``fig``."""
+    from bokeh.models import CustomJSTickFormatter
+
+    from .marks import device_unit
+
+    for axis, spec in ((fig.xaxis, xa), (fig.yaxis, ya)):
+        unit = device_unit(spec.column)
+        if unit:
+            axis.formatter = CustomJSTickFormatter(args={"unit": unit}, code=_ENG_JS)
+            axis.ticker.desired_num_ticks = 4
+
+
 def _swatches() -> str:
     items = [f'<span style="display:inline-block;width:12px;height:12px;background:{c};'
              f'border:1px solid #888;margin:0 4px 0 10px"></span>{html.escape(r)}'
              for r, c in COLOURS.items()]
+    items.append('<span style="display:inline-block;width:8px;height:8px;border-radius:50%;'
+                 'background:white;border:1px solid black;margin:0 4px 0 14px"></span>'
+                 "creep: drift with no gross slip")
     return "".join(items)
 
 
@@ -131,8 +176,9 @@ def _tooltip(label: str, xa: Any, ya: Any, info: dict[str, Any]) -> str:
     lines.append("settled: @settled (after @settle_periods{custom} periods)")
     lines.append("orbit period: @orbit_period{period}" if info["has_orbit_period"]
                  else "orbit period: not stored in this table")
-    lines += ["hop period: @hop_period{period}", "Lyapunov exponent: @lyapunov{custom}",
-              "gross-slip fraction: @gross_slip{custom}", "lift-offs per period: @liftoffs{custom}",
+    lines += ["hop period: @hop_period{period}", "Lyapunov exponent: @lyapunov_text",
+              "gross-slip fraction: @gross_slip{custom}",
+              "creep (drift with no gross slip): @creep", "lift-offs per period: @liftoffs{custom}",
               "model version: @version"]
     if info["has_errors"]:
         lines.append("error: @error")
@@ -179,7 +225,7 @@ def build_document(page: Any) -> Document:
     drift = LinearColorMapper(palette=_drift_palette(), low=-lim, high=lim, nan_color="#d9d9d9")
     num, period = CustomJSHover(code=_NUM), CustomJSHover(code=_PERIOD)
     formatters = {f"@{c}": num for c in ("xv", "yv", "m_star", "amplitude", "drift_ratio",
-                                          "drift_velocity", "speed", "settle_periods", "lyapunov",
+                                          "drift_velocity", "speed", "settle_periods",
                                           "gross_slip", "liftoffs")}
     formatters.update({"@orbit_period": period, "@hop_period": period})
     box = [np.inf, -np.inf, np.inf, -np.inf]
@@ -195,13 +241,15 @@ def build_document(page: Any) -> Document:
         src = ColumnDataSource(data, name=f"cells-{k}")
         cds.append(src)
         views = []
+        head = wrap_title(panel.label)  # a title is cut at the figure's edge: wrap the label
         for kind in ("regimes", "drift"):
-            fig = figure(width=360 if kind == "regimes" else 430, height=330, x_range=x_range,
+            fig = figure(width=360 if kind == "regimes" else 430, height=345, x_range=x_range,
                          y_range=y_range, tools="pan,wheel_zoom,box_zoom,reset,save",
-                         active_scroll="wheel_zoom", title=f"{panel.label}: "
+                         active_scroll="wheel_zoom", title=f"{head}\n"
                          + ("regimes" if kind == "regimes" else "drift ratio"),
                          name=f"{kind}-{k}", **axis_type)
             fig.xaxis.axis_label, fig.yaxis.axis_label = xa.label, ya.label
+            _device_axes(fig, xa, ya)
             fig.toolbar.logo, fig.toolbar.autohide = None, True
             fill = ({"field": "regime", "transform": regimes} if kind == "regimes"
                     else {"field": "drift_ratio", "transform": drift})
@@ -222,7 +270,13 @@ def build_document(page: Any) -> Document:
                 layer.selection_glyph = layer.nonselection_glyph = layer.glyph
                 overlays.append(layer)
                 titles.append(fig.title)
-                base.append(f"{panel.label}: regimes")
+                base.append(f"{head}\nregimes")
+                creeping = [i for i, c in enumerate(data["creep"]) if c == "yes"]
+                if creeping:  # circled, as in the static figures
+                    dots = fig.scatter("xv", "yv", source=src, size=6, fill_color="white",
+                                       line_color="black", line_width=1,
+                                       view=CDSView(filter=IndexFilter(creeping)))
+                    dots.selection_glyph = dots.nonselection_glyph = dots.glyph
             else:
                 fig.add_layout(ColorBar(color_mapper=drift, width=10, title="drift ratio"), "right")
                 unsettled = [i for i, s in enumerate(data["settled"]) if s == "no"]
@@ -232,6 +286,8 @@ def build_document(page: Any) -> Document:
                                  hatch_alpha=0.45, hatch_scale=9, hatch_weight=0.7)
                     hatch.selection_glyph = hatch.nonselection_glyph = hatch.glyph
                     fig.title.text += f"; hatched: not settled ({len(unsettled)})"
+                    if len(fig.title.text.rsplit("\n", 1)[-1]) > DRIFT_TITLE_CHARS:
+                        fig.title.text = fig.title.text.replace("; hatched", "\nhatched")
             views.append(fig)
         rows.append(row(*views))
     trace = ColumnDataSource({"t": [], **{f: [] for f in fields}}, name="trace-source")

@@ -18,25 +18,51 @@ if TYPE_CHECKING:
 __all__ = ["plot_load_curve", "plot_load_curves"]
 
 
+def _zero_aligned(ax, twin, v: list[float], p: list[float]) -> None:
+    """Limits of both axes with their zero at the same height and room for every point.
+
+    The zero sits at the fraction z of the height that the two series need: a speed below zero
+    (a particle drifting to -x) and a power above it share the panel at z = 1/2.
+    """
+    def need(values: list[float]) -> tuple[float, float, float, float]:
+        lo, hi = min([0.0, *values]), max([0.0, *values])
+        span = (hi - lo) or 1.0
+        return lo, hi, -lo / span, hi / span
+
+    (lo_v, hi_v, below_v, above_v), (lo_p, hi_p, below_p, above_p) = need(v), need(p)
+    below, above = max(below_v, below_p, 0.05), max(above_v, above_p, 0.05)
+    z = below / (below + above)
+    for axis, lo, hi in ((ax, lo_v, hi_v), (twin, lo_p, hi_p)):
+        height = 1.1 * max(-lo / z, hi / (1.0 - z), 1e-300)
+        axis.set_ylim(-z * height, (1.0 - z) * height)
+
+
 def plot_load_curve(curve: LoadCurve, path: str | Path | None = None, title: str = "") -> Figure:
     """Speed (left axis) and power F v (right axis) against the load; write a PNG if ``path``.
 
-    Device scenes are drawn in mN, m/s and mW, normalized ones in M g, a0 f and M g a0 f. The
-    stall load (the top of its bracket) and the largest sampled power are marked.
+    The speed is signed along +x, as in :func:`plot_load_curves` (a particle that drifts to -x
+    without load is drawn below zero); the power F v is positive while the particle advances
+    against the load. Device scenes are drawn in mN, m/s and mW, normalized ones in M g, a0 f
+    and M g a0 f. The stall load (the top of its bracket) and the largest sampled power are
+    marked.
     """
     data = curve.to_json()
     dev = data.get("device")
+    sign = curve.direction or 1
     if dev is not None:
         x, v, p = dev["loads_mN"], dev["speed_m_s"], dev["power_mW"]
-        labels = ("load F (mN)", "drift speed v (m/s)", "output power F v (mW)")
+        labels = ("load F against the drift (mN)", "drift speed along +x (m/s)",
+                  "output power F v (mW)")
         stall, p_max, at = dev["stall_load_mN"], dev["max_power_mW"], dev["load_at_max_power_mN"]
         unit = "mN"
     else:
         x, v, p = data["loads"], data["drift_velocity"], data["power"]
-        labels = ("load F / (M g)", "drift velocity v / (a0 f)", "output power F v / (M g a0 f)")
+        labels = ("load F against the drift / (M g)", "drift velocity along +x / (a0 f)",
+                  "output power F v / (M g a0 f)")
         stall, p_max, at = data["stall_load"], data["max_power"], data["load_at_max_power"]
         unit = "M g"
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), layout="constrained")
+    v = [sign * s for s in v]
+    fig, ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
     ax.plot(x, v, "o-", color="#3182bd", ms=4, lw=1.2, label="drift speed")
     ax.axhline(0.0, color="k", lw=0.6)
     ax.axvline(stall, color="0.4", ls="--", lw=0.9, label=f"stall load {stall:.4g} {unit}")
@@ -48,13 +74,11 @@ def plot_load_curve(curve: LoadCurve, path: str | Path | None = None, title: str
     twin.plot([at], [p_max], "*", color="#e6550d", ms=12,
               label=f"largest power {p_max:.4g} at {at:.4g} {unit}")
     twin.set_ylabel(labels[2], color="#e6550d")
-    # both axes with their zero at the same height: the same fraction of each range below it
-    top_v, top_p = 1.1 * max(max(v), 1e-300), 1.1 * max(max(p), 1e-300)
-    below = max(0.05, -min(v) / top_v * 1.1, -min(p) / top_p * 1.1)
-    ax.set_ylim(-below * top_v, top_v)
-    twin.set_ylim(-below * top_p, top_p)
+    _zero_aligned(ax, twin, v, p)
     handles = ax.get_legend_handles_labels()[0] + twin.get_legend_handles_labels()[0]
-    ax.legend(handles, [h.get_label() for h in handles], fontsize=8, loc="lower left")
+    # below the panel: over it, the legend hid one series or the other (they cross)
+    fig.legend(handles, [h.get_label() for h in handles], fontsize=8, ncol=2, frameon=False,
+               loc="outside lower center")
     ax.set_title(title or f"load curve: the particle drifts to {data['direction']} without load",
                  fontsize=9)
     if path is not None:

@@ -32,6 +32,13 @@ every piece of evidence comes from that one window), never the runner's internal
   - ``stick`` - |V| <= tol and no gross slip in the window (weak oscillation; a compliant contact
     may still slip partially, in its annulus).
 
+A drift in permanent contact with no gross slip at all in the window is **creep** (:func:`creep`):
+the contact never slides as a whole, and the drift comes from partial slip in its annulus alone.
+It is a flag beside the regime, not a regime: the cell is still ``drift_with`` or
+``drift_against``. Creep is where contact laws differ most (an incremental spring that keeps its
+tangential force when the contact shrinks creeps where the exact memory law sticks), so tables and
+figures mark it.
+
 The evidence is measured by the dynamics layer, which integrates the window: the lift-off
 synchrony by :mod:`sawdrift.dynamics.synchrony` (which lift-offs count, how coherent their phases
 must be), chaos by the largest Lyapunov exponent of :mod:`sawdrift.dynamics.lyapunov` (a chaotic
@@ -50,6 +57,22 @@ NO_STEADY_STATE = ("runaway", "ejected")
 
 #: Regimes in which contact is lost in the measurement window.
 CONTACT_LOST = ("hopping", "bouncing", "ejected")
+
+#: Regimes of a steady drift in permanent contact.
+DRIFTING = ("drift_with", "drift_against")
+
+
+def creep(regime: str, gross_slip_fraction: float) -> bool:
+    """True for a drift in permanent contact without gross slip (see the module docstring).
+
+    Parameters
+    ----------
+    regime
+        The regime named by :func:`classify`.
+    gross_slip_fraction
+        Fraction of the measuring window in gross slip; NaN (not measured) is not creep.
+    """
+    return bool(regime in DRIFTING and gross_slip_fraction == 0.0)
 
 
 def classify(

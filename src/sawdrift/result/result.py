@@ -37,6 +37,7 @@ SUMMARY_FIELDS = (
     "steps",
     "wall_time_s",
     "gross_slip_fraction",
+    "creep",
     "liftoffs_per_period",
     "hop_period",
     "liftoff_phase",
@@ -84,6 +85,8 @@ class Result:
     (contact loss, gross slip, lift-offs and their phases, the Lyapunov estimate, the events)
     comes from that same window; see :mod:`sawdrift.result.regimes`. ``version`` is the sawdrift
     version that computed it and ``scene`` the whole scene (provenance).
+    ``creep`` (a property) is true for a drift with no gross slip in the window
+    (:func:`sawdrift.result.regimes.creep`).
     """
 
     model: str
@@ -158,6 +161,13 @@ class Result:
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
     event_rows: np.ndarray | None = field(default=None, repr=False)
     extra: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    @property
+    def creep(self) -> bool:
+        """A drift in permanent contact with no gross slip in the window: partial slip alone."""
+        from .regimes import creep
+
+        return creep(self.regime, self.gross_slip_fraction)
 
     @property
     def events(self) -> pd.DataFrame | None:
