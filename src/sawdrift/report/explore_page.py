@@ -14,6 +14,7 @@ import html
 from typing import TYPE_CHECKING, Any
 
 from .diagrams import COLOURS
+from .marks import device_unit
 
 if TYPE_CHECKING:
     from bokeh.document import Document
@@ -143,8 +144,6 @@ def wrap_title(label: str, width: int = TITLE_CHARS) -> str:
 def _device_axes(fig: Any, xa: Any, ya: Any) -> None:
     """Engineering tick labels (with the unit) and fewer ticks on the device axes of ``fig``."""
     from bokeh.models import CustomJSTickFormatter
-
-    from .marks import device_unit
 
     for axis, spec in ((fig.xaxis, xa), (fig.yaxis, ya)):
         unit = device_unit(spec.column)

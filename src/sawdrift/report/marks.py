@@ -31,9 +31,11 @@ import pandas as pd
 from matplotlib.lines import Line2D
 from matplotlib.ticker import EngFormatter, LogLocator, MaxNLocator, NullFormatter
 
+from ..contact.registry import get_model
 from ..result.regimes import creep
 from ..scene.device import SHAPE_EXPONENT
 from ..scene.rayleigh import theta as theta_of_nu
+from ..study.axes import column_unit
 
 #: marker of a creep cell (an open circle at the cell's centre)
 CREEP_STYLE = {"marker": "o", "s": 18, "facecolors": "white", "edgecolors": "k", "linewidths": 0.8}
@@ -65,8 +67,6 @@ def _single(rows: pd.DataFrame, column: str) -> Any:
 
 def _compliant(model: object) -> bool:
     """Whether ``model`` is a registered compliant contact law (a rigid one has no resonance)."""
-    from ..contact.registry import get_model
-
     try:
         return not get_model(str(model)).capabilities.rigid
     except Exception:  # noqa: BLE001 - a model this installation does not know: draw nothing
@@ -153,10 +153,8 @@ def creep_handle() -> Line2D:
 
 def device_unit(column: str) -> str:
     """SI unit of a device column (``device.amplitude`` -> ``m``), else ``""``
-    (:data:`sawdrift.report.explore.DEVICE_UNITS`)."""
-    from .explore import DEVICE_UNITS  # explore imports the diagrams, which import this module
-
-    return DEVICE_UNITS.get(column.rsplit(".", 1)[-1], "") if column.startswith("device.") else ""
+    (:func:`sawdrift.study.axes.column_unit`)."""
+    return (column_unit(column) or "") if column.startswith("device.") else ""
 
 
 def format_device_axes(ax, x: str, y: str) -> None:

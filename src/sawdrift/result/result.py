@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .._version import __version__
+from .regimes import creep
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -165,8 +166,6 @@ class Result:
     @property
     def creep(self) -> bool:
         """A drift in permanent contact with no gross slip in the window: partial slip alone."""
-        from .regimes import creep
-
         return creep(self.regime, self.gross_slip_fraction)
 
     @property
