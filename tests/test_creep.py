@@ -47,3 +47,18 @@ def test_sweep_rows_carry_gross_slip_and_creep():
     ("stick", 0.0, False), ("bouncing", 0.0, False), ("drift_with", float("nan"), False)])
 def test_creep_is_drift_without_gross_slip(regime, slip, expect):
     assert creep(regime, slip) is expect
+
+
+def test_run_text_and_export_carry_creep():
+    """The run's text output names creep in its evidence, and an exported sweep keeps the flag."""
+    from typer.testing import CliRunner
+
+    from sawdrift.cli import app
+    from sawdrift.study.export import VARIABLES
+
+    out = CliRunner().invoke(app, ["run", "--model", "hertz_mindlin_dem", "--m-star", "10",
+                                   "--amplitude", "0.05", "--settle"])
+    assert out.exit_code == 0, out.output
+    line = next(ln for ln in out.output.splitlines() if ln.strip().startswith("creep"))
+    assert line.split()[-1] == "yes"
+    assert "creep" in VARIABLES

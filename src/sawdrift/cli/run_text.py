@@ -19,7 +19,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
     "drift": ("drift_speed_m_s", "drift_velocity", "drift_ratio", "drift_ratio_se", "t90_s",
               "load_n", "power_w", "rebound_ratio", "contact_duration", "max_compression", "dissipated_work"),
     "settled": ("settled", "settle_method", "settle_periods", "t90_periods", "horizontal_inertia"),
-    "evidence": ("out_of_contact_fraction", "min_compression", "gross_slip_fraction",
+    "evidence": ("out_of_contact_fraction", "min_compression", "gross_slip_fraction", "creep",
                  "liftoffs_per_period", "liftoff_phase", "liftoff_phase_spread", "lyapunov",
                  "periodicity", "spin_rate", "events_dropped"),
     "provenance": ("model", "engine", "version", "m_star", "amplitude", "mu", "nu",

@@ -34,7 +34,8 @@ from .axes import column_unit, long_name
 
 #: per-cell variables exported when present
 VARIABLES = (
-    "drift_ratio", "drift_velocity", "gross_slip_fraction", "liftoffs_per_period", "hop_period",
+    "drift_ratio", "drift_velocity", "gross_slip_fraction", "creep", "liftoffs_per_period",
+    "hop_period",
     "liftoff_phase", "liftoff_phase_spread", "lyapunov", "periodicity", "out_of_contact_fraction",
     "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s", "settled",
     "settle_periods", "events_dropped", "drift_speed_m_s", "a0_m", "load_N",
