@@ -7,13 +7,11 @@ import math
 from pathlib import Path
 from typing import Annotated, Any
 
-import numpy as np
 import typer
 
 import sawdrift as sd
 
 from .._startup import fast_start
-from ..mixture.segregation import purity
 from .app import _fail, _writable, app
 from .lammps import _scene_and_particles
 from .scene_options import with_scene_options
@@ -88,6 +86,7 @@ def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int
     """The first placement in LAMMPS for ``periods`` periods, against the slow model's run."""
     from ..lammps import refusal
     from ..lammps.many import parse_particles, run_particles
+    from ..mixture.segregation import purity as position_purity
 
     why = refusal(scene)
     if why is not None:
@@ -104,7 +103,7 @@ def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int
         rows.append({"radius_m": row["radius_m"], "lammps_drift_ratio": row["drift_ratio"],
                      "model_drift_ratio": model["drift_ratio"][k]})
     return {"periods": periods, "species": rows, "lammps_wall_time_s": lmp.wall_time_s,
-            "lammps_purity": purity(lmp.final_x, lmp.kinds), "model_purity": model["purity"],
+            "lammps_purity": position_purity(lmp.final_x, lmp.kinds), "model_purity": model["purity"],
             "model_wall_time_s": model["wall_time_s"],
             "lammps_touching_pairs": lmp.window_pairs, "model_chains": model["chains"]}
 
@@ -115,6 +114,7 @@ def _fmt(x: float | None, spec: str = ".3g") -> str:
 
 def _lines(data: dict[str, Any]) -> list[str]:
     """The text report of a sorting ensemble."""
+    import numpy as np  # kept out of the command line's start-up
     f = data["frequency_hz"]
     periods = data["periods"]
     seeds = data["seeds"]
