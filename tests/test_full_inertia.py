@@ -139,3 +139,14 @@ def test_an_irregular_cell_without_a_positive_exponent_reports_an_honest_long_ti
     ref = sd.run(scene("mmd", 0.031623, 0.112202, 0.1, settle=False, periods=20000,
                        measure_periods=18000))
     assert abs(res.drift_ratio - ref.drift_ratio) < 3.0 * res.drift_ratio_se * 2**0.5
+
+
+def test_a_heavy_bouncing_cell_that_does_not_settle_reports_its_long_time_mean():
+    """mmd, m* = 100, A* = 10 (out of contact 92 % of the time, no positive exponent): the
+    settling windows end unsettled; the drift reported is a long-time mean with a finite error,
+    near the 0.78 that a brute-force run approaches (0.63 over periods 22000-42000, 0.775 over
+    42000-84000, still rising)."""
+    res = sd.run(scene("mmd", 100.0, 10.0, 0.1))
+    assert res.settled is False and res.chaotic is False
+    assert 0.0 < res.drift_ratio_se < 0.01
+    assert 0.76 < res.drift_ratio < 0.80

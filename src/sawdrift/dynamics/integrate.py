@@ -132,6 +132,11 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                 # irregular without a positive exponent (quasi-periodic, intermittent): its drift
                 # is a long-time mean too, with its error
                 chaos = long_time_mean(stepper.twin(), win)
+    elif (not settling.settled and chaos is None and num.settle is not False
+          and win.contact_lost and not in_flight(win)):
+        # a settling run that ended unsettled on irregular lift-offs (heavy bouncing): the same
+        # long-time mean with its error
+        chaos = long_time_mean(stepper.twin(), win)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
