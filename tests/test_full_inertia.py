@@ -150,3 +150,16 @@ def test_a_heavy_bouncing_cell_that_does_not_settle_reports_its_long_time_mean()
     assert res.settled is False and res.chaotic is False
     assert 0.0 < res.drift_ratio_se < 0.01
     assert 0.76 < res.drift_ratio < 0.80
+
+
+@pytest.mark.slow
+def test_a_contact_kept_cell_that_beats_near_the_resonance_reports_a_long_time_mean():
+    """mmd, m* = 0.0316, A* = 0.0282 (in contact, next to the contact resonances): the windows
+    keep turning and never settle; the long-time mean and its error
+    agree with a 20000-period mean within 3 combined errors."""
+    m, a = 0.0316, 0.0282
+    res = sd.run(scene("mmd", m, a, 0.1))
+    assert res.settled is False and not res.contact_lost
+    assert 0.0 < res.drift_ratio_se < 0.01
+    ref = sd.run(scene("mmd", m, a, 0.1, settle=False, periods=20000, measure_periods=18000))
+    assert abs(res.drift_ratio - ref.drift_ratio) < 3.0 * res.drift_ratio_se * 2**0.5

@@ -128,14 +128,9 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
             # a default run that its own window could not confirm goes on to the steady drift (a
             # run given another length keeps it)
             win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
-            if not settling.settled and win.contact_lost and not in_flight(win):
-                # irregular without a positive exponent (quasi-periodic, intermittent): its drift
-                # is a long-time mean too, with its error
+            if _irregular(win, settling):
                 chaos = long_time_mean(stepper.twin(), win)
-    elif (not settling.settled and chaos is None and num.settle is not False
-          and win.contact_lost and not in_flight(win)):
-        # a settling run that ended unsettled on irregular lift-offs (heavy bouncing): the same
-        # long-time mean with its error
+    elif chaos is None and num.settle is not False and _irregular(win, settling):
         chaos = long_time_mean(stepper.twin(), win)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
@@ -165,6 +160,25 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
     if settle_on:
         return settle(stepper, scene, speed, scale, n_periods, n_max)
     return measure_window(stepper, n_periods, speed, scale), None
+
+
+def _irregular(win: Window, settling: Settling) -> bool:
+    """An unsettled run whose drift is a long-time mean with an error, like a chaotic one: no
+    positive exponent, but irregular lift-offs (quasi-periodic, intermittent; heavy bouncing), or
+    in contact with window means that wander (their last changes turn at least twice: a slow
+    beat of the undamped vertical mode against the wave, near the contact resonances). A
+    monotone approach cut off by its cap stays unsettled: its mean would not be the steady one."""
+    if settling.settled or in_flight(win):
+        return False
+    if win.contact_lost:
+        return True
+    changes = np.diff(np.asarray(settling.history[-7:], dtype=float))
+    turns = int(np.sum(changes[1:] * changes[:-1] < 0.0)) if changes.size >= 2 else 0
+    return turns >= WANDER_TURNS
+
+
+#: sign changes among the last six window changes that make a contact-kept run wander
+WANDER_TURNS = 2
 
 
 def _leaving(scene: Scene, win: Window, speed: float) -> bool:

@@ -55,9 +55,9 @@ def resolved_as(row: dict[str, Any]) -> str:
 
     ``periodic_orbit`` (settled, the state repeats after ``orbit_period`` periods),
     ``fixed_point`` (settled otherwise: a steady drift or sticking), ``chaotic_mean`` (a chaotic
-    window's long-time mean with its standard error), ``long_time_mean`` (the same for an
-    irregular motion that lost contact, found no orbit and did not settle, without a positive
-    Lyapunov exponent), ``runaway`` or ``ejected`` (no steady
+    window's long-time mean with its standard error), ``long_time_mean`` (the same for a
+    motion without a positive Lyapunov exponent that did not settle and is irregular: lift-offs
+    that find no orbit, or window means that wander in contact), ``runaway`` or ``ejected`` (no steady
     state, named), else ``not_settled`` (the run ended before its drift had settled: a slow
     approach, or a regular motion that found no periodic orbit within its budget).
     """
