@@ -148,10 +148,16 @@ def gives_normal(step: Any) -> Any:
 
     N* must be the normal slot's N*(a*) bit for bit; the slots then skip evaluating the law.
     """
-    step.gives_normal = True
+    return _mark(step, "gives_normal")
+
+
+def _mark(step: Any, name: str) -> Any:
+    """Set the flag ``name`` on ``step`` and on its plain-Python function (a compiled step's
+    ``py_func``, which the python engine calls); returns ``step``."""
+    setattr(step, name, True)
     py = getattr(step, "py_func", None)
     if py is not None:
-        py.gives_normal = True
+        setattr(py, name, True)
     return step
 
 
@@ -169,11 +175,7 @@ def takes_normal(step: Any) -> Any:
     """
     if _gives_normal(step):
         raise ValueError("a tangential step cannot both give N* (gives_normal) and take it")
-    step.takes_normal = True
-    py = getattr(step, "py_func", None)
-    if py is not None:
-        py.takes_normal = True
-    return step
+    return _mark(step, "takes_normal")
 
 
 def _takes_normal(step: Any) -> bool:
