@@ -112,8 +112,16 @@ def _regime_class(regime: str) -> str:
 
 
 def test_material_point_diagram_matches_analytic_thresholds():
+    """Away from the analytic boundaries every cell of the 21 x 21 map has the predicted regime.
+
+    Fixed runs of 20 periods (``settle = false``): the classes compared are stick, drift_against
+    and contact lost, which the first 20 periods decide. Settling (the default) ran the heavy
+    bouncing cells (m* >= 3) on to 5e4 periods: all 441 cells had the same class either way,
+    measured, for 57 s of CPU against 4 s.
+    """
     n = 21
-    frame = sd.sweep("material_point", f"1e-3:1e2:{n}", f"1e-2:10:{n}", base=BASE, progress=False,
+    fixed = sd.Scene(numerics={"periods": 20, "settle": False})
+    frame = sd.sweep("material_point", f"1e-3:1e2:{n}", f"1e-2:10:{n}", base=fixed, progress=False,
                      workers=1)
     r = sd.rayleigh_ratio(0.3)
     masses = np.sort(frame.m_star.unique())
