@@ -146,16 +146,19 @@ def test_prescribed_history_from_a_scene_file(tmp_path):
 @pytest.mark.slow
 def test_an_axis_sweeps_over_the_default_plane(tmp_path):
     # README: `sweep --axis effects.rotation=false,true` compares rotation off and on over the
-    # (m*, A*) plane; the axis multiplies the default 11 x 11 plane instead of replacing it
+    # (m*, A*) plane; the axis multiplies the default 11 x 11 plane instead of replacing it.
+    # What is checked is the shape of the table, so the runs are short fixed ones (5 periods,
+    # --no-settle): the default 60 periods, settled, spent ~20 s of CPU on the heavy cells
+    short = ("--periods", "5", "--no-settle")
     out = tmp_path / "rot.parquet"
-    cli("sweep", "--model", "material_point", "--axis", "effects.rotation=false,true",
+    cli("sweep", "--model", "material_point", "--axis", "effects.rotation=false,true", *short,
         "--workers", "1", "--no-progress", "-o", str(out), check=True)
     frame = pd.read_parquet(out)
     assert len(frame) == 2 * 11 * 11
     assert frame["m_star"].nunique() == 11 and frame["amplitude"].nunique() == 11
     # an axis over m* replaces the default m* axis only
     out2 = tmp_path / "mu.parquet"
-    cli("sweep", "--model", "material_point", "--axis", "particle.m_star=0.1,1",
+    cli("sweep", "--model", "material_point", "--axis", "particle.m_star=0.1,1", *short,
         "--amplitude", "0.1,1,2", "--workers", "1", "--no-progress", "-o", str(out2), check=True)
     assert len(pd.read_parquet(out2)) == 2 * 3
 
