@@ -147,7 +147,11 @@ def test_material_point_diagram_matches_analytic_thresholds():
 
 
 def test_mmd_diagram_shows_all_four_regimes():
-    frame = sd.sweep("mmd", "1e-3:1e2:21", "1e-2:10:21", base=BASE, progress=False)
+    """An 11 x 11 map of fixed 20-period runs holds all four (measured: 50 stick, 22 drift_with,
+    8 drift_against, 41 lost); the 21 x 21 map with settling (heavy cells run on to 5e4 periods)
+    took 15.7 s of CPU for the same fact, this one 0.7 s."""
+    fixed = sd.Scene(model="mmd", numerics={"periods": 20, "settle": False})
+    frame = sd.sweep("mmd", "1e-3:1e2:11", "1e-2:10:11", base=fixed, progress=False)
     found = {_regime_class(g) for g in frame.regime}
     assert {"stick", "drift_with", "drift_against", "lost"} <= found
 
