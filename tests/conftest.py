@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 
 import pytest
 
@@ -28,6 +30,32 @@ def chromium() -> tuple[str, str]:
         pytest.skip(f"{NO_CHROMIUM} ({', '.join(missing)}): .ci/run installs it "
                     "(apt-get install chromium chromium-driver)")
     return CHROMIUM, CHROMEDRIVER
+
+
+@pytest.fixture
+def sawdrift_main(monkeypatch, capsys):
+    """``sawdrift ARGS`` run in this process: the console entry point
+    (:func:`sawdrift.cli.main`) with ``sys.argv`` set, as tests/test_cli_errors.py runs it.
+
+    Returns a function of the arguments giving a ``CompletedProcess`` (returncode, stdout,
+    stderr), like ``subprocess.run(..., capture_output=True, text=True)``. For the paths that
+    end in an error before any run: they then cost milliseconds instead of a new process's
+    1-2 s of start-up (imports, the unit registry, numba's cache). An exception that escapes
+    ``main`` (which a process would print as a traceback) fails the test.
+    """
+    from sawdrift.cli import main
+
+    def call(*args: str) -> subprocess.CompletedProcess:
+        monkeypatch.setattr(sys, "argv", ["sawdrift", *map(str, args)])
+        capsys.readouterr()
+        with pytest.raises(SystemExit) as exc:
+            main()
+        out = capsys.readouterr()
+        code = exc.value.code
+        return subprocess.CompletedProcess(["sawdrift", *args], 0 if code is None else code,
+                                           out.out, out.err)
+
+    return call
 
 
 def _skip_reason(report: pytest.TestReport) -> str:

@@ -80,27 +80,27 @@ def test_run_writes_parquet_and_png(tmp_path):
         (("--m-star", "abc"), "m-star"),
     ],
 )
-def test_bad_input_is_one_line_and_exit_2(args, needle):
-    out = cli("run", "--model", "material_point", *args) if "--model" not in args else cli(
-        "run", *args)
+def test_bad_input_is_one_line_and_exit_2(args, needle, sawdrift_main):
+    # in this process (tests/conftest.py): the error comes before any run
+    out = sawdrift_main("run", *(() if "--model" in args else ("--model", "material_point")), *args)
     assert out.returncode == 2
     err = [line for line in out.stderr.splitlines() if line.startswith("error")]
     assert len(err) == 1 and needle in err[0]
     assert "Traceback" not in out.stderr
 
 
-def test_malformed_scene_file(tmp_path):
+def test_malformed_scene_file(tmp_path, sawdrift_main):
     path = tmp_path / "scene.toml"
     path.write_text("model = 'material_point'\n[particle\n")
-    out = cli("run", str(path))
+    out = sawdrift_main("run", str(path))
     assert out.returncode == 2
     assert "malformed TOML" in out.stderr and "Traceback" not in out.stderr
 
 
-def test_scene_file_with_bad_value(tmp_path):
+def test_scene_file_with_bad_value(tmp_path, sawdrift_main):
     path = tmp_path / "scene.toml"
     path.write_text("model = 'material_point'\n[material]\nnu = 0.7\n")
-    out = cli("run", str(path))
+    out = sawdrift_main("run", str(path))
     assert out.returncode == 2
     assert "material.nu = 0.7 is outside the allowed range (-1, 0.5)" in out.stderr
 
@@ -124,8 +124,8 @@ def test_every_model_runs_the_wave_scene(model, params):
     assert row["steps"] == api.steps and row["gross_slip_fraction"] == api.gross_slip_fraction
 
 
-def test_bad_model_parameter_is_one_line():
-    out = cli("run", "--model", "mdr", "--param", "strips=1")
+def test_bad_model_parameter_is_one_line(sawdrift_main):
+    out = sawdrift_main("run", "--model", "mdr", "--param", "strips=1")
     assert out.returncode == 2 and "strips" in out.stderr and "Traceback" not in out.stderr
 
 
