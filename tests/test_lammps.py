@@ -330,7 +330,7 @@ def test_touching_pair_moves_together_or_parts():
 
 
 @needs_lammps
-def test_run_engine_lammps_gives_the_native_columns():
+def test_run_engine_lammps_gives_the_native_columns(sawdrift_main):
     args = ("run", "--model", "hertz_mindlin_dem", "--m-star", "0.1", "--periods", "12",
             "--steps-per-period", "256", "--json")
     lam, nat = cli(*args, "--engine", "lammps"), cli(*args)
@@ -339,7 +339,7 @@ def test_run_engine_lammps_gives_the_native_columns():
     assert a["engine"] == "lammps" and set(b) <= set(a)
     assert a["regime"] == b["regime"]
     assert a["drift_ratio"] == pytest.approx(b["drift_ratio"], rel=1e-2)
-    refused = cli("run", "--engine", "lammps", "--model", "jaeger")
+    refused = sawdrift_main("run", "--engine", "lammps", "--model", "jaeger")  # in this process
     assert refused.returncode == 2 and refused.stderr.startswith("error: model = 'jaeger'")
 
 
