@@ -21,11 +21,22 @@ def test_adaptive_point_diagram_equals_the_uniform_one_with_fewer_cells(tmp_path
     nodes. Measured: 466 points computed (43 % of the grid), 6 of 1089 nodes wrong (0.55 %).
     Those 6 lie on one-cell-wide bands of exact periodic orbits (hop periods 3 to 22, found since
     orbits settle on their own period) inside the bouncing region, which no coarser node touches;
-    with hop periods up to 4 only (the old classification) the map had none and 0 were wrong."""
+    with hop periods up to 4 only (the old classification) the map had none and 0 were wrong.
+
+    The adaptive points are nodes of the uniform grid, so the uniform sweep resumes the adaptive
+    sweep's table and runs only the other nodes (a cell's run is deterministic, so a node run
+    once is the node run twice): 1089 runs instead of 1555."""
+    table = tmp_path / "a.parquet"
     pts = adaptive_sweep("material_point", (1e-3, 1e2), (1e-2, 10.0), budget=700, base=9,
-                         levels=2, scene=BASE, workers=1, table=tmp_path / "a.parquet")
-    uniform = sd.sweep(["material_point"], "1e-3:1e2:33", "1e-2:10:33", base=BASE, workers=1,
-                       progress=False)
+                         levels=2, scene=BASE, workers=1, table=table)
+    computed_nodes = len(pd.read_parquet(table))
+    # the 33 x 33 nodes exactly as the adaptive sweep spaces them (10 ** linspace of the logs)
+    ms = [10.0 ** x for x in np.linspace(math.log10(1e-3), math.log10(1e2), 33)]
+    amps = [10.0 ** y for y in np.linspace(math.log10(1e-2), math.log10(10.0), 33)]
+    ran = []
+    uniform = sd.sweep(["material_point"], points=[(m, a) for m in ms for a in amps], base=BASE,
+                       workers=1, progress=False, table=table, on_row=ran.append)
+    assert len(uniform) == 33 * 33 and len(ran) == len(uniform) - computed_nodes
     assert pts.attrs["computed"] < 700, "the refinement must end before the budget"
     assert pts.attrs["computed"] <= 0.45 * len(uniform)
     assert misclassified_area(pts, uniform) <= 0.006
@@ -56,10 +67,23 @@ def _wrong_nodes(pts: pd.DataFrame, uniform: pd.DataFrame) -> tuple[pd.DataFrame
     return uniform[wrong], got[wrong]
 
 
-def test_the_table_holds_the_computed_points_and_the_frame_says_which_are_inferred(tmp_path):
-    table = tmp_path / "a.parquet"
-    pts = adaptive_sweep("material_point", (1e-3, 1e2), (1e-2, 10.0), budget=150, base=5,
-                         levels=2, scene=BASE, workers=1, table=table)
+#: fixed runs for the tests of the table and the engine: what they check (which rows the table
+#: and the frame hold, that a rerun computes nothing, which engine ran) does not depend on how
+#: long a cell runs, and settling (the default) ran the heavy cells on for 5e4 periods
+FIXED = sd.Scene(numerics={"periods": 30, "settle": False})
+
+
+@pytest.fixture(scope="module")
+def small_adaptive(tmp_path_factory):
+    """One adaptive sweep (9 x 9 fine grid from a 5 x 5 base, budget 150) with its table, shared
+    by the table and resume tests: the pair took 29 s of wall time, ~3 s now (one quiet core)."""
+    table = tmp_path_factory.mktemp("adaptive") / "a.parquet"
+    kw = dict(budget=150, base=5, levels=2, scene=FIXED, workers=1, table=table)
+    return table, kw, adaptive_sweep("material_point", (1e-3, 1e2), (1e-2, 10.0), **kw)
+
+
+def test_the_table_holds_the_computed_points_and_the_frame_says_which_are_inferred(small_adaptive):
+    table, _, pts = small_adaptive
     stored = pd.read_parquet(table)
     computed = pts[~pts["inferred"]]
     assert pts.attrs["computed"] == len(computed) == len(stored) > 25
@@ -68,10 +92,8 @@ def test_the_table_holds_the_computed_points_and_the_frame_says_which_are_inferr
     assert pts.loc[pts["inferred"], "cell_id"].isna().all()
 
 
-def test_adaptive_sweep_resumes_without_recomputing(tmp_path):
-    table = tmp_path / "a.parquet"
-    kw = dict(budget=150, base=5, levels=2, scene=BASE, workers=1, table=table)
-    first = adaptive_sweep("material_point", (1e-3, 1e2), (1e-2, 10.0), **kw)
+def test_adaptive_sweep_resumes_without_recomputing(small_adaptive):
+    _, kw, first = small_adaptive
     computed = []
     again = adaptive_sweep("material_point", (1e-3, 1e2), (1e-2, 10.0), on_row=computed.append, **kw)
     assert computed == [] and len(again) == len(first)
@@ -79,8 +101,11 @@ def test_adaptive_sweep_resumes_without_recomputing(tmp_path):
 
 
 def test_adaptive_sweep_runs_the_engine_it_is_given():
+    """Nine cells on the python engine: two fixed periods each show which engine ran (the
+    python engine is ~100x slower than the compiled one; 10 settled periods took 9 s)."""
     pts = adaptive_sweep("material_point", (1e-2, 1.0), (0.1, 1.0), budget=9, base=3, levels=1,
-                         scene=sd.Scene(numerics={"periods": 10}), workers=1, engine="python")
+                         scene=sd.Scene(numerics={"periods": 2, "settle": False}), workers=1,
+                         engine="python")
     assert set(pts.loc[~pts["inferred"], "engine"]) == {"python"}
 
 

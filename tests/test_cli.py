@@ -80,27 +80,27 @@ def test_run_writes_parquet_and_png(tmp_path):
         (("--m-star", "abc"), "m-star"),
     ],
 )
-def test_bad_input_is_one_line_and_exit_2(args, needle):
-    out = cli("run", "--model", "material_point", *args) if "--model" not in args else cli(
-        "run", *args)
+def test_bad_input_is_one_line_and_exit_2(args, needle, sawdrift_main):
+    # in this process (tests/conftest.py): the error comes before any run
+    out = sawdrift_main("run", *(() if "--model" in args else ("--model", "material_point")), *args)
     assert out.returncode == 2
     err = [line for line in out.stderr.splitlines() if line.startswith("error")]
     assert len(err) == 1 and needle in err[0]
     assert "Traceback" not in out.stderr
 
 
-def test_malformed_scene_file(tmp_path):
+def test_malformed_scene_file(tmp_path, sawdrift_main):
     path = tmp_path / "scene.toml"
     path.write_text("model = 'material_point'\n[particle\n")
-    out = cli("run", str(path))
+    out = sawdrift_main("run", str(path))
     assert out.returncode == 2
     assert "malformed TOML" in out.stderr and "Traceback" not in out.stderr
 
 
-def test_scene_file_with_bad_value(tmp_path):
+def test_scene_file_with_bad_value(tmp_path, sawdrift_main):
     path = tmp_path / "scene.toml"
     path.write_text("model = 'material_point'\n[material]\nnu = 0.7\n")
-    out = cli("run", str(path))
+    out = sawdrift_main("run", str(path))
     assert out.returncode == 2
     assert "material.nu = 0.7 is outside the allowed range (-1, 0.5)" in out.stderr
 
@@ -124,8 +124,8 @@ def test_every_model_runs_the_wave_scene(model, params):
     assert row["steps"] == api.steps and row["gross_slip_fraction"] == api.gross_slip_fraction
 
 
-def test_bad_model_parameter_is_one_line():
-    out = cli("run", "--model", "mdr", "--param", "strips=1")
+def test_bad_model_parameter_is_one_line(sawdrift_main):
+    out = sawdrift_main("run", "--model", "mdr", "--param", "strips=1")
     assert out.returncode == 2 and "strips" in out.stderr and "Traceback" not in out.stderr
 
 
@@ -146,16 +146,19 @@ def test_prescribed_history_from_a_scene_file(tmp_path):
 @pytest.mark.slow
 def test_an_axis_sweeps_over_the_default_plane(tmp_path):
     # README: `sweep --axis effects.rotation=false,true` compares rotation off and on over the
-    # (m*, A*) plane; the axis multiplies the default 11 x 11 plane instead of replacing it
+    # (m*, A*) plane; the axis multiplies the default 11 x 11 plane instead of replacing it.
+    # What is checked is the shape of the table, so the runs are short fixed ones (5 periods,
+    # --no-settle): the default 60 periods, settled, spent ~20 s of CPU on the heavy cells
+    short = ("--periods", "5", "--no-settle")
     out = tmp_path / "rot.parquet"
-    cli("sweep", "--model", "material_point", "--axis", "effects.rotation=false,true",
+    cli("sweep", "--model", "material_point", "--axis", "effects.rotation=false,true", *short,
         "--workers", "1", "--no-progress", "-o", str(out), check=True)
     frame = pd.read_parquet(out)
     assert len(frame) == 2 * 11 * 11
     assert frame["m_star"].nunique() == 11 and frame["amplitude"].nunique() == 11
     # an axis over m* replaces the default m* axis only
     out2 = tmp_path / "mu.parquet"
-    cli("sweep", "--model", "material_point", "--axis", "particle.m_star=0.1,1",
+    cli("sweep", "--model", "material_point", "--axis", "particle.m_star=0.1,1", *short,
         "--amplitude", "0.1,1,2", "--workers", "1", "--no-progress", "-o", str(out2), check=True)
     assert len(pd.read_parquet(out2)) == 2 * 3
 
@@ -189,11 +192,13 @@ def test_every_scene_field_reaches_the_scene_from_run_and_sweep(tmp_path):
 
 @pytest.mark.slow
 def test_adaptive_sweep_reports_what_it_wrote(tmp_path):
-    # the count printed for the table is the count of rows in it (inferred points are extra)
+    # the count printed for the table is the count of rows in it (inferred points are extra);
+    # a count, so the cells are short fixed runs (5 periods, --no-settle: the default settled
+    # runs spent 15.6 s of CPU on the heavy cells)
     table = tmp_path / "ad.parquet"
     proc = cli("sweep", "--model", "material_point", "--adaptive", "--budget", "120", "--m-star",
                "1e-3:1e2:9", "--amplitude", "1e-2:10:9", "--levels", "1", "--no-progress",
-               "-o", str(table), check=True)
+               "--periods", "5", "--no-settle", "-o", str(table), check=True)
     line = proc.stdout.strip().splitlines()[-1]
     computed = int(line.split("(")[1].split(" cells computed")[0])
     assert computed == len(pd.read_parquet(table))

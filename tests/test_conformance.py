@@ -98,10 +98,10 @@ def test_builtin_models_pass_or_declare_on_every_declared_profile(name):
     assert skipped == ({"velocity_independence"} if cls.capabilities.uses_velocity else set())
 
 
-def test_rigid_model_checks_are_skipped_and_bad_input_is_one_line():
+def test_rigid_model_checks_are_skipped_and_bad_input_is_one_line(sawdrift_main):
     res = check_model("material_point")
     assert {c.status for c in res.checks} == {"skipped"} and res.passed
-    bad = _cli("mmd", "--param", "max_memory_points=3")
+    bad = sawdrift_main("check-model", "mmd", "--param", "max_memory_points=3")  # in this process
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1
     assert "model_params.max_memory_points" in bad.stderr
 

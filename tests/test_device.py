@@ -120,7 +120,7 @@ def test_sweep_over_a_device_field_with_units():
         ('youngs_modulus = None', "youngs_modulus is required: a pressure in Pa"),
     ],
 )
-def test_wrong_units_are_one_line_errors(tmp_path, edit, needle):
+def test_wrong_units_are_one_line_errors(tmp_path, edit, needle, sawdrift_main):
     key = edit.split(" = ")[0]
     lines = []
     done = False
@@ -133,7 +133,7 @@ def test_wrong_units_are_one_line_errors(tmp_path, edit, needle):
         lines.append(line)
     path = tmp_path / "bad.toml"
     path.write_text("\n".join(lines) + "\n")
-    out = _cli("run", str(path), "--json")
+    out = sawdrift_main("run", str(path), "--json")  # in this process: the error comes first
     assert out.returncode == 2
     err = out.stderr.strip().splitlines()
     assert len(err) == 1 and needle in err[0], err
@@ -180,8 +180,8 @@ def test_a_derived_field_on_a_device_scene_is_an_error_naming_the_device_field(f
 @pytest.mark.parametrize("option, value, device_field", [
     ("--m-star", "5", "device.particle"), ("--mu", "0.3", "device.friction"),
     ("--amplitude", "1", "device.amplitude"), ("--orbit", "prograde", "device.orbit")])
-def test_cli_values_on_a_device_scene_fail_in_one_line(option, value, device_field):
-    out = _cli("run", str(MOTOR), option, value, "--json")
+def test_cli_values_on_a_device_scene_fail_in_one_line(option, value, device_field, sawdrift_main):
+    out = sawdrift_main("run", str(MOTOR), option, value, "--json")  # in this process
     assert out.returncode == 2, out.stdout[:200]
     err = out.stderr.strip().splitlines()
     assert len(err) == 1 and device_field in err[0] and "derives" in err[0], err
@@ -315,11 +315,11 @@ def test_the_wave_bounds_use_the_devices_own_wavelength():
         build_scene(_motor_with(amplitude="0.1 mm", substrate=sub))
 
 
-def test_cli_refuses_a_unitless_amplitude_at_once(tmp_path):
+def test_cli_refuses_a_unitless_amplitude_at_once(tmp_path, sawdrift_main):
     text = MOTOR.read_text().replace('amplitude = "10 nm"', "amplitude = 10")
     (tmp_path / "bad.toml").write_text(text)
     for cmd in (["run"], ["load-curve", "-o", str(tmp_path / "lc")]):
-        out = _cli(*cmd, str(tmp_path / "bad.toml"))
+        out = sawdrift_main(*cmd, str(tmp_path / "bad.toml"))  # in this process
         assert out.returncode == 2, out.stderr
         lines = out.stderr.strip().splitlines()
         assert len(lines) == 1 and "device.amplitude = 10 m" in lines[0]

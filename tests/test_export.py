@@ -47,9 +47,8 @@ def test_export_of_a_3x3_sweep_has_the_axes_and_cf_flags(table, tmp_path):
     assert json.loads(ds.attrs["base_scene"])["numerics"]["periods"] == 20
 
 
-def test_export_refuses_a_bad_output_and_a_table_without_axes(table, tmp_path):
-    bad = subprocess.run([sys.executable, "-m", "sawdrift", "export", str(table), "-o",
-                          str(tmp_path / "g.csv")], capture_output=True, text=True)
+def test_export_refuses_a_bad_output_and_a_table_without_axes(table, tmp_path, sawdrift_main):
+    bad = sawdrift_main("export", str(table), "-o", str(tmp_path / "g.csv"))  # in this process
     assert bad.returncode == 2 and "must end in .nc or .zarr" in bad.stderr
     one = tmp_path / "one.parquet"
     sd.sweep(["mmd"], "0.1", "0.3", base=sd.Scene(numerics={"periods": 10}), table=one, workers=1,

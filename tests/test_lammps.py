@@ -98,8 +98,8 @@ def test_scenes_without_an_equivalent_are_refused(fields, needle):
     assert needle in refusal(sd.Scene.model_validate(data))
 
 
-def test_cli_refuses_another_model_in_one_line():
-    out = cli("lammps", "--model", "mmd")
+def test_cli_refuses_another_model_in_one_line(sawdrift_main):
+    out = sawdrift_main("lammps", "--model", "mmd")  # in this process: refused before any run
     assert out.returncode == 2
     assert out.stderr.count("\n") == 1 and out.stderr.startswith("error: model = 'mmd'")
     assert "hertz_mindlin_dem" in out.stderr
@@ -131,11 +131,11 @@ def test_bad_particles_table_is_one_line(table, needle):
     assert needle in str(info.value) and "\n" not in str(info.value), str(info.value)
 
 
-def test_cli_bad_particles_table_is_one_line_exit_2(tmp_path):
+def test_cli_bad_particles_table_is_one_line_exit_2(tmp_path, sawdrift_main):
     path = tmp_path / "mix.toml"
     path.write_text('model = "hertz_mindlin_dem"\n[particles]\ncount = 10\nradius = "1 mm"\n'
                     'packing = "hexagonal"\n')
-    out = cli("lammps", str(path), "--no-progress")
+    out = sawdrift_main("lammps", str(path), "--no-progress")  # in this process
     assert out.returncode == 2, out.stderr
     assert out.stderr.count("\n") == 1 and out.stderr.startswith("error: particles.packing"), out.stderr
 
@@ -330,7 +330,7 @@ def test_touching_pair_moves_together_or_parts():
 
 
 @needs_lammps
-def test_run_engine_lammps_gives_the_native_columns():
+def test_run_engine_lammps_gives_the_native_columns(sawdrift_main):
     args = ("run", "--model", "hertz_mindlin_dem", "--m-star", "0.1", "--periods", "12",
             "--steps-per-period", "256", "--json")
     lam, nat = cli(*args, "--engine", "lammps"), cli(*args)
@@ -339,7 +339,7 @@ def test_run_engine_lammps_gives_the_native_columns():
     assert a["engine"] == "lammps" and set(b) <= set(a)
     assert a["regime"] == b["regime"]
     assert a["drift_ratio"] == pytest.approx(b["drift_ratio"], rel=1e-2)
-    refused = cli("run", "--engine", "lammps", "--model", "jaeger")
+    refused = sawdrift_main("run", "--engine", "lammps", "--model", "jaeger")  # in this process
     assert refused.returncode == 2 and refused.stderr.startswith("error: model = 'jaeger'")
 
 

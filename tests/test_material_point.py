@@ -86,7 +86,11 @@ def test_depends_on_m_star_times_amplitude_only(m_star, gz):
     assert b.drift_ratio == pytest.approx(a.drift_ratio, rel=1e-9, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_never_drifts_with_the_wave_on_a_grid():
+    """Settled runs (the default: heavy cells run on to 5e4 periods), 15 s of CPU: the quick loop
+    checks the same fact on fixed runs of a finer grid, in
+    tests/test_sweep.py::test_material_point_diagram_matches_analytic_thresholds."""
     regimes = set()
     for m_star in np.logspace(-3, 2, 10):
         for amp in np.logspace(-2, 1, 10):
