@@ -17,11 +17,14 @@ BASE = sd.Scene(numerics={"periods": 30})
 @pytest.mark.slow
 def test_adaptive_point_diagram_equals_the_uniform_one_with_fewer_cells(tmp_path):
     """Every region of the material point's diagram holds base points and the refinement ends
-    within the budget, so the adaptive map equals the uniform 33 x 33 one at all but a few
-    nodes. Measured: 466 points computed (43 % of the grid), 6 of 1089 nodes wrong (0.55 %).
-    Those 6 lie on one-cell-wide bands of exact periodic orbits (hop periods 3 to 22, found since
-    orbits settle on their own period) inside the bouncing region, which no coarser node touches;
-    with hop periods up to 4 only (the old classification) the map had none and 0 were wrong.
+    within the budget, so the adaptive map equals the uniform 33 x 33 one except on periodic
+    windows one grid cell wide: exact orbits (hop periods 8 to 17) inside the bouncing region,
+    which no coarser node touches and which refinement therefore cannot find. Every wrong node
+    must be such a window (its two neighbours along m* or along A* on the uniform grid hold
+    another motion), or a bouncing node beside one that the adaptive map widens; and the
+    adaptive map may miss no more nodes than the uniform map has on one-cell windows. Measured
+    on 2026-11-27: 12 of 1089 nodes wrong, all on such windows (6 before unsettled irregular
+    cells reported long-time means and more heavy cells settled on their exact orbits).
 
     The adaptive points are nodes of the uniform grid, so the uniform sweep resumes the adaptive
     sweep's table and runs only the other nodes (a cell's run is deterministic, so a node run
@@ -39,12 +42,16 @@ def test_adaptive_point_diagram_equals_the_uniform_one_with_fewer_cells(tmp_path
     assert len(uniform) == 33 * 33 and len(ran) == len(uniform) - computed_nodes
     assert pts.attrs["computed"] < 700, "the refinement must end before the budget"
     assert pts.attrs["computed"] <= 0.45 * len(uniform)
-    assert misclassified_area(pts, uniform) <= 0.006
     wrong, adaptive = _wrong_nodes(pts, uniform)
-    # every wrong node is on a thin periodic window: a hop of period >= 3 in the uniform map
-    # that the adaptive one misses, or bouncing beside one that the adaptive map widens
-    band = (wrong["hop_period"].to_numpy() >= 3) | (adaptive == "hopping")
-    assert len(wrong) <= 6 and band.all(), wrong[["m_star", "amplitude", "regime", "hop_period"]]
+    # every wrong node is on a thin periodic window: a hop of period >= 3 in the uniform map,
+    # one cell wide, that the adaptive one misses, or bouncing beside one that it widens
+    thin = _one_cell_windows(uniform)
+    key = list(zip(wrong["m_star"], wrong["amplitude"], strict=True))
+    missed = np.array([k in thin for k in key]) & (wrong["hop_period"].to_numpy() >= 3)
+    widened = (adaptive == "hopping") & (wrong["regime"].to_numpy() == "bouncing")
+    assert (missed | widened).all(), wrong[["m_star", "amplitude", "regime", "hop_period"]]
+    assert len(wrong) <= len(thin) + int(widened.sum())
+    assert misclassified_area(pts, uniform) <= (len(thin) + int(widened.sum())) / len(uniform)
     # the refined points crowd the contact-loss boundary Gz = 4 pi^2 m* A* = 1 (closed form):
     # far more of them lie within a quarter decade of it than on the uniform grid
     def near(frame):
@@ -52,6 +59,25 @@ def test_adaptive_point_diagram_equals_the_uniform_one_with_fewer_cells(tmp_path
         return float(np.mean(np.abs(np.log10(gz)) < 0.25))
 
     assert near(pts[~pts["inferred"]]) > 1.3 * near(uniform)
+
+
+def _one_cell_windows(uniform: pd.DataFrame) -> set[tuple[float, float]]:
+    """(m*, A*) of the uniform-grid nodes on an exact orbit (hop period >= 3) whose two
+    neighbours along m* or along A* both hold another motion (regime or hop period)."""
+    m_values = np.sort(uniform["m_star"].unique())
+    a_values = np.sort(uniform["amplitude"].unique())
+    grid = {(r.m_star, r.amplitude): (r.regime, r.hop_period) for r in uniform.itertuples()}
+    out = set()
+    for (m, a), motion in grid.items():
+        if motion[0] != "hopping" or motion[1] < 3:
+            continue
+        i, j = int(np.searchsorted(m_values, m)), int(np.searchsorted(a_values, a))
+        for di, dj in ((1, 0), (0, 1)):
+            ends = [(i - di, j - dj), (i + di, j + dj)]
+            if all(0 <= p < len(m_values) and 0 <= q < len(a_values)
+                   and grid[(m_values[p], a_values[q])] != motion for p, q in ends):
+                out.add((m, a))
+    return out
 
 
 def _wrong_nodes(pts: pd.DataFrame, uniform: pd.DataFrame) -> tuple[pd.DataFrame, np.ndarray]:
