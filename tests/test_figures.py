@@ -328,3 +328,15 @@ def test_a_table_that_turns_without_a_rotation_column_is_read_from_its_spin(tmp_
     lines = sorted(_flat_lines(figures[-1].axes[0]))
     assert lines == pytest.approx([1.5 / (4 * math.pi**2), 3.5 * 1.5 / (4 * math.pi**2 * theta)],
                                   rel=1e-12)
+
+
+def test_fig2_names_a_long_time_mean_and_its_error():
+    """A chaotic panel's drift is the long-time mean with its batch-means error, and its heading
+    says so with that error (not 'the mean of its last window')."""
+    import sawdrift as sd
+    from sawdrift.report.fig2 import verdict
+
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.01}, drive={"amplitude": 5.0},
+                          numerics={"settle": True}))
+    assert res.settled is False and res.drift_ratio_se > 0.0
+    assert f"long-time mean +- {res.drift_ratio_se:.3f}" in verdict(res)

@@ -45,12 +45,14 @@ def hatch_note(unsettled: int, total: int) -> str:
 
     One meaning in every figure: the cell's ``settled`` is false. Its run reached neither a fixed
     point nor a periodic orbit within its cap: a slow approach, a motion that never repeats
-    (quasi-periodic, or irregular bouncing), so its drift is the mean of its last window. The
-    colour under the hatching is still the cell's regime, whatever it is.
+    (quasi-periodic, or irregular bouncing), so its drift is a long-time mean with its error
+    where the motion is irregular, else the mean of its last window. The colour under the
+    hatching is still the cell's regime, whatever it is.
     """
     return (f"{unsettled} of {total} did not within their cap (hatched, in every figure: "
-            f"{HATCH_LABEL}; the colour under it is still the cell's regime, and its drift the "
-            "mean of its last window)")
+            f"{HATCH_LABEL}; the colour under it is still the cell's regime, and its drift a "
+            "long-time mean with its error where the motion is irregular, else the mean of its "
+            "last window)")
 
 
 def demo(out: Path, n: int = 21, workers: int | None = None,

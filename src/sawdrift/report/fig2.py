@@ -50,6 +50,8 @@ def verdict(res: Result) -> str:
     """How the panel's drift was reached: settled after n periods, or why it is not steady."""
     if res.settled:
         return f", settled after {res.settle_periods:.0f} periods"
+    if res.drift_ratio_se == res.drift_ratio_se:  # a long-time mean with its error (not NaN)
+        return f"{unsettled_mark(res)}: irregular, long-time mean +- {res.drift_ratio_se:.3f}"
     if res.regime in ("bouncing", "hopping"):
         return f"{unsettled_mark(res)}: irregular, the mean of its last window"
     return unsettled_mark(res)
