@@ -5,7 +5,6 @@ named, progress on long commands."""
 from __future__ import annotations
 
 import json
-import sys
 import time
 from pathlib import Path
 
@@ -15,19 +14,13 @@ import pandas as pd
 import pytest
 
 import sawdrift as sd
-from sawdrift.cli import main
+
+from .cli_call import call
 
 ROOT = Path(__file__).resolve().parents[1]
 MOTOR = ROOT / "examples" / "saw_linear_motor.toml"
 
 
-def call(monkeypatch, capsys, *args: str) -> tuple[int, str, str]:
-    """Run ``sawdrift ARGS`` in this process: (exit status, stdout, stderr)."""
-    monkeypatch.setattr(sys, "argv", ["sawdrift", *args])
-    with pytest.raises(SystemExit) as exc:
-        main()
-    out = capsys.readouterr()
-    return int(exc.value.code or 0), out.out, out.err
 
 
 @pytest.fixture

@@ -4,23 +4,18 @@ from __future__ import annotations
 
 import json
 import math
-import sys
 from pathlib import Path
 
 import pytest
 
-from sawdrift.cli import app, main
+from sawdrift.cli import app
+
+from .cli_call import call
 
 MOTOR = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
 SHORT = ("--no-settle", "--periods", "2", "--steps-per-period", "64", "--json")
 
 
-def call(monkeypatch, capsys, *args: str) -> tuple[int, str, str]:
-    monkeypatch.setattr(sys, "argv", ["sawdrift", *args])
-    with pytest.raises(SystemExit) as exc:
-        main()
-    out = capsys.readouterr()
-    return int(exc.value.code or 0), out.out, out.err
 
 
 def _hertz(radius: float) -> tuple[float, float]:

@@ -2,24 +2,18 @@
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pytest
 
 import sawdrift as sd
-from sawdrift.cli import main
 from sawdrift.study.estimate import MAX_SECONDS, Estimate, cell_steps, check
+
+from .cli_call import call
 
 MOTOR = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
 
 
-def call(monkeypatch, capsys, *args: str) -> tuple[int, str, str]:
-    monkeypatch.setattr(sys, "argv", ["sawdrift", *args])
-    with pytest.raises(SystemExit) as exc:
-        main()
-    out = capsys.readouterr()
-    return int(exc.value.code or 0), out.out, out.err
 
 
 def test_a_run_of_1e14_steps_is_refused_with_its_estimate(monkeypatch, capsys):
