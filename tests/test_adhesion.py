@@ -26,6 +26,7 @@ from sawdrift.contact.registry import get_model
 from sawdrift.errors import SceneError
 from sawdrift.scene.device import normalized
 from sawdrift.scene.schema import build_scene
+from sawdrift.study.threshold import stiff_removal_lost
 
 W = 0.05  # J/m^2
 
@@ -177,26 +178,13 @@ def test_without_adhesion_nothing_adhesive_is_built():
     assert not hasattr(model, "adhesion") and rest_compression(model) == 1.0
 
 
-def removal_lost(law: str, m_star: float, ratio: float, pulloff: float = 10.0) -> bool:
-    """Whether a particle at ratio x the rigid removal amplitude loses contact (long ramp)."""
-    import sawdrift as sd
-
-    amp = ratio * (1.0 + pulloff) / (4.0 * math.pi**2 * m_star)
-    scene = sd.Scene(model="hertz_mindlin_dem", particle={"m_star": m_star},
-                     material={"adhesion": pulloff, "mu": 0.3},
-                     effects={"adhesion": law, "horizontal_wave": False},
-                     drive={"amplitude": amp, "ramp_periods": 100},
-                     numerics={"periods": 104, "settle": False, "steps_per_period": 12000})
-    return bool(sd.run(scene).contact_lost)
-
-
 @pytest.mark.parametrize("law", ["jkr", "dmt"])
 def test_rigid_removal_threshold_in_the_stiff_limit(law):
     """A stiff adhesive contact (m* = 1e-5: its natural frequency about 100 times the drive) is lost
     where the inertial force m (2 pi f)^2 A reaches pull-off plus weight,
     4 pi^2 m* A* = 1 + F*_pull, within 1.5 % below and 1 % above (measured: 0.997-0.999)."""
-    assert not removal_lost(law, 1e-5, 0.985)
-    assert removal_lost(law, 1e-5, 1.01)
+    assert not stiff_removal_lost(law, 0.985)
+    assert stiff_removal_lost(law, 1.01)
 
 
 def test_example_drifts_below_removal_and_is_ejected_above():

@@ -12,9 +12,7 @@ drive); value: the largest |A*_threshold / A*_rigid - 1|.
 
 from __future__ import annotations
 
-import math
-
-import sawdrift as sd
+from sawdrift.study.threshold import stiff_removal_lost
 from sawdrift.validation import Case, CaseResult
 
 CASE = Case(
@@ -27,17 +25,6 @@ CASE = Case(
 )
 
 
-def lost(law: str, ratio: float, m_star: float = 1e-5, pulloff: float = 10.0) -> bool:
-    """Whether contact is lost at ``ratio`` times the rigid removal amplitude."""
-    amp = ratio * (1.0 + pulloff) / (4.0 * math.pi**2 * m_star)
-    scene = sd.Scene(model="hertz_mindlin_dem", particle={"m_star": m_star},
-                     material={"adhesion": pulloff, "mu": 0.3},
-                     effects={"adhesion": law, "horizontal_wave": False},
-                     drive={"amplitude": amp, "ramp_periods": 100},
-                     numerics={"periods": 104, "settle": False, "steps_per_period": 12000})
-    return bool(sd.run(scene).contact_lost)
-
-
 def run() -> CaseResult:
     """Two bisections."""
     found = {}
@@ -45,7 +32,7 @@ def run() -> CaseResult:
         lo, hi = 0.5, 1.1
         for _ in range(8):
             mid = 0.5 * (lo + hi)
-            lo, hi = (lo, mid) if lost(law, mid) else (mid, hi)
+            lo, hi = (lo, mid) if stiff_removal_lost(law, mid) else (mid, hi)
         found[law] = 0.5 * (lo + hi)
     worst = max(abs(v - 1.0) for v in found.values())
     return CASE.result(worst, message=", ".join(f"{k}: A*/A*_rigid = {v:.4f}"

@@ -129,6 +129,21 @@ def rigid_removal(scene: Scene) -> tuple[float, float, float]:
     return (pull + n["weight_n"]) / (n["mass_kg"] * omega**2), pull, n["weight_n"]
 
 
+def stiff_removal_lost(law: str, ratio: float, m_star: float = 1e-5,
+                       pulloff: float = 10.0) -> bool:
+    """Whether a normalized adhesive DEM sphere loses contact at ``ratio`` times the rigid removal
+    amplitude A* = (1 + F*_pull) / (4 pi^2 m*) (vertical vibration, a 100-period ramp, 12000
+    steps a period): the stiff-contact oracle of the rigid limit (m* = 1e-5: the contact's
+    natural frequency about 100 times the drive)."""
+    amp = ratio * (1.0 + pulloff) / (4.0 * math.pi**2 * m_star)
+    scene = Scene(model="hertz_mindlin_dem", particle={"m_star": m_star},
+                  material={"adhesion": pulloff, "mu": 0.3},
+                  effects={"adhesion": law, "horizontal_wave": False},
+                  drive={"amplitude": amp, "ramp_periods": 100},
+                  numerics={"periods": 104, "settle": False, "steps_per_period": 12000})
+    return bool(run(scene).contact_lost)
+
+
 def first_crossing(crosses: Callable[[float], bool], start: float, factor: float,
                    stop: float, bisections: int) -> tuple[float, int]:
     """The smallest amplitude where ``crosses`` turns True, from below (module text); NaN if none
