@@ -199,7 +199,9 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
                periods_run: float) -> tuple[Window, Settling]:
     """Full-inertia windows from where a default fixed run ended unconfirmed
     (:func:`~sawdrift.dynamics.full_inertia.settle_full`; ``settle_method``
-    "fixed_then_windows"), for at most :data:`SETTLE_ON_PERIODS` more periods (the run was
+    "fixed_then_windows"), for :data:`SETTLE_ON_PERIODS` more periods at most, or the
+    :data:`~sawdrift.dynamics.full_inertia.MIN_WINDOWS` windows that stage always may take where
+    those are longer (the run was
     fixed because its drift relaxes fast: what has not settled by then drifts on a slow mode of
     its own, and says so) and within ``numerics.max_periods`` if given."""
     m_star = scene.particle.m_star
