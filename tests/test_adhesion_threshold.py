@@ -44,3 +44,23 @@ def test_small_particle_is_removed_at_the_rigid_limit():
     row = study.rows[0]
     assert row.removal_amplitude_m / row.rigid_removal_m == pytest.approx(1.0, abs=0.03)
     assert row.slide_amplitude_m <= row.removal_amplitude_m
+
+
+def test_a_threshold_above_the_scan_is_named_not_printed_as_nan(monkeypatch, capsys):
+    """--stop below the first amplitude of the scan (0.01 of the rigid removal amplitude, 16 pm
+    at R = 1 um): no crossing is found; the text says '> STOP', the JSON holds null (NaN is not
+    JSON), and a slope of fewer than two thresholds is 'n/a'."""
+    import json
+
+    from .cli_call import call
+
+    example = str(Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml")
+    code, out, _ = call(monkeypatch, capsys, "threshold", example, "--axis",
+                        "device.particle.radius=1 um", "--stop", "0.01 nm")
+    assert code == 0 and "nan" not in out
+    assert out.splitlines()[1].split()[1:4] == [">", "0.01", "nm"]
+    assert "slope of log removal_amplitude_m against log radius: n/a" in out
+    code, out, _ = call(monkeypatch, capsys, "threshold", example, "--axis",
+                        "device.particle.radius=1 um", "--stop", "0.01 nm", "--json")
+    row = json.loads(out)["rows"][0]
+    assert row["removal_amplitude_m"] is None and row["slide_amplitude_m"] is None
