@@ -45,7 +45,8 @@ import numpy as np
 
 from . import adams_bashforth as ig
 from .evidence import EV_LANDING
-from .full_inertia import relaxation_rate, settle_full
+from .full_inertia import relaxation_rate, settle_full, shift_speed
+from .separated import orbit_relaxation, separated_orbit
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
 
@@ -200,7 +201,17 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     m = scene.particle.m_star
     m_x = horizontal_inertia(m, stepper.rigid)
     start = stepper.step
-    if m_x < m:
+    orbit = separated_orbit(stepper, scene, speed, scene.numerics.settle_tolerance) if (
+        m_x < m) else None
+    if orbit is not None:
+        # the orbit's drift is the first zero of the force-velocity curve at full inertia with
+        # the free vertical oscillation at rest; the run's own oscillation (left by the ramp,
+        # undamped) moves the drift by up to a few percent, which the full-inertia windows
+        # measure, starting from there at the relaxation rate of the curve's slope
+        values, t90, last = [orbit.drift / speed], math.nan, None
+        shift_speed(stepper, orbit.drift - stepper.y[1])
+        lam = orbit_relaxation(orbit, scene.material.mu, m)
+    elif m_x < m:
         values, w, t90, last = _reduced_stage(stepper, scene, speed, scale, minimum_window,
                                               max_steps, m_x)
         lam = relaxation_rate(tuple(values), w, m_x, m, scene.material.mu)
@@ -218,8 +229,9 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     if m_x == m and 0.0 < full.ratio < 1.0 and full.jumps > 0:
         # the approach a free particle would make: ln 10 / lambda with the rate measured
         t90 = math.log(10.0) * full.window_periods / -math.log(full.ratio)
-    method = "reduced_then_full" if m_x < m else "windows_full"
-    info = Settling(full.settled, method, m_x, full.window_periods,
+    method = ("orbit_then_full" if orbit is not None
+              else "reduced_then_full" if m_x < m else "windows_full")
+    info = Settling(full.settled, method, m if orbit is not None else m_x, full.window_periods,
                     (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history)
     return win, info
 

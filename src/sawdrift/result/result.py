@@ -132,8 +132,9 @@ class Result:
     settled: bool | None = None
     #: how ``settled`` was decided: "fixed" (a run of fixed length, judged after the fact),
     #: "windows_full" (windows at full inertia), "fixed_then_windows" (a default fixed run its own
-    #: window could not confirm, continued in such windows) or "reduced_then_full" (a reduced-inertia
-    #: approach, then windows at full inertia; see dynamics.full_inertia)
+    #: window could not confirm, continued in such windows), "reduced_then_full" (a reduced-inertia
+    #: approach, then windows at full inertia; see dynamics.full_inertia) or "orbit_then_full"
+    #: (windows at full inertia started at the directly solved orbit; see dynamics.separated)
     settle_method: str | None = None
     #: periods after which the drift was assessed (settle runs: periods spent settling)
     settle_periods: float = math.nan

@@ -1,0 +1,337 @@
+"""The periodic orbit of a heavy particle, solved directly: imposed mean height and mean speed.
+
+For m* >> 1 the particle's motion splits into slow and fast parts (separation of motions,
+Blechman 2000): a mean compression Y and a mean horizontal speed V, which change only over
+hundreds of wave periods, and small fast parts eta(t*), xi(t*) of one wave period forced by the
+contact forces, of amplitude O(1/m*):
+
+    a*(t*) = Y + eta(t*) - u_y(t*)              b*(t*) = (V t* + xi(t*) - u_x(t*)) / (theta mu)
+    m* eta'' = (1 - N*) - <1 - N*>              m* xi'' = -mu (T* - <T*>)
+
+(eq. 5 of the paper with the period means taken out; <.> is the mean over one period). The
+steady drift is the periodic orbit on which the means balance too:
+
+    <N*>(Y) = 1   (the weight)                 <T*>(V) = 0   (no mean friction force)
+
+Both conditions are solved here at a fixed, small cost: for a given (Y, V) the fast parts are
+the periodic solutions of their equations (integrated twice in Fourier space), iterated with the
+forces they give (a contraction: the contact's stiffness 1.5 against m* (2 pi)^2); the contact
+law runs over a few periods of the imposed motion until its memory repeats, and the last
+period's means are the residuals. The normal law holds no memory of the tangential motion, so Y
+is solved first; V is then the first zero of the force-velocity curve <T*>(V) met going from
+rest in the direction the mean force pushes (bracketed on a grid of drift ratios, then Brent's
+method). Nothing here depends on m* except the fast parts' size: the cost is a few hundred wave
+periods of the contact law alone, against the O(m*/mu) periods a particle takes to reach its
+drift and the windows of O(sqrt(m*)) periods that the free vertical oscillation (undamped, so it
+never dies out) imposes on any measurement of a run.
+
+Where it does not apply, :func:`separated_orbit` returns None and the run settles by windows
+(:mod:`.full_inertia`):
+
+* a contact whose memory does not repeat at the zero (a creeping contact, no gross slip: its
+  tangential spring loads a little further every period; the creep is set by the particle's slow
+  ringing on its tangential contact stiffness, which this construction removes);
+* an orbit that loses contact. A run started from rest keeps the free vertical oscillation its
+  start-up left (the normal contact is undamped), and where contact is lost that oscillation
+  changes the drift: measured on mmd, the drift of runs from rest differs from the orbit's by
+  1e-4 to 5e-3 (relative) for hopping at A* 1 to 3 and by 1 to 8 % for bouncing at A* 6 to 10
+  (m* 300 to 1e4), too far to start the windows at;
+* forces this module does not carry (a load, normal damping in the loop, rotation, adhesion,
+  air drag) and a drive that depends on x*.
+
+Where contact is kept, the orbit is the start of the full-inertia windows (only the speed is set
+to it; the run's vertical state stays), which then measure the small difference the run's own
+vertical oscillation makes (up to 2e-3 relative, measured) instead of relaxing from rest: the
+costly first stage at reduced inertia is not needed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..codegen import Generated, generate, rebind
+from . import adams_bashforth as ig
+from .stepper import Stepper
+
+#: the separated orbit is used from this m* up (the fast parts' contraction factor, about
+#: 1.5 / (m* (2 pi)^2) times the stiffening of the contact, is then below 1e-3)
+SEPARATED_MIN_MASS = 30.0
+
+#: drift ratios at which the force-velocity curve is sampled for the first zero (the bracket)
+GRID = (0.0005, 0.002, 0.005, 0.01, 0.02, 0.04, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7,
+        0.8, 0.9, 1.0, 1.2, 1.5, 2.0, 3.0)
+
+#: periods of imposed motion per evaluation: the contact's memory is washed in over the first,
+#: the means are taken over the last
+PERIODS = 3
+
+#: fast-part iterations at most per evaluation, and their convergence (in a*, relative)
+FAST_ITERATIONS = 12
+FAST_TOL = 1e-12
+
+#: the contact memory repeats when T* of the last two periods agree to this (a sliding or
+#: hopping orbit: 1e-14; a creeping contact, whose spring loads further every period: 1e-3)
+PERIODIC_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class SeparatedOrbit:
+    """The periodic orbit found by :func:`separated_orbit` (arrays: one period of K samples)."""
+
+    drift: float  # V, x* per period
+    mean_compression: float  # Y
+    eta: np.ndarray
+    eta_rate: np.ndarray
+    xi_rate: np.ndarray
+    normal: np.ndarray  # N* on the orbit
+    tangential: np.ndarray  # T* on the orbit
+    evaluations: int  # force-velocity points computed
+    slope: float  # d<T*>/dV at the zero (per unit of x* per period), from the closest points
+
+
+def applies(stepper: Stepper, scene) -> bool:
+    """Whether the orbit can be solved directly (module docstring): heavy, compliant, friction on,
+    no load, loop damping, rotation, adhesion or drag, and a drive that does not depend on x*."""
+    prm = stepper.prm
+    if stepper.rigid or stepper.history is None or scene.particle.m_star < SEPARATED_MIN_MASS:
+        return False
+    if type(stepper.drive).__name__ != "TravellingWave":
+        return False
+    off = (ig.P_LOAD, ig.P_DAMP, ig.P_REST, ig.P_ROLL, ig.P_DRAG, ig.P_PULL, ig.P_RR)
+    return all(prm[i] == 0.0 for i in off) and prm[ig.P_FRICTION] > 0.0 and prm[ig.P_MU] > 0.0
+
+
+_LOOPS: dict[object, object] = {}
+
+
+def history_body(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
+    """The contact law ``force`` (a global, bound per kernel) along sampled a*, b* and their
+    rates: N*(k), T*(k) into ``n_out``, ``t_out`` (the memory committed step by step)."""
+    for k in range(a.size):
+        n, t = force(fs, is_, pp, a[k], b[k], adot[k], bdot[k])  # noqa: F821
+        n_out[k] = n
+        t_out[k] = t
+
+
+def history_loop(force, compiled: bool):
+    """:func:`history_body` bound to a kernel's ``force``: compiled once per kernel and cached on
+    disk across processes (:mod:`sawdrift.codegen`, as the wave loop), or plain Python."""
+    if not compiled:
+        return rebind((history_body,), {"force": force})["history_body"]
+    fn = _LOOPS.get(force)
+    if fn is None:
+        fn = generate(Generated(
+            prefix="sawdrift_loop_", doc="the contact law along a sampled history",
+            templates=(history_body,), namespace={"force": force}, imports="",
+            bind={"force": force}, decorator="njit(cache=True, _nrt=False)",
+            memory_options={"_nrt": False},
+        ))["history_body"]
+        _LOOPS[force] = fn
+    return fn
+
+
+def _periodic(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The zero-mean periodic q and q' with q'' = acc - <acc> over one period of unit length."""
+    k = acc.size
+    spec = np.fft.rfft(acc)
+    w = 2.0 * np.pi * np.fft.rfftfreq(k, d=1.0 / k)
+    q_hat = np.zeros_like(spec)
+    q_hat[1:] = -spec[1:] / (w[1:] ** 2)
+    return np.fft.irfft(q_hat, n=k), np.fft.irfft(1j * w * q_hat, n=k)
+
+
+class _Problem:
+    """One period of the imposed motion: the drive's samples and the contact law to run on it."""
+
+    def __init__(self, stepper: Stepper, t0: float):
+        self.k = stepper.k_per
+        prm = stepper.prm
+        self.m = float(prm[ig.P_M])
+        self.mu = float(prm[ig.P_MU])
+        self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)
+        surface = stepper.drive.functions()[0]
+        t = t0 + np.arange(self.k) / self.k
+        u = np.array([surface(float(ti), 0.0, stepper.dp) for ti in t])
+        self.ux, self.uxd, self.uy, self.uyd = u.T
+        self.t = np.arange(PERIODS * self.k) / self.k
+        self.history = stepper.history
+        self.loop = history_loop(stepper.history.kernel_call()[0], stepper.compiled)
+        self.evaluations = 0
+        self.residual = 0.0
+
+    def forces(self, y_mean: float, eta: np.ndarray, eta_d: np.ndarray, v: float, xi: np.ndarray,
+               xi_d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """N*, T* over the last of :data:`PERIODS` periods of the imposed motion, from an empty
+        contact memory."""
+        rep = PERIODS
+        a = np.tile(y_mean + eta - self.uy, rep)
+        adot = np.tile(eta_d - self.uyd, rep)
+        b = (v * self.t + np.tile(xi - self.ux, rep)) * self.scale_b
+        bdot = (v + np.tile(xi_d - self.uxd, rep)) * self.scale_b
+        hist = self.history.copy()
+        hist.reset()
+        force, fs, is_, pp = hist.kernel_call()
+        n = np.empty_like(a)
+        t = np.empty_like(a)
+        self.loop(fs, is_, pp, a, b, adot, bdot, n, t)
+        self.evaluations += 1
+        k = self.k
+        #: how far the contact's memory is from repeating: the last two periods' T* apart
+        self.residual = float(np.max(np.abs(t[-k:] - t[-2 * k:-k])))
+        return n[-k:], t[-k:]
+
+    def fast(self, y_mean: float, v: float, eta: np.ndarray, xi: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Iterate the fast parts at fixed (Y, V) to their periodic solution; returns eta, eta',
+        xi, xi', N*, T*."""
+        eta_d = _periodic_rate(eta)
+        xi_d = _periodic_rate(xi)
+        for _ in range(FAST_ITERATIONS):
+            n, t = self.forces(y_mean, eta, eta_d, v, xi, xi_d)
+            eta_new, eta_d = _periodic((1.0 - n) / self.m)
+            xi_new, xi_d = _periodic(-self.mu * t / self.m)
+            change = max(float(np.max(np.abs(eta_new - eta))), float(np.max(np.abs(xi_new - xi))))
+            eta, xi = eta_new, xi_new
+            if change <= FAST_TOL * max(1.0, abs(y_mean)):
+                break
+        n, t = self.forces(y_mean, eta, eta_d, v, xi, xi_d)
+        return eta, eta_d, xi, xi_d, n, t
+
+
+def _periodic_rate(q: np.ndarray) -> np.ndarray:
+    """q' of a periodic q sampled over one period (Fourier)."""
+    k = q.size
+    w = 2.0 * np.pi * np.fft.rfftfreq(k, d=1.0 / k)
+    return np.fft.irfft(1j * w * np.fft.rfft(q), n=k)
+
+
+def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
+    """Y with <N*> = 1 and the vertical fast part eta on it (the normal law ignores b*)."""
+    eta = np.zeros(p.k)
+    zero = np.zeros(p.k)
+    y_mean = 1.0
+    for _ in range(FAST_ITERATIONS):
+        def excess(y: float, eta: np.ndarray = eta) -> float:
+            n, _t = p.forces(y, eta, _periodic_rate(eta), 0.0, zero, zero)
+            return float(np.mean(n)) - 1.0
+
+        lo, hi = y_mean - 0.5, y_mean + 0.5
+        while excess(lo) > 0.0:
+            lo -= 2.0 * (hi - lo)
+        while excess(hi) < 0.0:
+            hi += 2.0 * (hi - lo)
+        y_new = brentq(excess, lo, hi, xtol=1e-13, rtol=1e-13)
+        n, _t = p.forces(y_new, eta, _periodic_rate(eta), 0.0, zero, zero)
+        eta_new, _ = _periodic((1.0 - n) / p.m)
+        change = float(np.max(np.abs(eta_new - eta))) + abs(y_new - y_mean)
+        eta, y_mean = eta_new, y_new
+        if change <= FAST_TOL * max(1.0, abs(y_mean)):
+            break
+    return y_mean, eta
+
+
+def separated_orbit(stepper: Stepper, scene, speed: float, tol: float) -> SeparatedOrbit | None:
+    """The period-one orbit of a heavy particle (module docstring), or None where the direct
+    solution does not apply or finds the contact stuck at V = 0.
+
+    Parameters
+    ----------
+    stepper
+        The run, past its ramp at a whole period (the drive is sampled from there).
+    speed
+        2 pi r A*, the scale of the drift ratio.
+    tol
+        ``numerics.settle_tolerance``: the zero is found to a hundredth of it.
+    """
+    if speed <= 0.0 or not applies(stepper, scene):
+        return None
+    t0 = stepper.step / stepper.k_per
+    if abs(t0 - round(t0)) > 1e-9 or t0 < stepper.drive.ramp_periods(scene):
+        return None
+    p = _Problem(stepper, round(t0))
+    y_mean, eta = _mean_compression(p)
+    if float(np.min(y_mean + eta - p.uy)) <= 0.0:
+        # the orbit loses contact: the free vertical oscillation a run's start leaves (undamped)
+        # moves a hopping drift by up to 8 % from the orbit's, too far to start the windows at
+        return None
+    xi = np.zeros(p.k)
+    pushes: dict[float, float] = {}
+
+    def push(d: float) -> float:
+        """The mean acceleration sign at drift ratio d: -<T*> (the particle speeds up if > 0)."""
+        nonlocal xi
+        got = p.fast(y_mean, d * speed, eta, xi)
+        xi = got[2]
+        pushes[d] = -float(np.mean(got[5]))
+        return pushes[d]
+
+    eps = 1e-7
+    up, down = push(eps), push(-eps)
+    if up < 0.0 < down:
+        return None  # restoring both ways: the contact sticks (or creeps): settle by windows
+    sign = 1.0 if up > 0.0 and (down >= 0.0 or up >= -down) else -1.0
+    prev_d, prev_f = sign * eps, up if sign > 0 else down
+    root = None
+    for g in GRID:
+        d = sign * g
+        f = push(d)
+        if f == 0.0 or (f < 0.0) != (prev_f < 0.0):
+            root = (prev_d, d) if f != 0.0 else (d, d)
+            break
+        prev_d, prev_f = d, f
+    if root is None:
+        return None  # no zero up to three times the surface speed: not a steady drift here
+    lo, hi = root
+    d_star = lo if lo == hi else brentq(push, lo, hi, xtol=1e-3 * tol * max(abs(lo), 0.02),
+                                        rtol=1e-10)
+    got = p.fast(y_mean, d_star * speed, eta, xi)
+    if p.residual > PERIODIC_TOL:
+        # the memory does not repeat at the zero: no gross slip loads the tangential spring a
+        # little more every period (a creeping contact), which is not a period-one orbit
+        return None
+    return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
+                          p.evaluations, _slope(pushes, d_star, speed))
+
+
+def _slope(pushes: dict[float, float], d_star: float, speed: float) -> float:
+    """d<T*>/dV at the zero: the secant through the sampled points closest to it on either side
+    (NaN without one on each side)."""
+    below = [d for d in pushes if d < d_star]
+    above = [d for d in pushes if d > d_star]
+    if not below or not above:
+        return math.nan
+    d0, d1 = max(below), min(above)
+    return -(pushes[d1] - pushes[d0]) / ((d1 - d0) * speed)
+
+
+def place_on_orbit(stepper: Stepper, orbit: SeparatedOrbit) -> None:
+    """Put the run's velocity, height and derivative history on the orbit at the present step
+    (a whole period: sample 0); x* stays, the contact memory re-adapts within a period."""
+    k = orbit.eta.size
+    m = float(stepper.prm[ig.P_M])
+    mu = float(stepper.prm[ig.P_MU])
+    stepper.y[1] = orbit.drift + orbit.xi_rate[0]
+    stepper.y[2] = orbit.mean_compression + orbit.eta[0]
+    stepper.y[3] = orbit.eta_rate[0]
+    for j in range(4):
+        i = (-1 - j) % k
+        stepper.fh[j, 0] = orbit.drift + orbit.xi_rate[i]
+        stepper.fh[j, 1] = -mu * orbit.tangential[i] / m
+        stepper.fh[j, 2] = orbit.eta_rate[i]
+        stepper.fh[j, 3] = (1.0 - orbit.normal[i]) / m
+
+
+def orbit_relaxation(orbit: SeparatedOrbit, mu: float, m_star: float) -> float:
+    """lambda = mu T' / m* (per period) of the mean speed near the orbit, T' = d<T*>/dV its
+    force-velocity slope, kept within a factor of ten of the assumed mu SLOPE / m* (a slope across
+    a kink of the curve is no rate)."""
+    from .steady import SLOPE
+
+    assumed = SLOPE * mu / m_star
+    if not math.isfinite(orbit.slope) or orbit.slope <= 0.0:
+        return assumed
+    return min(max(mu * orbit.slope / m_star, 0.1 * assumed), 10.0 * assumed)
