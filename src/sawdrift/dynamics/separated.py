@@ -40,9 +40,10 @@ Where it does not apply, :func:`separated_orbit` returns None and the run settle
   air drag) and a drive that depends on x*.
 
 Where contact is kept, the orbit is the start of the full-inertia windows (only the speed is set
-to it; the run's vertical state stays), which then measure the small difference the run's own
-vertical oscillation makes (up to 2e-3 relative, measured) instead of relaxing from rest: the
-costly first stage at reduced inertia is not needed.
+to it; the run's vertical state stays), which then confirm it instead of relaxing from rest:
+the costly first stage at reduced inertia is not needed. The run's own vertical oscillation
+keeps its drift within the tolerance of the orbit's there (measured: 4.7e-4 relative at mmd,
+m* = 1e3, A* = 0.6, mu = 0.1, against a run from rest of 4e5 periods).
 """
 
 from __future__ import annotations
