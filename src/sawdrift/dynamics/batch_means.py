@@ -62,9 +62,7 @@ def long_time_mean(stepper: Stepper, window, periods: int = CHAOS_PERIODS) -> Ba
     """
     x = np.empty(periods + 1)
     x[0] = stepper.y[0]
-    for j in range(periods):
-        stepper.advance(stepper.k_per)
-        x[j + 1] = stepper.y[0]
+    x[1:] = stepper.advance_periods(periods)[:, 0]
     per_period = np.concatenate((np.diff(window.positions), np.diff(x)))
     mean, se, n = blocked_error(per_period)
     return BatchMeans(mean, se, n, int(per_period.size))

@@ -203,7 +203,26 @@ class Stepper:
         """Steps taken since t* = 0."""
         return int(self.ctr[0])
 
-    def advance(self, n_steps: int) -> None:
+    def advance_periods(self, periods: int) -> np.ndarray:
+        """Advance ``periods`` whole periods in one call of the loop and return the state
+        (x*, x*', y*, y*') at the end of each, shape (periods, 4).
+
+        The loop records the state at every period boundary itself (its trajectory row every
+        ``k_per`` steps), so a window costs one call, not one per period. A run that records its
+        trajectory, or one not at a period boundary, goes period by period.
+        """
+        samples = np.empty((periods, 4))
+        if self.record or self.step % self.k_per != 0:
+            for j in range(periods):
+                self.advance(self.k_per)
+                samples[j] = self.y[:4]
+            return samples
+        t0 = self.step // self.k_per
+        self.advance(periods * self.k_per, strobe=(samples, t0))
+        samples[periods - 1] = self.y[:4]
+        return samples
+
+    def advance(self, n_steps: int, strobe: tuple[np.ndarray, int] | None = None) -> None:
         """Advance ``n_steps`` steps; raise a one-line error if the scheme cannot go on.
 
         The loops return early when the event log is nearly full; in the measuring window
@@ -212,19 +231,22 @@ class Stepper:
         of a run does not grow with its length.
         """
         target = self.step + max(0, int(n_steps))
+        every = self.k_per if strobe is not None else self.rec_every
         while self.step < target:
             n = target - self.step
-            n_rec = n // self.rec_every + 2 if self.record else 0
+            n_rec = n // every + 2 if (self.record or strobe is not None) else 0
             rec = np.zeros((n_rec, ig.N_REC))
             self.ctr[2] = 0
             if self.rigid:
-                self.loop(self.y, self.ctr, self.prm, n, rec, self.rec_every, self.st)
+                self.loop(self.y, self.ctr, self.prm, n, rec, every, self.st)
             else:
                 self.loop(
                     self.y, self.fh, self.ctr, (self.fs, self.is_, self.pp), self.prm, self.dp, n,
-                    rec, self.rec_every, self.st,
+                    rec, every, self.st,
                 )
-            if self.record:
+            if strobe is not None:
+                _strobe_rows(strobe, rec[: self.ctr[2]])
+            elif self.record:
                 self.rec_chunks.append(rec[: self.ctr[2]].copy())
             if self.st[ev.S_BAD] > 0.0:
                 self._fail()
@@ -433,3 +455,12 @@ class Stepper:
             columns = columns[:9]
         return pd.DataFrame(data, columns=columns)
 
+
+def _strobe_rows(strobe: tuple[np.ndarray, int], rows: np.ndarray) -> None:
+    """Put trajectory rows taken at period boundaries into ``samples[j - 1]``, j the periods
+    since ``t0`` (``strobe`` = (samples, t0)); the rows' time is column 0, the state columns 1-4."""
+    samples, t0 = strobe
+    for row in rows:
+        j = int(round(row[0])) - t0
+        if 1 <= j <= samples.shape[0]:
+            samples[j - 1] = row[1:5]

@@ -179,10 +179,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     t_start = stepper.step * stepper.h
     snapshot = stepper.twin()
     x0, psi0 = stepper.y[0], stepper.y[4]
-    samples = np.empty((periods, 4))
-    for j in range(periods):
-        stepper.advance(stepper.k_per)
-        samples[j] = stepper.y[:4]
+    samples = stepper.advance_periods(periods)
     positions = np.concatenate(([x0], samples[:, 0]))
     if stepper.resist:
         spin = (stepper.y[4] - psi0) / periods
