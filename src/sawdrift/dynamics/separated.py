@@ -49,7 +49,7 @@ m* = 1e3, A* = 0.6, mu = 0.1, against a run from rest of 4e5 periods).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import brentq
@@ -92,6 +92,8 @@ class SeparatedOrbit:
     tangential: np.ndarray  # T* on the orbit
     evaluations: int  # force-velocity points computed
     slope: float  # d<T*>/dV at the zero (per unit of x* per period), from the closest points
+    loses_contact: bool  # a* <= 0 somewhere on the orbit
+    problem: _Problem = field(repr=False, compare=False)  # the imposed motion, for .torus
 
 
 def applies(stepper: Stepper, scene) -> bool:
@@ -109,13 +111,23 @@ def applies(stepper: Stepper, scene) -> bool:
 _LOOPS: dict[object, object] = {}
 
 
-def history_body(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
-    """The contact law ``force`` (a global, bound per kernel) along sampled a*, b* and their
-    rates: N*(k), T*(k) into ``n_out``, ``t_out`` (the memory committed step by step)."""
-    for k in range(a.size):
-        n, t = force(fs, is_, pp, a[k], b[k], adot[k], bdot[k])  # noqa: F821
-        n_out[k] = n
-        t_out[k] = t
+def history_body(fs, is_, pp, a, b, adot, bdot, db, periods, n_out, t_out):
+    """The contact law ``force`` (a global, bound per kernel) along ``periods`` repetitions of one
+    period of sampled a*, b* and their rates, b* moved on by ``db`` each period: N*, T* of the
+    last period into ``n_out``, ``t_out``; returns the largest change of T* from the period
+    before (the memory committed step by step)."""
+    k_per = a.size
+    change = 0.0
+    for p in range(periods):
+        for k in range(k_per):
+            n, t = force(fs, is_, pp, a[k], b[k] + p * db, adot[k], bdot[k])  # noqa: F821
+            if p == periods - 1:
+                d = abs(t - t_out[k])
+                if d > change:
+                    change = d
+            n_out[k] = n
+            t_out[k] = t
+    return change
 
 
 def history_loop(force, compiled: bool):
@@ -158,9 +170,11 @@ class _Problem:
         t = t0 + np.arange(self.k) / self.k
         u = np.array([surface(float(ti), 0.0, stepper.dp) for ti in t])
         self.ux, self.uxd, self.uy, self.uyd = u.T
-        self.t = np.arange(PERIODS * self.k) / self.k
-        self.history = stepper.history
-        self.loop = history_loop(stepper.history.kernel_call()[0], stepper.compiled)
+        self.t = np.arange(self.k) / self.k
+        #: an empty contact memory of the run's law, reset before every evaluation
+        self.scratch = stepper.history.copy()
+        force, self.fs, self.is_, self.pp = self.scratch.kernel_call()
+        self.loop = history_loop(force, stepper.compiled)
         self.evaluations = 0
         self.residual = 0.0
 
@@ -168,22 +182,18 @@ class _Problem:
                xi_d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """N*, T* over the last of :data:`PERIODS` periods of the imposed motion, from an empty
         contact memory."""
-        rep = PERIODS
-        a = np.tile(y_mean + eta - self.uy, rep)
-        adot = np.tile(eta_d - self.uyd, rep)
-        b = (v * self.t + np.tile(xi - self.ux, rep)) * self.scale_b
-        bdot = (v + np.tile(xi_d - self.uxd, rep)) * self.scale_b
-        hist = self.history.copy()
-        hist.reset()
-        force, fs, is_, pp = hist.kernel_call()
-        n = np.empty_like(a)
-        t = np.empty_like(a)
-        self.loop(fs, is_, pp, a, b, adot, bdot, n, t)
-        self.evaluations += 1
-        k = self.k
+        a = y_mean + eta - self.uy
+        adot = eta_d - self.uyd
+        b = (v * self.t + xi - self.ux) * self.scale_b
+        bdot = (v + xi_d - self.uxd) * self.scale_b
+        self.scratch.reset()
+        n = np.empty(self.k)
+        t = np.empty(self.k)
         #: how far the contact's memory is from repeating: the last two periods' T* apart
-        self.residual = float(np.max(np.abs(t[-k:] - t[-2 * k:-k])))
-        return n[-k:], t[-k:]
+        self.residual = float(self.loop(self.fs, self.is_, self.pp, a, b, adot, bdot,
+                                        v * self.scale_b, PERIODS, n, t))
+        self.evaluations += 1
+        return n, t
 
     def fast(self, y_mean: float, v: float, eta: np.ndarray, xi: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -235,7 +245,8 @@ def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
     return y_mean, eta
 
 
-def separated_orbit(stepper: Stepper, scene, speed: float, tol: float) -> SeparatedOrbit | None:
+def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
+                    keep_contact: bool = True) -> SeparatedOrbit | None:
     """The period-one orbit of a heavy particle (module docstring), or None where the direct
     solution does not apply or finds the contact stuck at V = 0.
 
@@ -246,7 +257,9 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float) -> Separa
     speed
         2 pi r A*, the scale of the drift ratio.
     tol
-        ``numerics.settle_tolerance``: the zero is found to a hundredth of it.
+        ``numerics.settle_tolerance``: the zero is found to a thousandth of it.
+    keep_contact
+        Return None for an orbit that loses contact (else it is returned, ``loses_contact``).
     """
     if speed <= 0.0 or not applies(stepper, scene):
         return None
@@ -255,9 +268,10 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float) -> Separa
         return None
     p = _Problem(stepper, round(t0))
     y_mean, eta = _mean_compression(p)
-    if float(np.min(y_mean + eta - p.uy)) <= 0.0:
+    loses = float(np.min(y_mean + eta - p.uy)) <= 0.0
+    if loses and keep_contact:
         # the orbit loses contact: the free vertical oscillation a run's start leaves (undamped)
-        # moves a hopping drift by up to 8 % from the orbit's, too far to start the windows at
+        # moves a hopping drift by up to 8 % from the orbit's (module docstring)
         return None
     xi = np.zeros(p.k)
     pushes: dict[float, float] = {}
@@ -295,7 +309,7 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float) -> Separa
         # little more every period (a creeping contact), which is not a period-one orbit
         return None
     return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
-                          p.evaluations, _slope(pushes, d_star, speed))
+                          p.evaluations, _slope(pushes, d_star, speed), loses, p)
 
 
 def _slope(pushes: dict[float, float], d_star: float, speed: float) -> float:

@@ -39,15 +39,16 @@ steady one.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from . import adams_bashforth as ig
 from .evidence import EV_LANDING
 from .full_inertia import relaxation_rate, settle_full, shift_speed
-from .separated import orbit_relaxation, separated_orbit
+from .separated import applies, orbit_relaxation, separated_orbit
 from .stepper import Stepper
+from .torus import torus_drift
 from .window import Window, in_flight, measure_window
 
 #: the horizontal inertia used for heavier particles (see the module docstring)
@@ -57,6 +58,12 @@ HEAVY_MASS = 100.0
 #: speed relaxes at lambda = F' mu / m* per period; measured relaxation times to 90 % of 2.7 to
 #: 7.7 m*/mu (``benchmarks/bench_steady.py``) put F' between 0.3 and 0.85
 SLOPE = 0.5
+
+#: periods of the probe that checks the fast motion before the drift is solved directly
+PROBE_PERIODS = 12
+
+#: lift-offs per period a run may differ by from those of the orbits its drift was averaged over
+LIFT_MATCH = 0.05
 
 #: Longest relaxation time (periods, at the integrated inertia) that ``numerics.settle`` left
 #: unset settles by default (:func:`settles`): its cap, 50 of them, is then at most 5e5 periods.
@@ -201,17 +208,32 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     m = scene.particle.m_star
     m_x = horizontal_inertia(m, stepper.rigid)
     start = stepper.step
-    orbit = separated_orbit(stepper, scene, speed, scene.numerics.settle_tolerance) if (
-        m_x < m) else None
-    if orbit is not None:
-        # the orbit's drift is the first zero of the force-velocity curve at full inertia with
-        # the free vertical oscillation at rest; the run's own oscillation (left by the ramp,
-        # undamped) moves the drift by up to a few percent, which the full-inertia windows
-        # measure, starting from there at the relaxation rate of the curve's slope
-        values, t90, last = [orbit.drift / speed], math.nan, None
-        shift_speed(stepper, orbit.drift - stepper.y[1])
-        lam = orbit_relaxation(orbit, scene.material.mu, m)
-    elif m_x < m:
+    direct = _direct_start(stepper, scene, speed, scale) if m_x < m else None
+    if direct is not None:
+        # the drift solved directly: the first zero of the force-velocity curve at full inertia,
+        # averaged over the run's own slow vertical oscillation (dynamics.separated, .torus); the
+        # full-inertia windows start there, at the relaxation rate of the curve's slope
+        drift, lam, lifts = direct
+        shift_speed(stepper, drift - stepper.y[1])
+        win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam)
+        if abs(win.liftoffs_per_period - lifts) <= LIFT_MATCH:
+            info = Settling(full.settled, "orbit_then_full", m, full.window_periods,
+                            (stepper.step - start) / stepper.k_per, math.nan,
+                            (drift / speed, *full.history))
+            return win, info
+        # the run does not lift off as the averaged orbits do: its fast motion is not a
+        # period-one orbit (irregular bouncing); the approach goes on at reduced inertia
+    win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps)
+    return win, replace(info, periods=(stepper.step - start) / stepper.k_per)
+
+
+def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
+              max_steps: int) -> tuple[Window, Settling]:
+    """The approach by windows: a reduced-inertia stage (m* > 100), then full-inertia windows."""
+    m = scene.particle.m_star
+    m_x = horizontal_inertia(m, stepper.rigid)
+    start = stepper.step
+    if m_x < m:
         values, w, t90, last = _reduced_stage(stepper, scene, speed, scale, minimum_window,
                                               max_steps, m_x)
         lam = relaxation_rate(tuple(values), w, m_x, m, scene.material.mu)
@@ -229,11 +251,43 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     if m_x == m and 0.0 < full.ratio < 1.0 and full.jumps > 0:
         # the approach a free particle would make: ln 10 / lambda with the rate measured
         t90 = math.log(10.0) * full.window_periods / -math.log(full.ratio)
-    method = ("orbit_then_full" if orbit is not None
-              else "reduced_then_full" if m_x < m else "windows_full")
-    info = Settling(full.settled, method, m if orbit is not None else m_x, full.window_periods,
+    method = "reduced_then_full" if m_x < m else "windows_full"
+    info = Settling(full.settled, method, m_x, full.window_periods,
                     (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history)
     return win, info
+
+
+def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
+                  ) -> tuple[float, float, float] | None:
+    """(drift, relaxation rate, lift-offs per period) solved directly for a heavy particle, or
+    None where that does not apply: the period-one orbit (:func:`~.separated.separated_orbit`;
+    none for a creeping contact) averaged over the run's slow vertical oscillation
+    (:func:`~.torus.torus_drift`). An orbit that keeps contact is its own start if the average
+    fails; one that loses contact is not (its drift can be 8 % from the run's).
+
+    Both need the fast motion to be a period-one orbit about a slowly moving height. A probe of
+    :data:`PROBE_PERIODS` periods checks it: a run that loses contact must lift off once a period
+    (a heavy particle bouncing at A* = 6, m* = 3000 lifts off 0.4 times a period, irregularly;
+    its drift from rest is not the average of period-one orbits, 0.762 over 1.2e6 periods against
+    0.777).
+    """
+    tol = scene.numerics.settle_tolerance
+    if not applies(stepper, scene):
+        return None
+    orbit = separated_orbit(stepper, scene, speed, tol, keep_contact=False)
+    if orbit is None:
+        return None
+    if orbit.loses_contact:
+        probe = measure_window(stepper, PROBE_PERIODS, speed, scale)
+        if probe.contact_lost and abs(probe.liftoffs_per_period - 1.0) > LIFT_MATCH:
+            return None
+    averaged = torus_drift(stepper, orbit, speed, tol)
+    if averaged is None:
+        if orbit.loses_contact:
+            return None
+        averaged = (orbit.drift, 0.0)
+    drift, lifts = averaged
+    return drift, orbit_relaxation(orbit, scene.material.mu, scene.particle.m_star), lifts
 
 
 def _reduced_stage(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
