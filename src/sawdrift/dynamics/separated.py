@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 from scipy.optimize import brentq
@@ -147,14 +148,31 @@ def history_loop(force, compiled: bool):
     return fn
 
 
+@lru_cache(maxsize=8)
+def _operators(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The matrices that map K samples of one period of acc to the zero-mean periodic q with
+    q'' = acc - <acc>, to q', and a periodic q to q' (Fourier, applied to the unit vectors once:
+    a matrix product is cheaper than three transforms at these sizes)."""
+    w = 2.0 * np.pi * np.fft.rfftfreq(k, d=1.0 / k)
+    eye = np.eye(k)
+    spec = np.fft.rfft(eye, axis=0)
+    q_hat = np.zeros_like(spec)
+    q_hat[1:] = -spec[1:] / (w[1:, None] ** 2)
+    twice = np.fft.irfft(q_hat, n=k, axis=0)
+    once = np.fft.irfft(1j * w[:, None] * q_hat, n=k, axis=0)
+    rate = np.fft.irfft(1j * w[:, None] * spec, n=k, axis=0)
+    return twice, once, rate
+
+
 def _periodic(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The zero-mean periodic q and q' with q'' = acc - <acc> over one period of unit length."""
-    k = acc.size
-    spec = np.fft.rfft(acc)
-    w = 2.0 * np.pi * np.fft.rfftfreq(k, d=1.0 / k)
-    q_hat = np.zeros_like(spec)
-    q_hat[1:] = -spec[1:] / (w[1:] ** 2)
-    return np.fft.irfft(q_hat, n=k), np.fft.irfft(1j * w * q_hat, n=k)
+    twice, once, _ = _operators(acc.size)
+    return twice @ acc, once @ acc
+
+
+def _periodic_rate(q: np.ndarray) -> np.ndarray:
+    """q' of a periodic q sampled over one period (Fourier)."""
+    return _operators(q.size)[2] @ q
 
 
 class _Problem:
@@ -211,13 +229,6 @@ class _Problem:
                 break
         n, t = self.forces(y_mean, eta, eta_d, v, xi, xi_d)
         return eta, eta_d, xi, xi_d, n, t
-
-
-def _periodic_rate(q: np.ndarray) -> np.ndarray:
-    """q' of a periodic q sampled over one period (Fourier)."""
-    k = q.size
-    w = 2.0 * np.pi * np.fft.rfftfreq(k, d=1.0 / k)
-    return np.fft.irfft(1j * w * np.fft.rfft(q), n=k)
 
 
 def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:

@@ -46,7 +46,7 @@ import numpy as np
 from . import adams_bashforth as ig
 from .evidence import EV_LANDING
 from .full_inertia import relaxation_rate, settle_full, shift_speed
-from .separated import applies, orbit_relaxation, separated_orbit
+from .separated import SEPARATED_MIN_MASS, applies, orbit_relaxation, separated_orbit
 from .stepper import Stepper
 from .torus import torus_drift
 from .window import Window, in_flight, measure_window
@@ -206,9 +206,8 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
            max_steps: int) -> tuple[Window, Settling]:
     """Measure windows until the drift has settled (see the module docstring)."""
     m = scene.particle.m_star
-    m_x = horizontal_inertia(m, stepper.rigid)
     start = stepper.step
-    direct = _direct_start(stepper, scene, speed, scale) if m_x < m else None
+    direct = _direct_start(stepper, scene, speed, scale) if m >= SEPARATED_MIN_MASS else None
     if direct is not None:
         # the drift solved directly: the first zero of the force-velocity curve at full inertia,
         # averaged over the run's own slow vertical oscillation (dynamics.separated, .torus); the
