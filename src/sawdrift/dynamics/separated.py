@@ -80,6 +80,11 @@ FAST_TOL = 1e-12
 PERIODIC_TOL = 1e-9
 
 
+#: what :func:`separated_orbit` returns for a contact that sticks or creeps (no period-one orbit:
+#: held by its tangential stiffness, it needs no approach from rest)
+STUCK = "stuck"
+
+
 @dataclass(frozen=True)
 class SeparatedOrbit:
     """The periodic orbit found by :func:`separated_orbit` (arrays: one period of K samples)."""
@@ -257,9 +262,9 @@ def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
 
 
 def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
-                    keep_contact: bool = True) -> SeparatedOrbit | None:
-    """The period-one orbit of a heavy particle (module docstring), or None where the direct
-    solution does not apply or finds the contact stuck at V = 0.
+                    keep_contact: bool = True) -> SeparatedOrbit | str | None:
+    """The period-one orbit of a heavy particle (module docstring); :data:`STUCK` where the
+    contact sticks or creeps (no such orbit); None where the direct solution does not apply.
 
     Parameters
     ----------
@@ -298,7 +303,7 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
     eps = 1e-7
     up, down = push(eps), push(-eps)
     if up < 0.0 < down:
-        return None  # restoring both ways: the contact sticks (or creeps): settle by windows
+        return STUCK  # restoring both ways: the contact sticks (or creeps): settle by windows
     sign = 1.0 if up > 0.0 and (down >= 0.0 or up >= -down) else -1.0
     prev_d, prev_f = sign * eps, up if sign > 0 else down
     root = None
@@ -318,7 +323,7 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
     if p.residual > PERIODIC_TOL:
         # the memory does not repeat at the zero: no gross slip loads the tangential spring a
         # little more every period (a creeping contact), which is not a period-one orbit
-        return None
+        return STUCK
     return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
                           p.evaluations, _slope(pushes, d_star, speed), loses, p)
 

@@ -46,7 +46,13 @@ import numpy as np
 from . import adams_bashforth as ig
 from .evidence import EV_LANDING
 from .full_inertia import relaxation_rate, settle_full, shift_speed
-from .separated import SEPARATED_MIN_MASS, applies, orbit_relaxation, separated_orbit
+from .separated import (
+    SEPARATED_MIN_MASS,
+    STUCK,
+    applies,
+    orbit_relaxation,
+    separated_orbit,
+)
 from .stepper import Stepper
 from .torus import torus_drift
 from .window import Window, in_flight, measure_window
@@ -208,6 +214,13 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     m = scene.particle.m_star
     start = stepper.step
     direct = _direct_start(stepper, scene, speed, scale) if m >= SEPARATED_MIN_MASS else None
+    if direct == STUCK:
+        # held by its tangential stiffness, a sticking or creeping contact returns to its drift
+        # within a window from any start (the creep scales as m*^(-1/2) at full inertia): no
+        # approach at reduced inertia, windows at full inertia from here
+        win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps,
+                              reduce=False)
+        return win, replace(info, periods=(stepper.step - start) / stepper.k_per)
     if direct is not None:
         # the drift solved directly: the first zero of the force-velocity curve at full inertia,
         # averaged over the run's own slow vertical oscillation (dynamics.separated, .torus); the
@@ -227,10 +240,11 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
 
 
 def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
-              max_steps: int) -> tuple[Window, Settling]:
-    """The approach by windows: a reduced-inertia stage (m* > 100), then full-inertia windows."""
+              max_steps: int, reduce: bool = True) -> tuple[Window, Settling]:
+    """The approach by windows: a reduced-inertia stage (m* > 100, if ``reduce``), then
+    full-inertia windows."""
     m = scene.particle.m_star
-    m_x = horizontal_inertia(m, stepper.rigid)
+    m_x = horizontal_inertia(m, stepper.rigid) if reduce else m
     start = stepper.step
     if m_x < m:
         values, w, t90, last = _reduced_stage(stepper, scene, speed, scale, minimum_window,
@@ -257,12 +271,13 @@ def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_
 
 
 def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
-                  ) -> tuple[float, float, float] | None:
+                  ) -> tuple[float, float, float] | str | None:
     """(drift, relaxation rate, lift-offs per period) solved directly for a heavy particle, or
     None where that does not apply: the period-one orbit (:func:`~.separated.separated_orbit`;
     none for a creeping contact) averaged over the run's slow vertical oscillation
     (:func:`~.torus.torus_drift`). An orbit that keeps contact is its own start if the average
-    fails; one that loses contact is not (its drift can be 8 % from the run's).
+    fails; one that loses contact is not (its drift can be 8 % from the run's). :data:`STUCK`
+    for a contact that sticks or creeps.
 
     Both need the fast motion to be a period-one orbit about a slowly moving height. A probe of
     :data:`PROBE_PERIODS` periods checks it: a run that loses contact must lift off once a period
@@ -274,8 +289,8 @@ def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
     if not applies(stepper, scene):
         return None
     orbit = separated_orbit(stepper, scene, speed, tol, keep_contact=False)
-    if orbit is None:
-        return None
+    if orbit is None or orbit == STUCK:
+        return orbit
     if orbit.loses_contact:
         probe = measure_window(stepper, PROBE_PERIODS, speed, scale)
         if probe.contact_lost and abs(probe.liftoffs_per_period - 1.0) > LIFT_MATCH:
