@@ -8,6 +8,7 @@ N >= 40 m*/mu + 2000 periods, measured over the last 30 %).
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -18,7 +19,12 @@ import sawdrift as sd
 from sawdrift.contact.binding import model_for
 from sawdrift.dynamics.assembly import assemble
 from sawdrift.dynamics.full_inertia import full_window_length
-from sawdrift.dynamics.separated import STUCK, place_on_orbit, separated_orbit
+from sawdrift.dynamics.separated import (
+    STUCK,
+    approach_periods,
+    place_on_orbit,
+    separated_orbit,
+)
 from sawdrift.dynamics.stepper import Stepper
 from sawdrift.dynamics.torus import slow_cycle
 from sawdrift.dynamics.window import measure_window
@@ -137,3 +143,16 @@ def test_an_irregular_heavy_bouncer_is_not_averaged():
     res = sd.run(scene(3000.0, 6.0, 0.1))
     assert res.settle_method == "reduced_then_full"
     assert res.liftoffs_per_period < 0.9
+
+
+def test_the_time_from_rest_integrates_the_force_velocity_curve():
+    """A linear curve -<T*> = c (d* - d) gives an exponential approach: 90 % of d* after
+    ln(10) m* U / (mu c) periods (U the drift ratio's scale), within 0.1 %."""
+    c, d_star, m, mu, u = 0.4, 0.3, 500.0, 0.2, 2.5
+    samples = tuple((d, c * (d_star - d)) for d in np.linspace(0.0, d_star, 400))
+    sc = scene(1000.0, 0.3, 0.1)
+    st, speed, _ = stepper_after_ramp(sc)
+    orbit = separated_orbit(st, sc, speed, 1e-4)
+    fake = dataclasses.replace(orbit, curve=samples)
+    got = approach_periods(fake, d_star * u, u, mu, m)
+    assert got == pytest.approx(np.log(10.0) * m * u / (mu * c), rel=1e-3)

@@ -99,6 +99,7 @@ class SeparatedOrbit:
     evaluations: int  # force-velocity points computed
     slope: float  # d<T*>/dV at the zero (per unit of x* per period), from the closest points
     loses_contact: bool  # a* <= 0 somewhere on the orbit
+    curve: tuple[tuple[float, float], ...]  # (drift ratio, -<T*>) sampled on the way to the zero
     problem: _Problem = field(repr=False, compare=False)  # the imposed motion, for .torus
 
 
@@ -325,7 +326,8 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
         # little more every period (a creeping contact), which is not a period-one orbit
         return STUCK
     return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
-                          p.evaluations, _slope(pushes, d_star, speed), loses, p)
+                          p.evaluations, _slope(pushes, d_star, speed), loses,
+                          tuple(sorted(pushes.items())), p)
 
 
 def _slope(pushes: dict[float, float], d_star: float, speed: float) -> float:
@@ -366,3 +368,23 @@ def orbit_relaxation(orbit: SeparatedOrbit, mu: float, m_star: float) -> float:
     if not math.isfinite(orbit.slope) or orbit.slope <= 0.0:
         return assumed
     return min(max(mu * orbit.slope / m_star, 0.1 * assumed), 10.0 * assumed)
+
+
+def approach_periods(orbit: SeparatedOrbit, drift: float, speed: float, mu: float,
+                     m_star: float, share: float = 0.9) -> float:
+    """Periods a particle starting from rest takes to reach ``share`` of ``drift``, from the
+    force-velocity curve sampled on the way to the orbit: m* dV/dt = -mu <T*>(V) (separation of
+    motions), so t = integral from 0 to share V of m* dV / (-mu <T*>(V)), the curve interpolated
+    linearly between its samples. NaN where the curve does not push towards ``drift`` all the way.
+    """
+    target = share * drift / speed
+    d = np.array([c[0] for c in orbit.curve])
+    f = np.array([c[1] for c in orbit.curve])
+    if target == 0.0:
+        return 0.0
+    grid = np.linspace(0.0, target, 201)
+    push = np.interp(grid, d, f) * np.sign(target)
+    if np.any(push <= 0.0):
+        return math.nan
+    rate = m_star * speed / (mu * push)  # dt / d(drift ratio)
+    return float(abs(np.sum(0.5 * (rate[1:] + rate[:-1]) * np.diff(grid))))

@@ -50,6 +50,7 @@ from .separated import (
     SEPARATED_MIN_MASS,
     STUCK,
     applies,
+    approach_periods,
     orbit_relaxation,
     separated_orbit,
 )
@@ -225,12 +226,12 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
         # the drift solved directly: the first zero of the force-velocity curve at full inertia,
         # averaged over the run's own slow vertical oscillation (dynamics.separated, .torus); the
         # full-inertia windows start there, at the relaxation rate of the curve's slope
-        drift, lam, lifts = direct
+        drift, lam, lifts, t90 = direct
         shift_speed(stepper, drift - stepper.y[1])
         win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam)
         if abs(win.liftoffs_per_period - lifts) <= LIFT_MATCH:
             info = Settling(full.settled, "orbit_then_full", m, full.window_periods,
-                            (stepper.step - start) / stepper.k_per, math.nan,
+                            (stepper.step - start) / stepper.k_per, t90,
                             (drift / speed, *full.history))
             return win, info
         # the run does not lift off as the averaged orbits do: its fast motion is not a
@@ -271,11 +272,12 @@ def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_
 
 
 def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
-                  ) -> tuple[float, float, float] | str | None:
-    """(drift, relaxation rate, lift-offs per period) solved directly for a heavy particle, or
-    None where that does not apply: the period-one orbit (:func:`~.separated.separated_orbit`;
-    none for a creeping contact) averaged over the run's slow vertical oscillation
-    (:func:`~.torus.torus_drift`). An orbit that keeps contact is its own start if the average
+                  ) -> tuple[float, float, float, float] | str | None:
+    """(drift, relaxation rate, lift-offs per period, periods to 90 % of the drift from rest)
+    solved directly for a heavy particle, or None where that does not apply: the period-one orbit
+    (:func:`~.separated.separated_orbit`) averaged over the run's slow vertical oscillation
+    (:func:`~.torus.torus_drift`), the time from rest by
+    :func:`~.separated.approach_periods`. An orbit that keeps contact is its own start if the average
     fails; one that loses contact is not (its drift can be 8 % from the run's). :data:`STUCK`
     for a contact that sticks or creeps.
 
@@ -301,7 +303,10 @@ def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
             return None
         averaged = (orbit.drift, 0.0)
     drift, lifts = averaged
-    return drift, orbit_relaxation(orbit, scene.material.mu, scene.particle.m_star), lifts
+    mu, m = scene.material.mu, scene.particle.m_star
+    # the approach from rest is not run: its time to 90 % from the force-velocity curve
+    t90 = approach_periods(orbit, drift, speed, mu, m)
+    return drift, orbit_relaxation(orbit, mu, m), lifts, t90
 
 
 def _reduced_stage(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
