@@ -130,6 +130,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
             win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
             if _irregular(win, settling):
                 chaos = long_time_mean(stepper.twin(), win)
+    elif chaos is None and settling.long_mean is not None:
+        chaos = settling.long_mean  # the settling measured the long-time mean itself
     elif chaos is None and num.settle is not False and _irregular(win, settling):
         chaos = long_time_mean(stepper.twin(), win)
     wall = time.perf_counter() - t0

@@ -53,7 +53,6 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..codegen import Generated, generate, rebind
 from . import adams_bashforth as ig
@@ -118,16 +117,17 @@ def applies(stepper: Stepper, scene) -> bool:
 _LOOPS: dict[object, object] = {}
 
 
-def history_body(fs, is_, pp, a, b, adot, bdot, db, periods, n_out, t_out):
+def history_body(fs, is_, pp, path, db, periods, n_out, t_out):
     """The contact law ``force`` (a global, bound per kernel) along ``periods`` repetitions of one
-    period of sampled a*, b* and their rates, b* moved on by ``db`` each period: N*, T* of the
-    last period into ``n_out``, ``t_out``; returns the largest change of T* from the period
-    before (the memory committed step by step)."""
-    k_per = a.size
+    period of sampled a*, b* and their rates (the rows of ``path``), b* moved on by ``db`` each
+    period: N*, T* of the last period into ``n_out``, ``t_out``; returns the largest change of
+    T* from the period before (the memory committed step by step)."""
+    k_per = path.shape[1]
     change = 0.0
     for p in range(periods):
         for k in range(k_per):
-            n, t = force(fs, is_, pp, a[k], b[k] + p * db, adot[k], bdot[k])  # noqa: F821
+            n, t = force(fs, is_, pp, path[0, k], path[1, k] + p * db, path[2, k],  # noqa: F821
+                         path[3, k])
             if p == periods - 1:
                 d = abs(t - t_out[k])
                 if d > change:
@@ -214,8 +214,9 @@ class _Problem:
         n = np.empty(self.k)
         t = np.empty(self.k)
         #: how far the contact's memory is from repeating: the last two periods' T* apart
-        self.residual = float(self.loop(self.fs, self.is_, self.pp, a, b, adot, bdot,
-                                        v * self.scale_b, PERIODS, n, t))
+        path = np.stack((a, b, adot, bdot))
+        self.residual = float(self.loop(self.fs, self.is_, self.pp, path, v * self.scale_b,
+                                        PERIODS, n, t))
         self.evaluations += 1
         return n, t
 
@@ -239,6 +240,8 @@ class _Problem:
 
 def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
     """Y with <N*> = 1 and the vertical fast part eta on it (the normal law ignores b*)."""
+    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
+
     eta = np.zeros(p.k)
     zero = np.zeros(p.k)
     y_mean = 1.0
@@ -278,6 +281,8 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
     keep_contact
         Return None for an orbit that loses contact (else it is returned, ``loses_contact``).
     """
+    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
+
     if speed <= 0.0 or not applies(stepper, scene):
         return None
     t0 = stepper.step / stepper.k_per
@@ -358,13 +363,11 @@ def place_on_orbit(stepper: Stepper, orbit: SeparatedOrbit) -> None:
         stepper.fh[j, 3] = (1.0 - orbit.normal[i]) / m
 
 
-def orbit_relaxation(orbit: SeparatedOrbit, mu: float, m_star: float) -> float:
+def orbit_relaxation(orbit: SeparatedOrbit, mu: float, m_star: float, slope: float) -> float:
     """lambda = mu T' / m* (per period) of the mean speed near the orbit, T' = d<T*>/dV its
-    force-velocity slope, kept within a factor of ten of the assumed mu SLOPE / m* (a slope across
-    a kink of the curve is no rate)."""
-    from .steady import SLOPE
-
-    assumed = SLOPE * mu / m_star
+    force-velocity slope, kept within a factor of ten of the rate mu ``slope`` / m* assumed
+    without one (a slope across a kink of the curve is no rate)."""
+    assumed = slope * mu / m_star
     if not math.isfinite(orbit.slope) or orbit.slope <= 0.0:
         return assumed
     return min(max(mu * orbit.slope / m_star, 0.1 * assumed), 10.0 * assumed)

@@ -44,8 +44,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from . import adams_bashforth as ig
+from .batch_means import BatchMeans
 from .evidence import EV_LANDING
 from .full_inertia import relaxation_rate, settle_full, shift_speed
+from .imposed import imposed_drift
 from .separated import (
     SEPARATED_MIN_MASS,
     STUCK,
@@ -69,6 +71,12 @@ SLOPE = 0.5
 #: periods of the probe that checks the fast motion before the drift is solved directly
 PROBE_PERIODS = 12
 
+#: periods of the window that gives an irregular heavy bouncer's regime evidence
+EVIDENCE_PERIODS = 400
+
+#: what the direct start gives for a run whose lift-offs are not those of period-one orbits
+IRREGULAR = "irregular"
+
 #: lift-offs per period a run may differ by from those of the orbits its drift was averaged over
 LIFT_MATCH = 0.05
 
@@ -88,6 +96,9 @@ class Settling:
     periods: float
     t90_periods: float
     history: tuple[float, ...]
+    #: the long-time mean drift with its error, where the settling gives one instead of a
+    #: settled drift (an irregular heavy bouncer, :mod:`.imposed`)
+    long_mean: BatchMeans | None = None
 
 
 def horizontal_inertia(m_star: float, rigid: bool) -> float:
@@ -215,6 +226,11 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     m = scene.particle.m_star
     start = stepper.step
     direct = _direct_start(stepper, scene, speed, scale) if m >= SEPARATED_MIN_MASS else None
+    if direct == IRREGULAR:
+        got = _irregular_mean(stepper, scene, speed, scale, minimum_window, start)
+        if got is not None:
+            return got
+        direct = None
     if direct == STUCK:
         # held by its tangential stiffness, a sticking or creeping contact returns to its drift
         # within a window from any start (the creep scales as m*^(-1/2) at full inertia): no
@@ -235,9 +251,28 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
                             (drift / speed, *full.history))
             return win, info
         # the run does not lift off as the averaged orbits do: its fast motion is not a
-        # period-one orbit (irregular bouncing); the approach goes on at reduced inertia
+        # period-one orbit (irregular bouncing): friction at an imposed speed along its record
+        got = _irregular_mean(stepper, scene, speed, scale, minimum_window, start)
+        if got is not None:
+            return got
     win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps)
     return win, replace(info, periods=(stepper.step - start) / stepper.k_per)
+
+
+def _irregular_mean(stepper: Stepper, scene, speed: float, scale: np.ndarray,
+                    minimum_window: int, start: int) -> tuple[Window, Settling] | None:
+    """The long-time mean drift of an irregular heavy bouncer (:func:`~.imposed.imposed_drift`)
+    and a window at that speed for the regime's evidence; not settled (a mean with an error)."""
+    mean = imposed_drift(stepper, scene, speed)
+    if mean is None:
+        return None
+    shift_speed(stepper, mean.mean - stepper.y[1])
+    # long enough to hold several of a bouncer's flights (a window of 60 periods can be one)
+    win = measure_window(stepper, max(minimum_window, EVIDENCE_PERIODS), speed, scale)
+    info = Settling(False, "imposed_speed", scene.particle.m_star, minimum_window,
+                    (stepper.step - start) / stepper.k_per, math.nan, (mean.mean / speed,),
+                    long_mean=mean)
+    return win, info
 
 
 def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
@@ -296,7 +331,7 @@ def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
     if orbit.loses_contact:
         probe = measure_window(stepper, PROBE_PERIODS, speed, scale)
         if probe.contact_lost and abs(probe.liftoffs_per_period - 1.0) > LIFT_MATCH:
-            return None
+            return IRREGULAR
     averaged = torus_drift(stepper, orbit, speed, tol)
     if averaged is None:
         if orbit.loses_contact:
@@ -306,7 +341,7 @@ def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
     mu, m = scene.material.mu, scene.particle.m_star
     # the approach from rest is not run: its time to 90 % from the force-velocity curve
     t90 = approach_periods(orbit, drift, speed, mu, m)
-    return drift, orbit_relaxation(orbit, mu, m), lifts, t90
+    return drift, orbit_relaxation(orbit, mu, m, SLOPE), lifts, t90
 
 
 def _reduced_stage(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,

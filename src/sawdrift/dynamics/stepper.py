@@ -222,20 +222,27 @@ class Stepper:
         samples[periods - 1] = self.y[:4]
         return samples
 
-    def advance(self, n_steps: int, strobe: tuple[np.ndarray, int] | None = None) -> None:
+    def advance(self, n_steps: int, strobe: tuple[np.ndarray, int] | None = None,
+                rows: list[np.ndarray] | None = None) -> None:
         """Advance ``n_steps`` steps; raise a one-line error if the scheme cannot go on.
 
         The loops return early when the event log is nearly full; in the measuring window
         (:attr:`keep_events`) the log is then grown and the integration goes on, so every event
         of the window is kept; before it the log is emptied (its events counted), so the memory
-        of a run does not grow with its length.
+        of a run does not grow with its length. ``strobe`` = (samples, t0) takes the state at
+        each period boundary (:meth:`advance_periods`); ``rows`` collects the trajectory row of
+        every step (compliant scheme: the state before the step), whatever :attr:`record` says.
         """
         target = self.step + max(0, int(n_steps))
-        every = self.k_per if strobe is not None else self.rec_every
+        every = 1 if rows is not None else self.k_per if strobe is not None else self.rec_every
+        recording = self.record or strobe is not None or rows is not None
+        # one buffer for the whole advance: a loop that returns early (its event log full)
+        # goes on writing after the rows it has written
+        buffer = np.zeros(((target - self.step) // every + 2 if recording else 0, ig.N_REC))
+        used = 0
         while self.step < target:
             n = target - self.step
-            n_rec = n // every + 2 if (self.record or strobe is not None) else 0
-            rec = np.zeros((n_rec, ig.N_REC))
+            rec = buffer[used:]
             self.ctr[2] = 0
             if self.rigid:
                 self.loop(self.y, self.ctr, self.prm, n, rec, every, self.st)
@@ -244,7 +251,10 @@ class Stepper:
                     self.y, self.fh, self.ctr, (self.fs, self.is_, self.pp), self.prm, self.dp, n,
                     rec, every, self.st,
                 )
-            if strobe is not None:
+            used += int(self.ctr[2])
+            if rows is not None:
+                rows.append(rec[: self.ctr[2]])
+            elif strobe is not None:
                 _strobe_rows(strobe, rec[: self.ctr[2]])
             elif self.record:
                 self.rec_chunks.append(rec[: self.ctr[2]].copy())

@@ -35,7 +35,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .separated import SeparatedOrbit, _periodic, _periodic_rate
 from .stepper import Stepper
@@ -147,6 +146,8 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
     speed, tol
         The drift ratio's scale and ``numerics.settle_tolerance``.
     """
+    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
+
     cycle = slow_cycle(stepper, orbit)
     if cycle is None:
         return None

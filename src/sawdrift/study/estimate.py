@@ -5,8 +5,10 @@ The steps of one run follow from its scene as the runner plans it
 (:func:`cell_steps`): ``numerics.periods`` times the steps per period of
 :func:`sawdrift.dynamics.assembly.steps_per_period`, and for a settling run (a heavy particle,
 :func:`sawdrift.dynamics.steady.settles`) the expected length of the settle, of order ten
-relaxation times m*_x/mu of the reduced inertia plus two windows (the SAW motor example, m* =
-929, mu = 0.2: about 5000 periods expected, 4700 run), capped by ``numerics.max_periods``. The
+relaxation times m*_x/mu of the reduced inertia plus two windows, capped by
+``numerics.max_periods``; where the drift is solved directly (m* >= 30, a plain wave scene:
+:mod:`sawdrift.dynamics.separated`) four full-inertia windows (the SAW motor example, m* = 929,
+mu = 0.2: 1940 periods expected, 1940 run). The
 time divides the steps by a rate in steps per second measured on a short calibration run of the
 same model and engine (:func:`calibrate`: about 2e4 steps, the compiled loop loaded first) and
 by the workers (the harmonic mean over up to three sampled cells: steady slides run faster
@@ -28,6 +30,8 @@ from typing import Any
 from ..contact.registry import get_model
 from ..dynamics import steady
 from ..dynamics.assembly import steps_per_period
+from ..dynamics.full_inertia import full_window_length
+from ..dynamics.separated import SEPARATED_MIN_MASS
 from ..errors import SceneError
 from ..result.runner import run
 from ..scene.schema import Scene, Wave
@@ -108,7 +112,22 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
     window = steady.window_length(m, tau, scene.measure_periods(), rigid)
     cap = num.max_periods or steady.default_max_periods(m, tau, rigid, scene.measure_periods())
     expected = min(cap, max(fixed, num.periods + 8.0 * tau + 2.0 * window))
+    if _solved_directly(scene, rigid):
+        # the drift solved directly, confirmed by four full-inertia windows
+        full = full_window_length(m, scene.theta, scene.measure_periods())
+        expected = min(expected, num.periods + 4.0 * full)
     return expected * k, max(fixed, cap) * k
+
+
+def _solved_directly(scene: Scene, rigid: bool) -> bool:
+    """Whether a settling run of ``scene`` may start at the drift solved directly
+    (:mod:`sawdrift.dynamics.separated`): heavy, compliant, a travelling wave, none of the forces
+    that solution leaves out."""
+    eff = scene.effects
+    return (not rigid and scene.particle.m_star >= SEPARATED_MIN_MASS
+            and isinstance(scene.drive, Wave) and scene.particle.load == 0.0
+            and not eff.rotation and eff.normal_damping == 0.0 and eff.air_drag == 0.0
+            and eff.adhesion == "none" and scene.material.restitution is None)
 
 
 def calibrate(scene: Scene, engine: str = "compiled") -> tuple[float, float]:

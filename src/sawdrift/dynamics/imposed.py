@@ -1,0 +1,137 @@
+"""The drift of a heavy particle whose fast motion is irregular: friction at an imposed speed.
+
+A heavy particle bouncing irregularly (mmd, m* = 3000, A* = 6: lift-offs 0.4 times a period at
+no fixed phase) has no periodic orbit to solve for, and its mean speed relaxes over O(m*/mu)
+periods, so a run from rest takes of order 1e6 periods and is still not settled. Its vertical
+motion, though, does not depend on the horizontal one at all (the normal force is a function
+of the compression alone), and over the time the speed takes to change, the horizontal velocity
+is a constant V plus an oscillation of O(mu/m*). So the run's own vertical motion is recorded
+once, over many periods and several of its slow cycles, and the contact law is driven along it
+with the tangential displacement of an imposed speed,
+
+    a*(t*) as recorded,        b*(t*) = (V t* - u_x(t*)) / (theta mu),
+
+which gives the friction force T*(t*; V) and its long-time mean <T*>(V) over the record. The
+steady drift is the first zero of <T*>(V) met from rest in the direction the mean force pushes
+(as for :mod:`.separated`), and its error is the batch-means error of the per-period mean force
+at the zero (Flyvbjerg and Petersen blocking, :func:`.batch_means.blocked_error`) divided by the
+slope of <T*>(V) there. The record's cost grows with the slow vertical period (its length is at
+least two full-inertia windows, :func:`.full_inertia.full_window_length`), not with the
+relaxation time m*/mu.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import adams_bashforth as ig
+from .batch_means import BatchMeans, blocked_error
+from .full_inertia import full_window_length
+from .separated import GRID, _periodic_rate, history_loop
+from .stepper import Stepper
+
+#: periods recorded at least, and per chunk of the record
+RECORD_PERIODS = 2000
+CHUNK = 250
+
+#: periods of the record the bracket of the zero is searched on (the zero itself: all of it)
+BRACKET_PERIODS = 400
+
+#: periods at the start of the record left out of the means (the contact memory fills in)
+WASH_PERIODS = 2
+
+
+class _Record:
+    """The run's recorded vertical motion and the drive, one row per step."""
+
+    def __init__(self, stepper: Stepper, periods: int):
+        k = stepper.k_per
+        cols = []
+        left = periods
+        while left > 0:
+            p = min(CHUNK, left)
+            rows: list[np.ndarray] = []
+            stepper.advance(p * k, rows=rows)
+            r = np.concatenate(rows)
+            cols.append(r[:, [1, 3, 4, 5, 6]].copy())  # x, y, y', a, b
+            left -= p
+        x, y, vy, a, b = np.concatenate(cols).T
+        prm = stepper.prm
+        self.mu = float(prm[ig.P_MU])
+        self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)
+        self.k = k
+        phase = np.arange(a.size) % k
+        # the drive, periodic after the ramp: u_y = y* - a*, u_x = x* - b*/scale (no rotation)
+        uy1 = (y - a)[:k]
+        ux1 = (x - b / self.scale_b)[:k]
+        self.ux = ux1[phase]
+        self.uxd = _periodic_rate(ux1)[phase]
+        self.a = a
+        self.adot = vy - _periodic_rate(uy1)[phase]
+        self.t = np.arange(a.size) / k
+        self.scratch = stepper.history.copy()
+        force, self.fs, self.is_, self.pp = self.scratch.kernel_call()
+        self.loop = history_loop(force, stepper.compiled)
+
+    def friction(self, v: float, periods: int | None = None) -> np.ndarray:
+        """T*(t*) along the record (its first ``periods``) at the imposed speed ``v``."""
+        n = self.a.size if periods is None else min(self.a.size, periods * self.k)
+        b = (v * self.t[:n] - self.ux[:n]) * self.scale_b
+        bdot = (v - self.uxd[:n]) * self.scale_b
+        self.scratch.reset()
+        n_out = np.zeros(n)
+        t_out = np.zeros(n)
+        path = np.stack((self.a[:n], b, self.adot[:n], bdot))
+        self.loop(self.fs, self.is_, self.pp, path, 0.0, 1, n_out, t_out)
+        return t_out[WASH_PERIODS * self.k:]
+
+
+def imposed_drift(stepper: Stepper, scene, speed: float) -> BatchMeans | None:
+    """The long-time mean drift (x* per period) and its error at an imposed speed along the
+    run's own recorded vertical motion (module docstring); None without a zero of <T*>(V)."""
+    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
+
+    m = scene.particle.m_star
+    periods = max(RECORD_PERIODS, 2 * full_window_length(m, scene.theta, 1))
+    rec = _Record(stepper, periods)
+
+    def push(d: float, span: int | None = None) -> float:
+        return -float(np.mean(rec.friction(d * speed, span)))
+
+    touching = rec.a > 0.0
+    if not np.any(touching):
+        return None  # one flight through the whole record: no friction to balance
+    # the bracket is searched on the record's start if it touches as often as the whole (a
+    # thrown particle can spend hundreds of periods in one flight)
+    short = BRACKET_PERIODS * rec.k
+    span = BRACKET_PERIODS if touching[:short].mean() >= 0.5 * touching.mean() else None
+    eps = 1e-7
+    up, down = push(eps, span), push(-eps, span)
+    if up < 0.0 < down:
+        return None  # held at rest both ways: not an irregular drift
+    sign = 1.0 if up > 0.0 and (down >= 0.0 or up >= -down) else -1.0
+    prev = sign * eps
+    bracket = None
+    for g in GRID:
+        d = sign * g
+        if sign * push(d, span) < 0.0:  # the speed would fall back: passed the zero
+            bracket = (prev, d)
+            break
+        prev = d
+    if bracket is None:
+        return None
+    lo, hi = sorted(bracket)
+    # widen to a bracket of the whole record (its mean differs from the first part's a little)
+    f_lo, f_hi = push(lo), push(hi)
+    while f_lo < 0.0 or f_hi > 0.0:
+        width = hi - lo
+        lo, hi = lo - width if f_lo < 0.0 else lo, hi + width if f_hi > 0.0 else hi
+        f_lo, f_hi = push(lo), push(hi)
+        if hi - lo > 4.0:
+            return None
+    root = brentq(push, lo, hi, xtol=1e-5, rtol=1e-10)
+    per_period = rec.friction(root * speed).reshape(-1, rec.k).mean(axis=1)
+    _mean, se_force, batches = blocked_error(per_period)
+    slope = (f_hi - f_lo) / (hi - lo)  # d(-<T*>)/d(drift ratio) across the bracket
+    se = se_force / abs(slope) if slope != 0.0 else float("inf")
+    return BatchMeans(root * speed, se * speed, batches, int(per_period.size))
