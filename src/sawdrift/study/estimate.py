@@ -8,7 +8,7 @@ The steps of one run follow from its scene as the runner plans it
 relaxation times m*_x/mu of the reduced inertia plus two windows, capped by
 ``numerics.max_periods``; where the drift is solved directly (m* >= 30, a plain wave scene:
 :mod:`sawdrift.dynamics.separated`) four full-inertia windows (the SAW motor example, m* = 929,
-mu = 0.2: 1940 periods expected, 1940 run). The
+mu = 0.2: 1940 periods expected, 1913 run). The
 time divides the steps by a rate in steps per second measured on a short calibration run of the
 same model and engine (:func:`calibrate`: about 2e4 steps, the compiled loop loaded first) and
 by the workers (the harmonic mean over up to three sampled cells: steady slides run faster
