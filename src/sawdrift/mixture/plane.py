@@ -45,6 +45,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import plane_curves
 from . import plane_kernel as kernel
 from .chains import Bead
 from .curves import SpeciesCurves
@@ -57,7 +58,7 @@ PRESS = 4.0
 
 def curve_arrays(curves: list[SpeciesCurves]) -> tuple[np.ndarray, ...]:
     """The species' regular speed tables padded into arrays for the kernel (module docstring of
-    :mod:`.plane_kernel`): table, v0, dv, lo, hi, log n, curves per species, load step h."""
+    :mod:`.plane_curves`): table, v0, dv, lo, hi, log n, curves per species, load step h."""
     grids = [c.speed_grid() for c in curves]
     ncurve = max(c.normal.size for c in curves)
     size = grids[0][0].size
@@ -209,6 +210,6 @@ def free_speeds(curves: list[SpeciesCurves]) -> list[float]:
     table, v0, dv, lo, hi, logn, nc, hstep = curve_arrays(curves)
     out = []
     for s in range(len(curves)):
-        a, b, t = kernel.bracket(logn, nc, s, 0.0)
-        out.append(float(kernel.curve_speed(table, v0, dv, lo, hi, s, a, b, t, 0.0)[0]))
+        a, b, t = plane_curves.bracket(logn, nc, s, 0.0)
+        out.append(float(plane_curves.curve_speed(table, v0, dv, lo, hi, s, a, b, t, 0.0)[0]))
     return out
