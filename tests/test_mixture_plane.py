@@ -18,6 +18,8 @@ from sawdrift.mixture.events import SlowModel
 from sawdrift.mixture.plane import PlaneModel, free_speeds
 from sawdrift.mixture.sort import sort_mixture
 
+from .cli_call import call
+
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 SMALL = Bead(0.2e-3, 1.1e-10, 2.58e-6)
@@ -153,3 +155,25 @@ def test_bad_geometry_is_a_scene_error():
     with pytest.raises(sd.errors.SceneError, match="--geometry = 'disk'"):
         sort_mixture(scene, particles, seeds=1, geometry="disk")
     assert math.isfinite(LARGE.height)
+
+
+@pytest.mark.parametrize("geometry", ["plane", "line"])
+def test_sort_command_reports_and_plots_both_geometries(geometry, tmp_path, monkeypatch, capsys):
+    """`sawdrift sort` prints the geometry, its assumption and the time to the purity, and
+    writes sort.json and sort.png, for both geometries."""
+    import json
+
+    monkeypatch.setattr(sort_module, "curves_for", lambda scene, radii, **kw: plate_curves())
+    text = (EXAMPLES / "mixture.toml").read_text().replace("count = 200", "count = 24")
+    scene = tmp_path / "small.toml"
+    scene.write_text(text.replace("row = 20", "row = 6"))
+    status, out, _ = call(monkeypatch, capsys, "sort", str(scene), "--seeds", "2", "--until",
+                          "1e8", "--geometry", geometry, "-o", str(tmp_path / "out"))
+    assert status == 0
+    assert ("in 2-D on the plate" in out) == (geometry == "plane")
+    assert "model: " + ("2-D" if geometry == "plane" else "1-D") in out
+    assert "time to purity 0.9:" in out
+    data = json.loads((tmp_path / "out" / "sort.json").read_text())
+    assert data["geometry"] == geometry
+    assert (data["time_to_target"]["reached"] == 2) == (geometry == "plane")
+    assert (tmp_path / "out" / "sort.png").stat().st_size > 10_000

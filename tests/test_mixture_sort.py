@@ -100,6 +100,9 @@ def test_chains_carry_small_beads_against_their_drift(monkeypatch):
     (["--purity", "0.3"], "--purity = 0.3"),
     (["--curves", "other"], "--curves = 'other'"),
     (["--until", "0"], "--until = 0.0"),
+    (["--geometry", "disk"], "--geometry = 'disk'"),
+    (["--transverse", "0"], "--transverse = 0.0"),
+    (["--jitter", "-1"], "--jitter = -1.0"),
 ])
 def test_bad_sort_options_are_one_line(args, needle, monkeypatch, capsys):
     monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"), *args])

@@ -201,7 +201,7 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     if geometry not in GEOMETRIES:
         raise SceneError(f"--geometry = {geometry!r}: use 'plane' or 'line'")
     if not (perp > 0.0 and math.isfinite(perp)):
-        raise SceneError(f"transverse mobility factor = {perp!r}: give a positive number")
+        raise SceneError(f"--transverse = {perp!r}: give a positive factor")
     if not (jitter_radii >= 0.0 and math.isfinite(jitter_radii)):
         raise SceneError(f"--jitter = {jitter_radii!r}: give a number of radii >= 0")
     real = realize(scene)
