@@ -39,7 +39,8 @@ def sort_cmd(
                                           "by this many small radii (seeded), which breaks "
                                           "exactly head-on rows")] = 1e-3,
     check: Annotated[int, typer.Option("--check", min=0, help="also run the first placement in "
-                                       "LAMMPS for N periods and print both")] = 0,
+                                       "LAMMPS for N periods and print both (the slow model "
+                                       "in lanes along the wave)")] = 0,
     progress: Annotated[bool, typer.Option("--progress/--no-progress",
                                            help="a line per curve and placement on stderr")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
@@ -122,7 +123,7 @@ def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int
                      "model_drift_ratio": model["drift_ratio"][k]})
     return {"periods": periods, "species": rows, "lammps_wall_time_s": lmp.wall_time_s,
             "lammps_purity": position_purity(lmp.final_x, lmp.kinds), "model_purity": model["purity"],
-            "model_wall_time_s": model["wall_time_s"],
+            "model_wall_time_s": model["wall_time_s"], "model_geometry": "line",
             "lammps_touching_pairs": lmp.window_pairs, "model_chains": model["chains"]}
 
 
@@ -186,7 +187,9 @@ def _lines(data: dict[str, Any]) -> list[str]:
     if "check" in data:
         c = data["check"]
         lines.append(f"  check, placement seed {seeds[0]}, {c['periods']} periods: LAMMPS "
-                     f"{c['lammps_wall_time_s']:.3g} s, slow model {c['model_wall_time_s']:.2g} s")
+                     f"{c['lammps_wall_time_s']:.3g} s, slow model in lanes along the wave "
+                     f"{c['model_wall_time_s']:.2g} s (over so few periods no bead gets round "
+                     "another)")
         for row in c["species"]:
             lines.append(f"    R = {row['radius_m'] * 1e3:.3g} mm: mean drift ratio LAMMPS "
                          f"{_fmt(row['lammps_drift_ratio'], '+.4f')}, slow model "
