@@ -28,14 +28,19 @@ and lifts the higher one (N_j = W_j - P n_z, N_i = W_i + P n_z). A head-on conta
 y part: a line of beads along the wave stays a line, and moves as the 1-D chains do.
 
 Time steps (:func:`.plane_kernel.integrate`). A bead that touches nothing moves at its free drift,
-exactly, over any step. Beads that touch form clusters, each moved by one linearly implicit Euler
-step (I - dt J) d = dt V, with J the derivative of the drifts with respect to the positions
-through the pair forces: stable for any stiffness, and a chain moving at a common speed is an
-exact fixed point of the step (a translation changes no force). A step is accepted when every
-bead moves by at most a quarter of the neighbour list's skin, touching beads move by at most
-``slide`` smallest radii relative to each other (the resolution of sliding round a bead) and no
-new contact overlaps by more than delta_tol / 2; otherwise it is halved. Candidate pairs come
-from a sweep along x, rebuilt when a bead has moved by a quarter of the skin.
+exactly, over any step. Beads that touch form clusters; each step is a backward Euler step,
+d = dt V(x + d), solved by Newton's method per cluster from the linearly implicit step
+(I - dt J) d = dt V, with J the derivative of the drifts with respect to the positions through
+the pair forces: stable for any stiffness, and a chain moving at a common speed is an exact fixed
+point (a translation changes no force). A step is accepted when Newton's method has converged
+(no bead off by more than 5e-2 delta_tol), touching beads have moved by at most ``slide`` smallest
+radii relative to each other (the resolution of sliding round a bead) and every bead by at most a
+quarter of the neighbour list's skin (or of the nearest gap outside the list, when larger);
+otherwise it is halved. Candidate pairs come from a sweep along x, rebuilt when a bead has moved
+by that quarter.
+
+Beyond the loads a species' curves sampled a bead slides (:data:`.plane_curves.SLIDE`), so that
+no bead can hold more than its friction limit.
 """
 
 from __future__ import annotations
