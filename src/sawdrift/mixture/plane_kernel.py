@@ -334,6 +334,30 @@ def _drifts(x, y, kind, rad, hgt, wgt, stiff, pi, pj, over, act, fx, fy, nl, tab
 
 
 @njit(**JIT)
+def _parted(x, kind, rad, start, wx, wy) -> bool:
+    """Can no two beads ever touch again? True when nothing touches, every bead moves straight
+    along the wave at one speed per species, and every species lies wholly ahead (by more than
+    a contact) of every slower one: then the rest of the run is straight lines."""
+    for p in range(start.size):
+        if start[p]:
+            return False
+    m = rad.size
+    lo_x, hi_x, speed = np.full(m, math.inf), np.full(m, -math.inf), np.full(m, math.nan)
+    for i in range(x.size):
+        s = kind[i]
+        if wy[i] != 0.0 or (speed[s] == speed[s] and wx[i] != speed[s]):
+            return False
+        speed[s] = wx[i]
+        lo_x[s] = min(lo_x[s], x[i])
+        hi_x[s] = max(hi_x[s], x[i])
+    for a in range(m):
+        for b in range(m):
+            if speed[a] > speed[b] and lo_x[a] - hi_x[b] <= rad[a] + rad[b]:
+                return False
+    return True
+
+
+@njit(**JIT)
 def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep, u: float,
               perp: float, stiff: float, tol: float, skin: float, slide: float,
               sample_t, out_x, out_y, out_u, stats, max_steps: int) -> int:
@@ -373,6 +397,8 @@ def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep,
                 dv, lo, hi, logn, nc, hstep, u, perp, wx, wy, bx, bn, bp)
         for p in range(pi.size):
             stats[4] = max(stats[4], over[p] / tol)
+        if _parted(x, kind, rad, start, wx, wy):
+            break  # sorted and moving apart: straight lines from here
         if first:
             ux[:] = wx
             uy[:] = wy
@@ -442,6 +468,15 @@ def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep,
             out_x[k, :] = x
             out_y[k, :] = y
             k += 1
+    if k < sample_t.size:  # parted: every bead at its free drift from t on
+        ux[:] = wx
+        uy[:] = wy
+        t0 = t
+        while k < sample_t.size:
+            out_x[k, :] = x + wx * (sample_t[k] - t0)
+            out_y[k, :] = y
+            k += 1
+        x += wx * (sample_t[-1] - t0)
     out_u[0, :] = ux
     out_u[1, :] = uy
     return 0
