@@ -177,3 +177,21 @@ def test_sort_command_reports_and_plots_both_geometries(geometry, tmp_path, monk
     assert data["geometry"] == geometry
     assert (data["time_to_target"]["reached"] == 2) == (geometry == "plane")
     assert (tmp_path / "out" / "sort.png").stat().st_size > 10_000
+
+
+def test_explicit_touching_positions_run_in_2d(monkeypatch):
+    """Beads placed by hand touching off the axes (a small bead at 45 degrees to a large one):
+    the jitter across the wave may press them together (by a fraction of a micrometre), which
+    the 2-D model accepts and pushes apart; the small bead then slides off and runs ahead."""
+    scene, particles = plate()
+    monkeypatch.setattr(sort_module, "curves_for", lambda scene, radii, **kw: plate_curves())
+    from sawdrift.lammps.placement import parse_particles, species_of
+
+    small, large = (Bead(sp.radius, sp.a0, 1.0) for sp in species_of(scene, parse_particles(
+        particles)))
+    reach = contact_geometry(small, large)[0] / math.sqrt(2.0) * (1.0 + 1e-12)
+    table = {k: v for k, v in particles.items() if k not in ("count", "packing", "row")}
+    table["positions"] = [["5 mm", "5 mm", 1], [f"{5e-3 - reach} m", f"{5e-3 - reach} m", 0]]
+    result = sort_mixture(scene, table, periods=1e7, samples=2)
+    run = result.runs[0]
+    assert run.x[-1, 1] > run.x[-1, 0]  # the small bead (index 1) ahead of the large one
