@@ -165,11 +165,12 @@ def pair_loads(x, y, kind, rad, hgt, wgt, stiff: float, pi, pj, act, fx, fy, nl)
 
 
 @njit(**JIT)
-def responses(kind, wgt, fx, fy, nl, busy, table, v0, dv, lo, hi, logn, nc, hstep, u: float,
-              perp: float, vx, vy, ax, an, mp) -> None:
+def responses(kind, wgt, fx, fy, nl, busy, table, v0, dv, lo, hi, logn, nc, hstep, vfree,
+              u: float, perp: float, vx, vy, ax, an, mp) -> None:
     """Each bead's drift (vx, vy, m/s) under its loads and the derivatives the implicit step uses:
     ax = dVx/dLx, an = dVx/dN, mp = dVy/dLy (the transverse mobility, times ``perp``). A bead in
-    no contact (``busy`` false) has the free values of its species (read once)."""
+    no contact (``busy`` false) has the free values of its species (read once), and drifts at
+    exactly ``vfree``, the free drift ratio as the curves sampled it (the 1-D model's)."""
     free = np.empty((wgt.size, 4))
     for s in range(wgt.size):
         v, slope, dvdlogn, sec = bead_response(table, v0, dv, lo, hi, logn, nc, hstep, s, 0.0,
@@ -185,7 +186,7 @@ def responses(kind, wgt, fx, fy, nl, busy, table, v0, dv, lo, hi, logn, nc, hste
                                                    fx[i], n, w)
         else:
             floor, n = False, w
-            v, slope, dvdlogn, sec = free[s, 0], free[s, 1], free[s, 2], free[s, 3]
+            v, slope, dvdlogn, sec = vfree[s], free[s, 1], free[s, 2], free[s, 3]
         vx[i] = u * v
         mp[i] = perp * u * sec / n
         vy[i] = mp[i] * fy[i]
@@ -352,7 +353,7 @@ def _guess(pi, pj, act, ux, uy, dt: float, quarter: float, slide: float) -> floa
 
 @njit(**JIT)
 def _drifts(x, y, kind, rad, hgt, wgt, stiff, pi, pj, over, act, fx, fy, nl, table, v0, dv, lo,
-            hi, logn, nc, hstep, u, perp, vx, vy, ax, an, mp) -> None:
+            hi, logn, nc, hstep, vfree, u, perp, vx, vy, ax, an, mp) -> None:
     """Contacts (``act``: overlap > 0), loads and drifts at the positions (x, y)."""
     overlaps(x, y, kind, rad, hgt, pi, pj, over)
     busy = np.zeros(x.size, dtype=np.bool_)
@@ -362,8 +363,8 @@ def _drifts(x, y, kind, rad, hgt, wgt, stiff, pi, pj, over, act, fx, fy, nl, tab
             busy[pi[p]] = True
             busy[pj[p]] = True
     pair_loads(x, y, kind, rad, hgt, wgt, stiff, pi, pj, act, fx, fy, nl)
-    responses(kind, wgt, fx, fy, nl, busy, table, v0, dv, lo, hi, logn, nc, hstep, u, perp, vx,
-              vy, ax, an, mp)
+    responses(kind, wgt, fx, fy, nl, busy, table, v0, dv, lo, hi, logn, nc, hstep, vfree, u, perp,
+              vx, vy, ax, an, mp)
 
 
 @njit(**JIT)
@@ -391,7 +392,7 @@ def _parted(x, kind, rad, start, wx, wy) -> bool:
 
 
 @njit(**JIT)
-def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep, u: float,
+def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep, vfree, u: float,
               perp: float, stiff: float, tol: float, skin: float, slide: float,
               sample_t, out_x, out_y, out_u, stats, max_steps: int) -> int:
     """Move the beads (``x``, ``y`` in place) through the times ``sample_t`` (s, from 0).
@@ -427,7 +428,7 @@ def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep,
         if stats[0] >= max_steps:
             return 1
         _drifts(x, y, kind, rad, hgt, wgt, stiff, pi, pj, over, start, fx, fy, nl, table, v0,
-                dv, lo, hi, logn, nc, hstep, u, perp, wx, wy, bx, bn, bp)
+                dv, lo, hi, logn, nc, hstep, vfree, u, perp, wx, wy, bx, bn, bp)
         for p in range(pi.size):
             stats[4] = max(stats[4], over[p] / tol)
         if _parted(x, kind, rad, start, wx, wy):
@@ -452,7 +453,7 @@ def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep,
                     xt[i] = x[i] + ddx[i]
                     yt[i] = y[i] + ddy[i]
                 _drifts(xt, yt, kind, rad, hgt, wgt, stiff, pi, pj, over, act, fx, fy, nl,
-                        table, v0, dv, lo, hi, logn, nc, hstep, u, perp, vx, vy, ax, an, mp)
+                        table, v0, dv, lo, hi, logn, nc, hstep, vfree, u, perp, vx, vy, ax, an, mp)
                 res = 0.0
                 for i in range(n):
                     rx[i] = dt * vx[i] - ddx[i]
