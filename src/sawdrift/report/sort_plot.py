@@ -53,7 +53,10 @@ def plot_sort(result: SortResult, path: str | Path | None = None) -> Figure:
         row = result.species[k]
         bx.plot([], [], color=COLORS[k], label=f"R = {row['radius_m'] * 1e3:.3g} mm, free "
                 f"drift ratio {row['free_drift_ratio']:+.3f}")
-    bx.legend(fontsize=8)
+    if result.geometry == "plane":  # the paths fill the panel: the legend goes under it
+        bx.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
+    else:
+        bx.legend(fontsize=8)
     if path is not None:
         fig.savefig(path, dpi=120)
         plt.close(fig)
