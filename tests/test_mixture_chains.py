@@ -15,6 +15,7 @@ import sawdrift as sd
 from sawdrift.mixture.chains import Bead, contact_geometry, solve_chain, split_chain
 from sawdrift.mixture.curves import SpeciesCurves, isotonic, species_curves
 from sawdrift.mixture.events import SlowModel, lanes
+from sawdrift.mixture.plane import PlaneModel
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -124,8 +125,8 @@ def test_isotonic_is_the_least_squares_monotone_fit():
 @pytest.mark.slow
 def test_dilute_limit_is_each_single_bead_drift(tmp_path, monkeypatch):
     """Beads in lanes of their own move at their species' free drift: the slow model's
-    displacement over 1e6 periods equals the drift speed of an independent single-particle run
-    of each species (the device in m/s) within 1e-9 relative."""
+    displacement over 1e6 periods, 1-D and 2-D, equals the drift speed of an independent
+    single-particle run of each species (the device in m/s) within 1e-9 relative."""
     import sawdrift.mixture.curves as curves_module
 
     monkeypatch.setattr(curves_module, "cache_dir", lambda: tmp_path)
@@ -144,11 +145,14 @@ def test_dilute_limit_is_each_single_bead_drift(tmp_path, monkeypatch):
                       curves, u)
     t = 1e6 / real.frequency
     run = model.run(np.array([t]))
+    plane = PlaneModel(np.array([0.0, 0.0]), np.array([0.0, 0.01]), np.array([0, 1]), beads,
+                       curves, u).run(np.array([0.0, t]))
     for k, r in enumerate(radii):
         single = sd.run(scene.with_updates(**{"device.particle.radius": r,
                                               "numerics.settle": True}))
         speed = single.summary()["drift_speed_m_s"]
         assert run.x[0, k] / t == pytest.approx(speed, rel=1e-9)
+        assert plane.x[1, k] / t == pytest.approx(speed, rel=1e-9)  # the 2-D model too
 
 
 def test_offset_beads_meet_closer_or_pass():

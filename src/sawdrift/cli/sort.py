@@ -25,13 +25,22 @@ def sort_cmd(
     seeds: Annotated[int, typer.Option("--seeds", min=1, help="random placements (seeds seed, "
                                        "seed+1, ...); at least 20 for a spread")] = 20,
     until: Annotated[float, typer.Option("--until", help="length of each run in wave periods "
-                                         "(the cost does not grow with it)")] = 1e9,
+                                         "(beads that touch nothing cost nothing)")] = 1e9,
     purity: Annotated[float, typer.Option("--purity", help="report the time to this purity of "
                                           "the best interface, in (0.5, 1]")] = 0.9,
     curves: Annotated[str, typer.Option("--curves", help="force-velocity curves: 'native' (the "
                                         "engine) or 'lammps_rule' (LAMMPS's Coulomb rule)")] = "native",
+    geometry: Annotated[str, typer.Option("--geometry", help="'plane': beads in 2-D on the plate, "
+                                          "sliding round each other; 'line': lanes along the "
+                                          "wave, beads cannot pass (1-D)")] = "plane",
+    transverse: Annotated[float, typer.Option("--transverse", help="plane: factor on the "
+                                              "assumed transverse mobility (docs/mixtures.md)")] = 1.0,
+    jitter: Annotated[float, typer.Option("--jitter", help="plane: beads moved across the wave "
+                                          "by this many small radii (seeded), which breaks "
+                                          "exactly head-on rows")] = 1e-3,
     check: Annotated[int, typer.Option("--check", min=0, help="also run the first placement in "
-                                       "LAMMPS for N periods and print both")] = 0,
+                                       "LAMMPS for N periods and print both (the slow model "
+                                       "in lanes along the wave)")] = 0,
     progress: Annotated[bool, typer.Option("--progress/--no-progress",
                                            help="a line per curve and placement on stderr")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
@@ -44,17 +53,26 @@ def sort_cmd(
 
     Each bead drifts at the speed its force-velocity curves give under the loads of the beads it
     touches (pair forces along the inclined contact normals, which press the smaller bead onto
-    the plate and lift the larger); touching beads move as chains at a common speed, merge on
-    contact and split where the front runs ahead, event by event in slow time, in lanes along
-    the wave (1-D). Reports the segregation of the positions (purity of the best interface, its
-    index, Lacey) against time with its spread over the placements, the time to --purity, the
-    final state, and the accuracy the checks against LAMMPS showed (docs/lammps.md).
+    the plate and lift the larger). --geometry plane (default): beads move in 2-D, the sideways
+    part of an off-centre contact pushes a small bead round a large one (the sideways response
+    is an assumption, stated in the output). --geometry line: beads in lanes along the wave
+    move as chains at a common speed, merge on contact and split where the front runs ahead,
+    event by event in slow time (1-D). Reports the segregation of the positions (purity of the
+    best interface, its index, Lacey) against time with its spread over the placements, the
+    time to --purity, the final state, and the accuracy the checks against LAMMPS showed
+    (docs/mixtures.md).
     """
     fast_start()
     from ..mixture.sort import sort_mixture
 
     if curves not in ("native", "lammps_rule"):
         _fail(f"--curves = {curves!r}: use 'native' or 'lammps_rule'")
+    if geometry not in ("plane", "line"):
+        _fail(f"--geometry = {geometry!r}: use 'plane' or 'line'")
+    if not (transverse > 0.0 and math.isfinite(transverse)):
+        _fail(f"--transverse = {transverse!r}: give a positive factor")
+    if not (jitter >= 0.0 and math.isfinite(jitter)):
+        _fail(f"--jitter = {jitter!r}: give a number of small radii >= 0")
     scene, particles = _scene_and_particles(scene_file, None, {}, scene_overrides)
     if particles is None:
         _fail(f"{scene_file}: sort needs a [particles] table (two radii)")
@@ -62,7 +80,8 @@ def sort_cmd(
         _writable(out)
     note = (lambda line: typer.echo(line, err=True)) if progress else None
     result = sort_mixture(scene, particles, seeds=seeds, periods=until, target=purity,
-                          source=curves, progress=note)  # type: ignore[arg-type]
+                          source=curves, geometry=geometry, perp=transverse,
+                          jitter_radii=jitter, progress=note)  # type: ignore[arg-type]
     data = result.summary()
     if check:
         data["check"] = _check(scene, particles, result, check)
@@ -104,7 +123,7 @@ def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int
                      "model_drift_ratio": model["drift_ratio"][k]})
     return {"periods": periods, "species": rows, "lammps_wall_time_s": lmp.wall_time_s,
             "lammps_purity": position_purity(lmp.final_x, lmp.kinds), "model_purity": model["purity"],
-            "model_wall_time_s": model["wall_time_s"],
+            "model_wall_time_s": model["wall_time_s"], "model_geometry": "line",
             "lammps_touching_pairs": lmp.window_pairs, "model_chains": model["chains"]}
 
 
@@ -118,8 +137,10 @@ def _lines(data: dict[str, Any]) -> list[str]:
     f = data["frequency_hz"]
     periods = data["periods"]
     seeds = data["seeds"]
+    model = ("slow model in 2-D on the plate" if data["geometry"] == "plane"
+             else "slow model of chains in lanes along the wave (1-D)")
     lines = [f"{data['count']} beads, {len(seeds)} placement(s) (seeds {seeds[0]}-{seeds[-1]}), "
-             f"slow model of chains in lanes along the wave, {periods[-1]:.3g} periods = "
+             f"{model}, {periods[-1]:.3g} periods = "
              f"{periods[-1] / f:.3g} s of device time at {f:.4g} Hz; {data['wall_time_s']:.3g} s "
              f"(curves '{data['curve_source']}': {data['curve_wall_time_s']:.3g} s)"]
     for row in data["species"]:
@@ -152,15 +173,23 @@ def _lines(data: dict[str, Any]) -> list[str]:
                      f"in any placement (purity at the end {_fmt(fin['mean'], '.3f')} +- "
                      f"{_fmt(fin['std'], '.3f')})")
     fin = data["final"]
-    lines.append(f"  final: {_fmt(fin['chains']['mean'])} +- {_fmt(fin['chains']['std'])} chains "
-                 f"(mean size {_fmt(fin['mean_chain_size'])}, largest {fin['largest_chain']}), "
-                 f"{_fmt(fin['merges']['mean'])} merges and {_fmt(fin['splits']['mean'])} splits "
-                 "per placement")
+    if data["geometry"] == "line":
+        cost = (f"{_fmt(fin['merges']['mean'])} merges and {_fmt(fin['splits']['mean'])} splits "
+                "per placement")
+    else:
+        cost = (f"{_fmt(fin['steps']['mean'])} steps per placement, largest overlap "
+                f"{fin['largest_overlap_over_tolerance']:.2g} of the tolerance")
+    lines.append(f"  final: {_fmt(fin['chains']['mean'])} +- {_fmt(fin['chains']['std'])} "
+                 f"groups of touching beads (mean size {_fmt(fin['mean_chain_size'])}, largest "
+                 f"{fin['largest_chain']}), {cost}")
     lines.append(f"  {data['validated']}")
+    lines.append(f"  model: {data['assumed']}")
     if "check" in data:
         c = data["check"]
         lines.append(f"  check, placement seed {seeds[0]}, {c['periods']} periods: LAMMPS "
-                     f"{c['lammps_wall_time_s']:.3g} s, slow model {c['model_wall_time_s']:.2g} s")
+                     f"{c['lammps_wall_time_s']:.3g} s, slow model in lanes along the wave "
+                     f"{c['model_wall_time_s']:.2g} s (over so few periods no bead gets round "
+                     "another)")
         for row in c["species"]:
             lines.append(f"    R = {row['radius_m'] * 1e3:.3g} mm: mean drift ratio LAMMPS "
                          f"{_fmt(row['lammps_drift_ratio'], '+.4f')}, slow model "

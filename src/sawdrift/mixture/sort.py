@@ -1,13 +1,15 @@
 """Sorting times of a mixture: an ensemble of random placements moved by the slow model of chains.
 
 For each placement seed the scene's ``[particles]`` table places the beads (random species order,
-:func:`sawdrift.lammps.placement.placement`), the slow model (:mod:`.events`) moves them in lanes
-from contact to contact, and the segregation of the positions (:mod:`.segregation`: the purity of
-the best interface, its index against random orders, the Lacey index) is measured at sample times
-spaced logarithmically from one period to the end. Over the ensemble: the mean and the spread
-(standard deviation) of each measure against time, in wave periods and in seconds of device
-time, the time at which the purity first reaches a target in each placement (linear between
-samples), and the final state (chains, their sizes, each species' mean speed).
+:func:`sawdrift.lammps.placement.placement`), the slow model moves them (``geometry="plane"``:
+in 2-D on the plate, :mod:`.plane`, where a bead slides round another; ``"line"``: in lanes
+along the wave from contact to contact, :mod:`.events`), and the segregation of the positions
+(:mod:`.segregation`: the purity of the best interface, its index against random orders, the
+Lacey index) is measured at sample times spaced logarithmically from one period to the end.
+Over the ensemble: the mean and the spread (standard deviation) of each measure against time,
+in wave periods and in seconds of device time, the time at which the purity first reaches a
+target in each placement (linear between samples), and the final state (chains or clusters of
+touching beads, their sizes, each species' mean speed).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -27,9 +30,12 @@ from ..scene.schema import Scene
 from .chains import Bead
 from .curves import Source, curves_for
 from .events import SlowModel, SlowRun
+from .plane import PlaneModel, PlaneRun, jitter
 from .segregation import lacey_segregation, purity, purity_index
 
-__all__ = ["VALIDATED", "SortResult", "slow_window", "sort_mixture", "time_to"]
+__all__ = ["PLANE", "VALIDATED", "SortResult", "slow_window", "sort_mixture", "time_to"]
+
+GEOMETRIES = ("plane", "line")
 
 #: what the checks against damped LAMMPS showed (docs/lammps.md, validation case lammps_chains)
 VALIDATED = (
@@ -40,6 +46,20 @@ VALIDATED = (
     "LAMMPS's first impact knocks a small bead behind a large one into a backward drift (-0.96) "
     "instead of a chain; native curves add the engines' damped Coulomb rule (1 mm bead -0.347 "
     "native, -0.319 LAMMPS at e = 0.9)")
+
+#: what the 2-D model assumes beyond the checked chains (docs/mixtures.md, "The 2-D model")
+PLANE = (
+    "2-D: a line of beads along the wave moves as the checked chains (within 0.02 % of their "
+    "common speed); across the wave a bead moves at its transverse mobility, assumed to be the "
+    "secant of its own force-velocity curve through its free drift (not computed by the planar "
+    "engine; scaling it by 0.3 or 3 changes the time to 90 % purity of examples/mixture.toml by "
+    "{sensitivity}; this run: x {perp:g}); rows are broken by a jitter of {jitter:g} small radii "
+    "across the wave")
+
+#: measured: time to 90 % purity of examples/mixture.toml with the transverse mobility x 0.3, x 3
+SENSITIVITY = "+74 % and -18 % (2.82e7 and 1.32e7 against 1.61e7 periods)"
+LINE = ("1-D: beads in lanes along the wave cannot pass each other; the y part of an off-centre "
+        "contact is left out")
 
 MEASURES = ("purity", "purity_index", "lacey")
 
@@ -70,6 +90,9 @@ class SortResult:
     wall_time_s: float = 0.0
     curve_source: str = "native"
     curve_wall_s: float = 0.0
+    geometry: str = "plane"
+    jitter: float = 0.0
+    perp: float = 1.0
 
     @property
     def seconds(self) -> np.ndarray:
@@ -90,6 +113,13 @@ class SortResult:
 
         final_chains = [len(r.chains) for r in self.runs]
         sizes = [len(c) for r in self.runs for c in r.chains]
+        if self.geometry == "line":
+            cost = {"merges": stat(np.array([r.merges for r in self.runs], dtype=float)),
+                    "splits": stat(np.array([r.splits for r in self.runs], dtype=float))}
+        else:
+            cost = {"steps": stat(np.array([r.steps for r in self.runs], dtype=float)),
+                    "largest_overlap_over_tolerance": float(max(r.max_overlap
+                                                                for r in self.runs))}
         return {
             "seeds": self.seeds, "count": int(self.runs[0].kinds.size) if self.runs else 0,
             "frequency_hz": self.frequency, "periods": self.periods.tolist(),
@@ -104,12 +134,14 @@ class SortResult:
             "final": {**{k: stat(v[:, -1]) for k, v in self.measures.items()},
                       "chains": stat(np.array(final_chains, dtype=float)),
                       "mean_chain_size": float(np.mean(sizes)) if sizes else None,
-                      "largest_chain": int(max(sizes)) if sizes else None,
-                      "merges": stat(np.array([r.merges for r in self.runs], dtype=float)),
-                      "splits": stat(np.array([r.splits for r in self.runs], dtype=float))},
+                      "largest_chain": int(max(sizes)) if sizes else None, **cost},
             "species": self.species, "curve_source": self.curve_source,
             "curve_wall_time_s": self.curve_wall_s, "wall_time_s": self.wall_time_s,
+            "geometry": self.geometry, "jitter_small_radii": self.jitter,
+            "transverse_mobility_factor": self.perp,
             "validated": VALIDATED,
+            "assumed": PLANE.format(sensitivity=SENSITIVITY, jitter=self.jitter, perp=self.perp)
+            if self.geometry == "plane" else LINE,
         }
 
 
@@ -122,7 +154,8 @@ def _sample_periods(periods: float, per_decade: int) -> np.ndarray:
 
 def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: int = 20,
                  periods: float = 1e9, samples: int = 12, target: float = 0.9,
-                 source: Source = "native",
+                 source: Source = "native", geometry: str = "plane", perp: float = 1.0,
+                 jitter_radii: float = 1e-3, workers: int = 2,
                  progress: Callable[[str], None] | None = None) -> SortResult:
     """Run ``seeds`` random placements of ``particles`` on ``scene`` with the slow model.
 
@@ -144,6 +177,15 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     source
         ``"native"`` (the engine's force-velocity curves) or ``"lammps_rule"`` (LAMMPS's Coulomb
         rule for the stored spring, :mod:`sawdrift.lammps.damped`).
+    geometry
+        ``"plane"`` (2-D, :mod:`.plane`) or ``"line"`` (lanes along the wave, :mod:`.events`).
+    perp
+        Factor on the transverse mobility of the 2-D model (1: its stated assumption).
+    jitter_radii
+        2-D: each bead moved across the wave by this many smallest radii times a standard normal
+        number (seeded by the placement), so that rows along the wave are not exactly head-on.
+    workers
+        Placements run at once (2-D; threads).
     """
     spec = particles if isinstance(particles, Particles) else parse_particles(particles)
     if scene.device is None:
@@ -157,6 +199,12 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
         raise SceneError(f"--until = {periods!r}: give at least 1 wave period")
     if seeds < 1:
         raise SceneError(f"--seeds = {seeds}: give at least 1 placement")
+    if geometry not in GEOMETRIES:
+        raise SceneError(f"--geometry = {geometry!r}: use 'plane' or 'line'")
+    if not (perp > 0.0 and math.isfinite(perp)):
+        raise SceneError(f"--transverse = {perp!r}: give a positive factor")
+    if not (jitter_radii >= 0.0 and math.isfinite(jitter_radii)):
+        raise SceneError(f"--jitter = {jitter_radii!r}: give a number of radii >= 0")
     real = realize(scene)
     species = species_of(scene, spec, real)
     g = scene.device.gravity
@@ -168,18 +216,32 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     grid = _sample_periods(periods, samples)
     seed_list = [spec.seed] if spec.positions is not None else list(range(spec.seed, spec.seed + seeds))
     cache: dict[tuple, Any] = {}
-    runs, values = [], {k: [] for k in MEASURES}
-    for seed in seed_list:
+    r_min = min(sp.radius for sp in species)
+
+    def one(seed: int) -> tuple[np.ndarray, SlowRun | PlaneRun]:
         xy, kinds, _, _ = placement(spec.model_copy(update={"seed": seed}), species)
-        model = SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u, cache=cache)
-        run = model.run(grid / real.frequency)
+        if geometry == "line":
+            return kinds, SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u,
+                                    cache=cache).run(grid / real.frequency)
+        y = jitter(xy[:, 1], jitter_radii * r_min, seed)
+        return kinds, PlaneModel(xy[:, 0], y, kinds, beads, curves, u,
+                                 perp=perp).run(grid / real.frequency)
+
+    if geometry == "plane" and workers > 1 and len(seed_list) > 1:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            done = list(pool.map(one, seed_list))
+    else:
+        done = [one(seed) for seed in seed_list]
+    runs, values = [], {k: [] for k in MEASURES}
+    for seed, (kinds, run) in zip(seed_list, done, strict=True):
         runs.append(run)
         for key, fn in (("purity", purity), ("purity_index", purity_index),
                         ("lacey", lacey_segregation)):
             values[key].append([fn(row, kinds) for row in run.x])
         if progress is not None:
-            progress(f"seed {seed}: {run.merges} merges, {run.splits} splits, "
-                     f"{run.wall_time_s:.2g} s")
+            what = (f"{run.merges} merges, {run.splits} splits" if isinstance(run, SlowRun)
+                    else f"{run.steps} steps")
+            progress(f"seed {seed}: {what}, {run.wall_time_s:.2g} s")
     rows = []
     for k, (sp, cv) in enumerate(zip(species, curves, strict=True)):
         final = np.concatenate([r.speeds[r.kinds == k] for r in runs])
@@ -190,12 +252,13 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     return SortResult(periods=grid, frequency=real.frequency, seeds=seed_list,
                       measures={k: np.array(v) for k, v in values.items()}, target=target,
                       runs=runs, species=rows, wall_time_s=time.perf_counter() - t0,
-                      curve_source=source, curve_wall_s=curve_wall)
+                      curve_source=source, curve_wall_s=curve_wall, geometry=geometry,
+                      jitter=jitter_radii if geometry == "plane" else 0.0, perp=perp)
 
 
 def slow_window(scene: Scene, spec: Particles, result: SortResult, periods: int) -> dict[str, Any]:
-    """The placement of ``spec`` moved by the slow model for ``periods`` periods, measured like a
-    LAMMPS run: each species' mean drift ratio over the last half, the purity at the end, the
+    """The placement of ``spec`` moved by the 1-D slow model for ``periods`` periods, measured
+    like a LAMMPS run: each species' mean drift ratio over the last half, the purity at the end, the
     chains (``result`` provides nothing but the scene's curves, already cached on disk)."""
     real = realize(scene)
     species = species_of(scene, spec, real)
@@ -206,8 +269,11 @@ def slow_window(scene: Scene, spec: Particles, result: SortResult, periods: int)
     xy, kinds, _, _ = placement(spec, species)
     half = max(1, periods // 2)
     t0 = time.perf_counter()
-    model = SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u)
-    run = model.run(np.array([periods - half, periods], dtype=float) / real.frequency)
+    # in lanes (1-D) whatever the ensemble's geometry: over a window this short no bead gets
+    # round another (that takes about 1e6 periods), and the 2-D model's penalty contacts need
+    # delta_tol / speed (about 2600 periods for examples/mixture.toml) to take up their load
+    run = SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u).run(
+        np.array([periods - half, periods], dtype=float) / real.frequency)
     disp = (run.x[1] - run.x[0]) * real.frequency / half / u
     return {"drift_ratio": [float(disp[kinds == k].mean()) for k in range(len(species))],
             "purity": purity(run.x[1], kinds), "chains": len(run.chains),

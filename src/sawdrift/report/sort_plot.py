@@ -24,8 +24,11 @@ COLORS = ("#3182bd", "#e6550d")
 def plot_sort(result: SortResult, path: str | Path | None = None) -> Figure:
     """Left: the purity of the best interface (mean over the placements, band: mean +- one
     standard deviation) and the Lacey index against time in wave periods (log), device seconds
-    on the top axis, the target purity dashed. Right: the first placement's beads, x (mm) against
-    time, one line per bead coloured by species (a strip chart: chains are bundles of lines)."""
+    on the top axis, the target purity dashed. Right, the first placement's beads coloured by
+    species: 1-D (``line``), x (mm) against time, one line per bead (a strip chart: chains are
+    bundles of lines); 2-D (``plane``), their paths on the plate, y against x (mm), from the
+    start (open circles) to twice the time the placement took to reach the target purity, or
+    the end (dots)."""
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12.0, 4.2), layout="constrained")
     t = result.periods[1:]
     for key, color, label in (("purity", "k", "purity"), ("lacey", "0.5", "Lacey index")):
@@ -42,21 +45,56 @@ def plot_sort(result: SortResult, path: str | Path | None = None) -> Figure:
     top = ax.secondary_xaxis("top", functions=(lambda p: p / result.frequency,
                                                lambda s: s * result.frequency))
     top.set_xlabel("device time (s)")
+    if result.geometry == "plane":
+        _paths(bx, result)
+    else:
+        _strips(bx, result, t)
+    for k in range(2):
+        row = result.species[k]
+        bx.plot([], [], color=COLORS[k], label=f"R = {row['radius_m'] * 1e3:.3g} mm, free "
+                f"drift ratio {row['free_drift_ratio']:+.3f}")
+    if result.geometry == "plane":  # the paths fill the panel: the legend goes under it
+        bx.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
+    else:
+        bx.legend(fontsize=8)
+    if path is not None:
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+    return fig
+
+
+def _strips(bx: plt.Axes, result: SortResult, t: np.ndarray) -> None:
+    """x of every bead of the first placement against time (1-D)."""
     run = result.runs[0]
     for k in (1, 0):  # the small beads on top
         sel = run.kinds == k
         if sel.any():
             bx.plot(t, run.x[1:, sel] * 1e3, color=COLORS[k], lw=0.5, alpha=0.7, zorder=3 - k)
-    for k in range(2):
-        row = result.species[k]
-        bx.plot([], [], color=COLORS[k], label=f"R = {row['radius_m'] * 1e3:.3g} mm, free "
-                f"drift ratio {row['free_drift_ratio']:+.3f}")
     bx.set_xscale("log")
     bx.set_xlabel("time (wave periods)")
     bx.set_ylabel("x (mm)")
     bx.set_title(f"placement seed {result.seeds[0]}: every bead", fontsize=9)
-    bx.legend(fontsize=8)
-    if path is not None:
-        fig.savefig(path, dpi=120)
-        plt.close(fig)
-    return fig
+
+
+def _paths(bx: plt.Axes, result: SortResult) -> None:
+    """Paths of the beads of the first placement on the plate (2-D), up to twice the time to
+    the target purity (or the end)."""
+    run = result.runs[0]
+    hit = result.times_to_target()[0]
+    last = run.x.shape[0] - 1
+    if np.isfinite(hit):
+        last = min(last, int(np.searchsorted(result.periods, 2.0 * hit)))
+    y = run.y  # type: ignore[attr-defined]
+    for k in (1, 0):
+        sel = run.kinds == k
+        if sel.any():
+            bx.plot(run.x[: last + 1, sel] * 1e3, y[: last + 1, sel] * 1e3, color=COLORS[k],
+                    lw=0.5, alpha=0.6, zorder=3 - k)
+            bx.scatter(run.x[0, sel] * 1e3, y[0, sel] * 1e3, s=6, facecolors="none",
+                       edgecolors=COLORS[k], lw=0.5, zorder=4)
+            bx.scatter(run.x[last, sel] * 1e3, y[last, sel] * 1e3, s=6, color=COLORS[k],
+                       zorder=4)
+    bx.set_xlabel("x along the wave (mm)")
+    bx.set_ylabel("y across the wave (mm)")
+    bx.set_title(f"placement seed {result.seeds[0]}: paths to {result.periods[last]:.3g} "
+                 "periods (open: start, dots: then)", fontsize=9)
