@@ -2,8 +2,10 @@
 
 A new ``sawdrift`` process costs 1-2 s before it computes anything (imports, the unit registry,
 loading numba's cached kernels); in the test process these are paid once per worker. The few
-tests whose point is the process itself (the entry point, its exit status, its start-up time)
-start one: tests/test_cold_start.py, tests/test_cli.py::test_the_console_entry_point_*.
+tests whose point is the process itself (the entry point and its plugin discovery, its exit
+status, its start-up time) start one: tests/test_cold_start.py, tests/test_plugin_broken.py,
+tests/test_cli.py::test_models_json_lists_material_point_with_distribution,
+tests/test_conformance.py::test_cli_exit_status_is_1_for_a_failing_plugin_model.
 """
 
 from __future__ import annotations

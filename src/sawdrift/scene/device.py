@@ -48,148 +48,24 @@ Which scene fields a device derives, and the error for setting one, live in
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from ..errors import SceneError
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio
+from .units import FIELD_KIND, RANGES, UNITS, field_si, in_range, to_si
+
+__all__ = ["FIELD_KIND", "RANGES", "UNITS", "field_si", "to_si"]  # imported from here by others
 
 _FROZEN = ConfigDict(frozen=True, extra="forbid")
-
-#: expected dimension of each kind of quantity, with an example for error messages
-UNITS = {
-    "length": ("[length]", "m", "'10 nm'"),
-    "frequency": ("1 / [time]", "Hz", "'9.6 MHz'"),
-    "force": ("[mass] * [length] / [time] ** 2", "N", "'7.35 mN'"),
-    "pressure": ("[mass] / [length] / [time] ** 2", "Pa", "'210 GPa'"),
-    "density": ("[mass] / [length] ** 3", "kg/m^3", "'7850 kg/m^3'"),
-    "mass": ("[mass]", "kg", "'4.1 mg'"),
-    "acceleration": ("[length] / [time] ** 2", "m/s^2", "'9.81 m/s^2'"),
-    "angle": ("", "rad", "'80 deg'"),
-    "surface energy": ("[mass] / [time] ** 2", "J/m^2", "'0.05 J/m^2'"),
-}
-
-#: the kind of quantity of each device field, for messages about a missing one
-FIELD_KIND = {"frequency": "frequency", "amplitude": "length", "radius": "length",
-              "youngs_modulus": "pressure", "density": "density", "mass": "mass",
-              "gravity": "acceleration", "preload": "force", "half_angle": "angle",
-              "load": "force", "incline": "angle", "wavelength": "length",
-              "adhesion": "surface energy"}
-
-
-@lru_cache(maxsize=1)
-def _registry():
-    import pint
-
-    return pint.UnitRegistry()
-
-
-def to_si(value: Any, kind: str) -> float:
-    """The SI magnitude of ``value`` (a number, or a string with units) of dimension ``kind``.
-
-    An angle is returned in radians (a bare number is taken as radians). Raises ValueError with a
-    plain message when the string is not a quantity or has another dimension.
-    """
-    dims, unit, example = UNITS[kind]
-    if isinstance(value, bool):
-        raise ValueError(f"is not a {kind}: give one in {unit}, e.g. {example}")
-    if isinstance(value, (int, float)):
-        out = float(value)
-    else:
-        ureg = _registry()
-        try:
-            q = ureg.Quantity(str(value).strip())
-        except Exception:  # noqa: BLE001 - pint raises several kinds for a bad string
-            raise ValueError(f"is not a quantity: give a {kind} in {unit}, e.g. {example}") from None
-        if kind == "angle":
-            if not q.dimensionless:
-                raise ValueError(f"is not an angle (wrong dimension): give one in deg or rad, "
-                                 f"e.g. {example}")
-            out = float(q.to("radian").magnitude)
-        elif q.dimensionless:
-            out = float(q.magnitude)
-        else:
-            if q.dimensionality != ureg.Quantity(1, unit).dimensionality:
-                raise ValueError(f"is not a {kind} (wrong dimension): give one in {unit}, "
-                                 f"e.g. {example}")
-            out = float(q.to(unit).magnitude)
-    if not math.isfinite(out):
-        raise ValueError("is not finite")
-    return out
-
-
-#: The allowed range of each device quantity, in SI units (an angle in radians): the lowest and
-#: highest value, the range as the user reads it, and what it spans. The ranges hold every real
-#: device, from a shaker's grain to a nanoparticle on a hypersonic surface wave, with room to
-#: spare; a value outside one is a unit left out or mistyped (``radius = "1 parsec"``).
-RANGES: dict[str, tuple[float, float, str, str]] = {
-    "frequency": (1.0, 1e11, "1 Hz to 100 GHz",
-                  "from a shaken plate to a hypersonic surface wave"),
-    "amplitude": (0.0, 1e-2, "0 to 1 cm",
-                  "from a surface wave's picometres to a vibratory feeder's millimetres"),
-    "wavelength": (1e-8, 100.0, "10 nm to 100 m",
-                   "from a hypersonic surface wave to a flexural wave on a large plate"),
-    "gravity": (0.0, 1e4, "0 to 1e4 m/s^2", "from free fall to a strong centrifuge at 1000 g"),
-    "preload": (0.0, 1e3, "0 to 1 kN", "a slider's spring holds it with mN to N"),
-    "load": (-1e3, 1e3, "-1 kN to 1 kN", "a motor's load is of mN to N"),
-    "adhesion": (0.0, 10.0, "0 to 10 J/m^2",
-                 "the work of adhesion of clean solids is below a few J/m^2"),
-    "friction": (1e-3, 10.0, "0.001 to 10",
-                 "from a superlubric contact to a sticky elastomer"),
-    "incline": (-math.radians(85.0), math.radians(85.0), "-85 deg to 85 deg",
-                "steeper, the slope's pull exceeds 11 times the normal load"),
-    "particle.radius": (1e-9, 0.1, "1 nm to 10 cm", "from a nanoparticle to a large ball"),
-    "particle.half_angle": (math.radians(1.0), math.radians(89.9), "1 deg to 89.9 deg",
-                            "the angle between the cone's axis and its surface"),
-    "particle.density": (1.0, 3e4, "1 kg/m^3 to 3e4 kg/m^3",
-                         "from an aerogel to osmium, the densest element at 22590 kg/m^3"),
-    "particle.mass": (1e-24, 100.0, "1e-24 kg to 100 kg",
-                      "from a nanoparticle to a heavy slider"),
-    "particle.youngs_modulus": (1e3, 2e12, "1 kPa to 2 TPa",
-                                "from a soft gel to diamond, about 1.1 TPa"),
-    "substrate.youngs_modulus": (1e3, 2e12, "1 kPa to 2 TPa",
-                                 "from a soft gel to diamond, about 1.1 TPa"),
-    "substrate.density": (1.0, 3e4, "1 kg/m^3 to 3e4 kg/m^3",
-                          "from an aerogel to osmium, the densest element at 22590 kg/m^3"),
-}
-
-#: the hint for a length given as a bare number (SI: metres)
-BARE_LENGTH = "a bare number is in m: write the unit, e.g. '10 nm'"
-
-
-def _in_range(field: str, out: float, unit: str, given: Any) -> float:
-    """``out`` (SI, of the value ``given``) if inside :data:`RANGES` of ``field``; else a
-    ValueError naming the range (and, for a string with units, the value in SI)."""
-    lo, hi, text, why = RANGES[field]
-    if lo <= out <= hi:
-        return out
-    bare = not isinstance(given, str)
-    shown = "" if bare or unit in ("rad", "") else f"{out:.4g} {unit}, "
-    hint = f"; {BARE_LENGTH}" if bare and unit == "m" else ""
-    raise ValueError(f"is {shown}outside the allowed range {text} ({why}{hint})")
-
-
-def field_si(name: str, value: Any) -> float:
-    """The SI value of the device field ``name`` (dotted, ``device.particle.radius``) given as
-    ``value`` (a number, or a string with units), checked against its :data:`RANGES` entry if it
-    has one (a sweep axis's or a threshold study's value, before any run). ValueError as
-    :func:`to_si`, or naming the allowed range."""
-    field = name.removeprefix("device.")
-    kind = FIELD_KIND.get(field.rsplit(".", 1)[-1])
-    out = to_si(value, kind) if kind is not None else float(value)
-    if field in RANGES:
-        return _in_range(field, out, UNITS[kind][1] if kind is not None else "", value)
-    return out
-
 
 def _incline(value: Any) -> float:
     out = to_si(value, "angle")
     if not -0.5 * math.pi < out < 0.5 * math.pi:
         raise ValueError("is outside (-90, 90) deg: the substrate's slope, positive where the "
                          "surface rises towards +x, e.g. '5 deg' (a bare number is in radians)")
-    return _in_range("incline", out, "rad", value)
+    return in_range("incline", out, "rad", value)
 
 
 def _quantity(kind: str, field: str, positive: bool = True, allow_zero: bool = False):
@@ -200,7 +76,7 @@ def _quantity(kind: str, field: str, positive: bool = True, allow_zero: bool = F
         if positive and (out < 0.0 or (out == 0.0 and not allow_zero)):
             bound = ">= 0" if allow_zero else "> 0"
             raise ValueError(f"is not {bound}: a {kind} in {UNITS[kind][1]} must be {bound}")
-        return _in_range(field, out, UNITS[kind][1], value)
+        return in_range(field, out, UNITS[kind][1], value)
 
     return BeforeValidator(check)
 
@@ -210,7 +86,7 @@ def _friction(value: Any) -> float:
         raise ValueError("is not a number: give the friction coefficient, e.g. 0.2")
     if not math.isfinite(value) or value <= 0.0:
         raise ValueError("is not > 0: the friction coefficient, e.g. 0.2")
-    return _in_range("friction", float(value), "", value)
+    return in_range("friction", float(value), "", value)
 
 
 def _half_angle(value: Any) -> float:
@@ -218,7 +94,7 @@ def _half_angle(value: Any) -> float:
     if not 0.0 < out < 0.5 * math.pi:
         raise ValueError("is outside (0, 90) deg: the angle between the cone's axis and its "
                          "surface, e.g. '80 deg' (a bare number is in radians)")
-    return _in_range("particle.half_angle", out, "rad", value)
+    return in_range("particle.half_angle", out, "rad", value)
 
 
 Pressure = Annotated[float, _quantity("pressure", "particle.youngs_modulus")]
