@@ -5,22 +5,26 @@ from __future__ import annotations
 import subprocess
 import sys
 
-import pytest
-
 HEAVY = ("numba", "pandas", "matplotlib", "scipy")
 
 
-@pytest.mark.parametrize("argv", [["--help"], ["models"], ["run", "--help"]])
-def test_light_commands_do_not_import_heavy_libraries(argv):
+LIGHT = [["--help"], ["models"], ["run", "--help"]]
+
+
+def test_light_commands_do_not_import_heavy_libraries():
+    # one fresh process runs the light commands one after the other and prints, after each, the
+    # heavy libraries imported so far (one process instead of three: 1-2 s each of start-up)
     code = (
         "import sys\n"
         "from sawdrift.cli import main\n"
-        f"sys.argv = ['sawdrift', *{argv!r}]\n"
-        "try:\n    main()\nexcept SystemExit:\n    pass\n"
-        f"print(sorted(m for m in {HEAVY!r} if m in sys.modules))\n"
+        f"for argv in {LIGHT!r}:\n"
+        "    sys.argv = ['sawdrift', *argv]\n"
+        "    try:\n        main()\n    except SystemExit:\n        pass\n"
+        f"    print('HEAVY', argv, sorted(m for m in {HEAVY!r} if m in sys.modules))\n"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip().splitlines()[-1] == "[]", out.stdout[-400:]
+    after = [line for line in out.stdout.splitlines() if line.startswith("HEAVY ")]
+    assert after == [f"HEAVY {argv!r} []" for argv in LIGHT], out.stdout[-400:]
 
 
 _LIGHT = """

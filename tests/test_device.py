@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 import tomllib
 from pathlib import Path
 
@@ -17,13 +15,14 @@ from sawdrift.errors import SceneError
 from sawdrift.scene import build_scene
 from sawdrift.scene.device import Device, normalized
 
+from .cli_call import run_main
+
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 MOTOR = EXAMPLES / "saw_linear_motor.toml"
 
 
-def _cli(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "sawdrift", *args], capture_output=True,
-                          text=True, cwd=cwd)
+#: ``sawdrift ARGS`` in this process (tests/cli_call.py)
+_cli = run_main
 
 
 def _hand(R, rho, E1, nu1, E2, nu2, f, A, F, g=9.81):
@@ -291,7 +290,8 @@ def _motor_with(**device) -> dict:
 
 
 @pytest.mark.parametrize("amplitude, needle", [
-    (10, "faster than any elastic wave"),           # '10 nm' typed as a bare 10: 10 m
+    (10, "outside the allowed range 0 to 1 cm"),    # '10 nm' typed as a bare 10: 10 m
+    (1e-3, "faster than any elastic wave"),         # 2 pi 9.6 MHz 1 mm sqrt(1 + 0.68^2) = 7.3e4 m/s
     ("10 um", "strains the surface"),               # 2 pi 10 um f / 1.3e4 m/s = 0.046
 ])
 def test_an_implausible_device_amplitude_is_refused_naming_field_and_unit(amplitude, needle):
@@ -322,5 +322,6 @@ def test_cli_refuses_a_unitless_amplitude_at_once(tmp_path, sawdrift_main):
         out = sawdrift_main(*cmd, str(tmp_path / "bad.toml"))  # in this process
         assert out.returncode == 2, out.stderr
         lines = out.stderr.strip().splitlines()
-        assert len(lines) == 1 and "device.amplitude = 10 m" in lines[0]
+        assert len(lines) == 1 and "device.amplitude = 10 is outside" in lines[0]
+        assert "a bare number is in m" in lines[0]
         assert "Traceback" not in out.stderr and out.stdout == ""

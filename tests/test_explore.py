@@ -55,6 +55,13 @@ def table(tmp_path_factory):
     return path, frame, picks[0]
 
 
+@pytest.fixture(scope="module")
+def page(table, tmp_path_factory):
+    """The explorer page of :func:`table`, written once for the tests that read or open it."""
+    path, _, _ = table
+    return write_explorer(path, tmp_path_factory.mktemp("page") / "explore.html")
+
+
 # -- traces ----------------------------------------------------------------------------------
 
 
@@ -303,9 +310,8 @@ def _blue_columns(driver, name: str) -> float:
     return float(((b > r + 40) & (b > g + 20)).any(axis=0).mean())
 
 
-def test_hover_and_click_a_cell_in_chromium(browser, table, tmp_path):
+def test_hover_and_click_a_cell_in_chromium(browser, table, page, tmp_path):
     path, frame, known = table
-    page = write_explorer(path, tmp_path / "explore.html")
     text = page.read_text()
     assert "<script src=" not in text and "cdn.bokeh.org" not in text  # everything inline
     seconds = _open(browser, page)
@@ -343,9 +349,8 @@ def test_hover_and_click_a_cell_in_chromium(browser, table, tmp_path):
     assert _severe(browser) == []
 
 
-def test_compared_panels_drive_the_disagreement_layer(browser, table, tmp_path):
+def test_compared_panels_drive_the_disagreement_layer(browser, table, page):
     path, frame, _ = table
-    page = write_explorer(path, tmp_path / "explore.html")
     _open(browser, page)
     count = """const d = Bokeh.documents[0];
       return [0, 1].map((k) => d.get_model_by_name('regimes-' + k).renderers[1]
@@ -430,7 +435,7 @@ def test_another_swept_field_gives_one_panel_per_value():
 # -- issue 37, item 7: titles that fit, device ticks that do not collide, the Lyapunov text ---
 
 
-def test_lyapunov_tooltip_says_why_a_kept_contact_has_none(table, tmp_path):
+def test_lyapunov_tooltip_says_why_a_kept_contact_has_none(table, page):
     path, frame, _ = table
     data = explorer_data(path)
     for panel, src in zip(data.panels, data.sources, strict=True):
@@ -443,13 +448,12 @@ def test_lyapunov_tooltip_says_why_a_kept_contact_has_none(table, tmp_path):
         finite = np.isfinite(rows["lyapunov"].to_numpy(float))
         np.testing.assert_allclose(src["lyapunov_text"][finite].astype(float),
                                    rows.loc[finite, "lyapunov"], rtol=1e-3)
-    page = write_explorer(path, tmp_path / "lyap.html").read_text()
-    assert "Lyapunov exponent: @lyapunov_text" in page and "@lyapunov{custom}" not in page
+    text = page.read_text()
+    assert "Lyapunov exponent: @lyapunov_text" in text and "@lyapunov{custom}" not in text
 
 
-def test_hovered_stick_cell_names_the_missing_lyapunov_exponent(browser, table, tmp_path):
+def test_hovered_stick_cell_names_the_missing_lyapunov_exponent(browser, table, page):
     path, frame, _ = table
-    page = write_explorer(path, tmp_path / "explore.html")
     _open(browser, page)
     stick = frame[(frame["model"] == "mmd") & (frame["regime"] == "stick")].iloc[0]
     spot = browser.execute_script(_CELL, "regimes-1", "cells-1", stick["cell_id"])

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -12,6 +10,8 @@ import xarray as xr
 
 import sawdrift as sd
 from sawdrift.result.regimes import REGIMES
+
+from .cli_call import run_main
 
 
 @pytest.fixture(scope="module")
@@ -24,8 +24,7 @@ def table(tmp_path_factory):
 
 def test_export_of_a_3x3_sweep_has_the_axes_and_cf_flags(table, tmp_path):
     out = tmp_path / "grid.nc"
-    run = subprocess.run([sys.executable, "-m", "sawdrift", "export", str(table), "-o", str(out)],
-                         capture_output=True, text=True)
+    run = run_main("export", table, "-o", out)  # in this process (tests/cli_call.py)
     assert run.returncode == 0, run.stderr
     ds = xr.open_dataset(out)
     assert set(ds.sizes) == {"m_star", "amplitude"} and dict(ds.sizes) == {"m_star": 3, "amplitude": 3}

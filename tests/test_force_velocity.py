@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 
@@ -44,14 +42,14 @@ def test_the_steady_speed_grows_with_the_load_and_the_zero_is_the_free_drift():
 
 def test_the_command_writes_the_curve_and_refuses_too_few_points(tmp_path, sawdrift_main):
     out = tmp_path / "fv"
-    cmd = [sys.executable, "-m", "sawdrift", "force-velocity", "--model", "material_point",
+    cmd = ["force-velocity", "--model", "material_point",
            "--m-star", "0.1", "--amplitude", "0", "--points", "3", "--workers", "1", "--json",
            "-o", str(out)]
-    done = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    done = sawdrift_main(*cmd)  # in this process (tests/conftest.py)
     assert done.returncode == 0, done.stderr
     data = json.loads(done.stdout)
     assert len(data["force"]) == 3 and all(v == 0.0 for v in data["drift_velocity"])
     assert (out / "force_velocity.png").is_file() and (out / "force_velocity.json").is_file()
-    bad = sawdrift_main(*cmd[3:-7], "--points", "2")  # in this process: refused before any run
+    bad = sawdrift_main(*cmd[:-7], "--points", "2")  # refused before any run
     assert bad.returncode == 2 and "at least 3" in bad.stderr and "Traceback" not in bad.stderr
     assert math.isfinite(data["mu"])

@@ -151,7 +151,16 @@ def imports_of(module: str) -> list[Import]:
     return edges
 
 
-EDGES = {module: imports_of(module) for module in MODULES}
+#: the import edges of every module, parsed on first use (:func:`edges`): at import time every
+#: xdist worker paid for the parse while collecting, used or not
+EDGES: dict[str, list[Import]] = {}
+
+
+def edges() -> dict[str, list[Import]]:
+    """:data:`EDGES`, filled with :func:`imports_of` of every module the first time."""
+    if not EDGES:
+        EDGES.update({module: imports_of(module) for module in MODULES})
+    return EDGES
 
 
 def _parents(module: str) -> list[str]:
@@ -174,7 +183,7 @@ def closure(module: str, imported: frozenset[str] = frozenset()) -> set[str]:
         seen.add(name)
         if name not in MODULES:
             continue
-        for edge in EDGES[name]:
+        for edge in edges()[name]:
             if edge.context == "top":
                 todo += [edge.target, *(_parents(edge.target) if edge.target in MODULES else [])]
     return seen - imported
@@ -187,9 +196,9 @@ def _name(index: int) -> str:
 def order_violations() -> list[tuple[str, str, str]]:
     """Rule 1: imports of a higher layer: (source, target, ``file:line  from -> to: statement``)."""
     out = []
-    for module, edges in EDGES.items():
+    for module, found in edges().items():
         here = layer_of(module)
-        for edge in edges:
+        for edge in found:
             if edge.target not in MODULES:
                 continue
             there = layer_of(edge.target)
@@ -203,9 +212,9 @@ def order_violations() -> list[tuple[str, str, str]]:
 def deferral_violations() -> list[tuple[str, str, str]]:
     """Rule 2: imports of sawdrift modules inside functions that defer nothing or dodge a cycle."""
     out = []
-    for module, edges in EDGES.items():
+    for module, found in edges().items():
         mine = closure(module)
-        for edge in edges:
+        for edge in found:
             if edge.context != "function" or edge.target not in MODULES:
                 continue
             theirs = closure(edge.target, frozenset(_parents(module)))
@@ -225,7 +234,7 @@ def test_every_module_has_a_layer():
 
 
 def test_sawdrift_imports_are_known_modules():
-    unknown = sorted({f"{e.where}: {e.text}" for edges in EDGES.values() for e in edges
+    unknown = sorted({f"{e.where}: {e.text}" for found in edges().values() for e in found
                       if e.target.split(".")[0] in INTERNAL and e.target not in MODULES})
     assert not unknown, "imports of sawdrift modules that do not exist:\n" + "\n".join(unknown)
 
@@ -257,7 +266,7 @@ def test_a_bad_import_is_caught(tmp_path, monkeypatch, context):
     path = tmp_path / "bad.py"
     path.write_text(source)
     monkeypatch.setitem(MODULES, "sawdrift.scene.bad", (path, False))
-    monkeypatch.setitem(EDGES, "sawdrift.scene.bad", imports_of("sawdrift.scene.bad"))
+    monkeypatch.setitem(edges(), "sawdrift.scene.bad", imports_of("sawdrift.scene.bad"))
     bad = [m for _, _, m in order_violations() if "bad.py" in m]
     assert len(bad) == 1 and "scene -> study" in bad[0], bad
 
@@ -266,7 +275,7 @@ def test_a_deferred_light_import_is_caught(tmp_path, monkeypatch):
     path = tmp_path / "light.py"
     path.write_text("def f():\n    from ..errors import SceneError\n    return SceneError\n")
     monkeypatch.setitem(MODULES, "sawdrift.scene.light", (path, False))
-    monkeypatch.setitem(EDGES, "sawdrift.scene.light", imports_of("sawdrift.scene.light"))
+    monkeypatch.setitem(edges(), "sawdrift.scene.light", imports_of("sawdrift.scene.light"))
     bad = [m for _, _, m in deferral_violations() if "light.py" in m]
     assert len(bad) == 1 and "defers nothing heavy" in bad[0], bad
 

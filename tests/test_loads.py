@@ -14,6 +14,8 @@ from scipy.optimize import brentq
 import sawdrift as sd
 from sawdrift.study.load_curve import load_curve
 
+from .cli_call import run_main
+
 MOTOR = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
 
 def _before_loads() -> dict[str, tuple[dict[str, Any], str]]:
@@ -308,13 +310,9 @@ def test_the_python_engine_runs_the_same_load_terms(model, effects):
 def test_load_curve_axis_overlays_species_each_as_its_own_curve(tmp_path):
     # sorting: one curve per value of a particle field; each species' stall load is the one of a
     # curve computed for that species alone (the overlay changes nothing)
-    import subprocess
-    import sys
-
     base = ["--model", "material_point", "--amplitude", "0.02", "--loads", "4", "--workers", "1"]
-    proc = subprocess.run([sys.executable, "-m", "sawdrift", "load-curve", *base, "--axis",
-                           "particle.m_star=5,20", "--json", "-o", str(tmp_path / "lc")],
-                          capture_output=True, text=True, timeout=600)
+    proc = run_main("load-curve", *base, "--axis", "particle.m_star=5,20", "--json", "-o",
+                    tmp_path / "lc")  # in this process (tests/cli_call.py)
     assert proc.returncode == 0, proc.stderr
     species = json.loads(proc.stdout)["species"]
     assert [s["label"] for s in species] == ["particle.m_star=5.0", "particle.m_star=20.0"]

@@ -9,6 +9,8 @@ import sys
 
 import pytest
 
+from .cli_call import run_main
+
 pytest.importorskip("sawdrift_tsuji")
 
 
@@ -35,8 +37,7 @@ def test_broken_example_plugin_warns_and_others_work(tmp_path):
 
 
 def test_plugin_listed_with_parameters_when_installed():
-    out = subprocess.run([sys.executable, "-m", "sawdrift", "models", "--json"], capture_output=True,
-                         text=True, timeout=300, check=True)
+    out = run_main("models", "--json", check=True)  # in this process (tests/cli_call.py)
     rows = {row["name"]: row for row in json.loads(out.stdout)}
     assert rows["hertz_tsuji"]["distribution"] == "sawdrift-tsuji"
     assert "damping" in rows["hertz_tsuji"]["parameters"]

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import numpy as np
 import pandas as pd
 import pytest
 
 import sawdrift as sd
+
+from .cli_call import run_main
 
 
 def _table(path, a, n):
@@ -85,10 +84,10 @@ def test_missing_table_and_unsupported_model(tmp_path, sphere_csv):
                                       "particle": {"profile": {"shape": "table", "file": sphere_csv}}}))
 
 
-def test_scene_file_finds_its_table_next_to_it(tmp_path, sphere_csv):
+def test_scene_file_finds_its_table_next_to_it(tmp_path, sphere_csv, monkeypatch):
     (tmp_path / "scene.toml").write_text(
         '[particle]\nprofile = { shape = "table", file = "sphere.csv" }\n[numerics]\nperiods = 20\n')
-    out = subprocess.run([sys.executable, "-m", "sawdrift", "run", str(tmp_path / "scene.toml"),
-                          "--json"], capture_output=True, text=True, cwd="/")
+    monkeypatch.chdir("/")  # the table is found next to the scene, not in the working folder
+    out = run_main("run", tmp_path / "scene.toml", "--json")  # in this process (tests/cli_call.py)
     assert out.returncode == 0, out.stderr
     assert '"profile": "table"' in out.stdout

@@ -16,10 +16,11 @@ import pytest
 import sawdrift as sd
 from sawdrift.study import sweep as sw
 
+from .cli_call import run_main
+
 
 def test_run_json_has_version_from_metadata_and_the_scene():
-    out = subprocess.run([sys.executable, "-m", "sawdrift", "run", "--m-star", "0.2", "--json",
-                          "--periods", "20"], capture_output=True, text=True, check=True).stdout
+    out = run_main("run", "--m-star", "0.2", "--json", "--periods", "20", check=True).stdout
     data = json.loads(out)
     assert data["version"] == im.version("sawdrift")
     assert data["scene"]["particle"]["m_star"] == 0.2
@@ -101,9 +102,8 @@ def test_the_command_line_refuses_a_table_of_other_code_in_one_line(tmp_path, mo
         _as_other_code(m)
         sd.sweep(["mmd"], "0.1", "0.1", base=sd.Scene(model="mmd", numerics={"periods": 20}),
                  table=table, workers=1, progress=False)
-    run = subprocess.run([sys.executable, "-m", "sawdrift", "sweep", "--model", "mmd", "--m-star",
-                          "0.1", "--amplitude", "0.1,0.2", "--periods", "20", "--workers", "1",
-                          "--no-progress", "-o", str(table)], capture_output=True, text=True)
+    run = run_main("sweep", "--model", "mmd", "--m-star", "0.1", "--amplitude", "0.1,0.2",
+                   "--periods", "20", "--workers", "1", "--no-progress", "-o", table)
     assert run.returncode == 2, run.stderr[-600:]
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: table") and "other code" in lines[0]

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 
 import pytest
 
 import sawdrift as sd
 from sawdrift.analytic import heavy_sliding_v
 from sawdrift.validation import MU, point_scene
+
+from .cli_call import run_main
 
 
 @pytest.mark.parametrize("kappa", [0.4, 2.0 / 3.0])
@@ -27,9 +27,8 @@ def test_rigid_sphere_rolls_without_gross_slip_below_its_bound(kappa):
 
 
 def _cli_json(*args: str) -> dict:
-    out = subprocess.run([sys.executable, "-m", "sawdrift", "run", "--model", "mmd", "--m-star",
-                          "0.1", "--amplitude", "0.316", "--json", *args],
-                         capture_output=True, text=True, check=True).stdout
+    out = run_main("run", "--model", "mmd", "--m-star", "0.1", "--amplitude", "0.316", "--json",
+                   *args, check=True).stdout  # in this process (tests/cli_call.py)
     return json.loads(out)
 
 

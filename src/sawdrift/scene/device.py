@@ -37,6 +37,10 @@ speed x*' is x*' a0 f in m/s, a normalized time t* is t*/f in s. x points along 
 direction; the device default orbit is the retrograde one of a Rayleigh wave on an isotropic
 half-space (the mirror of eq. 1 as printed).
 
+Every quantity has a physical range (:data:`RANGES`, docs/devices.md "Ranges"), and the
+normalized quantities its values combine into have one too (:func:`derived_out_of_range`): a
+value outside is one line naming the field and the range, never a run.
+
 Which scene fields a device derives, and the error for setting one, live in
 :mod:`sawdrift.scene.overrides`.
 """
@@ -44,95 +48,45 @@ Which scene fields a device derives, and the error for setting one, live in
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from ..errors import SceneError
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio
+from .units import FIELD_KIND, RANGES, UNITS, field_si, in_range, to_si
+
+__all__ = ["FIELD_KIND", "RANGES", "UNITS", "field_si", "to_si"]  # imported from here by others
 
 _FROZEN = ConfigDict(frozen=True, extra="forbid")
-
-#: expected dimension of each kind of quantity, with an example for error messages
-UNITS = {
-    "length": ("[length]", "m", "'10 nm'"),
-    "frequency": ("1 / [time]", "Hz", "'9.6 MHz'"),
-    "force": ("[mass] * [length] / [time] ** 2", "N", "'7.35 mN'"),
-    "pressure": ("[mass] / [length] / [time] ** 2", "Pa", "'210 GPa'"),
-    "density": ("[mass] / [length] ** 3", "kg/m^3", "'7850 kg/m^3'"),
-    "mass": ("[mass]", "kg", "'4.1 mg'"),
-    "acceleration": ("[length] / [time] ** 2", "m/s^2", "'9.81 m/s^2'"),
-    "angle": ("", "rad", "'80 deg'"),
-    "surface energy": ("[mass] / [time] ** 2", "J/m^2", "'0.05 J/m^2'"),
-}
-
-#: the kind of quantity of each device field, for messages about a missing one
-FIELD_KIND = {"frequency": "frequency", "amplitude": "length", "radius": "length",
-              "youngs_modulus": "pressure", "density": "density", "mass": "mass",
-              "gravity": "acceleration", "preload": "force", "half_angle": "angle",
-              "load": "force", "incline": "angle", "wavelength": "length",
-              "adhesion": "surface energy"}
-
-
-@lru_cache(maxsize=1)
-def _registry():
-    import pint
-
-    return pint.UnitRegistry()
-
-
-def to_si(value: Any, kind: str) -> float:
-    """The SI magnitude of ``value`` (a number, or a string with units) of dimension ``kind``.
-
-    An angle is returned in radians (a bare number is taken as radians). Raises ValueError with a
-    plain message when the string is not a quantity or has another dimension.
-    """
-    dims, unit, example = UNITS[kind]
-    if isinstance(value, bool):
-        raise ValueError(f"is not a {kind}: give one in {unit}, e.g. {example}")
-    if isinstance(value, (int, float)):
-        out = float(value)
-    else:
-        ureg = _registry()
-        try:
-            q = ureg.Quantity(str(value).strip())
-        except Exception:  # noqa: BLE001 - pint raises several kinds for a bad string
-            raise ValueError(f"is not a quantity: give a {kind} in {unit}, e.g. {example}") from None
-        if kind == "angle":
-            if not q.dimensionless:
-                raise ValueError(f"is not an angle (wrong dimension): give one in deg or rad, "
-                                 f"e.g. {example}")
-            out = float(q.to("radian").magnitude)
-        elif q.dimensionless:
-            out = float(q.magnitude)
-        else:
-            if q.dimensionality != ureg.Quantity(1, unit).dimensionality:
-                raise ValueError(f"is not a {kind} (wrong dimension): give one in {unit}, "
-                                 f"e.g. {example}")
-            out = float(q.to(unit).magnitude)
-    if not math.isfinite(out):
-        raise ValueError("is not finite")
-    return out
-
 
 def _incline(value: Any) -> float:
     out = to_si(value, "angle")
     if not -0.5 * math.pi < out < 0.5 * math.pi:
         raise ValueError("is outside (-90, 90) deg: the substrate's slope, positive where the "
                          "surface rises towards +x, e.g. '5 deg' (a bare number is in radians)")
-    return out
+    return in_range("incline", out, "rad", value)
 
 
-def _quantity(kind: str, positive: bool = True, allow_zero: bool = False):
+def _quantity(kind: str, field: str, positive: bool = True, allow_zero: bool = False):
+    """A validator of a device quantity of dimension ``kind``: its sign, then its
+    :data:`RANGES` entry ``field``."""
     def check(value: Any) -> float:
         out = to_si(value, kind)
         if positive and (out < 0.0 or (out == 0.0 and not allow_zero)):
             bound = ">= 0" if allow_zero else "> 0"
             raise ValueError(f"is not {bound}: a {kind} in {UNITS[kind][1]} must be {bound}")
-        return out
+        return in_range(field, out, UNITS[kind][1], value)
 
     return BeforeValidator(check)
+
+
+def _friction(value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError("is not a number: give the friction coefficient, e.g. 0.2")
+    if not math.isfinite(value) or value <= 0.0:
+        raise ValueError("is not > 0: the friction coefficient, e.g. 0.2")
+    return in_range("friction", float(value), "", value)
 
 
 def _half_angle(value: Any) -> float:
@@ -140,11 +94,10 @@ def _half_angle(value: Any) -> float:
     if not 0.0 < out < 0.5 * math.pi:
         raise ValueError("is outside (0, 90) deg: the angle between the cone's axis and its "
                          "surface, e.g. '80 deg' (a bare number is in radians)")
-    return out
+    return in_range("particle.half_angle", out, "rad", value)
 
 
-Length = Annotated[float, _quantity("length")]
-Pressure = Annotated[float, _quantity("pressure")]
+Pressure = Annotated[float, _quantity("pressure", "particle.youngs_modulus")]
 Poisson = Annotated[float, Field(gt=-1.0, lt=0.5)]
 
 
@@ -161,12 +114,15 @@ class DeviceParticle(BaseModel):
 
     shape: Literal["sphere", "cone", "flat"] = Field(
         "sphere", description="contact profile: sphere (Hertz), cone (Sneddon), flat punch")
-    radius: Length | None = Field(None, description="sphere radius R, or the flat punch's radius")
+    radius: Annotated[float, _quantity("length", "particle.radius")] | None = Field(
+        None, description="sphere radius R, or the flat punch's radius, 1 nm to 10 cm")
     half_angle: Annotated[float, BeforeValidator(_half_angle)] | None = Field(
-        None, description="cone only: half-angle alpha between axis and surface, (0, 90) deg")
-    density: Annotated[float, _quantity("density")] | None = Field(None, description="or mass")
-    mass: Annotated[float, _quantity("mass")] | None = Field(None, description="or density")
-    youngs_modulus: Pressure = Field(description="E1")
+        None, description="cone only: half-angle alpha between axis and surface, 1 to 89.9 deg")
+    density: Annotated[float, _quantity("density", "particle.density")] | None = Field(
+        None, description="or mass")
+    mass: Annotated[float, _quantity("mass", "particle.mass")] | None = Field(
+        None, description="or density")
+    youngs_modulus: Pressure = Field(description="E1, 1 kPa to 2 TPa")
     poisson: Poisson = Field(description="nu1, in (-1, 0.5)")
 
     @model_validator(mode="after")
@@ -205,9 +161,10 @@ class DeviceSubstrate(BaseModel):
 
     model_config = _FROZEN
 
-    youngs_modulus: Pressure = Field(description="E2")
+    youngs_modulus: Annotated[float, _quantity("pressure", "substrate.youngs_modulus")] = Field(
+        description="E2, 1 kPa to 2 TPa")
     poisson: Poisson = Field(description="nu2, in (-1, 0.5)")
-    density: Annotated[float, _quantity("density")] | None = Field(
+    density: Annotated[float, _quantity("density", "substrate.density")] | None = Field(
         None, description="rho2: the Rayleigh speed c_R = xi_R sqrt(G2/rho2) and so the "
         "wavelength c_R/f (two-wave fields and direct runs)")
 
@@ -217,30 +174,31 @@ class Device(BaseModel):
 
     model_config = _FROZEN
 
-    frequency: Annotated[float, _quantity("frequency")] = Field(description="wave frequency f")
-    amplitude: Annotated[float, _quantity("length", allow_zero=True)] = Field(
-        description="vertical surface displacement amplitude A_y")
+    frequency: Annotated[float, _quantity("frequency", "frequency")] = Field(
+        description="wave frequency f, 1 Hz to 100 GHz")
+    amplitude: Annotated[float, _quantity("length", "amplitude", allow_zero=True)] = Field(
+        description="vertical surface displacement amplitude A_y, 0 to 1 cm")
     orbit: Literal["prograde", "retrograde"] = Field(
         "retrograde", description="retrograde: a Rayleigh wave on an isotropic half-space")
     horizontal_ratio: Annotated[float, Field(ge=0.0, le=100.0)] | None = Field(
         None, description="r; default r(substrate poisson)")
-    gravity: Annotated[float, _quantity("acceleration", allow_zero=True)] = Field(
-        9.81, description="g; 0 allowed with a preload")
-    preload: Annotated[float, _quantity("force", allow_zero=True)] = Field(
-        0.0, description="external normal force F_ext")
-    load: Annotated[float, _quantity("force", positive=False)] = Field(
-        0.0, description="external tangential force on the particle along +x (a motor's load is "
-        "negative against a drift to +x)")
+    gravity: Annotated[float, _quantity("acceleration", "gravity", allow_zero=True)] = Field(
+        9.81, description="g, 0 to 1e4 m/s^2; 0 allowed with a preload")
+    preload: Annotated[float, _quantity("force", "preload", allow_zero=True)] = Field(
+        0.0, description="external normal force F_ext, 0 to 1 kN")
+    load: Annotated[float, _quantity("force", "load", positive=False)] = Field(
+        0.0, description="external tangential force on the particle along +x, -1 kN to 1 kN (a "
+        "motor's load is negative against a drift to +x)")
     incline: Annotated[float, BeforeValidator(_incline)] = Field(
-        0.0, description="slope alpha of the substrate, in (-90, 90) deg, positive where the "
+        0.0, description="slope alpha of the substrate, -85 deg to 85 deg, positive where the "
         "surface rises towards +x: gravity's normal part m g cos(alpha) holds the particle, its "
         "part m g sin(alpha) pulls it down the slope")
-    friction: Annotated[float, Field(gt=0.0, le=10.0)] = Field(description="mu")
-    wavelength: Annotated[float, _quantity("length")] | None = Field(
-        None, description="surface wavelength; overrides c_R/f from device.substrate.density "
+    friction: Annotated[float, BeforeValidator(_friction)] = Field(description="mu, 0.001 to 10")
+    wavelength: Annotated[float, _quantity("length", "wavelength")] | None = Field(
+        None, description="surface wavelength, 10 nm to 100 m; overrides c_R/f from device.substrate.density "
         "(anisotropic crystals)")
-    adhesion: Annotated[float, _quantity("surface energy", allow_zero=True)] = Field(
-        0.0, description="work of adhesion w of the particle-substrate pair (J/m^2, e.g. "
+    adhesion: Annotated[float, _quantity("surface energy", "adhesion", allow_zero=True)] = Field(
+        0.0, description="work of adhesion w of the particle-substrate pair (0 to 10 J/m^2, e.g. "
         "'0.05 J/m^2'); with effects.adhesion = 'dmt' or 'jkr' it sets material.adhesion")
     particle: DeviceParticle
     substrate: DeviceSubstrate
@@ -260,7 +218,7 @@ class Device(BaseModel):
 
     @model_validator(mode="after")
     def _plausible_wave(self) -> Device:
-        problem = wave_implausibility(self)
+        problem = wave_implausibility(self) or derived_out_of_range(self)
         if problem is not None:
             raise ValueError(problem)
         return self
@@ -340,6 +298,55 @@ def wave_implausibility(device: Device) -> str | None:
         return (f"{given} strains the surface by {where}, above {MAX_SURFACE_STRAIN:g}: no "
                 f"substrate stays elastic there; the amplitude must be below "
                 f"{MAX_SURFACE_STRAIN / (2.0 * math.pi):.2g} wavelengths {hint}")
+    return None
+
+
+#: The range of m* = a0 m f^2 / (M g) a device may give. m* is 1.5 / (2 pi)^2 times the squared
+#: ratio of the wave's frequency to the contact's normal natural frequency. Above 1e10 one
+#: window of a heavy particle's settle alone spans 3 periods of the contact's oscillation, over a
+#: million wave periods; below 1e-12 the contact oscillates more than 1e5 times a period, beyond
+#: the 1e7 steps a period a compliant model takes at most.
+M_STAR_RANGE = (1e-12, 1e10)
+
+#: The largest tangential load |L| = |F_load - m g sin(alpha)| / (M g) of a device (the range
+#: of ``particle.load``): beyond it friction holds nothing and the particle is simply pushed.
+MAX_LOAD_RATIO = 100.0
+
+#: The largest pull-off force over the normal load 2 pi R w / (M g) of a device (the range of
+#: ``material.adhesion``; JKR's pull-off is 3/4 of this DMT value).
+MAX_PULLOFF_RATIO = 1e12
+
+
+def derived_out_of_range(device: Device) -> str | None:
+    """Why the device's normalized quantities are outside what the model can integrate, or None.
+
+    Each field may be inside its own range (:data:`RANGES`) while the combination gives an m*
+    outside :data:`M_STAR_RANGE` (a 10 cm ball on a 100 GHz wave), a tangential load beyond
+    :data:`MAX_LOAD_RATIO` times the normal load, or a pull-off beyond :data:`MAX_PULLOFF_RATIO`
+    times it. The line names the device fields that set the quantity.
+    """
+    n = normalized(device)
+    m_star, (lo, hi) = n["m_star"], M_STAR_RANGE
+    if not lo <= m_star <= hi:
+        side = "above" if m_star > hi else "below"
+        what = ("lower device.frequency, use a smaller or lighter particle, or raise "
+                "device.preload" if m_star > hi else
+                "raise device.frequency, use a larger or heavier particle, or lower device.preload")
+        return (f"the device gives m* = a0 m f^2 / (M g) = {m_star:.3g}, {side} the range "
+                f"{lo:g} to {hi:g} the model integrates (a0 = {n['a0_m']:.3g} m, m = "
+                f"{n['mass_kg']:.3g} kg, f = {n['frequency_hz']:.4g} Hz, M g = "
+                f"{n['weight_n']:.3g} N): {what}")
+    if abs(n["load"]) > MAX_LOAD_RATIO:
+        return (f"device.load = {device.load:.4g} N and device.incline = "
+                f"{math.degrees(device.incline):.4g} deg push the particle with "
+                f"{n['load_n']:.4g} N, {abs(n['load']):.3g} times its normal load M g = "
+                f"{n['weight_n']:.3g} N, above {MAX_LOAD_RATIO:g} times: lower |device.load| or "
+                "raise device.preload")
+    if n["pulloff_dmt_n"] > MAX_PULLOFF_RATIO * n["weight_n"]:
+        return (f"device.adhesion = {device.adhesion:.4g} J/m^2 pulls the particle with "
+                f"2 pi R w = {n['pulloff_dmt_n']:.3g} N, above {MAX_PULLOFF_RATIO:g} times its "
+                f"normal load M g = {n['weight_n']:.3g} N: lower device.adhesion or raise "
+                "device.preload")
     return None
 
 

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SceneError
-from ..scene.device import FIELD_KIND, UNITS, normalized, to_si
+from ..scene.device import FIELD_KIND, UNITS, field_si, normalized
 from ..scene.schema import Scene
 
 
@@ -35,7 +35,7 @@ def _end(text: str, spec: str, name: str, kind: str | None) -> tuple[float, bool
         raise SceneError(f"{name} = {spec!r}: {text.strip()!r} is not a number ({name} takes no "
                          "units; device fields do, e.g. device.frequency=2 MHz:30 MHz:15)")
     try:
-        return to_si(text, kind), True
+        return field_si(name, text), True
     except ValueError as exc:
         raise SceneError(f"{name} = {spec!r}: {text.strip()!r} {exc}") from None
 

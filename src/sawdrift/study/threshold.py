@@ -34,7 +34,7 @@ from ..contact.binding import bind
 from ..errors import SceneError
 from ..result.runner import run
 from ..scene.adhesion import normalized_adhesion
-from ..scene.device import FIELD_KIND, normalized, to_si
+from ..scene.device import FIELD_KIND, field_si, normalized
 from ..scene.schema import Scene, check_dotted
 from .progress import counter
 
@@ -100,7 +100,7 @@ def parse_device_axis(spec: str) -> tuple[str, list[float]]:
 
     def si(text: str) -> float:
         try:
-            return to_si(text.strip(), kind) if kind else float(text)
+            return field_si(name, text.strip()) if kind else float(text)
         except ValueError as exc:
             raise SceneError(f"--axis {name}: {text.strip()!r} {exc}") from None
 
@@ -183,12 +183,13 @@ def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float
                          "or 'jkr' and device.adhesion > 0")
     factor = 10.0 ** (1.0 / per_decade)
     study = ThresholdStudy(name)
+    fixed: dict[str, Any] = {"numerics.settle": False}
+    if periods is not None:
+        fixed["numerics.periods"] = periods
+    # every value's scene first: a value outside its field's range is refused before any run
+    bases = [bind(scene.with_updates(**{name: value, **fixed})) for value in values]
     bar = counter(len(values), "threshold", "value", enabled=show)
-    for value in values:
-        update = {name: value, "numerics.settle": False}
-        if periods is not None:
-            update["numerics.periods"] = periods
-        base = bind(scene.with_updates(**update))
+    for value, base in zip(values, bases, strict=True):
         a_rigid, pull, weight = rigid_removal(base)
         cache: dict[float, Any] = {}
 

@@ -1,0 +1,147 @@
+"""Device quantities: units (parsed by pint) and the physical range of each device field.
+
+A device value is a number (SI; an angle in radians) or a string with units ("9.6 MHz",
+"10 nm", "7850 kg/m^3"), converted by :func:`to_si`; :data:`RANGES` bounds each field
+(docs/devices.md, "Ranges"). The device itself is :mod:`sawdrift.scene.device`.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import Any
+
+#: expected dimension of each kind of quantity, with an example for error messages
+UNITS = {
+    "length": ("[length]", "m", "'10 nm'"),
+    "frequency": ("1 / [time]", "Hz", "'9.6 MHz'"),
+    "force": ("[mass] * [length] / [time] ** 2", "N", "'7.35 mN'"),
+    "pressure": ("[mass] / [length] / [time] ** 2", "Pa", "'210 GPa'"),
+    "density": ("[mass] / [length] ** 3", "kg/m^3", "'7850 kg/m^3'"),
+    "mass": ("[mass]", "kg", "'4.1 mg'"),
+    "acceleration": ("[length] / [time] ** 2", "m/s^2", "'9.81 m/s^2'"),
+    "angle": ("", "rad", "'80 deg'"),
+    "surface energy": ("[mass] / [time] ** 2", "J/m^2", "'0.05 J/m^2'"),
+}
+
+#: the kind of quantity of each device field, for messages about a missing one
+FIELD_KIND = {"frequency": "frequency", "amplitude": "length", "radius": "length",
+              "youngs_modulus": "pressure", "density": "density", "mass": "mass",
+              "gravity": "acceleration", "preload": "force", "half_angle": "angle",
+              "load": "force", "incline": "angle", "wavelength": "length",
+              "adhesion": "surface energy"}
+
+
+@lru_cache(maxsize=1)
+def _registry():
+    """pint's unit registry, built on the first unit string of a process and kept.
+
+    Parsing pint's definitions takes about 1 s; pint keeps them parsed in its cache folder
+    (``cache_folder=":auto:"``, the user's cache directory), which makes the next process's
+    registry about ten times quicker. A cache that cannot be read or written (a read-only home,
+    another process writing it) falls back to parsing.
+    """
+    import pint
+
+    try:
+        return pint.UnitRegistry(cache_folder=":auto:")
+    except Exception:  # noqa: BLE001 - any failure of the cache: parse the definitions instead
+        return pint.UnitRegistry()
+
+
+def to_si(value: Any, kind: str) -> float:
+    """The SI magnitude of ``value`` (a number, or a string with units) of dimension ``kind``.
+
+    An angle is returned in radians (a bare number is taken as radians). Raises ValueError with a
+    plain message when the string is not a quantity or has another dimension.
+    """
+    dims, unit, example = UNITS[kind]
+    if isinstance(value, bool):
+        raise ValueError(f"is not a {kind}: give one in {unit}, e.g. {example}")
+    if isinstance(value, (int, float)):
+        out = float(value)
+    else:
+        ureg = _registry()
+        try:
+            q = ureg.Quantity(str(value).strip())
+        except Exception:  # noqa: BLE001 - pint raises several kinds for a bad string
+            raise ValueError(f"is not a quantity: give a {kind} in {unit}, e.g. {example}") from None
+        if kind == "angle":
+            if not q.dimensionless:
+                raise ValueError(f"is not an angle (wrong dimension): give one in deg or rad, "
+                                 f"e.g. {example}")
+            out = float(q.to("radian").magnitude)
+        elif q.dimensionless:
+            out = float(q.magnitude)
+        else:
+            if q.dimensionality != ureg.Quantity(1, unit).dimensionality:
+                raise ValueError(f"is not a {kind} (wrong dimension): give one in {unit}, "
+                                 f"e.g. {example}")
+            out = float(q.to(unit).magnitude)
+    if not math.isfinite(out):
+        raise ValueError("is not finite")
+    return out
+
+
+#: The allowed range of each device quantity, in SI units (an angle in radians): the lowest and
+#: highest value, the range as the user reads it, and what it spans. The ranges hold every real
+#: device, from a shaker's grain to a nanoparticle on a hypersonic surface wave, with room to
+#: spare; a value outside one is a unit left out or mistyped (``radius = "1 parsec"``).
+RANGES: dict[str, tuple[float, float, str, str]] = {
+    "frequency": (1.0, 1e11, "1 Hz to 100 GHz",
+                  "from a shaken plate to a hypersonic surface wave"),
+    "amplitude": (0.0, 1e-2, "0 to 1 cm",
+                  "from a surface wave's picometres to a vibratory feeder's millimetres"),
+    "wavelength": (1e-8, 100.0, "10 nm to 100 m",
+                   "from a hypersonic surface wave to a flexural wave on a large plate"),
+    "gravity": (0.0, 1e4, "0 to 1e4 m/s^2", "from free fall to a strong centrifuge at 1000 g"),
+    "preload": (0.0, 1e3, "0 to 1 kN", "a slider's spring holds it with mN to N"),
+    "load": (-1e3, 1e3, "-1 kN to 1 kN", "a motor's load is of mN to N"),
+    "adhesion": (0.0, 10.0, "0 to 10 J/m^2",
+                 "the work of adhesion of clean solids is below a few J/m^2"),
+    "friction": (1e-3, 10.0, "0.001 to 10",
+                 "from a superlubric contact to a sticky elastomer"),
+    "incline": (-math.radians(85.0), math.radians(85.0), "-85 deg to 85 deg",
+                "steeper, the slope's pull exceeds 11 times the normal load"),
+    "particle.radius": (1e-9, 0.1, "1 nm to 10 cm", "from a nanoparticle to a large ball"),
+    "particle.half_angle": (math.radians(1.0), math.radians(89.9), "1 deg to 89.9 deg",
+                            "the angle between the cone's axis and its surface"),
+    "particle.density": (1.0, 3e4, "1 kg/m^3 to 3e4 kg/m^3",
+                         "from an aerogel to osmium, the densest element at 22590 kg/m^3"),
+    "particle.mass": (1e-24, 100.0, "1e-24 kg to 100 kg",
+                      "from a nanoparticle to a heavy slider"),
+    "particle.youngs_modulus": (1e3, 2e12, "1 kPa to 2 TPa",
+                                "from a soft gel to diamond, about 1.1 TPa"),
+    "substrate.youngs_modulus": (1e3, 2e12, "1 kPa to 2 TPa",
+                                 "from a soft gel to diamond, about 1.1 TPa"),
+    "substrate.density": (1.0, 3e4, "1 kg/m^3 to 3e4 kg/m^3",
+                          "from an aerogel to osmium, the densest element at 22590 kg/m^3"),
+}
+
+#: the hint for a length given as a bare number (SI: metres)
+BARE_LENGTH = "a bare number is in m: write the unit, e.g. '10 nm'"
+
+
+def in_range(field: str, out: float, unit: str, given: Any) -> float:
+    """``out`` (SI, of the value ``given``) if inside :data:`RANGES` of ``field``; else a
+    ValueError naming the range (and, for a string with units, the value in SI)."""
+    lo, hi, text, why = RANGES[field]
+    if lo <= out <= hi:
+        return out
+    bare = not isinstance(given, str)
+    shown = "" if bare or unit in ("rad", "") else f"{out:.4g} {unit}, "
+    hint = f"; {BARE_LENGTH}" if bare and unit == "m" else ""
+    raise ValueError(f"is {shown}outside the allowed range {text} ({why}{hint})")
+
+
+def field_si(name: str, value: Any) -> float:
+    """The SI value of the device field ``name`` (dotted, ``device.particle.radius``) given as
+    ``value`` (a number, or a string with units), checked against its :data:`RANGES` entry if it
+    has one (a sweep axis's or a threshold study's value, before any run). ValueError as
+    :func:`to_si`, or naming the allowed range."""
+    field = name.removeprefix("device.")
+    kind = FIELD_KIND.get(field.rsplit(".", 1)[-1])
+    out = to_si(value, kind) if kind is not None else float(value)
+    if field in RANGES:
+        return in_range(field, out, UNITS[kind][1] if kind is not None else "", value)
+    return out

@@ -1,0 +1,150 @@
+"""Every device quantity has a physical range: outside it, one line naming the field and the range.
+
+A value out of range (``radius = "1 parsec"``) used to reach the integrator and end in "internal
+failure (Maximum allowed dimension exceeded)"; a combination of values each in range may still
+give an m* no integration can reach, or a load no friction holds, and is refused naming the
+device fields that set it.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from sawdrift.errors import SceneError
+from sawdrift.scene import build_scene
+
+from .cli_call import run_main
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+MOTOR = EXAMPLES / "saw_linear_motor.toml"
+SILICA = EXAMPLES / "micro_silica_on_linbo3.toml"
+
+#: one value beyond each field's range, with units, and the range the line must name
+BEYOND = [
+    ("device.particle.radius", "1 parsec", "1 nm to 10 cm"),
+    ("device.particle.radius", "0.1 nm", "1 nm to 10 cm"),
+    ("device.frequency", "1 THz", "1 Hz to 100 GHz"),
+    ("device.frequency", "0.1 Hz", "1 Hz to 100 GHz"),
+    ("device.amplitude", "5 cm", "0 to 1 cm"),
+    ("device.particle.density", "1e5 kg/m^3", "1 kg/m^3 to 3e4 kg/m^3"),
+    ("device.particle.youngs_modulus", "1 Pa", "1 kPa to 2 TPa"),
+    ("device.substrate.youngs_modulus", "5 TPa", "1 kPa to 2 TPa"),
+    ("device.substrate.density", "1e6 kg/m^3", "1 kg/m^3 to 3e4 kg/m^3"),
+    ("device.gravity", "1e5 m/s^2", "0 to 1e4 m/s^2"),
+    ("device.preload", "1 MN", "0 to 1 kN"),
+    ("device.load", "-2 kN", "-1 kN to 1 kN"),
+    ("device.wavelength", "1 km", "10 nm to 100 m"),
+    ("device.incline", "88 deg", "-85 deg to 85 deg"),
+    ("device.friction", "1e-5", "0.001 to 10"),
+]
+
+
+def _one_line(proc) -> str:
+    assert proc.returncode == 2, (proc.returncode, proc.stderr)
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), lines
+    assert "Traceback" not in proc.stderr and "internal failure" not in proc.stderr
+    return lines[0]
+
+
+@pytest.mark.parametrize(("field", "value", "allowed"), BEYOND)
+def test_a_set_value_beyond_its_range_is_one_line_naming_field_and_range(field, value, allowed):
+    line = _one_line(run_main("run", MOTOR, "--set", f"{field}={value}", "--periods", "5"))
+    assert f"{field} = " in line and f"allowed range {allowed}" in line, line
+
+
+def test_every_range_is_tested_and_holds_the_examples():
+    from sawdrift.scene.device import RANGES
+
+    assert {f.removeprefix("device.") for f, _, _ in BEYOND} | {"particle.mass", "adhesion",
+                                                                "particle.half_angle"} == set(RANGES)
+    for path in (MOTOR, SILICA, EXAMPLES / "grain_on_incline.toml"):
+        assert build_scene(tomllib.loads(path.read_text())).device is not None
+
+
+@pytest.mark.parametrize(("table", "key", "value", "allowed"), [
+    ("particle", "radius", '"1 parsec"', "1 nm to 10 cm"),
+    ("device", "adhesion", '"50 J/m^2"', "0 to 10 J/m^2"),
+])
+def test_a_scene_file_beyond_a_range_is_one_line_too(tmp_path, table, key, value, allowed):
+    text = SILICA.read_text()
+    lines = text.splitlines()
+    start = lines.index("[device]" if table == "device" else "[device.particle]")
+    at = next(i for i in range(start, len(lines)) if lines[i].startswith(f"{key} ="))
+    lines[at] = f"{key} = {value}"
+    path = tmp_path / "bad.toml"
+    path.write_text("\n".join(lines) + "\n")
+    line = _one_line(run_main("run", path, "--periods", "5"))
+    assert line.startswith(f"error: {path}: device.") and f"allowed range {allowed}" in line
+
+
+def test_a_cones_mass_and_half_angle_have_ranges():
+    data = tomllib.loads(MOTOR.read_text())
+    part = {"shape": "cone", "half_angle": "80 deg", "mass": "1 t", "youngs_modulus": "210 GPa",
+            "poisson": 0.3}
+    data["device"]["particle"] = part
+    with pytest.raises(SceneError, match=r"device\.particle\.mass = '1 t' is 1000 kg, outside the "
+                                         r"allowed range 1e-24 kg to 100 kg"):
+        build_scene(data)
+    data["device"]["particle"] = {**part, "mass": "4 mg", "half_angle": "89.99 deg"}
+    with pytest.raises(SceneError, match=r"particle\.half_angle = '89\.99 deg' is outside the "
+                                         r"allowed range 1 deg to 89\.9 deg"):
+        build_scene(data)
+
+
+def test_a_heavy_combination_in_range_is_refused_naming_m_star():
+    # a 10 cm steel ball on a 100 GHz wave (amplitude 0: no wave bound applies): each field is in
+    # range, but a0 = (9 W^2 / (16 R E*^2))^(1/3) = 3.5 um with W = 322 N gives
+    # m* = a0 f^2 / g = 3.6e15, beyond the 1e10 an integration can reach
+    proc = run_main("run", MOTOR, "--set", "device.particle.radius=10 cm", "--set",
+                    "device.frequency=100 GHz", "--set", "device.amplitude=0 nm", "--periods", "5")
+    line = _one_line(proc)
+    from sawdrift.scene.device import M_STAR_RANGE
+
+    e_star = 1.0 / ((1 - 0.3**2) / 210e9 + (1 - 0.25**2) / 170e9)
+    mass = 7850.0 * 4.0 / 3.0 * math.pi * 0.1**3
+    weight = mass * 9.81 + 7.35e-3
+    a0 = (9.0 * weight**2 / (16.0 * 0.1 * e_star**2)) ** (1.0 / 3.0)
+    m_star = a0 * mass * 1e11**2 / weight
+    assert m_star > M_STAR_RANGE[1]
+    assert f"m* = a0 m f^2 / (M g) = {m_star:.3g}, above the range" in line
+    assert "device.frequency" in line
+
+
+def test_a_load_beyond_a_hundred_normal_loads_names_the_device_load():
+    # the motor holds M g = 7.39 mN: 1 N is 135 M g (today's line named particle.load instead)
+    line = _one_line(run_main("run", MOTOR, "--set", "device.load=1 N", "--periods", "5"))
+    assert "device.load = 1 N" in line and "135 times its normal load" in line
+
+
+def test_the_threshold_study_refuses_a_radius_beyond_range_before_any_run(tmp_path):
+    proc = run_main("threshold", SILICA, "--axis", "device.particle.radius=1 um,3e16 m", "-o",
+                    tmp_path / "t")
+    line = _one_line(proc)
+    assert "device.particle.radius" in line and "'3e16 m' is 3e+16 m" in line
+    assert "1 nm to 10 cm" in line and proc.stdout == ""
+
+
+@pytest.mark.parametrize("corner", [
+    # the heaviest corner (m* = 1e10), and one of the largest A* (1.2e18: a0 below 1e-29 m)
+    {"frequency": "100 GHz", "amplitude": "0 nm", "preload": "1 kN", "load": "-1 kN",
+     "friction": 0.001, "incline": "-85 deg",
+     "particle": {"shape": "flat", "radius": "10 cm", "mass": "100 kg", "youngs_modulus": "2 TPa",
+                  "poisson": -0.999},
+     "substrate": {"youngs_modulus": "2 TPa", "poisson": -0.999}},
+    {"frequency": "100 GHz", "amplitude": "1 pm", "friction": 10, "incline": "85 deg",
+     "particle": {"shape": "flat", "radius": "1 nm", "mass": "1e-24 kg", "youngs_modulus": "2 TPa",
+                  "poisson": -0.999},
+     "substrate": {"youngs_modulus": "2 TPa", "poisson": -0.999}},
+])
+def test_corners_of_the_ranges_run_or_fail_in_one_line(tmp_path, corner):
+    import tomli_w
+
+    path = tmp_path / "corner.toml"
+    path.write_text(tomli_w.dumps({"model": "mmd", "device": corner}))
+    proc = run_main("run", path, "--periods", "5", "--no-settle")
+    assert proc.returncode in (0, 2) and "internal failure" not in proc.stderr, proc.stderr
