@@ -132,16 +132,8 @@ class PlaneModel:
 
     Parameters
     ----------
-    x, y
-        Positions (m) of every bead's centre.
-    kinds
-        Species index of every bead.
-    beads
-        Geometry of each species.
-    curves
-        Force-velocity curves of each species (:mod:`.curves`).
-    surface_speed
-        The horizontal surface speed 2 pi f r A_y (m/s) that a drift ratio multiplies.
+    x, y, kinds, beads, curves, surface_speed
+        The placement, species and curves, as for the 1-D model (:class:`.events.SlowModel`).
     tolerance
         delta_tol over the smallest radius: the overlap at a pair force of 4 lighter weights.
     perp
