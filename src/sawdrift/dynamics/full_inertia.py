@@ -229,6 +229,8 @@ class _Approach:
     steady_run: int = 0  # consecutive window changes within the accuracy
     flips: int = 0  # consecutive changes of alternating sign
     jumps: int = 0
+    #: the drift ratio solved directly that the windows confirm (None: windows alone decide)
+    expected: float | None = None
 
     def restart(self, longer: bool) -> None:
         """Compare afresh from the next window (after a jump, or in windows twice as long)."""
@@ -254,6 +256,11 @@ class _Approach:
         self.steady_run = self.steady_run + 1 if abs(change) <= eps else 0
         if self.steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
             return "settled", 0.0
+        if (self.expected is not None and self.steady_run >= 1 and abs(remaining) <= eps
+                and abs(d - self.expected) <= eps and abs(self.prev - self.expected) <= eps):
+            # two windows in a row on the drift solved directly, their change within the
+            # accuracy: an independent estimate agrees, so one change suffices
+            return "settled", 0.0
         if slow and last is not None and change * last > 0.0 and abs(remaining) > eps:
             self.jumps += 1
             self.before = (d, change)
@@ -268,7 +275,8 @@ class _Approach:
 
 
 def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
-                max_steps: int, lam: float, last: Window | None = None) -> tuple[Window, FullInertia]:
+                max_steps: int, lam: float, last: Window | None = None,
+                expected: float | None = None) -> tuple[Window, FullInertia]:
     """Measure full-inertia windows until the drift has settled (module docstring).
 
     Windows span at least three of the longest flight of ``last`` (the first stage's final
@@ -284,12 +292,17 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         Relaxation rate of the mean speed at full inertia, per period (:func:`relaxation_rate`).
     max_steps
         The settle cap: no window starts that would end past it.
+    expected
+        A drift ratio solved directly (:mod:`.separated`, :mod:`.torus`): two consecutive windows
+        within the accuracy of it and of each other settle the drift (else the usual
+        :data:`STEADY_CHANGES` consecutive changes do).
     """
     w = full_window_length(scene.particle.m_star, scene.theta, minimum_window, stepper.rigid)
     if last is not None:
         # flights of many periods (a heavy point thrown by one impact): windows of three of them
         w = max(w, int(math.ceil(3.0 * longest_flight(last))))
-    state = _Approach(w=w, q=math.exp(-lam * w), tol=scene.numerics.settle_tolerance, w0=w)
+    state = _Approach(w=w, q=math.exp(-lam * w), tol=scene.numerics.settle_tolerance, w0=w,
+                      expected=expected)
     start = stepper.step
     # the stage may outlast the first stage's cap by MIN_WINDOWS windows
     max_steps = max(max_steps, start + MIN_WINDOWS * w * stepper.k_per)

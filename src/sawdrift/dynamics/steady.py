@@ -244,7 +244,8 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
         # full-inertia windows start there, at the relaxation rate of the curve's slope
         drift, lam, lifts, t90 = direct
         shift_speed(stepper, drift - stepper.y[1])
-        win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam)
+        win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
+                                expected=drift / speed)
         if abs(win.liftoffs_per_period - lifts) <= LIFT_MATCH:
             info = Settling(full.settled, "orbit_then_full", m, full.window_periods,
                             (stepper.step - start) / stepper.k_per, t90,

@@ -7,8 +7,8 @@ The steps of one run follow from its scene as the runner plans it
 :func:`sawdrift.dynamics.steady.settles`) the expected length of the settle, of order ten
 relaxation times m*_x/mu of the reduced inertia plus two windows, capped by
 ``numerics.max_periods``; where the drift is solved directly (m* >= 30, a plain wave scene:
-:mod:`sawdrift.dynamics.separated`) four full-inertia windows (the SAW motor example, m* = 929,
-mu = 0.2: 1940 periods expected, 1913 run). The
+:mod:`sawdrift.dynamics.separated`) three full-inertia windows, two to four in practice (the SAW
+motor example, m* = 929, mu = 0.2: 1470 periods expected, 973 run). The
 time divides the steps by a rate in steps per second measured on a short calibration run of the
 same model and engine (:func:`calibrate`: about 2e4 steps, the compiled loop loaded first) and
 by the workers (the harmonic mean over up to three sampled cells: steady slides run faster
@@ -113,9 +113,9 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
     cap = num.max_periods or steady.default_max_periods(m, tau, rigid, scene.measure_periods())
     expected = min(cap, max(fixed, num.periods + 8.0 * tau + 2.0 * window))
     if _solved_directly(scene, rigid):
-        # the drift solved directly, confirmed by four full-inertia windows
+        # the drift solved directly, confirmed by two to four full-inertia windows
         full = full_window_length(m, scene.theta, scene.measure_periods())
-        expected = min(expected, num.periods + 4.0 * full)
+        expected = min(expected, num.periods + 3.0 * full)
     return expected * k, max(fixed, cap) * k
 
 
