@@ -150,3 +150,16 @@ def test_an_irregular_heavy_bouncer_reports_a_long_time_mean_at_an_imposed_speed
     assert 0.0 < res.drift_ratio_se < 0.02
     assert abs(res.drift_ratio - 0.77550) <= 3.0 * res.drift_ratio_se
     assert res.settle_periods < 5000  # the brute force needed 5e5
+
+
+def test_the_time_from_rest_integrates_the_force_velocity_curve():
+    """A linear curve -<T*> = c (d* - d) gives an exponential approach: 90 % of d* after
+    ln(10) m* U / (mu c) periods (U the drift ratio's scale), within 0.1 %."""
+    c, d_star, m, mu, u = 0.4, 0.3, 500.0, 0.2, 2.5
+    samples = tuple((d, c * (d_star - d)) for d in np.linspace(0.0, d_star, 400))
+    sc = scene(1000.0, 0.3, 0.1)
+    st, speed, _ = stepper_after_ramp(sc)
+    orbit = separated_orbit(st, sc, speed, 1e-4)
+    fake = dataclasses.replace(orbit, curve=samples)
+    got = approach_periods(fake, d_star * u, u, mu, m)
+    assert got == pytest.approx(np.log(10.0) * m * u / (mu * c), rel=1e-3)
