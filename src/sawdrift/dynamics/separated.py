@@ -56,6 +56,7 @@ import numpy as np
 
 from ..codegen import Generated, generate, rebind
 from . import adams_bashforth as ig
+from .drives.travelling import TravellingWave
 from .stepper import Stepper
 
 #: the separated orbit is used from this m* up (the fast parts' contraction factor, about
@@ -108,7 +109,7 @@ def applies(stepper: Stepper, scene) -> bool:
     prm = stepper.prm
     if stepper.rigid or stepper.history is None or scene.particle.m_star < SEPARATED_MIN_MASS:
         return False
-    if type(stepper.drive).__name__ != "TravellingWave":
+    if not isinstance(stepper.drive, TravellingWave):
         return False
     off = (ig.P_LOAD, ig.P_DAMP, ig.P_REST, ig.P_ROLL, ig.P_DRAG, ig.P_PULL, ig.P_RR)
     return all(prm[i] == 0.0 for i in off) and prm[ig.P_FRICTION] > 0.0 and prm[ig.P_MU] > 0.0

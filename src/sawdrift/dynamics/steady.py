@@ -1,5 +1,10 @@
 """Steady drift: a fast approach at reduced horizontal inertia, then windows at full inertia.
 
+From m* = 30 up the approach is usually not run at all: :func:`settle` first tries to solve
+the drift directly (:mod:`.separated`, :mod:`.torus`; a creeping contact goes straight to
+full-inertia windows, an irregular bouncer to :mod:`.imposed`), and the stages below are what
+is left where that does not apply.
+
 Two stages. The first (below) brings the mean speed near its steady value at a cost independent
 of m*; the second (:mod:`sawdrift.dynamics.full_inertia`) puts the full m* back and measures
 there until the drift has settled, so the reported drift is always the full-inertia one (the
@@ -269,8 +274,9 @@ def _irregular_mean(stepper: Stepper, scene, speed: float, scale: np.ndarray,
         return None
     shift_speed(stepper, mean.mean - stepper.y[1])
     # long enough to hold several of a bouncer's flights (a window of 60 periods can be one)
-    win = measure_window(stepper, max(minimum_window, EVIDENCE_PERIODS), speed, scale)
-    info = Settling(False, "imposed_speed", scene.particle.m_star, minimum_window,
+    evidence = max(minimum_window, EVIDENCE_PERIODS)
+    win = measure_window(stepper, evidence, speed, scale)
+    info = Settling(False, "imposed_speed", scene.particle.m_star, evidence,
                     (stepper.step - start) / stepper.k_per, math.nan, (mean.mean / speed,),
                     long_mean=mean)
     return win, info
@@ -319,9 +325,8 @@ def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
 
     Both need the fast motion to be a period-one orbit about a slowly moving height. A probe of
     :data:`PROBE_PERIODS` periods checks it: a run that loses contact must lift off once a period
-    (a heavy particle bouncing at A* = 6, m* = 3000 lifts off 0.4 times a period, irregularly;
-    its drift from rest is not the average of period-one orbits, 0.762 over 1.2e6 periods against
-    0.777).
+    (a heavy particle bouncing at A* = 6 lifts off 0.4 times a period, irregularly, and is
+    left to :func:`~.imposed.imposed_drift`).
     """
     tol = scene.numerics.settle_tolerance
     if not applies(stepper, scene):

@@ -470,7 +470,6 @@ def _strobe_rows(strobe: tuple[np.ndarray, int], rows: np.ndarray) -> None:
     """Put trajectory rows taken at period boundaries into ``samples[j - 1]``, j the periods
     since ``t0`` (``strobe`` = (samples, t0)); the rows' time is column 0, the state columns 1-4."""
     samples, t0 = strobe
-    for row in rows:
-        j = int(round(row[0])) - t0
-        if 1 <= j <= samples.shape[0]:
-            samples[j - 1] = row[1:5]
+    j = np.rint(rows[:, 0]).astype(np.int64) - t0
+    inside = (j >= 1) & (j <= samples.shape[0])
+    samples[j[inside] - 1] = rows[inside, 1:5]
