@@ -25,8 +25,8 @@ def test_settle_matches_a_brute_force_run_of_many_approach_times():
     ref = brute("mmd", 300.0, 0.7, 0.3, int(40 * 300 / 0.3) + 2000)
     res = sd.run(scene("mmd", 300.0, 0.7, 0.3, settle=True, max_periods=1e6))
     assert res.settled is True
-    # contact kept: the full-inertia windows start at the directly solved orbit
-    assert res.settle_method == "orbit_then_full"
+    # contact kept: the drift is solved directly on the period-one orbit
+    assert res.settle_method == "solved"
     assert abs(res.drift_ratio - ref.drift_ratio) <= 0.01 * abs(ref.drift_ratio)
     assert ref.drift_ratio > 0.2  # a real drift, not a cell without one
 
@@ -47,7 +47,7 @@ def test_a_heavy_particle_settles_by_default_and_a_light_one_runs_fixed():
     default = sd.run(scene("mmd", 300.0, 0.5, 0.1))
     explicit = sd.run(scene("mmd", 300.0, 0.5, 0.1, settle=True))
     fixed = sd.run(scene("mmd", 300.0, 0.5, 0.1, settle=False))
-    assert default.settled is True and default.settle_method == "orbit_then_full"
+    assert default.settled is True and default.settle_method == "solved"
     assert default.drift_ratio == explicit.drift_ratio
     assert fixed.settled is False and abs(fixed.drift_ratio - default.drift_ratio) > 0.3
     # m* = 0.1: 3 m*/mu = 3 periods, far below 60: a fixed run, as before

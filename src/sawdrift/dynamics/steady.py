@@ -44,66 +44,27 @@ steady one.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from . import adams_bashforth as ig
-from .batch_means import BatchMeans
+from .direct import settle_direct
 from .evidence import EV_LANDING
-from .full_inertia import relaxation_rate, settle_full, shift_speed
-from .imposed import imposed_drift
-from .separated import (
-    SEPARATED_MIN_MASS,
-    STUCK,
-    applies,
-    approach_periods,
-    orbit_relaxation,
-    separated_orbit,
-)
+from .full_inertia import relaxation_rate, settle_full
+from .separated import STUCK
+from .settling import SLOPE, Settling
 from .stepper import Stepper
-from .torus import torus_drift
 from .window import Window, in_flight, measure_window
+
+__all__ = ["SLOPE", "Settling", "settle", "settles", "assess_fixed"]
 
 #: the horizontal inertia used for heavier particles (see the module docstring)
 HEAVY_MASS = 100.0
 
-#: the slope F' of the force-velocity curve at its zero assumed before one is measured: the mean
-#: speed relaxes at lambda = F' mu / m* per period; measured relaxation times to 90 % of 2.7 to
-#: 7.7 m*/mu (``benchmarks/bench_steady.py``) put F' between 0.3 and 0.85
-SLOPE = 0.5
-
-#: periods of the probe that checks the fast motion before the drift is solved directly
-PROBE_PERIODS = 12
-
-#: periods of the window that gives an irregular heavy bouncer's regime evidence
-EVIDENCE_PERIODS = 400
-
-#: what the direct start gives for a run whose lift-offs are not those of period-one orbits
-IRREGULAR = "irregular"
-
-#: lift-offs per period a run may differ by from those of the orbits its drift was averaged over
-LIFT_MATCH = 0.05
-
 #: Longest relaxation time (periods, at the integrated inertia) that ``numerics.settle`` left
 #: unset settles by default (:func:`settles`): its cap, 50 of them, is then at most 5e5 periods.
 AUTO_SETTLE_PERIODS = 1e4
-
-
-@dataclass(frozen=True)
-class Settling:
-    """How a settled run got there."""
-
-    settled: bool
-    method: str
-    horizontal_inertia: float
-    window_periods: int
-    periods: float
-    t90_periods: float
-    history: tuple[float, ...]
-    #: the long-time mean drift with its error, where the settling gives one instead of a
-    #: settled drift (an irregular heavy bouncer, :mod:`.imposed`)
-    long_mean: BatchMeans | None = None
 
 
 def horizontal_inertia(m_star: float, rigid: bool) -> float:
@@ -228,58 +189,16 @@ def default_max_periods(m_star: float, tau: float, rigid: bool, minimum_window: 
 def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
            max_steps: int) -> tuple[Window, Settling]:
     """Measure windows until the drift has settled (see the module docstring)."""
-    m = scene.particle.m_star
     start = stepper.step
-    direct = _direct_start(stepper, scene, speed, scale) if m >= SEPARATED_MIN_MASS else None
-    if direct == IRREGULAR:
-        got = _irregular_mean(stepper, scene, speed, scale, minimum_window, start)
-        if got is not None:
-            return got
-        direct = None
-    if direct == STUCK:
-        # held by its tangential stiffness, a sticking or creeping contact returns to its drift
-        # within a window from any start (the creep scales as m*^(-1/2) at full inertia): no
-        # approach at reduced inertia, windows at full inertia from here
-        win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps,
-                              reduce=False)
-        return win, replace(info, periods=(stepper.step - start) / stepper.k_per)
-    if direct is not None:
-        # the drift solved directly: the first zero of the force-velocity curve at full inertia,
-        # averaged over the run's own slow vertical oscillation (dynamics.separated, .torus); the
-        # full-inertia windows start there, at the relaxation rate of the curve's slope
-        drift, lam, lifts, t90 = direct
-        shift_speed(stepper, drift - stepper.y[1])
-        win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
-                                expected=drift / speed)
-        if abs(win.liftoffs_per_period - lifts) <= LIFT_MATCH:
-            info = Settling(full.settled, "orbit_then_full", m, full.window_periods,
-                            (stepper.step - start) / stepper.k_per, t90,
-                            (drift / speed, *full.history))
-            return win, info
-        # the run does not lift off as the averaged orbits do: its fast motion is not a
-        # period-one orbit (irregular bouncing): friction at an imposed speed along its record
-        got = _irregular_mean(stepper, scene, speed, scale, minimum_window, start)
-        if got is not None:
-            return got
-    win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps)
+    got = settle_direct(stepper, scene, speed, scale, minimum_window, max_steps, start)
+    if isinstance(got, tuple):
+        return got
+    # a sticking or creeping contact (STUCK) returns to its drift within a window from any
+    # start, held by its tangential stiffness (the creep scales as m*^(-1/2) at full inertia):
+    # no approach at reduced inertia, windows at full inertia from here
+    win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps,
+                          reduce=got != STUCK)
     return win, replace(info, periods=(stepper.step - start) / stepper.k_per)
-
-
-def _irregular_mean(stepper: Stepper, scene, speed: float, scale: np.ndarray,
-                    minimum_window: int, start: int) -> tuple[Window, Settling] | None:
-    """The long-time mean drift of an irregular heavy bouncer (:func:`~.imposed.imposed_drift`)
-    and a window at that speed for the regime's evidence; not settled (a mean with an error)."""
-    mean = imposed_drift(stepper, scene, speed)
-    if mean is None:
-        return None
-    shift_speed(stepper, mean.mean - stepper.y[1])
-    # long enough to hold several of a bouncer's flights (a window of 60 periods can be one)
-    evidence = max(minimum_window, EVIDENCE_PERIODS)
-    win = measure_window(stepper, evidence, speed, scale)
-    info = Settling(False, "imposed_speed", scene.particle.m_star, evidence,
-                    (stepper.step - start) / stepper.k_per, math.nan, (mean.mean / speed,),
-                    long_mean=mean)
-    return win, info
 
 
 def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
@@ -311,43 +230,6 @@ def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_
     info = Settling(full.settled, method, m_x, full.window_periods,
                     (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history)
     return win, info
-
-
-def _direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
-                  ) -> tuple[float, float, float, float] | str | None:
-    """(drift, relaxation rate, lift-offs per period, periods to 90 % of the drift from rest)
-    solved directly for a heavy particle, or None where that does not apply: the period-one orbit
-    (:func:`~.separated.separated_orbit`) averaged over the run's slow vertical oscillation
-    (:func:`~.torus.torus_drift`), the time from rest by
-    :func:`~.separated.approach_periods`. An orbit that keeps contact is its own start if the average
-    fails; one that loses contact is not (its drift can be 8 % from the run's). :data:`STUCK`
-    for a contact that sticks or creeps.
-
-    Both need the fast motion to be a period-one orbit about a slowly moving height. A probe of
-    :data:`PROBE_PERIODS` periods checks it: a run that loses contact must lift off once a period
-    (a heavy particle bouncing at A* = 6 lifts off 0.4 times a period, irregularly, and is
-    left to :func:`~.imposed.imposed_drift`).
-    """
-    tol = scene.numerics.settle_tolerance
-    if not applies(stepper, scene):
-        return None
-    orbit = separated_orbit(stepper, scene, speed, tol, keep_contact=False)
-    if orbit is None or orbit == STUCK:
-        return orbit
-    if orbit.loses_contact:
-        probe = measure_window(stepper, PROBE_PERIODS, speed, scale)
-        if probe.contact_lost and abs(probe.liftoffs_per_period - 1.0) > LIFT_MATCH:
-            return IRREGULAR
-    averaged = torus_drift(stepper, orbit, speed, tol)
-    if averaged is None:
-        if orbit.loses_contact:
-            return None
-        averaged = (orbit.drift, 0.0)
-    drift, lifts = averaged
-    mu, m = scene.material.mu, scene.particle.m_star
-    # the approach from rest is not run: its time to 90 % from the force-velocity curve
-    t90 = approach_periods(orbit, drift, speed, mu, m)
-    return drift, orbit_relaxation(orbit, mu, m, SLOPE), lifts, t90
 
 
 def _reduced_stage(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,

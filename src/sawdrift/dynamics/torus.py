@@ -132,10 +132,11 @@ def slow_cycle(stepper: Stepper, orbit: SeparatedOrbit
 
 
 def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: float
-                ) -> tuple[float, float] | None:
+                ) -> tuple[float, float, float] | None:
     """The steady drift (x* per period) averaged over the run's slow vertical cycle (module
-    docstring) and the lift-offs per period it implies (the time share of the cycle whose orbit
-    loses contact), or None where the cycle or a bracket of the zero is not found.
+    docstring), the lift-offs per period it implies (the time share of the cycle whose orbit
+    loses contact) and the cycle's period (wave periods), or None where the cycle or a bracket of
+    the zero is not found.
 
     Parameters
     ----------
@@ -189,6 +190,6 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
         if (f1 > 0.0) != (f0 > 0.0):
             lo, hi = sorted((d0, d1))
             root = brentq(push, lo, hi, xtol=1e-3 * tol * max(abs(d0), 0.02), rtol=1e-10)
-            return speed * root, lifts
+            return speed * root, lifts, period
         d0, f0, step = d1, f1, 2.0 * step
     return None

@@ -62,7 +62,9 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     win, settling, sync = out.window, out.settling, out.window.sync
     hop_period = out.hop_period
     t90 = settling.t90_periods if out.settle_on else math.nan
-    drift_ratio, regime = _regime(scene, drive, win, out.speed, hop_period)
+    solved = settling.drift if out.speed > 0.0 else None
+    drift_ratio, regime = _regime(scene, drive, win, out.speed, hop_period,
+                                  None if solved is None else solved / out.speed)
     acceleration = mean_acceleration(win.positions)
     stepper = out.stepper
     ret = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
@@ -73,6 +75,10 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     drift = win.drift
     settled = settling.settled
     drift_se = math.nan
+    if solved is not None:
+        # solved directly (dynamics.direct): the window is one sample of the slow vertical
+        # modulation, the solved drift is its mean
+        drift = solved
     if out.long_mean is not None and out.speed > 0.0:
         # irregular motion: the long-time mean with its batch-means error, not one window's sample
         drift = out.long_mean.mean
@@ -154,15 +160,16 @@ def mean_acceleration(positions) -> float:
 
 
 def _regime(scene: Scene, drive: Drive, win: Window, speed: float,
-            hop_period: int) -> tuple[float, str]:
-    """(drift ratio, regime) of the measured window.
+            hop_period: int, solved: float | None = None) -> tuple[float, str]:
+    """(drift ratio, regime) of the measured window, or of its drift ratio ``solved`` directly.
 
     Without horizontal surface motion (r = 0) the drift ratio is undefined: it is reported as
     null (nan), and the regime reads the drift against the vertical surface speed instead.
     """
-    drift_ratio = win.drift_ratio if speed > 0.0 else math.nan
+    own = win.drift_ratio if solved is None else solved
+    drift_ratio = own if speed > 0.0 else math.nan
     vertical = 2.0 * math.pi * drive.vertical_amplitude(scene)
-    ratio_for_regime = (win.drift_ratio if speed > 0.0
+    ratio_for_regime = (own if speed > 0.0
                         else (win.drift / vertical if vertical > 0.0 else 0.0))
     regime = classify(win.contact_lost, ratio_for_regime, scene.numerics.drift_tolerance,
                       gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)

@@ -1,0 +1,40 @@
+"""How a settling run got to its drift: the record every settle route returns.
+
+Kept apart from :mod:`.steady` (the window approach) and :mod:`.direct` (the drift solved
+directly), which both build it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .batch_means import BatchMeans
+
+#: the slope F' of the force-velocity curve at its zero assumed before one is measured: the mean
+#: speed relaxes at lambda = F' mu / m* per period; measured relaxation times to 90 % of 2.7 to
+#: 7.7 m*/mu (``benchmarks/bench_steady.py``) put F' between 0.3 and 0.85
+SLOPE = 0.5
+
+
+@dataclass(frozen=True)
+class Settling:
+    """How a settled run got there.
+
+    ``history`` holds the drift ratios on the way (window means, or the solved drift first);
+    ``drift``, where set, is the drift (x* per period) the run reports instead of its last
+    window's: a drift solved directly, whose evidence window is a sample of the slow vertical
+    modulation rather than its mean.
+    """
+
+    settled: bool
+    method: str
+    horizontal_inertia: float
+    window_periods: int
+    periods: float
+    t90_periods: float
+    history: tuple[float, ...]
+    #: the long-time mean drift with its error, where the settling gives one instead of a
+    #: settled drift (an irregular heavy bouncer, :mod:`.imposed`)
+    long_mean: BatchMeans | None = None
+    #: the solved drift (x* per period) reported instead of the last window's, or None
+    drift: float | None = None
