@@ -150,6 +150,17 @@ def test_a_heavy_hopping_cell_is_the_average_over_its_slow_cycle():
     assert res.settle_periods <= full_window_length(1000.0, 1.2142857142857142, 60)
 
 
+def test_a_run_that_passes_its_orbit_at_speed_is_averaged_over_its_whole_cycle():
+    """mmd m* = 891, A* = 1.26, mu = 0.1 is at its orbit's mean compression when it starts
+    settling, but moving (Y' = -0.01): its slow cycle spans a* 0.46 to 0.96, whose turning points
+    must be found from its energy, not its offset. Solved directly, the drift is within 1e-3 of
+    the brute force from rest (`--no-settle --periods 717000 --measure-periods 215100`:
+    0.6564967; half as long: 0.6564966); the window approach it fell back to gave 0.65576."""
+    res = sd.run(scene(891.250938, 1.258925, 0.1))
+    assert res.settle_method == "solved" and res.regime == "hopping"
+    assert abs(res.drift_ratio - 0.6564967) <= 1e-3 * 0.6564967, res.drift_ratio
+
+
 def test_an_irregular_heavy_bouncer_reports_a_long_time_mean_at_an_imposed_speed():
     """mmd m* = 316, A* = 6, mu = 0.1 lifts off about 0.4 times a period, irregularly: not the
     period-one orbits the average is made of. Its drift is the zero of the friction at an

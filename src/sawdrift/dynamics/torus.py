@@ -110,7 +110,9 @@ def slow_cycle(stepper: Stepper, orbit: SeparatedOrbit
     m = orbit.problem.m
     y_now = stepper.y[2] - orbit.eta[0]
     rate_now = stepper.y[3] - orbit.eta_rate[0]
-    offset = abs(y_now - orbit.mean_compression)
+    # the grid of Phi is set by the cycle's amplitude, estimated on the linearized potential
+    # (stiffness N*'(1) = 1.5 of a Hertz contact): the run may pass the orbit's Y at speed
+    offset = math.hypot(y_now - orbit.mean_compression, rate_now * math.sqrt(m / 1.5))
     phi = _Potential(orbit, max(offset / 32.0, 1e-6))
     energy = 0.5 * m * rate_now**2 + phi(y_now)
     if not math.isfinite(energy):

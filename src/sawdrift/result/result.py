@@ -133,9 +133,10 @@ class Result:
     #: how ``settled`` was decided: "fixed" (a run of fixed length, judged after the fact),
     #: "windows_full" (windows at full inertia), "fixed_then_windows" (a default fixed run its own
     #: window could not confirm, continued in such windows), "reduced_then_full" (a reduced-inertia
-    #: approach, then windows at full inertia; see dynamics.full_inertia), "orbit_then_full"
-    #: (windows at full inertia started at the drift solved directly; see dynamics.separated,
-    #: dynamics.torus) or "imposed_speed" (an irregular heavy bouncer's long-time mean from the
+    #: approach, then windows at full inertia; see dynamics.full_inertia), "solved" (the drift
+    #: solved directly, checked by one evidence window; see dynamics.direct), "orbit_then_full"
+    #: (windows at full inertia started at the drift solved directly: numerics.confirm_solved,
+    #: or an evidence window that disagreed) or "imposed_speed" (an irregular heavy bouncer's long-time mean from the
     #: friction at an imposed speed; see dynamics.imposed)
     settle_method: str | None = None
     #: periods after which the drift was assessed (settle runs: periods spent settling)

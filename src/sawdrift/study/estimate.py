@@ -113,9 +113,12 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
     cap = num.max_periods or steady.default_max_periods(m, tau, rigid, scene.measure_periods())
     expected = min(cap, max(fixed, num.periods + 8.0 * tau + 2.0 * window))
     if _solved_directly(scene, rigid):
-        # the drift solved directly, confirmed by two to four full-inertia windows
+        # the drift solved directly, with one evidence window: the measuring length, or one slow
+        # vertical cycle (about a third of a full-inertia window) for a hopping particle; the
+        # confirmation asked for takes two to four full-inertia windows
         full = full_window_length(m, scene.theta, scene.measure_periods())
-        expected = min(expected, num.periods + 3.0 * full)
+        extra = 3.0 * full if num.confirm_solved else full / 3.0 + scene.measure_periods()
+        expected = min(expected, num.periods + extra)
     return expected * k, max(fixed, cap) * k
 
 
