@@ -187,3 +187,16 @@ def test_the_time_from_rest_integrates_the_force_velocity_curve():
     fake = dataclasses.replace(orbit, curve=samples)
     got = approach_periods(fake, d_star * u, u, mu, m)
     assert got == pytest.approx(np.log(10.0) * m * u / (mu * c), rel=1e-3)
+
+
+def test_a_sticking_heavy_contact_settles_in_five_windows():
+    """mmd m* = 1e4, A* = 0.158, mu = 0.1 sticks (no period-one orbit: the force-velocity curve
+    restores both ways at rest). Its full-inertia window means are at noise level, 1e-6 to 1e-8
+    in drift ratio, changing sign from window to window: that alternation is below the accuracy
+    and must not double the windows (it did, to 12 windows and 18480 periods). Settled in at
+    most five windows (the first change is the start-up's) with |drift ratio| < 2e-5."""
+    res = sd.run(scene(1e4, 0.158489, 0.1))
+    w = full_window_length(1e4, 1.2142857142857142, 60)
+    assert res.settle_method == "windows_full" and res.settled is True
+    assert res.settle_periods <= 5 * w, (res.settle_periods, w)
+    assert abs(res.drift_ratio) < 2e-5

@@ -266,9 +266,11 @@ class _Approach:
             self.before = (d, change)
             return "jump", remaining  # the next window re-adapts; compare the two after it
         self.flips = self.flips + 1 if (last is not None and change * last < 0.0) else 0
-        if self.flips >= 2 and self.w < LONGEST_WINDOW * self.w0:
+        if self.flips >= 2 and abs(change) > eps and self.w < LONGEST_WINDOW * self.w0:
             # changes that alternate in sign are a slow oscillation beating against the window
-            # (a quasi-periodic motion), not an approach: longer windows average it out
+            # (a quasi-periodic motion), not an approach: longer windows average it out; below
+            # the accuracy the alternation is the windows' noise (a sticking contact's drift of
+            # 1e-8 changing sign), which the steady count above settles without longer windows
             return "longer", 0.0
         self.prev, self.last_change = d, change
         return "next", 0.0
