@@ -91,6 +91,10 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         detach = out.last_liftoff if ending == "ejected" else math.nan
     extra: dict[str, object] = {}
     warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
+    if out.long_mean is not None and out.long_mean.rising and out.speed > 0.0:
+        warnings += (f"long-time mean: its batch-means error still grew with the batch length "
+                     f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
+                     f"(correlations longer than the run)",)
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None))
     k_per = stepper.k_per
