@@ -34,7 +34,7 @@ OPTIONS = (
     ('settle', 'numerics.settle', 'bool', (), 'numerics.settle: run on, in chunks of measure_periods, until the drift has settled; default: on where the drift needs longer than periods/3 to relax (of order m*/mu periods: a heavy particle), else a fixed run of periods'),
     ('settle-tolerance', 'numerics.settle_tolerance', 'float', (), 'numerics.settle_tolerance: in (0, 1]; scene default 0.001'),
     ('max-periods', 'numerics.max_periods', 'float', (), 'numerics.max_periods: settle: stop after this many periods even if not settled; default max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method; in [1, 1e+07]'),
-    ('confirm-solved', 'numerics.confirm_solved', 'bool', (), 'numerics.confirm_solved: settle, m* >= 30: confirm a drift solved directly (force-velocity curve at full inertia) with full-inertia windows of three free vertical periods each (cost grows as sqrt(m*)) instead of one evidence window'),
+    ('confirm-solved', 'numerics.confirm_solved', 'bool', (), 'numerics.confirm_solved: settle, m* >= 15: confirm a drift solved directly (force-velocity curve at full inertia) with full-inertia windows of three free vertical periods each (cost grows as sqrt(m*)) instead of one evidence window'),
     ('friction', 'effects.friction', 'bool', (), 'effects.friction: tangential friction; off: x* is not integrated, no tangential law'),
     ('vertical-inertia', 'effects.vertical_inertia', 'bool', (), 'effects.vertical_inertia: rigid models only: off gives N* = 1 (no vertical inertia)'),
     ('normal-damping', 'effects.normal_damping', 'float', (), "effects.normal_damping: viscous normal damping c: N* += c a*' while in contact; in [0, inf); scene default 0.0"),

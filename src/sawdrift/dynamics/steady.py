@@ -1,6 +1,6 @@
 """Steady drift: a fast approach at reduced horizontal inertia, then windows at full inertia.
 
-From m* = 30 up the approach is usually not run at all: :func:`settle` first tries to solve
+From m* = 15 up the approach is usually not run at all: :func:`settle` first tries to solve
 the drift directly (:mod:`.separated`, :mod:`.torus`; a creeping contact goes straight to
 full-inertia windows, an irregular bouncer to :mod:`.imposed`), and the stages below are what
 is left where that does not apply.

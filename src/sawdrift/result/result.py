@@ -135,9 +135,9 @@ class Result:
     #: window could not confirm, continued in such windows), "reduced_then_full" (a reduced-inertia
     #: approach, then windows at full inertia; see dynamics.full_inertia), "solved" (the drift
     #: solved directly, checked by one evidence window; see dynamics.direct), "orbit_then_full"
-    #: (windows at full inertia started at the drift solved directly: numerics.confirm_solved,
-    #: or an evidence window that disagreed) or "imposed_speed" (an irregular heavy bouncer's long-time mean from the
-    #: friction at an imposed speed; see dynamics.imposed)
+    #: (windows at full inertia started at the drift solved directly: numerics.confirm_solved)
+    #: or "imposed_speed" (an irregular heavy bouncer's long-time mean from the friction at an
+    #: imposed speed; see dynamics.imposed)
     settle_method: str | None = None
     #: periods after which the drift was assessed (settle runs: periods spent settling)
     settle_periods: float = math.nan

@@ -323,7 +323,7 @@ class Numerics(BaseModel):
         "max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method"
     )
     confirm_solved: bool = Field(
-        False, description="settle, m* >= 30: confirm a drift solved directly (force-velocity "
+        False, description="settle, m* >= 15: confirm a drift solved directly (force-velocity "
         "curve at full inertia) with full-inertia windows of three free vertical periods each "
         "(cost grows as sqrt(m*)) instead of one evidence window"
     )

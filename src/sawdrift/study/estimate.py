@@ -6,7 +6,7 @@ The steps of one run follow from its scene as the runner plans it
 :func:`sawdrift.dynamics.assembly.steps_per_period`, and for a settling run (a heavy particle,
 :func:`sawdrift.dynamics.steady.settles`) the expected length of the settle, of order ten
 relaxation times m*_x/mu of the reduced inertia plus two windows, capped by
-``numerics.max_periods``; where the drift is solved directly (m* >= 30, a plain wave scene:
+``numerics.max_periods``; where the drift is solved directly (m* >= 15, a plain wave scene:
 :mod:`sawdrift.dynamics.separated`) three full-inertia windows, two to four in practice (the SAW
 motor example, m* = 929, mu = 0.2: 1470 periods expected, 973 run). The
 time divides the steps by a rate in steps per second measured on a short calibration run of the
@@ -113,12 +113,13 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
     cap = num.max_periods or steady.default_max_periods(m, tau, rigid, scene.measure_periods())
     expected = min(cap, max(fixed, num.periods + 8.0 * tau + 2.0 * window))
     if _solved_directly(scene, rigid):
-        # the drift solved directly, with one evidence window: the measuring length, or one slow
-        # vertical cycle (about a third of a full-inertia window) for a hopping particle; the
-        # confirmation asked for takes two to four full-inertia windows
+        # the drift solved directly, with one evidence window: the measuring window itself, or
+        # one slow vertical cycle (about a third of a full-inertia window) for a particle that
+        # hops (a heavy one loses contact where the wave outreaches its rest compression,
+        # A* > 1); the confirmation asked for takes two to four full-inertia windows
         full = full_window_length(m, scene.theta, scene.measure_periods())
-        extra = 3.0 * full if num.confirm_solved else full / 3.0 + scene.measure_periods()
-        expected = min(expected, num.periods + extra)
+        extra = full / 3.0 if amp > 1.0 else 0.0
+        expected = min(expected, num.periods + (3.0 * full if num.confirm_solved else extra))
     return expected * k, max(fixed, cap) * k
 
 
