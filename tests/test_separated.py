@@ -210,3 +210,27 @@ def test_a_particle_of_twenty_is_solved_averaged_over_its_slow_cycle():
     assert res.settle_method == "solved" and res.regime == "hopping"
     assert abs(res.drift_ratio - 0.45348) <= 1e-3 * 0.45348, res.drift_ratio
     assert res.settle_periods < 100
+
+
+def test_the_scene_level_check_agrees_with_the_built_run():
+    """``solvable`` (read off the scene, for the size estimate) and ``applies`` (read off the
+    built run's parameters) give the same answer on scenes with and without each force the
+    direct solution leaves out."""
+    from sawdrift.dynamics.separated import applies, solvable
+
+    base = {"model": "mmd", "particle": {"m_star": 100.0}, "drive": {"amplitude": 0.5}}
+    variants = [
+        {}, {"particle": {"m_star": 10.0}}, {"particle": {"m_star": 100.0, "load": 0.05}},
+        {"effects": {"normal_damping": 0.1}}, {"material": {"restitution": 0.8}},
+        {"effects": {"rotation": True}}, {"effects": {"air_drag": 0.01}},
+        {"effects": {"friction": False}}, {"drive": {"amplitude": 0.5, "backward": 0.3}},
+        {"effects": {"adhesion": "dmt"}, "material": {"adhesion": 0.2}},
+        {"model": "material_point"},
+    ]
+    answers = []
+    for extra in variants:
+        sc = sd.Scene.model_validate({**base, **extra})
+        st, _, _ = stepper_after_ramp(sc)
+        answers.append(applies(st, sc))
+        assert applies(st, sc) == solvable(sc, st.rigid), extra
+    assert answers[0] and not any(answers[1:])

@@ -57,6 +57,7 @@ import numpy as np
 from ..codegen import Generated, generate, rebind
 from . import adams_bashforth as ig
 from .drives.travelling import TravellingWave
+from .drives.two_wave import needs_two_waves
 from .stepper import Stepper
 
 #: the separated orbit is used from this m* up (the fast parts' contraction factor, about
@@ -107,6 +108,21 @@ class SeparatedOrbit:
     loses_contact: bool  # a* <= 0 somewhere on the orbit
     curve: tuple[tuple[float, float], ...]  # (drift ratio, -<T*>) sampled on the way to the zero
     problem: _Problem = field(repr=False, compare=False)  # the imposed motion, for .torus
+
+
+def solvable(scene, rigid: bool) -> bool:
+    """Whether a scene's drift may be solved directly (module docstring), read off the scene:
+    heavy, compliant, friction on, one travelling wave, and none of the forces the solution
+    leaves out (load, normal damping or restitution, rotation and rolling resistance, air drag,
+    adhesion). :func:`applies` checks the same on a built run; the size estimate uses this."""
+    eff = scene.effects
+    drive = scene.drive
+    return (not rigid and scene.particle.m_star >= SEPARATED_MIN_MASS
+            and getattr(drive, "kind", None) == "wave" and not needs_two_waves(drive)
+            and eff.friction and scene.particle.load == 0.0 and eff.normal_damping == 0.0
+            and scene.material.restitution is None and not eff.rotation
+            and eff.rolling_resistance == 0.0 and eff.air_drag == 0.0
+            and (eff.adhesion == "none" or scene.material.adhesion == 0.0))
 
 
 def applies(stepper: Stepper, scene) -> bool:

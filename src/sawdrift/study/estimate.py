@@ -31,7 +31,7 @@ from ..contact.registry import get_model
 from ..dynamics import steady
 from ..dynamics.assembly import steps_per_period
 from ..dynamics.full_inertia import full_window_length
-from ..dynamics.separated import SEPARATED_MIN_MASS
+from ..dynamics.separated import solvable
 from ..errors import SceneError
 from ..result.runner import run
 from ..scene.schema import Scene, Wave
@@ -112,7 +112,7 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
     window = steady.window_length(m, tau, scene.measure_periods(), rigid)
     cap = num.max_periods or steady.default_max_periods(m, tau, rigid, scene.measure_periods())
     expected = min(cap, max(fixed, num.periods + 8.0 * tau + 2.0 * window))
-    if _solved_directly(scene, rigid):
+    if solvable(scene, rigid):
         # the drift solved directly, with one evidence window: the measuring window itself, or
         # one slow vertical cycle (about a third of a full-inertia window) for a particle that
         # hops (a heavy one loses contact where the wave outreaches its rest compression,
@@ -121,17 +121,6 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
         extra = full / 3.0 if amp > 1.0 else 0.0
         expected = min(expected, num.periods + (3.0 * full if num.confirm_solved else extra))
     return expected * k, max(fixed, cap) * k
-
-
-def _solved_directly(scene: Scene, rigid: bool) -> bool:
-    """Whether a settling run of ``scene`` may start at the drift solved directly
-    (:mod:`sawdrift.dynamics.separated`): heavy, compliant, a travelling wave, none of the forces
-    that solution leaves out."""
-    eff = scene.effects
-    return (not rigid and scene.particle.m_star >= SEPARATED_MIN_MASS
-            and isinstance(scene.drive, Wave) and scene.particle.load == 0.0
-            and not eff.rotation and eff.normal_damping == 0.0 and eff.air_drag == 0.0
-            and eff.adhesion == "none" and scene.material.restitution is None)
 
 
 def calibrate(scene: Scene, engine: str = "compiled") -> tuple[float, float]:
