@@ -32,6 +32,41 @@ def chromium() -> tuple[str, str]:
     return CHROMIUM, CHROMEDRIVER
 
 
+@pytest.fixture(scope="session", autouse=True)
+def _click_commands_built_once():
+    """Each Typer app's click command tree built once per test process, as in one ``sawdrift``
+    process, instead of on every call of the app.
+
+    typer rebuilds the tree (every command's options, from the function signatures) each time
+    the app is called: about 65 ms of the 80 ms an in-process ``sawdrift run --m-star -1`` takes,
+    paid by every test that runs the command line in this process. The tree is built again when
+    the app's commands, groups or callback change. click runs a command tree any number of times
+    (each call makes its own context).
+    """
+    import weakref
+
+    import typer.main
+
+    original = typer.main.get_command
+    built: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+    def shape(app) -> tuple:
+        return (id(app.registered_callback), tuple(id(c.callback) for c in app.registered_commands),
+                tuple((g.name, shape(g.typer_instance)) for g in app.registered_groups
+                      if g.typer_instance is not None))
+
+    def get_command(app):
+        key = shape(app)
+        hit = built.get(app)
+        if hit is None or hit[0] != key:
+            hit = built[app] = (key, original(app))
+        return hit[1]
+
+    typer.main.get_command = get_command
+    yield
+    typer.main.get_command = original
+
+
 @pytest.fixture
 def sawdrift_main(monkeypatch, capsys):
     """``sawdrift ARGS`` run in this process: the console entry point
