@@ -15,7 +15,7 @@ import pytest
 
 import sawdrift as sd
 
-from .cli_call import call
+from .cli_call import call, run_main
 
 ROOT = Path(__file__).resolve().parents[1]
 MOTOR = ROOT / "examples" / "saw_linear_motor.toml"
@@ -188,11 +188,19 @@ def test_o_with_an_unsupported_suffix_is_refused_in_one_line(args, monkeypatch, 
     assert not any(tmp_path.iterdir())
 
 
-def test_load_curve_o_csv_writes_the_curve(monkeypatch, capsys, tmp_path):
-    path = tmp_path / "curve.csv"
-    code, _, err = call(monkeypatch, capsys, "load-curve", "--model", "material_point",
-                        "--loads", "3", "--periods", "10", "--workers", "1", "-o", str(path))
-    assert code == 0, err
+@pytest.fixture(scope="module")
+def load_curve_csv(tmp_path_factory):
+    """``sawdrift load-curve ... -o curve.csv`` with progress left at its default, run once for
+    the tests of its file and of its progress lines: (the path, the finished process)."""
+    path = tmp_path_factory.mktemp("load_curve") / "curve.csv"
+    proc = run_main("load-curve", "--model", "material_point", "--loads", "3", "--periods", "10",
+                    "--workers", "1", "-o", path)
+    return path, proc
+
+
+def test_load_curve_o_csv_writes_the_curve(load_curve_csv):
+    path, proc = load_curve_csv
+    assert proc.returncode == 0, proc.stderr
     got = pd.read_csv(path)
     assert list(got.columns) == ["load", "drift_velocity", "power", "regime", "settled"]
     assert len(got) == 3
@@ -243,11 +251,10 @@ def test_field_shows_progress_by_default(monkeypatch, capsys):
     assert "field: 4/4 points (100%)" in err  # the executor's label is the study's
 
 
-def test_load_curve_shows_progress_by_default(monkeypatch, capsys):
-    code, _, err = call(monkeypatch, capsys, "load-curve", "--model", "material_point", "--loads",
-                        "2", "--periods", "10", "--workers", "1")
-    assert code == 0, err
-    assert "load-curve:" in err and "stall load" in err
+def test_load_curve_shows_progress_by_default(load_curve_csv):
+    _, proc = load_curve_csv  # no --progress / --no-progress given
+    assert proc.returncode == 0, proc.stderr
+    assert "load-curve:" in proc.stderr and "stall load" in proc.stderr
 
 
 def test_a_slow_step_announces_itself(capsys):

@@ -20,6 +20,7 @@ from numba import njit
 from pydantic import BaseModel, ConfigDict
 
 import sawdrift as sd
+from sawdrift.codegen import refresh_stale_caches
 from sawdrift.contact import Capabilities, ContactModel, KernelPair
 from sawdrift.contact.base import KernelReference
 from sawdrift.contact.conformance import CHECK_NAMES, check_model, cycles
@@ -55,6 +56,17 @@ def register():
     yield add
     for name in names:
         sd.registry.unregister(name)
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _kernels_match_their_code():
+    """The kernels defined below are cached on disk (``cache=True``; compiling them cost about
+    1 s each in every test process). numba checks only this file's time stamp, so before they
+    run their caches are brought in line with the code they call in other files (``law_normal``,
+    ``law_slope``, ``mmd_step``), as sawdrift does for a model's own kernels."""
+    refresh_stale_caches([_anti_friction, _reset, _elastic, _unnormalized, _active_hysteresis,
+                          _viscous, _stiffer_above_three, _negative_damp, _pow_normal_step,
+                          _tenfold_negative_damp])
 
 
 # -- the built-in models ------------------------------------------------------------------------
@@ -140,7 +152,7 @@ def test_every_cycle_is_closed():
 # -- broken models --------------------------------------------------------------------------------
 
 
-@njit
+@njit(cache=True)
 def _anti_friction(fs, is_, pp, a, b, adot, bdot):
     # an uncapped spring whose stiffness follows a*: T* = 2 a* b* has no potential, so closed
     # cycles with a* varying create energy in one orientation, and |T*| exceeds N* at large b*
@@ -197,12 +209,12 @@ def test_broken_tangential_laws_fail_the_checks_that_catch_them(register):
 # Frictionless normal laws (T* = 0) given as whole kernels; each is conformant but for one defect.
 
 
-@njit
+@njit(cache=True)
 def _reset(fs, is_, pp):
     fs[0] = 0.0
 
 
-@njit
+@njit(cache=True)
 def _elastic(fs, is_, pp, a, b, adot, bdot):
     # the profile's elastic law, N* = N*(a*) of the normal slot
     return law_normal(a, pp, 0), 0.0
@@ -213,13 +225,13 @@ def _sphere_only(fs, is_, pp, a, b, adot, bdot):
     return (a**1.5 if a > 0.0 else 0.0), 0.0
 
 
-@njit
+@njit(cache=True)
 def _unnormalized(fs, is_, pp, a, b, adot, bdot):
     # 1.05 a*^p: the static compression a* = 1 carries 1.05 M g
     return 1.05 * law_normal(a, pp, 0), 0.0
 
 
-@njit
+@njit(cache=True)
 def _active_hysteresis(fs, is_, pp, a, b, adot, bdot):
     # N* = a*^p while loading and 1.2 a*^p while unloading: a hysteresis loop run backwards
     n = law_normal(a, pp, 0)
@@ -229,7 +241,7 @@ def _active_hysteresis(fs, is_, pp, a, b, adot, bdot):
     return n, 0.0
 
 
-@njit
+@njit(cache=True)
 def _viscous(fs, is_, pp, a, b, adot, bdot):
     # a dissipative normal dashpot, N* = max(a*^p + 0.1 a*', 0) in contact
     n = 0.0
@@ -238,7 +250,7 @@ def _viscous(fs, is_, pp, a, b, adot, bdot):
     return n, 0.0
 
 
-@njit
+@njit(cache=True)
 def _stiffer_above_three(fs, is_, pp, a, b, adot, bdot):
     # elastic, but 0.01 (a* - 3)^2 stiffer than the profile's law beyond a* = 3
     n = 0.0
@@ -312,7 +324,7 @@ class _NegativeDampingParams(BaseModel):
     damping: float = 0.3
 
 
-@njit
+@njit(cache=True)
 def _negative_damp(dp, law, a, adot, n_elastic):
     # Tsuji's dashpot with its sign reversed: the contact pushes harder while it unloads
     k1 = law_slope(1.0, law, 0)
@@ -411,7 +423,7 @@ def test_cli_exit_status_is_1_for_a_failing_plugin_model(tmp_path):
 # A step that hands N* back (gives_normal) must hand the normal slot's N*(a*) to the last bit.
 
 
-@njit
+@njit(cache=True)
 def _pow_normal_step(ts, is_, law, tp, a0, b0, a, b):
     # mmd's step, but N* = a*^1.5 by a power: the sphere's law, rounded otherwise than the slot's
     # z N*'(z) / p (many a* differ in the last bit)
@@ -433,7 +445,7 @@ def test_a_step_handing_back_another_normal_force_fails_normal_slot(register):
     assert check_model("mmd", "sphere").get("normal_slot").status == "pass"
 
 
-@njit
+@njit(cache=True)
 def _tenfold_negative_damp(dp, law, a, adot, n_elastic):
     return n_elastic - 10.0 * dp[0] * adot
 

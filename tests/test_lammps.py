@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
 import sys
 import tomllib
 from pathlib import Path
@@ -19,6 +18,8 @@ import pytest
 import sawdrift as sd
 from sawdrift.lammps import LammpsUnavailableError, available, input_script, realize, refusal
 from sawdrift.lammps.engine import load_lammps
+
+from .cli_call import run_main
 
 HAVE_LAMMPS, WHY = available()
 needs_lammps = pytest.mark.skipif(not HAVE_LAMMPS, reason=f"LAMMPS not installed: {WHY}")
@@ -43,9 +44,9 @@ def motor(**numerics) -> sd.Scene:
     return sd.scene.build_scene(data)
 
 
-def cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "sawdrift", *args], capture_output=True, text=True,
-                          timeout=300)
+#: ``sawdrift ARGS`` in this process (tests/cli_call.py): a process's output and exit status
+#: without its start-up (LAMMPS runs in this process too, see run_scene above)
+cli = run_main
 
 
 # -- without LAMMPS -----------------------------------------------------------------------------
