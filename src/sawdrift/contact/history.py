@@ -265,30 +265,46 @@ class ContactHistory:
         return n_out, t_out
 
 
-_DRIVERS: dict[Any, Callable[..., None]] = {}
+_DRIVERS: dict[Any, dict[str, Any]] = {}
+
+
+def drive_body(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
+    """The contact law ``force`` (a global, bound per kernel) along sampled a*, b* and their
+    rates: N*, T* of every step into ``n_out``, ``t_out``."""
+    for k in range(a.size):
+        n, t = force(fs, is_, pp, a[k], b[k], adot[k], bdot[k])  # noqa: F821
+        n_out[k] = n
+        t_out[k] = t
+
+
+def drive_body_quasi_static(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
+    """:func:`drive_body` at zero rates (``adot``, ``bdot`` are not read)."""
+    for k in range(a.size):
+        n, t = force(fs, is_, pp, a[k], b[k], 0.0, 0.0)  # noqa: F821
+        n_out[k] = n
+        t_out[k] = t
 
 
 def _drive_compiled(force, fs, is_, pp, a, b, adot, bdot, n_out, t_out,
                     quasi_static: bool = False) -> None:
-    """Run a kernel over a sampled history inside one compiled loop (one per kernel, cached);
-    ``quasi_static`` passes zero velocities without reading ``adot``, ``bdot``."""
-    fn = _DRIVERS.get((force, quasi_static))
-    if fn is None:
-        from numba import njit
+    """Run a kernel over a sampled history inside one compiled loop; ``quasi_static`` passes
+    zero velocities without reading ``adot``, ``bdot``.
 
-        if quasi_static:
-            def loop(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
-                for k in range(a.size):
-                    n, t = force(fs, is_, pp, a[k], b[k], 0.0, 0.0)
-                    n_out[k] = n
-                    t_out[k] = t
-        else:
-            def loop(fs, is_, pp, a, b, adot, bdot, n_out, t_out):
-                for k in range(a.size):
-                    n, t = force(fs, is_, pp, a[k], b[k], adot[k], bdot[k])
-                    n_out[k] = n
-                    t_out[k] = t
+    The loops (:func:`drive_body`, :func:`drive_body_quasi_static`) are bound to the kernel's
+    ``force`` once per kernel and process, in a module generated and cached on disk across
+    processes (:mod:`sawdrift.codegen`, as the wave loop): a second process loads their machine
+    code instead of compiling it. A kernel that cannot be imported by name is compiled in memory.
+    """
+    loops = _DRIVERS.get(force)
+    if loops is None:
+        from ..codegen import Generated, generate
 
-        fn = njit(loop)
-        _DRIVERS[(force, quasi_static)] = fn
+        loops = generate(Generated(
+            prefix="sawdrift_loop_", doc="the contact law driven along a prescribed history",
+            templates=(drive_body, drive_body_quasi_static), namespace={"force": force},
+            bind={"force": force}, decorator="njit(cache=True, _nrt=False)",
+            memory_options={"_nrt": False},
+        ))
+        _DRIVERS[force] = loops
+    fn = loops["drive_body_quasi_static" if quasi_static else "drive_body"]
     fn(fs, is_, pp, a, b, adot, bdot, n_out, t_out)
