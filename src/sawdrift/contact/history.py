@@ -22,6 +22,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..codegen import Generated, generate
+
 if TYPE_CHECKING:
     from .base import ContactModel, ReferenceContact
 
@@ -297,8 +299,6 @@ def _drive_compiled(force, fs, is_, pp, a, b, adot, bdot, n_out, t_out,
     """
     loops = _DRIVERS.get(force)
     if loops is None:
-        from ..codegen import Generated, generate
-
         loops = generate(Generated(
             prefix="sawdrift_loop_", doc="the contact law driven along a prescribed history",
             templates=(drive_body, drive_body_quasi_static), namespace={"force": force},
