@@ -234,3 +234,14 @@ def test_the_scene_level_check_agrees_with_the_built_run():
         answers.append(applies(st, sc))
         assert applies(st, sc) == solvable(sc, st.rigid), extra
     assert answers[0] and not any(answers[1:])
+
+
+def test_a_contact_that_never_slides_settles_in_two_windows():
+    """mmd m* = 1e4, A* = 0.01, mu = 0.1: no gross slip and no lift-off in any window, window
+    means of 1e-7: sticking, with no slow mode to wait for. Two full-inertia windows (the
+    three consecutive small changes a sliding contact needs took four), drift ratio below 2e-5."""
+    res = sd.run(scene(1e4, 0.01, 0.1))
+    w = full_window_length(1e4, 1.2142857142857142, 60)
+    assert res.regime == "stick" and res.settled is True
+    assert res.settle_periods <= 2 * w, (res.settle_periods, w)
+    assert abs(res.drift_ratio) < 2e-5

@@ -256,6 +256,11 @@ class _Approach:
         self.steady_run = self.steady_run + 1 if abs(change) <= eps else 0
         if self.steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
             return "settled", 0.0
+        if (self.steady_run >= 1 and win.gross_slip_fraction == 0.0 and not win.contact_lost
+                and abs(d) <= eps and abs(self.prev) <= eps):
+            # a contact that neither slid nor lost contact in the window, two window means in a
+            # row at the accuracy's floor: sticking, no slow mode left to wait for
+            return "settled", 0.0
         if (self.expected is not None and self.steady_run >= 1 and abs(remaining) <= eps
                 and abs(d - self.expected) <= eps and abs(self.prev - self.expected) <= eps):
             # two windows in a row on the drift solved directly, their change within the
