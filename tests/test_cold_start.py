@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
+
+import pytest
 
 HEAVY = ("numba", "pandas", "matplotlib", "scipy")
 
@@ -82,3 +85,77 @@ def test_light_cache_load_gives_the_compiled_result_and_leaves_compiling_intact(
         assert int(i) == 1000
     assert runs[1][1] == "True", "second process should load from the disk cache"
     assert runs[1][2] == "False", "a light cache load imported numba's lowering registries"
+
+
+def _sawdrift(args: list[str], cache, extra_env: dict[str, str] | None = None,
+              importtime: bool = False) -> subprocess.CompletedProcess:
+    """``python -m sawdrift ARGS`` in a fresh process whose stored answers live in ``cache``."""
+    import os
+
+    env = {**os.environ, "SAWDRIFT_CACHE_DIR": str(cache), **(extra_env or {})}
+    flags = ["-X", "importtime"] if importtime else []
+    return subprocess.run([sys.executable, *flags, "-m", "sawdrift", *args], capture_output=True,
+                          text=True, env=env, check=True, timeout=300)
+
+
+def _imported(run: subprocess.CompletedProcess, name: str) -> bool:
+    """Whether ``-X importtime`` of a process lists the module ``name``."""
+    return any(line.rsplit("|", 1)[-1].strip() == name for line in run.stderr.splitlines())
+
+
+def test_stored_help_is_the_printed_help_and_follows_the_width(tmp_path):
+    # the first process prints the help and stores it; the second prints the stored copy
+    # without importing Typer, byte for byte the same; another width is another key, and its
+    # help is the one a process without any stored help prints at that width
+    first = _sawdrift(["--help"], tmp_path / "a", {"COLUMNS": "80"})
+    second = _sawdrift(["--help"], tmp_path / "a", {"COLUMNS": "80"}, importtime=True)
+    assert second.stdout == first.stdout
+    assert not _imported(second, "typer") and _imported(second, "sawdrift._startup")
+    wide = _sawdrift(["--help"], tmp_path / "a", {"COLUMNS": "120"})
+    fresh = _sawdrift(["--help"], tmp_path / "b", {"COLUMNS": "120"})
+    assert wide.stdout == fresh.stdout != first.stdout
+    assert max(map(len, wide.stdout.splitlines())) == 120
+    assert max(map(len, first.stdout.splitlines())) == 80
+
+
+def test_stored_models_are_the_listed_models(tmp_path):
+    # the second process lists the stored rows without importing numpy (no plugin is loaded),
+    # the same text and JSON as the first, which computed them
+    first = _sawdrift(["models", "--json"], tmp_path)
+    second = _sawdrift(["models", "--json"], tmp_path, importtime=True)
+    assert second.stdout == first.stdout
+    assert not _imported(second, "numpy") and _imported(second, "sawdrift._startup")
+    rows = json.loads(second.stdout)
+    assert {"material_point", "mmd", "mdr", "jaeger", "hertz_mindlin_dem"} <= {r["name"] for r in rows}
+
+
+def test_a_broken_plugin_is_listed_as_computed_and_never_stored(tmp_path):
+    # a plugin shadowed by one that raises on import: its warning is shown by every process
+    # (nothing stored), and shadowing changes the key, so the good listing is not used either
+    pytest.importorskip("sawdrift_tsuji")
+    import os
+
+    pkg = tmp_path / "shadow" / "sawdrift_tsuji"
+    pkg.mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "hertz_tsuji.py").write_text("raise RuntimeError('plugin deliberately broken')\n")
+    _sawdrift(["models"], tmp_path / "cache")  # stores the good listing
+    path = str(pkg.parent) + os.pathsep + os.environ.get("PYTHONPATH", "")
+    runs = [_sawdrift(["models"], tmp_path / "cache", {"PYTHONPATH": path}) for _ in range(2)]
+    for run in runs:
+        assert "deliberately broken" in run.stderr
+        listed = [line for line in run.stdout.splitlines() if line.startswith("hertz_tsuji ")]
+        assert len(listed) == 1 and "unavailable: RuntimeError" in listed[0]
+    assert len(list((tmp_path / "cache" / "cli").glob("models-*"))) == 1
+
+
+def test_cache_root_is_the_generated_modules_folder(monkeypatch, tmp_path):
+    from sawdrift._startup import cache_root
+    from sawdrift.codegen.modules import cache_dir
+
+    for env in ({"SAWDRIFT_CACHE_DIR": str(tmp_path / "s")}, {"XDG_CACHE_HOME": str(tmp_path)}, {}):
+        for name in ("SAWDRIFT_CACHE_DIR", "XDG_CACHE_HOME"):
+            monkeypatch.delenv(name, raising=False)
+        for name, value in env.items():
+            monkeypatch.setenv(name, value)
+        assert cache_root() == cache_dir()

@@ -18,6 +18,8 @@ import typer
 
 import sawdrift as sd
 
+from .._startup import stored_help
+
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
@@ -179,8 +181,19 @@ def _command_of(argv: list[str]) -> str | None:
 
 
 def main() -> None:
-    """Console entry point: one-line errors and exit status 2 for user errors."""
+    """Console entry point: one-line errors and exit status 2 for user errors.
+
+    The top-level ``--help`` is printed from its stored copy when there is one
+    (:func:`sawdrift._startup.stored_help`).
+    """
     warnings.showwarning = _one_line_warnings
+    if sys.argv[1:] == ["--help"]:
+        stored_help(_main)
+    else:
+        _main()
+
+
+def _main() -> None:
     try:
         load_commands(_command_of(sys.argv[1:]))
         # standalone_mode=False makes click return a typer.Exit's code instead of raising it
