@@ -159,3 +159,45 @@ def test_cache_root_is_the_generated_modules_folder(monkeypatch, tmp_path):
         for name, value in env.items():
             monkeypatch.setenv(name, value)
         assert cache_root() == cache_dir()
+
+
+_EXTENSION = """
+import os, sys
+from sawdrift._startup import fast_start
+fast_start()
+from numba.core import entrypoints
+skipped = entrypoints._already_initialized
+from numba import njit
+
+@njit
+def plus_one(x):
+    return x + 1
+
+print(skipped, plus_one(1), os.environ.get("FAKEEXT_MARKER") and os.path.exists(os.environ["FAKEEXT_MARKER"]))
+"""
+
+
+def test_numba_extensions_are_skipped_only_when_none_is_installed(tmp_path):
+    # without an extension numba's scan is answered from the stored one (flag set before any
+    # compilation); an installed numba extension (a distribution with a numba_extensions 'init'
+    # entry point) makes a new key and still runs when numba first compiles
+    import os
+
+    script = tmp_path / "ext.py"
+    script.write_text(_EXTENSION)
+    site = tmp_path / "site"
+    info = site / "fakeext-0.1.dist-info"
+    info.mkdir(parents=True)
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: fakeext\nVersion: 0.1\n")
+    (info / "entry_points.txt").write_text("[numba_extensions]\ninit = fakeext:init\n")
+    marker = tmp_path / "initialised"
+    (site / "fakeext.py").write_text(f"def init():\n    open({str(marker)!r}, 'w').close()\n")
+    base = {**os.environ, "SAWDRIFT_CACHE_DIR": str(tmp_path / "cache"), "FAKEEXT_MARKER": str(marker)}
+    with_ext = {**base, "PYTHONPATH": str(site) + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    outs = [subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
+                           check=True, cwd=tmp_path, timeout=300).stdout.split()
+            for env in (base, base, with_ext)]
+    assert outs[0] == outs[1] == ["True", "2", "False"]
+    assert outs[2] == ["False", "2", "True"]
+    stored = sorted((tmp_path / "cache" / "cli").glob("numba-extensions-*"))
+    assert sorted(json.loads(p.read_text()) for p in stored) == [[], ["init = fakeext:init"]]
