@@ -161,43 +161,60 @@ def test_cache_root_is_the_generated_modules_folder(monkeypatch, tmp_path):
         assert cache_root() == cache_dir()
 
 
-_EXTENSION = """
+_PLUGINS = """
 import os, sys
+import pydantic
 from sawdrift._startup import fast_start
 fast_start()
 from numba.core import entrypoints
-skipped = entrypoints._already_initialized
+from pydantic.plugin import _loader
+skipped = [entrypoints._already_initialized, _loader._plugins == {}]
 from numba import njit
 
 @njit
 def plus_one(x):
     return x + 1
 
-print(skipped, plus_one(1), os.environ.get("FAKEEXT_MARKER") and os.path.exists(os.environ["FAKEEXT_MARKER"]))
+class Point(pydantic.BaseModel):
+    x: float
+
+results = [plus_one(1), Point(x=1).x]
+marker = os.environ["FAKEEXT_MARKER"]
+loaded = [os.path.exists(marker + ".numba"), os.path.exists(marker + ".pydantic")]
+print(*skipped, *results, *loaded)
 """
 
 
-def test_numba_extensions_are_skipped_only_when_none_is_installed(tmp_path):
-    # without an extension numba's scan is answered from the stored one (flag set before any
-    # compilation); an installed numba extension (a distribution with a numba_extensions 'init'
-    # entry point) makes a new key and still runs when numba first compiles
+def test_plugin_scans_are_skipped_only_when_nothing_is_installed(tmp_path):
+    # without numba extensions or pydantic plugins the libraries' scans are answered from the
+    # stored one (flags set before any compilation or validator); a distribution with a
+    # numba_extensions 'init' and a pydantic plugin entry point makes a new key, and both
+    # plugins still load when numba first compiles and pydantic first builds a validator
     import os
 
-    script = tmp_path / "ext.py"
-    script.write_text(_EXTENSION)
+    script = tmp_path / "plugins.py"
+    script.write_text(_PLUGINS)
     site = tmp_path / "site"
     info = site / "fakeext-0.1.dist-info"
     info.mkdir(parents=True)
     (info / "METADATA").write_text("Metadata-Version: 2.1\nName: fakeext\nVersion: 0.1\n")
-    (info / "entry_points.txt").write_text("[numba_extensions]\ninit = fakeext:init\n")
-    marker = tmp_path / "initialised"
-    (site / "fakeext.py").write_text(f"def init():\n    open({str(marker)!r}, 'w').close()\n")
+    (info / "entry_points.txt").write_text("[numba_extensions]\ninit = fakeext:init\n\n"
+                                           "[pydantic]\nfake = fakeext:plugin\n")
+    marker = tmp_path / "loaded"
+    (site / "fakeext.py").write_text(
+        f"open({str(marker)!r} + '.pydantic', 'w').close()\n"
+        "class _Plugin:\n"
+        "    def new_schema_validator(self, *args, **kwargs):\n"
+        "        return None, None, None\n"
+        "plugin = _Plugin()\n"
+        f"def init():\n    open({str(marker)!r} + '.numba', 'w').close()\n")
     base = {**os.environ, "SAWDRIFT_CACHE_DIR": str(tmp_path / "cache"), "FAKEEXT_MARKER": str(marker)}
+    base.pop("PYDANTIC_DISABLE_PLUGINS", None)
     with_ext = {**base, "PYTHONPATH": str(site) + os.pathsep + os.environ.get("PYTHONPATH", "")}
     outs = [subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
                            check=True, cwd=tmp_path, timeout=300).stdout.split()
             for env in (base, base, with_ext)]
-    assert outs[0] == outs[1] == ["True", "2", "False"]
-    assert outs[2] == ["False", "2", "True"]
-    stored = sorted((tmp_path / "cache" / "cli").glob("numba-extensions-*"))
-    assert sorted(json.loads(p.read_text()) for p in stored) == [[], ["init = fakeext:init"]]
+    assert outs[0] == outs[1] == ["True", "True", "2", "1.0", "False", "False"]
+    assert outs[2] == ["False", "False", "2", "1.0", "True", "True"]
+    stored = sorted((tmp_path / "cache" / "cli").glob("entry-points-*"))
+    assert sorted(json.loads(p.read_text())["pydantic"] for p in stored) == [[], ["fake = fakeext:plugin"]]

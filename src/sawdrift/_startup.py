@@ -16,11 +16,11 @@ when it is created. :func:`load_cached_code_lightly` makes the on-disk cache loa
 Compiling anything still goes through numba's compiler, which refreshes the full target first,
 so a cache miss, a new signature or a user's own ``@njit`` is compiled exactly as before.
 
-Before the first cached load numba scans every distribution's entry points for numba
-extensions; that is answered from a stored scan when no extension is installed
-(:func:`skip_absent_numba_extensions`).
+Before its first cached load numba scans every distribution's entry points for numba extensions,
+and pydantic for its plugins before its first validator; both are answered from a stored scan
+when nothing is installed for them (:func:`skip_absent_plugin_scans`).
 
-Three answers are stored on disk instead of recomputed by every process: that scan, the
+Three answers are stored on disk instead of recomputed by every process: those scans, the
 top-level ``--help`` text (:func:`replay_help`, :func:`stored_help`) and the rows of ``sawdrift
 models`` (:func:`stored_models`); the comment above the last two says what their keys hold.
 
@@ -89,42 +89,57 @@ def load_cached_code_lightly() -> bool:
     return True
 
 
-def skip_absent_numba_extensions() -> bool:
-    """Spare numba's scan of every distribution's entry points when no numba extension exists.
+#: entry-point groups scanned by libraries the command line loads: numba runs the ``init`` entry
+#: points of ``numba_extensions`` before its first compilation or cached load, pydantic loads the
+#: ``pydantic`` group's plugins before its first validator
+_SCANNED_GROUPS = ("numba_extensions", "pydantic")
 
-    Before its first compilation or cache load numba runs the ``init`` entry points of the
-    ``numba_extensions`` group (``numba.core.entrypoints.init_all``), reading the entry points of
-    every installed distribution: about 0.03 s. Which such entry points exist is stored under the
-    key of the installed distributions (:func:`_installed`); when there are none, numba is told
-    its extensions are initialised, which is what its scan would conclude. Returns True if so.
+
+def skip_absent_plugin_scans() -> list[str]:
+    """Spare numba's and pydantic's scans of every distribution's entry points when they find none.
+
+    Each of the two libraries reads the entry points of every installed distribution once per
+    process (about 0.015-0.03 s each) to find its plugins (:data:`_SCANNED_GROUPS`). The entry
+    points of those groups are stored under the key of the installed distributions
+    (:func:`_installed`); when a group has none, the library is told its plugins are loaded and
+    there are none, which is what its scan would conclude. Pydantic is told only if it is already
+    imported (every command imports it to read its options) and has not scanned yet. Returns
+    the groups skipped.
     """
     import json
 
+    key = _digest({"installed": _installed(), "groups": _SCANNED_GROUPS})
     try:
-        from numba.core import entrypoints
-    except ImportError:  # pragma: no cover - numba is a dependency
-        return False
-    if getattr(entrypoints, "_already_initialized", True):
-        return False
-    key = _digest({"installed": _installed()})
-    try:
-        found = json.loads(_stored("numba-extensions", key).read_bytes())
+        found = json.loads(_stored("entry-points", key).read_bytes())
     except (OSError, ValueError):
         from importlib.metadata import entry_points
 
-        found = sorted(f"{ep.name} = {ep.value}" for ep in entry_points(group="numba_extensions"))
-        _store("numba-extensions", key, json.dumps(found).encode())
-    if any(item.startswith("init = ") for item in found):
-        return False
-    entrypoints._already_initialized = True
-    return True
+        found = {group: sorted(f"{ep.name} = {ep.value}" for ep in entry_points(group=group))
+                 for group in _SCANNED_GROUPS}
+        _store("entry-points", key, json.dumps(found).encode())
+    skipped = []
+    if not any(item.startswith("init = ") for item in found.get("numba_extensions", ["?"])):
+        try:
+            from numba.core import entrypoints
+        except ImportError:  # pragma: no cover - numba is a dependency
+            entrypoints = None
+        if entrypoints is not None and getattr(entrypoints, "_already_initialized", True) is False:
+            entrypoints._already_initialized = True
+            skipped.append("numba_extensions")
+    if found.get("pydantic", ["?"]) == [] and "pydantic" in sys.modules:
+        from pydantic.plugin import _loader
+
+        if getattr(_loader, "_plugins", 0) is None:
+            _loader._plugins = {}
+            skipped.append("pydantic")
+    return skipped
 
 
 def fast_start() -> None:
     """Everything the command line does before its first compiled call (see the module text)."""
     defer_unused_numpy_submodules()
     load_cached_code_lightly()
-    skip_absent_numba_extensions()
+    skip_absent_plugin_scans()
 
 
 # --- answers stored on disk: the top-level --help text and the model listing -------------------
