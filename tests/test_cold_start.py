@@ -218,3 +218,20 @@ def test_plugin_scans_are_skipped_only_when_nothing_is_installed(tmp_path):
     assert outs[2] == ["False", "False", "2", "1.0", "True", "True"]
     stored = sorted((tmp_path / "cache" / "cli").glob("entry-points-*"))
     assert sorted(json.loads(p.read_text())["pydantic"] for p in stored) == [[], ["fake = fakeext:plugin"]]
+
+
+def test_the_start_up_map_names_the_module_of_every_command():
+    # `sawdrift NAME` imports only COMMAND_MODULES[NAME]: each command (and the bench group's
+    # commands) must be registered by that module, and every command must be in the map, which
+    # also fixes the order of --help
+    from sawdrift.cli import app
+    from sawdrift.cli.app import COMMAND_MODULES
+
+    found = {info.name: info.callback.__module__ for info in app.registered_commands}
+    for group in app.registered_groups:
+        modules = {info.callback.__module__ for info in group.typer_instance.registered_commands}
+        assert len(modules) == 1, (group.name, modules)
+        found[group.name] = modules.pop()
+    assert found == {name: f"sawdrift.cli.{module}" for name, module in COMMAND_MODULES.items()}
+    commands = [info.name for info in app.registered_commands]
+    assert commands == [name for name in COMMAND_MODULES if name in commands]
