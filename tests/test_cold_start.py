@@ -217,7 +217,8 @@ def test_plugin_scans_are_skipped_only_when_nothing_is_installed(tmp_path):
     assert outs[0] == outs[1] == ["True", "True", "2", "1.0", "False", "False"]
     assert outs[2] == ["False", "False", "2", "1.0", "True", "True"]
     stored = sorted((tmp_path / "cache" / "cli").glob("entry-points-*"))
-    assert sorted(json.loads(p.read_text())["pydantic"] for p in stored) == [[], ["fake = fakeext:plugin"]]
+    pydantic_plugins = sorted(json.loads(p.read_text())["pydantic"] for p in stored)
+    assert pydantic_plugins == [[], [["fake", "fakeext:plugin", "fakeext"]]]
 
 
 def test_the_start_up_map_names_the_module_of_every_command():
@@ -235,3 +236,25 @@ def test_the_start_up_map_names_the_module_of_every_command():
     assert found == {name: f"sawdrift.cli.{module}" for name, module in COMMAND_MODULES.items()}
     commands = [info.name for info in app.registered_commands]
     assert commands == [name for name in COMMAND_MODULES if name in commands]
+
+
+def test_registry_from_the_stored_entry_points_is_the_scanned_registry(monkeypatch, tmp_path):
+    # the model registry fed the stored entry points finds the same models, from the same
+    # distributions and entry points, as one that scans the installed distributions; the second
+    # read comes from the stored file
+    from sawdrift._startup import _scanned, _StoredEntryPoint
+    from sawdrift.contact.registry import ENTRY_POINT_GROUP, Registry
+
+    monkeypatch.setenv("SAWDRIFT_CACHE_DIR", str(tmp_path))
+    first = _scanned()
+    assert len(list((tmp_path / "cli").glob("entry-points-*"))) == 1
+    assert _scanned() == first
+
+    def stored():
+        return [_StoredEntryPoint(*row, ENTRY_POINT_GROUP) for row in _scanned()[ENTRY_POINT_GROUP]]
+
+    scanned, from_store = Registry(), Registry(entry_points=stored)
+    assert {"material_point", "mmd", "mdr", "jaeger", "hertz_mindlin_dem"} <= set(scanned.models)
+    assert {n: (e.cls, e.distribution, e.entry_point) for n, e in from_store.models.items()} == \
+        {n: (e.cls, e.distribution, e.entry_point) for n, e in scanned.models.items()}
+    assert from_store.failed == scanned.failed

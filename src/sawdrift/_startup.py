@@ -17,8 +17,9 @@ Compiling anything still goes through numba's compiler, which refreshes the full
 so a cache miss, a new signature or a user's own ``@njit`` is compiled exactly as before.
 
 Before its first cached load numba scans every distribution's entry points for numba extensions,
-and pydantic for its plugins before its first validator; both are answered from a stored scan
-when nothing is installed for them (:func:`skip_absent_plugin_scans`).
+pydantic for its plugins before its first validator, the model registry for models: all three
+are answered from one stored scan (:func:`skip_plugin_scans`; numba and pydantic only when
+nothing is installed for them).
 
 Three answers are stored on disk instead of recomputed by every process: those scans, the
 top-level ``--help`` text (:func:`replay_help`, :func:`stored_help`) and the rows of ``sawdrift
@@ -89,36 +90,64 @@ def load_cached_code_lightly() -> bool:
     return True
 
 
-#: entry-point groups scanned by libraries the command line loads: numba runs the ``init`` entry
-#: points of ``numba_extensions`` before its first compilation or cached load, pydantic loads the
-#: ``pydantic`` group's plugins before its first validator
-_SCANNED_GROUPS = ("numba_extensions", "pydantic")
+#: entry-point groups read once per process: numba runs the ``init`` entry points of
+#: ``numba_extensions`` before its first compilation or cached load, pydantic loads the
+#: ``pydantic`` group's plugins before its first validator, the model registry loads
+#: ``sawdrift.models``
+_SCANNED_GROUPS = ("numba_extensions", "pydantic", "sawdrift.models")
 
 
-def skip_absent_plugin_scans() -> list[str]:
-    """Spare numba's and pydantic's scans of every distribution's entry points when they find none.
+def _scanned() -> dict[str, list[list[Any]]]:
+    """``[name, value, distribution]`` of every entry point of :data:`_SCANNED_GROUPS`.
 
-    Each of the two libraries reads the entry points of every installed distribution once per
-    process (about 0.015-0.03 s each) to find its plugins (:data:`_SCANNED_GROUPS`). The entry
-    points of those groups are stored under the key of the installed distributions
-    (:func:`_installed`); when a group has none, the library is told its plugins are loaded and
-    there are none, which is what its scan would conclude. Pydantic is told only if it is already
-    imported (every command imports it to read its options) and has not scanned yet. Returns
-    the groups skipped.
+    Reading them scans every installed distribution (about 0.02 s each time a library does it);
+    the result is stored under the key of the installed distributions (:func:`_installed`).
     """
     import json
 
     key = _digest({"installed": _installed(), "groups": _SCANNED_GROUPS})
     try:
-        found = json.loads(_stored("entry-points", key).read_bytes())
+        return json.loads(_stored("entry-points", key).read_bytes())
     except (OSError, ValueError):
-        from importlib.metadata import entry_points
+        pass
+    from importlib.metadata import entry_points
 
-        found = {group: sorted(f"{ep.name} = {ep.value}" for ep in entry_points(group=group))
-                 for group in _SCANNED_GROUPS}
-        _store("entry-points", key, json.dumps(found).encode())
+    found = {group: sorted([ep.name, ep.value, ep.dist.name if ep.dist is not None else None]
+                           for ep in entry_points(group=group))
+             for group in _SCANNED_GROUPS}
+    _store("entry-points", key, json.dumps(found).encode())
+    return found
+
+
+class _StoredEntryPoint:
+    """An entry point of the stored scan, with what the model registry uses of importlib's."""
+
+    def __init__(self, name: str, value: str, dist: str | None, group: str) -> None:
+        import types
+
+        self.name, self.value, self.group = name, value, group
+        self.dist = types.SimpleNamespace(name=dist) if dist is not None else None
+
+    def load(self) -> Any:
+        from importlib.metadata import EntryPoint
+
+        return EntryPoint(self.name, self.value, self.group).load()
+
+
+def skip_plugin_scans() -> list[str]:
+    """Spare numba, pydantic and the model registry their scans of every distribution.
+
+    Each reads the entry points of every installed distribution once per process to find its
+    plugins (:data:`_SCANNED_GROUPS`; about 0.015-0.03 s each). They are told the stored ones
+    instead (:func:`_scanned`): numba and pydantic only when their group has none (their plugins
+    are then loaded, and there are none, which is what their scans would conclude; pydantic only
+    if it is imported, as every command's options import it, and has not scanned yet), the
+    registry always, when it has not discovered its models yet (it loads the same entry points).
+    Returns the groups whose scan was spared.
+    """
+    found = _scanned()
     skipped = []
-    if not any(item.startswith("init = ") for item in found.get("numba_extensions", ["?"])):
+    if not any(name == "init" for name, _, _ in found.get("numba_extensions", [["init", 0, 0]])):
         try:
             from numba.core import entrypoints
         except ImportError:  # pragma: no cover - numba is a dependency
@@ -126,12 +155,18 @@ def skip_absent_plugin_scans() -> list[str]:
         if entrypoints is not None and getattr(entrypoints, "_already_initialized", True) is False:
             entrypoints._already_initialized = True
             skipped.append("numba_extensions")
-    if found.get("pydantic", ["?"]) == [] and "pydantic" in sys.modules:
+    if found.get("pydantic", [None]) == [] and "pydantic" in sys.modules:
         from pydantic.plugin import _loader
 
         if getattr(_loader, "_plugins", 0) is None:
             _loader._plugins = {}
             skipped.append("pydantic")
+    from .contact.registry import ENTRY_POINT_GROUP, registry
+
+    if registry._models is None and registry.entry_points is None and ENTRY_POINT_GROUP in found:
+        rows = found[ENTRY_POINT_GROUP]
+        registry.entry_points = lambda: [_StoredEntryPoint(*row, ENTRY_POINT_GROUP) for row in rows]
+        skipped.append(ENTRY_POINT_GROUP)
     return skipped
 
 
@@ -139,7 +174,7 @@ def fast_start() -> None:
     """Everything the command line does before its first compiled call (see the module text)."""
     defer_unused_numpy_submodules()
     load_cached_code_lightly()
-    skip_absent_plugin_scans()
+    skip_plugin_scans()
 
 
 # --- answers stored on disk: the top-level --help text and the model listing -------------------
