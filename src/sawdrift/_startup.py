@@ -23,7 +23,7 @@ nothing is installed for them).
 
 Three answers are stored on disk instead of recomputed by every process: those scans, the
 top-level ``--help`` text (:func:`replay_help`, :func:`stored_help`) and the rows of ``sawdrift
-models`` (:func:`stored_models`); the comment above the last two says what their keys hold.
+models`` (:func:`stored_models`); the comment above their helpers says what their keys hold.
 
 Library users are not affected; only the command line calls these, in a process it owns.
 """
@@ -90,107 +90,21 @@ def load_cached_code_lightly() -> bool:
     return True
 
 
-#: entry-point groups read once per process: numba runs the ``init`` entry points of
-#: ``numba_extensions`` before its first compilation or cached load, pydantic loads the
-#: ``pydantic`` group's plugins before its first validator, the model registry loads
-#: ``sawdrift.models``
-_SCANNED_GROUPS = ("numba_extensions", "pydantic", "sawdrift.models")
-
-
-def _scanned() -> dict[str, list[list[Any]]]:
-    """``[name, value, distribution]`` of every entry point of :data:`_SCANNED_GROUPS`.
-
-    Reading them scans every installed distribution (about 0.02 s each time a library does it);
-    the result is stored under the key of the installed distributions (:func:`_installed`).
-    """
-    import json
-
-    key = _digest({"installed": _installed(), "groups": _SCANNED_GROUPS})
-    try:
-        return json.loads(_stored("entry-points", key).read_bytes())
-    except (OSError, ValueError):
-        pass
-    from importlib.metadata import entry_points
-
-    found = {group: sorted([ep.name, ep.value, ep.dist.name if ep.dist is not None else None]
-                           for ep in entry_points(group=group))
-             for group in _SCANNED_GROUPS}
-    _store("entry-points", key, json.dumps(found).encode())
-    return found
-
-
-class _StoredEntryPoint:
-    """An entry point of the stored scan, with what the model registry uses of importlib's."""
-
-    def __init__(self, name: str, value: str, dist: str | None, group: str) -> None:
-        import types
-
-        self.name, self.value, self.group = name, value, group
-        self.dist = types.SimpleNamespace(name=dist) if dist is not None else None
-
-    def load(self) -> Any:
-        from importlib.metadata import EntryPoint
-
-        return EntryPoint(self.name, self.value, self.group).load()
-
-
-def skip_plugin_scans() -> list[str]:
-    """Spare numba, pydantic and the model registry their scans of every distribution.
-
-    Each reads the entry points of every installed distribution once per process to find its
-    plugins (:data:`_SCANNED_GROUPS`; about 0.015-0.03 s each). They are told the stored ones
-    instead (:func:`_scanned`): numba and pydantic only when their group has none (their plugins
-    are then loaded, and there are none, which is what their scans would conclude; pydantic only
-    if it is imported, as every command's options import it, and has not scanned yet), the
-    registry always, when it has not discovered its models yet (it loads the same entry points).
-    Returns the groups whose scan was spared.
-    """
-    found = _scanned()
-    skipped = []
-    if not any(name == "init" for name, _, _ in found.get("numba_extensions", [["init", 0, 0]])):
-        try:
-            from numba.core import entrypoints
-        except ImportError:  # pragma: no cover - numba is a dependency
-            entrypoints = None
-        if entrypoints is not None and getattr(entrypoints, "_already_initialized", True) is False:
-            entrypoints._already_initialized = True
-            skipped.append("numba_extensions")
-    if found.get("pydantic", [None]) == [] and "pydantic" in sys.modules:
-        from pydantic.plugin import _loader
-
-        if getattr(_loader, "_plugins", 0) is None:
-            _loader._plugins = {}
-            skipped.append("pydantic")
-    from .contact.registry import ENTRY_POINT_GROUP, registry
-
-    if registry._models is None and registry.entry_points is None and ENTRY_POINT_GROUP in found:
-        rows = found[ENTRY_POINT_GROUP]
-        registry.entry_points = lambda: [_StoredEntryPoint(*row, ENTRY_POINT_GROUP) for row in rows]
-        skipped.append(ENTRY_POINT_GROUP)
-    return skipped
-
-
-def fast_start() -> None:
-    """Everything the command line does before its first compiled call (see the module text)."""
-    defer_unused_numpy_submodules()
-    load_cached_code_lightly()
-    skip_plugin_scans()
-
-
-# --- answers stored on disk: the top-level --help text and the model listing -------------------
+# --- answers stored on disk: plugin scans, the top-level --help text, the model listing ---------
 #
-# ``sawdrift --help`` spends most of its time importing Typer's rich help renderer (with the
-# Markdown and traceback support it loads and this program never uses) and building all the
+# Numba, pydantic and the model registry each scan every distribution's entry points for their
+# plugins. ``sawdrift --help`` spends most of its time importing Typer's rich help renderer (with
+# the Markdown and traceback support it loads and this program never uses) and building all the
 # commands to print their one-line summaries; ``sawdrift models`` imports every model plugin
-# (numpy, the scene schema) to describe its parameters. Both answers are the same every time for
-# the same code, so each is stored once, in ``<cache folder>/cli`` (the folder of
-# :func:`sawdrift.codegen.modules.cache_dir`), under a key that hashes everything it depends on:
-# the modification time and size of every Python file of the packages that produce it, the
-# interpreter, ``sys.path`` and the installed distributions (their ``.dist-info`` folders, which
-# hold the entry points of plugins), and for the help where it is printed (program name,
-# terminals, width, encoding, and the environment variables Typer and Rich read). A cache that
-# cannot be read or written only means the answer is computed as before, and an answer computed
-# with a warning or a failed plugin is not stored.
+# (numpy, the scene schema) to describe its parameters. These answers are the same every time
+# for the same code and installation, so each is stored once, in ``<cache folder>/cli`` (the
+# folder of :func:`sawdrift.codegen.modules.cache_dir`), under a key that hashes everything it
+# depends on: the interpreter, ``sys.path`` and the installed distributions (their ``.dist-info``
+# folders, which hold the entry points), for the help and the models also the modification time
+# and size of every Python file of the packages that produce them, and for the help where it is
+# printed (program name, terminals, width, encoding, and the environment variables Typer and
+# Rich read). A cache that cannot be read or written only means the answer is computed as
+# before, and an answer computed with a warning or a failed plugin is not stored.
 
 #: environment variables that change how Typer and Rich print help (widths, colours, terminals)
 _HELP_ENV = ("COLUMNS", "LINES", "JUPYTER_COLUMNS", "JUPYTER_LINES", "TERM", "COLORTERM",
@@ -301,6 +215,93 @@ def _store(kind: str, key: str, data: bytes) -> None:
             stale.unlink(missing_ok=True)
     except OSError:
         pass
+
+
+#: entry-point groups read once per process: numba runs the ``init`` entry points of
+#: ``numba_extensions`` before its first compilation or cached load, pydantic loads the
+#: ``pydantic`` group's plugins before its first validator, the model registry loads
+#: ``sawdrift.models``
+_SCANNED_GROUPS = ("numba_extensions", "pydantic", "sawdrift.models")
+
+
+def _scanned() -> dict[str, list[list[Any]]]:
+    """``[name, value, distribution]`` of every entry point of :data:`_SCANNED_GROUPS`.
+
+    Reading them scans every installed distribution (about 0.02 s each time a library does it);
+    the result is stored under the key of the installed distributions (:func:`_installed`).
+    """
+    import json
+
+    key = _digest({"installed": _installed(), "groups": _SCANNED_GROUPS})
+    try:
+        return json.loads(_stored("entry-points", key).read_bytes())
+    except (OSError, ValueError):
+        pass
+    from importlib.metadata import entry_points
+
+    found = {group: sorted([ep.name, ep.value, ep.dist.name if ep.dist is not None else None]
+                           for ep in entry_points(group=group))
+             for group in _SCANNED_GROUPS}
+    _store("entry-points", key, json.dumps(found).encode())
+    return found
+
+
+class _StoredEntryPoint:
+    """An entry point of the stored scan, with what the model registry uses of importlib's."""
+
+    def __init__(self, name: str, value: str, dist: str | None, group: str) -> None:
+        import types
+
+        self.name, self.value, self.group = name, value, group
+        self.dist = types.SimpleNamespace(name=dist) if dist is not None else None
+
+    def load(self) -> Any:
+        from importlib.metadata import EntryPoint
+
+        return EntryPoint(self.name, self.value, self.group).load()
+
+
+def skip_plugin_scans() -> list[str]:
+    """Spare numba, pydantic and the model registry their scans of every distribution.
+
+    Each reads the entry points of every installed distribution once per process to find its
+    plugins (:data:`_SCANNED_GROUPS`; about 0.015-0.03 s each). They are told the stored ones
+    instead (:func:`_scanned`): numba and pydantic only when their group has none (their plugins
+    are then loaded, and there are none, which is what their scans would conclude; pydantic only
+    if it is imported, as every command's options import it, and has not scanned yet), the
+    registry always, when it has not discovered its models yet (it loads the same entry points).
+    Returns the groups whose scan was spared.
+    """
+    found = _scanned()
+    skipped = []
+    if not any(name == "init" for name, _, _ in found.get("numba_extensions", [["init", 0, 0]])):
+        try:
+            from numba.core import entrypoints
+        except ImportError:  # pragma: no cover - numba is a dependency
+            entrypoints = None
+        if entrypoints is not None and getattr(entrypoints, "_already_initialized", True) is False:
+            entrypoints._already_initialized = True
+            skipped.append("numba_extensions")
+    if found.get("pydantic", [None]) == [] and "pydantic" in sys.modules:
+        from pydantic.plugin import _loader
+
+        if getattr(_loader, "_plugins", 0) is None:
+            _loader._plugins = {}
+            skipped.append("pydantic")
+    from .contact.registry import ENTRY_POINT_GROUP, registry
+
+    if registry._models is None and registry.entry_points is None and ENTRY_POINT_GROUP in found:
+        rows = found[ENTRY_POINT_GROUP]
+        registry.entry_points = lambda: [_StoredEntryPoint(*row, ENTRY_POINT_GROUP) for row in rows]
+        skipped.append(ENTRY_POINT_GROUP)
+    return skipped
+
+
+def fast_start() -> None:
+    """Everything the command line does before its first compiled call (see the module text)."""
+    defer_unused_numpy_submodules()
+    load_cached_code_lightly()
+    skip_plugin_scans()
 
 
 def _help_key() -> str:
