@@ -258,3 +258,48 @@ def test_registry_from_the_stored_entry_points_is_the_scanned_registry(monkeypat
     assert {n: (e.cls, e.distribution, e.entry_point) for n, e in from_store.models.items()} == \
         {n: (e.cls, e.distribution, e.entry_point) for n, e in scanned.models.items()}
     assert from_store.failed == scanned.failed
+
+
+_TEARDOWN = """
+import atexit, sys, tempfile
+from sawdrift._startup import skip_teardown
+
+marker, code, skip = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "skip"
+atexit.register(lambda: open(marker + ".atexit", "w").close())
+folder = tempfile.TemporaryDirectory()  # removed by its finalizer, an exit handler
+open(marker + ".folder", "w").write(folder.name)
+
+
+class Freed:
+    def __del__(self, path=marker + ".freed", open=open):
+        open(path, "w").close()
+
+
+kept = Freed()  # a module global: freed by the interpreter's teardown only
+sys.stdout.write("y" * 100000)  # still buffered when the process ends
+try:
+    raise SystemExit(code)
+except SystemExit as done:
+    if skip:
+        skip_teardown(done.code)
+    raise
+"""
+
+
+@pytest.mark.parametrize("code", [0, 3])
+def test_skip_teardown_keeps_exit_status_handlers_and_output(tmp_path, code):
+    # with and without skipping the teardown: the same exit status, the whole buffered output,
+    # the exit handlers run (one of them removes a temporary folder); only the teardown's freeing
+    # of a module global is gone
+    script = tmp_path / "teardown.py"
+    script.write_text(_TEARDOWN)
+    seen = {}
+    for mode in ("usual", "skip"):
+        marker = tmp_path / mode
+        out = subprocess.run([sys.executable, str(script), str(marker), str(code), mode],
+                             capture_output=True, text=True, timeout=120)
+        folder = (tmp_path / f"{mode}.folder").read_text()
+        seen[mode] = (out.returncode, len(out.stdout), (tmp_path / f"{mode}.atexit").exists(),
+                      __import__("os").path.exists(folder), (tmp_path / f"{mode}.freed").exists())
+    assert seen["usual"] == (code, 100000, True, False, True)
+    assert seen["skip"] == (code, 100000, True, False, False)
