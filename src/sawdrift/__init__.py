@@ -1,7 +1,8 @@
 """sawdrift: frictional contact models compared on a particle driven by a Rayleigh wave.
 
 The public API; the CLI uses nothing else. Names are imported on first use, so that
-``import sawdrift`` (and ``sawdrift --help``) does not pay for numba, pandas or matplotlib.
+``import sawdrift`` (and ``sawdrift --help``) does not pay for numba, pandas or matplotlib, nor
+for the package metadata (``__version__``) or pluggy (``hookimpl``) before they are asked for.
 
 The package follows the pipeline::
 
@@ -21,12 +22,12 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
-from ._version import __version__
 from .errors import ModelNotFoundError, NonFiniteStateError, PluginError, SawdriftError, SceneError
-from .hookspecs import hookimpl
 
 #: public name -> module (relative to the package) that defines it
 _LAZY: dict[str, str] = {
+    "__version__": "_version",
+    "hookimpl": "hookspecs",
     "Capabilities": "contact.base",
     "ContactHistory": "contact.history",
     "ContactModel": "contact.base",
@@ -111,8 +112,6 @@ __all__ = [
     "PluginError",
     "SawdriftError",
     "SceneError",
-    "__version__",
-    "hookimpl",
     "regimes",
     *_LAZY,
 ]

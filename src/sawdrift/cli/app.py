@@ -18,6 +18,8 @@ import typer
 
 import sawdrift as sd
 
+from .._startup import stored_help
+
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
@@ -141,10 +143,59 @@ bench_app = typer.Typer(help="Performance: work-precision study and speed target
 app.add_typer(bench_app, name="bench")
 
 
+#: every command (and command group) -> the module of this package that registers it, in the
+#: order of ``--help``
+COMMAND_MODULES: dict[str, str] = {
+    "models": "run", "check-model": "run", "run": "run",
+    "sweep": "study", "bifurcation": "study",
+    "phase-diagram": "report", "compare": "report", "export": "report", "explore": "report",
+    "demo": "report", "validate": "report", "bench": "report",
+    "field": "field", "load-curve": "load_curve", "force-velocity": "force_velocity",
+    "lammps": "lammps", "sort": "sort", "threshold": "threshold",
+}
+
+
+def load_commands(command: str | None = None) -> typer.Typer:
+    """Register the commands on :data:`app` and return it.
+
+    With the name of a command, only the module that registers it is imported (and so only its
+    commands are built when the application runs): ``sawdrift run`` does not pay for the
+    other sixteen commands' imports and option parsing. Without one, every module is imported
+    and the commands are put in the order of :data:`COMMAND_MODULES`, whatever order earlier
+    calls imported them in, so ``--help`` always lists them the same way.
+    """
+    import importlib
+
+    modules = [COMMAND_MODULES[command]] if command in COMMAND_MODULES else COMMAND_MODULES.values()
+    for module in dict.fromkeys(modules):
+        importlib.import_module(f"{__package__}.{module}")
+    if command not in COMMAND_MODULES:
+        order = {name: i for i, name in enumerate(COMMAND_MODULES)}
+        app.registered_commands.sort(key=lambda info: order.get(info.name or "", len(order)))
+    return app
+
+
+def _command_of(argv: list[str]) -> str | None:
+    """The command a command line names (its first word, if a command), else None."""
+    return argv[0] if argv and argv[0] in COMMAND_MODULES else None
+
+
 def main() -> None:
-    """Console entry point: one-line errors and exit status 2 for user errors."""
+    """Console entry point: one-line errors and exit status 2 for user errors.
+
+    The top-level ``--help`` is printed from its stored copy when there is one
+    (:func:`sawdrift._startup.stored_help`).
+    """
     warnings.showwarning = _one_line_warnings
+    if sys.argv[1:] == ["--help"]:
+        stored_help(_main)
+    else:
+        _main()
+
+
+def _main() -> None:
     try:
+        load_commands(_command_of(sys.argv[1:]))
         # standalone_mode=False makes click return a typer.Exit's code instead of raising it
         code = app(standalone_mode=False)
         sys.exit(code if isinstance(code, int) else 0)

@@ -10,7 +10,7 @@ import typer
 
 import sawdrift as sd
 
-from .._startup import fast_start
+from .._startup import fast_start, stored_models
 from ..study.progress import notice
 from .app import Engine, Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
 from .run_text import grouped, side_by_side
@@ -23,13 +23,7 @@ def models_cmd(
 ) -> None:
     """List the registered contact models, the distribution providing each and their parameters
     (set with --param NAME=VALUE or in a scene file's model_params table)."""
-    entries = sd.registry.models
-    rows = []
-    for name in sorted(entries):
-        entry = entries[name]
-        info = entry.cls.describe()
-        info["distribution"] = entry.distribution
-        rows.append(info)
+    rows, failed = stored_models(_describe_models)
     if as_json:
         typer.echo(json.dumps(rows, indent=2))
         return
@@ -50,8 +44,35 @@ def models_cmd(
             typer.echo(f"{'':<{width}}  declared deviation, {check}: {reason}")
         if r.get("adhesion"):
             typer.echo(f"{'':<{width}}  adhesion (effects.adhesion) {r['adhesion']}")
-    for name, reason in sorted(sd.registry.failed.items()):
+    for name, reason in sorted(failed.items()):
         typer.echo(f"{name:<{width}}  unavailable: {reason}")
+
+
+def _describe_models() -> tuple[list[dict[str, Any]], dict[str, str], list[str], bool]:
+    """Rows of ``models`` from the registry, the failed plugins, the model classes' top-level
+    packages other than sawdrift, and whether no warning was shown (see ``stored_models``)."""
+    import warnings
+
+    shown: list[str] = []
+    show = warnings.showwarning
+
+    def noted(message, *args, **kwargs):  # noqa: ANN001, ANN202
+        shown.append(str(message))
+        show(message, *args, **kwargs)
+
+    warnings.showwarning = noted
+    try:
+        entries = sd.registry.models
+        rows = []
+        for name in sorted(entries):
+            entry = entries[name]
+            info = entry.cls.describe()
+            info["distribution"] = entry.distribution
+            rows.append(info)
+    finally:
+        warnings.showwarning = show
+    packages = sorted({e.cls.__module__.partition(".")[0] for e in entries.values()} - {"sawdrift"})
+    return rows, dict(sd.registry.failed), packages, not shown
 
 
 @app.command("check-model")

@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import importlib.metadata as im
 import warnings
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import pluggy
 
@@ -33,18 +35,27 @@ class ModelEntry:
 
 
 class Registry:
-    """Contact models by name. Discovery runs once, on first use."""
+    """Contact models by name. Discovery runs once, on first use.
 
-    def __init__(self) -> None:
+    ``entry_points`` (default: the installed ones of :data:`ENTRY_POINT_GROUP`, read by
+    :func:`importlib.metadata.entry_points`) gives the entry points to load, objects with
+    ``name``, ``value``, ``dist.name`` and ``load()``; the command line passes a stored copy of
+    the installed ones (:func:`sawdrift._startup.skip_plugin_scans`), sparing a scan of every
+    distribution.
+    """
+
+    def __init__(self, entry_points: Callable[[], Iterable[Any]] | None = None) -> None:
         self._models: dict[str, ModelEntry] | None = None
         self.failed: dict[str, str] = {}
+        self.entry_points = entry_points
 
     def _discover(self) -> dict[str, ModelEntry]:
         pm = pluggy.PluginManager(hookspecs.PROJECT)
         pm.add_hookspecs(hookspecs)
         models: dict[str, ModelEntry] = {}
         clashes: dict[str, list[ModelEntry]] = {}
-        for ep in sorted(im.entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+        found = self.entry_points() if self.entry_points else im.entry_points(group=ENTRY_POINT_GROUP)
+        for ep in sorted(found, key=lambda e: e.name):
             dist = ep.dist.name if ep.dist is not None else "<unknown>"
             try:
                 plugin = ep.load()
@@ -123,9 +134,11 @@ class Registry:
         self.models.pop(name, None)
 
     def reload(self) -> None:
-        """Forget cached discovery (after installing a plugin in the same process)."""
+        """Forget cached discovery (after installing a plugin in the same process): the next use
+        scans the installed entry points again."""
         self._models = None
         self.failed = {}
+        self.entry_points = None
 
 
 registry = Registry()
