@@ -191,7 +191,12 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
         f1 = push(d1)
         if (f1 > 0.0) != (f0 > 0.0):
             lo, hi = sorted((d0, d1))
-            root = brentq(push, lo, hi, xtol=1e-3 * tol * max(abs(d0), 0.02), rtol=1e-10)
+            try:
+                root = brentq(push, lo, hi, xtol=1e-3 * tol * max(abs(d0), 0.02), rtol=1e-10)
+            except ValueError:
+                # the fast parts at each node are iterated on from call to call, so an end of the
+                # bracket evaluated again can change sign: no clean zero here, no average
+                return None
             return speed * root, lifts, period
         d0, f0, step = d1, f1, 2.0 * step
     return None

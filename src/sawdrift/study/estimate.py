@@ -31,7 +31,7 @@ from ..contact.registry import get_model
 from ..dynamics import steady
 from ..dynamics.assembly import steps_per_period
 from ..dynamics.full_inertia import full_window_length
-from ..dynamics.separated import solvable
+from ..dynamics.separated import SOLVED_MIN_MASS, solvable
 from ..errors import SceneError
 from ..result.runner import run
 from ..scene.schema import Scene, Wave
@@ -119,7 +119,8 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
         # A* > 1); the confirmation asked for takes two to four full-inertia windows
         full = full_window_length(m, scene.theta, scene.measure_periods())
         extra = full / 3.0 if amp > 1.0 else 0.0
-        expected = min(expected, num.periods + (3.0 * full if num.confirm_solved else extra))
+        confirm = num.confirm_solved or m < SOLVED_MIN_MASS  # below it the windows confirm
+        expected = min(expected, num.periods + (3.0 * full if confirm else extra))
     return expected * k, max(fixed, cap) * k
 
 
