@@ -6,9 +6,11 @@ The steps of one run follow from its scene as the runner plans it
 :func:`sawdrift.dynamics.assembly.steps_per_period`, and for a settling run (a heavy particle,
 :func:`sawdrift.dynamics.steady.settles`) the expected length of the settle, of order ten
 relaxation times m*_x/mu of the reduced inertia plus two windows, capped by
-``numerics.max_periods``; where the drift is solved directly (m* >= 15, a plain wave scene:
-:mod:`sawdrift.dynamics.separated`) three full-inertia windows, two to four in practice (the SAW
-motor example, m* = 929, mu = 0.2: 1470 periods expected, 973 run). The
+``numerics.max_periods``; a default light run :data:`GOES_ON` times its fixed length (it goes
+on where its window cannot confirm its drift); where the drift is solved directly (m* >= 15, a
+plain wave scene: :mod:`sawdrift.dynamics.separated`) the fixed length and one evidence window
+(one slow vertical cycle for a hopping particle), and three full-inertia windows where it is
+confirmed (from m* = 3, or ``numerics.confirm_solved``). The
 time divides the steps by a rate in steps per second measured on a short calibration run of the
 same model and engine (:func:`calibrate`: about 2e4 steps, the compiled loop loaded first) and
 by the workers (the harmonic mean over up to three sampled cells: steady slides run faster
@@ -30,7 +32,9 @@ from typing import Any
 from ..contact.registry import get_model
 from ..dynamics import steady
 from ..dynamics.assembly import steps_per_period
+from ..dynamics.batch_means import CHAOS_PERIODS
 from ..dynamics.full_inertia import full_window_length
+from ..dynamics.integrate import DEFAULT_PERIODS, SETTLE_ON_PERIODS
 from ..dynamics.separated import SOLVED_MIN_MASS, solvable
 from ..errors import SceneError
 from ..result.runner import run
@@ -42,6 +46,13 @@ MAX_SECONDS = 3600.0
 
 #: a single run with fewer expected steps than this starts without a word (seconds of work)
 QUIET_STEPS = 2e7
+
+#: a default light run (``numerics.settle`` and ``numerics.periods`` unset) is expected to cost
+#: this many times its fixed length: it goes on where its window cannot confirm its drift
+#: (settled windows, a periodic orbit, a chaotic or irregular cell's 2000-period long-time
+#: mean). The default 41 x 41 mmd sweep of ``sawdrift bench speed`` (m* 1e-3..1e2, A*
+#: 1e-2..10) took 3.6 to 3.7 times the time of its fixed 60-period sweep (2026-11-27)
+GOES_ON = 3.7
 
 #: steps of a calibration run (compiled engine; the python engine runs a tenth of it)
 CALIBRATION_STEPS = 20_000
@@ -105,6 +116,11 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
     amp = scene.drive.amplitude if isinstance(scene.drive, Wave) else 1.0
     speed = 2.0 * math.pi * scene.horizontal_ratio * amp
     if not steady.settles(scene, speed, rigid):
+        if num.settle is None and num.periods == DEFAULT_PERIODS:
+            # a default run its window cannot confirm goes on (windows, a periodic orbit, a
+            # long-time mean): on average GOES_ON times its fixed length, at most its budgets more
+            most = fixed + SETTLE_ON_PERIODS + CHAOS_PERIODS
+            return GOES_ON * fixed * k, most * k
         return fixed * k, fixed * k
     m = scene.particle.m_star
     m_x = steady.horizontal_inertia(m, rigid)
