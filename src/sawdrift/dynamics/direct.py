@@ -54,6 +54,7 @@ from .separated import (
     SEPARATED_MIN_MASS,
     SOLVED_MIN_MASS,
     STUCK,
+    Stuck,
     applies,
     approach_periods,
     orbit_relaxation,
@@ -93,8 +94,14 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
     direct = direct_start(stepper, scene, speed, scale)
     if direct == IRREGULAR:
         return irregular_mean(stepper, scene, speed, scale, minimum_window, start)
-    if direct is None or direct == STUCK:
-        return direct
+    if direct is None:
+        return None
+    if isinstance(direct, Stuck):
+        if direct.start is not None:
+            # a contact slipping over part of the period: its windows start at the curve's zero
+            # (a creeping contact returns to its creep within a window from any start)
+            shift_speed(stepper, direct.start - stepper.y[1])
+        return STUCK
     assert isinstance(direct, tuple)
     drift, lam, lifts, t90, evidence, solved = direct
     m = scene.particle.m_star
@@ -135,7 +142,7 @@ def irregular_mean(stepper: Stepper, scene, speed: float, scale: np.ndarray,
 
 
 def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
-                 ) -> Direct | str | None:
+                 ) -> Direct | Stuck | str | None:
     """(drift, relaxation rate, lift-offs per period, periods to 90 % of the drift from rest,
     periods of evidence it needs, whether it is the reported drift or only the windows' start)
     solved directly for a heavy particle, or None where that does
@@ -154,7 +161,7 @@ def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
     if not applies(stepper, scene):
         return None
     orbit = separated_orbit(stepper, scene, speed, tol, keep_contact=False)
-    if orbit is None or orbit == STUCK:
+    if orbit is None or isinstance(orbit, Stuck):
         return orbit
     mu, m = scene.material.mu, scene.particle.m_star
     if orbit.loses_contact:
