@@ -72,29 +72,15 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     ending = outcome(scene.particle.load, scene.material.mu, scene.effects.friction,
                      scene.effects.air_drag, in_flight(win), ret, stepper.step / stepper.k_per,
                      win.drift, acceleration, out.speed)
-    drift = win.drift
+    drift, drift_ratio, drift_se = _reported_drift(out, drift_ratio, solved)
     settled = settling.settled
-    drift_se = math.nan
-    if solved is not None:
-        # solved directly (dynamics.direct): the window is one sample of the slow vertical
-        # modulation, the solved drift is its mean
-        drift = solved
-    if out.long_mean is not None and out.speed > 0.0:
-        # irregular motion: the long-time mean with its batch-means error, not one window's sample
-        drift = out.long_mean.mean
-        drift_ratio = drift / out.speed
-        drift_se = out.long_mean.se / out.speed
     detach = math.nan
     if ending:
         regime, drift, drift_ratio, settled = ending, math.nan, math.nan, False
         t90 = math.nan
         detach = out.last_liftoff if ending == "ejected" else math.nan
     extra: dict[str, object] = {}
-    warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
-    if out.long_mean is not None and out.long_mean.rising and out.speed > 0.0:
-        warnings += (f"long-time mean: its batch-means error still grew with the batch length "
-                     f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
-                     f"(correlations longer than the run)",)
+    warnings = _warnings(scene, out, drift_se)
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None))
     k_per = stepper.k_per
@@ -149,6 +135,29 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         detach_phase=detach % 1.0 if math.isfinite(detach) and detach >= 0.0 else math.nan,
         extra=extra,
     )
+
+
+def _reported_drift(out: WaveRun, drift_ratio: float,
+                    solved: float | None) -> tuple[float, float, float]:
+    """(drift, drift ratio, its standard error) a run reports: the window's; the drift solved
+    directly (dynamics.direct: the window is one sample of the slow vertical modulation, the
+    solved drift its mean); or an irregular motion's long-time mean with its batch-means error,
+    not one window's sample."""
+    drift = out.window.drift if solved is None else solved
+    if out.long_mean is not None and out.speed > 0.0:
+        drift = out.long_mean.mean
+        return drift, drift / out.speed, out.long_mean.se / out.speed
+    return drift, drift_ratio, math.nan
+
+
+def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
+    """A device scene's validity warnings, and a long-time mean's whose error is a lower bound."""
+    warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
+    if out.long_mean is not None and out.long_mean.rising and out.speed > 0.0:
+        warnings += (f"long-time mean: its batch-means error still grew with the batch length "
+                     f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
+                     f"(correlations longer than the run)",)
+    return warnings
 
 
 def mean_acceleration(positions) -> float:
