@@ -218,10 +218,21 @@ def test_a_particle_of_twenty_is_solved_averaged_over_its_slow_cycle():
 
 
 def test_the_scene_level_check_agrees_with_the_built_run():
-    """``solvable`` (read off the scene, for the size estimate) and ``applies`` (read off the
-    built run's parameters) give the same answer on scenes with and without each force the
-    direct solution leaves out."""
+    """``applies`` (``solvable``, read off the scene, and the built run's drive and memory)
+    agrees with the built run's own parameters: every force the direct solution leaves out
+    (load, damping, restitution, rolling, drag, adhesion pull-off) is zero there and friction on,
+    on scenes with and without each of them."""
+    from sawdrift.dynamics import adams_bashforth as ig
+    from sawdrift.dynamics.drives.travelling import TravellingWave
     from sawdrift.dynamics.separated import applies, solvable
+
+    off = (ig.P_LOAD, ig.P_DAMP, ig.P_REST, ig.P_ROLL, ig.P_DRAG, ig.P_PULL, ig.P_RR)
+
+    def built(st, sc) -> bool:
+        prm = st.prm
+        return (not st.rigid and st.history is not None and sc.particle.m_star >= 3.0
+                and isinstance(st.drive, TravellingWave) and all(prm[i] == 0.0 for i in off)
+                and prm[ig.P_FRICTION] > 0.0 and prm[ig.P_MU] > 0.0)
 
     base = {"model": "mmd", "particle": {"m_star": 100.0}, "drive": {"amplitude": 0.5}}
     variants = [
@@ -237,7 +248,7 @@ def test_the_scene_level_check_agrees_with_the_built_run():
         sc = sd.Scene.model_validate({**base, **extra})
         st, _, _ = stepper_after_ramp(sc)
         answers.append(applies(st, sc))
-        assert applies(st, sc) == solvable(sc, st.rigid), extra
+        assert applies(st, sc) == solvable(sc, st.rigid) == built(st, sc), extra
     assert answers[0] and not any(answers[1:])
 
 

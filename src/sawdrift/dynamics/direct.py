@@ -51,7 +51,6 @@ from .full_inertia import settle_full, shift_speed
 from .imposed import imposed_drift
 from .separated import (
     ORBIT_ALONE_MASS,
-    SEPARATED_MIN_MASS,
     SOLVED_MIN_MASS,
     STUCK,
     Stuck,
@@ -89,8 +88,6 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
     creeps (full-inertia windows from here, no reduced-inertia approach); None where nothing
     direct applies (the window approach from here).
     """
-    if scene.particle.m_star < SEPARATED_MIN_MASS:
-        return None
     direct = direct_start(stepper, scene, speed, scale)
     if direct == IRREGULAR:
         return irregular_mean(stepper, scene, speed, scale, minimum_window, start)
@@ -98,8 +95,8 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
         return None
     if isinstance(direct, Stuck):
         if direct.start is not None:
-            # a contact slipping over part of the period: its windows start at the curve's zero
-            # (a creeping contact returns to its creep within a window from any start)
+            # a contact sliding over a share of its period: its mean speed is a slow variable,
+            # so its windows start at the curve's zero (a sticking or creeping one from rest)
             shift_speed(stepper, direct.start - stepper.y[1])
         return STUCK
     assert isinstance(direct, tuple)
@@ -109,18 +106,18 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
     if solved and not scene.numerics.confirm_solved:
         evidence = max(minimum_window, evidence)
         win = measure_window(stepper, evidence, speed, scale)
-        if abs(win.liftoffs_per_period - lifts) > LIFT_MATCH:
-            # the run does not lift off as the averaged orbits do: its fast motion is not a
-            # period-one orbit (irregular bouncing): friction at an imposed speed along its record
-            return irregular_mean(stepper, scene, speed, scale, minimum_window, start)
-        return win, Settling(True, "solved", m, evidence, (stepper.step - start) / stepper.k_per,
-                             t90, (drift / speed, win.drift_ratio), drift=drift)
-    win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
-                            expected=drift / speed)
+        info = Settling(True, "solved", m, evidence, (stepper.step - start) / stepper.k_per,
+                        t90, (drift / speed, win.drift_ratio), drift=drift)
+    else:
+        win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
+                                expected=drift / speed)
+        info = Settling(full.settled, "orbit_then_full", m, full.window_periods,
+                        (stepper.step - start) / stepper.k_per, t90,
+                        (drift / speed, *full.history))
     if abs(win.liftoffs_per_period - lifts) <= LIFT_MATCH:
-        return win, Settling(full.settled, "orbit_then_full", m, full.window_periods,
-                             (stepper.step - start) / stepper.k_per, t90,
-                             (drift / speed, *full.history))
+        return win, info
+    # the run does not lift off as the averaged orbits do: its fast motion is not a period-one
+    # orbit (irregular bouncing): friction at an imposed speed along its record
     return irregular_mean(stepper, scene, speed, scale, minimum_window, start)
 
 
@@ -149,8 +146,9 @@ def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
     not apply: the period-one orbit (:func:`~.separated.separated_orbit`) averaged over the
     run's slow vertical oscillation (:func:`~.torus.torus_drift`), the time from rest by
     :func:`~.separated.approach_periods`. An orbit that keeps contact is its own start if the average
-    fails; one that loses contact is not (its drift can be 8 % from the run's). :data:`STUCK`
-    for a contact that sticks or creeps.
+    fails; one that loses contact is not (its drift can be 8 % from the run's). A
+    :class:`~.separated.Stuck` for a contact that sticks, creeps or slips over part of its period
+    without a repeating memory.
 
     Both need the fast motion to be a period-one orbit about a slowly moving height. A probe of
     :data:`PROBE_PERIODS` periods checks it: a run that loses contact must lift off once a period

@@ -58,6 +58,7 @@ from ..codegen import Generated, generate, rebind
 from . import adams_bashforth as ig
 from .drives.travelling import TravellingWave
 from .drives.two_wave import needs_two_waves
+from .full_inertia import SLIDING_FRACTION
 from .stepper import Stepper
 
 #: the separated orbit is solved from this m* up (the fast parts' contraction factor, about
@@ -106,12 +107,9 @@ class Stuck:
 
 
 #: :class:`Stuck` without a start: the force-velocity curve restores both ways at rest, or the
-#: contact at its zero slides over less than :data:`SLIDING_SHARE` of the period
+#: contact at its zero slides over less of the period than the full-inertia windows' threshold
+#: of a slowly relaxing mean speed (:data:`~.full_inertia.SLIDING_FRACTION`)
 STUCK = Stuck()
-
-#: share of the period in gross slip at the zero from which a :class:`Stuck` contact's windows
-#: start there (the full-inertia windows' own threshold of a slowly relaxing mean speed)
-SLIDING_SHARE = 0.05
 
 
 @dataclass(frozen=True)
@@ -136,7 +134,7 @@ def solvable(scene, rigid: bool) -> bool:
     """Whether a scene's drift may be solved directly (module docstring), read off the scene:
     heavy, compliant, friction on, one travelling wave, and none of the forces the solution
     leaves out (load, normal damping or restitution, rotation and rolling resistance, air drag,
-    adhesion). :func:`applies` checks the same on a built run; the size estimate uses this."""
+    adhesion). :func:`applies` adds what only the built run knows; the size estimate uses this."""
     eff = scene.effects
     drive = scene.drive
     return (not rigid and scene.particle.m_star >= SEPARATED_MIN_MASS
@@ -148,15 +146,10 @@ def solvable(scene, rigid: bool) -> bool:
 
 
 def applies(stepper: Stepper, scene) -> bool:
-    """Whether the orbit can be solved directly (module docstring): heavy, compliant, friction on,
-    no load, loop damping, rotation, adhesion or drag, and a drive that does not depend on x*."""
-    prm = stepper.prm
-    if stepper.rigid or stepper.history is None or scene.particle.m_star < SEPARATED_MIN_MASS:
-        return False
-    if not isinstance(stepper.drive, TravellingWave):
-        return False
-    off = (ig.P_LOAD, ig.P_DAMP, ig.P_REST, ig.P_ROLL, ig.P_DRAG, ig.P_PULL, ig.P_RR)
-    return all(prm[i] == 0.0 for i in off) and prm[ig.P_FRICTION] > 0.0 and prm[ig.P_MU] > 0.0
+    """Whether the orbit can be solved directly on the built run of ``scene``: :func:`solvable`,
+    and the run has a contact memory to drive and the single travelling wave as its drive."""
+    return (stepper.history is not None and isinstance(stepper.drive, TravellingWave)
+            and solvable(scene, stepper.rigid))
 
 
 _LOOPS: dict[object, object] = {}
@@ -384,7 +377,7 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
         # (a creeping or sticking contact is held, and returns to its drift from rest by itself)
         n_f, t_f = got[4], got[5]
         sliding = float(np.mean((n_f > 0.0) & (np.abs(t_f) >= (1.0 - ig.SLIP_RTOL) * n_f)))
-        return Stuck(d_star * speed) if sliding >= SLIDING_SHARE else STUCK
+        return Stuck(d_star * speed) if sliding >= SLIDING_FRACTION else STUCK
     return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
                           p.evaluations, _slope(pushes, d_star, speed), loses,
                           tuple(sorted(pushes.items())), p)
