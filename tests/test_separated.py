@@ -274,3 +274,18 @@ def test_a_contact_slipping_over_part_of_its_period_starts_its_windows_at_the_ze
     assert res.settle_method == "windows_full" and res.settled is True
     assert res.settle_periods <= 5 * w, (res.settle_periods, w)
     assert abs(res.drift_ratio - 0.0251049) <= 1e-3 * 0.0251049, res.drift_ratio
+
+
+def test_a_bracket_whose_end_changes_sign_falls_back_instead_of_raising():
+    """mdr, flat punch, m* = 54.6, A* = 0.592, mu = 0.6, nu = 0.45, r = 1.5: the slow cycle's
+    average found a bracket whose end changed sign when evaluated again (the fast parts are
+    iterated on from call to call), and brentq's ValueError ended the run with a traceback.
+    The run now falls back to the orbit's own drift, and agrees within 1e-3 with full-inertia
+    windows confirming it."""
+    sc = sd.Scene(model="mdr", particle={"m_star": 54.584553239207224, "profile": {"shape": "flat"}},
+                  material={"mu": 0.6, "nu": 0.45},
+                  drive={"amplitude": 0.5916167729273866, "horizontal_ratio": 1.5})
+    res = sd.run(sc)
+    confirmed = sd.run(sc.with_updates(**{"numerics.confirm_solved": True}))
+    assert res.settled is True and confirmed.settled is True
+    assert abs(res.drift_ratio - confirmed.drift_ratio) <= 1e-3 * abs(confirmed.drift_ratio)
