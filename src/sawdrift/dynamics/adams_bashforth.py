@@ -41,6 +41,7 @@ from .evidence import (
     observe_contact,
     observe_step,
 )
+from .flight import FLIGHT_HISTORY, flight_body
 from .rolling import (  # noqa: F401 - ROLL_DAMPING: the rolling spring's, named here too
     JIT,
     ROLL_DAMPING,
@@ -265,7 +266,13 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     drag = prm[P_DRAG]
     pull2 = 2.0 * prm[P_PULL]
     ncomp = 6 if spin else 4
-    for _ in range(n_steps):
+    move_x = friction or load != 0.0 or drag > 0.0
+    # a free flight is taken in closed form (dynamics.flight) where nothing but the constant
+    # accelerations acts out of contact: no adhesion, air drag or rolling, an order >= 2
+    fly = pull2 == 0.0 and drag == 0.0 and not spin and order >= 2
+    flying = 0
+    k_end = ctr[0] + n_steps
+    while ctr[0] < k_end:
         k = ctr[0]
         t = k * h
         ux, uxd, uy, uyd = drive_surface(t, y[0], dp)  # noqa: F821
@@ -298,7 +305,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             observe_step(st, 0.0 if inside else 1.0, 1.0 if slipping else 0.0, a)
         if rec_every > 0 and k % rec_every == 0:
             record(rec, ctr, t, y, a, b, nf, tf)
-        push_derivatives(fh, y, ax, ay, ncomp, friction or load != 0.0 or drag > 0.0)
+        push_derivatives(fh, y, ax, ay, ncomp, move_x)
         if spin:
             mr, kr, cap = rolling_torque(y, a, nf, rr, p_exp, kappa_m)
             fh[0, 4] = y[5]
@@ -314,6 +321,10 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             return
         if log_full(st, EV_MARGIN):
             return  # the stepper grows the event log and goes on from the next step
+        flying = flying + 1 if not inside and nf == 0.0 and tf == 0.0 else 0
+        if fly and flying >= FLIGHT_HISTORY and k_end - ctr[0] > 2:
+            flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, h, m, ax, k_ramp,
+                        scale_b if friction else 0.0, roll, move_x)
 
 
 _COMPILED: dict[Any, Callable[..., None]] = {}
@@ -351,13 +362,13 @@ def wave_loop(force: Callable[..., Any], drive: Any, compiled: bool) -> Callable
     surface = drive.functions()[0]
     if not compiled:
         scope = dict(_loop_namespace(force, surface), force=force)
-        return rebind((wave_loop_body,), scope)["wave_loop_body"]
+        return rebind((flight_body, wave_loop_body), scope)["wave_loop_body"]
     key = (force, drive.module)
     fn = _COMPILED.get(key)
     if fn is None:
         fn = generate(Generated(
             prefix="sawdrift_loop_", doc=f"the wave loop bound to a kernel and to {drive.module}",
-            templates=(wave_loop_body,), namespace=_loop_namespace(force, surface),
+            templates=(flight_body, wave_loop_body), namespace=_loop_namespace(force, surface),
             imports=_LOOP_IMPORTS, bind={"force": force, "drive_surface": (drive.module, "surface")},
             decorator="njit(cache=True, _nrt=False)", memory_options={"_nrt": False},
         ))["wave_loop_body"]
