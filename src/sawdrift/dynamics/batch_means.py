@@ -3,13 +3,14 @@
 A chaotic window has no steady drift to settle on: its drift over a few tens of periods is one
 sample of a fluctuating quantity (mmd, m* = 0.1, A* = 1, mu = 0.1: a 27-period window gave
 -0.255, the mean over 4e5 periods is -0.014 +- 0.016). What is reported instead is the mean
-over :data:`CHAOS_PERIODS` further periods with its standard error by the method of batch means
+over ``numerics.mean_periods`` further periods (the budget, 500 by default) with its standard
+error by the method of batch means
 (Flyvbjerg and Petersen 1989): the run is cut into batches, the batch means are averaged, and
 their spread over sqrt(n) is the error, valid when the batches are long enough to be nearly
 uncorrelated. Batches are merged pairwise (Flyvbjerg-Petersen blocking) down to
 :data:`MIN_BATCHES`, and the largest error over those levels is reported (the plateau of the
-blocking curve). Correlations longer than the longest batch are not seen: for the cell above the
-2000-period budget gives +- 0.085 in drift ratio, while a 22000-period run gives +- 0.107, which
+blocking curve). Correlations longer than the longest batch are not seen: for the cell above a
+budget of 2000 periods gives +- 0.085 in drift ratio, while a 22000-period run gives +- 0.107, which
 scaled back to 2000 periods would be about 0.35; the two means still agree within their errors.
 Where the blocking curve is still rising at the end (:attr:`BatchMeans.rising`) the error is a
 lower bound, and the Result says so in its warnings.
@@ -23,9 +24,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from .stepper import Stepper
-
-#: the budget of a chaotic cell: periods run after its window for the long-time mean
-CHAOS_PERIODS = 2000
 
 #: fewest batches an error is computed from
 MIN_BATCHES = 16
@@ -89,7 +87,7 @@ def blocking(per_period: np.ndarray) -> tuple[float, float, int, bool, bool]:
     return mean, best_se, best_n, flat, rising
 
 
-def long_time_mean(stepper: Stepper, window, periods: int = CHAOS_PERIODS,
+def long_time_mean(stepper: Stepper, window, periods: int,
                    target: float = 0.0) -> BatchMeans:
     """Advance up to ``periods`` more periods and return the batch-mean drift over them and the
     window.

@@ -30,8 +30,8 @@ from .full_inertia import full_window_length
 from .separated import GRID, _periodic_rate, history_loop
 from .stepper import Stepper
 
-#: periods recorded at least, and per chunk of the record
-RECORD_PERIODS = 2000
+#: periods per chunk of the record (its length: ``numerics.mean_periods``, or two full-inertia
+#: windows if longer)
 CHUNK = 250
 
 #: periods of the record the bracket of the zero is searched on (the zero itself: all of it)
@@ -92,7 +92,7 @@ def imposed_drift(stepper: Stepper, scene, speed: float) -> BatchMeans | None:
     from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
 
     m = scene.particle.m_star
-    periods = max(RECORD_PERIODS, 2 * full_window_length(m, scene.theta, 1))
+    periods = max(scene.numerics.mean_periods, 2 * full_window_length(m, scene.theta, 1))
     rec = _Record(stepper, periods)
 
     def push(d: float, span: int | None = None) -> float:

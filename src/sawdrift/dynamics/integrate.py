@@ -119,7 +119,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
     # known to the tolerance, a long-time mean stops before its budget (batch_means.CHUNK)
     target = num.settle_tolerance * speed
-    chaos = (long_time_mean(stepper.twin(), win, target=target)
+    chaos = (long_time_mean(stepper.twin(), win, num.mean_periods, target)
              if chaotic and num.settle is not False else None)
     if settling is None:
         settling = assess_fixed(win, speed, num.settle_tolerance,
@@ -131,11 +131,11 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
             # run given another length keeps it)
             win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
             if _irregular(win, settling):
-                chaos = long_time_mean(stepper.twin(), win, target=target)
+                chaos = long_time_mean(stepper.twin(), win, num.mean_periods, target)
     elif chaos is None and settling.long_mean is not None:
         chaos = settling.long_mean  # the settling measured the long-time mean itself
     elif chaos is None and num.settle is not False and _irregular(win, settling):
-        chaos = long_time_mean(stepper.twin(), win, target=target)
+        chaos = long_time_mean(stepper.twin(), win, num.mean_periods, target)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,

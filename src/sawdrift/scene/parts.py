@@ -322,6 +322,12 @@ class Numerics(BaseModel):
         None, description="settle: stop after this many periods even if not settled; default "
         "max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method"
     )
+    mean_periods: Annotated[int, Field(ge=100, le=10_000_000)] = Field(
+        500, description="irregular motions (chaotic, quasi-periodic, irregular heavy "
+        "bouncing): periods of the long-time mean drift and its batch-means standard error "
+        "(a chaotic light bouncer: about +-0.1 in drift ratio at 500, +-0.07 at 2000; an "
+        "irregular heavy bouncer +-0.008 at 500); a mean known to settle_tolerance stops earlier"
+    )
     confirm_solved: bool = Field(
         False, description="settle, m* >= 15: confirm a drift solved directly (force-velocity "
         "curve at full inertia) with full-inertia windows of three free vertical periods each "

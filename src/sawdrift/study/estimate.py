@@ -32,7 +32,6 @@ from typing import Any
 from ..contact.registry import get_model
 from ..dynamics import steady
 from ..dynamics.assembly import steps_per_period
-from ..dynamics.batch_means import CHAOS_PERIODS
 from ..dynamics.full_inertia import full_window_length
 from ..dynamics.integrate import DEFAULT_PERIODS, SETTLE_ON_PERIODS
 from ..dynamics.separated import SOLVED_MIN_MASS, solvable
@@ -119,7 +118,7 @@ def cell_steps(scene: Scene) -> tuple[float, float]:
         if num.settle is None and num.periods == DEFAULT_PERIODS:
             # a default run its window cannot confirm goes on (windows, a periodic orbit, a
             # long-time mean): on average GOES_ON times its fixed length, at most its budgets more
-            most = fixed + SETTLE_ON_PERIODS + CHAOS_PERIODS
+            most = fixed + SETTLE_ON_PERIODS + num.mean_periods
             return GOES_ON * fixed * k, most * k
         return fixed * k, fixed * k
     m = scene.particle.m_star
