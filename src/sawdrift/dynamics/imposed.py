@@ -34,8 +34,13 @@ from .stepper import Stepper
 #: windows if longer)
 CHUNK = 250
 
-#: periods of the record the bracket of the zero is searched on (the zero itself: all of it)
-BRACKET_PERIODS = 400
+#: periods of the record the bracket of the zero is searched on (the zero itself: all of it);
+#: the bracket is widened on the whole record where the two disagree
+BRACKET_PERIODS = 100
+
+#: the zero is found to this in drift ratio (a tenth of the tolerance, against a batch-means
+#: error of 5e-3 to 1e-2 over a 500-period record)
+ROOT_XTOL = 1e-4
 
 #: periods at the start of the record left out of the means (the contact memory fills in)
 WASH_PERIODS = 2
@@ -129,7 +134,7 @@ def imposed_drift(stepper: Stepper, scene, speed: float) -> BatchMeans | None:
         f_lo, f_hi = push(lo), push(hi)
         if hi - lo > 4.0:
             return None
-    root = brentq(push, lo, hi, xtol=1e-5, rtol=1e-10)
+    root = brentq(push, lo, hi, xtol=ROOT_XTOL, rtol=1e-10)
     per_period = rec.friction(root * speed).reshape(-1, rec.k).mean(axis=1)
     _mean, se_force, batches = blocked_error(per_period)
     slope = (f_hi - f_lo) / (hi - lo)  # d(-<T*>)/d(drift ratio) across the bracket
