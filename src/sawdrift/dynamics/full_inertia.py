@@ -39,6 +39,7 @@ window's, measured at full inertia.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -283,7 +284,9 @@ class _Approach:
 
 def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
                 max_steps: int, lam: float, last: Window | None = None,
-                expected: float | None = None) -> tuple[Window, FullInertia]:
+                expected: float | None = None,
+                give_up: Callable[[list[float]], bool] | None = None
+                ) -> tuple[Window, FullInertia]:
     """Measure full-inertia windows until the drift has settled (module docstring).
 
     Windows span at least three of the longest flight of ``last`` (the first stage's final
@@ -303,6 +306,9 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         A drift ratio solved directly (:mod:`.separated`, :mod:`.torus`): two consecutive windows
         within the accuracy of it and of each other settle the drift (else the usual
         :data:`STEADY_CHANGES` consecutive changes do).
+    give_up
+        Called with the window drift ratios so far after each window: True ends the stage
+        unsettled (a run whose window means wander has no drift to settle on).
     """
     w = full_window_length(scene.particle.m_star, scene.theta, minimum_window, stepper.rigid)
     if last is not None:
@@ -323,6 +329,8 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         action, jump = state.judge(values[-1], win)
         if action == "settled":
             settled = True
+            break
+        if give_up is not None and give_up(values):
             break
         if action == "jump" and speed > 0.0:
             shift_speed(stepper, jump * speed)

@@ -176,13 +176,27 @@ def _irregular(win: Window, settling: Settling) -> bool:
         return False
     if win.contact_lost:
         return True
-    changes = np.diff(np.asarray(settling.history[-7:], dtype=float))
+    return wanders(settling.history)
+
+
+def wanders(values) -> bool:
+    """Whether the last :data:`WANDER_WINDOWS` window means wander: their changes turn at least
+    :data:`WANDER_TURNS` times."""
+    changes = np.diff(np.asarray(values[-WANDER_WINDOWS:], dtype=float))
     turns = int(np.sum(changes[1:] * changes[:-1] < 0.0)) if changes.size >= 2 else 0
     return turns >= WANDER_TURNS
 
 
 #: sign changes among the last six window changes that make a contact-kept run wander
 WANDER_TURNS = 2
+WANDER_WINDOWS = 7
+
+
+def _gives_up(values: list[float]) -> bool:
+    """A default run going on from its fixed window stops its windows once their means wander
+    (:func:`wanders`) over :data:`WANDER_WINDOWS` windows past the first three: its long-time
+    mean runs from there, not after :data:`SETTLE_ON_PERIODS`."""
+    return len(values) >= WANDER_WINDOWS + 3 and wanders(values)
 
 
 def _leaving(scene: Scene, win: Window, speed: float) -> bool:
@@ -217,7 +231,8 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
         n_max = min(n_max, int(round(cap * stepper.k_per)))
     lam = mu / m_star if mu > 0.0 else 0.0
     start = stepper.step
-    win, full = settle_full(stepper, scene, speed, scale, n_periods, n_max, lam, last=win)
+    win, full = settle_full(stepper, scene, speed, scale, n_periods, n_max, lam, last=win,
+                            give_up=_gives_up)
     info = Settling(full.settled, "fixed_then_windows", m_star, full.window_periods,
                     periods_run + (stepper.step - start) / stepper.k_per, math.nan, full.history)
     return win, info
