@@ -98,3 +98,18 @@ def test_orbit_pattern_reads_the_last_orbit_and_checks_the_one_before():
     assert np.allclose(sync.phases, (0.3, 0.25))
     # the orbit before does not match: no pattern claimed
     assert orbit_pattern(np.array([0.3, 2.25, 10.3, 20.3, 22.25]), 0.0, 30, 10) is None
+
+
+def test_a_quasi_periodic_hop_does_not_spend_the_orbit_search():
+    """mmd, m* = 0.178, A* = 2.51 hops once a period, modulated by the undamped contact
+    oscillation: over 1920 periods its stroboscopic state stays about 0.02 from repeating (no
+    periodic orbit to find), so the search for one stops once that distance stays flat
+    (it ran its whole 300 periods before) and the drift is the long run's to 1e-5."""
+    long = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.177828},
+                           drive={"amplitude": 2.511886},
+                           numerics={"settle": False, "periods": 1920}))
+    assert long.orbit_period == 0 and long.periodicity > 1e-3  # no orbit, however long
+    res = _run("mmd", 0.177828, 2.511886)
+    assert res.regime == "hopping" and res.hop_period == 1
+    assert res.periods <= 60 + 4 * 27  # the fixed run and at most four more windows
+    assert abs(res.drift_ratio - long.drift_ratio) < 1e-5

@@ -114,6 +114,21 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_
     return 0
 
 
+def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_ORBIT,
+                   last: int = 8) -> float:
+    """How far the stroboscopic state is from repeating: the smallest over p <= ``longest`` of
+    the largest scaled change of the last ``last`` period-end states against p periods earlier
+    (:func:`orbit_period` finds an orbit where it is at most :data:`PERIODIC_TOL`); inf where
+    the window is too short to tell."""
+    s = np.asarray(samples)[:, 1:4] / scale
+    best = math.inf
+    for p in range(1, longest + 1):
+        if s.shape[0] < p + last:
+            break
+        best = min(best, float(np.abs(s[-last:] - s[-last - p : -p]).max()))
+    return best
+
+
 def hop_liftoffs(events: np.ndarray, t_start: float, t_end: float,
                  rebounds_only: bool = True) -> np.ndarray:
     """Times of the lift-offs that count as hops (see :data:`~sawdrift.dynamics.synchrony.MIN_FLIGHT`).
