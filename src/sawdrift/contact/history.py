@@ -152,6 +152,22 @@ class ContactHistory:
 
         return force, np.zeros(1), np.zeros(1, dtype=np.int64), np.zeros(1)
 
+    def kernel_reset(self) -> Callable[..., None]:
+        """``reset``: :meth:`reset` behind the kernel's call signature ``reset(fs, is_, pp)``.
+
+        Called with :meth:`kernel_call`'s arrays it empties this history, so that a loop bound
+        to both starts from an empty memory without returning to Python: the kernel's own
+        compiled ``reset``, or for the python engine a function that resets the reference.
+        """
+        if self._ref is None:
+            return self.model.kernel.reset
+        history = self
+
+        def reset(fs, is_, pp):  # noqa: ARG001 - the kernel's signature
+            history.reset()
+
+        return reset
+
     def state(self) -> dict[str, np.ndarray]:
         """A snapshot of the committed history, as arrays (copies): :meth:`set_state` puts it back.
 

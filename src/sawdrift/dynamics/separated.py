@@ -50,14 +50,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
 
 import numpy as np
 
 from ..codegen import Generated, generate, rebind
 from . import adams_bashforth as ig
+from . import fast_parts as fp
 from .drives.travelling import TravellingWave
 from .drives.two_wave import needs_two_waves
+from .fast_parts import _periodic_rate  # noqa: F401 - the imposed-speed route's
 from .full_inertia import SLIDING_FRACTION
 from .stepper import Stepper
 
@@ -192,35 +193,9 @@ def history_loop(force, compiled: bool):
     return fn
 
 
-@lru_cache(maxsize=8)
-def _operators(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The matrices that map K samples of one period of acc to the zero-mean periodic q with
-    q'' = acc - <acc>, to q', and a periodic q to q' (Fourier, applied to the unit vectors once:
-    a matrix product is cheaper than three transforms at these sizes)."""
-    w = 2.0 * np.pi * np.fft.rfftfreq(k, d=1.0 / k)
-    eye = np.eye(k)
-    spec = np.fft.rfft(eye, axis=0)
-    q_hat = np.zeros_like(spec)
-    q_hat[1:] = -spec[1:] / (w[1:, None] ** 2)
-    twice = np.fft.irfft(q_hat, n=k, axis=0)
-    once = np.fft.irfft(1j * w[:, None] * q_hat, n=k, axis=0)
-    rate = np.fft.irfft(1j * w[:, None] * spec, n=k, axis=0)
-    return twice, once, rate
-
-
-def _periodic(acc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The zero-mean periodic q and q' with q'' = acc - <acc> over one period of unit length."""
-    twice, once, _ = _operators(acc.size)
-    return twice @ acc, once @ acc
-
-
-def _periodic_rate(q: np.ndarray) -> np.ndarray:
-    """q' of a periodic q sampled over one period (Fourier)."""
-    return _operators(q.size)[2] @ q
-
-
 class _Problem:
-    """One period of the imposed motion: the drive's samples and the contact law to run on it."""
+    """One period of the imposed motion: the drive's samples, and the contact law bound into the
+    compiled loops of :mod:`.fast_parts` that run on it from an empty memory of the run's law."""
 
     def __init__(self, stepper: Stepper, t0: float):
         self.k = stepper.k_per
@@ -233,60 +208,73 @@ class _Problem:
         u = np.array([surface(float(ti), 0.0, stepper.dp) for ti in t])
         self.ux, self.uxd, self.uy, self.uyd = u.T
         self.t = np.arange(self.k) / self.k
-        #: an empty contact memory of the run's law, reset before every evaluation
+        self.motion = np.stack((self.ux, self.uxd, self.uy, self.uyd, self.t))
+        self.spec = fp.spectral_tables(self.k)
+        self.work = np.zeros((fp.WORK_ROWS, self.k))
+        #: the contact memory the loops drive (reset at the start of every evaluation)
         self.scratch = stepper.history.copy()
         force, self.fs, self.is_, self.pp = self.scratch.kernel_call()
-        self.loop = history_loop(force, stepper.compiled)
+        self.loops = fp.fast_loops(force, self.scratch.kernel_reset(), stepper.compiled)
         self.evaluations = 0
+        #: how far the contact's memory was from repeating in the last :meth:`fast`
         self.residual = 0.0
 
-    def forces(self, y_mean: float, eta: np.ndarray, eta_d: np.ndarray, v: float, xi: np.ndarray,
-               xi_d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """N*, T* over the last of :data:`PERIODS` periods of the imposed motion, from an empty
-        contact memory."""
-        a = y_mean + eta - self.uy
-        adot = eta_d - self.uyd
-        b = (v * self.t + xi - self.ux) * self.scale_b
-        bdot = (v + xi_d - self.uxd) * self.scale_b
-        self.scratch.reset()
-        n = np.empty(self.k)
-        t = np.empty(self.k)
-        #: how far the contact's memory is from repeating: the last two periods' T* apart
-        path = np.stack((a, b, adot, bdot))
-        self.residual = float(self.loop(self.fs, self.is_, self.pp, path, v * self.scale_b,
-                                        PERIODS, n, t))
-        self.evaluations += 1
-        return n, t
+    def orbit(self, eta: np.ndarray, eta_d: np.ndarray | None = None,
+              xi: np.ndarray | None = None) -> np.ndarray:
+        """A new orbit array (rows of :mod:`.fast_parts`) holding eta, eta' and xi (else 0)."""
+        out = np.zeros((fp.ORBIT_ROWS, self.k))
+        out[fp.ETA] = eta
+        if eta_d is not None:
+            out[fp.ETA_D] = eta_d
+        if xi is not None:
+            out[fp.XI] = xi
+        return out
 
     def fast(self, y_mean: float, v: float, eta: np.ndarray, xi: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Iterate the fast parts at fixed (Y, V) to their periodic solution; returns eta, eta',
-        xi, xi', N*, T*."""
-        eta_d = _periodic_rate(eta)
-        xi_d = _periodic_rate(xi)
-        for _ in range(FAST_ITERATIONS):
-            n, t = self.forces(y_mean, eta, eta_d, v, xi, xi_d)
-            eta_new, eta_d = _periodic((1.0 - n) / self.m)
-            xi_new, xi_d = _periodic(-self.mu * t / self.m)
-            change = max(float(np.max(np.abs(eta_new - eta))), float(np.max(np.abs(xi_new - xi))))
-            eta, xi = eta_new, xi_new
-            if change <= FAST_TOL * max(1.0, abs(y_mean)):
-                break
-        n, t = self.forces(y_mean, eta, eta_d, v, xi, xi_d)
-        return eta, eta_d, xi, xi_d, n, t
+        """Iterate the fast parts at fixed (Y, V) to their periodic solution (one compiled call,
+        :func:`~.fast_parts.fast_body`); returns eta, eta', xi, xi', N*, T*."""
+        o = self.orbit(eta, xi=xi)
+        count, self.residual = self.loops["fast_body"](
+            self.fs, self.is_, self.pp, y_mean, v, self.m, self.mu, self.scale_b, self.motion,
+            self.spec, o, self.work, PERIODS, FAST_ITERATIONS, FAST_TOL)
+        self.evaluations += int(count)
+        return o[fp.ETA], o[fp.ETA_D], o[fp.XI], o[fp.XI_D], o[fp.NORMAL], o[fp.TANGENTIAL]
+
+    def normal_mean(self, y_mean: float, orbit: np.ndarray) -> float:
+        """<N*> over one period at the mean compression Y, at rest horizontally, on the vertical
+        fast part eta, eta' in ``orbit`` (its xi rows zero)."""
+        self.evaluations += 1
+        return float(self.loops["normal_mean_body"](self.fs, self.is_, self.pp, y_mean,
+                                                    self.scale_b, self.motion, orbit, PERIODS))
+
+    def vertical(self, y_mean: float, orbit: np.ndarray, iterations: int) -> float:
+        """``iterations`` steps of the vertical fast part at Y in ``orbit`` (in place, at rest
+        horizontally, :func:`~.fast_parts.vertical_body`); <N*> of the last contact run."""
+        self.evaluations += iterations
+        return float(self.loops["vertical_body"](
+            self.fs, self.is_, self.pp, y_mean, self.m, self.scale_b, self.motion, self.spec,
+            orbit, self.work, PERIODS, iterations))
+
+    def cycle_push(self, heights: np.ndarray, weights: np.ndarray, v: float, nodes: np.ndarray,
+                   sweeps: int) -> float:
+        """-sum_j w_j <T*>_j at speed V over the nodes of a slow vertical cycle, each node's
+        horizontal fast part stepped ``sweeps`` times on from where ``nodes[j]`` holds it (one
+        compiled call, :func:`~.fast_parts.node_push_body`)."""
+        return float(self.loops["node_push_body"](
+            self.fs, self.is_, self.pp, heights, weights, v, self.m, self.mu, self.scale_b,
+            self.motion, self.spec, nodes, self.work, PERIODS, sweeps))
 
 
 def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
     """Y with <N*> = 1 and the vertical fast part eta on it (the normal law ignores b*)."""
     from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
 
-    eta = np.zeros(p.k)
-    zero = np.zeros(p.k)
+    orbit = p.orbit(np.zeros(p.k))
     y_mean = 1.0
     for _ in range(FAST_ITERATIONS):
-        def excess(y: float, eta: np.ndarray = eta) -> float:
-            n, _t = p.forces(y, eta, _periodic_rate(eta), 0.0, zero, zero)
-            return float(np.mean(n)) - 1.0
+        def excess(y: float, orbit: np.ndarray = orbit) -> float:
+            return p.normal_mean(y, orbit) - 1.0
 
         lo, hi = y_mean - 0.5, y_mean + 0.5
         while excess(lo) > 0.0:
@@ -294,13 +282,13 @@ def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
         while excess(hi) < 0.0:
             hi += 2.0 * (hi - lo)
         y_new = brentq(excess, lo, hi, xtol=1e-13, rtol=1e-13)
-        n, _t = p.forces(y_new, eta, _periodic_rate(eta), 0.0, zero, zero)
-        eta_new, _ = _periodic((1.0 - n) / p.m)
-        change = float(np.max(np.abs(eta_new - eta))) + abs(y_new - y_mean)
-        eta, y_mean = eta_new, y_new
+        eta = orbit[fp.ETA].copy()
+        p.vertical(y_new, orbit, 1)
+        change = float(np.max(np.abs(orbit[fp.ETA] - eta))) + abs(y_new - y_mean)
+        y_mean = y_new
         if change <= FAST_TOL * max(1.0, abs(y_mean)):
             break
-    return y_mean, eta
+    return y_mean, orbit[fp.ETA].copy()
 
 
 def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,

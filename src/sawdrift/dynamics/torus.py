@@ -36,7 +36,8 @@ import math
 
 import numpy as np
 
-from .separated import SeparatedOrbit, _periodic, _periodic_rate
+from . import fast_parts as fp
+from .separated import SeparatedOrbit
 from .stepper import Stepper
 
 #: Gauss-Legendre nodes over the half cycle of the slow oscillation
@@ -54,28 +55,27 @@ SLOW_PERIODS = 20.0
 NODE_ITERATIONS = 3
 
 
-def _normal_mean(orbit: SeparatedOrbit, y: float) -> float:
-    """<N*> over one period at the mean compression ``y`` on the orbit's vertical fast part."""
-    p = orbit.problem
-    zero = np.zeros(p.k)
-    n, _t = p.forces(y, orbit.eta, orbit.eta_rate, 0.0, zero, zero)
-    return float(np.mean(n))
-
-
 class _Potential:
     """Phi(Y) by trapezoids of <N*> - 1 on a uniform grid of ``step`` walked out from the orbit's
     Y on both sides as far as asked, then interpolated linearly."""
 
     def __init__(self, orbit: SeparatedOrbit, step: float):
         self.orbit, self.step = orbit, step
+        #: the orbit's vertical fast part, on which <N*>(Y) is taken (at rest horizontally)
+        self.fast = orbit.problem.orbit(orbit.eta, orbit.eta_rate)
         y0 = orbit.mean_compression
-        f0 = _normal_mean(orbit, y0) - 1.0
+        f0 = self._normal_excess(y0)
         self.sides = {1.0: ([y0], [0.0], [f0]), -1.0: ([y0], [0.0], [f0])}
+
+    def _normal_excess(self, y: float) -> float:
+        """<N*> - 1 over one period at the mean compression ``y`` on the orbit's vertical fast
+        part."""
+        return self.orbit.problem.normal_mean(y, self.fast) - 1.0
 
     def _extend(self, direction: float) -> None:
         ys, phis, fs = self.sides[direction]
         y = ys[-1] + direction * self.step
-        f = _normal_mean(self.orbit, y) - 1.0
+        f = self._normal_excess(y)
         phis.append(phis[-1] + 0.5 * (fs[-1] + f) * (y - ys[-1]))
         ys.append(y)
         fs.append(f)
@@ -158,30 +158,19 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
     if period < SLOW_PERIODS:
         return None  # not slow against the wave: the averaging does not hold
     p = orbit.problem
-    etas = []
+    # each node's orbit array: its vertical fast part, from the orbit's (they differ by
+    # O(1/m*)), and the horizontal one, iterated on from call to call of push
+    nodes = np.zeros((heights.size, fp.ORBIT_ROWS, p.k))
     lifts = 0.0
-    for h, w in zip(heights, weights, strict=True):
-        eta = orbit.eta
-        for _ in range(NODE_ITERATIONS):
-            n, _t = p.forces(h, eta, _periodic_rate(eta), 0.0, np.zeros(p.k), np.zeros(p.k))
-            eta, _ = _periodic((1.0 - n) / p.m)
-        etas.append((eta, _periodic_rate(eta)))
-        lifts += w * float(np.min(h + eta - p.uy) <= 0.0)
-    xis = [np.zeros(p.k) for _ in heights]
+    for j, (h, w) in enumerate(zip(heights, weights, strict=True)):
+        nodes[j, fp.ETA] = orbit.eta
+        nodes[j, fp.ETA_D] = orbit.eta_rate
+        p.vertical(float(h), nodes[j], NODE_ITERATIONS)
+        lifts += w * float(np.min(h + nodes[j, fp.ETA] - p.uy) <= 0.0)
 
     def push(d: float) -> float:
         """-F at drift ratio d: positive where the cycle-averaged friction speeds it up."""
-        total = 0.0
-        for j, h in enumerate(heights):
-            eta, eta_d = etas[j]
-            xi = xis[j]
-            xi_d = _periodic_rate(xi)
-            for _ in range(2):
-                _n, t = p.forces(h, eta, eta_d, d * speed, xi, xi_d)
-                xi, xi_d = _periodic(-p.mu * t / p.m)
-            xis[j] = xi
-            total += weights[j] * float(np.mean(t))
-        return -total
+        return p.cycle_push(heights, weights, d * speed, nodes, 2)
 
     d0 = orbit.drift / speed
     f0 = push(d0)
