@@ -24,7 +24,7 @@ and ``reset`` and compiled once per kernel and cached on disk (:mod:`sawdrift.co
 one at V = 0 (:func:`vertical_body`), the mean normal force on a given vertical fast part
 (:func:`normal_mean_body`) and the friction force averaged over the nodes of a slow vertical
 cycle (:func:`node_push_body`). The transforms are a radix-2 fast Fourier transform where K is
-a power of two (the default samples per period, 128) and the direct sum otherwise. The python
+a power of two (the default samples per period, 128; K >= 8), else the direct sum. The python
 engine runs the same loop templates as plain Python, with the transforms done by the matrices
 of :func:`_operators` (numpy).
 """
@@ -43,8 +43,9 @@ ETA, ETA_D, XI, XI_D, NORMAL, TANGENTIAL = range(6)
 ORBIT_ROWS = 6
 #: rows of the imposed motion (5, K): the surface's u_x, u_x', u_y, u_y' and the sample times
 UX, UX_D, UY, UY_D, TIME = range(5)
-#: rows of the spectral tables (4, K): cos and sin of 2 pi m / K, -1 / w_f^2 and w_f
-COS, SIN, TWICE, ONCE = range(4)
+#: rows of the spectral tables (5, K): cos and sin of 2 pi m / K, -1 / w_f^2, w_f and the
+#: bit-reversal permutation
+COS, SIN, TWICE, ONCE, PERM = range(5)
 #: rows of the scratch array (10, K)
 RE, IM, RE2, IM2, TRE, TIM, ACC_A, ACC_B, NEW_A, NEW_B = range(10)
 WORK_ROWS = 10
@@ -80,18 +81,22 @@ def _periodic_rate(q: np.ndarray) -> np.ndarray:
 @lru_cache(maxsize=8)
 def spectral_tables(k: int) -> np.ndarray:
     """The tables the compiled transforms read (rows :data:`COS`, :data:`SIN`, :data:`TWICE`,
-    :data:`ONCE`): cos and sin of 2 pi m / K, the factor -1 / w_f^2 of q'' = acc (0 at f = 0)
-    and w_f of the rate (0 at f = 0 and at the Nyquist coefficient), f in FFT order."""
+    :data:`ONCE`, :data:`PERM`): cos and sin of 2 pi m / K, the factor -1 / w_f^2 of q'' = acc
+    (0 at f = 0) and w_f of the rate (0 at f = 0 and at the Nyquist coefficient), f in FFT
+    order, and for K a power of two the bit-reversed index of each sample."""
     f = np.arange(k)
     signed = np.where(f <= k // 2, f, f - k).astype(float)
     w = 2.0 * np.pi * signed
-    tables = np.zeros((4, k))
+    tables = np.zeros((5, k))
     tables[COS] = np.cos(2.0 * np.pi * f / k)
     tables[SIN] = np.sin(2.0 * np.pi * f / k)
     tables[TWICE, 1:] = -1.0 / w[1:] ** 2
     tables[ONCE] = w
     if k % 2 == 0:
         tables[ONCE, k // 2] = 0.0
+    bits = k.bit_length() - 1
+    if k == 1 << bits:
+        tables[PERM] = [int(format(i, f"0{bits}b")[::-1], 2) for i in range(k)]
     tables.setflags(write=False)
     return tables
 
@@ -104,17 +109,29 @@ def transform(re, im, spec, work, sign):
     power of two, else the direct sum through the rows :data:`TRE`, :data:`TIM` of ``work``."""
     k = re.size
     if k & (k - 1) == 0:
-        j = 0
-        for i in range(1, k):  # bit-reversed order
-            bit = k >> 1
-            while j & bit:
-                j ^= bit
-                bit >>= 1
-            j ^= bit
+        for i in range(k):  # into bit-reversed order
+            j = int(spec[PERM, i])
             if i < j:
                 re[i], re[j] = re[j], re[i]
                 im[i], im[j] = im[j], im[i]
-        size = 2
+        for s in range(0, k, 4):  # the first two stages at once (twiddles 1 and sign i)
+            r0 = re[s] + re[s + 1]
+            i0 = im[s] + im[s + 1]
+            r1 = re[s] - re[s + 1]
+            i1 = im[s] - im[s + 1]
+            r2 = re[s + 2] + re[s + 3]
+            i2 = im[s + 2] + im[s + 3]
+            r3 = -sign * (im[s + 2] - im[s + 3])
+            i3 = sign * (re[s + 2] - re[s + 3])
+            re[s] = r0 + r2
+            im[s] = i0 + i2
+            re[s + 2] = r0 - r2
+            im[s + 2] = i0 - i2
+            re[s + 1] = r1 + r3
+            im[s + 1] = i1 + i3
+            re[s + 3] = r1 - r3
+            im[s + 3] = i1 - i3
+        size = 8
         while size <= k:
             half = size // 2
             step = k // size
@@ -285,21 +302,32 @@ def fast_body(fs, is_, pp, y, v, m, mu, scale_b, motion, spec, orbit, work, peri
     return count + 1, residual
 
 
-def normal_mean_body(fs, is_, pp, y, scale_b, motion, orbit, periods):
+def normal_mean_body(fs, is_, pp, npp, alone, y, scale_b, motion, orbit, periods):
     """<N*> over the last period at rest horizontally (V = 0, xi = 0: the rows :data:`XI`,
-    :data:`XI_D` of ``orbit`` are zero) on the vertical fast part eta, eta' in ``orbit``."""
-    contact_periods(fs, is_, pp, y, 0.0, scale_b, motion, orbit, periods)
+    :data:`XI_D` of ``orbit`` are zero) on the vertical fast part eta, eta' in ``orbit``, N*
+    into its row :data:`NORMAL`. ``alone``: the contact law's N* is its normal law's
+    (``normal``, a global bound per kernel, reading ``npp``), which keeps no memory: one period
+    of it gives the last period's N* (a* repeats every period), else the contact law runs."""
+    if not alone:
+        contact_periods(fs, is_, pp, y, 0.0, scale_b, motion, orbit, periods)
+        return np.mean(orbit[NORMAL])
+    for j in range(motion.shape[1]):
+        a = y + orbit[ETA, j] - motion[UY, j]
+        adot = orbit[ETA_D, j] - motion[UY_D, j]
+        n, _t = normal(fs, is_, npp, a, 0.0, adot, 0.0)  # noqa: F821
+        orbit[NORMAL, j] = n
     return np.mean(orbit[NORMAL])
 
 
-def vertical_body(fs, is_, pp, y, m, scale_b, motion, spec, orbit, work, periods, iterations):
-    """``iterations`` steps of the vertical fast part at Y and rest (V = 0, xi = 0): the contact
-    law on eta, eta' in ``orbit``, then eta, eta' of m* eta'' = (1 - N*) - <1 - N*> in their
-    place; returns <N*> of the last contact evaluation."""
+def vertical_body(fs, is_, pp, npp, alone, y, m, scale_b, motion, spec, orbit, work, periods,
+                  iterations):
+    """``iterations`` steps of the vertical fast part at Y and rest (V = 0, xi = 0): N* on eta,
+    eta' in ``orbit`` (:func:`normal_mean_body`), then eta, eta' of
+    m* eta'' = (1 - N*) - <1 - N*> in their place; returns <N*> of the last step."""
     k = motion.shape[1]
     mean = 0.0
     for _ in range(iterations):
-        mean = normal_mean_body(fs, is_, pp, y, scale_b, motion, orbit, periods)
+        mean = normal_mean_body(fs, is_, pp, npp, alone, y, scale_b, motion, orbit, periods)
         for j in range(k):
             work[ACC_A, j] = (1.0 - orbit[NORMAL, j]) / m
         periodic_one(work[ACC_A], orbit[ETA], orbit[ETA_D], spec, work)
@@ -330,29 +358,45 @@ _TRANSFORMS = (transform, periodic_pair, periodic_one, rates_pair)
 _NUMPY_TRANSFORMS = {"periodic_pair": _periodic_pair_numpy, "periodic_one": _periodic_one_numpy,
                      "rates_pair": _rates_pair_numpy}
 _CONSTANTS = ("ETA", "ETA_D", "XI", "XI_D", "NORMAL", "TANGENTIAL", "UX", "UX_D", "UY", "UY_D",
-              "TIME", "COS", "SIN", "TWICE", "ONCE", "RE", "IM", "RE2", "IM2", "TRE", "TIM",
+              "TIME", "COS", "SIN", "TWICE", "ONCE", "PERM", "RE", "IM", "RE2", "IM2", "TRE", "TIM",
               "ACC_A", "ACC_B", "NEW_A", "NEW_B")
 _IMPORTS = ("import numpy as np  # noqa: F401\n"
             f"from sawdrift.dynamics.fast_parts import {', '.join(_CONSTANTS)}  # noqa: F401\n")
 _LOOPS: dict[Any, dict[str, Any]] = {}
 
 
-def fast_loops(force: Any, reset: Any, compiled: bool) -> dict[str, Any]:
+def normal_alone(history: Any, compiled: bool) -> tuple[Any, np.ndarray, bool]:
+    """``(normal, npp, alone)`` for :func:`normal_mean_body`: the normal law of a contact
+    history's model and its parameters, where the model is composed of slots
+    (:class:`~sawdrift.contact.slots.TangentialLaw`: its N* is the normal slot's, with the
+    normal-damping slot's, bit for bit, and no memory); else the contact law (not alone)."""
+    from ..contact.slots import TangentialLaw
+
+    model = history.model
+    if not isinstance(model, TangentialLaw):
+        force, _fs, _is, pp = history.kernel_call()
+        return force, pp, False
+    normal, npp = model.normal_law()
+    return (normal if compiled else normal.py_func), npp, True
+
+
+def fast_loops(force: Any, reset: Any, normal: Any, compiled: bool) -> dict[str, Any]:
     """The loop templates bound to a contact law's ``force`` and ``reset`` (the kernel's, with
-    :meth:`~sawdrift.contact.history.ContactHistory.kernel_call`'s arrays), by name: compiled
-    once per kernel and cached on disk across processes (:mod:`sawdrift.codegen`), or plain
-    Python with numpy's transforms."""
+    :meth:`~sawdrift.contact.history.ContactHistory.kernel_call`'s arrays) and its ``normal``
+    law (:func:`normal_alone`), by name: compiled once per kernel and cached on disk across
+    processes (:mod:`sawdrift.codegen`), or plain Python with numpy's transforms."""
     names = {name: globals()[name] for name in _CONSTANTS}
-    namespace = {"np": np, "force": force, "reset": reset, **names}
+    namespace = {"np": np, "force": force, "reset": reset, "normal": normal, **names}
     if not compiled:
         return rebind(_TEMPLATES, {**namespace, **_NUMPY_TRANSFORMS})
-    loops = _LOOPS.get((force, reset))
+    key = (force, reset, normal)
+    loops = _LOOPS.get(key)
     if loops is None:
         loops = generate(Generated(
             prefix="sawdrift_loop_", doc="the separated orbit's fast parts bound to a contact law",
             templates=_TRANSFORMS + _TEMPLATES, namespace=namespace, imports=_IMPORTS,
-            bind={"force": force, "reset": reset}, decorator="njit(cache=True, _nrt=False)",
-            memory_options={"_nrt": False},
+            bind={"force": force, "reset": reset, "normal": normal},
+            decorator="njit(cache=True, _nrt=False)", memory_options={"_nrt": False},
         ))
-        _LOOPS[(force, reset)] = loops
+        _LOOPS[key] = loops
     return loops

@@ -214,7 +214,8 @@ class _Problem:
         #: the contact memory the loops drive (reset at the start of every evaluation)
         self.scratch = stepper.history.copy()
         force, self.fs, self.is_, self.pp = self.scratch.kernel_call()
-        self.loops = fp.fast_loops(force, self.scratch.kernel_reset(), stepper.compiled)
+        normal, self.npp, self.alone = fp.normal_alone(self.scratch, stepper.compiled)
+        self.loops = fp.fast_loops(force, self.scratch.kernel_reset(), normal, stepper.compiled)
         self.evaluations = 0
         #: how far the contact's memory was from repeating in the last :meth:`fast`
         self.residual = 0.0
@@ -245,16 +246,17 @@ class _Problem:
         """<N*> over one period at the mean compression Y, at rest horizontally, on the vertical
         fast part eta, eta' in ``orbit`` (its xi rows zero)."""
         self.evaluations += 1
-        return float(self.loops["normal_mean_body"](self.fs, self.is_, self.pp, y_mean,
-                                                    self.scale_b, self.motion, orbit, PERIODS))
+        return float(self.loops["normal_mean_body"](
+            self.fs, self.is_, self.pp, self.npp, self.alone, y_mean, self.scale_b, self.motion,
+            orbit, PERIODS))
 
     def vertical(self, y_mean: float, orbit: np.ndarray, iterations: int) -> float:
         """``iterations`` steps of the vertical fast part at Y in ``orbit`` (in place, at rest
         horizontally, :func:`~.fast_parts.vertical_body`); <N*> of the last contact run."""
         self.evaluations += iterations
         return float(self.loops["vertical_body"](
-            self.fs, self.is_, self.pp, y_mean, self.m, self.scale_b, self.motion, self.spec,
-            orbit, self.work, PERIODS, iterations))
+            self.fs, self.is_, self.pp, self.npp, self.alone, y_mean, self.m, self.scale_b,
+            self.motion, self.spec, orbit, self.work, PERIODS, iterations))
 
     def cycle_push(self, heights: np.ndarray, weights: np.ndarray, v: float, nodes: np.ndarray,
                    sweeps: int) -> float:
@@ -273,8 +275,12 @@ def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
     orbit = p.orbit(np.zeros(p.k))
     y_mean = 1.0
     for _ in range(FAST_ITERATIONS):
-        def excess(y: float, orbit: np.ndarray = orbit) -> float:
-            return p.normal_mean(y, orbit) - 1.0
+        seen: dict[float, float] = {}  # brentq evaluates the bracket's ends again
+
+        def excess(y: float, orbit: np.ndarray = orbit, seen: dict = seen) -> float:
+            if y not in seen:
+                seen[y] = p.normal_mean(y, orbit) - 1.0
+            return seen[y]
 
         lo, hi = y_mean - 0.5, y_mean + 0.5
         while excess(lo) > 0.0:
