@@ -46,6 +46,9 @@ UX, UX_D, UY, UY_D, TIME = range(5)
 #: rows of the spectral tables (5, K): cos and sin of 2 pi m / K, -1 / w_f^2, w_f and the
 #: bit-reversal permutation
 COS, SIN, TWICE, ONCE, PERM = range(5)
+#: entries of a problem's constants: m*, mu, 1 / (theta mu), periods per contact evaluation
+#: and whether N* is the normal law's alone (1.0) or the contact law's (0.0)
+PR_M, PR_MU, PR_SCALE_B, PR_PERIODS, PR_ALONE = range(5)
 #: rows of the scratch array (10, K)
 RE, IM, RE2, IM2, TRE, TIM, ACC_A, ACC_B, NEW_A, NEW_B = range(10)
 WORK_ROWS = 10
@@ -244,15 +247,22 @@ def _rates_pair_numpy(x_a, x_b, r_a, r_b, spec, work):  # noqa: ARG001
 
 
 # -- compiled templates: the contact law on the imposed motion, and the iterations ------------
+#
+# Their arguments: ``contact`` = (fs, is_, pp, npp), the contact memory's arrays and the normal
+# law's parameters; ``prm`` the problem's constants (rows PR_*); ``tables`` = (motion, spec,
+# work): the imposed motion (rows UX...), the spectral tables (rows COS...) and scratch rows.
 
-def contact_periods(fs, is_, pp, y, v, scale_b, motion, orbit, periods):
+def contact_periods(contact, y, v, prm, motion, orbit):
     """The contact law (``force``, ``reset``: globals bound per kernel) from an empty memory
-    along ``periods`` periods of a* = Y + eta - u_y, b* = (V t* + xi - u_x) / (theta mu) and
-    their rates (``scale_b`` = 1 / (theta mu)): N*, T* of the last period into the rows
-    :data:`NORMAL`, :data:`TANGENTIAL` of ``orbit``; returns the largest change of T* from the
-    period before (how far the memory is from repeating)."""
+    along ``prm[PR_PERIODS]`` periods of a* = Y + eta - u_y, b* = (V t* + xi - u_x) / (theta mu)
+    and their rates (1 / (theta mu) = ``prm[PR_SCALE_B]``): N*, T* of the last period into the
+    rows :data:`NORMAL`, :data:`TANGENTIAL` of ``orbit``; returns the largest change of T* from
+    the period before (how far the memory is from repeating)."""
+    fs, is_, pp, _npp = contact
     reset(fs, is_, pp)  # noqa: F821
     k = motion.shape[1]
+    scale_b = prm[PR_SCALE_B]
+    periods = int(prm[PR_PERIODS])
     db = v * scale_b
     change = 0.0
     for p in range(periods):
@@ -271,19 +281,21 @@ def contact_periods(fs, is_, pp, y, v, scale_b, motion, orbit, periods):
     return change
 
 
-def fast_body(fs, is_, pp, y, v, m, mu, scale_b, motion, spec, orbit, work, periods,
-              iterations, tol):
+def fast_body(contact, y, v, prm, tables, orbit, iterations, tol):
     """The fast parts at fixed (Y, V) iterated to their periodic solution from eta, xi in
     ``orbit`` (their rates are taken first): at most ``iterations`` times the contact law and
     the two integrations, until eta and xi change by at most ``tol`` max(1, |Y|), then the
     contact law once more on the result. ``orbit`` ends on eta, eta', xi, xi', N*, T*; returns
     the contact evaluations and the last one's change of T* (:func:`contact_periods`)."""
+    motion, spec, work = tables
     k = motion.shape[1]
+    m = prm[PR_M]
+    mu = prm[PR_MU]
     rates_pair(orbit[ETA], orbit[XI], orbit[ETA_D], orbit[XI_D], spec, work)
     bound = tol * max(1.0, abs(y))
     count = 0
     for _ in range(iterations):
-        contact_periods(fs, is_, pp, y, v, scale_b, motion, orbit, periods)
+        contact_periods(contact, y, v, prm, motion, orbit)
         count += 1
         for j in range(k):
             work[ACC_A, j] = (1.0 - orbit[NORMAL, j]) / m
@@ -298,19 +310,20 @@ def fast_body(fs, is_, pp, y, v, m, mu, scale_b, motion, spec, orbit, work, peri
             orbit[XI, j] = work[NEW_B, j]
         if change <= bound:
             break
-    residual = contact_periods(fs, is_, pp, y, v, scale_b, motion, orbit, periods)
+    residual = contact_periods(contact, y, v, prm, motion, orbit)
     return count + 1, residual
 
 
-def normal_mean_body(fs, is_, pp, npp, alone, y, scale_b, motion, orbit, periods):
+def normal_mean_body(contact, y, prm, motion, orbit):
     """<N*> over the last period at rest horizontally (V = 0, xi = 0: the rows :data:`XI`,
     :data:`XI_D` of ``orbit`` are zero) on the vertical fast part eta, eta' in ``orbit``, N*
-    into its row :data:`NORMAL`. ``alone``: the contact law's N* is its normal law's
-    (``normal``, a global bound per kernel, reading ``npp``), which keeps no memory: one period
-    of it gives the last period's N* (a* repeats every period), else the contact law runs."""
-    if not alone:
-        contact_periods(fs, is_, pp, y, 0.0, scale_b, motion, orbit, periods)
+    into its row :data:`NORMAL`. Where ``prm[PR_ALONE]`` the contact law's N* is its normal
+    law's (``normal``, a global bound per kernel, reading ``npp``), which keeps no memory: one
+    period of it is the last period's N* (a* repeats every period); else the contact law runs."""
+    if prm[PR_ALONE] == 0.0:
+        contact_periods(contact, y, 0.0, prm, motion, orbit)
         return np.mean(orbit[NORMAL])
+    fs, is_, _pp, npp = contact
     for j in range(motion.shape[1]):
         a = y + orbit[ETA, j] - motion[UY, j]
         adot = orbit[ETA_D, j] - motion[UY_D, j]
@@ -319,35 +332,36 @@ def normal_mean_body(fs, is_, pp, npp, alone, y, scale_b, motion, orbit, periods
     return np.mean(orbit[NORMAL])
 
 
-def vertical_body(fs, is_, pp, npp, alone, y, m, scale_b, motion, spec, orbit, work, periods,
-                  iterations):
+def vertical_body(contact, y, prm, tables, orbit, iterations):
     """``iterations`` steps of the vertical fast part at Y and rest (V = 0, xi = 0): N* on eta,
     eta' in ``orbit`` (:func:`normal_mean_body`), then eta, eta' of
     m* eta'' = (1 - N*) - <1 - N*> in their place; returns <N*> of the last step."""
-    k = motion.shape[1]
+    motion, spec, work = tables
+    m = prm[PR_M]
     mean = 0.0
     for _ in range(iterations):
-        mean = normal_mean_body(fs, is_, pp, npp, alone, y, scale_b, motion, orbit, periods)
-        for j in range(k):
+        mean = normal_mean_body(contact, y, prm, motion, orbit)
+        for j in range(motion.shape[1]):
             work[ACC_A, j] = (1.0 - orbit[NORMAL, j]) / m
         periodic_one(work[ACC_A], orbit[ETA], orbit[ETA_D], spec, work)
     return mean
 
 
-def node_push_body(fs, is_, pp, heights, weights, v, m, mu, scale_b, motion, spec, nodes, work,
-                   periods, sweeps):
+def node_push_body(contact, heights, weights, v, prm, tables, nodes, sweeps):
     """-sum_j w_j <T*>_j over the nodes of a slow vertical cycle at speed V: at each node j
     (mean compression ``heights[j]``, orbit array ``nodes[j]`` holding its vertical fast part)
     ``sweeps`` steps of the horizontal fast part from the xi, xi' it holds (the contact law,
     then xi, xi' of m* xi'' = -mu (T* - <T*>)), <T*> of the last contact evaluation."""
-    k = motion.shape[1]
+    motion, spec, work = tables
+    ratio = -prm[PR_MU]
+    m = prm[PR_M]
     total = 0.0
     for j in range(heights.size):
         orbit = nodes[j]
         for _ in range(sweeps):
-            contact_periods(fs, is_, pp, heights[j], v, scale_b, motion, orbit, periods)
-            for i in range(k):
-                work[ACC_B, i] = -mu * orbit[TANGENTIAL, i] / m
+            contact_periods(contact, heights[j], v, prm, motion, orbit)
+            for i in range(motion.shape[1]):
+                work[ACC_B, i] = ratio * orbit[TANGENTIAL, i] / m
             periodic_one(work[ACC_B], orbit[XI], orbit[XI_D], spec, work)
         total += weights[j] * np.mean(orbit[TANGENTIAL])
     return -total
@@ -359,7 +373,8 @@ _NUMPY_TRANSFORMS = {"periodic_pair": _periodic_pair_numpy, "periodic_one": _per
                      "rates_pair": _rates_pair_numpy}
 _CONSTANTS = ("ETA", "ETA_D", "XI", "XI_D", "NORMAL", "TANGENTIAL", "UX", "UX_D", "UY", "UY_D",
               "TIME", "COS", "SIN", "TWICE", "ONCE", "PERM", "RE", "IM", "RE2", "IM2", "TRE", "TIM",
-              "ACC_A", "ACC_B", "NEW_A", "NEW_B")
+              "ACC_A", "ACC_B", "NEW_A", "NEW_B", "PR_M", "PR_MU", "PR_SCALE_B", "PR_PERIODS",
+              "PR_ALONE")
 _IMPORTS = ("import numpy as np  # noqa: F401\n"
             f"from sawdrift.dynamics.fast_parts import {', '.join(_CONSTANTS)}  # noqa: F401\n")
 _LOOPS: dict[Any, dict[str, Any]] = {}

@@ -208,13 +208,15 @@ class _Problem:
         u = np.array([surface(float(ti), 0.0, stepper.dp) for ti in t])
         self.ux, self.uxd, self.uy, self.uyd = u.T
         self.t = np.arange(self.k) / self.k
-        self.motion = np.stack((self.ux, self.uxd, self.uy, self.uyd, self.t))
-        self.spec = fp.spectral_tables(self.k)
-        self.work = np.zeros((fp.WORK_ROWS, self.k))
+        motion = np.stack((self.ux, self.uxd, self.uy, self.uyd, self.t))
+        #: the imposed motion, the spectral tables and scratch rows (:mod:`.fast_parts`)
+        self.tables = (motion, fp.spectral_tables(self.k), np.zeros((fp.WORK_ROWS, self.k)))
         #: the contact memory the loops drive (reset at the start of every evaluation)
         self.scratch = stepper.history.copy()
-        force, self.fs, self.is_, self.pp = self.scratch.kernel_call()
-        normal, self.npp, self.alone = fp.normal_alone(self.scratch, stepper.compiled)
+        force, fs, is_, pp = self.scratch.kernel_call()
+        normal, npp, alone = fp.normal_alone(self.scratch, stepper.compiled)
+        self.contact = (fs, is_, pp, npp)
+        self.prm = np.array([self.m, self.mu, self.scale_b, PERIODS, float(alone)])
         self.loops = fp.fast_loops(force, self.scratch.kernel_reset(), normal, stepper.compiled)
         self.evaluations = 0
         #: how far the contact's memory was from repeating in the last :meth:`fast`
@@ -236,9 +238,8 @@ class _Problem:
         """Iterate the fast parts at fixed (Y, V) to their periodic solution (one compiled call,
         :func:`~.fast_parts.fast_body`); returns eta, eta', xi, xi', N*, T*."""
         o = self.orbit(eta, xi=xi)
-        count, self.residual = self.loops["fast_body"](
-            self.fs, self.is_, self.pp, y_mean, v, self.m, self.mu, self.scale_b, self.motion,
-            self.spec, o, self.work, PERIODS, FAST_ITERATIONS, FAST_TOL)
+        count, self.residual = self.loops["fast_body"](self.contact, y_mean, v, self.prm,
+                                                       self.tables, o, FAST_ITERATIONS, FAST_TOL)
         self.evaluations += int(count)
         return o[fp.ETA], o[fp.ETA_D], o[fp.XI], o[fp.XI_D], o[fp.NORMAL], o[fp.TANGENTIAL]
 
@@ -246,26 +247,23 @@ class _Problem:
         """<N*> over one period at the mean compression Y, at rest horizontally, on the vertical
         fast part eta, eta' in ``orbit`` (its xi rows zero)."""
         self.evaluations += 1
-        return float(self.loops["normal_mean_body"](
-            self.fs, self.is_, self.pp, self.npp, self.alone, y_mean, self.scale_b, self.motion,
-            orbit, PERIODS))
+        return float(self.loops["normal_mean_body"](self.contact, y_mean, self.prm,
+                                                    self.tables[0], orbit))
 
     def vertical(self, y_mean: float, orbit: np.ndarray, iterations: int) -> float:
         """``iterations`` steps of the vertical fast part at Y in ``orbit`` (in place, at rest
         horizontally, :func:`~.fast_parts.vertical_body`); <N*> of the last contact run."""
         self.evaluations += iterations
-        return float(self.loops["vertical_body"](
-            self.fs, self.is_, self.pp, self.npp, self.alone, y_mean, self.m, self.scale_b,
-            self.motion, self.spec, orbit, self.work, PERIODS, iterations))
+        return float(self.loops["vertical_body"](self.contact, y_mean, self.prm, self.tables,
+                                                 orbit, iterations))
 
     def cycle_push(self, heights: np.ndarray, weights: np.ndarray, v: float, nodes: np.ndarray,
                    sweeps: int) -> float:
         """-sum_j w_j <T*>_j at speed V over the nodes of a slow vertical cycle, each node's
         horizontal fast part stepped ``sweeps`` times on from where ``nodes[j]`` holds it (one
         compiled call, :func:`~.fast_parts.node_push_body`)."""
-        return float(self.loops["node_push_body"](
-            self.fs, self.is_, self.pp, heights, weights, v, self.m, self.mu, self.scale_b,
-            self.motion, self.spec, nodes, self.work, PERIODS, sweeps))
+        return float(self.loops["node_push_body"](self.contact, heights, weights, v, self.prm,
+                                                  self.tables, nodes, sweeps))
 
 
 def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
