@@ -236,6 +236,28 @@ def ab_advance(y, fh, ctr, ab_coeffs, h, order, ncomp):
         ctr[1] += 1
 
 
+@njit(**JIT)
+def accelerations(y, nf, tf, mu, load, mx, m, drag):
+    """(x*'', y*'') of eq. 5: m*_x x*'' = -mu T* + L, m* y*'' = 1 - N*, with the air drag."""
+    ax = (-mu * tf + load) / mx if load != 0.0 else -mu * tf / mx
+    ay = (1.0 - nf) / m
+    if drag > 0.0:
+        dax, day = drag_acceleration(y, drag, mx, m)
+        ax += dax
+        ay += day
+    return ax, ay
+
+
+@njit(**JIT)
+def nonfinite(st, y, forces, k):
+    """Mark step ``k`` bad in ``st`` (and return True) if the state or the forces are not finite."""
+    if math.isfinite(y[0] + y[1] + y[2] + y[3]) and math.isfinite(forces):
+        return False
+    st[S_BAD] = BAD_NONFINITE
+    st[S_BADSTEP] = k
+    return True
+
+
 def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     """One integration segment of eq. 5 (module docstring): ``n_steps`` Adams-Bashforth steps.
 
@@ -267,8 +289,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     pull2 = 2.0 * prm[P_PULL]
     ncomp = 6 if spin else 4
     move_x = friction or load != 0.0 or drag > 0.0
-    # a free flight is taken in closed form (dynamics.flight) where nothing but the constant
-    # accelerations acts out of contact: no adhesion, air drag or rolling, an order >= 2
+    # a free flight in closed form (dynamics.flight): no adhesion, air drag or rolling, order >= 2
     fly = pull2 == 0.0 and drag == 0.0 and not spin and order >= 2
     flying = 0
     k_end = ctr[0] + n_steps
@@ -289,17 +310,11 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             tf = 0.0
         if (damp > 0.0 or rest > 0.0) and a > 0.0:
             nf, tf = damped_contact(nf, tf, a, adot, damp, rest, q_rest)
-        ax = (-mu * tf + load) / mx if load != 0.0 else -mu * tf / mx
-        ay = (1.0 - nf) / m
-        if drag > 0.0:
-            dax, day = drag_acceleration(y, drag, mx, m)
-            ax += dax
-            ay += day
-        # an adhesive contact holds on while it pulls (N* < 0 at a* <= 0); the sliding limit is
-        # N* + 2 F*_pull (pull2 = 0 without adhesion)
+        ax, ay = accelerations(y, nf, tf, mu, load, mx, m, drag)
+        # adhesion holds on while it pulls (N* < 0 at a* <= 0) and slides at N* + 2 F*_pull
         inside = a > 0.0 or nf != 0.0
-        limit = nf + pull2
-        slipping = friction and inside and limit > 0.0 and abs(tf) >= (1.0 - SLIP_RTOL) * limit
+        slipping = (friction and inside and nf + pull2 > 0.0
+                    and abs(tf) >= (1.0 - SLIP_RTOL) * (nf + pull2))
         observe_contact(st, t, y, a, inside, slipping)
         if k >= k_ramp:
             observe_step(st, 0.0 if inside else 1.0, 1.0 if slipping else 0.0, a)
@@ -315,16 +330,14 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
         if spin:
             slide_spring(y, psi_old, kr, cap)
         ctr[0] = k + 1
-        if not (math.isfinite(y[0] + y[1] + y[2] + y[3]) and math.isfinite(nf + tf)):
-            st[S_BAD] = BAD_NONFINITE
-            st[S_BADSTEP] = k
+        if nonfinite(st, y, nf + tf, k):
             return
         if log_full(st, EV_MARGIN):
             return  # the stepper grows the event log and goes on from the next step
         flying = flying + 1 if not inside and nf == 0.0 and tf == 0.0 else 0
         if fly and flying >= FLIGHT_HISTORY and k_end - ctr[0] > 2:
-            flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, h, m, ax, k_ramp,
-                        scale_b if friction else 0.0, roll, move_x)
+            flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st,
+                        (h, m, ax, k_ramp, scale_b if friction else 0.0, roll, move_x))
 
 
 _COMPILED: dict[Any, Callable[..., None]] = {}

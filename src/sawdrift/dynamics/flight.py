@@ -25,16 +25,18 @@ from __future__ import annotations
 FLIGHT_HISTORY = 8
 
 
-def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, h, m, ax, k_ramp, scale_b, roll,
-                move_x):
+def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, consts):
     """Take the steps of a free flight in closed form (module docstring), from step ``ctr[0]``
     (its state in ``y``, not yet observed) up to one step before the landing or ``k_end - 2``.
 
     The window's statistics get each step's out-of-contact share and a* (``observe_step``), the
     trajectory its rows; ``y`` and the derivative history ``fh`` end at the step handed back,
     ``ctr[0]`` is set to it. ``drive_surface`` and ``record`` are globals of the generated
-    loop module. Returns the steps taken.
+    loop module. ``consts`` = (h, m*, x*'' of the flight, the first step after the ramp, 1 /
+    (theta mu) or 0 without friction, the rolling factor c, whether x* moves). Returns the steps
+    taken.
     """
+    h, m, ax, k_ramp, scale_b, roll, move_x = consts
     k0 = ctr[0]
     x0 = y[0]
     vx0 = y[1] if move_x else 0.0
