@@ -80,3 +80,28 @@ def test_flights_keep_the_strobed_period_ends():
     b.advance(10 * b.k_per + 1, rows=rows)
     every = np.concatenate(rows)[:, 1:5]
     assert np.max(np.abs(ends - every[b.k_per :: b.k_per][:10])) < 1e-11
+
+
+def test_a_flight_does_not_depend_on_where_the_loop_is_cut():
+    # the loop runs in segments (windows, periods, trajectory rows, a full event log): every state
+    # of a flight is the parabola through its anchor, so any cutting gives the same bits
+    one, cut = _stepper(0.1, 3.0), _stepper(0.1, 3.0)
+    n = 20 * one.k_per
+    one.advance(n)
+    while cut.step < n:
+        cut.advance(min(7, n - cut.step))
+    assert one.y.tobytes() == cut.y.tobytes()
+    assert one.st[ev.S_OUT] == cut.st[ev.S_OUT] and one.st[ev.S_AMIN] == cut.st[ev.S_AMIN]
+
+
+def test_a_snapshot_taken_in_flight_goes_on_bit_for_bit():
+    a = _stepper(0.1, 3.0)
+    a.advance(10 * a.k_per)
+    while a.st[ev.S_FLY] < 20:  # well inside a flight, past its anchor
+        a.advance(1)
+    snap = a.save()
+    b = _stepper(0.1, 3.0)
+    b.restore(snap)
+    a.advance(5 * a.k_per)
+    b.advance(5 * b.k_per)
+    assert a.y.tobytes() == b.y.tobytes()

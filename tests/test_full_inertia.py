@@ -93,7 +93,7 @@ def test_the_tapered_window_mean_does_not_see_a_slow_ringing():
         return Window(periods=x.size - 1, t_start=0.0, drift=0.0, spin_rate=0.0, drift_ratio=0.0,
                       samples=np.zeros((1, 4)), contact_lost=False, out_of_contact_fraction=0.0,
                       min_compression=1.0, gross_slip_fraction=0.0, liftoffs_per_period=0.0,
-                      periodicity=0.0, sync=None, events=np.zeros((0, 7)), events_dropped=0,
+                      periodicity=0.0, events=np.zeros((0, 7)), events_dropped=0,
                       orbit_period=0, positions=x)
 
     w, v, amp = 87, 1e-4, 3e-3

@@ -32,7 +32,7 @@ BEFORE_LOADS: dict[str, tuple[dict[str, Any], str]] = {
     "jaeger": ({"model": "jaeger", "particle": {"m_star": 0.3}, "drive": {"amplitude": 0.8}},
                "0x1.b61261c04d8ccp+0"),
     "hertz_mindlin_dem": ({"model": "hertz_mindlin_dem", "particle": {"m_star": 1.0},
-                           "drive": {"amplitude": 1.2}}, "0x1.4a6f5f538db6cp+1"),
+                           "drive": {"amplitude": 1.2}}, "0x1.4a6f5f538db69p+1"),
     "material_point": ({"model": "material_point", "particle": {"m_star": 0.1},
                         "drive": {"amplitude": 0.6}}, "-0x1.4432c8c98be89p+0"),
     "mmd, rotation": ({"effects": {"rotation": True}, "particle": {"m_star": 0.5}},

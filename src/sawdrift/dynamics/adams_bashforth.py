@@ -41,7 +41,7 @@ from .evidence import (
     observe_contact,
     observe_step,
 )
-from .flight import FLIGHT_HISTORY, flight_body
+from .flight import count_flight, flight_body, on_parabola  # noqa: F401 - loop globals
 from .rolling import (  # noqa: F401 - ROLL_DAMPING: the rolling spring's, named here too
     JIT,
     ROLL_DAMPING,
@@ -291,7 +291,6 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     move_x = friction or load != 0.0 or drag > 0.0
     # a free flight in closed form (dynamics.flight): no adhesion, air drag or rolling, order >= 2
     fly = pull2 == 0.0 and drag == 0.0 and not spin and order >= 2
-    flying = 0
     k_end = ctr[0] + n_steps
     while ctr[0] < k_end:
         k = ctr[0]
@@ -334,8 +333,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             return
         if log_full(st, EV_MARGIN):
             return  # the stepper grows the event log and goes on from the next step
-        flying = flying + 1 if not inside and nf == 0.0 and tf == 0.0 else 0
-        if fly and flying >= FLIGHT_HISTORY and k_end - ctr[0] > 2:
+        if fly and count_flight(st, y, ctr[0], not inside and nf == 0.0 and tf == 0.0):
             flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st,
                         (h, m, ax, k_ramp, scale_b if friction else 0.0, roll, move_x))
 

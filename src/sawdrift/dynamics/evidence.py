@@ -33,7 +33,13 @@ S_NEV, S_EVCAP = 10, 11  # events written, capacity of the buffer (rows)
 S_EVDROP = 12  # events not written because the buffer was full
 S_LASTLIFT = 13  # t* of the last lift-off since t* = 0 (-1: none), kept across windows
 S_EVOLD = 14  # events of the transient before the window, counted and not kept
-N_ST = 16
+# a free flight in closed form (dynamics.flight): consecutive flight steps, and the anchor (the
+# step where the derivative history became a parabola's, x*, x*', y*, y*' there); part of the
+# integration's state, kept across the loop's calls, twins and snapshots
+S_FLY = 16
+S_ANCHOR = 17  # 17-21
+N_FLIGHT = 6
+N_ST = 24
 
 #: Rows an integration step may still need in the event log: the loops return after a step that
 #: leaves less room than this (compliant loop: at most 3 events a step), and the stepper grows the

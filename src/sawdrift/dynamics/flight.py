@@ -19,35 +19,64 @@ sees the flight's last sample, as it would have) and the landing itself.
 
 from __future__ import annotations
 
+from numba import njit
+
+from .evidence import S_ANCHOR, S_FLY
+from .rolling import JIT
+
 #: consecutive flight steps after which the derivative history is that of a parabola: the
 #: accelerations of the last 4 steps (the scheme's order at most) are the flight's after 4, the
 #: velocities of the last 4 were themselves advanced by flight accelerations only after 4 more
 FLIGHT_HISTORY = 8
 
 
+@njit(**JIT)
+def count_flight(st, y, k, out):
+    """Count a step out of contact without force (``out``; any other resets the count) and
+    whether the flight may now go in closed form: the count reached :data:`FLIGHT_HISTORY`, where
+    the state ``y`` at step ``k`` becomes the flight's anchor (``st[S_FLY:]``,
+    :mod:`~sawdrift.dynamics.evidence`)."""
+    if not out:
+        st[S_FLY] = 0.0
+        return False
+    st[S_FLY] += 1.0
+    if st[S_FLY] == FLIGHT_HISTORY:
+        st[S_ANCHOR] = k
+        for c in range(4):
+            st[S_ANCHOR + 1 + c] = y[c]
+    return st[S_FLY] >= FLIGHT_HISTORY
+
+
 def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, consts):
     """Take the steps of a free flight in closed form (module docstring), from step ``ctr[0]``
-    (its state in ``y``, not yet observed) up to one step before the landing or ``k_end - 2``.
+    up to one step before the landing or ``k_end``.
 
-    The window's statistics get each step's out-of-contact share and a* (``observe_step``), the
-    trajectory its rows; ``y`` and the derivative history ``fh`` end at the step handed back,
-    ``ctr[0]`` is set to it. ``drive_surface`` and ``record`` are globals of the generated
-    loop module. ``consts`` = (h, m*, x*'' of the flight, the first step after the ramp, 1 /
-    (theta mu) or 0 without friction, the rolling factor c, whether x* moves). Returns the steps
-    taken.
+    Every state is the parabola through the flight's anchor (``st[S_ANCHOR:]``, kept with the
+    integration), not through the state at this call: the loop's segments, which end where a
+    window, a period or a trajectory row asks, then give the same flight to the last bit. The
+    window's statistics get each step's out-of-contact share and a* (``observe_step``), the
+    trajectory its rows; ``y`` and the derivative history ``fh`` are put on the parabola at the
+    step handed back (``ctr[0]``). ``drive_surface``, ``record``, ``contact_point``,
+    ``observe_step`` and the ``S_*`` indices are globals of the generated loop module.
+    ``consts`` = (h, m*, x*'' of the flight, the first step after the ramp, 1 / (theta mu) or 0
+    without friction, the rolling factor c, whether x* moves). Returns the steps taken.
     """
     h, m, ax, k_ramp, scale_b, roll, move_x = consts
-    k0 = ctr[0]
-    x0 = y[0]
-    vx0 = y[1] if move_x else 0.0
-    y0 = y[2]
-    vy0 = y[3]
+    ka = st[S_ANCHOR]
+    x0 = st[S_ANCHOR + 1]
+    vx0 = st[S_ANCHOR + 2] if move_x else 0.0
+    y0 = st[S_ANCHOR + 3]
+    vy0 = st[S_ANCHOR + 4]
     ay = 1.0 / m
-    last = k_end - 2 - k0  # the loop keeps the segment's last two steps
+    k0 = ctr[0]
     j = 0
-    a_j = y0 - drive_surface(k0 * h, x0, dp)[2]  # noqa: F821
-    while j < last:
-        tau = (j + 1) * h
+    tau = (k0 - ka) * h
+    a_j = y0 + vy0 * tau + 0.5 * ay * tau * tau - drive_surface(  # noqa: F821
+        k0 * h, x0 + vx0 * tau + 0.5 * ax * tau * tau, dp)[2]
+    if a_j > 0.0:
+        return 0  # this step lands already: the loop takes it
+    while j < k_end - k0:
+        tau = (k0 + j + 1 - ka) * h
         x1 = x0 + vx0 * tau + 0.5 * ax * tau * tau
         y1 = y0 + vy0 * tau + 0.5 * ay * tau * tau
         a_next = y1 - drive_surface((k0 + j + 1) * h, x1, dp)[2]  # noqa: F821
@@ -57,29 +86,32 @@ def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, consts):
         if k >= k_ramp:
             observe_step(st, 1.0, 0.0, a_j)  # noqa: F821
         if rec_every > 0 and k % rec_every == 0:
-            tau0 = j * h
-            y[0] = x0 + vx0 * tau0 + 0.5 * ax * tau0 * tau0
-            y[1] = vx0 + ax * tau0 if move_x else y[1]
-            y[2] = y0 + vy0 * tau0 + 0.5 * ay * tau0 * tau0
-            y[3] = vy0 + ay * tau0
+            on_parabola(y, fh, k - ka, (h, ax, ay, x0, vx0, y0, vy0, move_x))  # noqa: F821
             ux = drive_surface(k * h, y[0], dp)[0]  # noqa: F821
             b = (contact_point(y, roll, False)[0] - ux) * scale_b if scale_b != 0.0 else 0.0  # noqa: F821
             record(rec, ctr, k * h, y, a_j, b, 0.0, 0.0)  # noqa: F821
         a_j = a_next
         j += 1
-    if j == 0:
-        return 0
-    tau = j * h
+    on_parabola(y, fh, k0 + j - ka, (h, ax, ay, x0, vx0, y0, vy0, move_x))  # noqa: F821
+    ctr[0] = k0 + j
+    return j
+
+
+@njit(**JIT)
+def on_parabola(y, fh, n, flight):
+    """Put the state ``y`` and the derivative history ``fh`` (the 4 steps before) on the flight's
+    parabola ``n`` steps after its anchor; ``flight`` = (h, x*'', y*'', and x*, x*', y*, y*' at
+    the anchor, whether x* moves)."""
+    h, ax, ay, x0, vx0, y0, vy0, move_x = flight
+    tau = n * h
     y[0] = x0 + vx0 * tau + 0.5 * ax * tau * tau
     y[2] = y0 + vy0 * tau + 0.5 * ay * tau * tau
+    if move_x:
+        y[1] = vx0 + ax * tau
+    y[3] = vy0 + ay * tau
     for r in range(4):
-        s = (j - 1 - r) * h  # the derivative history: steps k0 + j - 1, ..., k0 + j - 4
+        s = (n - 1 - r) * h  # the derivative history: steps n - 1, ..., n - 4 after the anchor
         fh[r, 0] = vx0 + ax * s if move_x else 0.0
         fh[r, 1] = ax
         fh[r, 2] = vy0 + ay * s
         fh[r, 3] = ay
-    if move_x:
-        y[1] = vx0 + ax * tau
-    y[3] = vy0 + ay * tau
-    ctr[0] = k0 + j
-    return j

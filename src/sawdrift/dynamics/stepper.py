@@ -362,7 +362,9 @@ class Stepper:
         """A snapshot of the integration (copies): :meth:`restore` on a stepper of the same scene
         and engine continues from it bit for bit (the bifurcation journals, :mod:`sawdrift.study.
         branch`)."""
-        arrays: dict[str, np.ndarray] = {"y": self.y.copy(), "ctr": self.ctr.copy()}
+        arrays: dict[str, np.ndarray] = {
+            "y": self.y.copy(), "ctr": self.ctr.copy(),
+            "flight": self.st[ev.S_FLY : ev.S_FLY + ev.N_FLIGHT].copy()}
         if not self.rigid:
             arrays["fh"] = self.fh.copy()
         if self.history is not None:
@@ -374,6 +376,8 @@ class Stepper:
         data = state.arrays
         self.y[:] = data["y"]
         self.ctr[:] = data["ctr"]
+        # a free flight's count and anchor (a snapshot without them: the flight counts afresh)
+        self.st[ev.S_FLY : ev.S_FLY + ev.N_FLIGHT] = data.get("flight", 0.0)
         if "fh" in data:
             self.fh[:] = data["fh"]
         if self.history is not None:
@@ -404,10 +408,11 @@ class Stepper:
         """An independent copy of this integration (no trajectory recording), state + ``dy``."""
         new = copy.copy(self)
         new.y = self.y.copy()
-        if dy is not None:
-            new.y[: dy.size] += dy
         new.ctr = self.ctr.copy()
         new.st = self.st.copy()
+        if dy is not None:
+            new.y[: dy.size] += dy
+            new.st[ev.S_FLY] = 0.0  # displaced off its flight's parabola: it counts afresh
         new.record = False
         new.rec_every = 0
         new.rec_chunks = []
@@ -435,6 +440,8 @@ class Stepper:
             self.y[: dy.size] += dy
         np.copyto(self.ctr, other.ctr)
         self.st[: ev.N_ST] = other.st[: ev.N_ST]
+        if dy is not None:
+            self.st[ev.S_FLY] = 0.0  # displaced off its flight's parabola: it counts afresh
         self.st[ev.S_NEV] = 0.0
         self.st[ev.S_EVCAP] = (self.st.size - ev.N_ST) // ev.EV_W
         self.resist = other.resist

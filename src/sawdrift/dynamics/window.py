@@ -44,13 +44,22 @@ class Window:
     gross_slip_fraction: float
     liftoffs_per_period: float
     periodicity: float
-    sync: Synchrony
     events: np.ndarray  # rows (t*, kind code, x*, x*', y*, y*', a*), see dynamics.evidence
     events_dropped: int
     orbit_period: int  # see orbit_period(); 0: not periodic
     positions: np.ndarray = field(repr=False)  # centre x* at the start and at each period's end
     snapshot: Stepper | None = field(default=None, repr=False)
     scale: np.ndarray | None = field(default=None, repr=False)  # state_scale of the samples
+    _sync: Synchrony | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def sync(self) -> Synchrony:
+        """The lift-off synchrony of the window (:func:`hop_synchrony`), read from its events
+        when first asked for: the windows a run settles through are judged by their drift, and
+        only the one it reports needs its hops."""
+        if self._sync is None:
+            self._sync = hop_synchrony(self.events, self.t_start, self.periods, self.orbit_period)
+        return self._sync
 
 
 def in_flight(win: Window) -> bool:
@@ -224,7 +233,6 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         gross_slip_fraction=float(st[ev.S_SLIP] / count),
         liftoffs_per_period=float(st[ev.S_LIFTS]) / periods,
         periodicity=periodicity(samples, scale),
-        sync=hop_synchrony(events, t_start, periods, orbit),
         events=events,
         events_dropped=int(st[ev.S_EVDROP]),
         orbit_period=orbit,

@@ -40,7 +40,7 @@ from ..dynamics import evidence as ev
 from ..dynamics.assembly import steps_per_period
 from ..dynamics.drives.travelling import TravellingWave
 from ..dynamics.steady import assess_fixed, relaxation_periods, settles
-from ..dynamics.window import Window, hop_synchrony, orbit_period, periodicity
+from ..dynamics.window import Window, orbit_period, periodicity
 from ..errors import SawdriftError
 from ..result.regimes import classify
 from ..result.result import Result
@@ -284,7 +284,6 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
     inside = a > 0.0
     slipping = inside & (np.abs(rec["T_star"]) >= rec["N_star"] * (1.0 - CAP_TOL))
     events = _events(rec)
-    sync = hop_synchrony(events, t_start, periods, orbit)
     contact_lost = bool((~inside).any())
     n = a.size
     win = Window(
@@ -294,9 +293,10 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
         contact_lost=contact_lost, out_of_contact_fraction=float((~inside).sum() / n),
         min_compression=float(a.min()), gross_slip_fraction=float(slipping.sum() / n),
         liftoffs_per_period=float((events[:, 1] == ev.EV_LIFT_OFF).sum()) / periods,
-        periodicity=periodicity(samples, scale), sync=sync, events=events, events_dropped=0,
+        periodicity=periodicity(samples, scale), events=events, events_dropped=0,
         orbit_period=orbit, positions=positions,
     )
+    sync = win.sync
     num = scene.numerics
     settling = assess_fixed(win, speed, num.settle_tolerance,
                             relaxation_periods(scene, scene.particle.m_star, speed),
