@@ -34,7 +34,15 @@ from .steady import (
     settles,
 )
 from .stepper import Stepper
-from .window import PERIODIC_TOL, Window, in_flight, lyapunov, measure_window, orbit_residual
+from .window import (
+    PERIODIC_TOL,
+    Window,
+    ballistic_return,
+    in_flight,
+    lyapunov,
+    measure_window,
+    orbit_residual,
+)
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -126,12 +134,11 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                                 relaxation_periods(scene, scene.particle.m_star, speed),
                                 periods_run, chaotic)
         if (not settling.settled and num.settle is None and num.periods == DEFAULT_PERIODS
-                and not chaotic and not _leaving(scene, win, speed)):
+                and not chaotic):
             # a default run that its own window could not confirm goes on to the steady drift (a
             # run given another length keeps it)
-            win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
-            if _irregular(win, settling):
-                chaos = long_time_mean(stepper.twin(), win, num.mean_periods, target)
+            win, settling, chaos = _go_on(stepper, scene, speed, scale, win, settling,
+                                          periods_run, drive.vertical_amplitude(scene))
     elif chaos is None and settling.long_mean is not None:
         chaos = settling.long_mean  # the settling measured the long-time mean itself
     elif chaos is None and num.settle is not False and _irregular(win, settling):
@@ -164,6 +171,28 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
     if settle_on:
         return settle(stepper, scene, speed, scale, n_periods, n_max)
     return measure_window(stepper, n_periods, speed, scale), None
+
+
+def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win: Window,
+           settling: Settling, periods_run: float, vertical: float
+           ) -> tuple[Window, Settling, BatchMeans | None]:
+    """Where a default fixed run's window could not confirm its drift: full-inertia windows
+    (:func:`_settle_on`) and, for an irregular motion, its long-time mean; for a window spent in
+    one flight by a particle that lands again within the time run so far (thrown higher than a
+    window lasts, :func:`~.window.ballistic_return`, ``vertical`` the drive's vertical amplitude),
+    the long-time mean of its bounces, whose flights a window cannot average over. A load, or a
+    flight that outlasts the run (an ejection), is left to the Result's outcome."""
+    num = scene.numerics
+    if not _leaving(scene, win, speed):
+        win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
+    elif scene.particle.load != 0.0 or not in_flight(win):
+        return win, settling, None
+    lands = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
+                             vertical) <= stepper.step / stepper.k_per
+    if _irregular(win, settling) or (not settling.settled and in_flight(win) and lands):
+        return win, settling, long_time_mean(stepper.twin(), win, num.mean_periods,
+                                             num.settle_tolerance * speed)
+    return win, settling, None
 
 
 def _irregular(win: Window, settling: Settling) -> bool:

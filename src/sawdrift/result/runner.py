@@ -81,6 +81,8 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         detach = out.last_liftoff if ending == "ejected" else math.nan
     extra: dict[str, object] = {}
     warnings = _warnings(scene, out, drift_se)
+    if not settled and not ending and out.long_mean is None and scene.numerics.settle is not False:
+        warnings += (_unsettled_reason(out, scene.numerics.settle is True),)
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None))
     k_per = stepper.k_per
@@ -158,6 +160,21 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
                      f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
                      f"(correlations longer than the run)",)
     return warnings
+
+
+def _unsettled_reason(out: WaveRun, settling: bool) -> str:
+    """Why a run that was to settle did not: its drift still moving when its periods ran out
+    (``settling``: it was asked to settle, and only a higher cap runs it longer)."""
+    history = out.settling.history
+    periods = out.stepper.step / out.stepper.k_per
+    if len(history) >= 2:
+        change = f"changed by {history[-1] - history[-2]:+.2g} in drift ratio over its last window"
+    else:
+        change = "was not confirmed by its window"
+    longer = ("numerics.max_periods (--max-periods)" if settling else
+              "numerics.settle = true (--settle) with numerics.max_periods (--max-periods)")
+    return (f"not settled: the drift {change} when the run stopped after {periods:.0f} periods "
+            f"(a slow approach, or a growing motion); {longer} runs it longer")
 
 
 def mean_acceleration(positions) -> float:
