@@ -139,3 +139,28 @@ def test_the_loop_runs_with_the_parameters_the_assembly_prints():
         assert st.prm[: len(names)].tolist() == [plan.param(n) for n in names]
         text = explain(scene)
         assert f"load = {scene.particle.load:.6g}" in text and "roll = 3.5" in text
+
+
+def test_the_phase_table_gives_the_sine_and_cosine_of_the_wave_at_the_steps():
+    """The wave's phase read from its one-period table (the loops' parameter vector) equals sin and
+    cos of 2 pi t* at the steps to 1e-15 at t* < 1, and to 1e-11 at t* ~ 1e4, where sin(2 pi t*)
+    itself has lost digits to t*'s integer part (the table is the exact phase); off the step
+    grid it is sin and cos themselves."""
+    import math
+
+    import numpy as np
+
+    from sawdrift.dynamics.drives.ramp import phase, with_phase_table
+
+    k = 128
+    dp = with_phase_table(np.zeros(7), k)
+    h = 1.0 / k
+    for step in (0, 1, 37, 127, 128, 129, 1_280_005):
+        t = step * h
+        s, c = phase(t, dp, 7)
+        tol = 1e-15 if t < 1.0 else 1e-11
+        assert abs(s - math.sin(2 * math.pi * t)) <= tol and abs(c - math.cos(2 * math.pi * t)) <= tol
+        j = step % k
+        assert (s, c) == (math.sin(2 * math.pi * (j * h)), math.cos(2 * math.pi * (j * h)))
+    s, c = phase(0.3 * h, dp, 7)  # off the grid
+    assert (s, c) == (math.sin(2 * math.pi * 0.3 * h), math.cos(2 * math.pi * 0.3 * h))

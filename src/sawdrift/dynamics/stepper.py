@@ -105,9 +105,9 @@ class Stepper:
         #: the substrate's motion (sawdrift.dynamics.drives): its functions are bound into the
         #: loops, its parameters are the vector dp
         self.drive = plan.drive
-        self.dp = self.drive.pack(scene)
         engine = plan.engine
         self.k_per = plan.steps_per_period
+        self.dp = self.drive.for_steps(self.drive.pack(scene), self.k_per)
         self.h = 1.0 / self.k_per
         self.rigid = model.capabilities.rigid
         named = dict(plan.params)  # the scheme's parameters, decided by the assembly

@@ -41,6 +41,12 @@ class Drive:
         values = self.parameters(scene)
         return np.array([float(values[n]) for n in self.names], dtype=np.float64)
 
+    def for_steps(self, dp: np.ndarray, k_per: int) -> np.ndarray:
+        """The parameter vector the loops get at ``k_per`` steps per period: ``dp`` itself, or
+        ``dp`` followed by what the drive's functions can look up at the steps instead of
+        computing (the travelling wave's phase table)."""
+        return dp
+
     def functions(self) -> tuple[Any, Any]:
         """The compiled ``(surface, kinematics)`` of this drive."""
         import importlib

@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit
 
 from .base import Drive
-from .ramp import TWO_PI, ramp
+from .ramp import TWO_PI, phase, ramp, with_phase_table
 from .travelling import unit_phase
 
 FOUR_PI = 2.0 * TWO_PI
@@ -37,6 +37,11 @@ class Biharmonic(Drive):
     kind: ClassVar[str] = "biharmonic"
     module: ClassVar[str] = __name__
     names: ClassVar[tuple[str, ...]] = ("ramp", "x1", "y1", "x2c", "x2s", "y2c", "y2s")
+
+    def for_steps(self, dp: np.ndarray, k_per: int) -> np.ndarray:
+        """``dp`` with the table of the fundamental's phase at the steps of one period, as the
+        travelling wave's (:func:`~.ramp.with_phase_table`)."""
+        return with_phase_table(dp, k_per)
 
     def parameters(self, scene: Any) -> dict[str, float]:
         d, eff = scene.drive, scene.effects
@@ -84,6 +89,10 @@ class Biharmonic(Drive):
         return lines
 
 
+#: length of the drive's own parameter vector; the table of the fundamental's phase follows it
+N_PARAMS = len(Biharmonic.names)
+
+
 @njit(cache=True)
 def _second(t, c, s):
     """(g, g', g'') of g = c cos(4 pi t*) + s sin(4 pi t*)."""
@@ -101,8 +110,7 @@ def kinematics(t, x, dp):
     with no second harmonic the values are the linear orbit's to the last bit.
     """
     rr, rd, rdd = ramp(t, dp[0])
-    s2 = math.sin(TWO_PI * t)
-    c2 = math.cos(TWO_PI * t)
+    s2, c2 = phase(t, dp, N_PARAMS)
     k2 = TWO_PI * TWO_PI
     x1, y1 = dp[1], dp[2]
     gx, gxd, gxdd = _second(t, dp[3], dp[4])
@@ -122,8 +130,7 @@ def kinematics(t, x, dp):
 def surface(t, x, dp):
     """(u_x, u_x', u_y, u_y') at t* (see :func:`kinematics`)."""
     rr, rd, _ = ramp(t, dp[0])
-    s2 = math.sin(TWO_PI * t)
-    c2 = math.cos(TWO_PI * t)
+    s2, c2 = phase(t, dp, N_PARAMS)
     x1, y1 = dp[1], dp[2]
     gx, gxd, _ = _second(t, dp[3], dp[4])
     gy, gyd, _ = _second(t, dp[5], dp[6])

@@ -25,7 +25,7 @@ import numpy as np
 from numba import njit
 
 from .base import Drive
-from .ramp import TWO_PI, ramp
+from .ramp import TWO_PI, phase, ramp, with_phase_table
 
 
 def unit_phase(degrees: float) -> tuple[float, float]:
@@ -57,6 +57,11 @@ class TravellingWave(Drive):
     module: ClassVar[str] = __name__
     names: ClassVar[tuple[str, ...]] = ("amplitude", "ratio", "ramp", "horizontal", "vertical",
                                         "sin_phase", "cos_phase")
+
+    def for_steps(self, dp: np.ndarray, k_per: int) -> np.ndarray:
+        """``dp`` with the table of the wave's phase at the steps of one period
+        (:func:`~.ramp.with_phase_table`)."""
+        return with_phase_table(dp, k_per)
 
     def parameters(self, scene: Any) -> dict[str, float]:
         s, c = unit_phase(phase_of(scene))
@@ -116,12 +121,15 @@ class TravellingWave(Drive):
         return lines
 
 
+#: length of the drive's own parameter vector; the table of the wave's phase follows it
+N_PARAMS = len(TravellingWave.names)
+
+
 @njit(cache=True)
 def kinematics(t, x, dp):
     """(u_x, u_x', u_x'', u_y, u_y', u_y'') at t* (the local orbit does not depend on x*)."""
     rr, rd, rdd = ramp(t, dp[2])
-    s2 = math.sin(TWO_PI * t)
-    c2 = math.cos(TWO_PI * t)
+    s2, c2 = phase(t, dp, N_PARAMS)
     k2 = TWO_PI * TWO_PI
     h = -dp[0] * dp[1] * dp[3]
     bx = h * dp[5]  # coefficient of sin(2 pi t*) in u_x / R
@@ -141,8 +149,7 @@ def kinematics(t, x, dp):
 def surface(t, x, dp):
     """(u_x, u_x', u_y, u_y') at t* (see :func:`kinematics`)."""
     rr, rd, _ = ramp(t, dp[2])
-    s2 = math.sin(TWO_PI * t)
-    c2 = math.cos(TWO_PI * t)
+    s2, c2 = phase(t, dp, N_PARAMS)
     h = -dp[0] * dp[1] * dp[3]
     bx = h * dp[5]
     cx = -h * dp[6]
