@@ -233,6 +233,17 @@ class ContactHistory:
         clone = self.copy()
         return clone.advance(a, b, adot, bdot)
 
+    def copy_from(self, other: ContactHistory) -> None:
+        """Take ``other``'s committed history in place (a history of the same model and engine):
+        what ``set_state(other.state())`` does, without the snapshot in between (the Lyapunov
+        twin is put back on its base this way every period)."""
+        if self._ref is not None or other._ref is not None:
+            self.set_state(other.state())
+            return
+        nf, ni = other.model.live_sizes(other._fs, other._is)
+        self._fs[:nf] = other._fs[:nf]
+        self._is[:ni] = other._is[:ni]
+
     def copy(self) -> ContactHistory:
         """An independent copy (checkpoint) of this history."""
         import copy as _copy

@@ -238,7 +238,8 @@ class Stepper:
         recording = self.record or strobe is not None or rows is not None
         # one buffer for the whole advance: a loop that returns early (its event log full)
         # goes on writing after the rows it has written
-        buffer = np.zeros(((target - self.step) // every + 2 if recording else 0, ig.N_REC))
+        buffer = (np.zeros(((target - self.step) // every + 2, ig.N_REC)) if recording
+                  else _NO_ROWS)
         used = 0
         while self.step < target:
             n = target - self.step
@@ -449,7 +450,7 @@ class Stepper:
             return
         np.copyto(self.fh, other.fh)
         if self.history is not None and other.history is not None:
-            self.history.set_state(other.history.state())
+            self.history.copy_from(other.history)
         else:
             np.copyto(self.fs, other.fs)
             np.copyto(self.is_, other.is_)
@@ -471,6 +472,10 @@ class Stepper:
             data = data[:, :9]
             columns = columns[:9]
         return pd.DataFrame(data, columns=columns)
+
+
+#: the loops' row buffer where nothing is recorded (they write rows only with rec_every > 0)
+_NO_ROWS = np.zeros((0, ig.N_REC))
 
 
 def _strobe_rows(strobe: tuple[np.ndarray, int], rows: np.ndarray) -> None:
