@@ -1,6 +1,6 @@
 """The steady drift of a heavy particle solved directly, with one window of evidence for its regime.
 
-From m* = 15 up, :func:`settle_direct` first tries to solve the drift instead of waiting for it:
+From m* = 5 up, :func:`settle_direct` first tries to solve the drift instead of waiting for it:
 
 * the period-one orbit at full inertia and its force-velocity curve (:mod:`.separated`), the
   drift being the first zero of the period-averaged friction <T*>(V) met from rest;
@@ -23,13 +23,14 @@ of the modulation); on 222 such cells (mmd, jaeger, hertz_mindlin_dem; m* 30 to 
 mu 0.1 and 0.5) it is within 1.3e-3 of the confirmed drift; on the one cell where they differ
 by more than 1e-3, brute force sides with the solved drift.
 
-Between m* = 15 and :data:`~.separated.ORBIT_ALONE_MASS` (30) the drift is solved only as the
-average over a slow vertical cycle of at least 20 periods (the orbit's drift alone was 1e-3 from
+Between m* = 5 and :data:`~.separated.ORBIT_ALONE_MASS` (30) the drift is solved only as the
+average over a slow vertical cycle of at least 10 periods (the orbit's drift alone was 1e-3 from
 brute force at m* = 3 to 10); at m* = 15 to 25, 93 solved cells of three models were within
-5.4e-4 of brute force. From m* = 3 up, where the drift is not reported as solved, the orbit (or
-its cycle's average) is where the full-inertia windows start (``orbit_then_full``): 2 to 4
-times fewer periods than the windows' approach from rest at m* = 3 to 10, within 3.5e-4 of
-brute force.
+5.4e-4 of brute force, and on 216 cells at m* = 4 to 13.3 (mmd, jaeger, hertz_mindlin_dem; A*
+0.3 to 5; mu 0.1 and 0.5), 135 solved drifts were within 6.6e-4 of brute force from rest of 2
+(40 m*/mu + 2000) periods but one (jaeger m* = 10, A* = 3, mu = 0.5: 1.5e-3). From m* = 3 up,
+where the drift is not reported as solved, the orbit (or its cycle's average) is where the
+full-inertia windows start (``orbit_then_full``).
 
 With ``numerics.confirm_solved`` the run goes on from the solved speed in full-inertia windows of
 three free vertical periods each (2 pi sqrt(m*/1.5) wave periods: their cost grows as sqrt(m*))

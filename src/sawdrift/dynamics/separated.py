@@ -67,15 +67,18 @@ from .stepper import Stepper
 #: :data:`SOLVED_MIN_MASS` only as the start of full-inertia windows that confirm it
 SEPARATED_MIN_MASS = 3.0
 
-#: from this m* up the drift averaged over a slow vertical cycle (at least 20 periods) is the
-#: reported drift, and from :data:`ORBIT_ALONE_MASS` up also the orbit's own drift where that
-#: cycle cannot be averaged over; below, they start the windows (within 3.5e-4 of brute force
-#: and 2 to 4 times fewer periods at m* = 3 to 10, mmd and jaeger)
-SOLVED_MIN_MASS = 15.0
+#: from this m* up the drift averaged over a slow vertical cycle (at least
+#: :data:`~.torus.SLOW_PERIODS` long) is the reported drift, and from :data:`ORBIT_ALONE_MASS`
+#: up also the orbit's own drift where that cycle cannot be averaged over; below, they start
+#: the windows. Measured (benchmarks/bench_solved_low_mass.py): on 216 cells at m* = 4 to 13.3
+#: (three models, A* 0.3 to 5, mu 0.1 and 0.5) the 135 solved drifts were within 6.6e-4 of
+#: brute force but one (jaeger m* 10, A* 3, mu 0.5: 1.5e-3), where the windows they replaced
+#: were up to 1.8e-3 off (33 cells outside the bound before, 12 after) in 3.3 times the periods
+SOLVED_MIN_MASS = 5.0
 
-#: below this m* the orbit's own drift is not reported as solved: a cycle faster than 20
-#: periods is not averaged out of it, and it was 1e-3 from brute force at m* = 3 to 10 (mmd,
-#: A* = 0.7, mu = 0.1), the cycle's average within 2.2e-4 at m* = 20
+#: below this m* the orbit's own drift is not reported as solved: a cycle faster than
+#: :data:`~.torus.SLOW_PERIODS` is not averaged out of it, and it was 1e-3 from brute force at
+#: m* = 3 to 10 (mmd, A* = 0.7, mu = 0.1), the cycle's average within 2.2e-4 at m* = 20
 ORBIT_ALONE_MASS = 30.0
 
 #: drift ratios at which the force-velocity curve is sampled for the first zero (the bracket)

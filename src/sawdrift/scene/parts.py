@@ -329,7 +329,7 @@ class Numerics(BaseModel):
         "irregular heavy bouncer +-0.008 at 500); a mean known to settle_tolerance stops earlier"
     )
     confirm_solved: bool = Field(
-        False, description="settle, m* >= 15: confirm a drift solved directly (force-velocity "
+        False, description="settle, m* >= 5: confirm a drift solved directly (force-velocity "
         "curve at full inertia) with full-inertia windows of three free vertical periods each "
         "(cost grows as sqrt(m*)) instead of one evidence window"
     )

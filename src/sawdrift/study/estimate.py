@@ -7,7 +7,7 @@ The steps of one run follow from its scene as the runner plans it
 :func:`sawdrift.dynamics.steady.settles`) the expected length of the settle, of order ten
 relaxation times m*_x/mu of the reduced inertia plus two windows, capped by
 ``numerics.max_periods``; a default light run :data:`GOES_ON` times its fixed length (it goes
-on where its window cannot confirm its drift); where the drift is solved directly (m* >= 15, a
+on where its window cannot confirm its drift); where the drift is solved directly (m* >= 5, a
 plain wave scene: :mod:`sawdrift.dynamics.separated`) the fixed length and one evidence window
 (one slow vertical cycle for a hopping particle), and three full-inertia windows where it is
 confirmed (from m* = 3, or ``numerics.confirm_solved``). The
