@@ -41,7 +41,7 @@ from .evidence import (
     observe_contact,
     observe_step,
 )
-from .flight import count_flight, flight_body, on_parabola  # noqa: F401 - loop globals
+from .flight import count_flight, flight_body, on_parabola, parabola  # noqa: F401 - loop globals
 from .rolling import (  # noqa: F401 - ROLL_DAMPING: the rolling spring's, named here too
     JIT,
     ROLL_DAMPING,

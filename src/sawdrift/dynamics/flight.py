@@ -5,7 +5,7 @@ particle moves under constant accelerations, x*'' = L / m*_x and y*'' = 1 / m* (
 with N* = T* = 0), on a parabola. Adams-Bashforth integrates such a motion exactly once its
 derivative history holds only flight steps: with a constant acceleration g the velocity
 advances by h g (the coefficients sum to one) and the position by h v_n + h^2 g / 2 (for every
-order, sum_j j beta_j = -1/2), the Taylor step of a parabola. So the steps of a flight can be
+order from 2 up, sum_j j beta_j = -1/2), the Taylor step of a parabola. So the steps of a flight can be
 taken in closed form from the state where the history became all flight, and they agree with
 the scheme's to rounding.
 
@@ -28,6 +28,12 @@ from .rolling import JIT
 #: accelerations of the last 4 steps (the scheme's order at most) are the flight's after 4, the
 #: velocities of the last 4 were themselves advanced by flight accelerations only after 4 more
 FLIGHT_HISTORY = 8
+
+
+@njit(**JIT)
+def parabola(q0, v0, g, tau):
+    """q0 + v0 tau + g tau^2 / 2: a coordinate of the flight, ``tau`` after its anchor."""
+    return q0 + v0 * tau + 0.5 * g * tau * tau
 
 
 @njit(**JIT)
@@ -71,28 +77,27 @@ def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, consts):
     k0 = ctr[0]
     j = 0
     tau = (k0 - ka) * h
-    a_j = y0 + vy0 * tau + 0.5 * ay * tau * tau - drive_surface(  # noqa: F821
-        k0 * h, x0 + vx0 * tau + 0.5 * ax * tau * tau, dp)[2]
+    a_j = (parabola(y0, vy0, ay, tau)
+           - drive_surface(k0 * h, parabola(x0, vx0, ax, tau), dp)[2])  # noqa: F821
     if a_j > 0.0:
         return 0  # this step lands already: the loop takes it
     while j < k_end - k0:
         tau = (k0 + j + 1 - ka) * h
-        x1 = x0 + vx0 * tau + 0.5 * ax * tau * tau
-        y1 = y0 + vy0 * tau + 0.5 * ay * tau * tau
-        a_next = y1 - drive_surface((k0 + j + 1) * h, x1, dp)[2]  # noqa: F821
+        a_next = (parabola(y0, vy0, ay, tau)
+                  - drive_surface((k0 + j + 1) * h, parabola(x0, vx0, ax, tau), dp)[2])  # noqa: F821
         if a_next > 0.0:
             break  # the next step lands: the loop takes this one and the landing
         k = k0 + j
         if k >= k_ramp:
             observe_step(st, 1.0, 0.0, a_j)  # noqa: F821
         if rec_every > 0 and k % rec_every == 0:
-            on_parabola(y, fh, k - ka, (h, ax, ay, x0, vx0, y0, vy0, move_x))  # noqa: F821
+            on_parabola(y, fh, k - ka, (h, ax, ay, x0, vx0, y0, vy0, move_x))
             ux = drive_surface(k * h, y[0], dp)[0]  # noqa: F821
             b = (contact_point(y, roll, False)[0] - ux) * scale_b if scale_b != 0.0 else 0.0  # noqa: F821
             record(rec, ctr, k * h, y, a_j, b, 0.0, 0.0)  # noqa: F821
         a_j = a_next
         j += 1
-    on_parabola(y, fh, k0 + j - ka, (h, ax, ay, x0, vx0, y0, vy0, move_x))  # noqa: F821
+    on_parabola(y, fh, k0 + j - ka, (h, ax, ay, x0, vx0, y0, vy0, move_x))
     ctr[0] = k0 + j
     return j
 
@@ -104,8 +109,8 @@ def on_parabola(y, fh, n, flight):
     the anchor, whether x* moves)."""
     h, ax, ay, x0, vx0, y0, vy0, move_x = flight
     tau = n * h
-    y[0] = x0 + vx0 * tau + 0.5 * ax * tau * tau
-    y[2] = y0 + vy0 * tau + 0.5 * ay * tau * tau
+    y[0] = parabola(x0, vx0, ax, tau)
+    y[2] = parabola(y0, vy0, ay, tau)
     if move_x:
         y[1] = vx0 + ax * tau
     y[3] = vy0 + ay * tau

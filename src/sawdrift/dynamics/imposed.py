@@ -26,8 +26,9 @@ import numpy as np
 
 from . import adams_bashforth as ig
 from .batch_means import BatchMeans, blocked_error
+from .fast_parts import _periodic_rate
 from .full_inertia import full_window_length
-from .separated import GRID, _periodic_rate, history_loop
+from .separated import GRID, history_loop
 from .stepper import Stepper
 
 #: periods per chunk of the record (its length: ``numerics.mean_periods``, or two full-inertia
@@ -106,7 +107,6 @@ class _Record:
 def imposed_drift(stepper: Stepper, scene, speed: float) -> BatchMeans | None:
     """The long-time mean drift (x* per period) and its error at an imposed speed along the
     run's own recorded vertical motion (module docstring); None without a zero of <T*>(V)."""
-
     m = scene.particle.m_star
     periods = max(scene.numerics.mean_periods, 2 * full_window_length(m, scene.theta, 1))
     rec = _Record(stepper, periods)

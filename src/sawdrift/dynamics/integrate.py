@@ -185,7 +185,7 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
     num = scene.numerics
     if not _leaving(scene, win, speed):
         win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
-    elif scene.particle.load != 0.0 or not in_flight(win):
+    elif scene.particle.load != 0.0:  # else, leaving, the window was one flight
         return win, settling, None
     lands = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
                              vertical) <= stepper.step / stepper.k_per
@@ -216,7 +216,8 @@ def wanders(values) -> bool:
     return turns >= WANDER_TURNS
 
 
-#: sign changes among the last six window changes that make a contact-kept run wander
+#: sign changes among the last six window changes (of the last WANDER_WINDOWS window means)
+#: that make a contact-kept run wander
 WANDER_TURNS = 2
 WANDER_WINDOWS = 7
 

@@ -58,7 +58,6 @@ from . import adams_bashforth as ig
 from . import fast_parts as fp
 from .drives.travelling import TravellingWave
 from .drives.two_wave import needs_two_waves
-from .fast_parts import _periodic_rate  # noqa: F401 - the imposed-speed route's
 from .full_inertia import SLIDING_FRACTION
 from .stepper import Stepper
 

@@ -114,13 +114,7 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_
     are autonomous at the stroboscopic times, so a repeating state is a periodic orbit: the drift
     over whole multiples of p is the steady drift.
     """
-    s = np.asarray(samples)[:, 1:4] / scale
-    for p in range(1, longest + 1):
-        if s.shape[0] < p + last:
-            return 0
-        if float(np.abs(s[-last:] - s[-last - p : -p]).max()) <= PERIODIC_TOL:
-            return p
-    return 0
+    return next((p for p, d in _distances(samples, scale, longest, last) if d <= PERIODIC_TOL), 0)
 
 
 def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_ORBIT,
@@ -129,13 +123,18 @@ def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int = LONGES
     the largest scaled change of the last ``last`` period-end states against p periods earlier
     (:func:`orbit_period` finds an orbit where it is at most :data:`PERIODIC_TOL`); inf where
     the window is too short to tell."""
+    return min((d for _, d in _distances(samples, scale, longest, last)), default=math.inf)
+
+
+def _distances(samples: np.ndarray, scale: np.ndarray, longest: int, last: int):
+    """(p, the largest scaled change of the last ``last`` period-end states (x*', y*, y*')
+    against p periods earlier) for p = 1, 2, ... up to ``longest`` or as far as the window
+    tells: :func:`orbit_period` and :func:`orbit_residual` read the same distances."""
     s = np.asarray(samples)[:, 1:4] / scale
-    best = math.inf
     for p in range(1, longest + 1):
         if s.shape[0] < p + last:
-            break
-        best = min(best, float(np.abs(s[-last:] - s[-last - p : -p]).max()))
-    return best
+            return
+        yield p, float(np.abs(s[-last:] - s[-last - p : -p]).max())
 
 
 def hop_liftoffs(events: np.ndarray, t_start: float, t_end: float,
