@@ -142,3 +142,16 @@ def test_the_rolling_springs_slow_mode_is_damped_and_not_taken_for_steady():
     assert res.settled is True
     assert abs(res.drift_ratio - ref.drift_ratio) <= 2e-4
     assert sd.run(_rolling(1e-5)).settled is False
+
+
+def test_a_vanishing_friction_stays_fixed_even_where_the_drift_could_be_solved():
+    """mmd m* = 10, mu = 1e-6: the speed relaxes over 1e7 periods at the reduced inertia, beyond
+    what a default run settles (its cap would be billions of periods were the direct solution
+    to fail), so the run stays fixed however solvable the scene, and says it did not settle."""
+    from sawdrift.dynamics.steady import settles
+
+    scene = sd.Scene(model="mmd", particle={"m_star": 10.0}, drive={"amplitude": 0.5},
+                     material={"mu": 1e-6})
+    assert settles(scene, 2.0, rigid=False) is False
+    assert settles(scene.model_copy(update={"material": scene.material.model_copy(
+        update={"mu": 0.1})}), 2.0, rigid=False) is True  # solvable, bounded: solved

@@ -116,13 +116,13 @@ def settles(scene, speed: float, rigid: bool) -> bool:
     if runs_away(scene):
         return False  # no steady drift to settle on
     m = scene.particle.m_star
+    if horizontal_relaxation(scene, horizontal_inertia(m, rigid), speed) > AUTO_SETTLE_PERIODS:
+        return False
     if m >= SOLVED_MIN_MASS and solvable(scene, rigid):
         # where the drift can be solved directly it is, however fast it relaxes: at m* = 5 to
         # 10, mu = 0.5 a fixed window ended 1e-3 to 2e-3 from brute force
         return True
-    if 3.0 * horizontal_relaxation(scene, m, speed) <= scene.numerics.periods:
-        return False
-    return horizontal_relaxation(scene, horizontal_inertia(m, rigid), speed) <= AUTO_SETTLE_PERIODS
+    return 3.0 * horizontal_relaxation(scene, m, speed) > scene.numerics.periods
 
 
 def runs_away(scene) -> bool:
