@@ -9,7 +9,14 @@ import pytest
 
 import sawdrift as sd
 from sawdrift.dynamics import rigid as rg
-from sawdrift.dynamics.lyapunov import ALIGN_PERIODS, LYAPUNOV_PERIODS, is_chaotic, lyapunov_statistics
+from sawdrift.dynamics.lyapunov import (
+    ALIGN_PERIODS,
+    LYAPUNOV_MAX_PERIODS,
+    LYAPUNOV_PERIODS,
+    is_chaotic,
+    lyapunov_statistics,
+    verdict_clear,
+)
 from sawdrift.dynamics.synchrony import synchrony
 from sawdrift.errors import NonFiniteStateError
 
@@ -121,6 +128,45 @@ def test_lyapunov_statistics_tell_exponential_from_linear_growth():
     # a stable orbit shrinks the separation; an erased one is -inf
     assert not is_chaotic(*lyapunov_statistics(np.full(64, math.log(0.5))))
     assert lyapunov_statistics(np.array([0.1, -math.inf]))[0] == -math.inf
+
+
+def test_early_lyapunov_stop_only_where_the_verdict_is_decided():
+    rng = np.random.default_rng(5)
+    n = LYAPUNOV_PERIODS
+    assert verdict_clear(0.3 + rng.normal(0.0, 0.15, n))  # chaos well above the floor
+    assert verdict_clear(rng.normal(0.0, 0.01, n))  # neutral, like a quasi-periodic bouncer
+    assert verdict_clear(np.append(np.zeros(n - 1), -math.inf))  # separation erased
+    # an exponent near the floor (0.06 per period), or one too noisy to place, runs the full
+    # length: stopping there could flip the verdict of the longer estimate
+    assert not verdict_clear(0.06 + rng.normal(0.0, 0.02, n))
+    assert not verdict_clear(rng.normal(0.0, 0.5, n))
+
+
+def test_heavy_quasi_periodic_bouncer_lyapunov_stops_early_with_the_full_verdict():
+    # mmd m* 10, A* 0.89 bounces irregularly (0.54 lift-offs a period) with a neutral exponent:
+    # its 400-period evidence window asked for 256 stretchings; the first 64 decide, and the
+    # full series agrees with them within three combined uncertainties
+    from sawdrift.dynamics import window as wn
+
+    calls = []
+    original = wn.stretching_logs
+
+    def spy(*args, **kwargs):
+        logs = original(*args, **kwargs)
+        full = original(*args, **{**kwargs, "early": None})
+        calls.append((logs, full))
+        return logs
+
+    r = None
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(wn, "stretching_logs", spy)
+        r = sd.run(sd.Scene(model="mmd", particle={"m_star": 10.0}, drive={"amplitude": 0.891}))
+    assert r.regime == "bouncing" and not r.chaotic
+    (logs, full), = calls
+    assert logs.size == LYAPUNOV_PERIODS and full.size == LYAPUNOV_MAX_PERIODS
+    (lam, err), (lam_full, err_full) = lyapunov_statistics(logs), lyapunov_statistics(full)
+    assert abs(lam) < 0.01 and not is_chaotic(lam_full, err_full)
+    assert abs(lam - lam_full) <= 3.0 * math.hypot(err, err_full)
 
 
 def test_a_moderate_positive_exponent_is_chaos():

@@ -67,6 +67,24 @@ def lyapunov_statistics(logs: np.ndarray) -> tuple[float, float]:
     return lam, float(means.std(ddof=1)) / math.sqrt(nb)
 
 
+def verdict_clear(logs: np.ndarray) -> bool:
+    """Whether :data:`LYAPUNOV_PERIODS` stretchings already decide a longer estimate's verdict,
+    so that it may stop there: an erased separation (-inf), an exponent below half the chaos
+    floor :data:`CHAOS_EXPONENT` by :data:`CHAOS_SIGMAS` uncertainties (a regular motion; the
+    quasi-periodic heavy bouncers have |lambda| < 1e-2), or one above twice the floor and
+    above twice :data:`CHAOS_SIGMAS` uncertainties (chaos). Both margins are twice the ones
+    :func:`is_chaotic` asks of the full estimate, so stopping early does not flip a verdict
+    that the full length would give."""
+    lam, err = lyapunov_statistics(logs)
+    if lam == -math.inf:
+        return True
+    if not (math.isfinite(lam) and math.isfinite(err)):
+        return False
+    regular = lam + CHAOS_SIGMAS * err < 0.5 * CHAOS_EXPONENT
+    chaos = lam > 2.0 * CHAOS_EXPONENT and lam > 2.0 * CHAOS_SIGMAS * err
+    return regular or chaos
+
+
 def is_chaotic(exponent: float, uncertainty: float) -> bool:
     """A positive exponent above :data:`CHAOS_SIGMAS` of its own uncertainty and above
     :data:`CHAOS_EXPONENT` (see :func:`lyapunov_statistics`)."""

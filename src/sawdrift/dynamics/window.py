@@ -22,6 +22,7 @@ from .lyapunov import (
     LYAPUNOV_PERIODS,
     is_chaotic,
     lyapunov_statistics,
+    verdict_clear,
 )
 from .rolling import psi_from_rest
 from .stepper import Stepper
@@ -114,7 +115,9 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_
     are autonomous at the stroboscopic times, so a repeating state is a periodic orbit: the drift
     over whole multiples of p is the steady drift.
     """
-    return next((p for p, d in _distances(samples, scale, longest, last) if d <= PERIODIC_TOL), 0)
+    ps, d = _distances(samples, scale, longest, last)
+    hit = np.flatnonzero(d <= PERIODIC_TOL)
+    return int(ps[hit[0]]) if hit.size else 0
 
 
 def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int = LONGEST_ORBIT,
@@ -123,18 +126,23 @@ def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int = LONGES
     the largest scaled change of the last ``last`` period-end states against p periods earlier
     (:func:`orbit_period` finds an orbit where it is at most :data:`PERIODIC_TOL`); inf where
     the window is too short to tell."""
-    return min((d for _, d in _distances(samples, scale, longest, last)), default=math.inf)
+    d = _distances(samples, scale, longest, last)[1]
+    return float(d.min()) if d.size else math.inf
 
 
-def _distances(samples: np.ndarray, scale: np.ndarray, longest: int, last: int):
-    """(p, the largest scaled change of the last ``last`` period-end states (x*', y*, y*')
-    against p periods earlier) for p = 1, 2, ... up to ``longest`` or as far as the window
-    tells: :func:`orbit_period` and :func:`orbit_residual` read the same distances."""
+def _distances(samples: np.ndarray, scale: np.ndarray, longest: int, last: int
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """p = 1, 2, ... up to ``longest`` or as far as the window tells, and for each the largest
+    scaled change of the last ``last`` period-end states (x*', y*, y*') against p periods
+    earlier: :func:`orbit_period` and :func:`orbit_residual` read the same distances."""
     s = np.asarray(samples)[:, 1:4] / scale
-    for p in range(1, longest + 1):
-        if s.shape[0] < p + last:
-            return
-        yield p, float(np.abs(s[-last:] - s[-last - p : -p]).max())
+    n = s.shape[0]
+    ps = np.arange(1, max(0, min(longest, n - last)) + 1)
+    if ps.size == 0:
+        return ps, np.empty(0)
+    ends = np.arange(n - last, n)
+    gaps = np.abs(s[ends][None, :, :] - s[ends[None, :] - ps[:, None]])
+    return ps, gaps.max(axis=(1, 2))
 
 
 def hop_liftoffs(events: np.ndarray, t_start: float, t_end: float,
@@ -242,7 +250,8 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
 
 
 def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
-                    align: int = ALIGN_PERIODS, d0: float = LYAPUNOV_D0) -> np.ndarray:
+                    align: int = ALIGN_PERIODS, d0: float = LYAPUNOV_D0,
+                    early: int | None = None) -> np.ndarray:
     """ln(d / d0) of each period after ``align``, renormalized every period (Benettin et al. 1980).
 
     A copy of the integration and a twin displaced by ``d0`` (scaled (x*', y*, y*'), first along
@@ -250,7 +259,9 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
     re-started from the copy at distance ``d0`` along the separation. The first ``align``
     periods, in which the separation turns into the most unstable direction, are left out. A
     separation erased to 0 (an inelastic landing, a sticking phase) ends the series with -inf.
-    ``stepper`` itself is not advanced.
+    With ``early``, the series stops after that many stretchings where they already decide
+    the verdict (:func:`~sawdrift.dynamics.lyapunov.verdict_clear`). ``stepper`` itself is not
+    advanced.
     """
     base = stepper.twin()
     dy = np.zeros(4)
@@ -268,6 +279,9 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
             return np.append(logs[: max(j - align, 0)], -math.inf)
         if j >= align:
             logs[j - align] = math.log(d / d0)
+            n = j - align + 1
+            if n == early and n < periods and verdict_clear(logs[:n]):
+                return logs[:n]
         dy[1:4] = sep * (d0 / d) * scale
     return logs
 
@@ -277,7 +291,9 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
 
     :func:`stretching_logs` from the window's snapshot over the window's length (at least
     :data:`~sawdrift.dynamics.lyapunov.LYAPUNOV_PERIODS`, at most
-    :data:`~sawdrift.dynamics.lyapunov.LYAPUNOV_MAX_PERIODS`), judged by
+    :data:`~sawdrift.dynamics.lyapunov.LYAPUNOV_MAX_PERIODS`, stopping after the first
+    ``LYAPUNOV_PERIODS`` where those already decide: a long window of a heavy quasi-periodic
+    bouncer spent three quarters of its cost on stretchings that changed nothing), judged by
     :func:`~sawdrift.dynamics.lyapunov.lyapunov_statistics` and
     :func:`~sawdrift.dynamics.lyapunov.is_chaotic`.
     """
@@ -285,7 +301,7 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
         return math.nan, False
     try:
         periods = min(max(window.periods, LYAPUNOV_PERIODS), LYAPUNOV_MAX_PERIODS)
-        logs = stretching_logs(window.snapshot, scale, periods)
+        logs = stretching_logs(window.snapshot, scale, periods, early=LYAPUNOV_PERIODS)
     except NonFiniteStateError:
         return math.nan, False
     lam, err = lyapunov_statistics(logs)
