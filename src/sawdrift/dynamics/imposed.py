@@ -33,7 +33,10 @@ from .stepper import Stepper
 
 #: periods per chunk of the record (its length: ``numerics.mean_periods``, or two full-inertia
 #: windows if longer)
-CHUNK = 250
+CHUNK = 16
+
+#: columns of the trajectory rows the record keeps: x*, y*, y*', a*, b*
+_RECORDED = [1, 3, 4, 5, 6]
 
 #: periods of the record the bracket of the zero is searched on (the zero itself: all of it);
 #: the bracket is widened on the whole record where the two disagree
@@ -52,16 +55,20 @@ class _Record:
 
     def __init__(self, stepper: Stepper, periods: int):
         k = stepper.k_per
-        cols = []
+        # x, y, y', a, b of every step, filled chunk by chunk: a chunk's rows fit in the cache,
+        # where whole-record row blocks (11 columns) cost more to fill and copy than to integrate
+        cols = np.empty((5, periods * k))
+        done = 0
         left = periods
         while left > 0:
             p = min(CHUNK, left)
             rows: list[np.ndarray] = []
             stepper.advance(p * k, rows=rows)
-            r = np.concatenate(rows)
-            cols.append(r[:, [1, 3, 4, 5, 6]].copy())  # x, y, y', a, b
+            for r in rows:
+                cols[:, done:done + r.shape[0]] = r[:, _RECORDED].T
+                done += r.shape[0]
             left -= p
-        x, y, vy, a, b = np.concatenate(cols).T
+        x, y, vy, a, b = cols[:, :done]
         prm = stepper.prm
         self.mu = float(prm[ig.P_MU])
         self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)
