@@ -36,6 +36,34 @@ def test_imap_yields_every_index_once_and_ticks_only_when_asked():
         assert sorted(i for i, _ in ticked if i is not None) == [0, 1]
 
 
+def test_a_long_batch_keeps_a_bounded_number_of_items_in_flight():
+    # every index once, and never more than AHEAD_PER_WORKER per worker submitted and not
+    # yet yielded: the consumer's cost per result must not grow with the batch
+    from sawdrift.study.executor import AHEAD_PER_WORKER
+
+    items = [float(k) for k in range(300)]
+    with Executor(2) as ex:
+        seen, most = [], 0
+        original = None
+
+        def counting_submit(fn, item):
+            nonlocal most
+            most = max(most, len(items_submitted) + 1 - len(seen))
+            items_submitted.append(item)
+            return original(fn, item)
+
+        items_submitted: list[float] = []
+        ex.map(_square, items[:2])  # opens the pool
+        original = ex._pool.submit
+        ex._pool.submit = counting_submit
+        for i, value in ex.imap(_square, items):
+            seen.append(i)
+            assert value == _square(items[i])
+        assert sorted(seen) == list(range(len(items)))
+        assert len(items_submitted) == len(items)
+        assert most <= AHEAD_PER_WORKER * 2 + 1
+
+
 def test_workers_below_one_is_one_line_error():
     with pytest.raises(SceneError, match="workers = 0"):
         Executor(0)
