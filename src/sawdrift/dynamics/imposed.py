@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..roots import brentq
 from . import adams_bashforth as ig
 from .batch_means import BatchMeans, blocked_error
 from .fast_parts import _periodic_rate
@@ -45,6 +46,10 @@ BRACKET_PERIODS = 100
 #: the zero is found to this in drift ratio (a tenth of the tolerance, against a batch-means
 #: error of 5e-3 to 1e-2 over a 500-period record)
 ROOT_XTOL = 1e-4
+
+#: the zero on the record's first part, where the secants on the whole record start, is found
+#: to this (they move it by more: the first part's own batch error)
+START_XTOL = 1e-3
 
 #: periods at the start of the record left out of the means (the contact memory fills in)
 WASH_PERIODS = 2
@@ -85,12 +90,19 @@ class _Record:
         self.scratch = stepper.history.copy()
         force, self.fs, self.is_, self.pp = self.scratch.kernel_call()
         self.loop = history_loop(force, stepper.compiled)
-        # the contact law's path (a*, b*, a*', b*'): a*, a*' fixed, b* and b*' written per speed
-        self.path = np.empty((4, a.size))
-        self.path[0] = a
-        self.path[2] = self.adot
+        # the contact law's paths (a*, b*, a*', b*'), one per length asked for (the bracket's
+        # first part, the whole record): a*, a*' fixed, b* and b*' written per speed
+        self.paths: dict[int, np.ndarray] = {}
         self.n_out = np.empty(a.size)
         self.last: tuple[float, int, np.ndarray] | None = None
+
+    def _path(self, n: int) -> np.ndarray:
+        path = self.paths.get(n)
+        if path is None:
+            path = self.paths[n] = np.empty((4, n))
+            path[0] = self.a[:n]
+            path[2] = self.adot[:n]
+        return path
 
     def friction(self, v: float, periods: int | None = None) -> np.ndarray:
         """T*(t*) along the record (its first ``periods``) at the imposed speed ``v``; the last
@@ -98,13 +110,12 @@ class _Record:
         n = self.a.size if periods is None else min(self.a.size, periods * self.k)
         if self.last is not None and self.last[:2] == (v, n):
             return self.last[2]
-        path = self.path[:, :n]
+        path = self._path(n)
         np.multiply(v * self.t[:n] - self.ux[:n], self.scale_b, out=path[1])
         np.multiply(v - self.uxd[:n], self.scale_b, out=path[3])
         self.scratch.reset()
         t_out = np.empty(n)
-        self.loop(self.fs, self.is_, self.pp, np.ascontiguousarray(path) if n < self.a.size
-                  else self.path, 0.0, 1, self.n_out[:n], t_out)
+        self.loop(self.fs, self.is_, self.pp, path, 0.0, 1, self.n_out[:n], t_out)
         out = t_out[WASH_PERIODS * self.k:]
         if n == self.a.size:
             self.last = (v, n, out)
@@ -118,8 +129,14 @@ def imposed_drift(stepper: Stepper, scene, speed: float) -> BatchMeans | None:
     periods = max(scene.numerics.mean_periods, 2 * full_window_length(m, scene.theta, 1))
     rec = _Record(stepper, periods)
 
+    known: dict[tuple[float, int | None], float] = {}
+
     def push(d: float, span: int | None = None) -> float:
-        return -float(np.mean(rec.friction(d * speed, span)))
+        # -<T*> at the drift ratio d, each (d, span) computed once (the bracket's ends are
+        # asked for again for the first secant)
+        if (d, span) not in known:
+            known[(d, span)] = -float(np.mean(rec.friction(d * speed, span)))
+        return known[(d, span)]
 
     touching = rec.a > 0.0
     if not np.any(touching):
@@ -167,10 +184,10 @@ def _secant_zero(push, lo: float, hi: float, span: int) -> tuple[float, float] |
     secant on the whole record, or None where the steps leave the bracket widened by its width
     on each side or do not converge to :data:`ROOT_XTOL`. Three or four evaluations of the whole
     record instead of Brent's six to eight and a bracket of its own."""
-    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
 
     try:
-        r0 = brentq(lambda d: push(d, span), lo, hi, xtol=ROOT_XTOL, rtol=1e-10)
+        # the first part's zero is only the secants' start: they move it by that part's error
+        r0 = brentq(lambda d: push(d, span), lo, hi, xtol=START_XTOL, rtol=1e-10)
     except ValueError:
         return None
     s0 = (push(hi, span) - push(lo, span)) / (hi - lo)
@@ -197,7 +214,6 @@ def _secant_zero(push, lo: float, hi: float, span: int) -> tuple[float, float] |
 def _bracketed_zero(push, lo: float, hi: float) -> tuple[float, float] | None:
     """The zero of -<T*> on the whole record by Brent's method, the bracket of its first part
     widened until it holds on the whole; returns the zero and the slope across the bracket."""
-    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
 
     f_lo, f_hi = push(lo), push(hi)
     while f_lo < 0.0 or f_hi > 0.0:

@@ -54,6 +54,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..codegen import Generated, generate, rebind
+from ..roots import brentq
 from . import adams_bashforth as ig
 from . import fast_parts as fp
 from .drives.travelling import TravellingWave
@@ -270,7 +271,6 @@ class _Problem:
 
 def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
     """Y with <N*> = 1 and the vertical fast part eta on it (the normal law ignores b*)."""
-    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
 
     orbit = p.orbit(np.zeros(p.k))
     y_mean = 1.0
@@ -313,7 +313,6 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
     keep_contact
         Return None for an orbit that loses contact (else it is returned, ``loses_contact``).
     """
-    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
 
     if speed <= 0.0 or not applies(stepper, scene):
         return None

@@ -36,6 +36,7 @@ import math
 
 import numpy as np
 
+from ..roots import brentq
 from . import fast_parts as fp
 from .separated import SeparatedOrbit
 from .stepper import Stepper
@@ -150,7 +151,6 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
     speed, tol
         The drift ratio's scale and ``numerics.settle_tolerance``.
     """
-    from scipy.optimize import brentq  # lazily: scipy.optimize takes a second to import
 
     cycle = slow_cycle(stepper, orbit)
     if cycle is None:
