@@ -88,9 +88,14 @@ def blocking(per_period: np.ndarray) -> tuple[float, float, int, bool, bool]:
 
 
 def long_time_mean(stepper: Stepper, window, periods: int,
-                   target: float = 0.0) -> BatchMeans:
+                   target: float = 0.0, series: list[np.ndarray] | None = None) -> BatchMeans:
     """Advance up to ``periods`` more periods and return the batch-mean drift over them and the
     window.
+
+    With ``series`` (the per-period displacements of the windows run before, contiguous and
+    ending with ``window``'s), the mean is over all of them and what follows, and the periods
+    they hold beyond the window count against ``periods``: windows that a run went through
+    looking for a steady drift are already samples of its long-time mean.
 
     ``stepper`` is at the end of the measuring ``window`` (a
     :class:`~sawdrift.dynamics.window.Window`, whose per-period positions start the series). With
@@ -100,8 +105,15 @@ def long_time_mean(stepper: Stepper, window, periods: int,
     mean is known to the tolerance is not run on for the error bars of a chaotic one.
     """
     parts = [np.diff(window.positions)]
-    x_last = stepper.y[0]
     done = 0
+    if series and np.array_equal(series[-1], parts[0]):
+        parts = [np.concatenate(series)]
+        done = min(periods, parts[0].size - window.periods)
+        if target > 0.0 and done < periods and parts[0].size >= MIN_PERIODS:
+            _mean, se, _n, flat, rising = blocking(parts[0])
+            if flat and not rising and se <= target:
+                done = periods  # known to the target already
+    x_last = stepper.y[0]
     while done < periods:
         chunk = min(CHUNK, periods - done)
         x = stepper.advance_periods(chunk)[:, 0]

@@ -285,8 +285,8 @@ class _Approach:
 def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
                 max_steps: int, lam: float, last: Window | None = None,
                 expected: float | None = None,
-                give_up: Callable[[list[float]], bool] | None = None
-                ) -> tuple[Window, FullInertia]:
+                give_up: Callable[[list[float]], bool] | None = None,
+                series: list[np.ndarray] | None = None) -> tuple[Window, FullInertia]:
     """Measure full-inertia windows until the drift has settled (module docstring).
 
     Windows span at least three of the longest flight of ``last`` (the first stage's final
@@ -309,6 +309,10 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     give_up
         Called with the window drift ratios so far after each window: True ends the stage
         unsettled (a run whose window means wander has no drift to settle on).
+    series
+        Per-period displacements of the run so far, one array per window: each window's are
+        appended, and a jump of the speed empties the list (what follows is another
+        trajectory).
     """
     w = full_window_length(scene.particle.m_star, scene.theta, minimum_window, stepper.rigid)
     if last is not None:
@@ -320,11 +324,14 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     # the stage may outlast the first stage's cap by MIN_WINDOWS windows
     max_steps = max(max_steps, start + MIN_WINDOWS * w * stepper.k_per)
     settled = False
+    log = series if series is not None else []
     win = measure_window(stepper, w, speed, scale)
+    log.append(np.diff(win.positions))
     values = [tapered_drift_ratio(win, speed)]
     state.prev = values[-1]
     while len(values) < MAX_WINDOWS and stepper.step + state.w * stepper.k_per <= max_steps:
         win = measure_window(stepper, state.w, speed, scale)
+        log.append(np.diff(win.positions))
         values.append(tapered_drift_ratio(win, speed))
         action, jump = state.judge(values[-1], win)
         if action == "settled":
@@ -334,6 +341,7 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
             break
         if action == "jump" and speed > 0.0:
             shift_speed(stepper, jump * speed)
+            log.clear()
         if action != "next":
             state.restart(longer=action == "longer")
     info = FullInertia(settled, state.w, len(values), state.jumps,

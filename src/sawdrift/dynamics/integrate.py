@@ -118,10 +118,13 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     settle_on = settles(scene, speed, stepper.rigid)
     win, settling = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
+    # the per-period displacements of the run's windows, one contiguous stretch of its own
+    # trajectory up to now: a long-time mean after them starts from all of it
+    series = [np.diff(win.positions)]
     if settling is None and num.settle is not False and not chaotic and win.contact_lost:
         # the run goes on to its periodic orbit (its events and trajectory with it), as a
         # settling run goes on to its steady drift
-        win = _find_orbit(stepper, win, speed, scale)
+        win = _find_orbit(stepper, win, speed, scale, series)
     periods_run = stepper.step / stepper.k_per
     # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
@@ -138,7 +141,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
             # a default run that its own window could not confirm goes on to the steady drift (a
             # run given another length keeps it)
             win, settling, chaos = _go_on(stepper, scene, speed, scale, win, settling,
-                                          periods_run, drive.vertical_amplitude(scene))
+                                          periods_run, drive.vertical_amplitude(scene), series)
     elif chaos is None and settling.long_mean is not None:
         chaos = settling.long_mean  # the settling measured the long-time mean itself
     elif chaos is None and num.settle is not False and _irregular(win, settling):
@@ -174,24 +177,26 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
 
 
 def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win: Window,
-           settling: Settling, periods_run: float, vertical: float
+           settling: Settling, periods_run: float, vertical: float, series: list[np.ndarray]
            ) -> tuple[Window, Settling, BatchMeans | None]:
     """Where a default fixed run's window could not confirm its drift: full-inertia windows
     (:func:`_settle_on`) and, for an irregular motion, its long-time mean; for a window spent in
     one flight by a particle that lands again within the time run so far (thrown higher than a
     window lasts, :func:`~.window.ballistic_return`, ``vertical`` the drive's vertical amplitude),
     the long-time mean of its bounces, whose flights a window cannot average over. A load, or a
-    flight that outlasts the run (an ejection), is left to the Result's outcome."""
+    flight that outlasts the run (an ejection), is left to the Result's outcome. The long-time
+    mean counts the windows already run (``series``, their per-period displacements since the
+    last jump of the speed) against its budget."""
     num = scene.numerics
     if not _leaving(scene, win, speed):
-        win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run)
+        win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run, series)
     elif scene.particle.load != 0.0:  # else, leaving, the window was one flight
         return win, settling, None
     lands = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
                              vertical) <= stepper.step / stepper.k_per
     if _irregular(win, settling) or (not settling.settled and in_flight(win) and lands):
         return win, settling, long_time_mean(stepper.twin(), win, num.mean_periods,
-                                             num.settle_tolerance * speed)
+                                             num.settle_tolerance * speed, series)
     return win, settling, None
 
 
@@ -244,7 +249,8 @@ SETTLE_ON_PERIODS = 1000
 
 
 def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win: Window,
-               periods_run: float) -> tuple[Window, Settling]:
+               periods_run: float, series: list[np.ndarray] | None = None
+               ) -> tuple[Window, Settling]:
     """Full-inertia windows from where a default fixed run ended unconfirmed
     (:func:`~sawdrift.dynamics.full_inertia.settle_full`; ``settle_method``
     "fixed_then_windows"), for :data:`SETTLE_ON_PERIODS` more periods at most, or the
@@ -262,7 +268,7 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
     lam = mu / m_star if mu > 0.0 else 0.0
     start = stepper.step
     win, full = settle_full(stepper, scene, speed, scale, n_periods, n_max, lam, last=win,
-                            give_up=_gives_up)
+                            give_up=_gives_up, series=series)
     info = Settling(full.settled, "fixed_then_windows", m_star, full.window_periods,
                     periods_run + (stepper.step - start) / stepper.k_per, math.nan, full.history)
     return win, info
@@ -272,7 +278,8 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
 ORBIT_PERIODS = 300
 
 
-def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray) -> Window:
+def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
+                series: list[np.ndarray] | None = None) -> Window:
     """Run on, window after window, until a regular window that lost contact is on its orbit.
 
     A motion with contact loss that is not chaotic settles on a periodic orbit (or is still on
@@ -282,12 +289,15 @@ def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray) 
     (the inelastic bouncing ball just past its period doubling: lift-offs at 0.3765 and 0.3034
     alternately, which 60 periods averaged into one phase). At most :data:`ORBIT_PERIODS` more,
     and no more once the distance from repeating (:func:`~.window.orbit_residual`) shows that
-    they would not reach an orbit (:func:`_no_orbit_ahead`).
+    they would not reach an orbit (:func:`_no_orbit_ahead`). Each window's per-period
+    displacements are appended to ``series``.
     """
     spent = 0
     residuals = [orbit_residual(win.samples, scale)]
     while win.contact_lost and win.orbit_period == 0 and spent < ORBIT_PERIODS:
         win = measure_window(stepper, win.periods, speed, scale)
+        if series is not None:
+            series.append(np.diff(win.positions))
         spent += win.periods
         residuals.append(orbit_residual(win.samples, scale))
         if _no_orbit_ahead(residuals, (ORBIT_PERIODS - spent) / win.periods):
