@@ -17,6 +17,7 @@ from ..errors import NonFiniteStateError
 from . import evidence as ev
 from .lyapunov import (
     ALIGN_PERIODS,
+    EARLY_CHECKS,
     LYAPUNOV_D0,
     LYAPUNOV_MAX_PERIODS,
     LYAPUNOV_PERIODS,
@@ -251,7 +252,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
 
 def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
                     align: int = ALIGN_PERIODS, d0: float = LYAPUNOV_D0,
-                    early: int | None = None) -> np.ndarray:
+                    early: tuple[int, ...] = ()) -> np.ndarray:
     """ln(d / d0) of each period after ``align``, renormalized every period (Benettin et al. 1980).
 
     A copy of the integration and a twin displaced by ``d0`` (scaled (x*', y*, y*'), first along
@@ -259,8 +260,8 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
     re-started from the copy at distance ``d0`` along the separation. The first ``align``
     periods, in which the separation turns into the most unstable direction, are left out. A
     separation erased to 0 (an inelastic landing, a sticking phase) ends the series with -inf.
-    With ``early``, the series stops after that many stretchings where they already decide
-    the verdict (:func:`~sawdrift.dynamics.lyapunov.verdict_clear`). ``stepper`` itself is not
+    With ``early``, the series stops after any of those numbers of stretchings where they
+    already decide the verdict (:func:`~sawdrift.dynamics.lyapunov.verdict_clear`). ``stepper`` itself is not
     advanced.
     """
     base = stepper.twin()
@@ -280,7 +281,8 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
         if j >= align:
             logs[j - align] = math.log(d / d0)
             n = j - align + 1
-            if n == early and n < periods and verdict_clear(logs[:n]):
+            if (n in early and n < periods
+                    and verdict_clear(logs[:n], chaos=n >= LYAPUNOV_PERIODS)):
                 return logs[:n]
         dy[1:4] = sep * (d0 / d) * scale
     return logs
@@ -291,9 +293,11 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
 
     :func:`stretching_logs` from the window's snapshot over the window's length (at least
     :data:`~sawdrift.dynamics.lyapunov.LYAPUNOV_PERIODS`, at most
-    :data:`~sawdrift.dynamics.lyapunov.LYAPUNOV_MAX_PERIODS`, stopping after the first
-    ``LYAPUNOV_PERIODS`` where those already decide: a long window of a heavy quasi-periodic
-    bouncer spent three quarters of its cost on stretchings that changed nothing), judged by
+    :data:`~sawdrift.dynamics.lyapunov.LYAPUNOV_MAX_PERIODS`, stopping at the first of
+    :data:`~sawdrift.dynamics.lyapunov.EARLY_CHECKS` where the stretchings so far already
+    decide: a long window of a heavy quasi-periodic bouncer spent three quarters of its cost on
+    stretchings that changed nothing, and a hopping orbit's contraction is plain after 32),
+    judged by
     :func:`~sawdrift.dynamics.lyapunov.lyapunov_statistics` and
     :func:`~sawdrift.dynamics.lyapunov.is_chaotic`.
     """
@@ -301,7 +305,7 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
         return math.nan, False
     try:
         periods = min(max(window.periods, LYAPUNOV_PERIODS), LYAPUNOV_MAX_PERIODS)
-        logs = stretching_logs(window.snapshot, scale, periods, early=LYAPUNOV_PERIODS)
+        logs = stretching_logs(window.snapshot, scale, periods, early=EARLY_CHECKS)
     except NonFiniteStateError:
         return math.nan, False
     lam, err = lyapunov_statistics(logs)
