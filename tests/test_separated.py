@@ -177,6 +177,29 @@ def test_an_irregular_heavy_bouncer_reports_a_long_time_mean_at_an_imposed_speed
     assert res.settle_periods < 5000  # the brute force needed 5e5
 
 
+@pytest.mark.parametrize("model", ["mmd", "jaeger", "hertz_mindlin_dem", "mdr"])
+def test_the_imposed_friction_skips_flights_without_changing_a_bit(model):
+    """A heavy bouncer (m* = 300, A* = 6) spends most of its record in flight, where a law that
+    resets on contact loss carries no force: driven only through the contact steps and the first
+    and last step of each flight, the friction along the record is the same to the last bit as
+    driven through every step, at any imposed speed, for far fewer calls of the law."""
+    from sawdrift.dynamics import imposed
+
+    sc = scene(300.0, 6.0, 0.1).with_updates(model=model)
+    st, _speed, _ = stepper_after_ramp(sc)
+    rec = imposed._Record(st, 160)
+    kept = rec.keep
+    assert kept.size < 0.5 * rec.a.size
+    every = np.arange(rec.a.size)
+    for v in (0.05, 0.7, 2.5):
+        rec.keep, rec.paths, rec.last = kept, {}, None
+        fast = rec.friction(v).copy()
+        short = rec.friction(v, 40).copy()
+        rec.keep, rec.paths, rec.last = every, {}, None
+        assert np.array_equal(fast, rec.friction(v))
+        assert np.array_equal(short, rec.friction(v, 40))
+
+
 def test_the_time_from_rest_integrates_the_force_velocity_curve():
     """A linear curve -<T*> = c (d* - d) gives an exponential approach: 90 % of d* after
     ln(10) m* U / (mu c) periods (U the drift ratio's scale), within 0.1 %."""
