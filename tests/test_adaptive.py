@@ -126,6 +126,39 @@ def test_adaptive_sweep_resumes_without_recomputing(small_adaptive):
     assert again["regime"].tolist() == first["regime"].tolist()
 
 
+def test_adaptive_sweep_starts_its_worker_processes_once(monkeypatch):
+    """Every round of an adaptive sweep (base grid, then a confirm and a probe batch per level)
+    runs on one process pool: a pool per round started its workers (imports, compiled loops)
+    over again, 6 s of the 161 x 161 benchmark map."""
+    import concurrent.futures
+
+    from sawdrift.study import executor as ex
+
+    pools = []
+
+    class Counting(concurrent.futures.ProcessPoolExecutor):
+        def __init__(self, *args, **kwargs):
+            pools.append(1)
+            super().__init__(*args, **kwargs)
+
+    monkeypatch.setattr(ex, "ProcessPoolExecutor", Counting)
+    rounds = []
+    from sawdrift.study import sweep as sw
+
+    original = sw.sweep
+
+    def counting_sweep(*args, **kwargs):
+        rounds.append(1)
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(sw, "sweep", counting_sweep)
+    pts = adaptive_sweep("material_point", (1e-3, 1e2), (1e-2, 10.0), budget=60, base=5,
+                         levels=2, scene=sd.Scene(numerics={"periods": 4, "settle": False}),
+                         workers=2, progress=False)
+    assert len(rounds) >= 2 and len(pools) == 1
+    assert (~pts["inferred"]).sum() > 25
+
+
 def test_adaptive_sweep_runs_the_engine_it_is_given():
     """Nine cells on the python engine: two fixed periods each show which engine ran (the
     python engine is ~100x slower than the compiled one; 10 settled periods took 9 s)."""

@@ -46,6 +46,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import SceneError
+from .executor import Executor, resolve_workers
 
 Key = tuple[int, int]
 Cell = tuple[int, int, int]  # lower-left corner (i, j) and size s, in fine-grid spacings
@@ -254,16 +255,22 @@ def adaptive_sweep(
         pts = [(10.0 ** lm[i], 10.0 ** la[j]) for i, j in keys]
         if regime_of is not None:
             return {k: regime_of(m, a) for k, (m, a) in zip(keys, pts, strict=True)}
-        frame = sweep([model], points=pts, base=scene, table=table, workers=workers,
-                      scheduler=scheduler, progress=progress, on_row=on_row, engine=engine,
-                      force=force, traces=traces)
+        frame = sweep([model], points=pts, base=scene, table=table, progress=progress,
+                      on_row=on_row, engine=engine, force=force, traces=traces,
+                      executor=executor)
         lookup = {(round(math.log10(r.m_star), 9), round(math.log10(r.amplitude), 9)): r.regime
                   for r in frame.itertuples()}
         frames.append(frame)
         return {(i, j): lookup[(round(lm[i], 9), round(la[j], 9))] for i, j in keys}
 
     ref = Refinement(fine, 2**levels, evaluate, budget, verify)
-    ref.run()
+    # one executor for every round (the base grid, then a confirm and a probe batch per level):
+    # a pool opened per round started its workers (imports, compiled loops) seven times over
+    executor = Executor(resolve_workers(workers), scheduler)
+    try:
+        ref.run()
+    finally:
+        executor.close()
     if regime_of is not None:
         out = pd.DataFrame({"model": model, "m_star": [10.0 ** lm[i] for i, _ in ref.computed],
                             "amplitude": [10.0 ** la[j] for _, j in ref.computed],
