@@ -21,8 +21,11 @@ def test_serial_and_processes_give_the_same_values_in_order():
         assert pool.backend(len(items)) == "processes"
         assert pool.backend(1) == "serial"
         assert serial.map(_square, items) == pool.map(_square, items) == [_square(x) for x in items]
-        # the pool is kept for the next batch
+        # the pool is kept for the next batch, and a batch of one item goes to it (its workers
+        # have loaded the compiled loops; this process may not have)
         first = pool._pool
+        assert pool.backend(1) == "processes"
+        assert pool.map(_square, items[:1]) == [_square(items[0])]
         assert pool.map(_square, items[:3]) == [_square(x) for x in items[:3]]
         assert pool._pool is first
     assert pool._pool is None

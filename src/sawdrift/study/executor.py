@@ -6,7 +6,8 @@ diagrams hand their work here as a top-level function and a list of picklable it
 results in order. The backend is chosen per batch, as the studies always did:
 
 * ``scheduler`` given (an address, a ``Client`` or a cluster object): dask.distributed;
-* ``workers == 1`` or a batch of at most one item: serially, in this process;
+* ``workers == 1``, or a batch of at most one item with no pool open: serially, in this
+  process;
 * otherwise a local process pool of ``min(workers, items)`` processes, opened on the first
   parallel batch and kept for the next ones (a load curve's rounds, a field's refinements) until
   :meth:`Executor.close`.
@@ -68,8 +69,10 @@ class Executor:
         """``"dask"``, ``"serial"`` or ``"processes"``: what a batch of ``n_items`` runs on."""
         if self.scheduler is not None:
             return "dask"
-        if self.workers == 1 or n_items <= 1:
+        if self.workers == 1 or n_items == 0 or (n_items == 1 and self._pool is None):
             return "serial"
+        # one item goes to a pool already open: its workers have the compiled loops loaded,
+        # this process may not (0.8 s for the last one-cell round of an adaptive map)
         return "processes"
 
     def imap(self, fn: Callable[[Any], Any], items: Sequence[Any],
