@@ -179,14 +179,21 @@ def _unsettled_reason(out: WaveRun, settling: bool) -> str:
 
 def mean_acceleration(positions) -> float:
     """Mean horizontal acceleration over a window, per period squared: twice the quadratic
-    coefficient of a least-squares fit to the positions at the period ends."""
+    coefficient of a least-squares fit to the positions at the period ends.
+
+    With the times centred, t_i = i - (n - 1)/2, the polynomials 1, t and t^2 - <t^2> are
+    orthogonal over the samples, so the coefficient is sum (t^2 - <t^2>) x / sum (t^2 - <t^2>)^2
+    (the fit ``numpy.polyfit(t, x, 2)`` makes, without its matrix factorisation).
+    """
     import numpy as np
 
     x = np.asarray(positions, dtype=float)
     if x.size < 3:
         return math.nan
     t = np.arange(x.size) - 0.5 * (x.size - 1)
-    return float(2.0 * np.polyfit(t, x - x[0], 2)[0])
+    q = t * t
+    q -= q.mean()
+    return float(2.0 * np.dot(q, x - x[0]) / np.dot(q, q))
 
 
 def _regime(scene: Scene, drive: Drive, win: Window, speed: float,
