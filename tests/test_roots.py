@@ -1,4 +1,4 @@
-"""sawdrift.roots.brentq is SciPy's Brent method step for step: the same roots to the last bit."""
+"""sawdrift.dynamics.roots.brentq is SciPy's Brent method step for step: the same roots to the last bit."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq as scipy_brentq
 
-from sawdrift.roots import brentq
+from sawdrift.dynamics.roots import brentq
 
 CASES = [
     (lambda x: x**3 - 2.0 * x - 5.0, 2.0, 3.0),  # Wallis' cubic

@@ -83,6 +83,20 @@ MIN_WINDOWS = 12
 
 
 @dataclass(frozen=True)
+class Watch:
+    """What a caller of :func:`settle_full` follows window by window.
+
+    ``give_up`` is called with the window drift ratios so far after each window: True ends the
+    stage unsettled (a run whose window means wander has no drift to settle on). ``series``
+    collects the per-period displacements of the run, one array per window: each window's are
+    appended, and a jump of the speed empties it (what follows is another trajectory).
+    """
+
+    give_up: Callable[[list[float]], bool] | None = None
+    series: list[np.ndarray] | None = None
+
+
+@dataclass(frozen=True)
 class FullInertia:
     """How the full-inertia stage ended."""
 
@@ -284,9 +298,8 @@ class _Approach:
 
 def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
                 max_steps: int, lam: float, last: Window | None = None,
-                expected: float | None = None,
-                give_up: Callable[[list[float]], bool] | None = None,
-                series: list[np.ndarray] | None = None) -> tuple[Window, FullInertia]:
+                expected: float | None = None, watch: Watch | None = None
+                ) -> tuple[Window, FullInertia]:
     """Measure full-inertia windows until the drift has settled (module docstring).
 
     Windows span at least three of the longest flight of ``last`` (the first stage's final
@@ -306,14 +319,11 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         A drift ratio solved directly (:mod:`.separated`, :mod:`.torus`): two consecutive windows
         within the accuracy of it and of each other settle the drift (else the usual
         :data:`STEADY_CHANGES` consecutive changes do).
-    give_up
-        Called with the window drift ratios so far after each window: True ends the stage
-        unsettled (a run whose window means wander has no drift to settle on).
-    series
-        Per-period displacements of the run so far, one array per window: each window's are
-        appended, and a jump of the speed empties the list (what follows is another
-        trajectory).
+    watch
+        What the caller follows window by window (:class:`Watch`).
     """
+    watch = watch if watch is not None else Watch()
+    give_up = watch.give_up
     w = full_window_length(scene.particle.m_star, scene.theta, minimum_window, stepper.rigid)
     if last is not None:
         # flights of many periods (a heavy point thrown by one impact): windows of three of them
@@ -324,7 +334,7 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     # the stage may outlast the first stage's cap by MIN_WINDOWS windows
     max_steps = max(max_steps, start + MIN_WINDOWS * w * stepper.k_per)
     settled = False
-    log = series if series is not None else []
+    log = watch.series if watch.series is not None else []
     win = measure_window(stepper, w, speed, scale)
     log.append(np.diff(win.positions))
     values = [tapered_drift_ratio(win, speed)]

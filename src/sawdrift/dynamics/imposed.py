@@ -24,11 +24,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..roots import brentq
 from . import adams_bashforth as ig
 from .batch_means import BatchMeans, blocked_error
 from .fast_parts import _periodic_rate
 from .full_inertia import full_window_length
+from .roots import brentq
 from .separated import GRID, history_loop
 from .stepper import Stepper
 

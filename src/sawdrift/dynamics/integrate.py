@@ -22,7 +22,7 @@ from ..scene.schema import Impact, Numerics, Scene
 from .assembly import Assembly
 from .batch_means import BatchMeans, long_time_mean
 from .evidence import S_LASTLIFT
-from .full_inertia import settle_full
+from .full_inertia import Watch, settle_full
 from .steady import (
     Settling,
     assess_fixed,
@@ -268,7 +268,7 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
     lam = mu / m_star if mu > 0.0 else 0.0
     start = stepper.step
     win, full = settle_full(stepper, scene, speed, scale, n_periods, n_max, lam, last=win,
-                            give_up=_gives_up, series=series)
+                            watch=Watch(give_up=_gives_up, series=series))
     info = Settling(full.settled, "fixed_then_windows", m_star, full.window_periods,
                     periods_run + (stepper.step - start) / stepper.k_per, math.nan, full.history)
     return win, info

@@ -54,12 +54,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..codegen import Generated, generate, rebind
-from ..roots import brentq
 from . import adams_bashforth as ig
 from . import fast_parts as fp
 from .drives.travelling import TravellingWave
 from .drives.two_wave import needs_two_waves
 from .full_inertia import SLIDING_FRACTION
+from .roots import brentq
 from .stepper import Stepper
 
 #: the separated orbit is solved from this m* up (the fast parts' contraction factor, about

@@ -36,8 +36,8 @@ import math
 
 import numpy as np
 
-from ..roots import brentq
 from . import fast_parts as fp
+from .roots import brentq
 from .separated import SeparatedOrbit
 from .stepper import Stepper
 

@@ -1,7 +1,7 @@
 """Brent's bracketed root finder, without importing :mod:`scipy.optimize`.
 
-The steady-drift routes (:mod:`sawdrift.dynamics.separated`, :mod:`~sawdrift.dynamics.torus`,
-:mod:`~sawdrift.dynamics.imposed`) find zeros of period-averaged forces with Brent's method.
+The steady-drift routes (:mod:`.separated`, :mod:`.torus`,
+:mod:`.imposed`) find zeros of period-averaged forces with Brent's method.
 Importing ``scipy.optimize`` for it costs 0.4 s per process (measured on the 2-core machine
 of the benchmarks), paid by every worker of a sweep and by every single ``sawdrift run`` of a
 heavy particle. :func:`brentq` is the same algorithm as ``scipy.optimize.brentq`` (Brent 1973,
