@@ -457,6 +457,7 @@ def sweep(
     # with force, a scene the table holds keeps its row, whatever code computed it
     held = {r["scene_id"]: cid for cid, r in done.items() if r.get("scene_id")} if force else {}
     todo: list[str] = []
+    weights: list[float] = []
     wanted: set[str] = set()
     # the swept fields' values of each cell, as the validated scene holds them (SI for devices),
     # and a device's SI columns
@@ -477,7 +478,11 @@ def sweep(
         rerun = traces and cid in done and cid not in have and not done[cid].get("error")
         if (cid not in done or rerun) and cid not in wanted:
             todo.append(scene.model_dump_json())
+            weights.append(-scene.particle.m_star)
         wanted.add(cid)
+    # the heaviest particles first: they take the longest (the relaxation, the windows and the
+    # records grow with m*), and a batch that ends on them leaves a worker idle
+    todo = [todo[i] for i in sorted(range(len(todo)), key=weights.__getitem__)]
     own = executor is None
     if executor is None:
         executor = Executor(resolve_workers(workers), scheduler)
