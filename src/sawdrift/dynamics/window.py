@@ -261,21 +261,22 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
     periods, in which the separation turns into the most unstable direction, are left out. A
     separation erased to 0 (an inelastic landing, a sticking phase) ends the series with -inf.
     With ``early``, the series stops after any of those numbers of stretchings where they
-    already decide the verdict (:func:`~sawdrift.dynamics.lyapunov.verdict_clear`). ``stepper`` itself is not
-    advanced.
+    already decide the verdict (:func:`~sawdrift.dynamics.lyapunov.verdict_clear`).
+    ``stepper`` itself is not advanced.
     """
     base = stepper.twin()
     dy = np.zeros(4)
     dy[3] = d0 * scale[2]
     logs = np.empty(periods)
     twin = base.twin(dy)
+    u = [float(v) for v in scale]  # (x*', y*, y*') in plain floats: three numbers a period
     for j in range(align + periods):
         if j:
             twin.restart_from(base, dy)  # in place: the same state a new twin would have
         base.advance(base.k_per)
         twin.advance(twin.k_per)
-        sep = (twin.y[1:4] - base.y[1:4]) / scale
-        d = float(np.linalg.norm(sep))
+        sep = [(float(twin.y[i + 1]) - float(base.y[i + 1])) / u[i] for i in range(3)]
+        d = math.sqrt(sep[0] * sep[0] + sep[1] * sep[1] + sep[2] * sep[2])
         if not d > 0.0:
             return np.append(logs[: max(j - align, 0)], -math.inf)
         if j >= align:
@@ -284,7 +285,8 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
             if (n in early and n < periods
                     and verdict_clear(logs[:n], chaos=n >= LYAPUNOV_PERIODS)):
                 return logs[:n]
-        dy[1:4] = sep * (d0 / d) * scale
+        for i in range(3):
+            dy[i + 1] = sep[i] * (d0 / d) * u[i]
     return logs
 
 
