@@ -80,7 +80,7 @@ def device_table(tmp_path_factory):
 def test_device_tables_carry_si_columns_with_units(device_table):
     import pandas as pd
 
-    from sawdrift.study.sweep import table_metadata
+    from sawdrift.study.table import table_metadata
 
     frame = pd.read_parquet(device_table)
     a0 = _hertz_a0()

@@ -15,6 +15,7 @@ import pytest
 
 import sawdrift as sd
 from sawdrift.study import sweep as sw
+from sawdrift.study.table import table_metadata
 
 from .cli_call import run_main
 
@@ -31,7 +32,7 @@ def test_table_metadata_names_version_code_and_base_scene(tmp_path):
     table = tmp_path / "t.parquet"
     base = sd.Scene(material={"mu": 0.2}, numerics={"periods": 20})
     sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False)
-    meta = sw.table_metadata(table)
+    meta = table_metadata(table)
     assert meta["sawdrift_version"] == im.version("sawdrift")
     assert meta["base_scene"]["material"]["mu"] == 0.2
     stored = pd.read_parquet(table)

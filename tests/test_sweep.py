@@ -216,7 +216,7 @@ def test_table_rows_read_back_as_pandas_gives_them(tmp_path):
     strings with missing values, floats with NaN, ints, bools, objects."""
     import numpy as np
 
-    from sawdrift.study.sweep import _records
+    from sawdrift.study.table import _records
 
     table = tmp_path / "t.parquet"
     sd.sweep("mmd", "0.01,3", "0.05,2", base=sd.Scene(numerics={"periods": 10, "settle": False}),

@@ -34,7 +34,7 @@ from ..result.regimes import CONTACT_LOST, DRIFTING
 from ..scene.device import Device, normalized
 from ..scene.schema import set_dotted
 from ..study.axes import column_unit
-from ..study.sweep import TABLE_COLUMNS, table_metadata
+from ..study.table import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
 from .diagrams import COLOURS
 from .explore_page import build_document

@@ -39,7 +39,7 @@ from .axes import parse_values
 from .bifurcation_tasks import changes, run_branches
 from .branch import SAMPLE_COLUMNS, Point
 from .provenance import check_resume, code_hash
-from .sweep import META_BASE_SCENE, META_CODE, META_VERSION, table_metadata
+from .table import META_BASE_SCENE, META_CODE, META_VERSION, table_metadata
 
 #: Names of the outputs in the output folder.
 TABLE, SUMMARY, FIGURE, JOURNALS = "bifurcation.parquet", "bifurcation.json", "bifurcation.png", "journal"

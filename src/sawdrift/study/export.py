@@ -31,6 +31,7 @@ import pandas as pd
 from ..errors import SceneError
 from ..result.regimes import REGIMES
 from .axes import column_unit, long_name
+from .table import table_metadata
 
 #: per-cell variables exported when present
 VARIABLES = (
@@ -160,8 +161,6 @@ def _versions(table: pd.DataFrame) -> str:
 
 def write_grid(table_path: str | Path, out: str | Path):
     """Export a sweep table (Parquet) to ``out`` (``.nc``, or ``.zarr`` where zarr is installed)."""
-    from .sweep import table_metadata
-
     table_path, out = Path(table_path), Path(out)
     ds = to_dataset(pd.read_parquet(table_path), table_metadata(table_path))
     if out.suffix == ".zarr":

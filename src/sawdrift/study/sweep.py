@@ -1,11 +1,12 @@
 """Parameter sweeps over (model, m*, A*): executors, a resumable table, and lossless resume.
 
 Every finished cell is appended, as one JSON line, to a journal next to the table
-(``TABLE.journal.jsonl``) the moment it completes; one ``write`` of a short line, flushed, so a
-kill -9 loses at most the cells still running. Re-running the same sweep reads the table and the
-journal, skips every cell already there (cells are identified by a hash of their whole scene), and
-computes only the rest. At the end the rows are consolidated into the Parquet table with an atomic
-replace and the journal is removed.
+(``TABLE.journal.jsonl``) as it completes, flushed to disk at most every
+:data:`JOURNAL_FLUSH_SECONDS`, so a kill -9 loses the cells still running and those of the last
+half second. Re-running the same sweep reads the table and the journal
+(:mod:`sawdrift.study.table`), skips every cell already there (cells are identified by a hash of
+their whole scene), and computes only the rest. At the end the rows are consolidated into the
+Parquet table with an atomic replace and the journal is removed.
 
 Executors (:class:`sawdrift.study.executor.Executor`, shared by every study): ``serial``; local
 processes (default, all cores); or an existing dask.distributed cluster (``scheduler=ADDRESS``).
@@ -17,38 +18,34 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
-import math
-import os
 import time
 from collections.abc import Callable, Iterable, Sequence
 from functools import partial
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 import pandas as pd
 
 from .._version import __version__
 from ..contact.binding import bind
 from ..errors import SawdriftError, SceneError
-from ..result.result import SUMMARY_FIELDS
 from ..result.runner import run
 from ..scene.schema import Scene, build_scene, get_dotted, set_dotted
-from .axes import add_columns, column_unit, device_columns, parse_axis, parse_values
+from .axes import add_columns, device_columns, parse_axis, parse_values
 from .estimate import announce, check, estimate_sweep
 from .executor import Executor, resolve_workers
-from .journal import records
 from .progress import progress as make_progress
 from .provenance import check_resume, code_hash
+from .table import (
+    TABLE_COLUMNS,
+    base_json,
+    journal_path,
+    read_rows,
+    stored_base,
+    to_frame,
+    write_table,
+)
 from .traces import append_trace, consolidate_traces, read_traces, run_traced
-
-#: Columns of a sweep table, in order: ``events_dropped`` counts the events the run could not log
-#: (its evidence is then incomplete), ``code_hash`` names the code that computed the row
-#: (:func:`sawdrift.study.provenance.code_hash`).
-TABLE_COLUMNS = tuple(dict.fromkeys(("cell_id", "scene_id", *SUMMARY_FIELDS, "settled",
-                                     "settle_periods", "orbit_period", "chaotic", "drift_ratio_se",
-                                     "mean_acceleration", "resolved_as", "warnings",
-                                     "events_dropped", "code_hash", "error")))
 
 
 def resolved_as(row: dict[str, Any]) -> str:
@@ -79,9 +76,6 @@ PREPARE_BAR = 2000
 #: loses the rows of the last half second, which a resume recomputes; a flush per row cost 0.2 ms
 #: of this process's time per cell, taken from the workers (0.8 s of the 161 x 161 adaptive map)
 JOURNAL_FLUSH_SECONDS = 0.5
-
-#: Parquet metadata keys of a sweep table (provenance).
-META_VERSION, META_BASE_SCENE, META_CODE = b"sawdrift_version", b"base_scene", b"sawdrift_code"
 
 
 def scene_id(scene: Scene) -> str:
@@ -196,152 +190,6 @@ def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) ->
     return out
 
 
-# -- the resumable table ---------------------------------------------------------------------
-
-
-def journal_path(table: Path) -> Path:
-    """Where finished cells are journaled before consolidation."""
-    return table.with_name(table.name + ".journal.jsonl")
-
-
-def read_rows(table: Path) -> dict[str, dict[str, Any]]:
-    """Rows already finished: from the Parquet table and the journal, by cell id.
-
-    The journal's first line is its header (the sweep's base scene, see :func:`sweep`), not a row.
-    """
-    rows: dict[str, dict[str, Any]] = {}
-    if table.exists():
-        try:
-            frame = pd.read_parquet(table)
-        except Exception as exc:  # noqa: BLE001 - a foreign or broken file must not be overwritten
-            raise SceneError(
-                f"table {str(table)!r} exists but is not a readable Parquet file ({exc})"
-            ) from None
-        if "cell_id" not in frame.columns:
-            raise SceneError(f"table {str(table)!r} is not a sawdrift sweep table (no cell_id column)")
-        for rec in _records(frame):
-            rec.setdefault("scene_id", None)
-            rows[rec["cell_id"]] = rec
-    for rec in records(journal_path(table)):  # a cell cut short by a kill is recomputed
-        if "cell_id" in rec:
-            rows[rec["cell_id"]] = rec
-    return rows
-
-
-def _records(frame: pd.DataFrame) -> list[dict[str, Any]]:
-    """The table's rows as plain dicts of Python values, a missing value None, built column by
-    column (4x faster than ``frame.to_dict("records")`` with the values cleaned row by row: an
-    adaptive map reads its table back at every round)."""
-    names = list(frame.columns)
-    columns = []
-    for name in names:
-        series = frame[name]
-        values = series.tolist()
-        if series.dtype.kind == "f":
-            values = [None if v != v else v for v in values]
-        elif series.dtype.kind not in "iub":
-            values = [_value(v) for v in values]
-        columns.append(values)
-    return [dict(zip(names, row, strict=True)) for row in zip(*columns, strict=True)]
-
-
-def _value(v: Any) -> Any:
-    """A cell of an object or string column as a Python value (None where missing)."""
-    if v is None or v is pd.NA:
-        return None
-    if isinstance(v, np.generic):
-        v = v.item()
-    return None if isinstance(v, float) and math.isnan(v) else v
-
-
-def to_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
-    """Rows as a DataFrame with the table's columns (and any swept-field columns), sorted."""
-    rows = list(rows)
-    extra = sorted({k for r in rows for k in r} - set(TABLE_COLUMNS))
-    frame = pd.DataFrame(rows, columns=[*TABLE_COLUMNS, *extra])
-    for col in ("error", "regime", "model", "engine", "profile", "cell_id", "scene_id", "version",
-                "code_hash"):
-        frame[col] = frame[col].astype("string")
-    frame = frame.sort_values(["model", "m_star", "amplitude", "cell_id"], kind="stable")
-    return frame.reset_index(drop=True)
-
-
-def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] | None = None) -> None:
-    """Write the Parquet table atomically (temporary file, then replace).
-
-    The file's metadata records the sawdrift version (``sawdrift_version``), the code hash of
-    the table's models now (``sawdrift_code``, see :mod:`sawdrift.study.provenance`; each row
-    also names its own) and the base scene of the sweep as JSON (``base_scene``);
-    :func:`table_metadata` reads them back.
-    """
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
-    arrow = pa.Table.from_pandas(frame, preserve_index=False)
-    # each column in SI units says which (Parquet field metadata, read by table_metadata)
-    fields = [f.with_metadata({b"units": unit.encode()}) if (unit := column_unit(f.name)) else f
-              for f in arrow.schema]
-    arrow = arrow.cast(pa.schema(fields, metadata=arrow.schema.metadata))
-    meta = dict(arrow.schema.metadata or {})
-    meta[META_VERSION] = __version__.encode()
-    meta[META_CODE] = code_hash(str(m) for m in frame["model"].dropna().unique()).encode()
-    if not isinstance(base, dict):
-        base = json.loads(bind(base if base is not None else Scene()).model_dump_json())
-    meta[META_BASE_SCENE] = json.dumps(base).encode()
-    tmp = table.with_name(f".{table.name}.{os.getpid()}.tmp")
-    pq.write_table(arrow.replace_schema_metadata(meta), tmp)
-    os.replace(tmp, table)
-
-
-def table_metadata(table: str | Path) -> dict[str, Any]:
-    """The provenance of a sweep table: ``{"sawdrift_version", "code_hash", "base_scene"}``.
-
-    A key the table does not record (a table written before it existed) is None; ``units``
-    maps each column in SI units to its unit (``{"drift_speed_m_s": "m/s", "device.frequency":
-    "Hz"}``).
-    """
-    import pyarrow.parquet as pq
-
-    schema = pq.read_schema(table)
-    meta = schema.metadata or {}
-    out: dict[str, Any] = {"sawdrift_version": None, "code_hash": None, "base_scene": None,
-                           "units": {f.name: f.metadata[b"units"].decode() for f in schema
-                                     if f.metadata and b"units" in f.metadata}}
-    if META_VERSION in meta:
-        out["sawdrift_version"] = meta[META_VERSION].decode()
-    if META_CODE in meta:
-        out["code_hash"] = meta[META_CODE].decode()
-    if META_BASE_SCENE in meta:
-        out["base_scene"] = json.loads(meta[META_BASE_SCENE].decode())
-    return out
-
-
-def _base_json(base: Scene | None, overrides: dict[str, Any] | None) -> dict[str, Any]:
-    """The scene every cell of a sweep starts from (``base`` with ``overrides``), as JSON data."""
-    scene = base if base is not None else Scene()
-    if overrides:
-        data = scene.model_dump(exclude_none=True)
-        for dotted, value in overrides.items():
-            set_dotted(data, dotted, value)
-        scene = build_scene(data)
-    return json.loads(bind(scene).model_dump_json())
-
-
-def _stored_base(table: Path) -> dict[str, Any] | None:
-    """The base scene a table was swept from: its metadata's, else its journal's header."""
-    if table.exists():
-        return table_metadata(table)["base_scene"]
-    journal = journal_path(table)
-    if journal.exists():
-        with journal.open() as fh:
-            try:
-                first = json.loads(fh.readline())
-            except json.JSONDecodeError:
-                return None
-        return first.get("base_scene") if "cell_id" not in first else None
-    return None
-
-
 def sweep(
     models: str | Sequence[str],
     m_star: str | Sequence[float] | None = None,
@@ -429,9 +277,9 @@ def sweep(
     if traces and path is None:
         raise SceneError("traces are stored next to a table: give table= (--out)")
     have = set(read_traces(path)) if traces and path is not None else set()
-    swept_from = _base_json(base, overrides)
+    swept_from = base_json(base, overrides)
     if path is not None:
-        check_resume(path, done.values(), _stored_base(path), swept_from, force)
+        check_resume(path, done.values(), stored_base(path), swept_from, force)
     cells = expected = None
     if size:
         est = estimate_sweep(grid, names, m_values, a_values, extra_axes, points, base,
