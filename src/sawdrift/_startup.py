@@ -12,7 +12,8 @@ The same target initialisation then imports every registry of numba's lowering (
 functions, typed containers, random generators, jitclass, ...: about 0.3 s) before it loads a
 cached function, although a cached function is machine code that needs none of them: it needs
 numba's runtime (NRT) to be initialised and the C helper symbols, which the CPU target installs
-when it is created. :func:`load_cached_code_lightly` makes the on-disk cache load do just that.
+when it is created. :func:`~sawdrift.codegen.loading.load_cached_code_lightly` makes the on-disk
+cache load do just that (the study executor's worker processes call it too).
 Compiling anything still goes through numba's compiler, which refreshes the full target first,
 so a cache miss, a new signature or a user's own ``@njit`` is compiled exactly as before.
 
@@ -25,7 +26,8 @@ Three answers are stored on disk instead of recomputed by every process: those s
 top-level ``--help`` text (:func:`replay_help`, :func:`stored_help`) and the rows of ``sawdrift
 models`` (:func:`stored_models`); the comment above their helpers says what their keys hold.
 
-Library users are not affected; only the command line calls these, in a process it owns.
+Library users are not affected; only the command line calls these, in a process it owns (and
+the executor's worker processes the light cache load, in processes it owns).
 """
 
 from __future__ import annotations
@@ -35,6 +37,8 @@ import io
 import sys
 from pathlib import Path
 from typing import Any
+
+from .codegen.loading import load_cached_code_lightly
 
 _DEFERRED = ("numpy.f2py", "numpy.testing")
 
@@ -58,36 +62,6 @@ def defer_unused_numpy_submodules() -> None:
         parent, _, child = name.rpartition(".")
         # numpy.__getattr__ would otherwise import the submodule again on `from numpy import *`
         setattr(sys.modules[parent], child, module)
-
-
-def load_cached_code_lightly() -> bool:
-    """Let numba load on-disk cached functions without importing its lowering registries.
-
-    Replaces ``numba.core.caching.Cache.load_overload`` (numba 0.5x-0.6x) with a version that
-    initialises the runtime instead of calling ``target_context.refresh()``. Returns False and
-    changes nothing when numba's internals are not the ones this was written against.
-    """
-    try:
-        from numba.core import caching
-        from numba.core.runtime import rtsys
-    except ImportError:  # pragma: no cover - numba is a dependency
-        return False
-    cache = caching.Cache
-    needed = ("load_overload", "_load_overload", "_guard_against_spurious_io_errors")
-    if not all(hasattr(cache, name) for name in needed) or not hasattr(rtsys, "initialize"):
-        return False
-    if getattr(cache.load_overload, "_sawdrift_light", False):
-        return True
-
-    def load_overload(self: Any, sig: Any, target_context: Any) -> Any:
-        rtsys.initialize(target_context)
-        with self._guard_against_spurious_io_errors():
-            return self._load_overload(sig, target_context)
-        return None  # pragma: no cover - the guard swallowed an I/O error: compile instead
-
-    load_overload._sawdrift_light = True  # type: ignore[attr-defined]
-    cache.load_overload = load_overload
-    return True
 
 
 # --- answers stored on disk: plugin scans, the top-level --help text, the model listing ---------

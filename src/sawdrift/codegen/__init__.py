@@ -9,7 +9,9 @@ this package:
   (``refresh_stale_caches``);
 * :mod:`.modules` - a generated module: its source (:class:`Generated`), its file in the cache
   folder (``cache_dir``), its name (the key), its import, and the in-memory compilation when it
-  cannot be cached (:func:`generate`).
+  cannot be cached (:func:`generate`);
+* :mod:`.loading` - loading cached machine code without numba's lowering registries, in the
+  processes sawdrift owns (the command line, the executor's workers).
 
 Its users: the contact composition of :mod:`sawdrift.contact.slots`, the wave loop of
 :mod:`sawdrift.dynamics.adams_bashforth` and the rigid scheme of :mod:`sawdrift.dynamics.rigid_bind`.
