@@ -40,22 +40,22 @@ def test_imap_yields_every_index_once_and_ticks_only_when_asked():
 
 
 def test_a_long_batch_keeps_a_bounded_number_of_items_in_flight():
-    # every index once, and never more than AHEAD_PER_WORKER per worker submitted and not
-    # yet yielded: the consumer's cost per result must not grow with the batch
-    from sawdrift.study.executor import AHEAD_PER_WORKER
+    # every index once, in tasks of at most MAX_PER_TASK items, and never more than
+    # AHEAD_PER_WORKER tasks per worker submitted and not yet yielded: the consumer's cost per
+    # result must not grow with the batch
+    from sawdrift.study.executor import AHEAD_PER_WORKER, MAX_PER_TASK
 
     items = [float(k) for k in range(300)]
     with Executor(2) as ex:
-        seen, most = [], 0
+        seen, most, sizes = [], 0, []
         original = None
 
-        def counting_submit(fn, item):
+        def counting_submit(run, fn, chunk):
             nonlocal most
-            most = max(most, len(items_submitted) + 1 - len(seen))
-            items_submitted.append(item)
-            return original(fn, item)
+            sizes.append(len(chunk))
+            most = max(most, sum(sizes) - len(seen))
+            return original(run, fn, chunk)
 
-        items_submitted: list[float] = []
         ex.map(_square, items[:2])  # opens the pool
         original = ex._pool.submit
         ex._pool.submit = counting_submit
@@ -63,8 +63,8 @@ def test_a_long_batch_keeps_a_bounded_number_of_items_in_flight():
             seen.append(i)
             assert value == _square(items[i])
         assert sorted(seen) == list(range(len(items)))
-        assert len(items_submitted) == len(items)
-        assert most <= AHEAD_PER_WORKER * 2 + 1
+        assert sum(sizes) == len(items) and max(sizes) <= MAX_PER_TASK < len(items) / len(sizes) + 1
+        assert most <= (AHEAD_PER_WORKER * 2 + 1) * MAX_PER_TASK
 
 
 def _light_loader_installed(_: object) -> bool:

@@ -29,8 +29,16 @@ from ..errors import SceneError
 
 __all__ = ["Executor", "resolve_workers"]
 
-#: items a process batch keeps submitted per worker process
+#: tasks a process batch keeps submitted per worker process
 AHEAD_PER_WORKER = 4
+
+#: most items in one task of a long process batch
+MAX_PER_TASK = 4
+
+
+def _run_task(fn: Callable[[Any], Any], items: list[Any]) -> list[Any]:
+    """``fn`` of each item of one task, in a worker process."""
+    return [fn(item) for item in items]
 
 
 def resolve_workers(workers: int | None) -> int:
@@ -128,28 +136,34 @@ class Executor:
         if self._pool is None:
             self._pool = ProcessPoolExecutor(max_workers=size, initializer=_start_worker)
             self._pool_size = size
-        # a bounded number of items in flight: waiting on every pending future at each
+        # a bounded number of tasks in flight: waiting on every pending future at each
         # completion cost O(items) per result (3 s of this process's CPU for 1681 cells,
-        # taken from the workers on a 2-core machine); a few per worker keep them busy
+        # taken from the workers on a 2-core machine); a few per worker keep them busy. A long
+        # batch goes in tasks of a few items: each task costs this process a submission, a
+        # wake-up of the pool's threads and a result to read (about 1 ms of its CPU per item
+        # on the 2-core machine, which the workers need)
         ahead = AHEAD_PER_WORKER * size
-        futures: dict[Any, int] = {}
-        queued = iter(enumerate(items))
+        per_task = max(1, min(MAX_PER_TASK, len(items) // (4 * ahead)))
+        futures: dict[Any, list[int]] = {}
+        queued = iter(range(0, len(items), per_task))
 
         def top_up() -> None:
             while len(futures) < ahead:
-                nxt = next(queued, None)
-                if nxt is None:
+                start = next(queued, None)
+                if start is None:
                     return
-                futures[self._pool.submit(fn, nxt[1])] = nxt[0]
+                idx = list(range(start, min(start + per_task, len(items))))
+                task = self._pool.submit(_run_task, fn, [items[i] for i in idx])
+                futures[task] = idx
 
         try:
             top_up()
             while futures:
                 finished, _ = wait(futures, timeout=tick, return_when=FIRST_COMPLETED)
                 for fut in finished:
-                    i = futures.pop(fut)
+                    idx = futures.pop(fut)
                     top_up()
-                    yield i, fut.result()
+                    yield from zip(idx, fut.result(), strict=True)
                 if tick is not None:
                     yield None, None
         finally:
