@@ -1,12 +1,11 @@
 """Parameter sweeps over (model, m*, A*): executors, a resumable table, and lossless resume.
 
 Every finished cell is appended, as one JSON line, to a journal next to the table
-(``TABLE.journal.jsonl``) as it completes, flushed to disk at most every
-:data:`JOURNAL_FLUSH_SECONDS`, so a kill -9 loses the cells still running and those of the last
-half second. Re-running the same sweep reads the table and the journal
-(:mod:`sawdrift.study.table`), skips every cell already there (cells are identified by a hash of
-their whole scene), and computes only the rest. At the end the rows are consolidated into the
-Parquet table with an atomic replace and the journal is removed.
+(``TABLE.journal.jsonl``) the moment it completes; one ``write`` of a short line, flushed, so a
+kill -9 loses at most the cells still running. Re-running the same sweep reads the table and
+the journal (:mod:`sawdrift.study.table`), skips every cell already there (cells are identified
+by a hash of their whole scene), and computes only the rest. At the end the rows are
+consolidated into the Parquet table with an atomic replace and the journal is removed.
 
 Executors (:class:`sawdrift.study.executor.Executor`, shared by every study): ``serial``; local
 processes (default, all cores); or an existing dask.distributed cluster (``scheduler=ADDRESS``).
@@ -18,7 +17,6 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
-import time
 from collections.abc import Callable, Iterable, Sequence
 from functools import partial
 from pathlib import Path
@@ -72,10 +70,6 @@ def resolved_as(row: dict[str, Any]) -> str:
 #: cells from which building a sweep's grid shows a progress bar of its own
 PREPARE_BAR = 2000
 
-#: the journal is flushed to disk at most this often (and when the sweep ends or fails): a kill
-#: loses the rows of the last half second, which a resume recomputes; a flush per row cost 0.2 ms
-#: of this process's time per cell, taken from the workers (0.8 s of the 161 x 161 adaptive map)
-JOURNAL_FLUSH_SECONDS = 0.5
 
 
 def scene_id(scene: Scene) -> str:
@@ -342,7 +336,6 @@ def sweep(
     if progress and todo:
         bar = make_progress(len(wanted), label[0], label[1], initial=len(rows), expected=expected)
     fh = None
-    flushed = time.monotonic()
     if journal is not None and todo:
         header = not journal.exists()
         fh = journal.open("a")
@@ -357,10 +350,7 @@ def sweep(
             rows[row["cell_id"]] = row
             if fh is not None:
                 fh.write(json.dumps(row) + "\n")
-                now = time.monotonic()
-                if now - flushed >= JOURNAL_FLUSH_SECONDS:
-                    fh.flush()
-                    flushed = now
+                fh.flush()
             if on_row is not None:
                 on_row(row)
             if bar is not None:
