@@ -206,3 +206,36 @@ def test_tsuji_damping_is_kept_with_friction_off():
     import json
 
     json.dumps(on.summary())  # no numpy scalars left in the summary
+
+
+def test_hop_liftoffs_follow_their_rule_on_random_event_logs():
+    """A lift-off counts as a hop when its flight (to the next landing, or the window's end)
+    lasts MIN_FLIGHT, or, with rebounds_only, when it takes off from contact held MIN_FLIGHT
+    (since the last landing, or the window's start): the rule read lift-off by lift-off, on
+    2000 random logs with other events mixed in."""
+    from sawdrift.dynamics import evidence as ev
+    from sawdrift.dynamics.synchrony import MIN_FLIGHT
+    from sawdrift.dynamics.window import hop_liftoffs
+
+    def by_rule(events, t0, t1, rebounds_only):
+        t, kind = events[:, 0], events[:, 1]
+        lands = t[kind == ev.EV_LANDING]
+        out = []
+        for ti in t[kind == ev.EV_LIFT_OFF]:
+            later, earlier = lands[lands > ti], lands[lands < ti]
+            flight = (later[0] if later.size else t1) - ti
+            held = ti - (earlier[-1] if earlier.size else t0)
+            if flight >= MIN_FLIGHT or (rebounds_only and held >= MIN_FLIGHT):
+                out.append(ti)
+        return np.array(out)
+
+    rng = np.random.default_rng(2)
+    kinds = [ev.EV_LIFT_OFF, ev.EV_LANDING, ev.EV_SLIP_START, ev.EV_SLIP_END]
+    for _ in range(1000):
+        n = int(rng.integers(0, 40))
+        events = np.zeros((n, ev.EV_W))
+        events[:, 0] = np.sort(rng.uniform(10.0, 10.0 + rng.uniform(0.01, 5.0), n))
+        events[:, 1] = rng.choice(kinds, n)
+        for rebounds_only in (True, False):
+            assert np.array_equal(hop_liftoffs(events, 10.0, 15.0, rebounds_only),
+                                  by_rule(events, 10.0, 15.0, rebounds_only))

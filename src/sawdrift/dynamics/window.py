@@ -160,19 +160,16 @@ def hop_liftoffs(events: np.ndarray, t_start: float, t_end: float,
     kind = events[:, 1]
     lifts = np.nonzero(kind == ev.EV_LIFT_OFF)[0]
     lands = np.nonzero(kind == ev.EV_LANDING)[0]
-    keep = []
-    for i in lifts:
-        j = np.searchsorted(lands, i, side="right")
-        t_land = t[lands[j]] if j < lands.size else t_end
-        if t_land - t[i] >= MIN_FLIGHT:
-            keep.append(t[i])
-            continue
-        if rebounds_only:
-            before = np.searchsorted(lands, i, side="left") - 1
-            t_touch = t[lands[before]] if before >= 0 else t_start
-            if t[i] - t_touch >= MIN_FLIGHT:
-                keep.append(t[i])  # a take-off from sustained contact: a (short) hop
-    return np.asarray(keep, dtype=float)
+    t_lift = t[lifts]
+    # the landings' times with the window's start and end around them: each lift-off's flight
+    # ends at the next landing (or the end), and began from contact at the last one (or the start)
+    t_lands = np.concatenate(([t_start], t[lands], [t_end]))
+    after = np.searchsorted(lands, lifts, side="right")  # index of the next landing in lands
+    keep = t_lands[after + 1] - t_lift >= MIN_FLIGHT
+    if rebounds_only:
+        # a take-off from sustained contact is a (short) hop
+        keep |= t_lift - t_lands[np.searchsorted(lands, lifts, side="left")] >= MIN_FLIGHT
+    return np.asarray(t_lift[keep], dtype=float)
 
 
 def hop_synchrony(events: np.ndarray, t_start: float, periods: int, orbit: int) -> Synchrony:
