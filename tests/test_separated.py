@@ -185,7 +185,7 @@ def test_the_imposed_friction_skips_flights_without_changing_a_bit(model):
     driven through every step, at any imposed speed, for far fewer calls of the law."""
     from sawdrift.dynamics import imposed
 
-    sc = scene(300.0, 6.0, 0.1).with_updates(model=model)
+    sc = scene(300.0, 6.0, 0.1, model)
     st, _speed, _ = stepper_after_ramp(sc)
     rec = imposed._Record(st, 160)
     kept = rec.keep

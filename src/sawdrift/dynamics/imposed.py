@@ -209,7 +209,6 @@ def _secant_zero(push, lo: float, hi: float, span: int) -> tuple[float, float] |
     secant on the whole record, or None where the steps leave the bracket widened by its width
     on each side or do not converge to :data:`ROOT_XTOL`. Three or four evaluations of the whole
     record instead of Brent's six to eight and a bracket of its own."""
-
     try:
         # the first part's zero is only the secants' start: they move it by that part's error
         r0 = brentq(lambda d: push(d, span), lo, hi, xtol=START_XTOL, rtol=1e-10)
@@ -239,7 +238,6 @@ def _secant_zero(push, lo: float, hi: float, span: int) -> tuple[float, float] |
 def _bracketed_zero(push, lo: float, hi: float) -> tuple[float, float] | None:
     """The zero of -<T*> on the whole record by Brent's method, the bracket of its first part
     widened until it holds on the whole; returns the zero and the slope across the bracket."""
-
     f_lo, f_hi = push(lo), push(hi)
     while f_lo < 0.0 or f_hi > 0.0:
         width = hi - lo

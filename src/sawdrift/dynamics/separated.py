@@ -271,7 +271,6 @@ class _Problem:
 
 def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
     """Y with <N*> = 1 and the vertical fast part eta on it (the normal law ignores b*)."""
-
     orbit = p.orbit(np.zeros(p.k))
     y_mean = 1.0
     for _ in range(FAST_ITERATIONS):
@@ -313,7 +312,6 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
     keep_contact
         Return None for an orbit that loses contact (else it is returned, ``loses_contact``).
     """
-
     if speed <= 0.0 or not applies(stepper, scene):
         return None
     t0 = stepper.step / stepper.k_per

@@ -158,7 +158,6 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
     speed, tol
         The drift ratio's scale and ``numerics.settle_tolerance``.
     """
-
     cycle = slow_cycle(stepper, orbit)
     if cycle is None:
         return None

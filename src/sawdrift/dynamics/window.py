@@ -296,8 +296,7 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
     :data:`~sawdrift.dynamics.lyapunov.EARLY_CHECKS` where the stretchings so far already
     decide: a long window of a heavy quasi-periodic bouncer spent three quarters of its cost on
     stretchings that changed nothing, and a hopping orbit's contraction is plain after 32),
-    judged by
-    :func:`~sawdrift.dynamics.lyapunov.lyapunov_statistics` and
+    judged by :func:`~sawdrift.dynamics.lyapunov.lyapunov_statistics` and
     :func:`~sawdrift.dynamics.lyapunov.is_chaotic`.
     """
     if window.snapshot is None:

@@ -143,6 +143,8 @@ class Executor:
         # wake-up of the pool's threads and a result to read (about 1 ms of its CPU per item
         # on the 2-core machine, which the workers need)
         ahead = AHEAD_PER_WORKER * size
+        # items per task: up to MAX_PER_TASK, as long as the batch still makes four rounds of
+        # the tasks in flight (a short batch keeps one item a task, so no worker waits on another)
         per_task = max(1, min(MAX_PER_TASK, len(items) // (4 * ahead)))
         futures: dict[Any, list[int]] = {}
         queued = iter(range(0, len(items), per_task))

@@ -67,9 +67,9 @@ def resolved_as(row: dict[str, Any]) -> str:
         return "chaotic_mean" if row.get("chaotic") else "long_time_mean"
     return "not_settled"
 
+
 #: cells from which building a sweep's grid shows a progress bar of its own
 PREPARE_BAR = 2000
-
 
 
 def scene_id(scene: Scene) -> str:

@@ -35,11 +35,8 @@ TABLE_COLUMNS = tuple(dict.fromkeys(("cell_id", "scene_id", *SUMMARY_FIELDS, "se
                                      "mean_acceleration", "resolved_as", "warnings",
                                      "events_dropped", "code_hash", "error")))
 
-
 #: Parquet metadata keys of a sweep table (provenance).
 META_VERSION, META_BASE_SCENE, META_CODE = b"sawdrift_version", b"base_scene", b"sawdrift_code"
-
-# -- the resumable table ---------------------------------------------------------------------
 
 
 def journal_path(table: Path) -> Path:
@@ -50,7 +47,8 @@ def journal_path(table: Path) -> Path:
 def read_rows(table: Path) -> dict[str, dict[str, Any]]:
     """Rows already finished: from the Parquet table and the journal, by cell id.
 
-    The journal's first line is its header (the sweep's base scene, see :func:`sweep`), not a row.
+    The journal's first line is its header (the sweep's base scene, see
+    :func:`sawdrift.study.sweep.sweep`), not a row.
     """
     rows: dict[str, dict[str, Any]] = {}
     if table.exists():
