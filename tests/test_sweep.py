@@ -236,27 +236,3 @@ def test_table_rows_read_back_as_pandas_gives_them(tmp_path):
     assert [[(type(v), repr(v)) for v in r.values()] for r in got] == \
         [[(type(v), repr(v)) for v in r.values()] for r in expected]
 
-
-def test_a_table_read_back_by_the_process_that_wrote_it_is_the_file(tmp_path):
-    """The frame a sweep wrote stands in for its unchanged file (an adaptive map reads its table
-    back every round): the same rows, values and types as parsed from the file; once the file
-    is replaced, the file is read."""
-    from sawdrift.study import table as tb
-
-    path = tmp_path / "t.parquet"
-    sd.sweep("mmd", "0.01,3", "0.05,2", base=sd.Scene(numerics={"periods": 10, "settle": False}),
-             table=path, progress=False, workers=1)
-    assert tb._written(path) is not None
-    cached = tb.read_rows(path)
-    tb._WRITTEN.clear()
-    parsed = tb.read_rows(path)
-
-    def typed(rows):
-        return {k: [(type(v), repr(v)) for v in r.values()] for k, r in rows.items()}
-
-    assert typed(cached) == typed(parsed)
-    frame = pd.read_parquet(path)
-    sd.sweep("mmd", "0.01,3", "0.05,2", base=sd.Scene(numerics={"periods": 10, "settle": False}),
-             table=path, progress=False, workers=1)  # nothing to run: writes the table again
-    frame.iloc[:1].to_parquet(path)  # replaced behind the sweep's back
-    assert len(tb.read_rows(path)) == 1

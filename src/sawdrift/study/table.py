@@ -52,9 +52,8 @@ def read_rows(table: Path) -> dict[str, dict[str, Any]]:
     """
     rows: dict[str, dict[str, Any]] = {}
     if table.exists():
-        frame = _written(table)
         try:
-            frame = pd.read_parquet(table) if frame is None else frame
+            frame = pd.read_parquet(table)
         except Exception as exc:  # noqa: BLE001 - a foreign or broken file must not be overwritten
             raise SceneError(
                 f"table {str(table)!r} exists but is not a readable Parquet file ({exc})"
@@ -133,25 +132,6 @@ def write_table(frame: pd.DataFrame, table: Path, base: Scene | dict[str, Any] |
     tmp = table.with_name(f".{table.name}.{os.getpid()}.tmp")
     pq.write_table(arrow.replace_schema_metadata(meta), tmp)
     os.replace(tmp, table)
-    _WRITTEN.clear()
-    _WRITTEN[str(table.resolve())] = (_stamp(table), frame.copy())
-
-
-#: the frame this process last wrote to a table, with the file's stamp then: the next read of
-#: that unchanged file (an adaptive map's next round) takes the frame instead of parsing the
-#: Parquet file again; its rows are the same values of the same types
-_WRITTEN: dict[str, tuple[tuple[int, int, int], pd.DataFrame]] = {}
-
-
-def _stamp(table: Path) -> tuple[int, int, int]:
-    st = table.stat()
-    return st.st_mtime_ns, st.st_size, st.st_ino
-
-
-def _written(table: Path) -> pd.DataFrame | None:
-    """The frame this process wrote to ``table`` if the file is still the one it wrote."""
-    known = _WRITTEN.get(str(table.resolve()))
-    return known[1] if known is not None and known[0] == _stamp(table) else None
 
 
 def table_metadata(table: str | Path) -> dict[str, Any]:
