@@ -167,3 +167,18 @@ def test_a_contact_kept_cell_that_beats_near_the_resonance_reports_a_long_time_m
     assert 0.0 < res.drift_ratio_se < 0.01
     ref = sd.run(scene("mmd", m, a, 0.1, settle=False, periods=20000, measure_periods=18000))
     assert abs(res.drift_ratio - ref.drift_ratio) < 3.0 * res.drift_ratio_se * 2**0.5
+
+
+def test_a_sticking_heavy_cell_reports_no_drift_after_one_window():
+    """mmd, m* = 10, A* = 0.09, mu = 0.1: the contact never slides and brute force (6000 periods)
+    drifts below 1e-7; the box mean of the last window reported -1.24e-5 (the slow oscillations'
+    leak; -3.05e-5 at A* = 0.0891251, beyond the 2e-5 bound) after two windows. The tapered mean
+    is within 1e-5, and one window of three vertical periods that held settles it."""
+    ref = brute("mmd", 10.0, 0.089125, 0.1)
+    cell = scene("mmd", 10.0, 0.089125, 0.1)
+    res = sd.run(cell)
+    assert ref.regime == res.regime == "stick" and abs(ref.drift_ratio) < 1e-7
+    assert res.settled is True and res.settle_method == "windows_full"
+    assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-5  # half the acceptance bound
+    w = full_window_length(10.0, cell.theta, res.measure_periods)
+    assert res.settle_periods <= w + 1, (res.settle_periods, w)

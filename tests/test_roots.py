@@ -48,3 +48,16 @@ def test_errors_are_scipys():
         brentq(lambda x: math.tanh(50.0 * (x - 0.3)), -1.0, 1.0, maxiter=3)
     # a zero at an end is returned as it is
     assert brentq(lambda x: x, 0.0, 1.0) == 0.0 and brentq(lambda x: x - 1.0, 0.0, 1.0) == 1.0
+
+
+@pytest.mark.parametrize("case", range(len(CASES)))
+def test_known_end_values_are_not_evaluated_again(case):
+    """f(a), f(b) given: the same root to the last bit, from two evaluations fewer (a bracket
+    search has them already; each one integrates the fast motion)."""
+    f, a, b = CASES[case]
+    plain, given = [], []
+    root = brentq(lambda x: plain.append(x) or f(x), a, b, xtol=1e-7, rtol=1e-13)
+    again = brentq(lambda x: given.append(x) or f(x), a, b, xtol=1e-7, rtol=1e-13,
+                   fa=f(a), fb=f(b))
+    assert again == root
+    assert given == plain[2:] and plain[:2] == [a, b]

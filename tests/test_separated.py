@@ -132,6 +132,27 @@ def test_the_slow_cycle_of_a_heavy_particle_starts_at_its_rest_compression():
     assert weights.sum() == pytest.approx(1.0) and period > 100.0
 
 
+def test_an_irregular_bouncer_is_told_before_the_curve_is_sampled(monkeypatch):
+    """mmd m* = 300, A* = 6: the orbit loses contact, and a run's probe that does not lift off
+    once a period ends the direct solution before any point of the force-velocity curve (each
+    integrates the fast motion to its periodic state): the run's long-time mean follows."""
+    from sawdrift.dynamics import separated
+
+    sc = scene(300.0, 6.0, 0.5)
+    st, speed, _ = stepper_after_ramp(sc)
+    calls = []
+    fast = separated._Problem.fast
+    monkeypatch.setattr(separated._Problem, "fast",
+                        lambda self, *a: calls.append(1) or fast(self, *a))
+    asked = []
+    got = separated_orbit(st, sc, speed, 1e-3, keep_contact=False,
+                          regular=lambda: asked.append(1) or False)
+    assert got == separated.IRREGULAR and asked == [1] and calls == []
+    # a regular probe goes on to the curve, as without one
+    orbit = separated_orbit(st, sc, speed, 1e-3, keep_contact=False, regular=lambda: True)
+    assert orbit.loses_contact and len(calls) > 2
+
+
 def test_a_heavy_hopping_cell_is_the_average_over_its_slow_cycle():
     """mmd m* = 1e3, A* = 1.5, mu = 0.5: the period-one orbit drifts at 0.5657, 2.7 % above the
     run from rest (0.55080, stored brute force over 4.2e4 periods); averaged over the slow

@@ -51,9 +51,11 @@ import numpy as np
 from .full_inertia import settle_full, shift_speed
 from .imposed import imposed_drift
 from .separated import (
+    IRREGULAR,
     ORBIT_ALONE_MASS,
     SOLVED_MIN_MASS,
     STUCK,
+    SeparatedOrbit,
     Stuck,
     applies,
     approach_periods,
@@ -70,9 +72,6 @@ PROBE_PERIODS = 12
 
 #: periods of the window that gives an irregular heavy bouncer's regime evidence
 EVIDENCE_PERIODS = 400
-
-#: what the direct start gives for a run whose lift-offs are not those of period-one orbits
-IRREGULAR = "irregular"
 
 #: lift-offs per period a run may differ by from those of the orbits its drift was averaged over
 LIFT_MATCH = 0.05
@@ -114,7 +113,7 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
                                 expected=drift / speed)
         info = Settling(full.settled, "orbit_then_full", m, full.window_periods,
                         (stepper.step - start) / stepper.k_per, t90,
-                        (drift / speed, *full.history))
+                        (drift / speed, *full.history), drift=full.drift(speed))
     if abs(win.liftoffs_per_period - lifts) <= LIFT_MATCH:
         return win, info
     # the run does not lift off as the averaged orbits do: its fast motion is not a period-one
@@ -152,23 +151,29 @@ def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
     without a repeating memory.
 
     Both need the fast motion to be a period-one orbit about a slowly moving height. A probe of
-    :data:`PROBE_PERIODS` periods checks it: a run that loses contact must lift off once a period
+    :data:`PROBE_PERIODS` periods checks it, where the orbit loses contact, before the
+    force-velocity curve is sampled: a run that loses contact must lift off once a period
     (a heavy particle bouncing at A* = 6 lifts off 0.4 times a period, irregularly, and is
     left to :func:`~.imposed.imposed_drift`).
     """
     tol = scene.numerics.settle_tolerance
     if not applies(stepper, scene):
         return None
-    orbit = separated_orbit(stepper, scene, speed, tol, keep_contact=False)
+    mu, m = scene.material.mu, scene.particle.m_star
+
+    def regular() -> bool:
+        # asked before the curve is sampled, where the orbit loses contact
+        probe = measure_window(stepper, PROBE_PERIODS, speed, scale)
+        return not (probe.contact_lost and abs(probe.liftoffs_per_period - 1.0) > LIFT_MATCH)
+
+    orbit = separated_orbit(stepper, scene, speed, tol, keep_contact=False, regular=regular)
+    if orbit == IRREGULAR:
+        # an irregular bouncer: its mean at an imposed speed needs a speed that hardly changes
+        # over its record, a heavy particle's
+        return IRREGULAR if m >= SOLVED_MIN_MASS else None
     if orbit is None or isinstance(orbit, Stuck):
         return orbit
-    mu, m = scene.material.mu, scene.particle.m_star
-    if orbit.loses_contact:
-        probe = measure_window(stepper, PROBE_PERIODS, speed, scale)
-        if probe.contact_lost and abs(probe.liftoffs_per_period - 1.0) > LIFT_MATCH:
-            # an irregular bouncer: its mean at an imposed speed needs a speed that hardly
-            # changes over its record, a heavy particle's
-            return IRREGULAR if m >= SOLVED_MIN_MASS else None
+    assert isinstance(orbit, SeparatedOrbit)
     averaged = torus_drift(stepper, orbit, speed, tol)
     solved = m >= SOLVED_MIN_MASS
     if averaged is None:

@@ -245,5 +245,5 @@ def _bracketed_zero(push, lo: float, hi: float) -> tuple[float, float] | None:
         f_lo, f_hi = push(lo), push(hi)
         if hi - lo > 4.0:
             return None
-    root = brentq(push, lo, hi, xtol=ROOT_XTOL, rtol=1e-10)
+    root = brentq(push, lo, hi, xtol=ROOT_XTOL, rtol=1e-10, fa=f_lo, fb=f_hi)
     return root, (f_hi - f_lo) / (hi - lo)

@@ -270,7 +270,8 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
     win, full = settle_full(stepper, scene, speed, scale, n_periods, n_max, lam, last=win,
                             watch=Watch(give_up=_gives_up, series=series))
     info = Settling(full.settled, "fixed_then_windows", m_star, full.window_periods,
-                    periods_run + (stepper.step - start) / stepper.k_per, math.nan, full.history)
+                    periods_run + (stepper.step - start) / stepper.k_per, math.nan, full.history,
+                    drift=full.drift(speed))
     return win, info
 
 

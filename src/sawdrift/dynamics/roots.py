@@ -23,13 +23,16 @@ _RTOL_MIN = 4.0 * 2.220446049250313e-16
 
 
 def brentq(f: Callable[[float], float], a: float, b: float, xtol: float = 2e-12,
-           rtol: float = _RTOL_MIN, maxiter: int = 100) -> float:
+           rtol: float = _RTOL_MIN, maxiter: int = 100, fa: float | None = None,
+           fb: float | None = None) -> float:
     """A root of ``f`` in [a, b], where f(a) and f(b) have opposite signs (Brent's method).
 
     Parameters and errors as ``scipy.optimize.brentq``: converged when half the bracket is
     below (xtol + rtol |x|) / 2; ValueError for a bracket without a sign change, a
     non-positive ``xtol``, an ``rtol`` below 4 machine epsilons or a NaN value of ``f``;
-    RuntimeError after ``maxiter`` iterations.
+    RuntimeError after ``maxiter`` iterations. ``fa``, ``fb``: f(a) and f(b) where the caller
+    has them already (the bracket search computed them), so that they are not evaluated again:
+    each evaluation of a period-averaged force integrates the fast motion.
     """
     if not xtol > 0.0:
         raise ValueError(f"xtol too small ({xtol:g} <= 0)")
@@ -43,7 +46,8 @@ def brentq(f: Callable[[float], float], a: float, b: float, xtol: float = 2e-12,
         return fx
 
     xpre, xcur = float(a), float(b)
-    fpre, fcur = value(xpre), value(xcur)
+    fpre = value(xpre) if fa is None else float(fa)
+    fcur = value(xcur) if fb is None else float(fb)
     if fpre == 0.0:
         return xpre
     if fcur == 0.0:

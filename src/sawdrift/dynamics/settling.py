@@ -22,8 +22,9 @@ class Settling:
 
     ``history`` holds the drift ratios on the way (window means, or the solved drift first);
     ``drift``, where set, is the drift (x* per period) the run reports instead of its last
-    window's: a drift solved directly, whose evidence window is a sample of the slow vertical
-    modulation rather than its mean.
+    window's box mean: a drift solved directly, whose evidence window is a sample of the slow
+    vertical modulation rather than its mean, or the tapered mean the full-inertia windows
+    settled on.
     """
 
     settled: bool
@@ -36,5 +37,5 @@ class Settling:
     #: the long-time mean drift with its error, where the settling gives one instead of a
     #: settled drift (an irregular heavy bouncer, :mod:`.imposed`)
     long_mean: BatchMeans | None = None
-    #: the solved drift (x* per period) reported instead of the last window's, or None
+    #: the drift (x* per period) reported instead of the last window's box mean, or None
     drift: float | None = None

@@ -233,7 +233,8 @@ def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_
         t90 = math.log(10.0) * full.window_periods / -math.log(full.ratio)
     method = "reduced_then_full" if m_x < m else "windows_full"
     info = Settling(full.settled, method, m_x, full.window_periods,
-                    (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history)
+                    (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history,
+                    drift=full.drift(speed))
     return win, info
 
 
