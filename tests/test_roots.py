@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq as scipy_brentq
 
-from sawdrift.dynamics.roots import brentq
+from sawdrift.dynamics.roots import brentq, first_passed
 
 CASES = [
     (lambda x: x**3 - 2.0 * x - 5.0, 2.0, 3.0),  # Wallis' cubic
@@ -61,3 +61,21 @@ def test_known_end_values_are_not_evaluated_again(case):
                    fa=f(a), fb=f(b))
     assert again == root
     assert given == plain[2:] and plain[:2] == [a, b]
+
+
+@pytest.mark.parametrize("zero", [0.03, 0.1, 0.25, 0.7, 0.95, 2.5])
+def test_first_passed_finds_the_grid_pair_of_a_point_by_point_search(zero):
+    """A curve that changes sign once: the same pair of grid points as visiting each point, from
+    about half the evaluations; None when no point is passed."""
+    grid = [0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.8, 1.0, 1.5, 2.0, 3.0]
+    seen = []
+
+    def f(x):
+        seen.append(x)
+        return zero - x
+
+    pair = first_passed(f, grid, 0.0, lambda v: v < 0.0)
+    k = next(i for i, g in enumerate(grid) if g > zero)
+    assert pair == ((grid[k - 1] if k else 0.0), grid[k])
+    assert len(seen) <= (k + 2) // 2 + 1  # point by point: k + 1
+    assert first_passed(lambda x: 1.0, grid, 0.0, lambda v: v < 0.0) is None

@@ -28,7 +28,7 @@ from . import adams_bashforth as ig
 from .batch_means import BatchMeans, blocked_error
 from .fast_parts import _periodic_rate
 from .full_inertia import full_window_length
-from .roots import brentq
+from .roots import brentq, first_passed
 from .separated import GRID, history_loop
 from .stepper import Stepper
 
@@ -56,7 +56,7 @@ WASH_PERIODS = 2
 
 
 class _Record:
-    """The run's recorded vertical motion and the drive, one row per step."""
+    """The run's recorded vertical motion and the drive, at the steps the contact law sees."""
 
     def __init__(self, stepper: Stepper, periods: int):
         k = stepper.k_per
@@ -78,54 +78,82 @@ class _Record:
         self.mu = float(prm[ig.P_MU])
         self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)
         self.k = k
-        phase = np.arange(a.size) % k
-        # the drive, periodic after the ramp: u_y = y* - a*, u_x = x* - b*/scale (no rotation)
-        uy1 = (y - a)[:k]
-        ux1 = (x - b / self.scale_b)[:k]
-        self.ux = ux1[phase]
-        self.uxd = _periodic_rate(ux1)[phase]
-        self.a = a
-        self.adot = vy - _periodic_rate(uy1)[phase]
-        self.t = np.arange(a.size) / k
+        self.a, self._vy = a, vy
+        # the drive, periodic after the ramp: u_y = y* - a*, u_x = x* - b*/scale (no rotation),
+        # one period of it (the record's first)
+        self._ux1 = x[:k] - b[:k] / self.scale_b
+        self._uxd1 = _periodic_rate(self._ux1)
+        self._uyd1 = _periodic_rate(y[:k] - a[:k])
         self.scratch = stepper.history.copy()
         force, self.fs, self.is_, self.pp = self.scratch.kernel_call()
         self.loop = history_loop(force, stepper.compiled)
         self.keep = _contact_steps(a, self.scratch.model)
-        # the contact law's paths (a*, b*, a*', b*') over the kept steps, one per length asked
-        # for (the bracket's first part, the whole record): a*, a*' fixed, b*, b*' per speed
+
+    @property
+    def keep(self) -> np.ndarray:
+        """Indices of the steps the contact law is driven through (:func:`_contact_steps`)."""
+        return self._keep
+
+    @keep.setter
+    def keep(self, steps: np.ndarray) -> None:
+        # the record at those steps, taken once: t*, u_x, u_x' (periodic), a*, a*'
+        self._keep = steps
+        phase = steps % self.k
+        self._t = steps / self.k
+        self._ux = self._ux1[phase]
+        self._uxd = self._uxd1[phase]
+        #: the contact law's paths (a*, b*, a*', b*') over the kept steps, one per length asked
+        #: for (the bracket's first part, the whole record): a*, a*' fixed, b*, b*' per speed
         self.paths: dict[int, np.ndarray] = {}
+        self._a = self.a[steps]
+        self._adot = self._vy[steps] - self._uyd1[phase]
+        #: the last evaluation (speed, length, T* over the kept steps)
         self.last: tuple[float, int, np.ndarray] | None = None
 
     def _path(self, m: int) -> np.ndarray:
         path = self.paths.get(m)
         if path is None:
-            kept = self.keep[:m]
             path = self.paths[m] = np.empty((4, m))
-            path[0] = self.a[kept]
-            path[2] = self.adot[kept]
+            path[0] = self._a[:m]
+            path[2] = self._adot[:m]
         return path
 
-    def friction(self, v: float, periods: int | None = None) -> np.ndarray:
-        """T*(t*) along the record (its first ``periods``) at the imposed speed ``v``; the last
-        evaluation over the whole record is kept (the zero's is asked for twice). The law is
-        driven over the kept steps only (:func:`_contact_steps`): T* = 0 on the others."""
-        n = self.a.size if periods is None else min(self.a.size, periods * self.k)
+    def _kept_friction(self, v: float, n: int) -> tuple[int, np.ndarray]:
+        """(kept steps within the first ``n``, T* at them) at the imposed speed ``v``."""
+        m = int(np.searchsorted(self._keep, n))
         if self.last is not None and self.last[:2] == (v, n):
-            return self.last[2]
-        m = int(np.searchsorted(self.keep, n))
-        kept = self.keep[:m]
+            return m, self.last[2]
         path = self._path(m)
-        np.multiply(v * self.t[kept] - self.ux[kept], self.scale_b, out=path[1])
-        np.multiply(v - self.uxd[kept], self.scale_b, out=path[3])
+        np.multiply(v * self._t[:m] - self._ux[:m], self.scale_b, out=path[1])
+        np.multiply(v - self._uxd[:m], self.scale_b, out=path[3])
         self.scratch.reset()
         t_kept = np.empty(m)
         self.loop(self.fs, self.is_, self.pp, path, 0.0, 1, np.empty(m), t_kept)
+        self.last = (v, n, t_kept)
+        return m, t_kept
+
+    def _length(self, periods: int | None) -> int:
+        return self.a.size if periods is None else min(self.a.size, periods * self.k)
+
+    def mean_friction(self, v: float, periods: int | None = None) -> float:
+        """<T*> along the record (its first ``periods``) at the imposed speed ``v``, past its
+        first :data:`WASH_PERIODS`: the mean of :meth:`friction`, summed over the kept steps
+        (T* = 0 on the others)."""
+        n = self._length(periods)
+        m, t_kept = self._kept_friction(v, n)
+        wash = WASH_PERIODS * self.k
+        first = int(np.searchsorted(self._keep[:m], wash))
+        return float(np.sum(t_kept[first:])) / (n - wash)
+
+    def friction(self, v: float, periods: int | None = None) -> np.ndarray:
+        """T*(t*) along the record (its first ``periods``) at the imposed speed ``v``, past its
+        first :data:`WASH_PERIODS`. The law is driven over the kept steps only
+        (:func:`_contact_steps`): T* = 0 on the others."""
+        n = self._length(periods)
+        m, t_kept = self._kept_friction(v, n)
         t_out = np.zeros(n)
-        t_out[kept] = t_kept
-        out = t_out[WASH_PERIODS * self.k:]
-        if n == self.a.size:
-            self.last = (v, n, out)
-        return out
+        t_out[self._keep[:m]] = t_kept
+        return t_out[WASH_PERIODS * self.k:]
 
 
 def _contact_steps(a: np.ndarray, model) -> np.ndarray:
@@ -160,7 +188,7 @@ def imposed_drift(stepper: Stepper, scene, speed: float) -> BatchMeans | None:
         # -<T*> at the drift ratio d, each (d, span) computed once (the bracket's ends are
         # asked for again for the first secant)
         if (d, span) not in known:
-            known[(d, span)] = -float(np.mean(rec.friction(d * speed, span)))
+            known[(d, span)] = -rec.mean_friction(d * speed, span)
         return known[(d, span)]
 
     touching = rec.a > 0.0
@@ -175,14 +203,9 @@ def imposed_drift(stepper: Stepper, scene, speed: float) -> BatchMeans | None:
     if up < 0.0 < down:
         return None  # held at rest both ways: not an irregular drift
     sign = 1.0 if up > 0.0 and (down >= 0.0 or up >= -down) else -1.0
-    prev = sign * eps
-    bracket = None
-    for g in GRID:
-        d = sign * g
-        if sign * push(d, span) < 0.0:  # the speed would fall back: passed the zero
-            bracket = (prev, d)
-            break
-        prev = d
+    # the speed would fall back past the zero: sign * push < 0
+    bracket = first_passed(lambda d: push(d, span), [sign * g for g in GRID], sign * eps,
+                           lambda f: sign * f < 0.0)
     if bracket is None:
         return None
     lo, hi = sorted(bracket)

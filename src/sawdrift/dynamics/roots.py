@@ -14,9 +14,9 @@ fast enough), step for step, so it returns the same root to the last bit
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
-__all__ = ["brentq"]
+__all__ = ["brentq", "first_passed"]
 
 #: SciPy's lower bound on the relative tolerance: 4 machine epsilons
 _RTOL_MIN = 4.0 * 2.220446049250313e-16
@@ -90,3 +90,31 @@ def _iterate(value: Callable[[float], float], xpre: float, fpre: float, xcur: fl
         xcur += scur if abs(scur) > delta else (delta if sbis > 0.0 else -delta)
         fcur = value(xcur)
     raise RuntimeError(f"Brent's method did not converge in {maxiter} iterations")
+
+
+def first_passed(f: Callable[[float], float], points: Sequence[float], start: float,
+                 passed: Callable[[float], bool]) -> tuple[float, float] | None:
+    """The first of ``points`` (in order, from ``start``) at which ``passed(f(point))`` holds,
+    with the point before it (``start`` for the first): (last point not passed, first passed),
+    or None where none is.
+
+    The points are visited two at a time: f is evaluated at every second point, and at the
+    point skipped only where the pair's far point is passed. The result is that of a
+    point-by-point search except where the skipped point is passed and the far one is not (f
+    passes and comes back within two steps of the grid, which a point-by-point search also
+    misses unless a point falls between); it costs about half the evaluations, each of which
+    integrates a fast motion where the force-velocity curves are searched.
+    """
+    prev = start
+    j = 0
+    while j < len(points):
+        far = min(j + 1, len(points) - 1)
+        if passed(f(points[far])):
+            if far > j:  # the point skipped: is it passed already?
+                if passed(f(points[j])):
+                    return prev, points[j]
+                return points[j], points[far]
+            return prev, points[far]
+        prev = points[far]
+        j = far + 1
+    return None

@@ -60,7 +60,7 @@ from . import fast_parts as fp
 from .drives.travelling import TravellingWave
 from .drives.two_wave import needs_two_waves
 from .full_inertia import SLIDING_FRACTION
-from .roots import brentq
+from .roots import brentq, first_passed
 from .stepper import Stepper
 
 #: the separated orbit is solved from this m* up (the fast parts' contraction factor, about
@@ -352,18 +352,12 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
     if up < 0.0 < down:
         return STUCK  # restoring both ways: the contact sticks (or creeps): settle by windows
     sign = 1.0 if up > 0.0 and (down >= 0.0 or up >= -down) else -1.0
-    prev_d, prev_f = sign * eps, up if sign > 0 else down
-    root = None
-    for g in GRID:
-        d = sign * g
-        f = push(d)
-        if f == 0.0 or (f < 0.0) != (prev_f < 0.0):
-            root = (prev_d, d) if f != 0.0 else (d, d)
-            break
-        prev_d, prev_f = d, f
+    f_start = up if sign > 0 else down
+    root = first_passed(push, [sign * g for g in GRID], sign * eps,
+                        lambda f: f == 0.0 or (f < 0.0) != (f_start < 0.0))
     if root is None:
         return None  # no zero up to three times the surface speed: not a steady drift here
-    lo, hi = root
+    lo, hi = root if pushes[root[1]] != 0.0 else (root[1], root[1])
     try:
         # the bracket's ends as the search left them (not evaluated again)
         d_star = lo if lo == hi else brentq(push, lo, hi, xtol=1e-3 * tol * max(abs(lo), 0.02),
