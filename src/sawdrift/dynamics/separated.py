@@ -30,7 +30,9 @@ Where it does not apply, :func:`separated_orbit` returns None and the run settle
 
 * a contact whose memory does not repeat at the zero (a creeping contact, no gross slip: its
   tangential spring loads a little further every period; the creep is set by the particle's slow
-  ringing on its tangential contact stiffness, which this construction removes);
+  ringing on its tangential contact stiffness, which this construction removes). A contact
+  that slides over part of its period is first evaluated again over 6, then
+  :data:`LONGEST_PERIODS` periods: it can take more than three to wash its memory in;
 * an orbit that loses contact. A run started from rest keeps the free vertical oscillation its
   start-up left (the normal contact is undamped), and where contact is lost that oscillation
   changes the drift: measured on mmd, the drift of runs from rest differs from the orbit's by
@@ -89,6 +91,11 @@ GRID = (0.0005, 0.002, 0.005, 0.01, 0.02, 0.04, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 
 #: periods of imposed motion per evaluation: the contact's memory is washed in over the first,
 #: the means are taken over the last
 PERIODS = 3
+
+#: longest evaluation: a contact slipping over part of its period whose memory has not repeated
+#: after PERIODS is evaluated again over twice as many, up to this (mmd m* = 1e3 to 1e4 at the
+#: stick boundary, A* = 0.165 to 0.173: 6 periods repeat to 1e-15)
+LONGEST_PERIODS = 12
 
 #: fast-part iterations at most per evaluation, and their convergence (in a*, relative)
 FAST_ITERATIONS = 12
@@ -230,6 +237,15 @@ class _Problem:
         #: how far the contact's memory was from repeating in the last :meth:`fast`
         self.residual = 0.0
 
+    @property
+    def periods(self) -> int:
+        """Periods of imposed motion per evaluation of the contact law (:data:`PERIODS`)."""
+        return int(self.prm[fp.PR_PERIODS])
+
+    @periods.setter
+    def periods(self, n: int) -> None:
+        self.prm[fp.PR_PERIODS] = float(n)
+
     def orbit(self, eta: np.ndarray, eta_d: np.ndarray | None = None,
               xi: np.ndarray | None = None) -> np.ndarray:
         """A new orbit array (rows of :mod:`.fast_parts`) holding eta, eta' and xi (else 0)."""
@@ -336,6 +352,39 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
         return None
     if loses and regular is not None and not regular():
         return IRREGULAR
+    while True:
+        found = _curve_zero(p, y_mean, eta, speed, tol)
+        if not isinstance(found, tuple):
+            return found
+        d_star, got, pushes = found
+        if p.residual <= PERIODIC_TOL:
+            break
+        # the memory does not repeat at the zero: no gross slip loads the tangential spring a
+        # little more every period (a creeping contact), which is not a period-one orbit; or a
+        # contact slipping over part of the period washes its memory in slowly (mmd m* = 1e4,
+        # A* = 0.165: the last two of 3 periods differ by 1.9e-2, of 6 by 1e-15, and the mean
+        # force of 3 periods put the zero at 0.0078 against 0.0113), where the curve is sampled
+        # again with evaluations twice as long, up to LONGEST_PERIODS
+        n_f, t_f = got[4], got[5]
+        sliding = float(np.mean((n_f > 0.0) & (np.abs(t_f) >= (1.0 - ig.SLIP_RTOL) * n_f)))
+        if sliding < SLIDING_FRACTION:
+            return STUCK  # held: it returns to its drift from rest by itself
+        if 2 * p.periods > LONGEST_PERIODS:
+            # no orbit to report, but the contact slides over a share of the period: its mean
+            # speed is a slow variable, and the zero is where windows should start
+            return Stuck(d_star * speed)
+        p.periods = 2 * p.periods
+    return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
+                          p.evaluations, _slope(pushes, d_star, speed), loses,
+                          tuple(sorted(pushes.items())), p)
+
+
+def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: float
+                ) -> tuple[float, tuple[np.ndarray, ...], dict[float, float]] | Stuck | None:
+    """The first zero of the force-velocity curve met from rest, by evaluations of
+    ``p.periods`` periods: (its drift ratio, the fast parts there (:meth:`_Problem.fast`), the
+    curve's points (drift ratio, -<T*>)); :data:`STUCK` where the curve restores both ways at
+    rest, None without a zero up to three times the surface speed."""
     xi = np.zeros(p.k)
     pushes: dict[float, float] = {}
 
@@ -364,21 +413,7 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
                                             rtol=1e-10, fa=pushes[lo], fb=pushes[hi])
     except ValueError:
         return None  # the fast part, iterated on from call to call, moved an end's sign
-    got = p.fast(y_mean, d_star * speed, eta, xi)
-    if p.residual > PERIODIC_TOL:
-        # the memory does not repeat at the zero: no gross slip loads the tangential spring a
-        # little more every period (a creeping contact), which is not a period-one orbit; or a
-        # contact slipping over part of the period washes its memory in slowly (mmd m* = 1e4,
-        # A* = 0.173: the last two of 3 periods differ by 1.6e-3, of 6 by 1e-15, with the same
-        # mean force): no orbit to report, but where the contact slides over a share of the
-        # period its mean speed is a slow variable, and the zero is where windows should start
-        # (a creeping or sticking contact is held, and returns to its drift from rest by itself)
-        n_f, t_f = got[4], got[5]
-        sliding = float(np.mean((n_f > 0.0) & (np.abs(t_f) >= (1.0 - ig.SLIP_RTOL) * n_f)))
-        return Stuck(d_star * speed) if sliding >= SLIDING_FRACTION else STUCK
-    return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
-                          p.evaluations, _slope(pushes, d_star, speed), loses,
-                          tuple(sorted(pushes.items())), p)
+    return d_star, p.fast(y_mean, d_star * speed, eta, xi), pushes
 
 
 def _slope(pushes: dict[float, float], d_star: float, speed: float) -> float:
