@@ -30,9 +30,9 @@ Where it does not apply, :func:`separated_orbit` returns None and the run settle
 
 * a contact whose memory does not repeat at the zero (a creeping contact, no gross slip: its
   tangential spring loads a little further every period; the creep is set by the particle's slow
-  ringing on its tangential contact stiffness, which this construction removes). A contact
-  that slides over part of its period is first evaluated again over 6, then
-  :data:`LONGEST_PERIODS` periods: it can take more than three to wash its memory in;
+  ringing on its tangential contact stiffness, which this construction removes). The curve is
+  first sampled again with evaluations of 6, then :data:`LONGEST_PERIODS` periods: a contact
+  slipping over part of its period can take more than three to wash its memory in;
 * an orbit that loses contact. A run started from rest keeps the free vertical oscillation its
   start-up left (the normal contact is undamped), and where contact is lost that oscillation
   changes the drift: measured on mmd, the drift of runs from rest differs from the orbit's by
@@ -92,7 +92,7 @@ GRID = (0.0005, 0.002, 0.005, 0.01, 0.02, 0.04, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 
 #: the means are taken over the last
 PERIODS = 3
 
-#: longest evaluation: a contact slipping over part of its period whose memory has not repeated
+#: longest evaluation: a contact whose memory has not repeated at the zero
 #: after PERIODS is evaluated again over twice as many, up to this (mmd m* = 1e3 to 1e4 at the
 #: stick boundary, A* = 0.165 to 0.173: 6 periods repeat to 1e-15)
 LONGEST_PERIODS = 12
@@ -359,21 +359,20 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
         d_star, got, pushes = found
         if p.residual <= PERIODIC_TOL:
             break
-        # the memory does not repeat at the zero: no gross slip loads the tangential spring a
-        # little more every period (a creeping contact), which is not a period-one orbit; or a
-        # contact slipping over part of the period washes its memory in slowly (mmd m* = 1e4,
-        # A* = 0.165: the last two of 3 periods differ by 1.9e-2, of 6 by 1e-15, and the mean
-        # force of 3 periods put the zero at 0.0078 against 0.0113), where the curve is sampled
-        # again with evaluations twice as long, up to LONGEST_PERIODS
+        # the memory does not repeat at the zero: a contact slipping over part of the period
+        # can wash its memory in slowly (mmd m* = 1e4, A* = 0.165: the last two of 3 periods
+        # differ by 1.9e-2, of 6 by 1e-15, and the mean force of 3 periods put the zero at
+        # 0.0078 against 0.0113), so the curve is sampled again with evaluations twice as long,
+        # up to LONGEST_PERIODS; where it still does not repeat, no gross slip loads the
+        # tangential spring a little more every period (a creeping contact): no orbit
+        if 2 * p.periods <= LONGEST_PERIODS:
+            p.periods = 2 * p.periods
+            continue
         n_f, t_f = got[4], got[5]
         sliding = float(np.mean((n_f > 0.0) & (np.abs(t_f) >= (1.0 - ig.SLIP_RTOL) * n_f)))
-        if sliding < SLIDING_FRACTION:
-            return STUCK  # held: it returns to its drift from rest by itself
-        if 2 * p.periods > LONGEST_PERIODS:
-            # no orbit to report, but the contact slides over a share of the period: its mean
-            # speed is a slow variable, and the zero is where windows should start
-            return Stuck(d_star * speed)
-        p.periods = 2 * p.periods
+        # held, it returns to its drift from rest by itself; sliding over a share of the
+        # period, its mean speed is a slow variable and the zero is where windows should start
+        return Stuck(d_star * speed) if sliding >= SLIDING_FRACTION else STUCK
     return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
                           p.evaluations, _slope(pushes, d_star, speed), loses,
                           tuple(sorted(pushes.items())), p)
