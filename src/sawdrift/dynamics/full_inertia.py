@@ -296,11 +296,6 @@ class _Approach:
         self.steady_run = self.steady_run + 1 if abs(change) <= eps else 0
         if self.steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
             return "settled", 0.0
-        if self.steady_run >= 1 and not slow and abs(d) <= eps and abs(self.prev) <= eps:
-            # a creeping contact (slipping in less than SLIDING_FRACTION of the window, contact
-            # kept), two window means in a row at the accuracy's floor: its speed is held by the
-            # tangential stiffness, no slow mode left to wait for
-            return "settled", 0.0
         if (self.expected is not None and self.steady_run >= 1 and abs(remaining) <= eps
                 and abs(d - self.expected) <= eps and abs(self.prev - self.expected) <= eps):
             # two windows in a row on the drift solved directly, their change within the
