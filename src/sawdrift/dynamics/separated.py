@@ -335,7 +335,7 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
     speed
         2 pi r A*, the scale of the drift ratio.
     tol
-        ``numerics.settle_tolerance``: the zero is found to a thousandth of it.
+        ``numerics.settle_tolerance``: the zero is found to a hundredth of it.
     keep_contact
         Return None for an orbit that loses contact (else it is returned, ``loses_contact``).
     regular
@@ -415,7 +415,7 @@ def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: 
     lo, hi = root if pushes[root[1]] != 0.0 else (root[1], root[1])
     try:
         # the bracket's ends as the search left them (not evaluated again)
-        d_star = lo if lo == hi else brentq(push, lo, hi, xtol=1e-3 * tol * max(abs(lo), 0.02),
+        d_star = lo if lo == hi else brentq(push, lo, hi, xtol=1e-2 * tol * max(abs(lo), 0.02),
                                             rtol=1e-10, fa=pushes[lo], fb=pushes[hi])
     except ValueError:
         return None  # the fast part, iterated on from call to call, moved an end's sign

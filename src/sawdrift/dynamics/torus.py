@@ -188,7 +188,7 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
         if (f1 > 0.0) != (f0 > 0.0):
             (lo, f_lo), (hi, f_hi) = sorted(((d0, f0), (d1, f1)))
             try:
-                root = brentq(push, lo, hi, xtol=1e-3 * tol * max(abs(d0), 0.02), rtol=1e-10,
+                root = brentq(push, lo, hi, xtol=1e-2 * tol * max(abs(d0), 0.02), rtol=1e-10,
                               fa=f_lo, fb=f_hi)
             except ValueError:
                 # the fast parts at each node are iterated on from call to call, so an end of the
