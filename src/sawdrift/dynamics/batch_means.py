@@ -32,6 +32,13 @@ MIN_BATCHES = 16
 CHUNK = 250
 MIN_PERIODS = 500
 
+#: combined blocked errors by which the means of a series' two halves may differ before it is
+#: taken to be still approaching its mean (:func:`still_moving`)
+HALVES_Z = 5.0
+
+#: times a long-time mean still approaching drops its first half and runs another budget
+MAX_EXTENSIONS = 3
+
 #: the last two blocking levels' errors within this fraction of each other: a plateau
 PLATEAU = 0.25
 
@@ -56,6 +63,9 @@ class BatchMeans:
     batches: int
     periods: int
     rising: bool = False
+    #: the two halves of the series still differed by more than :data:`HALVES_Z` combined errors
+    #: after :data:`MAX_EXTENSIONS` extensions: a slow approach, not a long-time mean
+    moving: bool = False
 
 
 def blocked_error(per_period: np.ndarray) -> tuple[float, float, int]:
@@ -103,6 +113,13 @@ def long_time_mean(stepper: Stepper, window, periods: int,
     at a whole chunk of :data:`CHUNK` periods, once the blocked error is at most the target and
     its blocking curve has reached its plateau (and is not rising): a quasi-periodic motion whose
     mean is known to the tolerance is not run on for the error bars of a chaotic one.
+
+    A series whose two halves still differ, by more than ``target`` too (:func:`still_moving`),
+    is approaching its mean, not fluctuating about it: its first half is dropped and it runs
+    another ``periods``, at most
+    :data:`MAX_EXTENSIONS` times (mmd m* = 4.2, A* = 10, in flight 91 % of the time: 0.7867 +-
+    0.0018 over a series that began on the approach, 0.8010 from brute force after 4000
+    periods). One still moving after that is reported with ``moving`` set.
     """
     parts = [np.diff(window.positions)]
     done = 0
@@ -113,6 +130,36 @@ def long_time_mean(stepper: Stepper, window, periods: int,
             _mean, se, _n, flat, rising = blocking(parts[0])
             if flat and not rising and se <= target:
                 done = periods  # known to the target already
+    per_period = _advance_mean(stepper, parts, done, periods, target)
+    extensions = 0
+    while extensions < MAX_EXTENSIONS and still_moving(per_period, target):
+        # still approaching: the first half is a transient, the mean goes on from the second
+        per_period = _advance_mean(stepper, [per_period[per_period.size // 2:]], 0, periods,
+                                   target)
+        extensions += 1
+    mean, se, n, _, rising = blocking(per_period)
+    return BatchMeans(mean, se, n, int(per_period.size), rising,
+                      moving=extensions == MAX_EXTENSIONS and still_moving(per_period, target))
+
+
+def still_moving(per_period: np.ndarray, floor: float = 0.0) -> bool:
+    """Whether the means of the series' two halves differ by more than :data:`HALVES_Z` of
+    their combined blocked errors, and by more than ``floor`` (the tolerance, x* per period): a
+    mean still approaching its value (a heavy bouncer in flight 90 % of the time relaxes over
+    thousands of periods), whose long-time mean would carry its transient."""
+    half = per_period.size // 2
+    if half < MIN_BATCHES:
+        return False
+    m1, s1, _ = blocked_error(per_period[:half])
+    m2, s2, _ = blocked_error(per_period[half:])
+    return abs(m2 - m1) > max(HALVES_Z * math.hypot(s1, s2), floor)
+
+
+def _advance_mean(stepper: Stepper, parts: list[np.ndarray], done: int, periods: int,
+                  target: float) -> np.ndarray:
+    """Run on from ``parts`` (the per-period displacements so far, ``done`` of the ``periods``
+    counted) to the budget, stopping early at the ``target`` error (:func:`long_time_mean`);
+    returns the whole series."""
     x_last = stepper.y[0]
     while done < periods:
         chunk = min(CHUNK, periods - done)
@@ -124,6 +171,4 @@ def long_time_mean(stepper: Stepper, window, periods: int,
             _mean, se, _n, flat, rising = blocking(np.concatenate(parts))
             if flat and not rising and se <= target:
                 break
-    per_period = np.concatenate(parts)
-    mean, se, n, _, rising = blocking(per_period)
-    return BatchMeans(mean, se, n, int(per_period.size), rising)
+    return np.concatenate(parts)

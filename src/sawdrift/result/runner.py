@@ -12,6 +12,7 @@ import math
 
 from ..contact.binding import bind, model_for
 from ..dynamics.assembly import Engine, assemble
+from ..dynamics.batch_means import HALVES_Z
 from ..dynamics.drives import Drive
 from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate_wave
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
@@ -144,18 +145,25 @@ def _reported_drift(out: WaveRun, drift_ratio: float,
     """(drift, drift ratio, its standard error) a run reports: the window's; the drift solved
     directly (dynamics.direct: the window is one sample of the slow vertical modulation, the
     solved drift its mean); or an irregular motion's long-time mean with its batch-means error,
-    not one window's sample."""
+    not one window's sample. A mean still moving at the end of its extensions has no error: it
+    is the mean of its last stretch, not a long-time mean (the warnings say so)."""
     drift = out.window.drift if solved is None else solved
     if out.long_mean is not None and out.speed > 0.0:
         drift = out.long_mean.mean
-        return drift, drift / out.speed, out.long_mean.se / out.speed
+        se = math.nan if out.long_mean.moving else out.long_mean.se / out.speed
+        return drift, drift / out.speed, se
     return drift, drift_ratio, math.nan
 
 
 def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
     """A device scene's validity warnings, and a long-time mean's whose error is a lower bound."""
     warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
-    if out.long_mean is not None and out.long_mean.rising and out.speed > 0.0:
+    if out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
+        warnings += (f"not settled: the mean drift was still moving over its last "
+                     f"{out.long_mean.periods} periods (its two halves differ by more than "
+                     f"{HALVES_Z:g} errors: a slow approach); numerics.mean_periods "
+                     f"(--mean-periods) runs it longer",)
+    elif out.long_mean is not None and out.long_mean.rising and out.speed > 0.0:
         warnings += (f"long-time mean: its batch-means error still grew with the batch length "
                      f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
                      f"(correlations longer than the run)",)
