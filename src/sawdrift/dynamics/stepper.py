@@ -238,7 +238,7 @@ class Stepper:
         recording = self.record or strobe is not None or rows is not None
         # one buffer for the whole advance: a loop that returns early (its event log full)
         # goes on writing after the rows it has written
-        buffer = (np.zeros(((target - self.step) // every + 2, ig.N_REC)) if recording
+        buffer = (np.empty(((target - self.step) // every + 2, ig.N_REC)) if recording
                   else _NO_ROWS)
         used = 0
         while self.step < target:
