@@ -116,10 +116,10 @@ def long_time_mean(stepper: Stepper, window, periods: int,
 
     A series whose two halves still differ, by more than ``target`` too (:func:`still_moving`),
     is approaching its mean, not fluctuating about it: its first half is dropped and it runs
-    another ``periods``, at most
-    :data:`MAX_EXTENSIONS` times (mmd m* = 4.2, A* = 10, in flight 91 % of the time: 0.7867 +-
-    0.0018 over a series that began on the approach, 0.8010 from brute force after 4000
-    periods). One still moving after that is reported with ``moving`` set.
+    another ``periods``, at most :data:`MAX_EXTENSIONS` times (mmd m* = 4.2, A* = 10, in flight
+    91 % of the time: 0.7867 +- 0.0018 over a series that began on the approach, 0.8010 from
+    brute force after 4000 periods). One still moving after that is reported with ``moving``
+    set.
     """
     parts = [np.diff(window.positions)]
     done = 0

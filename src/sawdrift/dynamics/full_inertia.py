@@ -353,7 +353,6 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     start = stepper.step
     # the stage may outlast the first stage's cap by MIN_WINDOWS windows
     max_steps = max(max_steps, start + MIN_WINDOWS * w * stepper.k_per)
-    settled = False
     log = watch.series if watch.series is not None else []
     win = measure_window(stepper, w, speed, scale)
     log.append(np.diff(win.positions))

@@ -30,9 +30,10 @@ Where it does not apply, :func:`separated_orbit` returns None and the run settle
 
 * a contact whose memory does not repeat at the zero (a creeping contact, no gross slip: its
   tangential spring loads a little further every period; the creep is set by the particle's slow
-  ringing on its tangential contact stiffness, which this construction removes). The curve is
-  first sampled again with evaluations of 6, then :data:`LONGEST_PERIODS` periods: a contact
-  slipping over part of its period can take more than three to wash its memory in;
+  ringing on its tangential contact stiffness, which this construction removes). Where the
+  contact comes near sliding as a whole (:data:`NEAR_SLIP`), the curve is first sampled again
+  with evaluations of 6, then :data:`LONGEST_PERIODS` periods: a contact slipping over part of
+  its period can take more than three to wash its memory in;
 * an orbit that loses contact. A run started from rest keeps the free vertical oscillation its
   start-up left (the normal contact is undamped), and where contact is lost that oscillation
   changes the drift: measured on mmd, the drift of runs from rest differs from the orbit's by
@@ -92,9 +93,10 @@ GRID = (0.0005, 0.002, 0.005, 0.01, 0.02, 0.04, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 
 #: the means are taken over the last
 PERIODS = 3
 
-#: longest evaluation: a contact whose memory has not repeated at the zero
-#: after PERIODS is evaluated again over twice as many, up to this (mmd m* = 1e3 to 1e4 at the
-#: stick boundary, A* = 0.165 to 0.173: 6 periods repeat to 1e-15)
+#: longest evaluation: a contact whose memory has not repeated at the zero after PERIODS, and
+#: that comes near sliding as a whole (NEAR_SLIP), is evaluated again over twice as many, up to
+#: this (mmd m* = 1e3 to 1e4 at the stick boundary, A* = 0.165 to 0.173: 6 periods repeat to
+#: 1e-15)
 LONGEST_PERIODS = 12
 
 #: |T*| / N* (T* in units of mu) a contact must reach somewhere in its period for the longer
@@ -371,12 +373,12 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
         # up to LONGEST_PERIODS; where it still does not repeat, no gross slip loads the
         # tangential spring a little more every period (a creeping contact): no orbit
         n_f, t_f = got[4], got[5]
-        sliding = float(np.mean((n_f > 0.0) & (np.abs(t_f) >= (1.0 - ig.SLIP_RTOL) * n_f)))
         near = bool(np.any((n_f > 0.0) & (np.abs(t_f) >= NEAR_SLIP * n_f)))
         if near and 2 * p.periods <= LONGEST_PERIODS:
             # (a contact far from sliding as a whole all through its period only creeps)
             p.periods = 2 * p.periods
             continue
+        sliding = float(np.mean((n_f > 0.0) & (np.abs(t_f) >= (1.0 - ig.SLIP_RTOL) * n_f)))
         # held, it returns to its drift from rest by itself; sliding over a share of the
         # period, its mean speed is a slow variable and the zero is where windows should start
         return Stuck(d_star * speed) if sliding >= SLIDING_FRACTION else STUCK
@@ -418,7 +420,7 @@ def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: 
         d_star = lo if lo == hi else brentq(push, lo, hi, xtol=1e-2 * tol * max(abs(lo), 0.02),
                                             rtol=1e-10, fa=pushes[lo], fb=pushes[hi])
     except ValueError:
-        return None  # the fast part, iterated on from call to call, moved an end's sign
+        return None  # a NaN force inside the bracket (its ends, the search's, change sign)
     return d_star, p.fast(y_mean, d_star * speed, eta, xi), pushes
 
 

@@ -191,7 +191,7 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
     scale = max(abs(d0), 0.02)
     step = 0.05 * scale * (1.0 if f0 > 0.0 else -1.0)
     # the orbit's slope of the force-velocity curve predicts the cycle-averaged zero (a step of
-    # -f0 / slope): the bracket's first step is twice that, within the 5 % of old
+    # -f0 / slope): the bracket's first step is twice that, at most the 5 % taken without one
     slope = -speed * orbit.slope
     if math.isfinite(slope) and slope < 0.0:
         step = math.copysign(min(max(2.0 * abs(f0 / slope), 1e-4 * scale), abs(step)), step)
@@ -204,8 +204,8 @@ def torus_drift(stepper: Stepper, orbit: SeparatedOrbit, speed: float, tol: floa
                 root = brentq(push, lo, hi, xtol=1e-2 * tol * max(abs(d0), 0.02), rtol=1e-10,
                               fa=f_lo, fb=f_hi)
             except ValueError:
-                # the fast parts at each node are iterated on from call to call, so an end of the
-                # bracket evaluated again can change sign: no clean zero here, no average
+                # a NaN force inside the bracket (its ends, the search's, change sign): no
+                # clean zero here, no average
                 return None
             return speed * root, lifts, period
         d0, f0, step = d1, f1, 2.0 * step

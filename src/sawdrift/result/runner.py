@@ -159,10 +159,10 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
     """A device scene's validity warnings, and a long-time mean's whose error is a lower bound."""
     warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
     if out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
-        warnings += (f"not settled: the mean drift was still moving over its last "
+        warnings += ("not settled: the mean drift was still moving over its last "
                      f"{out.long_mean.periods} periods (its two halves differ by more than "
                      f"{HALVES_Z:g} errors: a slow approach); numerics.mean_periods "
-                     f"(--mean-periods) runs it longer",)
+                     "(--mean-periods) runs it longer",)
     elif out.long_mean is not None and out.long_mean.rising and out.speed > 0.0:
         warnings += (f"long-time mean: its batch-means error still grew with the batch length "
                      f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
