@@ -22,7 +22,7 @@ from ..scene.schema import Impact, Numerics, Scene
 from .assembly import Assembly
 from .batch_means import BatchMeans, long_time_mean
 from .evidence import S_LASTLIFT
-from .full_inertia import Watch, settle_full
+from .full_inertia import Watch, held, settle_full, tapered_drift_ratio
 from .steady import (
     Settling,
     assess_fixed,
@@ -116,7 +116,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     speed = drive.horizontal_speed(scene)
     scale = drive.state_scale(scene)
     settle_on = settles(scene, speed, stepper.rigid)
-    win, settling = _measure(stepper, scene, speed, scale, settle_on)
+    win, settling = _measure(stepper, scene, speed, scale, settle_on, trajectory)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     # the per-period displacements of the run's windows, one contiguous stretch of its own
     # trajectory up to now: a long-time mean after them starts from all of it
@@ -155,9 +155,10 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
 
 
 def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
-             settle_on: bool) -> tuple[Window, Settling | None]:
+             settle_on: bool, trajectory: bool = False) -> tuple[Window, Settling | None]:
     """Run to the measuring window and measure it: settled windows (``numerics.settle``, up to
-    the period cap) or the fixed run's last window. The settling is None for a fixed run."""
+    the period cap) or the fixed run's last window (a default one may end at its first window
+    after the ramp, :func:`_held_first`). The settling is None for a fixed run."""
     num = scene.numerics
     n_periods = scene.measure_periods()
     k_per = stepper.k_per
@@ -170,10 +171,52 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
         cap = default_max_periods(m_star, relaxation_periods(scene, m_x, speed), stepper.rigid,
                                   n_periods, rolling_frequency(scene, m_x))
     n_max = max(n_total, int(round(cap * k_per)))
-    stepper.advance(n_total - n_measure)
+    if not settle_on and not trajectory and _default_length(scene):
+        held_first = _held_first(stepper, scene, speed, scale, n_total - n_measure)
+        if held_first is not None:
+            return held_first
+    stepper.advance(n_total - n_measure - stepper.step)
     if settle_on:
         return settle(stepper, scene, speed, scale, n_periods, n_max)
     return measure_window(stepper, n_periods, speed, scale), None
+
+
+def _default_length(scene: Scene) -> bool:
+    """Whether a run's length and window are the defaults, left to the run to use (a run given
+    ``periods``, ``measure_periods`` or ``settle`` is run as asked), with no load (whose
+    accelerating window the Result judges over the whole run)."""
+    num = scene.numerics
+    return (num.settle is None and num.periods == DEFAULT_PERIODS and num.measure_periods is None
+            and scene.particle.load == 0.0)
+
+
+def _held_first(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
+                window_start: int) -> tuple[Window, Settling] | None:
+    """A default fixed run whose first window after the ramp shows a held contact ends there.
+
+    The window before the measuring one (the same length, ending where that one starts) is
+    measured if it starts after the ramp; where it neither slid as a whole nor lost contact and
+    its tapered mean is at the accuracy's floor (:func:`~.full_inertia.held`, the rule that
+    settles a sticking contact at full inertia), the run has settled: the drive is periodic from
+    there, and a contact that held through a window of all its phases holds on (its speed tied
+    to the substrate by the tangential stiffness). The drift is that tapered mean (a box mean of
+    a held contact is its ringing over the window: up to 1e-4 in drift ratio at m* = 0.02,
+    against a zero long-time mean). Half the fixed run's cost for it. None otherwise: the
+    stepper is then at ``window_start`` (steps), where the fixed run's window begins.
+    """
+    n = scene.measure_periods()
+    k_per = stepper.k_per
+    first = window_start - n * k_per
+    ramp = float(getattr(scene.drive, "ramp_periods", 0.0))
+    if first < math.ceil(ramp) * k_per:
+        return None
+    stepper.advance(first - stepper.step)
+    win = measure_window(stepper, n, speed, scale)
+    d = tapered_drift_ratio(win, speed)
+    if not held(win, d, scene.numerics.settle_tolerance):
+        return None
+    periods = stepper.step / k_per
+    return win, Settling(True, "fixed", math.nan, n, periods, math.nan, (d,), drift=d * speed)
 
 
 def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win: Window,
