@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -136,6 +136,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, scene.particle.m_star, speed),
                                 periods_run, chaotic)
+        if num.settle is False:
+            settling = replace(settling, drift=None)  # a fixed run reports its window's mean
         if (not settling.settled and num.settle is None and num.periods == DEFAULT_PERIODS
                 and not chaotic):
             # a default run that its own window could not confirm goes on to the steady drift (a
