@@ -330,6 +330,13 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
        at most mu times it, in contact or in impacts alike); a heavy particle on its slow
        approach changes little per window, and this bound keeps that from passing for steady.
 
+    A settled window's drift, as a default run reports it (``drift``), is its tapered mean
+    (:func:`~.full_inertia.tapered_drift_ratio`): on 260 light cells of the default 41 x 41
+    mmd sweep settled here, 241 were within 1e-3 relative or 2e-5 absolute of brute force
+    (2000 periods) against 216 for the box mean (a slow beat of the vertical mode leaks into a
+    box mean as P / W, into the tapered one as (P / W)^3: mmd m* = 0.0178, A* = 0.53: box
+    -0.634024, tapered -0.635157, brute force -0.635151); a fixed run reports its box mean.
+
     In cases 1 and 3 the drift reported for the whole window must also agree with its last third
     within ``tol`` (an early part of the window still on the transient would bias it), and if the
     particle flies, each of the last two thirds must contain a landing (a flight spanning both
@@ -340,7 +347,9 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
     if win.orbit_period > 0 and not chaotic and not in_flight(win):
         # an exact periodic orbit (the stroboscopic state repeats to round-off, x*' included):
         # its drift, measured over whole orbits, is the steady one
-        return Settling(True, "fixed", math.nan, win.periods, periods_run, math.nan, ())
+        d = tapered_drift_ratio(win, speed)  # the box mean over whole orbits
+        return Settling(True, "fixed", math.nan, win.periods, periods_run, math.nan, (d,),
+                        drift=d * speed)
     if win.contact_lost and not chaotic and growing(win.samples, win.scale):
         # lost contact, regular, no orbit, and the stroboscopic state moves more from period
         # to period at the window's end than at its start: still leaving (a growing alternation)
@@ -363,7 +372,10 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
                    if speed > 0.0 else 0.0 for k in range(3)) if parts > 0 else ()
     ok = (bool(values) and not chaotic and not in_flight(win)
           and _steady_thirds(win, values, n, start, tol, tau, periods_run))
-    return Settling(ok, "fixed", math.nan, win.periods, periods_run, math.nan, values)
+    # the drift a default run reports: the tapered mean, which a slow beat does not leak into
+    drift = tapered_drift_ratio(win, speed) * speed if ok else None
+    return Settling(ok, "fixed", math.nan, win.periods, periods_run, math.nan, values,
+                    drift=drift)
 
 
 def _steady_thirds(win: Window, values: tuple[float, ...], n: int, start: int, tol: float,
