@@ -130,7 +130,8 @@ class Result:
     orbit_period: int = 0
     #: whether the reported drift is the steady one (see dynamics.steady)
     settled: bool | None = None
-    #: how ``settled`` was decided: "fixed" (a run of fixed length, judged after the fact),
+    #: how ``settled`` was decided: "fixed" (a run of fixed length, judged after the fact; a
+    #: default light run whose first window after the ramp held its contact ends there),
     #: "windows_full" (windows at full inertia), "fixed_then_windows" (a default fixed run its own
     #: window could not confirm, continued in such windows), "reduced_then_full" (a reduced-inertia
     #: approach, then windows at full inertia; see dynamics.full_inertia), "solved" (the drift
