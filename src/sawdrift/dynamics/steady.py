@@ -320,7 +320,10 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
        (:func:`~.full_inertia.held`); that mean is the drift reported (``drift``). A window
        whose contact never slid but whose tapered mean is larger (a creep, or the ringing on the
        tangential stiffness near the contact resonances, which a box mean over 27 periods
-       reports as a drift of up to 1e-2) is not steady here, whatever its thirds say;
+       reports as a drift of up to 1e-2) is not steady here, whatever its thirds say (letting
+       the thirds judge it settled 19 of 72 light sweep cells 3e-5 to 1.2e-4 from stuck brute
+       force; a sphere rolling without slip is not called steady either, conservatively, and a
+       default run's windows then settle it);
     3. its drift ratio changed by d between the last two thirds (n periods each, whole orbits
        if the motion is periodic) of the window,
        and the distance still to go, estimated as |d| max(1, tau / n) with the relaxation time
