@@ -395,14 +395,14 @@ def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: 
     rest, None without a zero up to three times the surface speed."""
     xi = np.zeros(p.k)
     pushes: dict[float, float] = {}
-    last: list = [None, None]  # the last evaluation: its drift ratio and fast parts
+    last_d, last_got = math.nan, None  # the last evaluation: its drift ratio and fast parts
 
     def push(d: float) -> float:
         """The mean acceleration sign at drift ratio d: -<T*> (the particle speeds up if > 0)."""
-        nonlocal xi
+        nonlocal xi, last_d, last_got
         got = p.fast(y_mean, d * speed, eta, xi)
         xi = got[2]
-        last[:] = [d, got]
+        last_d, last_got = d, got
         pushes[d] = -float(np.mean(got[5]))
         return pushes[d]
 
@@ -424,7 +424,7 @@ def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: 
     except ValueError:
         return None  # a NaN force inside the bracket (its ends, the search's, change sign)
     # Brent's last evaluation is usually at its answer: the fast parts there are not computed again
-    got = last[1] if last[0] == d_star else p.fast(y_mean, d_star * speed, eta, xi)
+    got = last_got if last_d == d_star else p.fast(y_mean, d_star * speed, eta, xi)
     return d_star, got, pushes
 
 

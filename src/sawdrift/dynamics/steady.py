@@ -347,10 +347,12 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
     flight, is never steady. Otherwise this is deliberately conservative: a run it
     calls unsettled may be steady, which ``numerics.settle`` then confirms.
     """
+    # the drift a default run reports where the window settles (the box mean over whole orbits
+    # for a periodic orbit of several periods)
+    d = tapered_drift_ratio(win, speed)
     if win.orbit_period > 0 and not chaotic and not in_flight(win):
         # an exact periodic orbit (the stroboscopic state repeats to round-off, x*' included):
         # its drift, measured over whole orbits, is the steady one
-        d = tapered_drift_ratio(win, speed)  # the box mean over whole orbits
         return Settling(True, "fixed", math.nan, win.periods, periods_run, math.nan, (d,),
                         drift=d * speed)
     if win.contact_lost and not chaotic and growing(win.samples, win.scale):
@@ -362,7 +364,6 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
         # the drift reported) or not settled here. Near the contact resonances its box mean is
         # its ringing on the tangential stiffness, not a drift (mmd m* = 0.042, A* = 0.024: -0.0118
         # over 27 periods, 6.9e-5 over 2000), and window thirds of that ringing can agree
-        d = tapered_drift_ratio(win, speed)
         ok = held(win, d, tol) and not chaotic
         return Settling(ok, "fixed", math.nan, win.periods, periods_run, math.nan, (d,),
                         drift=d * speed if ok else None)
@@ -375,11 +376,9 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
                    if speed > 0.0 else 0.0 for k in range(3)) if parts > 0 else ()
     ok = (bool(values) and not chaotic and not in_flight(win)
           and _steady_thirds(win, values, n, start, tol, tau, periods_run))
-    # the drift a default run reports: the tapered mean, which a slow beat does not leak into;
-    # where it differs from the box mean by more than the tolerance, the beat is too slow for
-    # the window to settle anything (mmd m* = 0.042, A* = 0.11: box 0.27496, tapered 0.26435,
-    # brute force 0.26673)
-    d = tapered_drift_ratio(win, speed)
+    # the tapered mean, which a slow beat does not leak into: where it differs from the box
+    # mean by more than the tolerance, the beat is too slow for the window to settle anything
+    # (mmd m* = 0.042, A* = 0.11: box 0.27496, tapered 0.26435, brute force 0.26673)
     ok = ok and abs(d - win.drift_ratio) <= tol
     drift = d * speed if ok else None
     return Settling(ok, "fixed", math.nan, win.periods, periods_run, math.nan, values,
