@@ -314,6 +314,17 @@ def fast_body(contact, y, v, prm, tables, orbit, iterations, tol):
     return count + 1, residual
 
 
+def row_mean(row):
+    """The mean of one row of samples, summed in a plain loop: numpy's mean in a compiled loop
+    makes every process that loads it from the disk cache import numba's array-math and linear
+    algebra (and with them scipy.linalg): 0.45 s before a worker's first heavy cell, measured on
+    the benchmarks' 2-core machine."""
+    total = 0.0
+    for v in row:
+        total += v
+    return total / row.size
+
+
 def normal_mean_body(contact, y, prm, motion, orbit):
     """<N*> over the last period at rest horizontally (V = 0, xi = 0: the rows :data:`XI`,
     :data:`XI_D` of ``orbit`` are zero) on the vertical fast part eta, eta' in ``orbit``, N*
@@ -322,14 +333,14 @@ def normal_mean_body(contact, y, prm, motion, orbit):
     period of it is the last period's N* (a* repeats every period); else the contact law runs."""
     if prm[PR_ALONE] == 0.0:
         contact_periods(contact, y, 0.0, prm, motion, orbit)
-        return np.mean(orbit[NORMAL])
+        return row_mean(orbit[NORMAL])
     fs, is_, _pp, npp = contact
     for j in range(motion.shape[1]):
         a = y + orbit[ETA, j] - motion[UY, j]
         adot = orbit[ETA_D, j] - motion[UY_D, j]
         n, _t = normal(fs, is_, npp, a, 0.0, adot, 0.0)  # noqa: F821
         orbit[NORMAL, j] = n
-    return np.mean(orbit[NORMAL])
+    return row_mean(orbit[NORMAL])
 
 
 def vertical_body(contact, y, prm, tables, orbit, iterations):
@@ -363,12 +374,12 @@ def node_push_body(contact, heights, weights, v, prm, tables, nodes, sweeps):
             for i in range(motion.shape[1]):
                 work[ACC_B, i] = ratio * orbit[TANGENTIAL, i] / m
             periodic_one(work[ACC_B], orbit[XI], orbit[XI_D], spec, work)
-        total += weights[j] * np.mean(orbit[TANGENTIAL])
+        total += weights[j] * row_mean(orbit[TANGENTIAL])
     return -total
 
 
 _TEMPLATES = (contact_periods, fast_body, normal_mean_body, vertical_body, node_push_body)
-_TRANSFORMS = (transform, periodic_pair, periodic_one, rates_pair)
+_TRANSFORMS = (transform, periodic_pair, periodic_one, rates_pair, row_mean)
 _NUMPY_TRANSFORMS = {"periodic_pair": _periodic_pair_numpy, "periodic_one": _periodic_one_numpy,
                      "rates_pair": _rates_pair_numpy}
 _CONSTANTS = ("ETA", "ETA_D", "XI", "XI_D", "NORMAL", "TANGENTIAL", "UX", "UX_D", "UY", "UY_D",
@@ -403,7 +414,7 @@ def fast_loops(force: Any, reset: Any, normal: Any, compiled: bool) -> dict[str,
     names = {name: globals()[name] for name in _CONSTANTS}
     namespace = {"np": np, "force": force, "reset": reset, "normal": normal, **names}
     if not compiled:
-        return rebind(_TEMPLATES, {**namespace, **_NUMPY_TRANSFORMS})
+        return rebind(_TEMPLATES, {**namespace, **_NUMPY_TRANSFORMS, "row_mean": row_mean})
     key = (force, reset, normal)
     loops = _LOOPS.get(key)
     if loops is None:
