@@ -105,8 +105,13 @@ class ContactHistory:
             if model.kernel is None:
                 raise ValueError(f"model {model.name!r} has no compiled kernel")
             nf, ni = model.state_sizes()
-            self._fs = np.zeros(nf, dtype=np.float64)
+            # the float state uninitialised but for the part a reset history holds (its live
+            # part, :meth:`ContactModel.live_sizes`): the rest is never read before written (as
+            # in :meth:`copy`), and zeroing a memory diagram's whole capacity (65536 kinks,
+            # 3 MB) cost 0.1 ms a history, 0.4 s of a 41 x 41 sweep on the 2-core machine
             self._is = np.zeros(ni, dtype=np.int64)
+            self._fs = np.empty(nf, dtype=np.float64)
+            self._fs[: model.live_sizes(self._fs, self._is)[0]] = 0.0
             self._pp = model.packed_params()
             model.kernel.reset(self._fs, self._is, self._pp)
             self._ref = None
