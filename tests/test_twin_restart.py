@@ -48,3 +48,56 @@ def test_restart_from_matches_a_new_twin(model, engine, effects, m_star, amplitu
             assert all(np.array_equal(a[k], b[k]) for k in a)
     # the statistics go on from the same values; the restarted twin's log holds only its own events
     assert np.array_equal(reused.st[:10], fresh.st[:10])
+
+
+#: (model, effects, m*, A*, compiled live size): bouncing (memory wiped at each lift-off), and
+#: drifting in permanent contact, where a twin whose memory was not put back on the copy's
+#: (a live part copied short) moves apart from the first periods on
+STRETCH_CASES = [
+    ("mmd", {}, 0.0316, 7.08, True),
+    ("mmd", {}, 1.0, 0.3, True),
+    ("mmd", {"rotation": True, "rolling_resistance": 0.01}, 1.0, 0.3, True),
+    ("jaeger", {}, 0.1, 1.0, False),
+    ("mdr", {}, 1.0, 0.3, False),
+]
+
+
+@pytest.mark.parametrize("model, effects, m_star, amplitude, live", STRETCH_CASES)
+def test_compiled_stretchings_are_the_python_loops_bit_for_bit(model, effects, m_star, amplitude,
+                                                               live):
+    """The Lyapunov stretchings by one compiled call per stretch (dynamics.stretching) are the
+    per-period Python loop's numbers exactly, with and without the early checks."""
+    from sawdrift.dynamics import window
+    from sawdrift.dynamics.stretching import stretch_loop
+
+    scene = bind(sd.Scene(model=model, particle={"m_star": m_star}, drive={"amplitude": amplitude},
+                          effects=effects, numerics={"settle": False}))
+    contact = model_for(scene)
+    stepper = Stepper(scene, contact, assemble(scene, "compiled", contact), record=False)
+    stepper.advance(stepper.k_per * 20)
+    assert stretch_loop(stepper) is not None
+    assert (stepper.history.model.compiled_live_floats() is not None) == live
+    scale = stepper.drive.state_scale(scene)
+    got = {}
+    for compiled in (True, False):
+        window.COMPILED_STRETCHINGS = compiled
+        try:
+            got[compiled] = [window.stretching_logs(stepper, scale, 96, early=early)
+                             for early in ((), window.EARLY_CHECKS)]
+        finally:
+            window.COMPILED_STRETCHINGS = True
+    for fast, slow in zip(got[True], got[False], strict=True):
+        assert fast.size == slow.size
+        assert np.array_equal(fast, slow)
+    assert got[True][0].size == 96 and np.isfinite(got[True][0]).all()
+
+
+def test_a_rigid_or_python_run_keeps_the_python_stretchings():
+    from sawdrift.dynamics.stretching import stretch_loop
+
+    for model, engine in (("material_point", "compiled"), ("mmd", "python")):
+        scene = bind(sd.Scene(model=model, particle={"m_star": 0.1}, drive={"amplitude": 1.0},
+                              numerics={"settle": False}))
+        contact = model_for(scene)
+        stepper = Stepper(scene, contact, assemble(scene, engine, contact), record=False)
+        assert stretch_loop(stepper) is None

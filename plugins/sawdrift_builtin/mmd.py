@@ -99,6 +99,12 @@ class MemoryDiagramModel(TangentialLaw):
 
         return HEADER + mmd_kernel.HEADER + mmd_kernel.RECORD * int(is_[0]), is_.size
 
+    def compiled_live_floats(self):
+        """:meth:`live_sizes`' float count, compiled (``mmd_kernel.live_floats``)."""
+        from . import mmd_kernel
+
+        return mmd_kernel.live_floats
+
     def reference_step(self) -> MemoryDiagramReference:
         """A fresh readable memory diagram, driven through its ``step`` by the python engine."""
         law = self.profile.law()

@@ -77,6 +77,7 @@ import numpy as np
 from numba import njit
 
 from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
+from sawdrift.contact.slots import HEADER as SLOT_HEADER
 from sawdrift.contact.slots import gives_normal
 from sawdrift.errors import SawdriftError
 
@@ -92,6 +93,13 @@ COLLINEAR_RTOL = 4.0 * 2.220446049250313e-16
 """A pushed kink moves the top along its line when the top lies on it to this tolerance."""
 class MemoryCapacityError(SawdriftError, RuntimeError):
     """The memory diagram needs more points than ``max_memory_points`` allows."""
+
+
+@njit(**JIT_OPTIONS)
+def live_floats(fs, is_):  # noqa: ARG001 - the live-size signature
+    """The floats of ``fs`` that hold the memory (the slots' header, this law's header and its
+    stored points): :meth:`MemoryDiagramModel.live_sizes`, compiled."""
+    return SLOT_HEADER + HEADER + RECORD * is_[0]
 
 
 def state_sizes(max_memory_points: int) -> tuple[int, int]:

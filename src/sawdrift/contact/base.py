@@ -213,6 +213,13 @@ class ContactModel:
         """
         return fs.size, is_.size
 
+    def compiled_live_floats(self) -> Any:
+        """The compiled twin of :meth:`live_sizes`' float count, ``live(fs, is_) -> int``
+        (importable by name), for compiled loops that copy a history every period (the
+        Lyapunov twin, :mod:`sawdrift.dynamics.stretching`); None: such a loop copies it whole,
+        or, for a long memory, the copy stays in Python."""
+        return None
+
     def packed_params(self) -> np.ndarray:
         """Float64 vector of everything the kernel needs.
 

@@ -27,6 +27,7 @@ from .lyapunov import (
 )
 from .rolling import psi_from_rest
 from .stepper import Stepper
+from .stretching import compiled_stretchings
 from .synchrony import MIN_FLIGHT, Synchrony, synchrony
 
 
@@ -247,6 +248,10 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     )
 
 
+#: the stretchings by one compiled call per stretch (:mod:`.stretching`) where they can be
+COMPILED_STRETCHINGS = True
+
+
 def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
                     align: int = ALIGN_PERIODS, d0: float = LYAPUNOV_D0,
                     early: tuple[int, ...] = ()) -> np.ndarray:
@@ -261,6 +266,10 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
     already decide the verdict (:func:`~sawdrift.dynamics.lyapunov.verdict_clear`).
     ``stepper`` itself is not advanced.
     """
+    if COMPILED_STRETCHINGS:
+        logs = compiled_stretchings(stepper, scale, periods, align, d0, early)
+        if logs is not None:
+            return logs
     base = stepper.twin()
     dy = np.zeros(4)
     dy[3] = d0 * scale[2]
