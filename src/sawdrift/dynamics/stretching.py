@@ -200,20 +200,26 @@ def stretch_loop(stepper: Any) -> Any | None:
     return fn
 
 
-def compiled_stretchings(stepper: Any, scale: np.ndarray, periods: int, align: int,
-                         d0: float, early: tuple[int, ...]) -> np.ndarray | None:
-    """:func:`~sawdrift.dynamics.window.stretching_logs` by :func:`stretch_body` or
-    :func:`stretch_rigid_body`: the same
-    numbers, bit for bit, or None where the Python loop must run (:func:`stretch_loop`, or a
-    period that filled an event log or went bad: that loop grows the log or raises the error).
-    The stretches between the ``early`` checks are one compiled call each."""
-    fn = stretch_loop(stepper)
-    if fn is None:
-        return None
+def twin_pair(stepper: Any, scale: np.ndarray, d0: float) -> tuple[Any, Any, np.ndarray]:
+    """The estimate's start: a copy of ``stepper``, a twin of it displaced by ``d0`` along y*'
+    (scaled by ``scale[2]``), and that displacement dy (0, x*', y*, y*')."""
     base = stepper.twin()
     dy = np.zeros(4)
     dy[3] = d0 * scale[2]
-    twin = base.twin(dy)
+    return base, base.twin(dy), dy
+
+
+def compiled_stretchings(stepper: Any, scale: np.ndarray, periods: int, align: int,
+                         d0: float, early: tuple[int, ...]) -> np.ndarray | None:
+    """:func:`~sawdrift.dynamics.window.stretching_logs` by :func:`stretch_body` or
+    :func:`stretch_rigid_body`: the same numbers, bit for bit, or None where the Python loop
+    must run (:func:`stretch_loop`, or a period that filled an event log or went bad: that loop
+    grows the log or raises the error). The stretches between the ``early`` checks are one
+    compiled call each."""
+    fn = stretch_loop(stepper)
+    if fn is None:
+        return None
+    base, twin, dy = twin_pair(stepper, scale, d0)
     logs = np.empty(periods)
     u = np.ascontiguousarray(scale[:3], dtype=np.float64)
     status = np.zeros(2, dtype=np.int64)

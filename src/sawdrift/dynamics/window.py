@@ -27,7 +27,7 @@ from .lyapunov import (
 )
 from .rolling import psi_from_rest
 from .stepper import Stepper
-from .stretching import compiled_stretchings
+from .stretching import compiled_stretchings, twin_pair
 from .synchrony import MIN_FLIGHT, Synchrony, synchrony
 
 
@@ -270,11 +270,8 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
         logs = compiled_stretchings(stepper, scale, periods, align, d0, early)
         if logs is not None:
             return logs
-    base = stepper.twin()
-    dy = np.zeros(4)
-    dy[3] = d0 * scale[2]
+    base, twin, dy = twin_pair(stepper, scale, d0)
     logs = np.empty(periods)
-    twin = base.twin(dy)
     u = [float(v) for v in scale]  # (x*', y*, y*') in plain floats: three numbers a period
     for j in range(align + periods):
         if j:
