@@ -40,12 +40,14 @@ def run(quick: bool = False) -> CaseResult:  # noqa: ARG001 - the case is not in
             wrong.append(f"{model} m* {m:g} A* {a:g}")
         missed += (not plain.settled) and close
     # the flag must be set on some runs and not on all (a flag never set would pass vacuously):
-    # 9 of the 40 are settled; the held contacts of m* 10, 100 and 1000 at A* 0.1 are not (their
-    # 27-period windows are shorter than the vertical period, and their box means 4e-5 to 2e-4
-    # from the steady 1e-6: the tapered mean is not at the floor)
+    # at least an eighth of them. 7 of the 40 are settled; the held contacts of m* 10, 100 and
+    # 1000 at A* 0.1 are not (their 27-period windows are shorter than the vertical period, and
+    # their box means 4e-5 to 2e-4 from the steady 1e-6: the tapered mean is not at the floor),
+    # nor, since a window's thirds are judged relative to its drift, mmd m* 0.1, A* 0.3 (its
+    # thirds beat by 6.8e-4 around 0.3493) and the material point at m* 0.1, A* 4
     return CASE.result(
         len(wrong),
-        require=flagged >= 8 and flagged < n,
+        require=flagged >= n // 8 and flagged < n,
         message=f"{n} runs, {flagged} flagged settled; wrongly settled: {', '.join(wrong) or 'none'}; "
         f"within 2e-3 but flagged unsettled: {missed}",
     )
