@@ -62,7 +62,7 @@ def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, consts):
     window, a period or a trajectory row asks, then give the same flight to the last bit. The
     window's statistics get each step's out-of-contact share and a* (``observe_step``), the
     trajectory its rows; ``y`` and the derivative history ``fh`` are put on the parabola at the
-    step handed back (``ctr[0]``). ``drive_surface``, ``record``, ``contact_point``,
+    step handed back (``ctr[0]``). ``drive_surface``, ``record``, ``next_record``, ``contact_point``,
     ``observe_step`` and the ``S_*`` indices are globals of the generated loop module.
     ``consts`` = (h, m*, x*'' of the flight, the first step after the ramp, 1 / (theta mu) or 0
     without friction, the rolling factor c, whether x* moves). Returns the steps taken.
@@ -81,6 +81,7 @@ def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, consts):
            - drive_surface(k0 * h, parabola(x0, vx0, ax, tau), dp)[2])  # noqa: F821
     if a_j > 0.0:
         return 0  # this step lands already: the loop takes it
+    k_rec = next_record(k0, rec_every)  # noqa: F821
     while j < k_end - k0:
         tau = (k0 + j + 1 - ka) * h
         a_next = (parabola(y0, vy0, ay, tau)
@@ -90,7 +91,8 @@ def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, consts):
         k = k0 + j
         if k >= k_ramp:
             observe_step(st, 1.0, 0.0, a_j)  # noqa: F821
-        if rec_every > 0 and k % rec_every == 0:
+        if k == k_rec:
+            k_rec += rec_every
             on_parabola(y, fh, k - ka, (h, ax, ay, x0, vx0, y0, vy0, move_x))
             ux = drive_surface(k * h, y[0], dp)[0]  # noqa: F821
             b = (contact_point(y, roll, False)[0] - ux) * scale_b if scale_b != 0.0 else 0.0  # noqa: F821

@@ -482,6 +482,15 @@ def _strobe_rows(strobe: tuple[np.ndarray, int], rows: np.ndarray) -> None:
     """Put trajectory rows taken at period boundaries into ``samples[j - 1]``, j the periods
     since ``t0`` (``strobe`` = (samples, t0)); the rows' time is column 0, the state columns 1-4."""
     samples, t0 = strobe
+    if rows.shape[0] == 0:
+        return
+    first, last = round(rows[0, 0]) - t0, round(rows[-1, 0]) - t0
+    if last - first == rows.shape[0] - 1:
+        # one row a period, in order (the loops record them so): a slice, not an index per row
+        lo, hi = max(first, 1), min(last, samples.shape[0])
+        if lo <= hi:
+            samples[lo - 1:hi] = rows[lo - first:hi - first + 1, 1:5]
+        return
     j = np.rint(rows[:, 0]).astype(np.int64) - t0
     inside = (j >= 1) & (j <= samples.shape[0])
     samples[j[inside] - 1] = rows[inside, 1:5]
