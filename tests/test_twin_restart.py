@@ -108,3 +108,30 @@ def test_the_python_engine_keeps_the_python_stretchings():
         contact = model_for(scene)
         stepper = Stepper(scene, contact, assemble(scene, engine, contact), record=False)
         assert stretch_loop(stepper) is None
+
+
+def test_a_period_that_fills_the_event_log_falls_back_to_the_python_loop():
+    """A run whose event log is short of the loop's margin returns from its loop before the
+    period ends: the compiled stretch reports it (None) and the per-period Python loop, which
+    grows the log, gives the numbers, the same as with the compiled path switched off."""
+    from sawdrift.dynamics import evidence as ev
+    from sawdrift.dynamics import window
+    from sawdrift.dynamics.stretching import compiled_stretchings
+
+    scene = bind(sd.Scene(model="mmd", particle={"m_star": 0.0316}, drive={"amplitude": 7.08},
+                          numerics={"settle": False}))
+    contact = model_for(scene)
+    stepper = Stepper(scene, contact, assemble(scene, "compiled", contact), record=False)
+    stepper.advance(stepper.k_per * 20)
+    stepper.st = ev.new_stats(ev.EV_MARGIN - 1)  # short of the margin: each loop call returns early
+    stepper.keep_events = True
+    scale = stepper.drive.state_scale(scene)
+    assert compiled_stretchings(stepper, scale, 64, window.ALIGN_PERIODS,
+                                window.LYAPUNOV_D0, ()) is None
+    fell_back = window.stretching_logs(stepper, scale, 64)
+    window.COMPILED_STRETCHINGS = False
+    try:
+        python = window.stretching_logs(stepper, scale, 64)
+    finally:
+        window.COMPILED_STRETCHINGS = True
+    assert fell_back.size == 64 and np.array_equal(fell_back, python)
