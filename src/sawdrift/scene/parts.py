@@ -317,7 +317,12 @@ class Numerics(BaseModel):
         "default: on where the drift needs longer than periods/3 to relax (of order m*/mu "
         "periods: a heavy particle), else a fixed run of periods"
     )
-    settle_tolerance: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = 1e-3
+    settle_tolerance: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = Field(
+        1e-3, description="relative accuracy a settled drift ratio is asked for: successive "
+        "full-inertia windows agree within half of it, a fixed window's last two thirds within "
+        "it (relative to the drift ratio, taken as at least 0.02); the zero of a force-velocity "
+        "curve is found to a hundredth of it"
+    )
     max_periods: Annotated[float, bounded(1.0, 1e7)] | None = Field(
         None, description="settle: stop after this many periods even if not settled; default "
         "max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method"
