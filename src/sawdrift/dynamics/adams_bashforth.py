@@ -281,9 +281,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     damping and the Coulomb cap of the loop are :func:`~sawdrift.contact.slot_kernels.damped_contact`.
     """
     fs, is_, pp = contact
-    m = prm[P_M]
-    mx = prm[P_MX]
-    mu = prm[P_MU]
+    m, mx, mu = prm[P_M], prm[P_MX], prm[P_MU]
     scale_b = 1.0 / (prm[P_THETA] * mu)
     h = prm[P_H]
     friction = prm[P_FRICTION] > 0.0
@@ -296,6 +294,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     kappa_m = rotational_inertia(mx, roll)
     p_exp = prm[P_P]
     rest = prm[P_REST]
+    q_rest = 0.5 * (p_exp - 1.0)
     order = int(prm[P_ORDER])
     drag = prm[P_DRAG]
     pull2 = 2.0 * prm[P_PULL]
@@ -321,7 +320,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             nf, tf = force(fs, is_, pp, a, 0.0, adot, 0.0)
             tf = 0.0
         if (damp > 0.0 or rest > 0.0) and a > 0.0:
-            nf, tf = damped_contact(nf, tf, a, adot, damp, rest, 0.5 * (p_exp - 1.0))
+            nf, tf = damped_contact(nf, tf, a, adot, damp, rest, q_rest)
         ax, ay = accelerations(y, nf, tf, mu, load, mx, m, drag)
         # adhesion holds on while it pulls (N* < 0 at a* <= 0) and slides at N* + 2 F*_pull
         inside = a > 0.0 or nf != 0.0

@@ -130,10 +130,15 @@ def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = 
     return max(int(minimum), int(math.ceil(VERTICALS * vertical)), int(math.ceil(2.0 * tangential)))
 
 
+def relative_bound(drift_ratio: float, tol: float) -> float:
+    """The tolerance relative to the drift ratio, with the floor :data:`ABS_FLOOR` (below it the
+    bound is absolute)."""
+    return tol * max(abs(drift_ratio), ABS_FLOOR)
+
+
 def accuracy(drift_ratio: float, tol: float) -> float:
-    """:data:`ACCURACY` times the tolerance, relative to the drift ratio with the floor
-    :data:`ABS_FLOOR`."""
-    return ACCURACY * tol * max(abs(drift_ratio), ABS_FLOOR)
+    """:data:`ACCURACY` times :func:`relative_bound`: what successive windows must agree to."""
+    return ACCURACY * relative_bound(drift_ratio, tol)
 
 
 def held(win: Window, d: float, tol: float) -> bool:

@@ -51,7 +51,7 @@ import numpy as np
 from . import adams_bashforth as ig
 from .direct import settle_direct
 from .evidence import EV_LANDING
-from .full_inertia import ABS_FLOOR, held, relaxation_rate, settle_full, tapered_drift_ratio
+from .full_inertia import held, relative_bound, relaxation_rate, settle_full, tapered_drift_ratio
 from .separated import SOLVED_MIN_MASS, STUCK, solvable
 from .settling import SLOPE, Settling
 from .stepper import Stepper
@@ -328,7 +328,7 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
        if the motion is periodic) of the window,
        and the distance still to go, estimated as |d| max(1, tau / n) with the relaxation time
        ``tau`` (:func:`relaxation_periods`), is at most ``tol`` relative to the drift ratio
-       (with the floor :data:`~.full_inertia.ABS_FLOOR` of the windows), and the run lasted at least
+       (:func:`~.full_inertia.relative_bound`, the windows' floor), and the run lasted at least
        :data:`APPROACH_TIMES` tau. The horizontal velocity changes by at most of order mu / m*
        per period (the period-averaged normal force is the weight, so the averaged friction is
        at most mu times it, in contact or in impacts alike); a heavy particle on its slow
@@ -372,7 +372,7 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
     # the tolerance relative to the drift ratio, with the windows' floor: absolute, it let a
     # partly sliding contact still relaxing settle 1.4 % from its drift (mmd m* = 1.78,
     # A* = 0.188: 0.05739 after 60 periods, 0.058188 from 300 on)
-    eps = tol * max(abs(d), ABS_FLOOR)
+    eps = relative_bound(d, tol)
     ok = (bool(values) and not chaotic and not in_flight(win)
           and _steady_thirds(win, values, n, start, eps, tau, periods_run))
     # the tapered mean, which a slow beat does not leak into: where it differs from the box
