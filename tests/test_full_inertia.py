@@ -259,3 +259,18 @@ def test_a_partly_sliding_contact_still_relaxing_is_not_settled_by_an_absolute_t
     res = sd.run(scene("mmd", m, a, 0.1))
     assert res.settled is True and res.regime == ref.regime == "drift_with"
     assert res.drift_ratio == pytest.approx(ref.drift_ratio, rel=1e-3)
+
+
+def test_a_hop_whose_window_before_disagrees_is_not_settled_by_its_thirds():
+    """mmd, m* = 0.75, A* = 1.50, mu = 0.1: a hop without a periodic orbit, its mean speed still
+    approaching after the orbit search (114 periods). The last window's thirds of nine periods
+    agreed within the tolerance and had settled it at 0.696735, 2.1e-3 below brute force; the
+    window before read 0.682993, so the two windows in a row disagree and the run goes on to
+    full-inertia windows, which settle within 1e-3 relative of brute force."""
+    m, a = 0.749894, 1.496236
+    ref = sd.run(scene("mmd", m, a, 0.1, settle=False, periods=2000, measure_periods=1000))
+    half = sd.run(scene("mmd", m, a, 0.1, settle=False, periods=1000, measure_periods=500))
+    assert ref.drift_ratio == pytest.approx(half.drift_ratio, rel=1e-5)  # brute force converged
+    res = sd.run(scene("mmd", m, a, 0.1))
+    assert res.settled is True and res.regime == ref.regime == "hopping"
+    assert res.drift_ratio == pytest.approx(ref.drift_ratio, rel=1e-3)

@@ -116,7 +116,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     speed = drive.horizontal_speed(scene)
     scale = drive.state_scale(scene)
     settle_on = settles(scene, speed, stepper.rigid)
-    win, settling = _measure(stepper, scene, speed, scale, settle_on, trajectory)
+    win, settling, before = _measure(stepper, scene, speed, scale, settle_on, trajectory)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     # the per-period displacements of the run's windows, one contiguous stretch of its own
     # trajectory up to now: a long-time mean after them starts from all of it
@@ -124,7 +124,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     if settling is None and num.settle is not False and not chaotic and win.contact_lost:
         # the run goes on to its periodic orbit (its events and trajectory with it), as a
         # settling run goes on to its steady drift
-        win = _find_orbit(stepper, win, speed, scale, series)
+        win, before = _find_orbit(stepper, win, speed, scale, series, before)
     periods_run = stepper.step / stepper.k_per
     # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
@@ -135,7 +135,9 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     if settling is None:
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, scene.particle.m_star, speed),
-                                periods_run, chaotic)
+                                periods_run, chaotic,
+                                before=None if before is None else tapered_drift_ratio(before,
+                                                                                       speed))
         if num.settle is False:
             settling = replace(settling, drift=None)  # a fixed run reports its window's mean
         if (not settling.settled and num.settle is None and num.periods == DEFAULT_PERIODS
@@ -157,10 +159,13 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
 
 
 def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
-             settle_on: bool, trajectory: bool = False) -> tuple[Window, Settling | None]:
+             settle_on: bool, trajectory: bool = False
+             ) -> tuple[Window, Settling | None, Window | None]:
     """Run to the measuring window and measure it: settled windows (``numerics.settle``, up to
     the period cap) or the fixed run's last window (a default one may end at its first window
-    after the ramp, :func:`_held_first`). The settling is None for a fixed run."""
+    after the ramp, :func:`_held_first`). The settling is None for a fixed run. Last, the window
+    measured just before the one returned (contiguous, as long), where a default fixed run
+    measured it (:func:`_held_first`), else None."""
     num = scene.numerics
     n_periods = scene.measure_periods()
     k_per = stepper.k_per
@@ -173,14 +178,16 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
         cap = default_max_periods(m_star, relaxation_periods(scene, m_x, speed), stepper.rigid,
                                   n_periods, rolling_frequency(scene, m_x))
     n_max = max(n_total, int(round(cap * k_per)))
+    first = None
     if not settle_on and not trajectory and _default_length(scene):
-        held_first = _held_first(stepper, scene, speed, scale, n_total - n_measure)
-        if held_first is not None:
-            return held_first
+        first = _held_first(stepper, scene, speed, scale, n_total - n_measure)
+        if first is not None and first[1] is not None:
+            return first[0], first[1], None
     stepper.advance(n_total - n_measure - stepper.step)
     if settle_on:
-        return settle(stepper, scene, speed, scale, n_periods, n_max)
-    return measure_window(stepper, n_periods, speed, scale), None
+        return *settle(stepper, scene, speed, scale, n_periods, n_max), None
+    before = first[0] if first is not None else None
+    return measure_window(stepper, n_periods, speed, scale), None, before
 
 
 def _default_length(scene: Scene) -> bool:
@@ -193,7 +200,7 @@ def _default_length(scene: Scene) -> bool:
 
 
 def _held_first(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
-                window_start: int) -> tuple[Window, Settling] | None:
+                window_start: int) -> tuple[Window, Settling | None] | None:
     """A default fixed run whose first window after the ramp shows a held contact ends there.
 
     The window before the measuring one (the same length, ending where that one starts) is
@@ -203,8 +210,9 @@ def _held_first(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
     there, and a contact that held through a window of all its phases holds on (its speed tied
     to the substrate by the tangential stiffness). The drift is that tapered mean (a box mean of
     a held contact is its ringing over the window: up to 1e-4 in drift ratio at m* = 0.02,
-    against a zero long-time mean). Half the fixed run's cost for it. None otherwise: the
-    stepper is then at ``window_start`` (steps), where the fixed run's window begins.
+    against a zero long-time mean). Half the fixed run's cost for it. Otherwise the window with
+    no settling (the stepper is then at ``window_start`` (steps), where the fixed run's window
+    begins), or None where the window would start within the ramp (not measured).
     """
     n = scene.measure_periods()
     k_per = stepper.k_per
@@ -216,7 +224,7 @@ def _held_first(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
     win = measure_window(stepper, n, speed, scale)
     d = tapered_drift_ratio(win, speed)
     if not held(win, d, scene.numerics.settle_tolerance):
-        return None
+        return win, None
     periods = stepper.step / k_per
     return win, Settling(True, "fixed", math.nan, n, periods, math.nan, (d,), drift=d * speed)
 
@@ -325,7 +333,8 @@ ORBIT_PERIODS = 300
 
 
 def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
-                series: list[np.ndarray] | None = None) -> Window:
+                series: list[np.ndarray] | None = None, before: Window | None = None
+                ) -> tuple[Window, Window | None]:
     """Run on, window after window, until a regular window that lost contact is on its orbit.
 
     A motion with contact loss that is not chaotic settles on a periodic orbit (or is still on
@@ -336,11 +345,13 @@ def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
     alternately, which 60 periods averaged into one phase). At most :data:`ORBIT_PERIODS` more,
     and no more once the distance from repeating (:func:`~.window.orbit_residual`) shows that
     they would not reach an orbit (:func:`_no_orbit_ahead`). Each window's per-period
-    displacements are appended to ``series``.
+    displacements are appended to ``series``. Returns the last window and the one before it
+    (``before`` where no window was run).
     """
     spent = 0
     residuals = [orbit_residual(win.samples, scale)]
     while win.contact_lost and win.orbit_period == 0 and spent < ORBIT_PERIODS:
+        before = win
         win = measure_window(stepper, win.periods, speed, scale)
         if series is not None:
             series.append(np.diff(win.positions))
@@ -348,7 +359,7 @@ def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
         residuals.append(orbit_residual(win.samples, scale))
         if _no_orbit_ahead(residuals, (ORBIT_PERIODS - spent) / win.periods):
             break
-    return win
+    return win, before
 
 
 #: window-to-window ratios of the distance from repeating within this factor of 1 (twice in a
