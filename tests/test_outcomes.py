@@ -84,6 +84,52 @@ def test_the_event_log_of_a_long_run_is_bounded():
     assert np.all(np.isfinite(stepper.y))
 
 
+def _slipping_stepper() -> tuple[Stepper, np.ndarray, float]:
+    """mmd, m* = 1e4, A* = 0.5, mu = 0.5 (slips in most periods: events all through a window)."""
+    scene = bind(sd.Scene(model="mmd", particle={"m_star": 1e4}, material={"mu": 0.5},
+                          drive={"amplitude": 0.5}))
+    model = model_for(scene)
+    plan = assemble(scene, "compiled", model)
+    stepper = Stepper(scene, model, plan, False, event_periods=1)
+    stepper.advance(20 * stepper.k_per)
+    return stepper, plan.drive.state_scale(scene), plan.drive.horizontal_speed(scene)
+
+
+def test_a_long_measuring_window_starts_with_a_bounded_event_log():
+    """A fixed run's window is half of it: 64 event rows a period reserved up front made a
+    2e6-period run allocate 3.3 GiB before its first step (and fail); the log now starts at
+    most 65536 rows (3.7 MB) and grows as the events come."""
+    scene = bind(sd.Scene(model="mmd", particle={"m_star": 1e4}, drive={"amplitude": 0.5}))
+    model = model_for(scene)
+    stepper = Stepper(scene, model, assemble(scene, "compiled", model), False,
+                      event_periods=1_000_000)
+    assert stepper.st.nbytes <= 4_000_000
+
+
+def test_a_window_with_more_events_than_its_log_keeps_its_newest_and_counts_all(monkeypatch):
+    """With the log's cap at 128 rows, a 600-period window of a contact slipping in most periods
+    (over 300 events) keeps its newest events, the same rows as an uncapped window of the same
+    run, sheds the rest (counted), and its statistics still cover every step."""
+    from sawdrift.dynamics import stepper as stepper_module
+    from sawdrift.dynamics.window import measure_window
+
+    full_stepper, scale, speed = _slipping_stepper()
+    full = measure_window(full_stepper, 600, speed, scale)
+    monkeypatch.setattr(stepper_module, "KEPT_EVENT_ROWS", 128)
+    capped_stepper, _, _ = _slipping_stepper()
+    capped = measure_window(capped_stepper, 600, speed, scale)
+    n_full, n_kept = full.events.shape[0], capped.events.shape[0]
+    assert n_full > 300 and full.events_shed == 0
+    assert capped_stepper.st[ev.S_EVCAP] <= 128 and 64 <= n_kept <= 128
+    assert capped.events_shed == n_full - n_kept
+    np.testing.assert_array_equal(capped.events, full.events[-n_kept:])
+    assert capped.gross_slip_fraction == full.gross_slip_fraction
+    assert capped.drift == full.drift
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 1e4}, material={"mu": 0.5},
+                          drive={"amplitude": 0.5}, numerics={"settle": False, "periods": 600}))
+    assert any("events" in w and "not kept" in w for w in res.warnings)
+
+
 def test_a_bouncer_last_seen_in_one_flight_reports_its_long_time_mean():
     """mmd, m* = 0.178, A* = 8.41: thrown for longer than a window, the default run's windows
     ended inside one flight, and its drift was reported unsettled without an error. It lands again

@@ -33,6 +33,7 @@ S_NEV, S_EVCAP = 10, 11  # events written, capacity of the buffer (rows)
 S_EVDROP = 12  # events not written because the buffer was full
 S_LASTLIFT = 13  # t* of the last lift-off since t* = 0 (-1: none), kept across windows
 S_EVOLD = 14  # events of the transient before the window, counted and not kept
+S_EVSHED = 15  # events of the window not kept: the oldest, shed where the log reached its cap
 # a free flight in closed form (dynamics.flight): consecutive flight steps, and the anchor (the
 # step where the derivative history became a parabola's, x*, x*', y*, y*' there); part of the
 # integration's state, kept across the loop's calls, twins and snapshots
@@ -72,14 +73,17 @@ def new_stats(event_capacity: int) -> np.ndarray:
     return st
 
 
-def grown(st: np.ndarray, minimum_free: int) -> np.ndarray:
-    """A copy of ``st`` whose event log has twice the room (and at least ``minimum_free`` free rows).
+def grown(st: np.ndarray, minimum_free: int, most: int | None = None) -> np.ndarray:
+    """A copy of ``st`` whose event log has twice the room (and at least ``minimum_free`` free rows),
+    but no more than ``most`` rows where that still leaves them free.
 
     The statistics and the events written so far are kept.
     """
     cap = int(st[S_EVCAP])
     used = int(st[S_NEV])
     new_cap = max(2 * cap, used + int(minimum_free), 64)
+    if most is not None:
+        new_cap = max(min(new_cap, int(most)), used + int(minimum_free))
     out = np.zeros(N_ST + EV_W * new_cap)
     out[: st.size] = st
     out[S_EVCAP] = new_cap
@@ -99,9 +103,23 @@ def forget_transient(st: np.ndarray) -> None:
     st[S_NEV] = 0.0
 
 
+def shed_oldest(st: np.ndarray, keep: int) -> None:
+    """Keep only the newest ``keep`` events of the log, counting the others (``st[S_EVSHED]``):
+    a measuring window of any length holds at most a log's cap of events, its last ones, while
+    its statistics (lift-offs, contact loss, gross slip) still count every step."""
+    n = int(st[S_NEV])
+    keep = max(0, min(int(keep), n))
+    if keep == n:
+        return
+    rows = st[N_ST : N_ST + EV_W * n].reshape(n, EV_W)
+    rows[:keep] = rows[n - keep :].copy()
+    st[S_EVSHED] += n - keep
+    st[S_NEV] = float(keep)
+
+
 def open_window(st: np.ndarray) -> None:
     """Start the measurement window: clear every statistic and the event log (not the state)."""
-    for i in (S_LOST, S_OUT, S_COUNT, S_LIFTS, S_SLIP, S_NEV, S_EVDROP):
+    for i in (S_LOST, S_OUT, S_COUNT, S_LIFTS, S_SLIP, S_NEV, S_EVDROP, S_EVSHED):
         st[i] = 0.0
     st[S_AMIN] = np.inf
 

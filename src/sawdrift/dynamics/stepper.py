@@ -39,16 +39,22 @@ if TYPE_CHECKING:
 #: Trajectory samples recorded per wave period (at most).
 RECORDS_PER_PERIOD = 200
 
-#: Event rows reserved per period of the measurement window at the start; the log grows (doubling)
-#: whenever a loop finds it nearly full, so no event is ever dropped (see :meth:`Stepper.advance`).
+#: Event rows reserved per period of the measurement window at the start (at most
+#: :data:`INITIAL_EVENT_ROWS`); the log grows (doubling) whenever a loop finds it nearly full, up
+#: to :data:`KEPT_EVENT_ROWS` (see :meth:`Stepper.advance`).
 EVENTS_PER_PERIOD = 64
+
+#: Most event rows a log starts with (7 floats a row: 3.7 MB), whatever the window's length
+INITIAL_EVENT_ROWS = 1 << 16
 
 #: Keys of the contact history's snapshot in a :class:`StepperState`
 #: (:meth:`~sawdrift.contact.history.ContactHistory.state`).
 _HISTORY_KEYS = ("fs", "is", "ref")
 
-#: Most event rows one window may hold (7 floats a row: 280 MB); more is an error, not a silent cut.
-MAX_EVENT_ROWS = 5_000_000
+#: Most event rows one window keeps (7 floats a row: 59 MB): where its log is full at this size,
+#: its oldest half is shed (counted in the window's ``events_shed``), so the memory of a run does
+#: not grow with its length (a fixed run's window is half of it)
+KEPT_EVENT_ROWS = 1 << 20
 
 
 @dataclass(frozen=True)
@@ -121,8 +127,8 @@ class Stepper:
         #: (which turns the centre's motion away from s = c x)
         self.resist = self._integrates_psi(prm)
         self.ev_margin = rg.EV_MARGIN_RIGID if self.rigid else ev.EV_MARGIN
-        self.st = ev.new_stats(max(EVENTS_PER_PERIOD * max(1, event_periods) + 64,
-                                   2 * self.ev_margin))
+        self.st = ev.new_stats(max(min(EVENTS_PER_PERIOD * max(1, event_periods) + 64,
+                                       INITIAL_EVENT_ROWS, KEPT_EVENT_ROWS), 2 * self.ev_margin))
         self.record = record
         #: keep every event (the measuring window); before it the log is emptied whenever full,
         #: so a run of any length holds at most one window's events (measure_window sets it)
@@ -227,9 +233,10 @@ class Stepper:
         """Advance ``n_steps`` steps; raise a one-line error if the scheme cannot go on.
 
         The loops return early when the event log is nearly full; in the measuring window
-        (:attr:`keep_events`) the log is then grown and the integration goes on, so every event
-        of the window is kept; before it the log is emptied (its events counted), so the memory
-        of a run does not grow with its length. ``strobe`` = (samples, t0) takes the state at
+        (:attr:`keep_events`) the log is then grown and the integration goes on, up to
+        :data:`KEPT_EVENT_ROWS` rows, past which the window's oldest events are shed (counted);
+        before the window the log is emptied (its events counted), so the memory of a run does
+        not grow with its length. ``strobe`` = (samples, t0) takes the state at
         each period boundary (:meth:`advance_periods`); ``rows`` collects the trajectory row of
         every step (compliant scheme: the state before the step), whatever :attr:`record` says.
         """
@@ -271,13 +278,10 @@ class Stepper:
                 if not self.keep_events:
                     ev.forget_transient(self.st)  # before the window: counted, not kept
                     continue
-                if self.st[ev.S_EVCAP] >= MAX_EVENT_ROWS:
-                    raise NonFiniteStateError(
-                        f"more than {MAX_EVENT_ROWS} events in one measuring window (t* = "
-                        f"{self.step * self.h:.6g}): the motion chatters; shorten the window "
-                        "(--periods, numerics.measure_periods) or refine --steps-per-period"
-                    )
-                self.st = ev.grown(self.st, 2 * self.ev_margin)
+                if self.st[ev.S_EVCAP] >= KEPT_EVENT_ROWS:
+                    ev.shed_oldest(self.st, KEPT_EVENT_ROWS // 2)  # the newest half stays
+                else:
+                    self.st = ev.grown(self.st, 2 * self.ev_margin, KEPT_EVENT_ROWS)
 
     def _fail(self) -> None:
         k = int(self.st[ev.S_BADSTEP])

@@ -53,6 +53,8 @@ class Window:
     positions: np.ndarray = field(repr=False)  # centre x* at the start and at each period's end
     snapshot: Stepper | None = field(default=None, repr=False)
     scale: np.ndarray | None = field(default=None, repr=False)  # state_scale of the samples
+    #: the window's oldest events not kept (its log holds at most Stepper's KEPT_EVENT_ROWS)
+    events_shed: int = 0
     _sync: Synchrony | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -241,6 +243,7 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         periodicity=periodicity(samples, scale),
         events=events,
         events_dropped=int(st[ev.S_EVDROP]),
+        events_shed=int(st[ev.S_EVSHED]),
         orbit_period=orbit,
         positions=positions,
         snapshot=snapshot,

@@ -156,7 +156,8 @@ def _reported_drift(out: WaveRun, drift_ratio: float,
 
 
 def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
-    """A device scene's validity warnings, and a long-time mean's whose error is a lower bound."""
+    """A device scene's validity warnings, a long-time mean's whose error is a lower bound, and
+    a measuring window too long for all its events to be kept."""
     warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
     if out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
         warnings += ("not settled: the mean drift was still moving over its last "
@@ -167,6 +168,11 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
         warnings += (f"long-time mean: its batch-means error still grew with the batch length "
                      f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
                      f"(correlations longer than the run)",)
+    shed = out.window.events_shed
+    if shed > 0:
+        warnings += (f"the measuring window's first {shed} events (lift-offs, landings, slip "
+                     f"changes) are not kept, only its last {out.window.events.shape[0]}; its "
+                     "counts (lift-offs, contact loss, gross slip) cover the whole window",)
     return warnings
 
 
