@@ -119,6 +119,21 @@ def test_run_text_says_an_unsettled_drift_is_not_settled_beside_the_number(monke
     assert "NOT settled" in line
 
 
+def test_run_text_gives_a_long_time_mean_with_its_error(monkeypatch, capsys):
+    """mmd m* = 0.1, A* = 1, mu = 0.1 is chaotic: its drift is a long-time mean, printed as
+    drift +- error (the error of x*' scaled from the drift ratio's), not as a window's average."""
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 1.0}))
+    assert res.chaotic and res.drift_ratio_se > 0.0
+    code, out, _ = call(monkeypatch, capsys, "run", "--model", "mmd", "--m-star", "0.1",
+                        "--amplitude", "1.0")
+    assert code == 0
+    lines = {x.split()[0]: x for x in out.splitlines() if x.strip()}
+    assert f"{res.drift_ratio:.6g} +- {res.drift_ratio_se:.2g}" in lines["drift_ratio"]
+    velocity_se = abs(res.drift_velocity / res.drift_ratio) * res.drift_ratio_se
+    assert f"{res.drift_velocity:.6g} +- {velocity_se:.2g}" in lines["drift_velocity"]
+    assert "long-time mean" in lines["drift_ratio"] and "over the window" not in out
+
+
 def test_run_text_of_a_device_shows_m_per_s_first(monkeypatch, capsys):
     code, out, _ = call(monkeypatch, capsys, "run", str(MOTOR), "--no-settle", "--periods", "20")
     assert code == 0

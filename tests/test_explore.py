@@ -452,6 +452,21 @@ def test_lyapunov_tooltip_says_why_a_kept_contact_has_none(table, page):
     assert "Lyapunov exponent: @lyapunov_text" in text and "@lyapunov{custom}" not in text
 
 
+def test_a_long_time_mean_shows_its_error_in_the_tooltip(tmp_path):
+    """A chaotic cell's drift is a long-time mean: its tooltip and click header give drift +-
+    its standard error; a sticking cell's give none."""
+    path = tmp_path / "two.parquet"
+    frame = sd.sweep("mmd", points=[(0.1, 1.0), (50.0, 0.05)], table=path, workers=1,
+                     progress=False)
+    se = frame.set_index("m_star")["drift_ratio_se"]
+    assert se[0.1] > 0.0 and not np.isfinite(se[50.0])
+    src = explorer_data(path).sources[0]
+    texts = dict(zip(src["m_star"].astype(float).round(3), src["se_text"], strict=True))
+    assert texts[0.1] == f"+- {se[0.1]:.2g} (long-time mean)" and texts[50.0] == ""
+    page = write_explorer(path, tmp_path / "two.html").read_text()
+    assert "drift ratio: @drift_ratio{custom} @se_text" in page and "d.se_text[i]" in page
+
+
 def test_hovered_stick_cell_names_the_missing_lyapunov_exponent(browser, table, page):
     path, frame, _ = table
     _open(browser, page)

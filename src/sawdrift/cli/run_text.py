@@ -3,11 +3,13 @@
 The summary (``Result.summary()``, also ``run --json``) is printed in five groups, in this order:
 regime, drift, settled, evidence, provenance. A device's speed in m/s comes first, on a line of
 its own. Fields that do not apply (None) are left out; nested values (a device's normalized
-scene) are printed one field a line. A drift that has not settled says so beside the number.
+scene) are printed one field a line. A drift that has not settled says so beside the number; a
+long-time mean (chaotic or irregular motion) is printed with its standard error, drift +- error.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 #: the groups of ``run``'s text output and the summary fields of each, in order; a field not
@@ -75,13 +77,37 @@ def unsettled_text(summary: dict[str, Any], mark: str = "NOT settled") -> str:
     if regime == "ejected":
         return (f"{mark}: no steady state, out of contact since t* = "
                 f"{value_text(summary.get('detach_time'))}")
+    if drift_error(summary, "drift_ratio") is not None:
+        kind = "chaotic" if summary.get("chaotic") else "irregular"
+        return f"{mark}: {kind}, a long-time mean with its standard error"
     if summary.get("chaotic"):
         return f"{mark}: chaotic, an average over the window"
     return f"{mark} after {value_text(summary.get('periods'))} periods"
 
 
+def drift_error(summary: dict[str, Any], key: str) -> float | None:
+    """The standard error of the drift field ``key`` (``drift_ratio``, ``drift_velocity`` or
+    ``drift_speed_m_s``) where the drift is a long-time mean (``drift_ratio_se`` finite, scaled
+    by the field's ratio to the drift ratio); None otherwise."""
+    se = summary.get("drift_ratio_se")
+    ratio = summary.get("drift_ratio")
+    value = summary.get(key)
+    if not all(isinstance(v, float) and math.isfinite(v) for v in (se, ratio, value)):
+        return None
+    if key == "drift_ratio":
+        return se
+    return abs(value / ratio) * se if ratio != 0.0 else None
+
+
+def drift_text(summary: dict[str, Any], key: str) -> str:
+    """A drift field as printed: its value, and +- its standard error for a long-time mean."""
+    text = value_text(summary.get(key))
+    err = drift_error(summary, key)
+    return text if err is None else f"{text} +- {err:.2g}"
+
+
 def _line(key: str, value: Any, summary: dict[str, Any], width: int) -> str:
-    text = value_text(value)
+    text = drift_text(summary, key) if key in DRIFTS else value_text(value)
     unit = UNITS.get(key)
     if unit is not None and not isinstance(value, bool):
         text += f" {unit}"
@@ -130,7 +156,7 @@ def side_by_side(summaries: list[dict[str, Any]]) -> list[str]:
         row = []
         for s in summaries:
             value = s.get(key)
-            text = "-" if value is None else value_text(value)
+            text = "-" if value is None else drift_text(s, key) if key in DRIFTS else value_text(value)
             if key in DRIFTS and value is not None and s.get("settled") is False:
                 text += " (NOT settled)"
             row.append(text)

@@ -312,11 +312,18 @@ def _cell_columns(panel: Panel, xa: Axis, ya: Axis, scale: np.ndarray | None) ->
         "version": r["version"].astype(str).to_numpy() if "version" in r.columns else blank,
         "error": r["error"].fillna("").astype(str).to_numpy() if "error" in r.columns else blank,
         "cell_id": r["cell_id"].astype(str).to_numpy(),
+        "se_text": error_text(num("drift_ratio_se")),
     }
     if scale is not None:
         cols["speed"] = (num("drift_velocity") * scale).astype(np.float32)
     cols.update(panel.quads or panel.patches or {})
     return cols
+
+
+def error_text(se: np.ndarray) -> np.ndarray:
+    """The tooltip's "+- error" beside a long-time mean's drift ratio (its batch-means standard
+    error); empty where the drift is not a long-time mean."""
+    return np.array([f"+- {float(v):.2g} (long-time mean)" if np.isfinite(v) else "" for v in se])
 
 
 def lyapunov_text(rows: pd.DataFrame) -> np.ndarray:

@@ -66,7 +66,8 @@ for (let q = 0; q < sources.length; q++)
 const d = sources[p].data;
 const fmt = (v) => Number.isFinite(v) ? String(Number(v.toPrecision(4))) : "n/a";
 const head = `<b>${labels[p]}</b>: ${xlabel} = ${fmt(d.xv[i])}, ${ylabel} = ${fmt(d.yv[i])}: ` +
-  `<b>${d.regime[i]}</b>, drift ratio ${fmt(d.drift_ratio[i])}`;
+  `<b>${d.regime[i]}</b>, drift ratio ${fmt(d.drift_ratio[i])}` +
+  (d.se_text[i] ? ` ${d.se_text[i]}` : "");
 const empty = {t: []};
 for (const f of fields) empty[f] = [];
 if (!blob) { trace.data = empty; info.text = head + "<br>" + no_traces; return; }
@@ -169,7 +170,8 @@ def _tooltip(label: str, xa: Any, ya: Any, info: dict[str, Any]) -> str:
              f"{html.escape(xa.label)} = @xv{{custom}}, {html.escape(ya.label)} = @yv{{custom}}"]
     if {xa.column, ya.column} != {"m_star", "amplitude"}:
         lines.append("m* = @m_star{custom}, A* = @amplitude{custom}")
-    lines += ["drift ratio: @drift_ratio{custom}", "drift velocity x*': @drift_velocity{custom}"]
+    lines += ["drift ratio: @drift_ratio{custom} @se_text",
+              "drift velocity x*': @drift_velocity{custom}"]
     if info["device"]:
         lines.append("drift speed: @speed{custom} m/s")
     lines.append("settled: @settled (after @settle_periods{custom} periods)")
