@@ -134,6 +134,27 @@ def test_run_text_gives_a_long_time_mean_with_its_error(monkeypatch, capsys):
     assert "long-time mean" in lines["drift_ratio"] and "over the window" not in out
 
 
+def test_runs_without_a_steady_state_are_not_told_to_run_longer(monkeypatch, capsys, tmp_path):
+    """A runaway (load 0.2 > mu = 0.1) and an ejected micro-particle have no steady drift: their
+    note says so, where it used to ask for a longer run or a higher period cap; a long-time mean
+    is not called an average over the window."""
+    code, _, err = call(monkeypatch, capsys, "run", "--model", "material_point", "--m-star",
+                        "0.1", "--amplitude", "0", "--load", "0.2", "--mu", "0.1")
+    assert code == 0 and "no steady state" in err and "raise" not in err
+    scene = sd.Scene.model_validate({"model": "mmd", "device": {
+        "frequency": "20 MHz", "amplitude": "1 nm", "orbit": "retrograde", "friction": 0.3,
+        "particle": {"radius": "5 um", "density": "2200 kg/m^3", "youngs_modulus": "73 GPa",
+                     "poisson": 0.17},
+        "substrate": {"youngs_modulus": "200 GPa", "poisson": 0.3}}})
+    scene.to_toml(tmp_path / "thrown.toml")
+    code, out, err = call(monkeypatch, capsys, "run", str(tmp_path / "thrown.toml"))
+    assert code == 0 and "ejected" in out
+    assert "no steady state" in err and "raise" not in err
+    code, _, err = call(monkeypatch, capsys, "run", "--model", "mmd", "--m-star", "0.1",
+                        "--amplitude", "1.0")
+    assert code == 0 and "long-time mean" in err and "over the window" not in err
+
+
 def test_run_text_of_a_device_shows_m_per_s_first(monkeypatch, capsys):
     code, out, _ = call(monkeypatch, capsys, "run", str(MOTOR), "--no-settle", "--periods", "20")
     assert code == 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -13,7 +14,7 @@ import sawdrift as sd
 from .._startup import fast_start, stored_models
 from ..study.progress import notice
 from .app import Engine, Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
-from .run_text import grouped, side_by_side
+from .run_text import grouped, side_by_side, unsettled_text
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -235,6 +236,14 @@ def _unsettled_note(summary: dict[str, Any], tau: float) -> str:
     fix = ("raise --periods or use --settle" if summary.get("settle_method") == "fixed"
            else "raise numerics.max_periods")
     periods = summary["periods"]
+    regime = summary.get("regime")
+    if regime in ("runaway", "ejected"):
+        # no steady state to wait for: longer runs would not settle anything
+        return f"note: {unsettled_text(summary, 'no drift speed')}; a longer run would not settle it"
+    se = summary.get("drift_ratio_se")
+    if isinstance(se, float) and math.isfinite(se):
+        return ("note: the motion is irregular: the drift is its long-time mean with its "
+                "standard error, not a steady value; --mean-periods for a tighter error")
     if summary.get("chaotic"):
         return (f"note: the motion is chaotic (lyapunov > 0): the drift is an average over the "
                 f"window, not a steady value; {fix} for a longer average")
