@@ -313,3 +313,25 @@ def test_a_long_function_is_caught(tmp_path):
     (tmp_path / "long.py").write_text(f"def f(a, b, c, d, e, f, g, h, i, j, *, k):\n{body}\n")
     ((where, lines, params),) = _functions(tmp_path, tmp_path)
     assert where == "long.py:1 f" and lines == MAX_LINES + 1 and params == MAX_PARAMS + 1
+
+
+def test_every_report_module_imports_first():
+    """Each module of ``sawdrift.report`` imports as the first of its package (a user's
+    ``import sawdrift.report.compare_plot``): ``compare_plot`` and ``diagrams`` imported each
+    other, and importing ``compare_plot`` first raised an ImportError."""
+    import importlib
+    import sys
+
+    names = sorted(p.stem for p in (ROOT / "src" / "sawdrift" / "report").glob("*.py")
+                   if p.stem != "__init__")
+    assert "compare_plot" in names and "diagrams" in names
+    saved = {k: v for k, v in sys.modules.items() if k.startswith("sawdrift.report")}
+    try:
+        for name in names:
+            for key in [k for k in sys.modules if k.startswith("sawdrift.report")]:
+                del sys.modules[key]
+            importlib.import_module(f"sawdrift.report.{name}")
+    finally:
+        for key in [k for k in sys.modules if k.startswith("sawdrift.report")]:
+            del sys.modules[key]
+        sys.modules.update(saved)

@@ -69,7 +69,7 @@ _LAZY: dict[str, str] = {
     "adaptive_sweep": "study.adaptive",
     "plot_phase_diagram": "report.diagrams",
     "plot_drift_map": "report.diagrams",
-    "plot_compare": "report.diagrams",
+    "plot_compare": "report.compare_plot",
     "demo": "report.demo",
     "write_explorer": "report.explore",
     "bifurcation": "study.bifurcation",

@@ -12,9 +12,9 @@ from ..study.progress import notice
 from ..study.provenance import TableProvenanceError
 from ..study.sweep import journal_path, sweep
 from ..study.traces import traces_path
+from .compare_plot import plot_compare
 from .diagrams import (
     HATCH_LABEL,
-    plot_compare,
     plot_drift_map,
     plot_phase_diagram,
     unsettled_cells,

@@ -324,14 +324,3 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
-
-
-# the comparison figure lives in its own module and is read from here too (its functions import
-# this module's, which are all defined by now)
-from .compare_plot import (  # noqa: E402, F401
-    agreement_from_grids,
-    agreement_markdown,
-    compare_figure,
-    plot_compare,
-    variants,
-)
