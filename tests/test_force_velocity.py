@@ -53,3 +53,11 @@ def test_the_command_writes_the_curve_and_refuses_too_few_points(tmp_path, sawdr
     bad = sawdrift_main(*cmd[:-7], "--points", "2")  # refused before any run
     assert bad.returncode == 2 and "at least 3" in bad.stderr and "Traceback" not in bad.stderr
     assert math.isfinite(data["mu"])
+
+
+def test_the_command_refuses_a_load_it_would_replace(sawdrift_main):
+    """The curve samples its own loads: a --load given to it used to be ignored without a word
+    (the same curve as without it); it is refused in one line, before any run."""
+    bad = sawdrift_main("force-velocity", "--model", "mmd", "--m-star", "1", "--load", "0.2")
+    assert bad.returncode == 2 and "particle.load = 0.2" in bad.stderr
+    assert "Traceback" not in bad.stderr and bad.stdout == ""

@@ -53,6 +53,10 @@ def force_velocity_cmd(
     if out is not None:
         _writable(out, folder=True)
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
+    if scene.particle.load != 0.0:
+        _fail(f"particle.load = {scene.particle.load:g}: force-velocity samples the loads itself "
+              "(--points of them inside (-mu, mu) M g), so a given load would be ignored; the "
+              "speed under one load is where the curve crosses it, or `sawdrift run --load`")
     from ..study.estimate import size_check
 
     size_check("force-velocity", [scene], points + 1, workers=workers, engine=engine, yes=yes,
