@@ -192,3 +192,35 @@ def test_a_one_field_sweep_prints_its_points_and_draws_them(monkeypatch, capsys,
     assert (tmp_path / "amp.png").stat().st_size > 10_000
     assert "device.amplitude (m)" in text and "drift speed (m/s)" in text
     assert "20 nm" in text and "(line plot)" in text
+
+
+def test_a_line_plot_with_an_ejected_cell_spans_the_sweep_without_a_warning(tmp_path):
+    """A sweep of the amplitude where the larger one throws the particle off: its cell has no
+    drift (ejected), is counted apart from failures, and the axis spans both amplitudes (one
+    drawn point on a log axis warned of a zero-width axis)."""
+    import warnings
+
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    from sawdrift.report.diagrams import COLOURS
+    from sawdrift.report.line_plot import plot_line
+
+    table = pd.DataFrame({"model": ["mmd", "mmd"], "device.amplitude": [1e-11, 1e-9],
+                          "drift_speed_m_s": [-6.6e-4, np.nan], "drift_ratio": [-0.3, np.nan],
+                          "regime": ["bouncing", "ejected"], "settled": [True, False]})
+    grabbed = {}
+    close = plt.close
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            plt.close = lambda fig: grabbed.setdefault("fig", fig)
+            plot_line(table, tmp_path / "line.png", field="device.amplitude", colours=COLOURS)
+        finally:
+            plt.close = close
+    ax = grabbed["fig"].axes[0]
+    lo, hi = ax.get_xlim()
+    assert lo < 1e-11 and hi > 1e-9 and ax.get_xscale() == "log"
+    title = ax.get_title()
+    assert "1 without a drift" in title and "failed" not in title
+    close(grabbed["fig"])

@@ -24,6 +24,9 @@ from matplotlib.ticker import EngFormatter, MaxNLocator  # noqa: E402
 
 from ..errors import SceneError  # noqa: E402
 from ..study.axes import column_label, column_unit  # noqa: E402
+
+#: regimes without a steady drift speed: a cell of theirs has no value to draw and did not fail
+NO_DRIFT = ("runaway", "ejected")
 from ..study.export import dimensions  # noqa: E402
 
 #: marker size (points) of a cell
@@ -74,8 +77,13 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
     value = value or value_column(table)
     models = [model] if model is not None else sorted(table["model"].dropna().unique())
     fig, ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
+    # the axis first: autoscaling a log axis on a single drawn point warns of a zero width
+    swept = table[field].to_numpy(float)
+    if _log(swept):
+        ax.set_xscale("log")
+    _span(ax, swept)
     used: set[str] = set()
-    loose = failed = total = 0
+    loose = failed = total = none = 0
     for name in models:
         sub = table[table["model"] == name].sort_values(field)
         if sub.empty:
@@ -86,7 +94,10 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
         ok = np.isfinite(x) & np.isfinite(y)
         open_ = _unsettled(sub)
         total += len(sub)
-        failed += int((~ok).sum())
+        # a runaway or an ejected particle has no drift speed: not a failure
+        gone = sub["regime"].isin(NO_DRIFT).to_numpy() & ~ok
+        none += int(gone.sum())
+        failed += int((~ok & ~gone).sum())
         loose += int((open_ & ok).sum())
         ax.plot(x[ok], y[ok], "-", color="0.55", lw=1.0, zorder=1,
                 label=name if len(models) > 1 else None)
@@ -96,9 +107,7 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
             used.add(str(regime) if str(regime) in colours else "error")
             ax.plot(xi, yi, "o", ms=SIZE, zorder=2, mec=colour if is_open else "k",
                     mfc="white" if is_open else colour, mew=2.0 if is_open else 0.6)
-    if _log(table[field].to_numpy(float)):
-        ax.set_xscale("log")
-    else:  # few ticks: a unit on each must not collide with the next
+    if not _log(swept):  # few ticks: a unit on each must not collide with the next
         ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
     # SI ticks with prefixes: 5 MHz, -120 um/s (not 5e6, -0.00012)
     for axis, column in ((ax.xaxis, field), (ax.yaxis, value)):
@@ -109,7 +118,8 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
     ax.set_xlabel(column_label(field))
     ax.set_ylabel(column_label(value) if column_unit(value) else _normalized_label(value))
     notes = [f"open: not settled ({loose} of {total})" if loose else "",
-             f"{failed} failed (not drawn)" if failed else ""]
+             f"{failed} failed (not drawn)" if failed else "",
+             f"{none} without a drift (runaway or ejected, not drawn)" if none else ""]
     note = "; ".join(n for n in notes if n)
     title = f"{', '.join(models)}: {_normalized_label(value)} against {field}"
     ax.set_title(f"{title}\n{note}" if note else title, fontsize=10)
@@ -118,6 +128,20 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+def _span(ax, swept: np.ndarray) -> None:
+    """The x axis spans every swept value, drawn or not (a sweep whose only drift is one point
+    would otherwise get a zero-width axis), with a margin of 5 % (a factor 1.12 on a log axis)."""
+    v = swept[np.isfinite(swept)]
+    if v.size == 0 or v.min() == v.max():
+        return
+    lo, hi = float(v.min()), float(v.max())
+    if ax.get_xscale() == "log":
+        ax.set_xlim(lo / 1.12, hi * 1.12)
+    else:
+        pad = 0.05 * (hi - lo)
+        ax.set_xlim(lo - pad, hi + pad)
 
 
 def _normalized_label(value: str) -> str:
