@@ -224,3 +224,37 @@ def test_a_line_plot_with_an_ejected_cell_spans_the_sweep_without_a_warning(tmp_
     title = ax.get_title()
     assert "1 without a drift" in title and "failed" not in title
     close(grabbed["fig"])
+
+
+def test_a_long_time_mean_gets_its_error_in_the_line_plot_and_its_rows(tmp_path):
+    """A cell whose drift is a long-time mean is drawn with its standard error as a bar and
+    printed as drift +- error (a speed's error scaled from the drift ratio's)."""
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    from sawdrift.report.diagrams import COLOURS
+    from sawdrift.report.line_plot import line_rows, plot_line
+
+    table = pd.DataFrame({"model": ["mmd", "mmd"], "amplitude": [0.5, 1.0],
+                          "drift_ratio": [0.5157, -0.0085], "drift_ratio_se": [np.nan, 0.092],
+                          "drift_speed_m_s": [0.2, -0.004],
+                          "regime": ["drift_with", "bouncing"], "settled": [True, False]})
+    rows = line_rows(table, "amplitude", "drift_ratio")
+    assert "long-time mean +- 0.092" in rows[2] and "+-" not in rows[1]
+    speed = line_rows(table, "amplitude", "drift_speed_m_s")
+    assert f"long-time mean +- {0.004 / 0.0085 * 0.092:.2g}" in speed[2]
+    grabbed = {}
+    close = plt.close
+    try:
+        plt.close = lambda fig: grabbed.setdefault("fig", fig)
+        plot_line(table, tmp_path / "line.png", field="amplitude", value="drift_ratio",
+                  colours=COLOURS)
+    finally:
+        plt.close = close
+    ax = grabbed["fig"].axes[0]
+    bars = [c for c in ax.containers if c.__class__.__name__ == "ErrorbarContainer"]
+    assert len(bars) == 1
+    (segment,) = bars[0].lines[2][0].get_segments()
+    assert np.allclose(segment[:, 1], [-0.0085 - 0.092, -0.0085 + 0.092])
+    assert "bars: long-time mean" in ax.get_title()
+    close(grabbed["fig"])

@@ -83,7 +83,7 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
         ax.set_xscale("log")
     _span(ax, swept)
     used: set[str] = set()
-    loose = failed = total = none = 0
+    loose = failed = total = none = bars = 0
     for name in models:
         sub = table[table["model"] == name].sort_values(field)
         if sub.empty:
@@ -101,9 +101,13 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
         loose += int((open_ & ok).sum())
         ax.plot(x[ok], y[ok], "-", color="0.55", lw=1.0, zorder=1,
                 label=name if len(models) > 1 else None)
-        for xi, yi, regime, is_open in zip(x[ok], y[ok], sub["regime"].to_numpy()[ok],
-                                           open_[ok], strict=True):
+        errors = np.array([_error(r, value) or np.nan for r in sub.to_dict(orient="records")])
+        for xi, yi, regime, is_open, err in zip(x[ok], y[ok], sub["regime"].to_numpy()[ok],
+                                                open_[ok], errors[ok], strict=True):
             colour = colours.get(str(regime), colours["error"])
+            if np.isfinite(err):  # a long-time mean: its standard error as a bar
+                ax.errorbar(xi, yi, yerr=err, color=colour, lw=1.2, capsize=3, zorder=1.5)
+                bars += 1
             used.add(str(regime) if str(regime) in colours else "error")
             ax.plot(xi, yi, "o", ms=SIZE, zorder=2, mec=colour if is_open else "k",
                     mfc="white" if is_open else colour, mew=2.0 if is_open else 0.6)
@@ -119,7 +123,8 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
     ax.set_ylabel(column_label(value) if column_unit(value) else _normalized_label(value))
     notes = [f"open: not settled ({loose} of {total})" if loose else "",
              f"{failed} failed (not drawn)" if failed else "",
-             f"{none} without a drift (runaway or ejected, not drawn)" if none else ""]
+             f"{none} without a drift (runaway or ejected, not drawn)" if none else "",
+             "bars: long-time mean +- its standard error" if bars else ""]
     note = "; ".join(n for n in notes if n)
     title = f"{', '.join(models)}: {_normalized_label(value)} against {field}"
     ax.set_title(f"{title}\n{note}" if note else title, fontsize=10)
@@ -175,6 +180,22 @@ def line_rows(table: pd.DataFrame, field: str, value: str | None = None) -> list
         v = pd.to_numeric(pd.Series([data.get(value)]), errors="coerce").iloc[0]
         shown = f"{v:18.6g}" if np.isfinite(v) else f"{'none':>18}"
         mark = " (not settled)" if data.get("settled") is False or data.get("settled") == 0 else ""
+        err = _error(data, value)
+        if err is not None:  # a long-time mean: drift +- its standard error
+            mark = f" (long-time mean +- {err:.2g})"
         where = fmt(data[field]) if fmt is not None else f"{data[field]:.6g}"
         lines.append(f"{data['model']:>20} {where:>{width}} {shown}  {data['regime']}{mark}")
     return lines
+
+
+def _error(row: dict, value: str) -> float | None:
+    """The standard error of a row's ``value`` (the drift ratio or a speed scaled from it) where
+    its drift is a long-time mean (``drift_ratio_se`` finite), else None."""
+    se = pd.to_numeric(pd.Series([row.get("drift_ratio_se")]), errors="coerce").iloc[0]
+    ratio = pd.to_numeric(pd.Series([row.get("drift_ratio")]), errors="coerce").iloc[0]
+    v = pd.to_numeric(pd.Series([row.get(value)]), errors="coerce").iloc[0]
+    if not (np.isfinite(se) and np.isfinite(ratio) and np.isfinite(v)):
+        return None
+    if value == "drift_ratio":
+        return float(se)
+    return float(abs(v / ratio) * se) if ratio != 0.0 else None
