@@ -273,3 +273,13 @@ def test_a_hop_whose_window_before_disagrees_is_not_settled_by_its_thirds():
     window before read 0.682993, so the two windows in a row disagree and the run goes on to
     full-inertia windows, which settle within 1e-3 relative of brute force."""
     _settles_as_brute_force(0.749894, 1.496236, "hopping")
+
+
+def test_a_run_recording_its_trajectory_reaches_the_same_verdict():
+    """mmd, m* = 0.316, A* = 0.531: its fixed window's thirds agree but the window before does
+    not, so the run goes on to windows. A run recording its trajectory measures that window too
+    (same rows) and gives the same drift; it had settled at 60 periods, 2.5e-4 lower."""
+    scene_ = scene("mmd", 0.316228, 0.530884, 0.1)
+    plain, traced = sd.run(scene_), sd.run(scene_, trajectory=True)
+    assert plain.settle_method == traced.settle_method == "fixed_then_windows"
+    assert traced.drift_ratio == plain.drift_ratio and traced.periods == plain.periods

@@ -179,9 +179,11 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
                                   n_periods, rolling_frequency(scene, m_x))
     n_max = max(n_total, int(round(cap * k_per)))
     first = None
-    if not settle_on and not trajectory and _default_length(scene):
+    if not settle_on and _default_length(scene):
+        # a run recording its trajectory measures the window before too (the same rows), for the
+        # same verdict on its last window, but runs its whole length
         first = _held_first(stepper, scene, speed, scale, n_total - n_measure)
-        if first is not None and first[1] is not None:
+        if first is not None and first[1] is not None and not trajectory:
             return first[0], first[1], None
     stepper.advance(n_total - n_measure - stepper.step)
     if settle_on:
