@@ -20,6 +20,9 @@ def files(tmp_path):
     (tmp_path / "binary.toml").write_bytes(b"\xff\xfe\x00model")
     (tmp_path / "bad.parquet").write_text("not parquet")
     (tmp_path / "adir").mkdir()
+    import pandas as pd
+
+    pd.DataFrame({"t": [0.0, 0.5], "x": [0.0, 0.1]}).to_parquet(tmp_path / "traj.parquet")
     return tmp_path
 
 
@@ -78,7 +81,42 @@ CORPUS = [
     "bench work-precision --models nosuch",
     "models --bogus",
     "nosuchcommand",
+    # a Parquet file that is not a sweep table (a run's trajectory): exit 3 before
+    "phase-diagram {d}/traj.parquet -o {d}/x.png",
+    "compare {d}/traj.parquet --models mmd,jaeger -o {d}/x.png",
+    # checked before the size line (two lines before)
+    "bifurcation --axis drive.amplitude=0.5 -o {d}/bo",
+    "bifurcation --axis drive.amplitude=0.1:1:5 --samples 0 -o {d}/bo",
+    "bifurcation --axis drive.amplitude=0.1:1:5 --tolerance -1 -o {d}/bo",
+    "run -o {d}/malformed.toml/traj.csv",
+    "force-velocity --model mmd --m-star 1 --load 0.2 -o {d}/fv",
+    "field --points 3 -o {d}/f3",
 ]
+
+
+@pytest.mark.parametrize("line", [
+    "bifurcation --axis drive.amplitude=0.5 -o {d}/refused",
+    "force-velocity --model mmd --m-star 1 --load 0.2 -o {d}/refused",
+    "field --points 3 -o {d}/refused",
+])
+def test_a_refused_command_leaves_no_output_folder(line, files, monkeypatch, capsys):
+    """Every check comes before the output folder is made: a refused command left an empty
+    folder behind."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *line.format(d=files).split()])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    assert exc.value.code == 2
+    assert not (files / "refused").exists()
+
+
+def test_a_file_in_the_way_of_an_output_folder_is_named(files, monkeypatch, capsys):
+    """-o under an existing file: the error named the file system's "File exists"."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "-o",
+                                      str(files / "malformed.toml" / "traj.csv")])
+    with pytest.raises(SystemExit):
+        main()
+    err = capsys.readouterr().err
+    assert "'" + str(files / "malformed.toml") + "' is a file, not a folder" in err
 
 
 @pytest.mark.parametrize("line", CORPUS)

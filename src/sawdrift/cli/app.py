@@ -63,6 +63,9 @@ def _writable(path: Path, option: str = "-o", folder: bool = True) -> Path:
         _fail(f"{option} {str(path)!r} is a directory; give a file name")
     if folder and path.exists() and not path.is_dir():
         _fail(f"{option} {str(path)!r} exists and is not a folder")
+    blocker = next((p for p in (where, *where.parents) if p.exists() and not p.is_dir()), None)
+    if blocker is not None:
+        _fail(f"{option} {str(path)!r} cannot be written: {str(blocker)!r} is a file, not a folder")
     try:
         where.mkdir(parents=True, exist_ok=True)
         fd, probe = tempfile.mkstemp(dir=where, prefix=".sawdrift-probe-")
@@ -126,7 +129,9 @@ def _parse_param(items: list[str] | None) -> dict[str, Any]:
     return params
 
 
-def _load_table(path: Path):
+def _load_table(path: Path, needs: tuple[str, ...] = ("model", "regime")):
+    """A sweep table read for a command, or a one-line error: missing, a folder, not Parquet, or
+    without the columns ``needs`` (a trajectory or events file is Parquet too)."""
     import pandas as pd
 
     if not path.exists():
@@ -134,9 +139,14 @@ def _load_table(path: Path):
     if path.is_dir():
         _fail(f"table {str(path)!r} is a directory, not a Parquet file")
     try:
-        return pd.read_parquet(path)
+        frame = pd.read_parquet(path)
     except Exception as exc:  # noqa: BLE001
         _fail(f"table {str(path)!r} is not a readable Parquet file ({exc})".splitlines()[0])
+    missing = [c for c in needs if c not in frame.columns]
+    if missing:
+        _fail(f"table {str(path)!r} is not a sweep table (no {', '.join(missing)} column): give "
+              "the table `sawdrift sweep -o` writes")
+    return frame
 
 
 bench_app = typer.Typer(help="Performance: work-precision study and speed targets.", no_args_is_help=True)

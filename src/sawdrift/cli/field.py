@@ -70,8 +70,6 @@ def field_cmd(
     check_engine(engine)
     kind = (out_kind(out, (".csv",), "the field: position, drift velocity, regime, settled")
             if out is not None else None)
-    if out is not None:
-        _writable(out, folder=kind == "folder")
     species = None
     if axis is not None:
         name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
@@ -95,6 +93,8 @@ def field_cmd(
     sample = [sp for _, sp in species_scenes(scene, species)]
     size_check("field", sample, points * len(sample), workers=workers, engine=engine, yes=yes,
                show=progress, unit="point", smaller="fewer --points")
+    if out is not None:  # after every check: a refused command leaves no folder behind
+        _writable(out, folder=kind == "folder")
     study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
                         progress=progress, engine=engine)
     if direct:

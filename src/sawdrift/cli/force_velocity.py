@@ -50,8 +50,6 @@ def force_velocity_cmd(
         _fail(f"--points = {points}: a force-velocity curve needs at least 3")
     if workers is not None and workers < 1:
         _fail(f"--workers = {workers}: give at least 1")
-    if out is not None:
-        _writable(out, folder=True)
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
     if scene.particle.load != 0.0:
         _fail(f"particle.load = {scene.particle.load:g}: force-velocity samples the loads itself "
@@ -61,6 +59,8 @@ def force_velocity_cmd(
 
     size_check("force-velocity", [scene], points + 1, workers=workers, engine=engine, yes=yes,
                unit="steady run", smaller="fewer --points")
+    if out is not None:  # after every check: a refused command leaves no folder behind
+        _writable(out, folder=True)
     curve = force_velocity(scene, points=points, workers=workers, engine=engine)
     data = curve.to_json()
     if out is not None:

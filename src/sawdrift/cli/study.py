@@ -215,7 +215,6 @@ def bifurcation_cmd(
     """
     field, spec = _split_axis(axis, "FIELD=SPEC", "drive.amplitude=lin:0.1:1.5:100")
     out_kind(out, (), "")
-    _writable(out)
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
     fast_start()
     for name in named:
@@ -223,8 +222,12 @@ def bifurcation_cmd(
     base = scene_from_options(
         scene_arg, named[0] if named else None, _parse_param(param), scene_overrides)
     from sawdrift.report.bifurcation_plot import plot_bifurcation
-    from sawdrift.study.bifurcation import FIGURE, bifurcation
+    from sawdrift.study.bifurcation import FIGURE, bifurcation, check_request
 
+    # every argument checked before the size line and the output folder
+    check_request(base, field, spec, samples=samples, direction=direction, tolerance=tolerance,
+                  engine=engine, workers=workers)
+    _writable(out)
     _bifurcation_size(base, field, spec, len(named) or 1, direction, samples, workers, engine,
                       yes, progress)
 

@@ -106,6 +106,32 @@ def _values(values: str | Sequence[Any], field_name: str) -> list[float]:
     return distinct
 
 
+def check_request(scene: Scene | None, field: str, values: str | Sequence[float], *,
+                  samples: int = 64, direction: str = "up", tolerance: float = 1e-3,
+                  engine: str = "compiled", workers: int | None = None,
+                  transient: int | None = None) -> tuple[Scene, list[float]]:
+    """The arguments of :func:`bifurcation` checked before anything runs (one-line
+    :class:`~sawdrift.errors.SceneError` each): the bound scene and the axis values."""
+    scene = bind(scene if scene is not None else Scene())
+    if not isinstance(scene.drive, Wave):
+        raise SceneError(f"a bifurcation diagram needs a wave drive; the scene has a "
+                         f"{scene.drive.kind} drive")
+    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
+        raise SceneError(f"samples = {samples!r} must be an integer >= 1")
+    if direction not in ("up", "down", "both"):
+        raise SceneError(f"direction = {direction!r} is not allowed; use up, down or both")
+    if not 0.0 < float(tolerance) < 1.0:
+        raise SceneError(f"tolerance = {tolerance!r} must be in (0, 1) (relative)")
+    if engine not in ("compiled", "python"):
+        raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    if workers is not None and workers < 1:
+        raise SceneError(f"workers = {workers} must be >= 1")
+    if transient is not None and transient < 0:
+        raise SceneError(f"transient = {transient} must be >= 0 periods")
+    _check_field(scene, field)
+    return scene, _values(values, field)
+
+
 def _model_scenes(scene: Scene, models: str | Sequence[str] | None, field_name: str,
                   values: list[float]) -> dict[str, Scene]:
     names = ([m.strip() for m in models.split(",")] if isinstance(models, str)
@@ -201,25 +227,10 @@ def bifurcation(
         contact_fraction, contact, periods, hysteresis, error, field, code_hash, version.
     """
     t0 = time.perf_counter()
-    scene = bind(scene if scene is not None else Scene())
-    if not isinstance(scene.drive, Wave):
-        raise SceneError(f"a bifurcation diagram needs a wave drive; the scene has a "
-                         f"{scene.drive.kind} drive")
-    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
-        raise SceneError(f"samples = {samples!r} must be an integer >= 1")
-    if direction not in ("up", "down", "both"):
-        raise SceneError(f"direction = {direction!r} is not allowed; use up, down or both")
-    if not 0.0 < float(tolerance) < 1.0:
-        raise SceneError(f"tolerance = {tolerance!r} must be in (0, 1) (relative)")
-    if engine not in ("compiled", "python"):
-        raise SceneError(f"engine = {engine!r} is not allowed; use 'compiled' or 'python'")
+    scene, axis = check_request(scene, field, values, samples=samples, direction=direction,
+                                tolerance=tolerance, engine=engine, workers=workers,
+                                transient=transient)
     workers = workers if workers is not None else (os.cpu_count() or 1)
-    if workers < 1:
-        raise SceneError(f"workers = {workers} must be >= 1")
-    if transient is not None and transient < 0:
-        raise SceneError(f"transient = {transient} must be >= 0 periods")
-    _check_field(scene, field)
-    axis = _values(values, field)
     bases = _model_scenes(scene, models, field, axis)
     folder = Path(out) if out is not None else None
     if folder is not None:
