@@ -182,3 +182,24 @@ def test_the_command_line_answers_bad_input_with_one_line_and_exit_2(line, monke
         main()
     err = capsys.readouterr().err.strip().splitlines()
     assert exc.value.code == 2 and len(err) == 1 and err[0].startswith("error: "), err
+
+
+def test_a_long_time_mean_in_a_field_carries_its_error():
+    """A 0.2 mm steel bead of examples/sorting.toml bounces irregularly at xi = 0, where the two
+    waves' vertical motions add, and drifts steadily at xi = 0.25: the first position's drift
+    is a long-time mean whose error (its run's drift_ratio_se scaled to x*') the field keeps and
+    writes; a steady drift has none."""
+    from pathlib import Path
+
+    scene = sd.Scene.from_toml(Path(__file__).resolve().parents[1] / "examples" / "sorting.toml")
+    scene = scene.with_updates(**{"device.particle.radius": "0.2 mm"})
+    fld = drift_field(scene, 4, workers=1, progress=False).fields[0]
+    at0 = sd.run(scene.with_updates(**{"drive.position": 0.0}))
+    assert at0.regime == "bouncing" and at0.drift_ratio_se > 0.0
+    want = at0.drift_ratio_se * abs(at0.drift_velocity / at0.drift_ratio)
+    assert fld.drift_velocity_se[0] == pytest.approx(want, rel=1e-9)
+    steady = [i for i, ok in enumerate(fld.settled) if ok]
+    assert steady and all(math.isnan(fld.drift_velocity_se[i]) for i in steady)
+    data = fld.to_json()
+    assert data["drift_velocity_se"][0] == pytest.approx(want, rel=1e-9)
+    assert all(data["drift_velocity_se"][i] is None for i in steady)

@@ -118,8 +118,10 @@ def field_cmd(
             typer.echo(f"  {z['kind']:>9} at xi = {z['position']:.5f} (+ k/2)")
         loose = sum(1 for ok in fld.settled if ok is False)
         if loose:
+            hint = (" (use --settle)" if scene.numerics.settle is False else
+                    " (irregular motion: a long-time mean, or not settled within the period cap)")
             typer.echo(f"  {loose} of {len(fld.settled)} positions NOT settled: their drift is "
-                       "not the steady one (use --settle)")
+                       f"not a steady one{hint}")
         if fld.errors:
             typer.echo(f"  {len(fld.errors)} kinds of run errors, e.g. {fld.errors[0]}", err=True)
     if study.direct is not None:

@@ -53,6 +53,13 @@ def _draw_field(ax: Any, fld: Field, colour: str, label: str) -> None:
     v = np.concatenate([fld.drift_velocity, fld.drift_velocity, fld.drift_velocity[:1]])
     regimes = list(fld.regimes) * 2 + fld.regimes[:1]
     ax.plot(x * xs, v * vs, "-", color=colour, lw=1.2, label=label or None, zorder=2)
+    if fld.drift_velocity_se is not None and np.isfinite(fld.drift_velocity_se).any():
+        # a long-time mean (irregular motion): its standard error as a bar
+        se = np.concatenate([fld.drift_velocity_se, fld.drift_velocity_se,
+                             fld.drift_velocity_se[:1]])
+        ok = np.isfinite(se)
+        ax.errorbar(x[ok] * xs, v[ok] * vs, yerr=se[ok] * vs, fmt="none", ecolor=colour,
+                    elinewidth=1.0, capsize=2, zorder=2.5)
     for reg in dict.fromkeys(regimes):
         sel = [i for i, r in enumerate(regimes) if r == reg]
         ax.scatter(x[sel] * xs, v[sel] * vs, s=16, color=COLOURS.get(reg, "0.6"),

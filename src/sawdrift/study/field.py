@@ -72,6 +72,9 @@ class Field:
     #: one line: where it collects, or which way it goes
     summary: str = ""
     errors: list[str] = field(default_factory=list)
+    #: standard error of each drift velocity that is a long-time mean (irregular motion; NaN
+    #: for a steady drift), scaled from the run's ``drift_ratio_se``
+    drift_velocity_se: np.ndarray | None = None
 
     def velocity_at(self, xi: np.ndarray | float) -> np.ndarray:
         """V at ``xi``: periodic linear interpolation of the samples and the zeros (period 1/2)."""
@@ -88,8 +91,12 @@ class Field:
 
     def to_json(self) -> dict[str, Any]:
         """``{"positions", "drift_velocity", "regimes", "zeros", ...}`` (positions in wavelengths)."""
+        se = (self.drift_velocity_se if self.drift_velocity_se is not None
+              else np.full(self.drift_velocity.shape, np.nan))
         return {"label": self.label, "positions": self.positions.tolist(),
-                "drift_velocity": self.drift_velocity.tolist(), "regimes": list(self.regimes),
+                "drift_velocity": self.drift_velocity.tolist(),
+                "drift_velocity_se": [float(e) if np.isfinite(e) else None for e in se],
+                "regimes": list(self.regimes),
                 "settled": list(self.settled), "zeros": self.zeros, "summary": self.summary,
                 "errors": self.errors}
 
@@ -269,12 +276,26 @@ def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
                             regimes=[str(r) for r in rows["regime"]],
                             settled=[None if s is None or s != s else bool(s)
                                      for s in rows["settled"]],
-                            zeros=[], scene=sp, errors=errors))
+                            zeros=[], scene=sp, errors=errors, drift_velocity_se=_se(rows, v)))
     for f in fields:
         ok = np.isfinite(f.drift_velocity)  # a failed run (its error is kept) is left out
         f.zeros = (find_zeros(f.positions[ok], f.drift_velocity[ok], _zero_eps(f.scene))
                    if ok.sum() >= 2 else [])
     return fields
+
+
+def _se(rows: Any, v: np.ndarray) -> np.ndarray:
+    """The standard error of each drift velocity that is a long-time mean: ``drift_ratio_se``
+    times |V / drift ratio| (NaN elsewhere)."""
+    import pandas as pd
+
+    if "drift_ratio_se" not in rows.columns:
+        return np.full(v.shape, np.nan)
+    se = pd.to_numeric(rows["drift_ratio_se"], errors="coerce").to_numpy(dtype=float)
+    ratio = pd.to_numeric(rows["drift_ratio"], errors="coerce").to_numpy(dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = se * np.abs(v / ratio)
+    return np.where(np.isfinite(out), out, np.nan)
 
 
 def _zero_eps(scene: Scene) -> float:
