@@ -27,7 +27,7 @@ def run() -> CaseResult:
     import tempfile
     from pathlib import Path
 
-    from sawdrift.report.diagrams import plot_compare
+    from sawdrift.report.compare_plot import plot_compare
 
     table = sd.sweep(["material_point", "mmd"], "1e-3:1e2:9", "1e-2:10:9",
                      axes={"effects.rotation": "false,true"}, base=sd.Scene(numerics={"periods": 40}),
