@@ -203,3 +203,18 @@ def test_a_long_time_mean_in_a_field_carries_its_error():
     data = fld.to_json()
     assert data["drift_velocity_se"][0] == pytest.approx(want, rel=1e-9)
     assert all(data["drift_velocity_se"][i] is None for i in steady)
+    # its mean is within two errors of zero: no known sign, a zero band (not "goes to +x")
+    assert abs(fld.drift_velocity[0]) <= 2.0 * want
+    assert [(z["kind"], z["position"]) for z in fld.zeros] == [("one-sided", 0.0)]
+
+
+def test_a_noisy_mean_is_a_zero_band_not_a_sign_change():
+    """Two long-time means of opposite signs, each within two of its errors of zero, make no
+    trap: with their errors as the band's width they are one zero band between positive
+    neighbours (one-sided), where a scalar band saw a trap and a repeller."""
+    x = np.arange(8) * (PERIOD / 8)
+    v = np.array([3.0, 2.0, 1.0, 0.5, -0.4, 0.6, 2.0, 3.0])
+    assert [z["kind"] for z in find_zeros(x, v, 0.01)] == ["trap", "repeller"]
+    eps = np.array([0.01, 0.01, 0.01, 2 * 0.3, 2 * 0.5, 2 * 0.4, 0.01, 0.01])
+    (zero,) = find_zeros(x, v, eps)
+    assert zero["kind"] == "one-sided" and zero["bracket"] == [x[3], x[5]]
