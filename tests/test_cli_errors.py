@@ -146,3 +146,16 @@ def test_an_internal_failure_is_not_confused_with_a_failed_check(monkeypatch, ca
     assert INTERNAL_FAILURE not in (0, 1, 2)
     assert exc.value.code == INTERNAL_FAILURE
     assert len(err) == 1 and "internal failure (boom)" in err[0]
+
+
+@pytest.mark.parametrize("args", [["-o", ""], ["--out="], ["--out", " "]])
+def test_an_empty_output_path_is_refused(args, tmp_path, monkeypatch, capsys):
+    """-o "" read as the current folder: a run wrote its five files there (and replaced a
+    scene.toml). It is refused in one line before anything runs."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "--periods", "5", *args])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1 and "empty path" in err[0]
+    assert list(tmp_path.iterdir()) == []

@@ -203,8 +203,22 @@ def main() -> None:
         _main()
 
 
+def _empty_output(argv: list[str]) -> str | None:
+    """The output option given an empty path (``-o ""``), which the path type would read as the
+    current folder and write into it, or None."""
+    for i, arg in enumerate(argv):
+        if arg in ("-o", "--out") and i + 1 < len(argv) and argv[i + 1].strip() == "":
+            return arg
+        if arg.startswith("--out=") and arg[len("--out="):].strip() == "":
+            return "--out"
+    return None
+
+
 def _main() -> None:
     try:
+        empty = _empty_output(sys.argv[1:])
+        if empty is not None:
+            _fail(f"{empty} is an empty path; give a file or folder name (. for this folder)")
         load_commands(_command_of(sys.argv[1:]))
         # standalone_mode=False makes click return a typer.Exit's code instead of raising it
         code = app(standalone_mode=False)
