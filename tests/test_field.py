@@ -218,3 +218,17 @@ def test_a_noisy_mean_is_a_zero_band_not_a_sign_change():
     eps = np.array([0.01, 0.01, 0.01, 2 * 0.3, 2 * 0.5, 2 * 0.4, 0.01, 0.01])
     (zero,) = find_zeros(x, v, eps)
     assert zero["kind"] == "one-sided" and zero["bracket"] == [x[3], x[5]]
+
+
+def test_a_field_of_noisy_means_only_has_no_known_direction():
+    """Every sample a long-time mean within two of its errors of zero (V = 1 to 4, errors 3):
+    no sign is known anywhere, so the field does not say it goes to +x everywhere."""
+    from sawdrift.study.field import Field, _summarize
+
+    x = np.arange(4) * (PERIOD / 4)
+    fld = Field(label="", positions=x, drift_velocity=np.array([1.0, 2.0, 3.0, 4.0]),
+                regimes=["bouncing"] * 4, settled=[False] * 4, zeros=[], scene=sd.Scene(),
+                drift_velocity_se=np.full(4, 3.0))
+    assert _summarize(fld).startswith("no known direction")
+    fld.drift_velocity_se = np.full(4, np.nan)  # the same speeds, steady: it goes to +x
+    assert _summarize(fld).startswith("goes to +x everywhere")

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 import sawdrift as sd
 from sawdrift.contact.binding import bind, model_for
@@ -154,3 +155,23 @@ def test_a_run_that_does_not_settle_says_why():
                           drive={"amplitude": 0.891251}))
     assert not res.settled and math.isnan(res.drift_ratio_se)
     assert any(w.startswith("not settled: the drift") for w in res.warnings)
+
+
+def test_a_window_that_shed_events_still_reads_its_hops(monkeypatch):
+    """mmd m* = 1, A* = 1 hops once a period. With the log's cap at 128 rows a 400-period window
+    keeps only its last events: its hops were read in blocks from the window's start (empty,
+    so no hop period: "bouncing"); they are read over the periods the kept events cover."""
+    from sawdrift.dynamics import stepper as stepper_module
+
+    scene = sd.Scene(model="mmd", particle={"m_star": 1.0}, drive={"amplitude": 1.0},
+                     numerics={"settle": False, "periods": 400})
+    full = sd.run(scene)
+    monkeypatch.setattr(stepper_module, "KEPT_EVENT_ROWS", 128)
+    capped = sd.run(scene)
+    assert any("not kept" in w for w in capped.warnings)
+    assert full.regime == capped.regime == "hopping"
+    assert capped.hop_period == full.hop_period == 1
+    # the kept lift-offs are the window's last ones: their mean phase lies within the spread of
+    # the whole window's phases (0.019), and the spreads agree
+    assert abs(capped.liftoff_phase - full.liftoff_phase) <= full.liftoff_phase_spread
+    assert capped.liftoff_phase_spread == pytest.approx(full.liftoff_phase_spread, rel=0.1)

@@ -63,7 +63,15 @@ class Window:
         when first asked for: the windows a run settles through are judged by their drift, and
         only the one it reports needs its hops."""
         if self._sync is None:
-            self._sync = hop_synchrony(self.events, self.t_start, self.periods, self.orbit_period)
+            t0, periods, events = self.t_start, self.periods, self.events
+            if self.events_shed > 0 and events.size:
+                # the log holds the window's last events only: the hops are read over the whole
+                # periods they cover (blocks from the window's start would be empty)
+                skip = int(math.ceil(events[0, 0] - t0))
+                if 0 < skip < periods:
+                    t0, periods = t0 + skip, periods - skip
+                    events = events[events[:, 0] >= t0]
+            self._sync = hop_synchrony(events, t0, periods, self.orbit_period)
         return self._sync
 
 

@@ -101,7 +101,8 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
         loose += int((open_ & ok).sum())
         ax.plot(x[ok], y[ok], "-", color="0.55", lw=1.0, zorder=1,
                 label=name if len(models) > 1 else None)
-        errors = np.array([_error(r, value) or np.nan for r in sub.to_dict(orient="records")])
+        errors = np.array([np.nan if (e := _error(r, value)) is None else e
+                           for r in sub.to_dict(orient="records")])
         for xi, yi, regime, is_open, err in zip(x[ok], y[ok], sub["regime"].to_numpy()[ok],
                                                 open_[ok], errors[ok], strict=True):
             colour = colours.get(str(regime), colours["error"])

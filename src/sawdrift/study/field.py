@@ -365,6 +365,10 @@ def _summarize(f: Field) -> str:
     if traps:
         return "collects at xi = " + ", ".join(f"{t:.4f}" for t in traps) + " (+ k/2)"
     if not f.zeros:
+        inside = np.abs(f.drift_velocity) <= _zero_band(f)
+        if np.all(inside) and f.drift_velocity_se is not None and np.isfinite(
+                f.drift_velocity_se).any():
+            return "no known direction: every drift is within two errors of zero"
         mean = float(np.mean(f.drift_velocity))
         if np.all(f.drift_velocity > 0):
             return f"goes to +x everywhere (mean V = {mean:.4g})"
