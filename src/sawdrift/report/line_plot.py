@@ -24,6 +24,7 @@ from matplotlib.ticker import EngFormatter, MaxNLocator  # noqa: E402
 
 from ..errors import SceneError  # noqa: E402
 from ..study.axes import column_label, column_unit  # noqa: E402
+from ..study.table import drift_errors  # noqa: E402
 
 #: regimes without a steady drift speed: a cell of theirs has no value to draw and did not fail
 NO_DRIFT = ("runaway", "ejected")
@@ -101,8 +102,7 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
         loose += int((open_ & ok).sum())
         ax.plot(x[ok], y[ok], "-", color="0.55", lw=1.0, zorder=1,
                 label=name if len(models) > 1 else None)
-        errors = np.array([np.nan if (e := _error(r, value)) is None else e
-                           for r in sub.to_dict(orient="records")])
+        errors = drift_errors(sub, value)
         for xi, yi, regime, is_open, err in zip(x[ok], y[ok], sub["regime"].to_numpy()[ok],
                                                 open_[ok], errors[ok], strict=True):
             colour = colours.get(str(regime), colours["error"])
@@ -177,26 +177,14 @@ def line_rows(table: pd.DataFrame, field: str, value: str | None = None) -> list
     unit = column_unit(field)
     fmt = EngFormatter(unit=unit, sep=" ") if unit and unit != "rad" else None
     lines = [f"{'model':>20} {head_x:>{width}} {head_v:>18}  regime"]
-    for data in table.sort_values(["model", field]).to_dict(orient="records"):
+    ordered = table.sort_values(["model", field])
+    for data, err in zip(ordered.to_dict(orient="records"), drift_errors(ordered, value),
+                         strict=True):
         v = pd.to_numeric(pd.Series([data.get(value)]), errors="coerce").iloc[0]
         shown = f"{v:18.6g}" if np.isfinite(v) else f"{'none':>18}"
         mark = " (not settled)" if data.get("settled") is False or data.get("settled") == 0 else ""
-        err = _error(data, value)
-        if err is not None:  # a long-time mean: drift +- its standard error
+        if np.isfinite(err):  # a long-time mean: drift +- its standard error
             mark = f" (long-time mean +- {err:.2g})"
         where = fmt(data[field]) if fmt is not None else f"{data[field]:.6g}"
         lines.append(f"{data['model']:>20} {where:>{width}} {shown}  {data['regime']}{mark}")
     return lines
-
-
-def _error(row: dict, value: str) -> float | None:
-    """The standard error of a row's ``value`` (the drift ratio or a speed scaled from it) where
-    its drift is a long-time mean (``drift_ratio_se`` finite), else None."""
-    se = pd.to_numeric(pd.Series([row.get("drift_ratio_se")]), errors="coerce").iloc[0]
-    ratio = pd.to_numeric(pd.Series([row.get("drift_ratio")]), errors="coerce").iloc[0]
-    v = pd.to_numeric(pd.Series([row.get(value)]), errors="coerce").iloc[0]
-    if not (np.isfinite(se) and np.isfinite(ratio) and np.isfinite(v)):
-        return None
-    if value == "drift_ratio":
-        return float(se)
-    return float(abs(v / ratio) * se) if ratio != 0.0 else None

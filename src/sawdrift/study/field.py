@@ -260,6 +260,8 @@ def drift_field(
 def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
             positions: np.ndarray) -> list[Field]:
     """The fields of every species from the sweep's rows, with their zeros (not yet refined)."""
+    from .table import drift_errors  # pandas, as the sweep that made the rows
+
     species = species_scenes(base, axis)
     fields = []
     for label, sp in species:
@@ -279,26 +281,13 @@ def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
                             regimes=[str(r) for r in rows["regime"]],
                             settled=[None if s is None or s != s else bool(s)
                                      for s in rows["settled"]],
-                            zeros=[], scene=sp, errors=errors, drift_velocity_se=_se(rows, v)))
+                            zeros=[], scene=sp, errors=errors,
+                            drift_velocity_se=drift_errors(rows, "drift_velocity")))
     for f in fields:
         ok = np.isfinite(f.drift_velocity)  # a failed run (its error is kept) is left out
         f.zeros = (find_zeros(f.positions[ok], f.drift_velocity[ok], _zero_band(f)[ok])
                    if ok.sum() >= 2 else [])
     return fields
-
-
-def _se(rows: Any, v: np.ndarray) -> np.ndarray:
-    """The standard error of each drift velocity that is a long-time mean: ``drift_ratio_se``
-    times |V / drift ratio| (NaN elsewhere)."""
-    import pandas as pd
-
-    if "drift_ratio_se" not in rows.columns:
-        return np.full(v.shape, np.nan)
-    se = pd.to_numeric(rows["drift_ratio_se"], errors="coerce").to_numpy(dtype=float)
-    ratio = pd.to_numeric(rows["drift_ratio"], errors="coerce").to_numpy(dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = se * np.abs(v / ratio)
-    return np.where(np.isfinite(out), out, np.nan)
 
 
 #: standard errors within which a long-time mean drift is taken as no known sign (a zero band)

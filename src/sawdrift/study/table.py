@@ -95,6 +95,23 @@ def _value(v: Any) -> Any:
     return None if isinstance(v, float) and math.isnan(v) else v
 
 
+def drift_errors(rows: pd.DataFrame, column: str) -> np.ndarray:
+    """The standard error of each row's drift ``column`` (``drift_ratio``, ``drift_velocity`` or a
+    speed in m/s) where its drift is a long-time mean: ``drift_ratio_se`` scaled by the column's
+    ratio to the drift ratio; NaN where the drift is steady or a value is missing."""
+    if "drift_ratio_se" not in rows.columns:
+        return np.full(len(rows), np.nan)
+    se = pd.to_numeric(rows["drift_ratio_se"], errors="coerce").to_numpy(dtype=float)
+    ratio = pd.to_numeric(rows["drift_ratio"], errors="coerce").to_numpy(dtype=float)
+    value = pd.to_numeric(rows[column], errors="coerce").to_numpy(dtype=float)
+    if column == "drift_ratio":
+        out = np.where(np.isfinite(ratio), se, np.nan)
+    else:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = se * np.abs(value / ratio)
+    return np.where(np.isfinite(out) & np.isfinite(value), out, np.nan)
+
+
 def to_frame(rows: Iterable[dict[str, Any]]) -> pd.DataFrame:
     """Rows as a DataFrame with the table's columns (and any swept-field columns), sorted."""
     rows = list(rows)
