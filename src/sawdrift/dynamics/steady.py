@@ -377,8 +377,8 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
     # A* = 0.188: 0.05739 after 60 periods, 0.058188 from 300 on)
     eps = relative_bound(d, tol)
     ok = (bool(values) and not chaotic and not in_flight(win)
-          and _steady_thirds(win, values, n, start, eps, tau, periods_run)
-          and (before is None or abs(before - d) <= eps))
+          and _steady_thirds(win, values, n, start, eps, tau, periods_run,
+                             None if before is None else abs(before - d)))
     # the tapered mean, which a slow beat does not leak into: where it differs from the box
     # mean by more than the tolerance, the beat is too slow for the window to settle anything
     # (mmd m* = 0.042, A* = 0.11: box 0.27496, tapered 0.26435, brute force 0.26673)
@@ -402,11 +402,12 @@ def _thirds(win: Window, speed: float) -> tuple[tuple[float, ...], int, int]:
 
 
 def _steady_thirds(win: Window, values: tuple[float, ...], n: int, start: int, tol: float,
-                   tau: float, periods_run: float) -> bool:
+                   tau: float, periods_run: float, before_gap: float | None = None) -> bool:
     """Cases 1 and 3 of :func:`assess_fixed`, with the window's consistency checks.
 
-    :func:`assess_fixed` asks the window before as well (where the run measured one): two
-    windows in a row within the bound, as the full-inertia windows are asked for. Thirds of nine
+    ``before_gap``: how far the window before (where the run measured one) is from this one, in
+    tapered drift ratio; it must be within the bound too: two windows in a row, as the
+    full-inertia windows are asked for. Thirds of nine
     periods can agree on a beat far slower than the window. On the 715 light cells of the
     default 41 x 41 mmd sweep settled by their first windows, the three settled by thirds
     outside 1e-3 relative (or 2e-5 absolute) of brute force fail it and go on: m* = 0.75,
@@ -415,6 +416,8 @@ def _steady_thirds(win: Window, values: tuple[float, ...], n: int, start: int, t
     long-time mean, 0.820 +- 0.026. So do 48 cells that were within the bound: 47 settle in
     windows, their median error against brute force 2.5e-5 -> 4.6e-7 relative.
     """
+    if before_gap is not None and before_gap > tol:
+        return False
     remaining = abs(values[2] - values[1]) * max(1.0, tau / n)
     changes = remaining <= tol and periods_run >= APPROACH_TIMES * tau
     if not (win.orbit_period > 0 or changes):
