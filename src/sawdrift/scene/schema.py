@@ -244,7 +244,8 @@ def build_scene(data: dict[str, Any], source: str | None = None) -> Scene:
 # -- the fields of a scene, by name: checks and dotted overrides -------------------------------
 
 #: tables of a scene file that another command reads, not the Scene
-_ELSEWHERE = {"particles": "a [particles] table (many spheres) is read by `sawdrift lammps` and `sawdrift sort` only"}
+_ELSEWHERE = {"particles": "a [particles] table (many spheres) is read by `sawdrift lammps` and "
+                            "`sawdrift sort` only"}
 
 
 def _models_in(annotation: Any) -> list[type[BaseModel]]:
