@@ -136,3 +136,37 @@ def test_a_heavy_bouncer_long_in_flight_reports_the_mean_after_its_approach():
     assert res.regime == ref.regime == "bouncing"
     assert abs(res.drift_ratio - ref.drift_ratio) <= 1.5e-3, (res.drift_ratio, ref.drift_ratio)
     assert res.drift_ratio_se == res.drift_ratio_se  # a long-time mean with its error
+
+
+def test_an_error_still_growing_covers_a_sixteen_thousand_period_run_from_the_same_start():
+    """mmd, m* = 4.22, A* = 5.96, mu = 0.1: a quasi-periodic heavy bouncer whose blocking error
+    still grows at the longest batches of its 532 periods. Its batch-means error over those
+    levels was +-0.00004 while the run over 16000 periods from the same start drifts 0.00018
+    higher (4.7 combined errors); followed on to its coarsest levels (the series' halves differ
+    by 2.3e-4) the error covers it within 3 combined errors, and is still flagged as a lower
+    bound."""
+    base = sd.Scene(model="mmd", particle={"m_star": 4.216965034285822}, material={"mu": 0.1},
+                    drive={"amplitude": 5.956621435290105})
+    res = sd.run(base)
+    ref = sd.run(base.with_updates(**{"numerics.mean_periods": 16000,
+                                      "numerics.settle_tolerance": 1e-9}))
+    assert res.regime == ref.regime == "bouncing"
+    assert math.isfinite(res.drift_ratio_se) and math.isfinite(ref.drift_ratio_se)
+    combined = math.hypot(res.drift_ratio_se, ref.drift_ratio_se)
+    assert abs(res.drift_ratio - ref.drift_ratio) <= 3.0 * combined, (
+        res.drift_ratio, res.drift_ratio_se, ref.drift_ratio, ref.drift_ratio_se)
+    assert any("lower bound" in w for w in res.warnings)
+
+
+def test_a_rising_blocking_curve_is_followed_to_its_halves_only_for_a_reported_error():
+    """A linear trend of 0.01 under white noise of 0.001 over 512 periods: the blocking curve
+    rises through its 16-batch levels; the reported error (``coarse``) reaches half the
+    difference of the halves' means (0.005 / 2), the test of a series keeps the finer levels."""
+    rng = np.random.default_rng(3)
+    x = np.linspace(0.0, 0.01, 512) + 0.001 * rng.standard_normal(512)
+    fine = blocking(x)
+    reported = blocking(x, coarse=True)
+    assert fine[4] and reported[4]  # rising either way
+    halves = abs(x[256:].mean() - x[:256].mean())
+    assert reported[1] >= 0.5 * halves * 0.999
+    assert fine[1] < 0.5 * reported[1]

@@ -12,8 +12,10 @@ uncorrelated. Batches are merged pairwise (Flyvbjerg-Petersen blocking) down to
 blocking curve). Correlations longer than the longest batch are not seen: for the cell above a
 budget of 2000 periods gives +- 0.085 in drift ratio, while a 22000-period run gives +- 0.107, which
 scaled back to 2000 periods would be about 0.35; the two means still agree within their errors.
-Where the blocking curve is still rising at the end (:attr:`BatchMeans.rising`) the error is a
-lower bound, and the Result says so in its warnings.
+Where the blocking curve is still rising at the end (:attr:`BatchMeans.rising`) the reported
+error follows it on to its coarsest levels, down to two batches (half the difference of the
+series' halves): noisy, but the only levels that see correlations that long. It is still a lower
+bound, and the Result says so in its warnings.
 """
 
 from __future__ import annotations
@@ -27,6 +29,10 @@ from .stepper import Stepper
 
 #: fewest batches an error is computed from
 MIN_BATCHES = 16
+
+#: fewest batches of the levels a blocking curve still rising at :data:`MIN_BATCHES` is followed
+#: on to (:func:`blocking`)
+COARSEST_BATCHES = 2
 
 #: periods per step of a long-time mean that may stop early (``target``), and its fewest periods
 CHUNK = 250
@@ -68,18 +74,28 @@ class BatchMeans:
     moving: bool = False
 
 
-def blocked_error(per_period: np.ndarray) -> tuple[float, float, int]:
-    """(mean, standard error, batches) of a series of per-period drifts by blocking (above)."""
-    mean, se, n, _, _ = blocking(per_period)
+def blocked_error(per_period: np.ndarray, coarse: bool = False) -> tuple[float, float, int]:
+    """(mean, standard error, batches) of a series of per-period drifts by blocking (above;
+    ``coarse`` as for :func:`blocking`)."""
+    mean, se, n, _, _ = blocking(per_period, coarse)
     return mean, se, n
 
 
-def blocking(per_period: np.ndarray) -> tuple[float, float, int, bool, bool]:
+def blocking(per_period: np.ndarray, coarse: bool = False
+             ) -> tuple[float, float, int, bool, bool]:
     """:func:`blocked_error`, whether the blocking curve has reached its plateau (the errors of
     the two levels of longest batches within :data:`PLATEAU` of each other), and whether it is
     still rising (each of its last three levels above the one before, the last by more than
     :data:`RISE`): an error still growing with the batch length has not seen the longest
-    correlations yet."""
+    correlations yet.
+
+    With ``coarse`` (an error to report), a curve still rising is followed on to its coarsest
+    levels, down to :data:`COARSEST_BATCHES` batches (whose error is half the difference of the
+    series' halves): noisy, but the only levels that see correlations that long, and the largest
+    error is kept. A quasi-periodic heavy bouncer (mmd m* = 4.2, A* = 5.96) gave 0.78717 +-
+    0.00004 over 532 periods against 0.78735 from 16000 periods from the same start (4.7
+    errors off); its halves differ by 2.3e-4, and it reports +- 0.00012. The tests of a series
+    (:func:`still_moving`, the early stop) keep the levels of at least :data:`MIN_BATCHES`."""
     x = np.asarray(per_period, dtype=float)
     mean = float(x.mean())
     best_se, best_n = 0.0, x.size
@@ -94,6 +110,16 @@ def blocking(per_period: np.ndarray) -> tuple[float, float, int, bool, bool]:
         level = 0.5 * (level[: n // 2 * 2 : 2] + level[1 : n // 2 * 2 : 2])
     flat = len(errors) >= 2 and abs(errors[-1] - errors[-2]) <= PLATEAU * max(errors[-2], 1e-300)
     rising = (len(errors) >= 3 and errors[-1] > RISE * errors[-2] and errors[-2] > errors[-3])
+    if rising and coarse:
+        # correlations as long as the longest batches remain: the curve is followed on to its
+        # coarsest levels (down to two batches, whose error is half the difference of the
+        # series' halves), noisy but the only ones that see them, and the largest error is kept
+        while level.size >= COARSEST_BATCHES:
+            n = level.size
+            se = float(level.std(ddof=1) / math.sqrt(n))
+            if se >= best_se:
+                best_se, best_n = se, n
+            level = 0.5 * (level[: n // 2 * 2 : 2] + level[1 : n // 2 * 2 : 2])
     return mean, best_se, best_n, flat, rising
 
 
@@ -137,7 +163,7 @@ def long_time_mean(stepper: Stepper, window, periods: int,
         per_period = _advance_mean(stepper, [per_period[per_period.size // 2:]], 0, periods,
                                    target)
         extensions += 1
-    mean, se, n, _, rising = blocking(per_period)
+    mean, se, n, _, rising = blocking(per_period, coarse=True)
     return BatchMeans(mean, se, n, int(per_period.size), rising,
                       moving=extensions == MAX_EXTENSIONS and still_moving(per_period, target))
 

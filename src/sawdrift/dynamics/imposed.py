@@ -216,7 +216,7 @@ def imposed_drift(stepper: Stepper, scene, speed: float) -> BatchMeans | None:
         return None
     root, slope = found
     per_period = rec.friction(root * speed).reshape(-1, rec.k).mean(axis=1)
-    _mean, se_force, batches = blocked_error(per_period)
+    _mean, se_force, batches = blocked_error(per_period, coarse=True)
     se = se_force / abs(slope) if slope != 0.0 else float("inf")
     return BatchMeans(root * speed, se * speed, batches, int(per_period.size))
 
