@@ -170,3 +170,35 @@ def test_a_rising_blocking_curve_is_followed_to_its_halves_only_for_a_reported_e
     halves = abs(x[256:].mean() - x[:256].mean())
     assert reported[1] >= 0.5 * halves * 0.999
     assert fine[1] < 0.5 * reported[1]
+
+
+def test_a_bouncer_gaining_energy_is_told_from_a_stationary_one():
+    """heats_up: correlated noise (AR(1), phi = 0.9, standard deviation 23) about a constant
+    energy of 100 over 500 periods is not heating in 50 seeds; the same noise on an energy
+    rising from 100 to 250 over the run is, in every seed (a heating bouncer's tripled)."""
+    from sawdrift.dynamics.batch_means import heats_up
+
+    t = np.arange(500)
+    heating = 0
+    for seed in range(50):
+        noise = 10.0 * ar1(t.size, 0.9, seed)
+        assert heats_up(100.0 + noise) is None
+        heating += heats_up(100.0 + 0.3 * t + noise) is not None
+    assert heating == 50
+    assert heats_up(np.linspace(0.0, 1.0, 20)) is None  # too short to tell
+
+
+def test_an_undamped_bouncer_heating_up_says_so_and_a_damped_one_does_not():
+    """mmd, m* = 0.1, A* = 1, mu = 0.1: the Hertz contact without normal damping gives the
+    vertical motion back at every impact, and the bounces grow (their energy, as a height, from
+    54 to 168 a0 between the halves of the 500-period mean; 217 to 10358 a0 over the last
+    quarters of 500 to 32000 periods): the Result says its mean depends on how long it is run.
+    hertz_tsuji, with normal damping, stays bounded on the same cell (within 11.2 a0)."""
+    base = {"particle": {"m_star": 0.1}, "material": {"mu": 0.1}, "drive": {"amplitude": 1.0}}
+    undamped = sd.run(sd.Scene(model="mmd", **base))
+    assert math.isfinite(undamped.drift_ratio_se)
+    heating = [w for w in undamped.warnings if "heat up" in w]
+    assert len(heating) == 1 and "depends on how long it is run" in heating[0]
+    damped = sd.run(sd.Scene(model="hertz_tsuji", **base))
+    assert math.isfinite(damped.drift_ratio_se)  # a long-time mean too
+    assert not any("heat up" in w for w in damped.warnings), damped.warnings

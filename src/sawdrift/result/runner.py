@@ -156,8 +156,8 @@ def _reported_drift(out: WaveRun, drift_ratio: float,
 
 
 def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
-    """A device scene's validity warnings, a long-time mean's whose error is a lower bound, and
-    a measuring window too long for all its events to be kept."""
+    """A device scene's validity warnings, a long-time mean's whose error is a lower bound or
+    whose bounces heat up, and a measuring window too long for all its events to be kept."""
     warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
     if out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
         warnings += ("not settled: the mean drift was still moving over its last "
@@ -168,6 +168,13 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
         warnings += (f"long-time mean: its batch-means error still grew with the batch length "
                      f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
                      f"(correlations longer than the run)",)
+    if out.long_mean is not None and out.long_mean.heating is not None:
+        low, high = out.long_mean.heating
+        warnings += (f"long-time mean: the bounces heat up (the vertical energy, as a height, "
+                     f"rose from {low:.3g} to {high:.3g} between the two halves of the mean, "
+                     f"more than {HALVES_Z:g} errors): a motion still gaining energy has no "
+                     "steady drift yet, and its mean depends on how long it is run "
+                     "(numerics.mean_periods)",)
     shed = out.window.events_shed
     if shed > 0:
         warnings += (f"the measuring window's first {shed} events (lift-offs, landings, slip "
