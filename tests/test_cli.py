@@ -66,6 +66,19 @@ def test_an_unsettled_run_says_so_on_stderr():
         assert re.search(r"settled\s+yes", settled.stdout) and settled.stderr.strip() == "", flag
 
 
+def test_a_heating_bouncer_is_not_told_that_a_longer_mean_tightens_its_error():
+    """mmd m* = 0.1, A* = 1 bounces chaotically and heats up (its warnings say so): its note says
+    a longer run gives another mean; mmd m* = 0.1, A* = 0.631, chaotic without heating, keeps
+    the note that --mean-periods tightens the error."""
+    heating = cli("run", "--model", "mmd", "--m-star", "0.1", "--amplitude", "1", check=True)
+    notes = heating.stderr.strip().splitlines()
+    assert len(notes) == 1 and "heat up" in notes[0] and "tighter" not in notes[0], notes
+    assert "heat up" in heating.stdout  # the warning itself, with the numbers
+    steady = cli("run", "--model", "mmd", "--m-star", "0.1", "--amplitude", "0.631", check=True)
+    notes = steady.stderr.strip().splitlines()
+    assert len(notes) == 1 and "--mean-periods for a tighter error" in notes[0], notes
+
+
 def test_run_writes_parquet_and_png(tmp_path):
     # a fixed run (the default would go on to the hop's periodic orbit, past the 10 periods)
     cli("run", "--model", "material_point", "--periods", "10", "--no-settle", "-o", str(tmp_path),

@@ -242,6 +242,10 @@ def _unsettled_note(summary: dict[str, Any], tau: float) -> str:
         return f"note: {unsettled_text(summary, 'no drift speed')}; a longer run would not settle it"
     se = summary.get("drift_ratio_se")
     if isinstance(se, float) and math.isfinite(se):
+        if any("heat up" in w for w in summary.get("warnings") or ()):
+            # a longer mean is another mean, not a tighter one (the warnings say why)
+            return ("note: the motion is irregular and its bounces heat up: the drift is its "
+                    "long-time mean over --mean-periods, and a longer run gives another")
         return ("note: the motion is irregular: the drift is its long-time mean with its "
                 "standard error, not a steady value; --mean-periods for a tighter error")
     if summary.get("chaotic"):
