@@ -312,7 +312,7 @@ def _cell_columns(panel: Panel, xa: Axis, ya: Axis, scale: np.ndarray | None) ->
         "version": r["version"].astype(str).to_numpy() if "version" in r.columns else blank,
         "error": r["error"].fillna("").astype(str).to_numpy() if "error" in r.columns else blank,
         "cell_id": r["cell_id"].astype(str).to_numpy(),
-        "se_text": error_text(num("drift_ratio_se")),
+        "se_text": error_text(num("drift_ratio_se"), heating_cells(r)),
     }
     if scale is not None:
         cols["speed"] = (num("drift_velocity") * scale).astype(np.float32)
@@ -320,10 +320,23 @@ def _cell_columns(panel: Panel, xa: Axis, ya: Axis, scale: np.ndarray | None) ->
     return cols
 
 
-def error_text(se: np.ndarray) -> np.ndarray:
+def error_text(se: np.ndarray, heating: np.ndarray | None = None) -> np.ndarray:
     """The tooltip's "+- error" beside a long-time mean's drift ratio (its batch-means standard
-    error); empty where the drift is not a long-time mean."""
-    return np.array([f"+- {float(v):.2g} (long-time mean)" if np.isfinite(v) else "" for v in se])
+    error), and where the bounces heat up (``heating``) that the mean depends on the run's
+    length; empty where the drift is not a long-time mean."""
+    heating = np.zeros(len(se), dtype=bool) if heating is None else heating
+    return np.array([
+        "" if not np.isfinite(v) else f"+- {float(v):.2g} (long-time mean"
+        + (", heating up: it depends on the run's length)" if hot else ")")
+        for v, hot in zip(se, heating, strict=True)])
+
+
+def heating_cells(rows: pd.DataFrame) -> np.ndarray:
+    """Whether each row's warnings say its bounces heat up (a long-time mean that depends on
+    how long it was run)."""
+    if "warnings" not in rows.columns:
+        return np.zeros(len(rows), dtype=bool)
+    return rows["warnings"].fillna("").astype(str).str.contains("heat up").to_numpy(bool)
 
 
 def lyapunov_text(rows: pd.DataFrame) -> np.ndarray:
