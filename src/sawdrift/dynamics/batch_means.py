@@ -102,29 +102,30 @@ def blocking(per_period: np.ndarray, coarse: bool = False
     (:func:`still_moving`, the early stop) keep the levels of at least :data:`MIN_BATCHES`."""
     x = np.asarray(per_period, dtype=float)
     mean = float(x.mean())
-    best_se, best_n = 0.0, x.size
-    level = x
-    errors = []
-    while level.size >= MIN_BATCHES:
-        n = level.size
-        se = float(level.std(ddof=1) / math.sqrt(n))
-        errors.append(se)
-        if se >= best_se:
-            best_se, best_n = se, n
-        level = 0.5 * (level[: n // 2 * 2 : 2] + level[1 : n // 2 * 2 : 2])
+    levels = _levels(x, COARSEST_BATCHES if coarse else MIN_BATCHES)
+    errors = [se for n, se in levels if n >= MIN_BATCHES]
     flat = len(errors) >= 2 and abs(errors[-1] - errors[-2]) <= PLATEAU * max(errors[-2], 1e-300)
     rising = (len(errors) >= 3 and errors[-1] > RISE * errors[-2] and errors[-2] > errors[-3])
-    if rising and coarse:
-        # correlations as long as the longest batches remain: the curve is followed on to its
-        # coarsest levels (down to two batches, whose error is half the difference of the
-        # series' halves), noisy but the only ones that see them, and the largest error is kept
-        while level.size >= COARSEST_BATCHES:
-            n = level.size
-            se = float(level.std(ddof=1) / math.sqrt(n))
-            if se >= best_se:
-                best_se, best_n = se, n
-            level = 0.5 * (level[: n // 2 * 2 : 2] + level[1 : n // 2 * 2 : 2])
+    # a curve still rising has correlations as long as its longest batches left: the levels
+    # beyond (coarse), noisy but the only ones that see them, count then
+    kept = levels if rising else [lv for lv in levels if lv[0] >= MIN_BATCHES]
+    best_n, best_se = x.size, 0.0
+    for n, se in kept:
+        if se >= best_se:
+            best_n, best_se = n, se
     return mean, best_se, best_n, flat, rising
+
+
+def _levels(x: np.ndarray, fewest: int) -> list[tuple[int, float]]:
+    """(batches, standard error of the mean) of each blocking level of ``x``, batches merged
+    pairwise, down to ``fewest`` batches."""
+    out = []
+    level = x
+    while level.size >= fewest:
+        n = level.size
+        out.append((n, float(level.std(ddof=1) / math.sqrt(n))))
+        level = 0.5 * (level[: n // 2 * 2 : 2] + level[1 : n // 2 * 2 : 2])
+    return out
 
 
 def long_time_mean(stepper: Stepper, window, periods: int,
