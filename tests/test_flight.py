@@ -105,3 +105,26 @@ def test_a_snapshot_taken_in_flight_goes_on_bit_for_bit():
     a.advance(5 * a.k_per)
     b.advance(5 * b.k_per)
     assert a.y.tobytes() == b.y.tobytes()
+
+
+def test_a_speed_moved_in_flight_holds():
+    """mmd m* = 31.6, A* = 0.891 is in a flight taken in closed form at the end of period 20.
+    Moving its horizontal speed there by 2 (a full-inertia jump, the speed of a drift solved
+    directly, an irregular bouncer's mean) must move the flight's parabola too: its anchor was
+    taken before the move, and the closed form went on at the old speed (x*' 0.0383 a period
+    later instead of 2.0383). A period later the speed is the moved one within what friction
+    can change in a period (mu / m* = 0.003), the position moved by it, and both are the same
+    as for a twin moved in the same way (whose flight counts afresh, as any displaced twin's)."""
+    from sawdrift.dynamics.full_inertia import shift_speed
+
+    st = _stepper(31.6, 0.891)
+    st.advance(20 * st.k_per)
+    assert st.st[ev.S_FLY] >= 8  # in a closed-form flight
+    x0, v0 = float(st.y[0]), float(st.y[1])
+    twin = st.twin(np.zeros(1))  # displaced by nothing: counts its flight afresh
+    shift_speed(st, 2.0)
+    shift_speed(twin, 2.0)
+    end = st.advance_periods(1)[0]
+    assert abs(end[1] - (v0 + 2.0)) < 0.01, (v0, end[1])
+    assert abs(end[0] - (x0 + v0 + 2.0)) < 0.01, (x0, v0, end[0])
+    np.testing.assert_allclose(twin.advance_periods(1)[0], end, rtol=1e-12, atol=1e-12)

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .evidence import EV_LANDING, EV_LIFT_OFF
+from .evidence import EV_LANDING, EV_LIFT_OFF, S_FLY
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
 
@@ -231,10 +231,17 @@ def tapered_drift_ratio(win: Window, speed: float) -> float:
 
 
 def shift_speed(stepper: Stepper, dv: float) -> None:
-    """Move the particle's horizontal velocity by ``dv`` (and its Adams-Bashforth history of x*')."""
+    """Move the particle's horizontal velocity by ``dv`` (and its Adams-Bashforth history of x*').
+
+    A flight taken in closed form (:mod:`.flight`) goes on from its anchor, a state taken before
+    the move: its count starts afresh (the scheme's next steps, exact on a parabola, then anchor
+    it on the moved state), or the move would be lost until the landing and past it (mmd m* =
+    31.6, A* = 0.891 moved by 2 in flight: x*' 0.0383 a period later, not 2.0383).
+    """
     stepper.y[1] += dv
     if not stepper.rigid:
         stepper.fh[:, 0] += dv
+        stepper.st[S_FLY] = 0.0
 
 
 def longest_flight(win: Window) -> float:

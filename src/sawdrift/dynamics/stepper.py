@@ -362,6 +362,7 @@ class Stepper:
         self.y[1] += (after[1] - before[1]) * share
         self.y[2] += after[2] - before[2]
         self.y[3] += after[3] - before[3]
+        self.st[ev.S_FLY] = 0.0  # off the parabola of a flight in closed form: it counts afresh
 
     def save(self) -> StepperState:
         """A snapshot of the integration (copies): :meth:`restore` on a stepper of the same scene
