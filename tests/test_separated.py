@@ -198,6 +198,24 @@ def test_an_irregular_heavy_bouncer_reports_a_long_time_mean_at_an_imposed_speed
     assert res.settle_periods < 5000  # the brute force needed 5e5
 
 
+def test_an_irregular_heavy_bouncer_measures_its_evidence_on_its_own_record():
+    """mmd m* = 17.8, A* = 0.891 bounces irregularly: its record's first 100 periods give the
+    zero the secants start from, and the remaining 400, run at that speed, are its evidence
+    window too (545 periods in all; a separate 400-period window after the record made 945).
+    A run recording its trajectory measures its window after the record, as before: the same
+    drift to 1e-12, the same regime and error, lift-offs within 0.05 a period (another stretch
+    of the same motion)."""
+    sc = scene(17.7827941, 0.891250938, 0.1)
+    res = sd.run(sc)
+    rows = sd.run(sc, trajectory=True)
+    assert res.settle_method == rows.settle_method == "imposed_speed"
+    assert res.periods < 600 and rows.periods > res.periods + 350, (res.periods, rows.periods)
+    assert abs(res.drift_ratio - rows.drift_ratio) <= 1e-12
+    assert res.drift_ratio_se == pytest.approx(rows.drift_ratio_se, rel=1e-9)
+    assert res.regime == rows.regime == "bouncing"
+    assert abs(res.liftoffs_per_period - rows.liftoffs_per_period) <= 0.05
+
+
 @pytest.mark.parametrize("model", ["mmd", "jaeger", "hertz_mindlin_dem", "mdr"])
 def test_the_imposed_friction_skips_flights_without_changing_a_bit(model):
     """A heavy bouncer (m* = 300, A* = 6) spends most of its record in flight, where a law that
@@ -208,7 +226,7 @@ def test_the_imposed_friction_skips_flights_without_changing_a_bit(model):
 
     sc = scene(300.0, 6.0, 0.1, model)
     st, _speed, _ = stepper_after_ramp(sc)
-    rec = imposed._Record(st, 160)
+    rec = imposed._Record(st, imposed.record_columns(st, 160))
     kept = rec.keep
     assert kept.size < 0.5 * rec.a.size
     every = np.arange(rec.a.size)

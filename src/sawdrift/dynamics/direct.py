@@ -125,14 +125,16 @@ def irregular_mean(stepper: Stepper, scene, speed: float, scale: np.ndarray,
                    minimum_window: int, start: int) -> tuple[Window, Settling] | None:
     """The long-time mean drift of an irregular heavy bouncer (:func:`~.imposed.imposed_drift`)
     and a window at that speed for the regime's evidence; not settled (a mean with an error)."""
-    mean = imposed_drift(stepper, scene, speed)
-    if mean is None:
-        return None
-    shift_speed(stepper, mean.mean - stepper.y[1])
     # long enough to hold several of a bouncer's flights (a window of 60 periods can be one)
     evidence = max(minimum_window, EVIDENCE_PERIODS)
-    win = measure_window(stepper, evidence, speed, scale)
-    info = Settling(False, "imposed_speed", scene.particle.m_star, evidence,
+    mean, win = imposed_drift(stepper, scene, speed, scale, evidence)
+    if mean is None:
+        return None
+    if win is None:
+        # the record could not be its own evidence: a window at the mean's speed
+        shift_speed(stepper, mean.mean - stepper.y[1])
+        win = measure_window(stepper, evidence, speed, scale)
+    info = Settling(False, "imposed_speed", scene.particle.m_star, win.periods,
                     (stepper.step - start) / stepper.k_per, math.nan, (mean.mean / speed,),
                     long_mean=mean)
     return win, info

@@ -9,6 +9,7 @@ largest Lyapunov exponent from a copy of the window's start, for runs that lost 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -200,7 +201,8 @@ def hop_synchrony(events: np.ndarray, t_start: float, periods: int, orbit: int) 
     return sync
 
 
-def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarray) -> Window:
+def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarray,
+                   advance: Callable[[int], np.ndarray] | None = None) -> Window:
     """Advance ``periods`` whole periods as the measurement window and read its evidence.
 
     Parameters
@@ -213,13 +215,17 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
         Horizontal surface speed amplitude 2 pi r A* (the drift ratio's scale; 0: ratio 0).
     scale
         :func:`state_scale` of the scene, for the stroboscopic evidence and the twin's distance.
+    advance
+        How the window's periods are run: the state (x*, x*', y*, y*') at the end of each, as
+        :meth:`~.stepper.Stepper.advance_periods` (the default) gives it; one that also keeps
+        every step's row (an irregular heavy bouncer's record, :mod:`.imposed`).
     """
     ev.open_window(stepper.st)
     stepper.keep_events = True
     t_start = stepper.step * stepper.h
     snapshot = stepper.twin()
     x0, psi0 = stepper.y[0], stepper.y[4]
-    samples = stepper.advance_periods(periods)
+    samples = (stepper.advance_periods if advance is None else advance)(periods)
     positions = np.concatenate(([x0], samples[:, 0]))
     if stepper.resist:
         spin = (stepper.y[4] - psi0) / periods
