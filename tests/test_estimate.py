@@ -25,8 +25,14 @@ def test_a_run_of_1e14_steps_is_refused_with_its_estimate(monkeypatch, capsys):
 
 
 def test_a_million_cell_sweep_is_refused_before_its_grid_is_built(monkeypatch, capsys, tmp_path):
+    """The default 1000 x 1000 mmd sweep is estimated at about an hour on the 2-core machine (1 to
+    1.3 h, with the calibration's rate): the bound is set to ten minutes here, so that a fast
+    spell of the machine cannot start a million cells (it once did: 9 GB in each worker)."""
     import time
 
+    from sawdrift.study import estimate
+
+    monkeypatch.setattr(estimate, "MAX_SECONDS", 600.0)
     out = tmp_path / "t.parquet"
     t0 = time.perf_counter()
     code, _, err = call(monkeypatch, capsys, "sweep", "--model", "mmd", "--m-star", "1e-3:1e2:1000",

@@ -396,6 +396,7 @@ class Stepper:
         scheme keeps m* (its relaxation is already short); a no-op there."""
         if not self.rigid:
             self.prm[ig.P_MX] = m_x
+            self.st[ev.S_FLY] = 0.0  # a flight in closed form has its old x*'' since its anchor
 
     def surface(self) -> tuple[float, float, float, float]:
         """(u_x, u_x', u_y, u_y') of the drive now, at the particle's position."""

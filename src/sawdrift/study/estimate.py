@@ -183,8 +183,10 @@ def estimate(what: str, scenes: list[Scene], cells: int, workers: int = 1,
     return Estimate(what, cells, mean * n, most * n, rate, workers, unit, overhead * runs_per_cell)
 
 
-def check(est: Estimate, yes: bool, bound: float = MAX_SECONDS, smaller: str = "") -> None:
-    """Refuse (one line, SceneError) an estimate above ``bound`` seconds unless ``yes``."""
+def check(est: Estimate, yes: bool, bound: float | None = None, smaller: str = "") -> None:
+    """Refuse (one line, SceneError) an estimate above ``bound`` seconds (by default
+    :data:`MAX_SECONDS`, read when called) unless ``yes``."""
+    bound = MAX_SECONDS if bound is None else bound
     if yes or est.seconds <= bound:
         return
     hint = f"; or {smaller}" if smaller else ""
