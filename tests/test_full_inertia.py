@@ -8,6 +8,7 @@ against 0.128047 (sliding, m* = 100): both fail these tests.
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 import sawdrift as sd
@@ -283,3 +284,30 @@ def test_a_run_recording_its_trajectory_reaches_the_same_verdict():
     plain, traced = sd.run(scene_), sd.run(scene_, trajectory=True)
     assert plain.settle_method == traced.settle_method == "fixed_then_windows"
     assert traced.drift_ratio == plain.drift_ratio and traced.periods == plain.periods
+
+
+def test_a_rigid_point_moved_against_its_slip_slides_back_at_the_friction_rate():
+    """material_point m* = 1, A* = 0.02, mu = 0.1 slips forward on the surface; its speed moved by
+    -1 (a full-inertia jump) reverses the slip. The rigid scheme slipped on in the old direction,
+    met the zero of its relative velocity at once and snapped back to the surface (-0.054 a
+    period later); it must slide back at mu g / m* = 0.1 a period, as it does after a move of +1
+    (both within 1e-3 of -0.95 and 0.85 a period later)."""
+    from sawdrift.contact.binding import bind, model_for
+    from sawdrift.dynamics.assembly import assemble
+    from sawdrift.dynamics.full_inertia import shift_speed
+    from sawdrift.dynamics.stepper import Stepper
+
+    scene = bind(sd.Scene(model="material_point", particle={"m_star": 1.0},
+                          material={"mu": 0.1}, drive={"amplitude": 0.02},
+                          numerics={"settle": False}))
+    model = model_for(scene)
+    st = Stepper(scene, model, assemble(scene, "compiled", model), False, event_periods=27)
+    st.warm_up()
+    st.advance(40 * st.k_per)
+    v0 = float(st.advance_periods(1)[0, 1])
+    for dv in (1.0, -1.0):
+        twin = st.twin()
+        shift_speed(twin, dv)
+        v = twin.advance_periods(3)[:, 1]
+        expected = v0 + dv - np.sign(dv) * 0.1 * np.arange(1, 4)
+        np.testing.assert_allclose(v, expected, atol=1e-3)

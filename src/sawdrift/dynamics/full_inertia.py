@@ -46,6 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .adams_bashforth import P_FRICTION
 from .evidence import EV_LANDING, EV_LIFT_OFF, S_FLY
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
@@ -239,9 +240,27 @@ def shift_speed(stepper: Stepper, dv: float) -> None:
     31.6, A* = 0.891 moved by 2 in flight: x*' 0.0383 a period later, not 2.0383).
     """
     stepper.y[1] += dv
-    if not stepper.rigid:
+    if stepper.rigid:
+        _slip_after_move(stepper)
+    else:
         stepper.fh[:, 0] += dv
         stepper.st[S_FLY] = 0.0
+
+
+def _slip_after_move(stepper: Stepper) -> None:
+    """The rigid scheme's contact mode after a move of the speed: a point on the surface with
+    friction slips in the direction of its new velocity relative to the surface. Its stick, or
+    its slip's search for the zero of that velocity (which the move may have crossed), would
+    otherwise take the move back within the step: material_point m* = 1, A* = 0.02 moved by -1
+    while slipping forward was back at -0.054 a period later, not at -0.95 (mu / m* = 0.1 a
+    period)."""
+    ctr = stepper.ctr
+    if ctr[1] == 1 or not stepper.prm[P_FRICTION] > 0.0:
+        return  # in flight, or no friction: nothing to stick or slip
+    s = float(stepper.y[1] - stepper.surface()[1])
+    if s != 0.0:
+        ctr[3] = 0  # slipping, with sgn(s)
+        ctr[4] = 1 if s > 0.0 else -1
 
 
 def longest_flight(win: Window) -> float:
