@@ -20,7 +20,9 @@ Two kinds of approach remain, told apart by the window's gross slip:
   mean velocity is a slow variable: it relaxes as v* + c exp(-lambda t) with lambda = mu F'/m*
   (F' the slope of the force-velocity curve at its zero). lambda is known from the first stage
   (its relaxation rate there, times m*_x / m*), and corrected after each jump by the secant of
-  the change per window against the window mean (:func:`learned_ratio`). From two consecutive
+  the change per window against the window mean (:func:`learned_ratio`), within a factor of
+  four of the predicted rate either way (the secant of an irregular bouncer's scattered window
+  means is noise: a ratio near one from it threw mmd m* = 1, A* = 10 by 0.65 in drift ratio). From two consecutive
   window means D1, D2 the
   distance still to go is (D2 - D1) q / (1 - q) with q = exp(-lambda W) (Aitken's extrapolation
   with a known ratio); when it exceeds the tolerance the particle's velocity is moved by it
@@ -302,6 +304,8 @@ class _Approach:
     jumps: int = 0
     #: the drift ratio solved directly that the windows confirm (None: windows alone decide)
     expected: float | None = None
+    #: the relaxation rate predicted before any jump (per period)
+    rate: float = 0.0
 
     def restart(self, longer: bool) -> None:
         """Compare afresh from the next window (after a jump, or in windows twice as long)."""
@@ -318,7 +322,11 @@ class _Approach:
             return "next", 0.0
         change = d - self.prev
         if self.before is not None:
-            self.q = learned_ratio(self.before, (d, change), self.q)
+            # the secant across a jump corrects the predicted rate by up to a factor of four
+            # either way (a noisy secant of an irregular bouncer's windows is no rate)
+            q0 = math.exp(-self.rate * self.w)
+            self.q = min(max(learned_ratio(self.before, (d, change), self.q), q0 ** 4.0),
+                         q0 ** 0.25)
             self.before = None
         slow = win.contact_lost or win.gross_slip_fraction >= SLIDING_FRACTION
         last = self.last_change
@@ -380,7 +388,7 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         # flights of many periods (a heavy point thrown by one impact): windows of three of them
         w = max(w, int(math.ceil(3.0 * longest_flight(last))))
     state = _Approach(w=w, q=math.exp(-lam * w), tol=scene.numerics.settle_tolerance, w0=w,
-                      expected=expected)
+                      expected=expected, rate=lam)
     start = stepper.step
     # the stage may outlast the first stage's cap by MIN_WINDOWS windows
     max_steps = max(max_steps, start + MIN_WINDOWS * w * stepper.k_per)
