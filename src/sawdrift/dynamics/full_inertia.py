@@ -22,12 +22,12 @@ Two kinds of approach remain, told apart by the window's gross slip:
   (its relaxation rate there, times m*_x / m*), and corrected after each jump by the secant of
   the change per window against the window mean (:func:`learned_ratio`), within a factor of
   four of the predicted rate either way (the secant of an irregular bouncer's scattered window
-  means is noise: a ratio near one from it threw mmd m* = 1, A* = 10 by 0.65 in drift ratio). From two consecutive
-  window means D1, D2 the
-  distance still to go is (D2 - D1) q / (1 - q) with q = exp(-lambda W) (Aitken's extrapolation
-  with a known ratio); when it exceeds the tolerance the particle's velocity is moved by it
-  (projective integration: only the mean speed jumps; the vertical motion and the contact memory
-  are kept, and re-adapt within a few periods, far less than W).
+  means is noise: a ratio near one from it threw mmd m* = 1, A* = 10 by 0.65 in drift ratio).
+  From two consecutive window means D1, D2 the distance still to go is (D2 - D1) q / (1 - q)
+  with q = exp(-lambda W) (Aitken's extrapolation with a known ratio); when it exceeds the
+  tolerance the particle's velocity is moved by it (projective integration: only the mean speed
+  jumps; the vertical motion and the contact memory are kept, and re-adapt within a few
+  periods, far less than W).
 * **A partly stuck contact** (creep). The mean velocity is held by the tangential contact
   stiffness; the relaxation is the damped contact oscillation, a few of its periods, so the
   windows converge by themselves. No jump is made.
