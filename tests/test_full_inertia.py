@@ -330,3 +330,29 @@ def test_an_irregular_bouncer_is_not_thrown_by_a_noisy_secant(m_star, amplitude)
     assert res.regime == brute.regime == "bouncing"
     assert res.settled, (res.drift_ratio, res.drift_ratio_se, res.warnings)
     assert abs(res.drift_ratio - brute.drift_ratio) <= 1e-3 * abs(brute.drift_ratio)
+
+
+def test_a_rolling_sphere_moved_against_its_contact_point_slip_keeps_the_move():
+    """material_point with rotation (a sphere rolling from rest, its contact point at 3.5 x*),
+    m* = 1, A* = 0.02, stuck at the end of a step; its centre's speed moved by -0.04 turns the
+    contact point's slip backwards (s*' - u_x' = -0.14) while the centre's own speed relative
+    to the surface stays positive. The slip direction is the contact point's: taken from the
+    centre, the slip met its zero at once and the point snapped back to the surface (x*'
+    -0.0234 three steps later); it must keep the move, within 0.005 of -0.0635."""
+    from sawdrift.contact.binding import bind, model_for
+    from sawdrift.dynamics.assembly import assemble
+    from sawdrift.dynamics.full_inertia import shift_speed
+    from sawdrift.dynamics.stepper import Stepper
+
+    scene = bind(sd.Scene(model="material_point", particle={"m_star": 1.0},
+                          material={"mu": 0.1}, drive={"amplitude": 0.02},
+                          effects={"rotation": True}, numerics={"settle": False}))
+    model = model_for(scene)
+    st = Stepper(scene, model, assemble(scene, "compiled", model), False, event_periods=27)
+    st.warm_up()
+    st.advance(40 * st.k_per + 3)
+    assert st.ctr[3] == 1  # stuck
+    v_moved = float(st.y[1]) - 0.04
+    shift_speed(st, -0.04)
+    st.advance(3)
+    assert abs(st.y[1] - v_moved) < 0.005, (v_moved, st.y[1])

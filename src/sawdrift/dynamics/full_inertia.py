@@ -48,8 +48,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .adams_bashforth import P_FRICTION
+from .adams_bashforth import P_FRICTION, P_LOAD, P_M, P_ROLL
 from .evidence import EV_LANDING, EV_LIFT_OFF, S_FLY
+from .rolling import contact_point, integrates_psi
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
 
@@ -256,10 +257,14 @@ def _slip_after_move(stepper: Stepper) -> None:
     otherwise take the move back within the step: material_point m* = 1, A* = 0.02 moved by -1
     while slipping forward was back at -0.054 a period later, not at -0.95 (mu / m* = 0.1 a
     period)."""
-    ctr = stepper.ctr
-    if ctr[1] == 1 or not stepper.prm[P_FRICTION] > 0.0:
+    ctr, prm, y = stepper.ctr, stepper.prm, stepper.y
+    if ctr[1] == 1 or not prm[P_FRICTION] > 0.0:
         return  # in flight, or no friction: nothing to stick or slip
-    s = float(stepper.y[1] - stepper.surface()[1])
+    # what slips is the contact point: the centre's speed, c x*' for a sphere rolling from rest,
+    # or x*' + psi' where psi is integrated (as the rigid loop takes its step)
+    roll = float(prm[P_ROLL])
+    turning = integrates_psi.py_func(roll, 0.0, prm[P_LOAD] / prm[P_M], y)
+    s = float(contact_point.py_func(y, roll, turning)[1] - stepper.surface()[1])
     if s != 0.0:
         ctr[3] = 0  # slipping, with sgn(s)
         ctr[4] = 1 if s > 0.0 else -1
