@@ -84,7 +84,7 @@ def test_a_wandering_run_counts_its_windows_in_its_long_time_mean():
         start = stepper.step
         out = original(stepper, window, periods, target, series)
         advanced.append(((stepper.step - start) / stepper.k_per, out,
-                         sum(s.size for s in series or []), window.periods))
+                         sum(s.shape[0] for s in series or []), window.periods))
         return out
 
     import sawdrift.dynamics.integrate as ig
@@ -209,3 +209,26 @@ def test_an_undamped_bouncer_heating_up_says_so_and_a_damped_one_does_not():
     damped = sd.run(sd.Scene(model="hertz_tsuji", **base))
     assert math.isfinite(damped.drift_ratio_se)  # a long-time mean too
     assert not any("heat up" in w for w in damped.warnings), damped.warnings
+
+
+def test_heating_is_judged_over_the_same_periods_as_the_mean():
+    """A run that went through windows before its long-time mean counts their periods in the
+    mean (nine 60-period windows of mmd m* = 0.1, A* = 1: 480 periods beyond the last window
+    count against the budget of 500, so only 20 are run after them). The test of heating must
+    see the windows' periods too: it saw only the 20 run after them, too few to tell, and said
+    nothing of a bouncer whose energy nearly quadrupled over the mean (47 to 182)."""
+    from sawdrift.dynamics.batch_means import long_time_mean, period_rows
+    from sawdrift.dynamics.window import measure_window
+    from tests.test_separated import scene, stepper_after_ramp
+
+    st, speed, scale = stepper_after_ramp(scene(0.1, 1.0, 0.1))
+    series = []
+    for _ in range(9):
+        win = measure_window(st, 60, speed, scale)
+        series.append(period_rows(win, st))
+    alone = long_time_mean(st.twin(), win, 500)
+    after = long_time_mean(st.twin(), win, 500, series=series)
+    assert after.periods == 560  # the windows' 540 periods and 20 more
+    assert alone.heating is not None and after.heating is not None, (alone, after)
+    low, high = after.heating
+    assert high > 1.2 * low > 0.0

@@ -68,13 +68,14 @@ def test_an_unsettled_run_says_so_on_stderr():
 
 def test_a_heating_bouncer_is_not_told_that_a_longer_mean_tightens_its_error():
     """mmd m* = 0.1, A* = 1 bounces chaotically and heats up (its warnings say so): its note says
-    a longer run gives another mean; mmd m* = 0.1, A* = 0.631, chaotic without heating, keeps
-    the note that --mean-periods tightens the error."""
+    a longer run gives another mean; mmd m* = 5.62, A* = 0.891, an irregular heavy bouncer whose
+    energy does not grow, keeps the note that --mean-periods tightens the error."""
     heating = cli("run", "--model", "mmd", "--m-star", "0.1", "--amplitude", "1", check=True)
     notes = heating.stderr.strip().splitlines()
     assert len(notes) == 1 and "heat up" in notes[0] and "tighter" not in notes[0], notes
     assert "heat up" in heating.stdout  # the warning itself, with the numbers
-    steady = cli("run", "--model", "mmd", "--m-star", "0.1", "--amplitude", "0.631", check=True)
+    steady = cli("run", "--model", "mmd", "--m-star", "5.623413251903491", "--amplitude",
+                 "0.8912509381337456", check=True)
     notes = steady.stderr.strip().splitlines()
     assert len(notes) == 1 and "--mean-periods for a tighter error" in notes[0], notes
 

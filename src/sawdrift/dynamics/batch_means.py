@@ -134,7 +134,7 @@ def long_time_mean(stepper: Stepper, window, periods: int,
     """Advance up to ``periods`` more periods and return the batch-mean drift over them and the
     window.
 
-    With ``series`` (the per-period displacements of the windows run before, contiguous and
+    With ``series`` (the rows of the windows run before, :func:`period_rows`, contiguous and
     ending with ``window``'s), the mean is over all of them and what follows, and the periods
     they hold beyond the window count against ``periods``: windows that a run went through
     looking for a steady drift are already samples of its long-time mean.
@@ -153,26 +153,40 @@ def long_time_mean(stepper: Stepper, window, periods: int,
     brute force after 4000 periods). One still moving after that is reported with ``moving``
     set.
     """
-    parts = [np.diff(window.positions)]
+    parts = [period_rows(window, stepper)]
     done = 0
     if series and np.array_equal(series[-1], parts[0]):
         parts = [np.concatenate(series)]
-        done = min(periods, parts[0].size - window.periods)
-        if target > 0.0 and done < periods and parts[0].size >= MIN_PERIODS:
-            _mean, se, _n, flat, rising = blocking(parts[0])
+        done = min(periods, parts[0].shape[0] - window.periods)
+        if target > 0.0 and done < periods and parts[0].shape[0] >= MIN_PERIODS:
+            _mean, se, _n, flat, rising = blocking(parts[0][:, 0])
             if flat and not rising and se <= target:
                 done = periods  # known to the target already
-    per_period, energy = _advance_mean(stepper, parts, done, periods, target)
+    rows = _advance_mean(stepper, parts, done, periods, target)
     extensions = 0
-    while extensions < MAX_EXTENSIONS and still_moving(per_period, target):
+    while extensions < MAX_EXTENSIONS and still_moving(rows[:, 0], target):
         # still approaching: the first half is a transient, the mean goes on from the second
-        per_period, energy = _advance_mean(stepper, [per_period[per_period.size // 2:]], 0,
-                                           periods, target)
+        rows = _advance_mean(stepper, [rows[rows.shape[0] // 2:]], 0, periods, target)
         extensions += 1
+    per_period = rows[:, 0]
     mean, se, n, _, rising = blocking(per_period, coarse=True)
     return BatchMeans(mean, se, n, int(per_period.size), rising,
                       moving=extensions == MAX_EXTENSIONS and still_moving(per_period, target),
-                      heating=heats_up(energy))
+                      heating=heats_up(rows[:, 1]))
+
+
+def period_rows(window, stepper: Stepper) -> np.ndarray:
+    """The rows a long-time mean is taken over, one a period of ``window`` (measured on
+    ``stepper`` or a twin of it): its displacement and the vertical energy at its end
+    (:func:`heats_up`). The windows a run goes through before its long-time mean keep theirs
+    (``series``), so that the mean and the test of heating cover the same periods."""
+    return np.column_stack((np.diff(window.positions),
+                            _energy(window.samples, float(stepper.prm[P_M]))))
+
+
+def _energy(states: np.ndarray, m_star: float) -> np.ndarray:
+    """E = m* y*'^2 / 2 - y* of period-end states (x*, x*', y*, y*') (:func:`heats_up`)."""
+    return 0.5 * m_star * states[:, 3] ** 2 - states[:, 2]
 
 
 def heats_up(energy: np.ndarray) -> tuple[float, float] | None:
@@ -185,7 +199,7 @@ def heats_up(energy: np.ndarray) -> tuple[float, float] | None:
     no normal damping (mmd's) gives the vertical motion back to the wave at every impact, and
     the tangential friction takes none of it: the bounces can grow without end, as a ball on a
     vibrating table with elastic impacts does (Fermi acceleration). In the default 41 x 41 mmd
-    sweep (m* 1e-3..1e2, A* 1e-2..10), 95 of the 347 long-time means gain more than 5 errors
+    sweep (m* 1e-3..1e2, A* 1e-2..10), 86 of the 342 long-time means gain more than 5 errors
     within their 500 periods (m* = 0.1, A* = 1: 54 to 168), all at m* <= 0.24; no irregular
     heavy bouncer does. Such a run has no steady drift yet: its mean depends on how long it is
     run. The error of the difference comes from the fluctuations about the series' linear
@@ -221,24 +235,23 @@ def still_moving(per_period: np.ndarray, floor: float = 0.0) -> bool:
 
 
 def _advance_mean(stepper: Stepper, parts: list[np.ndarray], done: int, periods: int,
-                  target: float) -> tuple[np.ndarray, np.ndarray]:
-    """Run on from ``parts`` (the per-period displacements so far, ``done`` of the ``periods``
+                  target: float) -> np.ndarray:
+    """Run on from ``parts`` (the rows so far, :func:`period_rows`, ``done`` of the ``periods``
     counted) to the budget, stopping early at the ``target`` error (:func:`long_time_mean`);
-    returns the whole series and the vertical energy at the end of each period run here
-    (:func:`heats_up`)."""
+    returns the rows of the whole series."""
     x_last = stepper.y[0]
     m_star = float(stepper.prm[P_M])
-    energy: list[np.ndarray] = []
     while done < periods:
         chunk = min(CHUNK, periods - done)
         state = stepper.advance_periods(chunk)
         x = state[:, 0]
-        energy.append(0.5 * m_star * state[:, 3] ** 2 - state[:, 2])
-        parts.append(np.diff(np.concatenate(([x_last], x))))
+        parts.append(np.column_stack((np.diff(np.concatenate(([x_last], x))),
+                                      _energy(state, m_star))))
         x_last = x[-1]
         done += chunk
-        if target > 0.0 and done < periods and sum(p.size for p in parts) >= MIN_PERIODS:
-            _mean, se, _n, flat, rising = blocking(np.concatenate(parts))
+        if (target > 0.0 and done < periods
+                and sum(p.shape[0] for p in parts) >= MIN_PERIODS):
+            _mean, se, _n, flat, rising = blocking(np.concatenate(parts)[:, 0])
             if flat and not rising and se <= target:
                 break
-    return np.concatenate(parts), np.concatenate(energy) if energy else np.empty(0)
+    return np.concatenate(parts)

@@ -49,6 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .adams_bashforth import P_FRICTION, P_LOAD, P_M, P_ROLL
+from .batch_means import period_rows
 from .evidence import EV_LANDING, EV_LIFT_OFF, S_FLY
 from .rolling import contact_point, integrates_psi
 from .stepper import Stepper
@@ -94,8 +95,9 @@ class Watch:
 
     ``give_up`` is called with the window drift ratios so far after each window: True ends the
     stage unsettled (a run whose window means wander has no drift to settle on). ``series``
-    collects the per-period displacements of the run, one array per window: each window's are
-    appended, and a jump of the speed empties it (what follows is another trajectory).
+    collects the per-period rows of the run (displacement, vertical energy:
+    :func:`~.batch_means.period_rows`), one array per window: each window's are appended, and a
+    jump of the speed empties it (what follows is another trajectory).
     """
 
     give_up: Callable[[list[float]], bool] | None = None
@@ -399,14 +401,14 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     max_steps = max(max_steps, start + MIN_WINDOWS * w * stepper.k_per)
     log = watch.series if watch.series is not None else []
     win = measure_window(stepper, w, speed, scale)
-    log.append(np.diff(win.positions))
+    log.append(period_rows(win, stepper))
     values = [tapered_drift_ratio(win, speed)]
     state.prev = values[-1]
     settled = held(win, values[-1], state.tol)
     while (not settled and len(values) < MAX_WINDOWS
            and stepper.step + state.w * stepper.k_per <= max_steps):
         win = measure_window(stepper, state.w, speed, scale)
-        log.append(np.diff(win.positions))
+        log.append(period_rows(win, stepper))
         values.append(tapered_drift_ratio(win, speed))
         action, jump = state.judge(values[-1], win)
         if action == "settled" or held(win, values[-1], state.tol):

@@ -20,7 +20,7 @@ import numpy as np
 from ..contact.base import ContactModel
 from ..scene.schema import Impact, Numerics, Scene
 from .assembly import Assembly
-from .batch_means import BatchMeans, long_time_mean
+from .batch_means import BatchMeans, long_time_mean, period_rows
 from .evidence import S_LASTLIFT
 from .full_inertia import Watch, held, settle_full, tapered_drift_ratio
 from .steady import (
@@ -118,9 +118,9 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     settle_on = settles(scene, speed, stepper.rigid)
     win, settling, before = _measure(stepper, scene, speed, scale, settle_on, trajectory)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
-    # the per-period displacements of the run's windows, one contiguous stretch of its own
-    # trajectory up to now: a long-time mean after them starts from all of it
-    series = [np.diff(win.positions)]
+    # the per-period rows of the run's windows (displacement, vertical energy), one contiguous
+    # stretch of its own trajectory up to now: a long-time mean after them starts from all of it
+    series = [period_rows(win, stepper)]
     if settling is None and num.settle is not False and not chaotic and win.contact_lost:
         # the run goes on to its periodic orbit (its events and trajectory with it), as a
         # settling run goes on to its steady drift
@@ -240,8 +240,8 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
     window lasts, :func:`~.window.ballistic_return`, ``vertical`` the drive's vertical amplitude),
     the long-time mean of its bounces, whose flights a window cannot average over. A load, or a
     flight that outlasts the run (an ejection), is left to the Result's outcome. The long-time
-    mean counts the windows already run (``series``, their per-period displacements since the
-    last jump of the speed) against its budget."""
+    mean counts the windows already run (``series``, their per-period rows since the last jump
+    of the speed) against its budget."""
     num = scene.numerics
     if not _leaving(scene, win, speed):
         win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run, series)
@@ -346,9 +346,9 @@ def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
     (the inelastic bouncing ball just past its period doubling: lift-offs at 0.3765 and 0.3034
     alternately, which 60 periods averaged into one phase). At most :data:`ORBIT_PERIODS` more,
     and no more once the distance from repeating (:func:`~.window.orbit_residual`) shows that
-    they would not reach an orbit (:func:`_no_orbit_ahead`). Each window's per-period
-    displacements are appended to ``series``. Returns the last window and the one before it
-    (``before`` where no window was run).
+    they would not reach an orbit (:func:`_no_orbit_ahead`). Each window's per-period rows
+    (:func:`~.batch_means.period_rows`) are appended to ``series``. Returns the last window
+    and the one before it (``before`` where no window was run).
     """
     spent = 0
     residuals = [orbit_residual(win.samples, scale)]
@@ -356,7 +356,7 @@ def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
         before = win
         win = measure_window(stepper, win.periods, speed, scale)
         if series is not None:
-            series.append(np.diff(win.positions))
+            series.append(period_rows(win, stepper))
         spent += win.periods
         residuals.append(orbit_residual(win.samples, scale))
         if _no_orbit_ahead(residuals, (ORBIT_PERIODS - spent) / win.periods):
