@@ -50,7 +50,7 @@ import numpy as np
 
 from .adams_bashforth import P_FRICTION, P_LOAD, P_M, P_ROLL
 from .batch_means import period_rows
-from .evidence import EV_LANDING, EV_LIFT_OFF, S_FLY
+from .evidence import EV_LANDING, EV_LIFT_OFF
 from .rolling import contact_point, integrates_psi
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
@@ -249,7 +249,7 @@ def shift_speed(stepper: Stepper, dv: float) -> None:
         _slip_after_move(stepper)
     else:
         stepper.fh[:, 0] += dv
-        stepper.st[S_FLY] = 0.0
+        stepper.moved()
 
 
 def _slip_after_move(stepper: Stepper) -> None:

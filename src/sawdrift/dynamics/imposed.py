@@ -63,8 +63,7 @@ class _Record:
         """``cols``: x*, y*, y*', a*, b* of every step of the record (:func:`record_columns`),
         from a whole period after the ramp."""
         k = stepper.k_per
-        done = cols.shape[1]
-        x, y, vy, a, b = cols[:, :done]
+        x, y, vy, a, b = cols
         prm = stepper.prm
         self.mu = float(prm[ig.P_MU])
         self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)

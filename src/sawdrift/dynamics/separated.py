@@ -59,7 +59,6 @@ import numpy as np
 
 from ..codegen import Generated, generate, rebind
 from . import adams_bashforth as ig
-from . import evidence as ev
 from . import fast_parts as fp
 from .drives.travelling import TravellingWave
 from .drives.two_wave import needs_two_waves
@@ -455,7 +454,7 @@ def place_on_orbit(stepper: Stepper, orbit: SeparatedOrbit) -> None:
         stepper.fh[j, 1] = -mu * orbit.tangential[i] / m
         stepper.fh[j, 2] = orbit.eta_rate[i]
         stepper.fh[j, 3] = (1.0 - orbit.normal[i]) / m
-    stepper.st[ev.S_FLY] = 0.0  # a flight in closed form would go on from its old anchor
+    stepper.moved()  # a flight in closed form would go on from its old anchor
 
 
 def orbit_relaxation(orbit: SeparatedOrbit, mu: float, m_star: float, slope: float) -> float:

@@ -362,7 +362,13 @@ class Stepper:
         self.y[1] += (after[1] - before[1]) * share
         self.y[2] += after[2] - before[2]
         self.y[3] += after[3] - before[3]
-        self.st[ev.S_FLY] = 0.0  # off the parabola of a flight in closed form: it counts afresh
+        self.moved()
+
+    def moved(self) -> None:
+        """After the state or the inertia was changed from outside the loop: a flight taken in
+        closed form (:mod:`.flight`) counts afresh, or it would go on from its anchor, a state
+        from before the change, until the landing and past it."""
+        self.st[ev.S_FLY] = 0.0
 
     def save(self) -> StepperState:
         """A snapshot of the integration (copies): :meth:`restore` on a stepper of the same scene
@@ -396,7 +402,7 @@ class Stepper:
         scheme keeps m* (its relaxation is already short); a no-op there."""
         if not self.rigid:
             self.prm[ig.P_MX] = m_x
-            self.st[ev.S_FLY] = 0.0  # a flight in closed form has its old x*'' since its anchor
+            self.moved()  # a flight in closed form has its old x*'' since its anchor
 
     def surface(self) -> tuple[float, float, float, float]:
         """(u_x, u_x', u_y, u_y') of the drive now, at the particle's position."""
@@ -419,7 +425,7 @@ class Stepper:
         new.st = self.st.copy()
         if dy is not None:
             new.y[: dy.size] += dy
-            new.st[ev.S_FLY] = 0.0  # displaced off its flight's parabola: it counts afresh
+            new.moved()  # displaced off its flight's parabola
         new.record = False
         new.rec_every = 0
         new.rec_chunks = []
@@ -448,7 +454,7 @@ class Stepper:
         np.copyto(self.ctr, other.ctr)
         self.st[: ev.N_ST] = other.st[: ev.N_ST]
         if dy is not None:
-            self.st[ev.S_FLY] = 0.0  # displaced off its flight's parabola: it counts afresh
+            self.moved()  # displaced off its flight's parabola
         self.st[ev.S_NEV] = 0.0
         self.st[ev.S_EVCAP] = (self.st.size - ev.N_ST) // ev.EV_W
         self.resist = other.resist
