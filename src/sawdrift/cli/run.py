@@ -12,6 +12,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start, stored_models
+from .._texts import says_heating
 from ..study.progress import notice
 from .app import Engine, Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
 from .run_text import grouped, side_by_side, unsettled_text
@@ -242,7 +243,7 @@ def _unsettled_note(summary: dict[str, Any], tau: float) -> str:
         return f"note: {unsettled_text(summary, 'no drift speed')}; a longer run would not settle it"
     se = summary.get("drift_ratio_se")
     if isinstance(se, float) and math.isfinite(se):
-        if any("heat up" in w for w in summary.get("warnings") or ()):
+        if says_heating(summary.get("warnings")):
             # a longer mean is another mean, not a tighter one (the warnings say why)
             return ("note: the motion is irregular and its bounces heat up: the drift is its "
                     "long-time mean over --mean-periods, and a longer run gives another")

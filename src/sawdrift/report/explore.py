@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .._texts import HEATING
 from ..errors import SawdriftError, SceneError
 from ..result.regimes import CONTACT_LOST, DRIFTING
 from ..scene.device import Device, normalized
@@ -336,7 +337,7 @@ def heating_cells(rows: pd.DataFrame) -> np.ndarray:
     how long it was run)."""
     if "warnings" not in rows.columns:
         return np.zeros(len(rows), dtype=bool)
-    return rows["warnings"].fillna("").astype(str).str.contains("heat up").to_numpy(bool)
+    return rows["warnings"].fillna("").astype(str).str.contains(HEATING, regex=False).to_numpy(bool)
 
 
 def lyapunov_text(rows: pd.DataFrame) -> np.ndarray:

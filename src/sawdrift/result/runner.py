@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from .._texts import HEATING
 from ..contact.binding import bind, model_for
 from ..dynamics.assembly import Engine, assemble
 from ..dynamics.batch_means import HALVES_Z
@@ -170,7 +171,7 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
                      f"(correlations longer than the run)",)
     if out.long_mean is not None and out.long_mean.heating is not None:
         low, high = out.long_mean.heating
-        warnings += (f"long-time mean: the bounces heat up (the vertical energy, as a height, "
+        warnings += (f"long-time mean: {HEATING} (the vertical energy, as a height, "
                      f"rose from {low:.3g} to {high:.3g} between the two halves of the mean, "
                      f"more than {HALVES_Z:g} errors): a motion still gaining energy has no "
                      "steady drift yet, and its mean depends on how long it is run "
