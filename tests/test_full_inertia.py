@@ -283,6 +283,20 @@ def test_a_beat_as_long_as_the_window_is_told_from_a_settled_approach():
     assert not verdict(drift * (1.0 + 0.02 * np.sin(2 * np.pi * k / (w / 5))))
 
 
+def test_doubled_windows_take_the_window_ratio_of_their_own_length():
+    """A mode relaxing as exp(-lambda t) falls by q = exp(-lambda W) over a window of W periods
+    and by q^2 over one of 2 W: windows that double (a beat against the window) must square the
+    ratio the remaining distance is extrapolated with, or they overestimate it by a factor
+    (1 + q) and jump on it."""
+    from sawdrift.dynamics.full_inertia import _Approach
+
+    lam, w = 0.01, 27
+    state = _Approach(w=w, q=np.exp(-lam * w), tol=1e-3, w0=w, rate=lam)
+    state.restart(longer=True)
+    assert state.w == 2 * w
+    assert abs(state.q - np.exp(-lam * 2 * w)) < 1e-12
+
+
 def test_a_partly_sliding_contact_still_relaxing_is_not_settled_by_an_absolute_tolerance():
     """mmd, m* = 1.78, A* = 0.188, mu = 0.1: the contact slides over 14 % of its period and its
     mean speed relaxes several times more slowly than m*/mu; after 60 periods the window's thirds

@@ -342,7 +342,8 @@ class _Approach:
     def restart(self, longer: bool) -> None:
         """Compare afresh from the next window (after a jump, or in windows twice as long)."""
         if longer:
-            self.w, self.flips = 2 * self.w, 0
+            # the ratio per window of a mode relaxing as exp(-lambda t) squares as it doubles
+            self.w, self.q, self.flips = 2 * self.w, self.q * self.q, 0
         self.prev, self.last_change, self.steady_run = None, None, 0
 
     def judge(self, d: float, win: Window) -> tuple[str, float]:
