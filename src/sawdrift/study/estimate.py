@@ -49,8 +49,12 @@ QUIET_STEPS = 2e7
 #: a default light run (``numerics.settle`` and ``numerics.periods`` unset) is expected to cost
 #: this many times its fixed length: it goes on where its window cannot confirm its drift
 #: (settled windows, a periodic orbit, a chaotic or irregular cell's 2000-period long-time
-#: mean). The default 41 x 41 mmd sweep of ``sawdrift bench speed`` (m* 1e-3..1e2, A*
-#: 1e-2..10) took 3.6 to 3.7 times the time of its fixed 60-period sweep (2026-11-27)
+#: mean). It stands for time, not steps: a run that goes on spends more of its time outside
+#: the integration (windows' evidence, the solves, the Lyapunov stretchings) than the fixed
+#: calibration run the rate comes from. On the default 41 x 41 mmd sweep of ``sawdrift bench
+#: speed`` (m* 1e-3..1e2, A* 1e-2..10) the estimate reads 7.7 s against 6.0 s measured, 1.4e8
+#: steps against 4.8e7 (its fixed sweep: 2.3 s against 3.2 s), on the 2-core machine
+#: (2026-11-28)
 GOES_ON = 3.7
 
 #: steps of a calibration run (compiled engine; the python engine runs a tenth of it)
