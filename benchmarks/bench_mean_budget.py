@@ -9,8 +9,10 @@ start-up ramp two periods longer: a chaotic motion forgets where it began), so t
 is an independent sample. A mean is a defect when it is more than 3 combined standard errors
 from the reference's, z = |m_B - m_ref| / sqrt(se_B^2 + se_ref^2) > 3, unless it agrees with a
 run of as many periods from its own start (``z_same_start``): then the two starts reached
-coexisting motions (a bistable cell), which no error bar of one run can show. Writes
-benchmarks/results/mean_budget.json and prints the counts.
+coexisting motions (a bistable cell), which no error bar of one run can show. A reference
+that is no long-time mean (its run says it is still moving or heating up: no error) gives no
+z; such cells are counted apart (``unsteady_references``), with whether the budget's own run
+warned of it (``flagged``). Writes benchmarks/results/mean_budget.json and prints the counts.
 
     python benchmarks/bench_mean_budget.py [--cells 40] [--budgets 500 1000 2000]
         [--reference 16000]
@@ -39,8 +41,9 @@ def irregular_cells(n_grid: int = 41) -> list[tuple[float, float]]:
 
 
 def mean_of(m: float, a: float, budget: int, ramp_extra: float = 0.0,
-            reference: bool = False) -> tuple[float, float, float]:
-    """(drift ratio, its standard error, wall time) of the default run at ``budget``."""
+            reference: bool = False) -> tuple[float, float, float, bool]:
+    """(drift ratio, its standard error, wall time, whether its warnings say the mean is still
+    moving or heating up) of the default run at ``budget``."""
     scene = sd.Scene(model="mmd", particle={"m_star": m},
                      drive={"amplitude": a, "ramp_periods": 5.0 + ramp_extra},
                      numerics={"mean_periods": budget,
@@ -48,7 +51,9 @@ def mean_of(m: float, a: float, budget: int, ramp_extra: float = 0.0,
                                "settle_tolerance": 1e-9 if reference else 1e-3})
     t0 = time.perf_counter()
     r = sd.run(scene)
-    return r.drift_ratio, r.drift_ratio_se, time.perf_counter() - t0
+    wall = time.perf_counter() - t0
+    flagged = any("still moving" in w or "heat up" in w for w in r.warnings)
+    return r.drift_ratio, r.drift_ratio_se, wall, flagged
 
 
 def main() -> None:
@@ -64,17 +69,17 @@ def main() -> None:
     rows = []
     for i in sorted(pick):
         m, a = cells[i]
-        ref, ref_se, ref_wall = mean_of(m, a, args.reference, ramp_extra=2.0, reference=True)
-        same, same_se, _ = mean_of(m, a, args.reference, reference=True)
+        ref, ref_se, ref_wall, _ = mean_of(m, a, args.reference, ramp_extra=2.0, reference=True)
+        same, same_se, _, _ = mean_of(m, a, args.reference, reference=True)
         row = {"m_star": m, "amplitude": a, "reference": ref, "reference_se": ref_se,
                "reference_wall_s": ref_wall, "same_start": same, "same_start_se": same_se}
         for b in args.budgets:
-            got, se, wall = mean_of(m, a, b)
+            got, se, wall, flagged = mean_of(m, a, b)
             z = abs(got - ref) / math.hypot(se, ref_se) if math.isfinite(se) else math.nan
             z_same = (abs(got - same) / math.hypot(se, same_se) if math.isfinite(se)
                       else math.nan)
             row[str(b)] = {"drift_ratio": got, "se": se, "z": z, "z_same_start": z_same,
-                           "wall_s": wall}
+                           "wall_s": wall, "flagged": flagged}
         rows.append(row)
         print(f"m* {m:9.4g} A* {a:6.3g} ref {ref:+.4f} +- {ref_se:.4f} same start {same:+.4f} "
               f"+- {same_se:.4f}  " + "  ".join(
@@ -87,7 +92,14 @@ def main() -> None:
         z_same = np.array([r[str(b)]["z_same_start"] for r in rows], dtype=float)
         se = np.array([r[str(b)]["se"] for r in rows], dtype=float)
         wall = np.array([r[str(b)]["wall_s"] for r in rows], dtype=float)
+        unsteady = [r for r in rows if not math.isfinite(r["reference_se"])]
         summary[str(b)] = {"cells": len(rows), "z_above_3": int(np.sum(z > 3.0)),
+                           "unsteady_references": [
+                               {"m_star": r["m_star"], "amplitude": r["amplitude"],
+                                "reference": r["reference"],
+                                "drift_ratio": r[str(b)]["drift_ratio"],
+                                "se": r[str(b)]["se"], "flagged": r[str(b)]["flagged"]}
+                               for r in unsteady],
                            "z_above_2": int(np.sum(z > 2.0)), "z_finite": int(np.isfinite(z).sum()),
                            "z_same_start_above_3": int(np.sum(z_same > 3.0)),
                            "median_se": float(np.nanmedian(se)), "wall_s": float(wall.sum())}
