@@ -113,3 +113,24 @@ def test_a_quasi_periodic_hop_does_not_spend_the_orbit_search():
     assert res.regime == "hopping" and res.hop_period == 1
     assert res.periods <= 60 + 4 * 27  # the fixed run and at most four more windows
     assert abs(res.drift_ratio - long.drift_ratio) < 1e-5
+
+
+def test_a_periodic_orbit_s_drift_is_taken_only_where_the_window_is_on_it():
+    """material_point m* = 0.059, A* = 8.7, mu = 0.1 hops on a period-7 orbit: the fixed window
+    of 27 periods found the orbit from its last states and took the drift over its last three
+    orbits (21 periods), though the first of them was still on the approach: -0.571062, 2e-3
+    from the orbit's -0.5722326 (brute force over 1000 of 2000 periods, over 100 of 200 the
+    same to 1e-12). Only the orbits whose states repeat count, and the drift is the orbit's."""
+    from sawdrift.dynamics.window import orbit_span
+
+    m, a = 0.05899083279439075, 8.7
+    ref = sd.run(sd.Scene(model="material_point", particle={"m_star": m}, drive={"amplitude": a},
+                          numerics={"settle": False, "periods": 2000, "measure_periods": 1000}))
+    res = sd.run(sd.Scene(model="material_point", particle={"m_star": m}, drive={"amplitude": a}))
+    assert res.settled and res.orbit_period == 7
+    assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-6 * abs(ref.drift_ratio)
+    # states (x*', y*, y*') of an orbit of period 3 reached after 5 approaching periods
+    orbit = np.array([[0.0, 1.0, 0.1, 0.2], [0.0, 1.5, 0.3, 0.1], [0.0, 0.7, 0.2, 0.4]])
+    approach = np.array([[0.0, 2.0 + k, 0.5, 0.5] for k in range(5)])
+    samples = np.vstack([approach] + [orbit] * 6)  # 23 states, 18 on the orbit
+    assert orbit_span(samples, np.ones(3), 3) == 15  # whole orbits among the 17 checked

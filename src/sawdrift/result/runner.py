@@ -13,7 +13,7 @@ import math
 from .._texts import HEATING
 from ..contact.binding import bind, model_for
 from ..dynamics.assembly import Engine, assemble
-from ..dynamics.batch_means import HALVES_Z
+from ..dynamics.batch_means import HALVES_Z, TREND_Z
 from ..dynamics.drives import Drive
 from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate_wave
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
@@ -157,8 +157,9 @@ def _reported_drift(out: WaveRun, drift_ratio: float,
 
 
 def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
-    """A device scene's validity warnings, a long-time mean's whose error is a lower bound or
-    whose bounces heat up, and a measuring window too long for all its events to be kept."""
+    """A device scene's validity warnings, a long-time mean's whose error is a lower bound,
+    whose halves differ (the error then half their difference) or whose bounces heat up, and
+    a measuring window too long for all its events to be kept."""
     warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
     if out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
         warnings += ("not settled: the mean drift was still moving over its last "
@@ -169,6 +170,12 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
         warnings += (f"long-time mean: its batch-means error still grew with the batch length "
                      f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
                      f"(correlations longer than the run)",)
+    if (out.long_mean is not None and out.long_mean.trend and not out.long_mean.moving
+            and out.speed > 0.0):
+        warnings += (f"long-time mean: its two halves differ by more than {TREND_Z:g} errors "
+                     f"(a slow approach or drift may go on past the {out.long_mean.periods} "
+                     "periods of the mean), so its error is half that difference; "
+                     "numerics.mean_periods (--mean-periods) runs it longer",)
     if out.long_mean is not None and out.long_mean.heating is not None:
         low, high = out.long_mean.heating
         warnings += (f"long-time mean: {HEATING} (the vertical energy, as a height, "
