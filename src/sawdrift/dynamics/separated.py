@@ -175,6 +175,14 @@ def applies(stepper: Stepper, scene) -> bool:
             and solvable(scene, stepper.rigid))
 
 
+def damped_normal(stepper: Stepper) -> bool:
+    """Whether the built run's contact model damps its normal force itself (a normal-damping
+    slot, as hertz_tsuji's): the free vertical oscillation then decays, and the steady state is
+    the period-one orbit (:mod:`.direct`), not an average over a slow cycle (:mod:`.torus`)."""
+    model = getattr(stepper.history, "model", None)
+    return getattr(model, "damping", None) is not None
+
+
 _LOOPS: dict[object, object] = {}
 
 
