@@ -481,7 +481,8 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
             settled = True
             break
         if action == "settled" and beats(log, win, values[-1], speed, state.tol):
-            action = "longer" if state.w < LONGEST_WINDOW * state.w0 else "next"
+            # longer windows average the beat out; at the longest, compare afresh from here
+            action = "longer" if state.w < LONGEST_WINDOW * state.w0 else "again"
         if action == "settled":
             settled = True
             break
