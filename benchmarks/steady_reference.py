@@ -81,6 +81,11 @@ CELLS: list[tuple[str, float, float, float]] = [
     ("jaeger", 3000.0, 0.8, 0.5),
     ("mmd", 3000.0, 0.6, 0.3),
     ("hertz_mindlin_dem", 3000.0, 0.7, 0.3),
+    # a damped normal contact (the hertz_tsuji plugin's Tsuji dashpot, c = 0.1): the free
+    # vertical oscillation decays, and the run ends on the period-one orbit
+    ("hertz_tsuji", 30.0, 1.5, 0.3),
+    ("hertz_tsuji", 100.0, 2.4, 0.1),
+    ("hertz_tsuji", 300.0, 4.5, 0.1),
     # the heaviest: 802 000 periods each
     ("mmd", 10000.0, 0.5, 0.5),
     ("mmd", 10000.0, 0.7, 0.5),

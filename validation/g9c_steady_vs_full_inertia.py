@@ -1,9 +1,10 @@
 """Steady drift of heavy particles: the default run against full-inertia brute force.
 
 The reference is ``validation/data/steady_reference.json``, made by
-``benchmarks/steady_reference.py``: for heavy cells (mmd, hertz_mindlin_dem, jaeger; m* = 30 to
-1e4) a plain run at full inertia of at least 40 m*/mu + 2000 periods, measured over its last
-30 % (and at least three periods of the free vertical oscillation, 2 pi sqrt(m*/1.5)), checked
+``benchmarks/steady_reference.py``: for heavy cells (mmd, hertz_mindlin_dem, jaeger, and the
+damped hertz_tsuji plugin; m* = 30 to 1e4) a plain run at full inertia of at least
+40 m*/mu + 2000 periods, measured over its last 30 % (and at least three periods of the free
+vertical oscillation, 2 pi sqrt(m*/1.5)), checked
 against a run half as long and one with twice the steps per period. The cells are labelled
 ``creep`` (a partly stuck contact creeping at the stick boundary, drift ratio below 1e-3),
 ``drifting`` (steady sliding drift) and ``hopping`` (contact lost, synchronous).
@@ -35,8 +36,8 @@ KIND_COLOURS = {"creep": "#3182bd", "drifting": "#31a354", "hopping": "#e6550d",
 CASE = Case(
     name="steady_vs_full_inertia",
     group="steady",
-    title="Default run of heavy cells (mmd, hertz_mindlin_dem, jaeger; m* 30 to 1e4; creep, "
-    "drifting, hopping) against stored full-inertia brute force: within 1e-3 relative or 2e-5 "
+    title="Default run of heavy cells (mmd, hertz_mindlin_dem, jaeger, damped hertz_tsuji; m* 30 "
+    "to 1e4; creep, drifting, hopping) against stored full-inertia brute force: within 1e-3 relative or 2e-5 "
     "absolute, same regime; value: worst relative error outside the absolute bound",
     tolerance=REL,
     quick=True,
