@@ -51,11 +51,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from .adams_bashforth import P_FRICTION, P_LOAD, P_M, P_ROLL
-from .batch_means import blocked_error, period_rows
+from .batch_means import period_rows
 from .evidence import EV_LANDING, EV_LIFT_OFF
 from .rolling import contact_point, integrates_psi
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
+from .window_noise import beats, change_noise, chases_noise
 
 #: free vertical periods per window
 VERTICALS = 3.0
@@ -83,13 +84,6 @@ STEADY_CHANGES = 3
 #: (a secant across a jump on a noisy, hopping window) cannot throw the speed far past its fixed
 #: point; a slower approach takes several jumps
 LONGEST_JUMP = 20.0
-
-#: standard errors of a change between window means (:func:`change_noise`) both changes before
-#: a jump must exceed where the jump's own scatter exceeds the accuracy (:func:`chases_noise`)
-JUMP_Z = 3.0
-
-#: accuracies a jump's own scatter may reach before its changes must clear :data:`JUMP_Z`
-NOISE_JUMP = 2.0
 
 #: windows may grow to this many times their first length (changes that alternate in sign)
 LONGEST_WINDOW = 16
@@ -243,59 +237,6 @@ def tapered_drift_ratio(win: Window, speed: float) -> float:
     n = steps.size
     weights = np.sin(np.pi * (np.arange(n) + 0.5) / n) ** 2
     return float(np.dot(weights, steps) / weights.sum() / speed)
-
-
-def change_noise(rows: np.ndarray, speed: float) -> float:
-    """The standard error of the change between two window means like this window's (``rows``:
-    its :func:`~.batch_means.period_rows`), in drift ratio: sqrt(2) times the batch-means error
-    of its per-period displacements. Over a window this short it sees no correlation longer
-    than a period or two; and a regular motion's displacements that vary from period to period
-    (a slow vertical beat) count as noise too, though they repeat: it is an upper bound for
-    those."""
-    if speed <= 0.0 or rows.shape[0] < 2:
-        return 0.0
-    return math.sqrt(2.0) * blocked_error(rows[:, 0])[1] / speed
-
-
-def chases_noise(change: float, last: float, q: float, noise: float, eps: float) -> bool:
-    """Whether a jump extrapolated from the window changes ``last`` and ``change`` would chase
-    their noise: its own scatter, q / (1 - q) times ``noise`` (:func:`change_noise`), exceeds
-    the accuracy ``eps``, and either change is within :data:`JUMP_Z` of the noise.
-
-    An irregular bouncer's window means scatter; two changes of one sign among them are as
-    likely as not, and with a heavy particle's ratio near one the extrapolation multiplies them
-    by tens: a rigid point at m* = 38.6, A* = 0.025 jumped 16 times, by +0.85 and -0.30 in
-    turn (changes of 1 to 2.5 noise), and its long-time mean began 81 periods after the last
-    jump: 0.032 +- 0.014 against -0.044 from rest (1000 to 4000 periods of brute force). The
-    jumps of a regular approach ride changes of 8 to 20 times that noise (mmd m* = 1.8 to 4.2,
-    A* = 4.2 to 10), and where its last small jumps are within the noise their scatter is
-    within the accuracy.
-    """
-    amplified = q / (1.0 - q) * noise if q < 1.0 else math.inf
-    return amplified > NOISE_JUMP * eps and min(abs(change), abs(last)) <= JUMP_Z * noise
-
-
-def beats(log: list[np.ndarray], win: Window, d: float, speed: float, tol: float) -> bool:
-    """Whether windows that agree hide a beat: the tapered mean over the last two windows
-    (contiguous rows of ``log``) differs from the last window's, ``d``, by more than the
-    accuracy.
-
-    The Hann weights of :func:`tapered_drift_ratio` pass half of an oscillation whose period is
-    the window's own (a beat of the horizontal motion against the wave, near the contact
-    resonance: mmd m* = 0.0024, A* = 5.01 beats every 27.7 periods, its windows are 27 long),
-    and every window then shows the same half: consecutive windows agree on a drift 1.2 % off.
-    Over two windows that oscillation falls on the weights' second zero, and one of period
-    W / 2 to W (a tapered mean's leak up to a fifth of its amplitude) on the third or beyond;
-    a settled approach gives the two means the same value. A periodic orbit of several periods
-    (box means over whole orbits) has no beat to hide.
-    """
-    if win.orbit_period > 1 or len(log) < 2 or speed <= 0.0:
-        return False
-    steps = np.concatenate((log[-2][:, 0], log[-1][:, 0]))
-    n = steps.size
-    weights = np.sin(np.pi * (np.arange(n) + 0.5) / n) ** 2
-    two = float(np.dot(weights, steps) / weights.sum() / speed)
-    return abs(two - d) > accuracy(d, tol)
 
 
 def shift_speed(stepper: Stepper, dv: float) -> None:
@@ -480,7 +421,8 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         if held(win, values[-1], state.tol):
             settled = True
             break
-        if action == "settled" and beats(log, win, values[-1], speed, state.tol):
+        if action == "settled" and beats(log, win, values[-1], speed,
+                                         accuracy(values[-1], state.tol)):
             # longer windows average the beat out; at the longest, compare afresh from here
             action = "longer" if state.w < LONGEST_WINDOW * state.w0 else "again"
         if action == "settled":

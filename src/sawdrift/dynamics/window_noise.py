@@ -1,0 +1,88 @@
+"""What the full-inertia windows' means say beyond their values: their noise, and a beat.
+
+:func:`~.full_inertia.settle_full` compares window means. Two changes of one sign are an
+approach it may jump along (Aitken's extrapolation), unless they are within the noise of the
+windows (:func:`change_noise`, :func:`chases_noise`); windows that agree have settled, unless a
+beat as long as a window makes them all agree on the same biased mean (:func:`beats`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .batch_means import blocked_error
+from .window import Window
+
+#: standard errors of a change between window means (:func:`change_noise`) both changes before
+#: a jump must exceed where the jump's own scatter exceeds the accuracy (:func:`chases_noise`)
+JUMP_Z = 3.0
+
+#: the window noise (:func:`change_noise`) is at most this many times that of an uncorrelated
+#: series as rough as the window's displacements
+ROUGH = 5.0
+
+#: accuracies a jump's own scatter may reach before its changes must clear :data:`JUMP_Z`
+NOISE_JUMP = 2.0
+
+
+def change_noise(rows: np.ndarray, speed: float) -> float:
+    """The standard error of the change between two window means like this window's (``rows``:
+    its :func:`~.batch_means.period_rows`), in drift ratio: sqrt(2) times the batch-means error
+    of its per-period displacements, at most :data:`ROUGH` times what their period-to-period
+    differences alone give (the error of an uncorrelated series of that roughness).
+
+    The batch-means error counts a smooth modulation of the displacements as noise too (a
+    regular hop's slow vertical beat, which repeats and which the tapered window means leave
+    out): on mmd m* = 90, A* = 1.71 with a backward wave of half the amplitude it was 2.8e-4,
+    forty times what the differences give (7e-6), and refused the jumps of a plain approach
+    (changes of 5e-4, ratio 0.86), which then settled 1.7e-3 from brute force. An irregular
+    bouncer's displacements are rough: its batch-means error is 3 times the differences' (a
+    rigid point at m* = 38.6, A* = 0.025: 4.0e-2 against 1.3e-2) and stands."""
+    if speed <= 0.0 or rows.shape[0] < 3:
+        return 0.0
+    steps = rows[:, 0]
+    rough = float(np.std(np.diff(steps))) / math.sqrt(steps.size)
+    return min(math.sqrt(2.0) * blocked_error(steps)[1], ROUGH * rough) / speed
+
+
+def chases_noise(change: float, last: float, q: float, noise: float, eps: float) -> bool:
+    """Whether a jump extrapolated from the window changes ``last`` and ``change`` would chase
+    their noise: its own scatter, q / (1 - q) times ``noise`` (:func:`change_noise`), exceeds
+    the accuracy ``eps``, and either change is within :data:`JUMP_Z` of the noise.
+
+    An irregular bouncer's window means scatter; two changes of one sign among them are as
+    likely as not, and with a heavy particle's ratio near one the extrapolation multiplies them
+    by tens: a rigid point at m* = 38.6, A* = 0.025 jumped 16 times, by +0.85 and -0.30 in
+    turn (changes of 1 to 2.5 noise), and its long-time mean began 81 periods after the last
+    jump: 0.032 +- 0.014 against -0.044 from rest (1000 to 4000 periods of brute force). The
+    jumps of a regular approach ride changes of 8 to 20 times that noise (mmd m* = 1.8 to 4.2,
+    A* = 4.2 to 10), and where its last small jumps are within the noise their scatter is
+    within the accuracy.
+    """
+    amplified = q / (1.0 - q) * noise if q < 1.0 else math.inf
+    return amplified > NOISE_JUMP * eps and min(abs(change), abs(last)) <= JUMP_Z * noise
+
+
+def beats(log: list[np.ndarray], win: Window, d: float, speed: float, eps: float) -> bool:
+    """Whether windows that agree hide a beat: the tapered mean over the last two windows
+    (contiguous rows of ``log``) differs from the last window's, ``d``, by more than the
+    accuracy ``eps``.
+
+    The Hann weights of :func:`~.full_inertia.tapered_drift_ratio` pass half of an oscillation whose period is
+    the window's own (a beat of the horizontal motion against the wave, near the contact
+    resonance: mmd m* = 0.0024, A* = 5.01 beats every 27.7 periods, its windows are 27 long),
+    and every window then shows the same half: consecutive windows agree on a drift 1.2 % off.
+    Over two windows that oscillation falls on the weights' second zero, and one of period
+    W / 2 to W (a tapered mean's leak up to a fifth of its amplitude) on the third or beyond;
+    a settled approach gives the two means the same value. A periodic orbit of several periods
+    (box means over whole orbits) has no beat to hide.
+    """
+    if win.orbit_period > 1 or len(log) < 2 or speed <= 0.0:
+        return False
+    steps = np.concatenate((log[-2][:, 0], log[-1][:, 0]))
+    n = steps.size
+    weights = np.sin(np.pi * (np.arange(n) + 0.5) / n) ** 2
+    two = float(np.dot(weights, steps) / weights.sum() / speed)
+    return abs(two - d) > eps
