@@ -361,6 +361,22 @@ def test_the_window_noise_is_the_roughness_of_its_displacements_not_their_modula
     assert 1.0e-3 < change_noise(np.column_stack((white, k)), 1.0) < 3.5e-3
 
 
+def test_a_hop_under_air_drag_waits_for_its_vertical_oscillation_to_die_out():
+    """mmd m* = 22.3, A* = 1.71, air drag c = 0.05: the drag damps the free vertical oscillation
+    a run's start leaves over 2 m*/c = 894 periods, and the hop's drift moves with it. The
+    windows settled after 1420 periods at 0.23216, 2.0e-3 below brute force from rest (0.23262
+    over 2000 of 6000 periods; 0.23245 at 3000, 0.23261 at 4000); they now wait two decay
+    times and settle within 1e-3 of it."""
+    base = dict(model="mmd", particle={"m_star": 22.346274}, drive={"amplitude": 1.710509},
+                effects={"air_drag": 0.05})
+    ref = sd.run(sd.Scene(**base, numerics={"settle": False, "periods": 6000,
+                                            "measure_periods": 2000}))
+    res = sd.run(sd.Scene(**base))
+    assert res.settled and res.settle_periods >= 2 * 2 * 22.346274 / 0.05
+    assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-3 * abs(ref.drift_ratio), (
+        res.drift_ratio, ref.drift_ratio)
+
+
 def test_a_partly_sliding_contact_still_relaxing_is_not_settled_by_an_absolute_tolerance():
     """mmd, m* = 1.78, A* = 0.188, mu = 0.1: the contact slides over 14 % of its period and its
     mean speed relaxes several times more slowly than m*/mu; after 60 periods the window's thirds
