@@ -241,3 +241,12 @@ def test_hop_liftoffs_follow_their_rule_on_random_event_logs():
         for rebounds_only in (True, False):
             assert np.array_equal(hop_liftoffs(events, 10.0, 15.0, rebounds_only),
                                   by_rule(events, 10.0, 15.0, rebounds_only))
+
+
+def test_lift_offs_at_one_phase_have_a_spread_of_zero_not_minus_zero():
+    """A period-one hop lifts off at one phase every period: the circular resultant is R = 1 and
+    the spread sqrt(-2 ln R) is 0; it came out as -0.0 (sqrt(-0.0)), printed "-0" by `run`."""
+    from sawdrift.dynamics.synchrony import _circular
+
+    _mean, r, spread = _circular(np.full(12, 0.6875))
+    assert r == 1.0 and spread == 0.0 and math.copysign(1.0, spread) == 1.0
