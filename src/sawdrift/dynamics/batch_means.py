@@ -235,12 +235,8 @@ def still_moving(per_period: np.ndarray, floor: float = 0.0) -> bool:
     their combined blocked errors, and by more than ``floor`` (the tolerance, x* per period): a
     mean still approaching its value (a heavy bouncer in flight 90 % of the time relaxes over
     thousands of periods), whose long-time mean would carry its transient."""
-    half = per_period.size // 2
-    if half < MIN_BATCHES:
-        return False
-    m1, s1, _ = blocked_error(per_period[:half])
-    m2, s2, _ = blocked_error(per_period[half:])
-    return abs(m2 - m1) > max(HALVES_Z * math.hypot(s1, s2), floor)
+    halves = _halves(per_period)
+    return halves is not None and halves[0] > max(HALVES_Z * halves[1], floor)
 
 
 def trend_allowance(per_period: np.ndarray) -> float:
@@ -257,13 +253,22 @@ def trend_allowance(per_period: np.ndarray) -> float:
     the allowance its error is 0.045. For a series that only fluctuates the halves pass 3
     errors in a few percent of runs, whose error then grows to half their difference.
     """
+    halves = _halves(per_period)
+    if halves is None or not halves[0] > TREND_Z * halves[1]:
+        return 0.0
+    return 0.5 * halves[0]
+
+
+def _halves(per_period: np.ndarray) -> tuple[float, float] | None:
+    """(|difference of the means of the series' two halves|, its standard error from their
+    blocked errors), for :func:`still_moving` and :func:`trend_allowance`; None for a series
+    too short to tell."""
     half = per_period.size // 2
     if half < MIN_BATCHES:
-        return 0.0
+        return None
     m1, s1, _ = blocked_error(per_period[:half])
     m2, s2, _ = blocked_error(per_period[half:])
-    gap = abs(m2 - m1)
-    return 0.5 * gap if gap > TREND_Z * math.hypot(s1, s2) else 0.0
+    return abs(m2 - m1), math.hypot(s1, s2)
 
 
 def _advance_mean(stepper: Stepper, parts: list[np.ndarray], done: int, periods: int,
