@@ -65,8 +65,12 @@ def _circular(phases: np.ndarray) -> tuple[float, float, float]:
     z = np.exp(2j * math.pi * phases).mean()
     r = min(float(abs(z)), 1.0)
     mean = (math.atan2(z.imag, z.real) / (2 * math.pi)) % 1.0
-    # R = 1 (phases all equal) gives 0, not the -0.0 that sqrt(-2 ln 1) = sqrt(-0.0) is
-    spread = (math.sqrt(-2.0 * math.log(r)) / (2 * math.pi) if r < 1.0 else 0.0) if r > 0 else math.inf
+    if r >= 1.0:
+        spread = 0.0  # phases all equal: not the -0.0 of sqrt(-2 ln 1) = sqrt(-0.0)
+    elif r > 0.0:
+        spread = math.sqrt(-2.0 * math.log(r)) / (2 * math.pi)
+    else:
+        spread = math.inf
     return mean, r, spread
 
 
