@@ -47,6 +47,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -56,7 +57,7 @@ from .evidence import EV_LANDING, EV_LIFT_OFF
 from .rolling import contact_point, integrates_psi
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
-from .window_noise import beats, change_noise, chases_noise
+from .window_noise import beats, change_noise, chases_noise, hann_mean
 
 #: free vertical periods per window
 VERTICALS = 3.0
@@ -237,10 +238,7 @@ def tapered_drift_ratio(win: Window, speed: float) -> float:
         return 0.0
     if win.orbit_period > 1:
         return win.drift_ratio
-    steps = np.diff(win.positions)
-    n = steps.size
-    weights = np.sin(np.pi * (np.arange(n) + 0.5) / n) ** 2
-    return float(np.dot(weights, steps) / weights.sum() / speed)
+    return hann_mean(np.diff(win.positions)) / speed
 
 
 def shift_speed(stepper: Stepper, dv: float) -> None:
@@ -344,10 +342,11 @@ class _Approach:
             self.w, self.q, self.flips = 2 * self.w, self.q * self.q, 0
         self.prev, self.last_change, self.steady_run = None, None, 0
 
-    def judge(self, d: float, win: Window, noise: float = 0.0) -> tuple[str, float]:
+    def judge(self, d: float, win: Window, noise: Callable[[], float] = lambda: 0.0
+              ) -> tuple[str, float]:
         """("settled" | "jump" | "longer" | "next", the jump in drift ratio) after a window;
         ``noise``: the standard error of a change between two window means
-        (:func:`change_noise`, :func:`chases_noise`)."""
+        (:func:`change_noise`, :func:`chases_noise`), asked for only where a jump is in view."""
         if in_flight(win):
             return "longer", 0.0  # one flight spans the window: its constant drift says nothing
         if self.prev is None:
@@ -374,7 +373,7 @@ class _Approach:
             # accuracy: an independent estimate agrees, so one change suffices
             return "settled", 0.0
         if (slow and last is not None and change * last > 0.0 and abs(remaining) > eps
-                and not chases_noise(change, last, self.q, noise, eps)):
+                and not chases_noise(change, last, self.q, noise(), eps)):
             self.jumps += 1
             self.before = (d, change)
             return "jump", remaining  # the next window re-adapts; compare the two after it
@@ -440,7 +439,7 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         win = measure_window(stepper, state.w, speed, scale)
         log.append(period_rows(win, stepper))
         values.append(tapered_drift_ratio(win, speed))
-        action, jump = state.judge(values[-1], win, change_noise(log[-1], speed))
+        action, jump = state.judge(values[-1], win, partial(change_noise, log[-1], speed))
         if held(win, values[-1], state.tol):
             settled = True
             break

@@ -81,8 +81,12 @@ def beats(log: list[np.ndarray], win: Window, d: float, speed: float, eps: float
     """
     if win.orbit_period > 1 or len(log) < 2 or speed <= 0.0:
         return False
-    steps = np.concatenate((log[-2][:, 0], log[-1][:, 0]))
-    n = steps.size
-    weights = np.sin(np.pi * (np.arange(n) + 0.5) / n) ** 2
-    two = float(np.dot(weights, steps) / weights.sum() / speed)
+    two = hann_mean(np.concatenate((log[-2][:, 0], log[-1][:, 0]))) / speed
     return abs(two - d) > eps
+
+
+def hann_mean(steps: np.ndarray) -> float:
+    """The mean of per-period displacements with the Hann weights sin^2(pi (k + 1/2) / n)
+    (:func:`~.full_inertia.tapered_drift_ratio`, :func:`beats`)."""
+    weights = np.sin(np.pi * (np.arange(steps.size) + 0.5) / steps.size) ** 2
+    return float(np.dot(weights, steps) / weights.sum())
