@@ -236,23 +236,39 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
            ) -> tuple[Window, Settling, BatchMeans | None]:
     """Where a default fixed run's window could not confirm its drift: full-inertia windows
     (:func:`_settle_on`) and, for an irregular motion, its long-time mean; for a window spent in
-    one flight by a particle that lands again within the time run so far (thrown higher than a
-    window lasts, :func:`~.window.ballistic_return`, ``vertical`` the drive's vertical amplitude),
-    the long-time mean of its bounces, whose flights a window cannot average over. A load, or a
-    flight that outlasts the run (an ejection), is left to the Result's outcome. The long-time
-    mean counts the windows already run (``series``, their per-period rows since the last jump
-    of the speed) against its budget."""
+    one flight by a particle that lands again within the time run so far or within the mean's
+    budget, ``numerics.mean_periods`` (thrown higher than a window lasts,
+    :func:`~.window.ballistic_return`, ``vertical`` the drive's vertical amplitude), the
+    long-time mean of its bounces, whose flights a window cannot average over, over at least
+    :data:`FLIGHTS_PER_MEAN` flights as long as this one (a rigid point at m* = 1.99, A* = 8.7
+    lands about every 190 periods: over the budget's 527 periods, 0.066 +- 0.074 against 0.347
+    from brute force; over 16 flights, 0.360 +- 0.095). A load, or a flight that outlasts both
+    (an ejection), is left to the Result's outcome. The long-time mean counts the windows
+    already run (``series``, their per-period rows since the last jump of the speed) against
+    its budget."""
     num = scene.numerics
     if not _leaving(scene, win, speed):
         win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run, series)
     elif scene.particle.load != 0.0:  # else, leaving, the window was one flight
         return win, settling, None
-    lands = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
-                             vertical) <= stepper.step / stepper.k_per
-    if _irregular(win, settling) or (not settling.settled and in_flight(win) and lands):
-        return win, settling, long_time_mean(stepper.twin(), win, num.mean_periods,
+    now = stepper.step / stepper.k_per
+    ret = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
+                           vertical)
+    flying = not settling.settled and in_flight(win)
+    if _irregular(win, settling) or (flying and ret <= max(now, num.mean_periods)):
+        budget = num.mean_periods
+        if flying:
+            # a mean of bounces needs many flights: at least FLIGHTS_PER_MEAN of this one's length
+            lift = float(stepper.st[S_LASTLIFT])
+            flight = ret + (now - lift if lift >= 0.0 else now)
+            budget = max(budget, int(math.ceil(FLIGHTS_PER_MEAN * flight)))
+        return win, settling, long_time_mean(stepper.twin(), win, budget,
                                              num.settle_tolerance * speed, series)
     return win, settling, None
+
+
+#: flights (of the one a window was spent in) a long-time mean of bounces runs at least
+FLIGHTS_PER_MEAN = 16
 
 
 def _irregular(win: Window, settling: Settling) -> bool:

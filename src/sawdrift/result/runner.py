@@ -72,7 +72,8 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     ret = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
                            drive.vertical_amplitude(scene))
     ending = outcome(scene.particle.load, scene.material.mu, scene.effects.friction,
-                     scene.effects.air_drag, in_flight(win), ret, stepper.step / stepper.k_per,
+                     scene.effects.air_drag, in_flight(win) and out.long_mean is None, ret,
+                     stepper.step / stepper.k_per,
                      win.drift, acceleration, out.speed)
     drift, drift_ratio, drift_se = _reported_drift(out, drift_ratio, solved)
     settled = settling.settled
