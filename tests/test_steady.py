@@ -148,6 +148,24 @@ def test_the_rolling_springs_slow_mode_is_damped_and_not_taken_for_steady():
     assert sd.run(_rolling(1e-5)).settled is False
 
 
+def test_a_default_runs_windows_span_the_rolling_springs_mode():
+    """mmd m* = 1.38, A* = 0.029, mu_r = 0.01 (a cell of the out-of-sample audit): the sphere
+    sticks, and its rolling spring rings with a period of about 253 wave periods. A default run
+    that went on from its fixed window in 27-period windows saw that slow mode as a steady drift
+    (three windows agreed on -4.8e-5, settled) where brute force gives 1e-10; its windows must
+    span the mode, as a settling run's do, and its settled drift be within the acceptance bound
+    (2e-5 absolute) of a 4000-period run measured over its last 2000."""
+    scene = {"model": "mmd", "particle": {"m_star": 1.377623}, "drive": {"amplitude": 0.029318},
+             "effects": {"rotation": True, "rolling_resistance": 0.01}}
+    res = sd.run(sd.Scene(**scene))
+    ref = sd.run(sd.Scene(**scene, numerics={"settle": False, "periods": 4000,
+                                             "measure_periods": 2000}))
+    assert abs(ref.drift_ratio) <= 1e-6 and ref.regime == "stick"
+    assert res.regime == "stick"
+    assert res.measure_periods >= 253
+    assert res.settled is True and abs(res.drift_ratio - ref.drift_ratio) <= 2e-5
+
+
 def test_a_vanishing_friction_stays_fixed_even_where_the_drift_could_be_solved():
     """mmd m* = 10, mu = 1e-6: the speed relaxes over 1e7 periods at the reduced inertia, beyond
     what a default run settles (its cap would be billions of periods were the direct solution
