@@ -22,7 +22,7 @@ from ..scene.schema import Impact, Numerics, Scene
 from .assembly import Assembly
 from .batch_means import BatchMeans, long_time_mean, period_rows
 from .evidence import S_LASTLIFT
-from .full_inertia import Watch, held, settle_full, tapered_drift_ratio
+from .full_inertia import Watch, held, longest_flight, settle_full, tapered_drift_ratio
 from .steady import (
     Settling,
     assess_fixed,
@@ -149,7 +149,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     elif chaos is None and settling.long_mean is not None:
         chaos = settling.long_mean  # the settling measured the long-time mean itself
     elif chaos is None and num.settle is not False and _irregular(win, settling):
-        chaos = long_time_mean(stepper.twin(), win, num.mean_periods, target)
+        chaos = long_time_mean(stepper.twin(), win, _flights_budget(num.mean_periods,
+                                                                    longest_flight(win)), target)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
@@ -260,8 +261,7 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
         if flying:
             # a mean of bounces needs many flights: at least FLIGHTS_PER_MEAN of this one's length
             lift = float(stepper.st[S_LASTLIFT])
-            flight = ret + (now - lift if lift >= 0.0 else now)
-            budget = max(budget, int(math.ceil(FLIGHTS_PER_MEAN * flight)))
+            budget = _flights_budget(budget, ret + (now - lift if lift >= 0.0 else now))
         return win, settling, long_time_mean(stepper.twin(), win, budget,
                                              num.settle_tolerance * speed, series)
     return win, settling, None
@@ -269,6 +269,12 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
 
 #: flights (of the one a window was spent in) a long-time mean of bounces runs at least
 FLIGHTS_PER_MEAN = 16
+
+
+def _flights_budget(periods: int, flight: float) -> int:
+    """The budget of a long-time mean: ``periods``, or :data:`FLIGHTS_PER_MEAN` flights as long
+    as ``flight`` where that is more."""
+    return max(periods, int(math.ceil(FLIGHTS_PER_MEAN * flight)))
 
 
 def _irregular(win: Window, settling: Settling) -> bool:
