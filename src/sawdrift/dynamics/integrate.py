@@ -130,7 +130,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
     # known to the tolerance, a long-time mean stops before its budget (batch_means.CHUNK)
     target = num.settle_tolerance * speed
-    chaos = (long_time_mean(stepper.twin(), win, num.mean_periods, target)
+    chaos = (long_time_mean(stepper.twin(), win,
+                            _flights_budget(num.mean_periods, longest_flight(win)), target)
              if chaotic and num.settle is not False else None)
     if settling is None:
         settling = assess_fixed(win, speed, num.settle_tolerance,
