@@ -258,17 +258,19 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
                            vertical)
     flying = not settling.settled and in_flight(win)
     if _irregular(win, settling) or (flying and ret <= max(now, num.mean_periods)):
-        budget = num.mean_periods
+        # a mean of bounces needs many flights: at least FLIGHTS_PER_MEAN of the longest
+        flight = longest_flight(win)
         if flying:
-            # a mean of bounces needs many flights: at least FLIGHTS_PER_MEAN of this one's length
             lift = float(stepper.st[S_LASTLIFT])
-            budget = _flights_budget(budget, ret + (now - lift if lift >= 0.0 else now))
-        return win, settling, long_time_mean(stepper.twin(), win, budget,
+            flight = max(flight, ret + (now - lift if lift >= 0.0 else now))
+        return win, settling, long_time_mean(stepper.twin(), win,
+                                             _flights_budget(num.mean_periods, flight),
                                              num.settle_tolerance * speed, series)
     return win, settling, None
 
 
-#: flights (of the one a window was spent in) a long-time mean of bounces runs at least
+#: flights (as long as the longest of the run's window) a long-time mean of bounces runs at
+#: least
 FLIGHTS_PER_MEAN = 16
 
 
