@@ -17,12 +17,24 @@ counts and the failures; writes one row per cell to ``--out``.
     python benchmarks/bench_audit.py mmd --grid 13 --m-star 0.0013 0.9 [--scene '{"drive":
         {"backward": 0.5}}'] [--out results/audit.csv]
 
+With ``--stored``, the default runs are judged against the brute force stored in
+``results/audit_brute.csv`` (2076 cells of 20 grids: the seven grids below and the backward wave,
+and twelve variants: mmd with normal damping, rotation, rolling resistance, a retrograde orbit,
+air drag, a cone and DMT adhesion; jaeger with mu = 0.5; the material point with restitution
+0.5; hertz_mindlin_dem with JKR adhesion; light jaeger and hertz_mindlin_dem): brute force does
+not depend on the settle rules, so a change to them is audited in about a minute. The names
+after ``--stored`` pick grids (all by default); ``--out`` gets one row per cell.
+
+    python benchmarks/bench_audit.py --stored [point_heavy mmd_rolling_resistance ...]
+
 On 2026-11-28 (tenth session, 2 cores) the 1024 cells of seven grids (13 x 13 light cells of
 mmd and material_point; 11 x 11 heavy cells, m* 1.3 to 90, of mmd, jaeger, hertz_mindlin_dem,
 material_point and hertz_tsuji; 9 x 9 of mmd with a backward wave of half the amplitude) gave,
 on the code at the session's start, 18 of 851 settled drifts outside the bound, 26 of 170 means
 more than 3 errors off, 38 failures without a warning; on its final code 1 of 866, 10 of 155
-and 2. About 1 min per 121 heavy cells.
+and 2. About 1 min per 121 heavy cells. In the eleventh session, ``--stored`` on its final code:
+the first 1024 cells 1 of 866 settled drifts off, 6 of 157 means, 2 without a warning; the
+other 1052, 2 of 826, 9 of 221 and 3.
 """
 
 from __future__ import annotations
@@ -51,19 +63,28 @@ def scene_dict(model: str, m: float, a: float, extra: dict) -> dict:
     return sc
 
 
+STORED = Path(__file__).parent / "results" / "audit_brute.csv"
+
+
+def default_row(args: tuple[str, float, float, dict]) -> dict:
+    """The default run of one cell."""
+    model, m, a, extra = args
+    res = sd.run(sd.Scene(**scene_dict(model, m, a, extra)))
+    return {"m_star": m, "amplitude": a, "drift_ratio": res.drift_ratio,
+            "drift_ratio_se": res.drift_ratio_se, "settled": bool(res.settled),
+            "regime": res.regime, "settle_method": res.settle_method,
+            "warnings": len(res.warnings)}
+
+
 def cell(args: tuple[str, float, float, dict]) -> dict:
     """The default run of one cell and its two brute-force runs from rest."""
     model, m, a, extra = args
     sc = scene_dict(model, m, a, extra)
-    res = sd.run(sd.Scene(**sc))
     mu = sd.Scene(**sc).material.mu
     n = max(4000, int(40 * m / mu) + 2000)
     runs = [sd.run(sd.Scene(**sc, numerics={"settle": False, "periods": p, "measure_periods": p // 2,
                                             "max_periods": p})) for p in (n, 2 * n)]
-    return {"m_star": m, "amplitude": a, "drift_ratio": res.drift_ratio,
-            "drift_ratio_se": res.drift_ratio_se, "settled": bool(res.settled),
-            "regime": res.regime, "settle_method": res.settle_method,
-            "warnings": len(res.warnings), "brute_n": runs[0].drift_ratio,
+    return {**default_row(args), "brute_n": runs[0].drift_ratio,
             "brute_2n": runs[1].drift_ratio, "brute_regime": runs[1].regime}
 
 
@@ -79,15 +100,68 @@ def judge(rows: pd.DataFrame) -> pd.DataFrame:
     return x
 
 
+def summary(name: str, rows: pd.DataFrame) -> str:
+    """One line of counts for a judged grid (module docstring)."""
+    failed = rows[rows.bad_settled | rows.bad_mean]
+    return (f"{name}: {len(rows)} cells; settled {int(rows.settled.sum())}, "
+            f"{int(rows.bad_settled.sum())} outside the bound; means "
+            f"{int(np.isfinite(rows.drift_ratio_se).sum())}, {int(rows.bad_mean.sum())} more than "
+            f"3 errors off; {int((failed.warnings == 0).sum())} failures without a warning; brute "
+            f"force not converged on {int((~rows.converged).sum())}")
+
+
+def print_failures(rows: pd.DataFrame) -> None:
+    """The judged rows that failed, if any."""
+    failed = rows[rows.bad_settled | rows.bad_mean]
+    if len(failed):
+        with pd.option_context("display.width", 200):
+            print(failed[["m_star", "amplitude", "drift_ratio", "drift_ratio_se", "settled",
+                          "settle_method", "brute_n", "brute_2n", "warnings"]].to_string())
+
+
+def stored(names: list[str], workers: int, out: Path) -> None:
+    """Default runs judged against the stored brute force (``--stored``), grid by grid."""
+    brute = pd.read_csv(STORED)
+    if names:
+        unknown = sorted(set(names) - set(brute.grid))
+        if unknown:
+            raise SystemExit(f"--stored: no grid {', '.join(unknown)}; the grids are "
+                             f"{', '.join(dict.fromkeys(brute.grid))}")
+        brute = brute[brute.grid.isin(names)]
+    judged = []
+    with ProcessPoolExecutor(workers) as ex:
+        for name, grid in brute.groupby("grid", sort=False):
+            todo = [(m, float(ms), float(a), json.loads(sc)) for m, ms, a, sc
+                    in zip(grid.model, grid.m_star, grid.amplitude, grid.scene, strict=True)]
+            rows = pd.DataFrame(list(ex.map(default_row, todo, chunksize=2)))
+            for col in ("brute_n", "brute_2n", "brute_regime", "grid"):
+                rows[col] = grid[col].to_numpy()
+            rows = judge(rows)
+            print(summary(str(name), rows), flush=True)
+            print_failures(rows)
+            judged.append(rows)
+    rows = pd.concat(judged, ignore_index=True)
+    print(summary("all", rows))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    rows.to_csv(out, index=False)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("model")
+    ap.add_argument("model", nargs="?", help="the model of a new grid (not with --stored)")
+    ap.add_argument("--stored", nargs="*", default=None, metavar="GRID",
+                    help="judge default runs against the stored brute force (all grids, or these)")
     ap.add_argument("--grid", type=int, default=13)
     ap.add_argument("--m-star", type=float, nargs=2, default=(0.0013, 0.9))
     ap.add_argument("--scene", default="{}", help="scene fields merged into every cell (JSON)")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--out", type=Path, default=OUT)
     args = ap.parse_args()
+    if args.stored is not None:
+        stored(args.stored, args.workers, args.out)
+        return
+    if args.model is None:
+        ap.error("a model, or --stored")
     extra = json.loads(args.scene)
     ms = np.logspace(*np.log10(args.m_star), args.grid)
     amps = np.logspace(np.log10(0.013), np.log10(8.7), args.grid)
@@ -96,16 +170,8 @@ def main() -> None:
         rows = judge(pd.DataFrame(list(ex.map(cell, todo, chunksize=2))))
     args.out.parent.mkdir(parents=True, exist_ok=True)
     rows.to_csv(args.out, index=False)
-    failed = rows[rows.bad_settled | rows.bad_mean]
-    print(f"{args.model} {extra or ''}: {len(rows)} cells; settled {int(rows.settled.sum())}, "
-          f"{int(rows.bad_settled.sum())} outside the bound; means "
-          f"{int(np.isfinite(rows.drift_ratio_se).sum())}, {int(rows.bad_mean.sum())} more than "
-          f"3 errors off; {int((failed.warnings == 0).sum())} failures without a warning; brute "
-          f"force not converged on {int((~rows.converged).sum())}")
-    if len(failed):
-        with pd.option_context("display.width", 200):
-            print(failed[["m_star", "amplitude", "drift_ratio", "drift_ratio_se", "settled",
-                          "settle_method", "brute_n", "brute_2n", "warnings"]].to_string())
+    print(summary(f"{args.model} {extra or ''}", rows))
+    print_failures(rows)
 
 
 if __name__ == "__main__":
