@@ -273,11 +273,15 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
 #: least
 FLIGHTS_PER_MEAN = 16
 
+#: the flights' budget is at most this many times ``numerics.mean_periods``
+MOST_FLIGHT_BUDGETS = 100
+
 
 def _flights_budget(periods: int, flight: float) -> int:
     """The budget of a long-time mean: ``periods``, or :data:`FLIGHTS_PER_MEAN` flights as long
-    as ``flight`` where that is more."""
-    return max(periods, int(math.ceil(FLIGHTS_PER_MEAN * flight)))
+    as ``flight`` where that is more, up to :data:`MOST_FLIGHT_BUDGETS` times ``periods``."""
+    return max(periods, min(int(math.ceil(FLIGHTS_PER_MEAN * flight)),
+                            MOST_FLIGHT_BUDGETS * periods))
 
 
 def _irregular(win: Window, settling: Settling) -> bool:
