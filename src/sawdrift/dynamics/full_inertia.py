@@ -372,8 +372,10 @@ class _Approach:
             # two windows in a row on the drift solved directly, their change within the
             # accuracy: an independent estimate agrees, so one change suffices
             return "settled", 0.0
-        if (slow and last is not None and change * last > 0.0 and abs(remaining) > eps
-                and not chases_noise(change, last, self.q, noise(), eps)):
+        # no jump where nothing relaxes slowly (q = 0: the speed of a light particle settles
+        # within a window, and changes of one sign are a beat of its contact, not an approach)
+        if (slow and self.q > 0.0 and last is not None and change * last > 0.0
+                and abs(remaining) > eps and not chases_noise(change, last, self.q, noise(), eps)):
             self.jumps += 1
             self.before = (d, change)
             return "jump", remaining  # the next window re-adapts; compare the two after it
