@@ -130,8 +130,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
     # known to the tolerance, a long-time mean stops before its budget (batch_means.CHUNK)
     target = num.settle_tolerance * speed
-    chaos = (long_time_mean(stepper.twin(), win,
-                            _flights_budget(num.mean_periods, longest_flight(win)), target)
+    chaos = (long_time_mean(stepper.twin(), win, _mean_budget(num, win), target)
              if chaotic and num.settle is not False else None)
     if settling is None:
         settling = assess_fixed(win, speed, num.settle_tolerance,
@@ -150,8 +149,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     elif chaos is None and settling.long_mean is not None:
         chaos = settling.long_mean  # the settling measured the long-time mean itself
     elif chaos is None and num.settle is not False and _irregular(win, settling):
-        chaos = long_time_mean(stepper.twin(), win, _flights_budget(num.mean_periods,
-                                                                    longest_flight(win)), target)
+        chaos = long_time_mean(stepper.twin(), win, _mean_budget(num, win), target)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
@@ -258,13 +256,10 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
                            vertical)
     flying = not settling.settled and in_flight(win)
     if _irregular(win, settling) or (flying and ret <= max(now, num.mean_periods)):
-        # a mean of bounces needs many flights: at least FLIGHTS_PER_MEAN of the longest
-        flight = longest_flight(win)
-        if flying:
-            lift = float(stepper.st[S_LASTLIFT])
-            flight = max(flight, ret + (now - lift if lift >= 0.0 else now))
-        return win, settling, long_time_mean(stepper.twin(), win,
-                                             _flights_budget(num.mean_periods, flight),
+        # the flight the window was spent in, from its lift-off to its landing
+        lift = float(stepper.st[S_LASTLIFT])
+        flight = ret + (now - lift if lift >= 0.0 else now) if flying else 0.0
+        return win, settling, long_time_mean(stepper.twin(), win, _mean_budget(num, win, flight),
                                              num.settle_tolerance * speed, series)
     return win, settling, None
 
@@ -277,11 +272,14 @@ FLIGHTS_PER_MEAN = 16
 MOST_FLIGHT_BUDGETS = 100
 
 
-def _flights_budget(periods: int, flight: float) -> int:
-    """The budget of a long-time mean: ``periods``, or :data:`FLIGHTS_PER_MEAN` flights as long
-    as ``flight`` where that is more, up to :data:`MOST_FLIGHT_BUDGETS` times ``periods``."""
-    return max(periods, min(int(math.ceil(FLIGHTS_PER_MEAN * flight)),
-                            MOST_FLIGHT_BUDGETS * periods))
+def _mean_budget(num: Numerics, win: Window, flight: float = 0.0) -> int:
+    """The budget of a long-time mean after ``win``: ``numerics.mean_periods``, or
+    :data:`FLIGHTS_PER_MEAN` flights as long as the window's longest (or ``flight``, where
+    longer) where that is more, up to :data:`MOST_FLIGHT_BUDGETS` times ``mean_periods``: a
+    mean of bounces needs many flights."""
+    periods = num.mean_periods
+    flights = FLIGHTS_PER_MEAN * max(longest_flight(win), flight)
+    return max(periods, min(int(math.ceil(flights)), MOST_FLIGHT_BUDGETS * periods))
 
 
 def _irregular(win: Window, settling: Settling) -> bool:
