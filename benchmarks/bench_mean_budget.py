@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 import sawdrift as sd
-from sawdrift._texts import says_heating
+from sawdrift._texts import says_heating, says_still_moving
 
 OUT = Path(__file__).parent / "results" / "mean_budget.json"
 
@@ -53,7 +53,7 @@ def mean_of(m: float, a: float, budget: int, ramp_extra: float = 0.0,
     t0 = time.perf_counter()
     r = sd.run(scene)
     wall = time.perf_counter() - t0
-    flagged = says_heating(r.warnings) or any("still moving" in w for w in r.warnings)
+    flagged = says_heating(r.warnings) or says_still_moving(r.warnings)
     return r.drift_ratio, r.drift_ratio_se, wall, flagged
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from .._texts import HEATING
+from .._texts import HEATING, STILL_MOVING
 from ..contact.binding import bind, model_for
 from ..dynamics.assembly import Engine, assemble
 from ..dynamics.batch_means import HALVES_Z, TREND_Z
@@ -163,7 +163,7 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
     a measuring window too long for all its events to be kept."""
     warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
     if out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
-        warnings += ("not settled: the mean drift was still moving over its last "
+        warnings += (f"not settled: {STILL_MOVING} over its last "
                      f"{out.long_mean.periods} periods (its two halves differ by more than "
                      f"{HALVES_Z:g} errors: a slow approach); numerics.mean_periods "
                      "(--mean-periods) runs it longer",)
