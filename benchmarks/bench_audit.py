@@ -119,15 +119,19 @@ def print_failures(rows: pd.DataFrame) -> None:
                           "settle_method", "brute_n", "brute_2n", "warnings"]].to_string())
 
 
-def stored(names: list[str], workers: int, out: Path) -> None:
-    """Default runs judged against the stored brute force (``--stored``), grid by grid."""
+def stored_grids(names: list[str]) -> tuple[pd.DataFrame, str | None]:
+    """The stored brute force of the grids ``names`` (all where empty), or an error line naming
+    the unknown ones and the grids there are."""
     brute = pd.read_csv(STORED)
-    if names:
-        unknown = sorted(set(names) - set(brute.grid))
-        if unknown:
-            raise SystemExit(f"--stored: no grid {', '.join(unknown)}; the grids are "
-                             f"{', '.join(dict.fromkeys(brute.grid))}")
-        brute = brute[brute.grid.isin(names)]
+    unknown = sorted(set(names) - set(brute.grid))
+    if unknown:
+        return brute, (f"--stored: no grid {', '.join(unknown)}; the grids are "
+                       f"{', '.join(dict.fromkeys(brute.grid))}")
+    return (brute[brute.grid.isin(names)] if names else brute), None
+
+
+def stored(brute: pd.DataFrame, workers: int, out: Path) -> None:
+    """Default runs judged against the stored brute force (``--stored``), grid by grid."""
     judged = []
     with ProcessPoolExecutor(workers) as ex:
         for name, grid in brute.groupby("grid", sort=False):
@@ -158,7 +162,10 @@ def main() -> None:
     ap.add_argument("--out", type=Path, default=OUT)
     args = ap.parse_args()
     if args.stored is not None:
-        stored(args.stored, args.workers, args.out)
+        brute, error = stored_grids(args.stored)
+        if error:
+            ap.error(error)  # one line, exit status 2
+        stored(brute, args.workers, args.out)
         return
     if args.model is None:
         ap.error("a model, or --stored")
