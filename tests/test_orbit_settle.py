@@ -91,6 +91,23 @@ def test_a_period_ten_orbit_is_a_hop_of_period_ten():
     assert res.liftoffs_per_hop == len(res.liftoff_phases) >= 1
 
 
+def test_an_orbit_longer_than_the_short_windows_is_found_and_settled_on():
+    """Material point, m* = 0.1755, A* = 8.7, mu = 0.1: three long flights make an orbit of 54
+    periods, so windows of 27 periods alternate between drift ratios 0.21 and -0.02, and those of
+    81 between 0.05 and 0.12. With orbits looked for only up to 24 periods, the run settled when
+    windows of 162 periods agreed and called it bouncing (irregular); the orbit is a hop of
+    period 54. Reference: 40 whole orbits of a fixed run after a transient of 840 periods."""
+    m, a = 0.17545579636386113, 8.7
+    ref = sd.run(sd.Scene(model="material_point", particle={"m_star": m}, drive={"amplitude": a},
+                          numerics={"settle": False, "periods": 3000, "measure_periods": 2160}))
+    res = sd.run(sd.Scene(model="material_point", particle={"m_star": m}, drive={"amplitude": a}))
+    assert ref.orbit_period == 54
+    assert res.regime == "hopping" and res.settled is True
+    assert res.orbit_period == 54 and res.hop_period == 54
+    assert res.liftoffs_per_hop == len(res.liftoff_phases) == 3
+    assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-9 * abs(ref.drift_ratio)
+
+
 def test_orbit_pattern_reads_the_last_orbit_and_checks_the_one_before():
     t = np.array([0.3, 2.25, 10.3, 12.25, 20.3, 22.25])
     sync = orbit_pattern(t, 0.0, 30, 10)
