@@ -34,6 +34,7 @@ from .steady import (
     settles,
 )
 from .stepper import Stepper
+from .transient import orbit_settling, orbit_window
 from .window import (
     PERIODIC_TOL,
     Window,
@@ -130,8 +131,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
     # known to the tolerance, a long-time mean stops before its budget (batch_means.CHUNK)
     target = num.settle_tolerance * speed
-    chaos = (long_time_mean(stepper.twin(), win, _mean_budget(num, win), target)
-             if chaotic and num.settle is not False else None)
+    chaos, twin = (_long_mean(stepper, win, _mean_budget(num, win), target)
+                   if chaotic and num.settle is not False else (None, None))
     if settling is None:
         settling = assess_fixed(win, speed, num.settle_tolerance,
                                 relaxation_periods(scene, scene.particle.m_star, speed),
@@ -144,18 +145,36 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                 and not chaotic):
             # a default run that its own window could not confirm goes on to the steady drift (a
             # run given another length keeps it)
-            win, settling, chaos = _go_on(stepper, scene, speed, scale, win, settling,
-                                          periods_run, drive.vertical_amplitude(scene), series)
+            win, settling, chaos, twin = _go_on(stepper, scene, speed, scale, win, settling,
+                                                periods_run, drive.vertical_amplitude(scene),
+                                                series)
     elif chaos is None and settling.long_mean is not None:
         chaos = settling.long_mean  # the settling measured the long-time mean itself
     elif chaos is None and num.settle is not False and _irregular(win, settling):
-        chaos = long_time_mean(stepper.twin(), win, _mean_budget(num, win), target)
+        chaos, twin = _long_mean(stepper, win, _mean_budget(num, win), target)
+    # the run's own trajectory ends with its window, whatever a twin ran on to
+    path = stepper.trajectory() if trajectory else None
+    ended = (orbit_window(twin, chaos, n_periods, speed, scale)
+             if twin is not None and chaos is not None and chaos.orbit else None)
+    if ended is not None:
+        # the irregular motion was a transient that ended on a periodic orbit (.transient)
+        win, stepper, chaos = ended, twin, None
+        settling = orbit_settling(settling, twin, win)
+        lyap, chaotic = lyapunov(win, scale)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
                    hop_period=win.sync.hop_period if not chaotic else 0, compile_s=compile_s,
-                   wall_time_s=wall, trajectory=stepper.trajectory() if trajectory else None,
+                   wall_time_s=wall, trajectory=path,
                    last_liftoff=float(stepper.st[S_LASTLIFT]), long_mean=chaos)
+
+
+def _long_mean(stepper: Stepper, win: Window, budget: int, target: float,
+               series: list[np.ndarray] | None = None) -> tuple[BatchMeans, Stepper]:
+    """The long-time mean after ``win`` (:func:`~.batch_means.long_time_mean`), run on a twin
+    of the run (which ends with its window), and that twin at the mean's end."""
+    twin = stepper.twin()
+    return long_time_mean(twin, win, budget, target, series), twin
 
 
 def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
@@ -233,7 +252,7 @@ def _held_first(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
 
 def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win: Window,
            settling: Settling, periods_run: float, vertical: float, series: list[np.ndarray]
-           ) -> tuple[Window, Settling, BatchMeans | None]:
+           ) -> tuple[Window, Settling, BatchMeans | None, Stepper | None]:
     """Where a default fixed run's window could not confirm its drift: full-inertia windows
     (:func:`_settle_on`) and, for an irregular motion, its long-time mean; for a window spent in
     one flight by a particle that lands again within the time run so far or within the mean's
@@ -245,12 +264,12 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
     from brute force; over 16 flights, 0.360 +- 0.095). A load, or a flight that outlasts both
     (an ejection), is left to the Result's outcome. The long-time mean counts the windows
     already run (``series``, their per-period rows since the last jump of the speed) against
-    its budget."""
+    its budget. Last, the twin the mean ran on (None without a mean)."""
     num = scene.numerics
     if not _leaving(scene, win, speed):
         win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run, series)
     elif scene.particle.load != 0.0:  # else, leaving, the window was one flight
-        return win, settling, None
+        return win, settling, None, None
     now = stepper.step / stepper.k_per
     ret = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
                            vertical)
@@ -259,9 +278,9 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
         # the flight the window was spent in, from its lift-off to its landing
         lift = float(stepper.st[S_LASTLIFT])
         flight = ret + (now - lift if lift >= 0.0 else now) if flying else 0.0
-        return win, settling, long_time_mean(stepper.twin(), win, _mean_budget(num, win, flight),
-                                             num.settle_tolerance * speed, series)
-    return win, settling, None
+        return win, settling, *_long_mean(stepper, win, _mean_budget(num, win, flight),
+                                          num.settle_tolerance * speed, series)
+    return win, settling, None, None
 
 
 #: flights (as long as the longest of the run's window) a long-time mean of bounces runs at

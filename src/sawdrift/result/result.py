@@ -137,8 +137,10 @@ class Result:
     #: approach, then windows at full inertia; see dynamics.full_inertia), "solved" (the drift
     #: solved directly, checked by one evidence window; see dynamics.direct), "orbit_then_full"
     #: (windows at full inertia started at the drift solved directly: numerics.confirm_solved)
-    #: or "imposed_speed" (an irregular heavy bouncer's long-time mean from the friction at an
-    #: imposed speed; see dynamics.imposed)
+    #: "imposed_speed" (an irregular heavy bouncer's long-time mean from the friction at an
+    #: imposed speed; see dynamics.imposed) or "mean_then_orbit" (an irregular motion that fell
+    #: onto a periodic orbit during its long-time mean: the orbit's window; see
+    #: dynamics.transient)
     settle_method: str | None = None
     #: periods after which the drift was assessed (settle runs: periods spent settling)
     settle_periods: float = math.nan
