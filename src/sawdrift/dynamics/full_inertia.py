@@ -37,7 +37,9 @@ estimated remaining distance are all within half the tolerance (relative to the 
 absolute floor of 2 % of the tolerance in drift-ratio units) and the tapered mean over the last
 two windows agrees with the last one's (a beat as long as a window makes every window agree on
 a biased mean, :func:`beats`; the windows then double), or at the first window whose
-contact held (neither slid as a whole nor lost contact, its mean at that floor: :func:`held`);
+contact held (neither slid as a whole nor lost contact, its mean at that floor: :func:`held`;
+a contact that slid before, whose free vertical oscillation beats against the wave more slowly
+than a window lasts, must hold for two beats first: :mod:`.slip_return`);
 the reported drift is the last window's tapered mean (:func:`tapered_drift_ratio`), measured at
 full inertia.
 """
@@ -55,6 +57,7 @@ from .adams_bashforth import P_FRICTION, P_LOAD, P_M, P_ROLL
 from .batch_means import period_rows
 from .evidence import EV_LANDING, EV_LIFT_OFF
 from .rolling import contact_point, integrates_psi
+from .slip_return import SlipReturn, vertical_beat
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
 from .window_noise import beats, change_noise, chases_noise, hann_mean
@@ -435,14 +438,19 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     log.append(period_rows(win, stepper))
     values = [tapered_drift_ratio(win, speed)]
     state.prev = values[-1]
-    settled = held(win, values[-1], state.tol)
+    # a contact that slid before may slide again a slow beat later (.slip_return)
+    slips = SlipReturn(vertical_beat(scene.particle.m_star, stepper.rigid), last)
+    slips.see(win)
+    settled = held(win, values[-1], state.tol) and not slips.waits(win)
     while (not settled and len(values) < MAX_WINDOWS
            and stepper.step + state.w * stepper.k_per <= max_steps):
         win = measure_window(stepper, state.w, speed, scale)
         log.append(period_rows(win, stepper))
         values.append(tapered_drift_ratio(win, speed))
+        slips.see(win)
         action, jump = state.judge(values[-1], win, partial(change_noise, log[-1], speed))
-        if held(win, values[-1], state.tol):
+        action = slips.overrule(action, win)
+        if not slips.waits(win) and held(win, values[-1], state.tol):
             settled = True
             break
         if action == "settled" and beats(log, win, values[-1], speed,
@@ -459,7 +467,7 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         if action == "jump" and speed > 0.0:
             shift_speed(stepper, jump * speed)
             log.clear()
-        if action != "next":
+        if action not in ("next", "wait"):
             state.restart(longer=action == "longer")
     info = FullInertia(settled, state.w, len(values), state.jumps,
                        (stepper.step - start) / stepper.k_per, tuple(values), state.q)
