@@ -7,6 +7,8 @@ drift over whole orbits of an exact periodic orbit is its long-time drift).
 
 from __future__ import annotations
 
+import numpy as np
+
 import sawdrift as sd
 
 
@@ -46,9 +48,11 @@ def test_a_transient_that_ends_on_a_short_orbit_is_a_hop_of_that_period():
     assert abs(res.drift_ratio - ref.drift_ratio) <= 1e-6 * abs(ref.drift_ratio)
 
 
-def test_a_run_recording_its_trajectory_gives_the_same_orbit_and_keeps_its_own_path():
+def test_a_run_recording_its_trajectory_gives_the_same_orbit_and_ends_its_path_on_it():
     """The orbit is run on the copy the mean ran on: a run recording its trajectory reports the
-    same settled orbit, and its trajectory is its own, ending where its window ended."""
+    same settled orbit, and its trajectory is its own up to its window, then the orbit window's
+    rows (the mean's periods between them are not recorded), so that its last periods show the
+    orbit the run reports."""
     m, a = 0.9, 1.7105086610184825
     res = _point(m, a)
     traced = sd.run(sd.Scene(model="material_point", particle={"m_star": m},
@@ -56,4 +60,15 @@ def test_a_run_recording_its_trajectory_gives_the_same_orbit_and_keeps_its_own_p
     assert traced.settled is True and traced.settle_method == "mean_then_orbit"
     assert traced.drift_ratio == res.drift_ratio
     t = traced.trajectory["t"].to_numpy()
-    assert t[-1] < traced.periods - traced.measure_periods
+    x = traced.trajectory["x"].to_numpy()
+    assert abs(t[-1] - traced.periods) < 1e-6
+    start = traced.periods - traced.measure_periods
+    i0 = int(np.flatnonzero(t >= start - 1e-9)[0])
+    assert t[i0] - start < 0.01  # the orbit window's first row (one step in)
+    assert np.diff(t).max() > 100.0  # the long-time mean's periods, not recorded
+    # the drift over one orbit of the recorded window, from any phase, is the reported one
+    p = traced.orbit_period
+    i1 = int(np.argmin(np.abs(t - (t[i0] + p))))
+    assert abs(t[i1] - t[i0] - p) < 1e-9
+    speed = 2 * np.pi * abs(traced.horizontal_ratio) * a
+    assert abs((x[i1] - x[i0]) / p / speed - traced.drift_ratio) < 1e-9

@@ -152,10 +152,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
         chaos = settling.long_mean  # the settling measured the long-time mean itself
     elif chaos is None and num.settle is not False and _irregular(win, settling):
         chaos, twin = _long_mean(stepper, win, _mean_budget(num, win), target)
-    # the run's own trajectory ends with its window, whatever a twin ran on to
+    ended = orbit_window(stepper, twin, chaos, n_periods, speed, scale)
     path = stepper.trajectory() if trajectory else None
-    ended = (orbit_window(twin, chaos, n_periods, speed, scale)
-             if twin is not None and chaos is not None and chaos.orbit else None)
     if ended is not None:
         # the irregular motion was a transient that ended on a periodic orbit (.transient)
         win, stepper, chaos = ended, twin, None

@@ -35,16 +35,24 @@ CHECKED = 8
 METHOD = "mean_then_orbit"
 
 
-def orbit_window(twin: Stepper, mean: BatchMeans, periods: int, speed: float,
-                 scale: np.ndarray) -> Window | None:
+def orbit_window(run: Stepper, twin: Stepper | None, mean: BatchMeans | None, periods: int,
+                 speed: float, scale: np.ndarray) -> Window | None:
     """The window of whole orbits that ``twin``, at the end of the long-time ``mean`` that found
     its orbit (:attr:`~.batch_means.BatchMeans.orbit`), runs next: at least two orbits, at least
     ``periods`` (the run's measuring window) and long enough for the orbit to be found in it
-    again; None where it is not (the orbit was left: not the end of the transient)."""
+    again; None without such a mean, or where the orbit is not found again (it was left: not
+    the end of the transient). A ``run`` recording its trajectory gets the window's rows after
+    its own (the mean's periods between them are not recorded)."""
+    if twin is None or mean is None or not mean.orbit:
+        return None
     p = mean.orbit
     length = p * max(2, math.ceil((p + CHECKED) / p), math.ceil(periods / p))
+    twin.record, twin.rec_every, twin.rec_chunks = run.record, run.rec_every, []
     win = measure_window(twin, length, speed, scale)
-    return win if win.orbit_period > 0 else None
+    if win.orbit_period == 0:
+        return None
+    run.rec_chunks.extend(twin.rec_chunks)
+    return win
 
 
 def orbit_settling(settling: Settling, twin: Stepper, win: Window) -> Settling:
