@@ -126,6 +126,9 @@ class FullInertia:
     periods: float
     history: tuple[float, ...]
     ratio: float = math.nan
+    #: the beat (periods) of the free vertical oscillation after which a contact that had held
+    #: slid again (:mod:`.slip_return`), 0 where none did
+    slip_beat: float = 0.0
 
     def drift(self, speed: float) -> float | None:
         """The settled drift (x* per period) to report: the last window's tapered mean
@@ -447,7 +450,6 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         win = measure_window(stepper, state.w, speed, scale)
         log.append(period_rows(win, stepper))
         values.append(tapered_drift_ratio(win, speed))
-        slips.see(win)
         action, jump = state.judge(values[-1], win, partial(change_noise, log[-1], speed))
         action = slips.overrule(action, win)
         if not slips.waits(win) and held(win, values[-1], state.tol):
@@ -470,5 +472,6 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         if action not in ("next", "wait"):
             state.restart(longer=action == "longer")
     info = FullInertia(settled, state.w, len(values), state.jumps,
-                       (stepper.step - start) / stepper.k_per, tuple(values), state.q)
+                       (stepper.step - start) / stepper.k_per, tuple(values), state.q,
+                       slips.beat if slips.came_back else 0.0)
     return win, info

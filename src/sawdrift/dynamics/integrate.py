@@ -376,7 +376,7 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
                             watch=Watch(give_up=_gives_up, series=series))
     info = Settling(full.settled, "fixed_then_windows", m_star, full.window_periods,
                     periods_run + (stepper.step - start) / stepper.k_per, math.nan, full.history,
-                    drift=full.drift(speed))
+                    drift=full.drift(speed), slip_beat=full.slip_beat)
     return win, info
 
 

@@ -39,3 +39,6 @@ class Settling:
     long_mean: BatchMeans | None = None
     #: the drift (x* per period) reported instead of the last window's box mean, or None
     drift: float | None = None
+    #: the beat (periods) of the free vertical oscillation after which a contact that had held
+    #: slid again (:mod:`.slip_return`), 0 where none did: why such a run may not settle
+    slip_beat: float = 0.0

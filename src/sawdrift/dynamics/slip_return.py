@@ -5,7 +5,7 @@ oscillation of frequency f = sqrt(N*'(1) / m*) / (2 pi) per wave period (N*'(1) 
 Hertz), which the start-up leaves behind and nothing removes. Against the wave's harmonic k
 nearest to f it beats with the period 1 / |f - k|: the normal force's modulation grows and
 shrinks over that many periods, and with it the friction limit. Near a harmonic the beat is long
-(mmd m* = 0.00237: f = 4.0029, a beat of 345 periods), so a light particle can slide while the
+(mmd m* = 0.00237: f = 4.0028, a beat of 355 periods), so a light particle can slide while the
 modulation is strong, hold its contact for a window or several while it is weak, and slide again
 a beat later: one window that held, or windows that agreed while they held, are then no steady
 state (mmd m* = 0.00237, A* = 1.26 held from period 87 and was settled as sticking at period
@@ -54,6 +54,8 @@ class SlipReturn:
         self.slid = last is not None and _slides(last)
         self.held_for = 0  # periods since the last window that slid
         self.returned = False
+        #: the slip came back after a hold at least once: the drift is modulated over the beat
+        self.came_back = False
 
     def see(self, win: Window) -> None:
         """Take the next window into account."""
@@ -66,11 +68,14 @@ class SlipReturn:
             self.held_for += win.periods
 
     def overrule(self, action: str, win: Window) -> str:
-        """The window-to-window verdict ``action`` after ``win`` (``"settled"``, ``"next"``,
-        ...), held back: ``"wait"`` for a settled verdict while :meth:`waits`, ``"again"``
-        (compare afresh) where the slip has just come back, so that the agreement of the
-        windows that held does not settle the sliding that follows."""
+        """Take the next window ``win`` into account (:meth:`see`) and return the
+        window-to-window verdict ``action`` after it (``"settled"``, ``"next"``, ...), held
+        back: ``"wait"`` for a settled verdict while :meth:`waits`, ``"again"`` (compare afresh)
+        where the slip has just come back, so that the agreement of the windows that held does
+        not settle the sliding that follows."""
+        self.see(win)
         if self.returned and action in ("settled", "next"):
+            self.came_back = True
             return "again"
         if action == "settled" and self.waits(win):
             return "wait"

@@ -193,16 +193,23 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
 
 
 def _unsettled_reason(out: WaveRun, settling: bool) -> str:
-    """Why a run that was to settle did not: its drift still moving when its periods ran out
-    (``settling``: it was asked to settle, and only a higher cap runs it longer)."""
+    """Why a run that was to settle did not: its drift still moving when its periods ran out, or
+    a contact that slid again after a hold, a slow beat later (``settling``: it was asked to
+    settle, and only a higher cap runs it longer)."""
     history = out.settling.history
     periods = out.stepper.step / out.stepper.k_per
+    longer = ("numerics.max_periods (--max-periods)" if settling else
+              "numerics.settle = true (--settle) with numerics.max_periods (--max-periods)")
+    beat = out.settling.slip_beat
+    if beat > 0.0:
+        return (f"not settled: its contact held for a while and then slid again, as its undamped "
+                f"free vertical oscillation beats against the wave over about {beat:.0f} periods "
+                f"(near a vertical resonance); the drift of its last window, when the run stopped "
+                f"after {periods:.0f} periods, is one phase of that beat; {longer} runs it longer")
     if len(history) >= 2:
         change = f"changed by {history[-1] - history[-2]:+.2g} in drift ratio over its last window"
     else:
         change = "was not confirmed by its window"
-    longer = ("numerics.max_periods (--max-periods)" if settling else
-              "numerics.settle = true (--settle) with numerics.max_periods (--max-periods)")
     return (f"not settled: the drift {change} when the run stopped after {periods:.0f} periods "
             f"(a slow approach, or a growing motion); {longer} runs it longer")
 
