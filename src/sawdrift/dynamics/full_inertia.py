@@ -57,7 +57,7 @@ from .adams_bashforth import P_FRICTION, P_LOAD, P_M, P_ROLL
 from .batch_means import period_rows
 from .evidence import EV_LANDING, EV_LIFT_OFF
 from .rolling import contact_point, integrates_psi
-from .slip_return import SlipReturn, vertical_beat
+from .slip_return import NORMAL_STIFFNESS, SlipReturn, free_vertical_period, vertical_beat
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
 from .window_noise import beats, change_noise, chases_noise, hann_mean
@@ -145,8 +145,8 @@ def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = 
     neither oscillation: ``minimum``."""
     if rigid:
         return int(minimum)
-    vertical = 2.0 * math.pi * math.sqrt(m_star / 1.5)
-    tangential = 2.0 * math.pi * math.sqrt(theta * m_star / 1.5)
+    vertical = free_vertical_period(m_star)
+    tangential = 2.0 * math.pi * math.sqrt(theta * m_star / NORMAL_STIFFNESS)
     return max(int(minimum), int(math.ceil(VERTICALS * vertical)), int(math.ceil(2.0 * tangential)))
 
 

@@ -28,18 +28,24 @@ from .window import Window, in_flight
 #: it may settle
 HELD_BEATS = 2.0
 
-#: N*'(1) of the Hertz law: the free vertical oscillation's stiffness (the convention of
-#: :func:`~.full_inertia.full_window_length`)
+#: N*'(1) of the Hertz law: the free vertical oscillation's stiffness (the convention of the
+#: settle windows, :func:`~.full_inertia.full_window_length`, :func:`~.steady.window_length`)
 NORMAL_STIFFNESS = 1.5
+
+
+def free_vertical_period(m_star: float) -> float:
+    """The period, in wave periods, of the undamped free vertical oscillation of a compliant
+    contact: 2 pi sqrt(m* / N*'(1)), N*'(1) = :data:`NORMAL_STIFFNESS`."""
+    return 2.0 * math.pi * math.sqrt(m_star / NORMAL_STIFFNESS)
 
 
 def vertical_beat(m_star: float, rigid: bool = False) -> float:
     """Periods of the beat of the free vertical oscillation against the wave's nearest harmonic,
-    1 / |f - k| with f = sqrt(1.5 / m*) / (2 pi) and k >= 1 (module docstring); inf on a
-    harmonic, 0 for a rigid point (no free oscillation)."""
+    1 / |f - k| with f = 1 / :func:`free_vertical_period` and k >= 1 (module docstring); inf on
+    a harmonic, 0 for a rigid point (no free oscillation)."""
     if rigid or m_star <= 0.0:
         return 0.0
-    f = math.sqrt(NORMAL_STIFFNESS / m_star) / (2.0 * math.pi)
+    f = 1.0 / free_vertical_period(m_star)
     gap = abs(f - max(1, round(f)))
     return math.inf if gap == 0.0 else 1.0 / gap
 

@@ -54,6 +54,7 @@ from .evidence import EV_LANDING
 from .full_inertia import held, relative_bound, relaxation_rate, settle_full, tapered_drift_ratio
 from .separated import SOLVED_MIN_MASS, STUCK, solvable
 from .settling import SLOPE, Settling
+from .slip_return import free_vertical_period
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
 
@@ -171,7 +172,7 @@ def window_length(m_star: float, tau: float, minimum: int, rigid: bool = False,
     least one period 2 pi / omega_r of the rolling spring's damped mode (``rolling`` = omega_r),
     which modulates the drift in the same way while it decays.
     """
-    vertical = 2.0 * math.pi * math.sqrt(m_star / 1.5) if (m_star > 1.0 and not rigid) else 0.0
+    vertical = free_vertical_period(m_star) if (m_star > 1.0 and not rigid) else 0.0
     roll = 2.0 * math.pi / rolling if rolling > 0.0 else 0.0
     return max(int(minimum), int(math.ceil(0.1 * tau)), int(math.ceil(3.0 * vertical)),
                int(math.ceil(roll)))
