@@ -65,10 +65,10 @@ class SlipReturn:
 
     def see(self, win: Window) -> None:
         """Take the next window into account."""
-        #: the slip came back in this window after a hold that was being waited on
-        self.returned = _slides(win) and self.slid and self.beat > win.periods and (
-            self.held_for > 0)
-        if _slides(win):
+        slides = _slides(win)
+        # the slip came back in this window after a hold that was being waited on
+        self.returned = slides and self.slid and self.beat > win.periods and self.held_for > 0
+        if slides:
             self.slid, self.held_for = True, 0
         else:
             self.held_for += win.periods
