@@ -136,9 +136,12 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int | None = N
     repeating state is a periodic orbit: the drift over whole multiples of p is the steady
     drift.
     """
-    ps, d = _distances(samples, scale, longest, last)
-    hit = np.flatnonzero(d <= PERIODIC_TOL)
-    return int(ps[hit[0]]) if hit.size else 0
+    s, ps = _states(samples, scale, longest, last)
+    # a state repeats after p periods only if the last one does: the others are compared for
+    # those p alone
+    near = ps[_gaps(s, ps, 1) <= PERIODIC_TOL]
+    hit = near[_gaps(s, near, last) <= PERIODIC_TOL]
+    return int(hit[0]) if hit.size else 0
 
 
 def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int | None = None,
@@ -147,8 +150,10 @@ def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int | None =
     default as far as the window tells) of the largest scaled change of the last ``last``
     period-end states against p periods earlier (:func:`orbit_period` finds an orbit where it
     is at most :data:`PERIODIC_TOL`); inf where the window is too short to tell."""
-    d = _distances(samples, scale, longest, last)[1]
-    return float(d.min()) if d.size else math.inf
+    s, ps = _states(samples, scale, longest, last)
+    if ps.size == 0:
+        return math.inf
+    return float(_gaps(s, ps, last).min())
 
 
 def orbit_span(samples: np.ndarray, scale: np.ndarray, p: int) -> int:
@@ -168,25 +173,34 @@ def orbit_span(samples: np.ndarray, scale: np.ndarray, p: int) -> int:
     return max(p, ((n - first - 1) // p) * p)
 
 
-def _distances(samples: np.ndarray, scale: np.ndarray, longest: int | None, last: int
-               ) -> tuple[np.ndarray, np.ndarray]:
-    """p = 1, 2, ... up to ``longest`` (None: no limit) or as far as the window tells, and for
-    each the largest scaled change of the last ``last`` period-end states (x*', y*, y*')
-    against p periods earlier: :func:`orbit_period` and :func:`orbit_residual` read the same
-    distances. One pass per end state, so the memory is that of the samples (a window of 1e6
-    periods looks for orbits of up to 1e6 - ``last``)."""
+def _states(samples: np.ndarray, scale: np.ndarray, longest: int | None, last: int
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """The scaled stroboscopic states (x*', y*, y*') of a window, and the periods p = 1, 2, ...
+    looked at: up to ``longest`` (None: no limit) or as far as the window tells, its length
+    less ``last`` (:func:`orbit_period`, :func:`orbit_residual`)."""
     s = np.asarray(samples)[:, 1:4] / scale
+    reach = s.shape[0] - last if longest is None else min(longest, s.shape[0] - last)
+    return s, np.arange(1, max(0, reach) + 1)
+
+
+#: most (end state, p) pairs :func:`_gaps` compares in one array operation
+GAP_BLOCK = 1 << 15
+
+
+def _gaps(s: np.ndarray, ps: np.ndarray, last: int) -> np.ndarray:
+    """For each p of ``ps``, the largest scaled change of the last ``last`` states of ``s``
+    against p periods earlier. At most :data:`GAP_BLOCK` pairs at a time, so that the memory
+    stays that of the samples however long the window (a window of 1e6 periods looks for
+    orbits of up to 1e6 - ``last``)."""
     n = s.shape[0]
-    reach = n - last if longest is None else min(longest, n - last)
-    ps = np.arange(1, max(0, reach) + 1)
-    if ps.size == 0:
-        return ps, np.empty(0)
-    d = np.zeros(ps.size)
-    for end in range(n - last, n):
-        # the states p = 1 .. reach periods before this one, nearest first
-        earlier = s[end - ps.size:end][::-1]
-        np.maximum(d, np.abs(earlier - s[end]).max(axis=1), out=d)
-    return ps, d
+    ends = np.arange(n - last, n)
+    out = np.empty(ps.size)
+    step = max(1, GAP_BLOCK // last)
+    for i in range(0, ps.size, step):
+        block = ps[i:i + step]
+        change = np.abs(s[ends[:, None] - block[None, :]] - s[ends][:, None, :])
+        out[i:i + step] = change.max(axis=(0, 2))
+    return out
 
 
 def hop_liftoffs(events: np.ndarray, t_start: float, t_end: float,
