@@ -279,3 +279,23 @@ def test_a_heavy_point_in_flights_of_thousands_of_periods_averages_over_sixteen_
     assert res.regime == brute.regime == "bouncing"
     assert math.isfinite(res.drift_ratio_se)
     assert abs(res.drift_ratio - brute.drift_ratio) <= 3.0 * res.drift_ratio_se
+
+
+def test_window_means_beating_slower_than_the_last_windows_give_a_long_time_mean():
+    """mmd m* = 4.2e-3, A* = 0.89 keeps contact, and its 27-period window means swing between
+    0.014 and 0.062 in drift ratio over a beat of about 10 windows: the last 7 windows turn only
+    once, so the run went on to its 1059-period cap and reported its last window, 0.028, not
+    settled. Its window means have turned several times by then: it is a long-time mean, which
+    must agree within 3 errors with brute force over periods 2000 to 4000 (0.0343) and 4000 to
+    8000 (0.0337), and it costs fewer periods than the cap."""
+    scene = {"model": "mmd", "particle": {"m_star": 0.004216965034285823},
+             "drive": {"amplitude": 0.8912509381337456}}
+    r = sd.run(sd.Scene(**scene))
+    assert not r.settled and math.isfinite(r.drift_ratio_se) and r.drift_ratio_se > 0.0
+    assert r.periods < 1000
+    for n in (4000, 8000):
+        brute = sd.run(sd.Scene(**scene, numerics={"settle": False, "periods": n,
+                                                   "measure_periods": n // 2, "max_periods": n}))
+        assert abs(r.drift_ratio - brute.drift_ratio) <= 3.0 * r.drift_ratio_se
+    # the swing itself is far wider than the error: one window is not the answer
+    assert r.drift_ratio_se < 0.25 * (0.062 - 0.014)

@@ -44,6 +44,7 @@ from .window import (
     measure_window,
     orbit_residual,
 )
+from .window_noise import WANDER_WINDOWS, wanders
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -310,20 +311,6 @@ def _irregular(win: Window, settling: Settling) -> bool:
     if win.contact_lost:
         return True
     return wanders(settling.history)
-
-
-def wanders(values) -> bool:
-    """Whether the last :data:`WANDER_WINDOWS` window means wander: their changes turn at least
-    :data:`WANDER_TURNS` times."""
-    changes = np.diff(np.asarray(values[-WANDER_WINDOWS:], dtype=float))
-    turns = int(np.sum(changes[1:] * changes[:-1] < 0.0)) if changes.size >= 2 else 0
-    return turns >= WANDER_TURNS
-
-
-#: sign changes among the last six window changes (of the last WANDER_WINDOWS window means)
-#: that make a contact-kept run wander
-WANDER_TURNS = 2
-WANDER_WINDOWS = 7
 
 
 def _gives_up(values: list[float]) -> bool:
