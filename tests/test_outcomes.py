@@ -38,6 +38,51 @@ def test_vertical_vibration_with_a_load_above_friction_runs_away():
     assert res.mean_acceleration > 0.5  # (L - mu <N*>) / m*, <N*> = 1 over whole periods
 
 
+def test_a_runaway_reports_its_long_time_acceleration_not_its_early_stick_slip():
+    """mmd m* = 100, A* = 1, L = 0.2 > mu = 0.1: the default run's window (periods 33 to 60)
+    is still in stick-slip with the surface and its fitted acceleration is 0.0021 per period
+    squared; once the particle outruns the surface, m* <x*''> = L - mu. Reference: a quadratic
+    fit to the positions of a 2000-period run over its second half."""
+    scene = {"model": "mmd", "particle": {"m_star": 100.0, "load": 0.2}}
+    res = sd.run(sd.Scene(**scene))
+    assert res.regime == "runaway"
+    long = sd.run(sd.Scene(**scene, numerics={"settle": False, "periods": 2000}),
+                  trajectory=True, record_every=64)
+    t, x = long.trajectory["t"].to_numpy(), long.trajectory["x"].to_numpy()
+    late = t >= 1000.0
+    fitted = 2.0 * np.polyfit(t[late], x[late], 2)[0]
+    assert abs(res.mean_acceleration - fitted) <= 1e-3 * fitted
+    early = (t >= 33.0) & (t <= 60.0)
+    assert 2.0 * np.polyfit(t[early], x[early], 2)[0] > 1.5 * fitted  # what the window saw
+
+
+def test_a_chaotic_runaway_gives_no_advice_to_run_its_mean_longer():
+    """mmd m* = 0.1, A* = 3, L = 0.2 > mu = 0.1 bounces irregularly while it runs away: its
+    long-time mean was still moving (of course), and the run said "not settled ... numerics.
+    mean_periods runs it longer" beside "runaway"."""
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1, "load": 0.2},
+                          drive={"amplitude": 3.0}))
+    assert res.regime == "runaway"
+    assert not any("not settled" in w or "long-time mean" in w for w in res.warnings)
+    assert abs(res.mean_acceleration - (0.2 - 0.1) / 0.1) <= 1e-12
+
+
+def test_a_load_below_friction_settles_like_a_free_particle():
+    """mmd m* = 0.3, A* = 0.5, L = -0.0139 (a point of its force-velocity curve): the default
+    run stopped after its fixed 60 periods, not settled, because any load might run away;
+    without the load the same cell goes on in windows and settles after 168. Reference: brute
+    force over periods 1000-2000 and 2000-4000 (0.3157998)."""
+    scene = {"model": "mmd", "particle": {"m_star": 0.3, "load": -0.0139},
+             "drive": {"amplitude": 0.5}}
+    res = sd.run(sd.Scene(**scene))
+    assert res.settled and res.regime == "drift_with"
+    for n in (2000, 4000):
+        brute = sd.run(sd.Scene(**scene, numerics={"settle": False, "periods": n,
+                                                   "measure_periods": n // 2,
+                                                   "max_periods": n}))
+        assert abs(res.drift_ratio - brute.drift_ratio) <= max(1e-3 * brute.drift_ratio, 2e-5)
+
+
 def test_a_load_below_friction_is_not_a_runaway():
     """L = 0.05 < mu = 0.1 with a wave: a steady drift exists (the load curve's range)."""
     res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1, "load": 0.05},

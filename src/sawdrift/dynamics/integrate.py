@@ -30,6 +30,7 @@ from .steady import (
     horizontal_inertia,
     relaxation_periods,
     rolling_frequency,
+    runs_away,
     settle,
     settles,
 )
@@ -267,7 +268,7 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
     num = scene.numerics
     if not _leaving(scene, win, speed):
         win, settling = _settle_on(stepper, scene, speed, scale, win, periods_run, series)
-    elif scene.particle.load != 0.0:  # else, leaving, the window was one flight
+    elif not in_flight(win):  # leaving under a load that runs away: the Result says so
         return win, settling, None, None
     now = stepper.step / stepper.k_per
     ret = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
@@ -322,9 +323,11 @@ def _gives_up(values: list[float]) -> bool:
 
 def _leaving(scene: Scene, win: Window, speed: float) -> bool:
     """A window that may have no steady drift to settle on: one flight (a particle thrown off),
-    or any load, whose accelerating window a short run cannot tell from a runaway (a sphere
-    rolling without slip under a load speeds up for ever); the Result judges both."""
-    return in_flight(win) or scene.particle.load != 0.0
+    or a load that friction cannot hold (:func:`~.steady.runs_away`); the Result judges both.
+    A load below that goes on in windows as a free particle does: a point of a force-velocity
+    or load curve is a steady drift (mmd m* = 0.3, A* = 0.5, L = -0.0139 stopped after its
+    fixed 60 periods, not settled, where without the load it settles in 168)."""
+    return in_flight(win) or runs_away(scene)
 
 
 #: the default ``numerics.periods``: a fixed run of another length was asked for as it is

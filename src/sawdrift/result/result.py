@@ -157,7 +157,8 @@ class Result:
     #: standard error of ``drift_ratio`` (irregular motion: batch means over decorrelated
     #: windows); NaN where the drift is a fixed point's or a periodic orbit's
     drift_ratio_se: float = math.nan
-    #: ``runaway``: the window's mean horizontal acceleration, x* per period squared
+    #: ``runaway``: the mean horizontal acceleration, x* per period squared: (L - mu sign L) / m*
+    #: where the load exceeds friction, else the window's (a fit to its positions)
     mean_acceleration: float = math.nan
     #: ``ejected``: t* of the last lift-off (the detachment) and its wave phase t* mod 1
     detach_time: float = math.nan
