@@ -242,3 +242,24 @@ def test_a_window_that_shed_events_still_reads_its_hops(monkeypatch):
     # the whole window's phases (0.019), and the spreads agree
     assert abs(capped.liftoff_phase - full.liftoff_phase) <= full.liftoff_phase_spread
     assert capped.liftoff_phase_spread == pytest.approx(full.liftoff_phase_spread, rel=0.1)
+
+
+def test_the_periods_and_steps_of_a_result_count_its_long_time_mean():
+    """mmd m* = 0.1, A* = 1, mu = 0.1 is chaotic: its long-time mean runs 500 periods after the
+    fixed 60-period run, on a copy of the run. The Result said periods 60, steps 7680,
+    settle_periods 60 although its mean (and the drift reported) came from 560 periods."""
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 1.0},
+                          material={"mu": 0.1}))
+    assert math.isfinite(res.drift_ratio_se)
+    budget = res.scene["numerics"]["mean_periods"]
+    assert res.periods >= 60 + budget
+    assert res.steps == round(res.periods * res.steps_per_period)
+    assert res.settle_periods == res.periods
+
+
+def test_a_run_gone_on_to_its_orbit_is_not_called_fixed():
+    """mmd m* = 0.3, A* = 1.5 loses contact and its fixed window found no orbit: the run goes on
+    in windows until it is on one (114 periods), and said settle_method "fixed"."""
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.3}, drive={"amplitude": 1.5}))
+    assert res.settled and res.periods > 60
+    assert res.settle_method == "fixed_then_windows"

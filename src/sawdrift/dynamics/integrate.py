@@ -83,6 +83,9 @@ class WaveRun:
         t* of the last lift-off since t* = 0 (-1: none), kept across windows.
     long_mean
         A chaotic window's long-time mean drift and its standard error (batch means), or None.
+    steps
+        Steps integrated since t* = 0, the long-time mean's (run on a twin after the window)
+        included.
     """
 
     stepper: Stepper
@@ -98,6 +101,7 @@ class WaveRun:
     trajectory: pd.DataFrame | None = field(default=None, repr=False)
     last_liftoff: float = -1.0
     long_mean: BatchMeans | None = None
+    steps: int = 0
 
 
 def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory: bool,
@@ -124,6 +128,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     # the per-period rows of the run's windows (displacement, vertical energy), one contiguous
     # stretch of its own trajectory up to now: a long-time mean after them starts from all of it
     series = [period_rows(win, stepper)]
+    fixed_end = stepper.step
     if settling is None and num.settle is not False and not chaotic and win.contact_lost:
         # the run goes on to its periodic orbit (its events and trajectory with it), as a
         # settling run goes on to its steady drift
@@ -143,6 +148,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                                                                                        speed))
         if num.settle is False:
             settling = replace(settling, drift=None)  # a fixed run reports its window's mean
+        elif stepper.step > fixed_end:  # it went on in windows to its periodic orbit
+            settling = replace(settling, method="fixed_then_windows")
         if (not settling.settled and num.settle is None and num.periods == DEFAULT_PERIODS
                 and not chaotic):
             # a default run that its own window could not confirm goes on to the steady drift (a
@@ -166,7 +173,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
                    hop_period=win.sync.hop_period if not chaotic else 0, compile_s=compile_s,
                    wall_time_s=wall, trajectory=path,
-                   last_liftoff=float(stepper.st[S_LASTLIFT]), long_mean=chaos)
+                   last_liftoff=float(stepper.st[S_LASTLIFT]), long_mean=chaos,
+                   steps=max(stepper.step, 0 if twin is None else twin.step))
 
 
 def _long_mean(stepper: Stepper, win: Window, budget: int, target: float,

@@ -92,6 +92,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None))
     k_per = stepper.k_per
+    steps = max(stepper.step, out.steps)  # a long-time mean's twin ran on after the window
     return Result(
         model=scene.model,
         engine=engine,
@@ -102,7 +103,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         horizontal_ratio=scene.horizontal_ratio,
         profile=scene.particle.profile.shape,
         steps_per_period=k_per,
-        periods=stepper.step / k_per,
+        periods=steps / k_per,
         ramp_periods=wave.ramp_periods,
         measure_periods=win.periods,
         drift_velocity=drift,
@@ -112,7 +113,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         contact_lost=win.contact_lost,
         out_of_contact_fraction=win.out_of_contact_fraction,
         min_compression=win.min_compression,
-        steps=stepper.step,
+        steps=steps,
         wall_time_s=out.wall_time_s,
         gross_slip_fraction=win.gross_slip_fraction,
         liftoffs_per_period=win.liftoffs_per_period,
@@ -131,7 +132,8 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         orbit_period=win.orbit_period,
         settled=settled,
         settle_method=settling.method,
-        settle_periods=settling.periods,
+        settle_periods=(settling.periods if out.long_mean is None
+                        else max(settling.periods, steps / k_per)),
         t90_periods=t90,
         horizontal_inertia=settling.horizontal_inertia if out.settle_on else math.nan,
         liftoffs_per_hop=sync.liftoffs_per_hop if hop_period else math.nan,
