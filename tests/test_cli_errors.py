@@ -23,6 +23,11 @@ def files(tmp_path):
     import pandas as pd
 
     pd.DataFrame({"t": [0.0, 0.5], "x": [0.0, 0.1]}).to_parquet(tmp_path / "traj.parquet")
+    # a small sweep table of two models on a 2 x 2 (A*, m*) grid: every figure can be drawn
+    pd.DataFrame([{"model": model, "amplitude": a, "m_star": m, "regime": "stick",
+                   "settled": True, "mu": 0.1, "nu": 0.3, "drift_ratio": 0.0}
+                  for model in ("mmd", "jaeger") for a in (0.1, 1.0) for m in (0.1, 1.0)]
+                 ).to_parquet(tmp_path / "sweep.parquet")
     return tmp_path
 
 
@@ -91,6 +96,22 @@ CORPUS = [
     "run -o {d}/malformed.toml/traj.csv",
     "force-velocity --model mmd --m-star 1 --load 0.2 -o {d}/fv",
     "field --points 3 -o {d}/f3",
+    # a figure suffix matplotlib cannot write: exit 3 (internal failure) after the drawing
+    "phase-diagram {d}/sweep.parquet --model mmd -o {d}/x.jpg2",
+    "phase-diagram {d}/sweep.parquet --model mmd --drift -o {d}/x.foo",
+    "compare {d}/sweep.parquet --models mmd,jaeger -o {d}/x.jpg2",
+    # --explain with --json: the JSON was ignored, the text printed
+    "run --explain --json",
+    "run --explain -o {d}/explained",
+    # an exponent beside a named shape: stored with the scene, but the shape's own p was used
+    "run --profile-exponent 2",
+    "run --profile cone --profile-exponent 2.5",
+    # an empty list item was dropped; a range of two ends with N = 1 gave its start only
+    "sweep -o {d}/t.parquet --m-star 0.1,,1 --amplitude 0.5 --periods 5 --workers 1",
+    "sweep -o {d}/t.parquet --m-star 0.1,1, --amplitude 0.5 --periods 5 --workers 1",
+    "sweep -o {d}/t.parquet --m-star 0.1:1:1 --amplitude 0.5 --periods 5 --workers 1",
+    "sweep -o {d}/t.parquet --m-star 0.5 --axis material.mu=lin:0.1:0.2:1 --periods 5 --workers 1",
+    "sweep -o {d}/t.parquet --m-star 0.5 --axis material.mu=0.1,,0.2 --periods 5 --workers 1",
 ]
 
 
@@ -159,3 +180,32 @@ def test_an_empty_output_path_is_refused(args, tmp_path, monkeypatch, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert exc.value.code == 2 and len(err) == 1 and "empty path" in err[0]
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args", [
+    ["phase-diagram", "{d}/sweep.parquet", "--model", "mmd", "-o", "{d}/x.jpg2"],
+    ["phase-diagram", "{d}/missing.parquet", "-o", "{d}/x.jpg2"],
+    ["compare", "{d}/sweep.parquet", "--models", "mmd,jaeger", "-o", "{d}/x.foo"],
+])
+def test_a_figure_suffix_is_checked_first_and_the_allowed_ones_named(args, files, monkeypatch,
+                                                                     capsys):
+    """-o x.jpg2 drew the figure and then failed in matplotlib: "internal failure", exit 3.
+    The suffix is checked before the table is read, and the error names -o and the formats."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *(a.format(d=files) for a in args)])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1, err
+    assert err[0].startswith("error: -o ") and ".png, .pdf, .svg" in err[0], err
+    assert not list(files.glob("x.*"))
+
+
+def test_profile_exponent_beside_a_named_shape_names_the_field_and_power(monkeypatch, capsys):
+    """--profile-exponent 2 on the default sphere was stored (2.0) but p = 1.5 was used."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "--profile-exponent", "2"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err
+    assert exc.value.code == 2
+    assert "profile.exponent = 2" in err and "'power'" in err and "p = 1.5" in err
+

@@ -337,3 +337,67 @@ def test_sweep_and_field_text_count_unsettled_cells(monkeypatch, capsys, tmp_pat
                           "--no-settle", "--workers", "1", "--no-progress")
     assert code == 0, err
     assert "4 of 4 positions NOT settled" in out
+
+
+# --- what the text says it wrote, and the warnings it shows -----------------------------------
+
+BEAD = ROOT / "examples" / "silica_bead_on_quartz.toml"
+
+
+def test_phase_diagram_without_a_suffix_names_the_png_it_writes(monkeypatch, capsys, tmp_path):
+    """-o x wrote x.png (matplotlib's default format) and printed "wrote x"; so did compare."""
+    table = tmp_path / "t.parquet"
+    pd.concat([_table(ALL, [True] * 6), _table(ALL, [True] * 6, "jaeger")]).to_parquet(table)
+    for command, name in ((["phase-diagram", "--model", "mmd"], "pd"),
+                          (["compare", "--models", "mmd,jaeger"], "cmp")):
+        code, out, err = call(monkeypatch, capsys, command[0], str(table), *command[1:], "-o",
+                              str(tmp_path / name))
+        assert code == 0, err
+        assert (tmp_path / f"{name}.png").is_file() and not (tmp_path / name).exists()
+        assert f"wrote {tmp_path / name}.png" in out
+
+
+def test_run_of_two_models_shows_the_device_warnings(monkeypatch, capsys):
+    """The single-model text shows a device's validity warnings; two models side by side
+    did not (only the Parquet and JSON had them)."""
+    code, out, err = call(monkeypatch, capsys, "run", str(BEAD), "--model", "mmd,jaeger",
+                          "--set", "device.amplitude=1e-5 nm")
+    assert code == 0, err
+    lines = [line for line in out.splitlines() if "a0 < 1 nm" in line]
+    assert len(lines) == 1 and lines[0].strip().startswith("all models: a0 < 1 nm"), out
+
+
+def test_sweep_text_summarizes_the_cells_warnings(monkeypatch, capsys, tmp_path):
+    """A sweep printed none of its cells' warnings; now one line per kind, with its count."""
+    code, out, err = call(monkeypatch, capsys, "sweep", str(BEAD), "--axis",
+                          "device.amplitude=1e-5 nm,2e-5 nm", "--workers", "1", "--no-progress",
+                          "-o", str(tmp_path / "sq.parquet"))
+    assert code == 0, err
+    table = pd.read_parquet(tmp_path / "sq.parquet")
+    assert table["warnings"].str.contains("a0 < 1 nm").all()
+    lines = [line for line in out.splitlines() if "a0 < 1 nm" in line]
+    assert len(lines) == 1 and lines[0].strip().startswith("2 cells: a0 < 1 nm"), out
+    assert "warnings: 2 of 2 cells" in out
+
+
+def test_sweep_into_a_table_of_another_grid_says_what_the_table_holds(monkeypatch, capsys,
+                                                                      tmp_path):
+    """A second grid into the same -o printed "wrote t.parquet (2 cells ...)" of a table that
+    held 6; resuming the same grid says nothing more."""
+    table = str(tmp_path / "t.parquet")
+    common = ["--model", "material_point", "--periods", "10", "--workers", "1", "--no-progress",
+              "-o", table]
+    code, out, err = call(monkeypatch, capsys, "sweep", "--m-star", "0.1,1", "--amplitude",
+                          "0.1,1", *common)
+    assert code == 0, err
+    assert "earlier sweep" not in out
+    code, out, err = call(monkeypatch, capsys, "sweep", "--m-star", "2,5", "--amplitude", "0.5",
+                          *common)
+    assert code == 0, err
+    assert f"wrote {table} (2 cells" in out
+    assert f"{table} now holds 6 cells: 4 from an earlier sweep outside this grid" in out
+    assert len(pd.read_parquet(table)) == 6
+    code, out, err = call(monkeypatch, capsys, "sweep", "--m-star", "2,5", "--amplitude", "0.5",
+                          *common)
+    assert code == 0 and "now holds 6 cells: 4 from an earlier sweep" in out
+

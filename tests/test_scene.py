@@ -41,6 +41,11 @@ def test_scene_is_frozen():
         ({"numerics": {"order": 5}}, r"numerics\.order"),
         ({"particle": {"mass": 1}}, r"particle\.mass is not a known field"),
         ({"model": "material_point", "model_params": {"restitution": 2}}, r"restitution"),
+        # an exponent beside a named shape or a table was stored but not used
+        ({"particle": {"profile": {"exponent": 2}}},
+         r"profile\.exponent = 2 is used only with profile\.shape = 'power'; shape 'sphere' "
+         r"has p = 1\.5"),
+        ({"particle": {"profile": {"shape": "flat", "exponent": 1}}}, r"shape 'flat' has p = 1"),
     ],
 )
 def test_bad_fields_give_one_line_naming_the_field(data, pattern):
@@ -147,3 +152,8 @@ def test_schema_module_is_split_below_500_lines_and_keeps_its_imports():
     assert all(hasattr(schema, name) for name in names)  # what other modules import from it
     for module in Path(schema.__file__).parent.glob("*.py"):
         assert len(module.read_text().splitlines()) < 500, module.name
+
+
+def test_a_power_profile_takes_its_exponent():
+    assert build_scene({"particle": {"profile": {"shape": "power", "exponent": 2}}}).particle.profile.p == 2.0
+

@@ -30,6 +30,35 @@ def test_parse_axis():
     for bad in ["1:2", "a:b:3", "0:1:3", "1:10:0", "x,y", ""]:
         with pytest.raises(SceneError, match="m_star"):
             parse_axis(bad, "m_star")
+    assert list(parse_axis("0.5:0.5:1")) == [0.5]  # one value: both ends are the same
+
+
+@pytest.mark.parametrize(("spec", "words"), [
+    ("0.1,,1", "empty value"), ("0.1,1,", "empty value"), (",0.1", "empty value"),
+    ("0.1:1:1", "N >= 2"), ("log:0.1:1:1", "N >= 2"), ("lin:0.1:1:1", "N >= 2"),
+])
+def test_an_empty_item_or_a_range_of_one_value_is_refused(spec, words):
+    """0.1,,1 swept 0.1 and 1 (the empty item dropped); 0.1:1:1 swept 0.1 alone although a
+    range includes both ends. Both are one line naming the field, for --m-star as for --axis."""
+    from sawdrift.study.axes import parse_values
+
+    with pytest.raises(SceneError, match=words) as info:
+        parse_values(spec, "material.mu")
+    assert str(info.value).startswith(f"material.mu = {spec!r}") and "\n" not in str(info.value)
+    if not spec.startswith(("lin", "log")):
+        with pytest.raises(SceneError, match=words):
+            parse_axis(spec, "m_star")
+
+
+def test_a_sweep_says_how_many_cells_of_its_table_are_from_another_grid(tmp_path):
+    table = tmp_path / "t.parquet"
+    first = sd.sweep("material_point", "0.01,0.1", "0.1,1", base=BASE, table=table,
+                     progress=False, workers=1)
+    assert (first.attrs["table_cells"], first.attrs["other_cells"]) == (4, 0)
+    other = sd.sweep("material_point", "1", "0.1,1", base=BASE, table=table, progress=False,
+                     workers=1)
+    assert len(other) == 2 and (other.attrs["table_cells"], other.attrs["other_cells"]) == (6, 4)
+    assert len(pd.read_parquet(table)) == 6
 
 
 BASE = sd.Scene(model="mmd", numerics={"periods": 20})

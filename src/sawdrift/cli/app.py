@@ -102,6 +102,26 @@ def out_kind(path: Path, files: tuple[str, ...], what: str, option: str = "-o") 
     return ""  # not reached
 
 
+#: the figure formats a command writes to a file it is given (-o NAME.png, NAME.pdf, ...)
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".tif", ".tiff", ".webp", ".eps", ".ps")
+
+
+def figure_path(path: Path, option: str = "-o") -> Path:
+    """The file a figure given as ``path`` is written to, or one line and exit 2 before any work.
+
+    A name without a file suffix gets ``.png`` (``-o phase`` writes ``phase.png``, and the
+    command says so); a suffix that is not a figure format (:data:`FIGURE_SUFFIXES`) is refused,
+    naming the allowed ones.
+    """
+    if not _looks_like_file(path):
+        return path.with_name(path.name + ".png")
+    if path.suffix.lower() not in FIGURE_SUFFIXES:
+        allowed = ", ".join(FIGURE_SUFFIXES)
+        _fail(f"{option} {str(path)!r}: {path.suffix} is not a figure format; give a name "
+              f"ending in one of {allowed} (no suffix: .png)")
+    return path
+
+
 def _split_axis(item: str, form: str, example: str) -> tuple[str, str]:
     """``FIELD`` and ``SPEC`` of an ``--axis FIELD=SPEC`` option, or one line and exit 2."""
     from ..scene.schema import check_dotted

@@ -10,13 +10,16 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import Progress, _fail, _load_table, _writable, app, bench_app
+from .app import Progress, _fail, _load_table, _writable, app, bench_app, figure_path
+
+#: the help of a figure's -o
+FIGURE_HELP = "figure: NAME.png (or .pdf, .svg, .jpg, .tif, .webp, .eps, .ps; no suffix: .png)"
 
 
 @app.command("phase-diagram")
 def phase_diagram_cmd(
     table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
-    out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
+    out: Annotated[Path, typer.Option("-o", "--out", help=FIGURE_HELP)],
     model: Annotated[str | None, typer.Option("--model", help="model to draw")] = None,
     x: Annotated[str, typer.Option("--x", help="column on the horizontal axis")] = "amplitude",
     y: Annotated[str, typer.Option("--y", help="column on the vertical axis")] = "m_star",
@@ -26,6 +29,7 @@ def phase_diagram_cmd(
     ] = False,
 ) -> None:
     """Draw the regime phase diagram of one model over two swept axes (default A*, m*)."""
+    out = figure_path(out)
     frame = _load_table(table)
     _writable(out, folder=False)
     if drift:
@@ -39,7 +43,7 @@ def phase_diagram_cmd(
 def compare_cmd(
     table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
     models: Annotated[str, typer.Option("--models", help="comma-separated model names")],
-    out: Annotated[Path, typer.Option("-o", "--out", help="figure (PNG)")],
+    out: Annotated[Path, typer.Option("-o", "--out", help=FIGURE_HELP)],
     by: Annotated[
         str | None, typer.Option("--by", help="a swept column: one panel per model and value "
                                  "(e.g. effects.rotation)")
@@ -52,6 +56,7 @@ def compare_cmd(
     Compare models (--models a,b), or the values of a swept field for each model
     (--by effects.rotation after a sweep with --axis effects.rotation=false,true).
     """
+    out = figure_path(out)
     frame = _load_table(table)
     _writable(out, folder=False)
     path, md = sd.plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out, by,

@@ -15,7 +15,7 @@ from .._startup import fast_start, stored_models
 from .._texts import says_heating
 from ..study.progress import notice
 from .app import Engine, Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
-from .run_text import grouped, side_by_side, unsettled_text
+from .run_text import grouped, shared_warnings, side_by_side, unsettled_text
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -118,7 +118,8 @@ def run_cmd(
         "-o", "--out", help="a folder: trajectory.parquet, events.parquet, trajectory.png, "
         "scene.toml, result.json; or NAME.csv / NAME.parquet: the trajectory only (t, x, vx, y, "
         "vy, a, b, N_star, T_star, ...; with several models a 'model' column first)")] = None,
-    explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only")] = False,
+    explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only (text; "
+                                                  "not with --json or -o)")] = False,
     yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
@@ -134,6 +135,10 @@ def run_cmd(
     names = [m.strip() for m in model.split(",") if m.strip()] if model else []
     if model is not None and not names:
         _fail(f"--model {model!r} names no model")
+    if explain and (as_json or out is not None):
+        # the explanation is text (equations, derived quantities), not a result to store
+        _fail(f"--explain prints the assembled system as text and runs nothing; drop "
+              f"{'--json' if as_json else '-o'} (or --explain)")
     kind = out_kind(out, (".csv", ".parquet"), "the trajectory") if out is not None else None
     fast_start()
     params = _parse_param(param)
@@ -167,7 +172,7 @@ def run_cmd(
         for line in grouped(summaries[0]):
             typer.echo(line)
     else:
-        for line in side_by_side(summaries):
+        for line in [*side_by_side(summaries), *shared_warnings(summaries)]:
             typer.echo(line)
     for sc, summary in zip(scenes, summaries, strict=True):
         if summary.get("settled") is False:

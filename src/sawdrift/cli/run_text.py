@@ -168,3 +168,19 @@ def side_by_side(summaries: list[dict[str, Any]]) -> list[str]:
         lines.append(f"{key:<{width}}  " + "  ".join(f"{v:>{c}}" for v, c in zip(row, cols,
                                                                                  strict=True)))
     return lines
+
+
+def shared_warnings(summaries: list[dict[str, Any]]) -> list[str]:
+    """The validity warnings of several runs, below their table: each warning once, with the
+    models that carry it (all of them when every run does)."""
+    holders: dict[str, list[str]] = {}
+    for s in summaries:
+        for warning in s.get("warnings") or ():
+            holders.setdefault(str(warning), []).append(str(s["model"]))
+    if not holders:
+        return []
+    lines = ["warnings:"]
+    for warning, models in holders.items():
+        who = "all models" if len(models) == len(summaries) else ", ".join(models)
+        lines.append(f"  {who}: {warning}")
+    return lines

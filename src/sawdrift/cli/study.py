@@ -28,6 +28,9 @@ from .app import (
 )
 from .scene_options import scene_from_options, with_scene_options
 
+#: the help of --m-star and --amplitude
+AXIS_HELP = "START:STOP:N (N >= 2 log-spaced values, both ends included) or a,b,c; shorthand for an axis"
+
 
 @app.command("sweep")
 @with_scene_options(exclude=("m-star", "amplitude"))
@@ -36,10 +39,10 @@ def sweep_cmd(
     scene_arg: Annotated[Path | None, typer.Argument(help="base scene TOML (or use --scene)")] = None,
     model: Annotated[str | None, typer.Option("--model", help="model name(s), comma-separated")] = None,
     m_star: Annotated[
-        str | None, typer.Option("--m-star", help="START:STOP:N (log) or a,b,c; shorthand for an axis")
+        str | None, typer.Option("--m-star", help=AXIS_HELP)
     ] = None,
     amplitude: Annotated[
-        str | None, typer.Option("--amplitude", help="START:STOP:N (log) or a,b,c; shorthand for an axis")
+        str | None, typer.Option("--amplitude", help=AXIS_HELP)
     ] = None,
     axis: Annotated[
         list[str] | None,
@@ -129,6 +132,12 @@ def sweep_cmd(
         frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
                          workers=workers, scheduler=scheduler, progress=progress, engine=engine,
                          force=force, traces=traces, size=True, yes=yes)
+    _sweep_text(frame, out, adaptive)
+
+
+def _sweep_text(frame: Any, out: Path, adaptive: bool) -> None:
+    """What a sweep prints: cells per model and regime, the warnings, what it wrote (and the
+    line plot of a sweep over one field), and the table's cells from another grid."""
     from ..report.diagrams import unsettled_cells
 
     frame = frame.assign(_unsettled=unsettled_cells(frame))
@@ -137,6 +146,8 @@ def sweep_cmd(
         loose = int(row["sum"])
         typer.echo(f"{name:>20} {regime:>14}: {int(row['size'])}"
                    + (f" ({loose} NOT settled)" if loose else ""))
+    for text in warning_summary(frame):
+        typer.echo(text)
     errors = int(frame["error"].notna().sum())
     line = None if adaptive else _line_plot(frame, out)
     if adaptive:
@@ -147,6 +158,43 @@ def sweep_cmd(
     else:
         typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)"
                    + (f" and {line} (line plot)" if line is not None else ""))
+        other = int(frame.attrs.get("other_cells", 0))
+        if other:
+            typer.echo(f"{out} now holds {frame.attrs['table_cells']} cells: {other} from an "
+                       "earlier sweep outside this grid (the counts above are this grid's; "
+                       "give a new -o for a table of this grid only)")
+
+
+#: the longest warning a sweep's summary prints (the table's warnings column holds it in full)
+WARNING_WIDTH = 160
+
+
+def warning_summary(frame: Any) -> list[str]:
+    """The cells' warnings (a device's validity warnings, a long-time mean's) in a few lines.
+
+    One line per kind of warning, with how many cells carry it; cells whose warnings differ
+    only in their numbers (``a0 = 4.45e-14 m``) count as one kind, printed without the
+    parenthesized details, and with ``...`` for a number that differs between its cells.
+    """
+    import re
+
+    if "warnings" not in frame.columns:
+        return []
+    texts = [str(t) for t in frame["warnings"] if isinstance(t, str) and t]
+    kinds: dict[str, list[str]] = {}
+    for text in texts:
+        short = re.sub(r"\s*\([^()]*\)", "", text)
+        kinds.setdefault(re.sub(r"[-+]?\d+(\.\d+)?(e[-+]?\d+)?", "#", short), []).append(short)
+    if not kinds:
+        return []
+    lines = [f"warnings: {len(texts)} of {len(frame)} cells (each in full in the table's "
+             "warnings column)"]
+    for key, shorts in sorted(kinds.items(), key=lambda kv: -len(kv[1])):
+        shown = shorts[0] if len(set(shorts)) == 1 else key.replace("#", "...")
+        if len(shown) > WARNING_WIDTH:
+            shown = shown[:WARNING_WIDTH - 3].rstrip() + "..."
+        lines.append(f"  {len(shorts)} cell{'s' if len(shorts) != 1 else ''}: {shown}")
+    return lines
 
 
 def _line_plot(frame: Any, out: Path) -> Path | None:

@@ -35,7 +35,8 @@ class Profile(BaseModel):
         ``sphere`` (p = 3/2), ``cone`` (p = 2), ``flat`` (flat punch, p = 1), ``power`` (give
         ``exponent``) or ``table`` (give ``file``).
     exponent
-        Power p >= 1 of N*(a*) = a*^p; required for ``power``, ignored otherwise.
+        Power p in [1, 10] of N*(a*) = a*^p; required for ``power``, and refused with any
+        other shape (which has its own law).
     file
         CSV file with a header and columns ``a`` and ``N`` (normalized: N = 1 at a = 1), for
         ``table``. A relative path is resolved against the scene file's folder when the scene is
@@ -52,6 +53,14 @@ class Profile(BaseModel):
 
     @model_validator(mode="after")
     def _table_readable(self) -> Profile:
+        if self.exponent is not None and self.shape != "power":
+            # a named shape has its own exponent and a table its own law: a second one would be
+            # stored with the scene but not used
+            own = (f"p = {_NAMED_EXPONENTS[self.shape]:g}" if self.shape in _NAMED_EXPONENTS
+                   else "its law from profile.file")
+            raise ValueError(f"profile.exponent = {self.exponent:g} is used only with "
+                             f"profile.shape = 'power'; shape {self.shape!r} has {own} (set "
+                             "profile.shape = 'power', --profile power, or drop the exponent)")
         if self.shape == "table":
             if not self.file:
                 raise ValueError("profile.file is required when profile.shape = 'table'")

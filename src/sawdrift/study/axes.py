@@ -69,6 +69,7 @@ def parse_range(spec: str, name: str = "axis") -> list[float] | None:
         raise SceneError(f"{name} = {spec!r}: N = {parts[2].strip()!r} must be an integer") from None
     if not 1 <= n <= 100_000:
         raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
+    _two_ends(spec, name, start, stop, n)
     if not (math.isfinite(start) and math.isfinite(stop)):
         raise SceneError(f"{name} = {spec!r}: START and STOP must be finite")
     if way == "lin":
@@ -77,6 +78,24 @@ def parse_range(spec: str, name: str = "axis") -> list[float] | None:
         raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis "
                          "(lin:START:STOP:N spaces them evenly)")
     return _tidy(np.geomspace(start, stop, n) if n > 1 else np.array([start]))
+
+
+def _two_ends(spec: str, name: str, start: float, stop: float, n: int) -> None:
+    """One line naming ``name`` for a range of two different ends and N = 1: the range holds
+    both ends, so it needs N >= 2 (N = 1 would silently drop STOP)."""
+    if n < 2 and start != stop:
+        raise SceneError(f"{name} = {spec!r}: N = {n} cannot hold both ends of a range; give "
+                         "N >= 2 (both ends included), or one value without a range")
+
+
+def _items(spec: str, name: str) -> list[str]:
+    """The items of a comma list, stripped; one line naming ``name`` for an empty one
+    (``0.1,,1`` or a trailing comma), which would otherwise be dropped silently."""
+    items = [v.strip() for v in spec.split(",")]
+    if len(items) > 1 and not all(items):
+        raise SceneError(f"{name} = {spec!r} has an empty value between commas; give a,b,c "
+                         "with a value in every place")
+    return [v for v in items if v]
 
 
 def _tidy(values: np.ndarray) -> list[float]:
@@ -103,9 +122,7 @@ def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
     if values is not None:
         return values
     out: list[Any] = []
-    for item in (v.strip() for v in spec.split(",")):
-        if not item:
-            continue
+    for item in _items(spec, name):
         if item.lower() in ("true", "false"):
             out.append(item.lower() == "true")
             continue
@@ -119,7 +136,8 @@ def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
 
 
 def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
-    """Grid values from ``START:STOP:N`` (N log-spaced values, ends included) or ``a,b,c``.
+    """Grid values from ``START:STOP:N`` (N >= 2 log-spaced values, both ends included; N = 1
+    only when START = STOP) or ``a,b,c`` (no empty item).
 
     Raises
     ------
@@ -142,10 +160,12 @@ def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
             raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis")
         if not 1 <= n <= 100_000:
             raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
+        _two_ends(spec, name, start, stop, n)
         values = np.geomspace(start, stop, n) if n > 1 else np.array([start])
     else:
+        items = _items(spec, name)
         try:
-            values = np.array([float(v) for v in spec.split(",") if v.strip()], dtype=float)
+            values = np.array([float(v) for v in items], dtype=float)
         except ValueError:
             raise SceneError(f"{name} = {spec!r} must be START:STOP:N or a comma list of numbers") from None
     if values.size == 0 or not np.all(np.isfinite(values)):

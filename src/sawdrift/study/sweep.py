@@ -224,7 +224,9 @@ def sweep(
     base, overrides
         The scene every cell starts from, and dotted-path overrides (``{"material.mu": 0.2}``).
     table
-        Parquet file. Finished cells already in it (or in its journal) are not recomputed. A
+        Parquet file. Finished cells already in it (or in its journal) are not recomputed; its
+        cells outside this grid are kept (the returned frame's ``attrs`` say how many:
+        ``other_cells``, of ``table_cells`` in the written table). A
         table whose rows were computed by other code (another sawdrift source or model plugin,
         :mod:`sawdrift.study.provenance`), or swept from another base scene, is refused with a
         :class:`~sawdrift.study.provenance.TableProvenanceError` unless ``force``.
@@ -364,12 +366,28 @@ def sweep(
             bar.close()
     frame = to_frame(rows.values())
     if path is not None:
-        # keep the table's cells from other grids; ``done`` already holds table and journal
-        everything = dict(done)
-        everything.update(rows)
-        write_table(to_frame(supersede(everything.values())), path, swept_from)
-        if journal is not None and journal.exists():
-            journal.unlink()
-        if traces:
-            consolidate_traces(path)
+        _write_back(frame, path, done, rows, wanted, swept_from, traces)
     return frame
+
+
+def _write_back(frame: pd.DataFrame, path: Path, done: dict[str, dict[str, Any]],
+                rows: dict[str, dict[str, Any]], wanted: set[str], swept_from: dict[str, Any],
+                traces: bool) -> None:
+    """Consolidate a sweep's rows into its table, keeping the table's cells from other grids.
+
+    ``done`` holds the table's and the journal's rows, ``rows`` this grid's (``wanted``, their
+    cell ids). The journal is removed (and the traces consolidated). ``frame.attrs`` get
+    ``table_cells``, the rows of the written table, and ``other_cells``, those outside this
+    grid (an earlier sweep into the same file), for the caller to say so.
+    """
+    everything = dict(done)
+    everything.update(rows)
+    kept = supersede(everything.values())
+    write_table(to_frame(kept), path, swept_from)
+    frame.attrs["table_cells"] = len(kept)
+    frame.attrs["other_cells"] = sum(1 for r in kept if r["cell_id"] not in wanted)
+    journal = journal_path(path)
+    if journal.exists():
+        journal.unlink()
+    if traces:
+        consolidate_traces(path)
