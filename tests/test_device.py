@@ -145,6 +145,18 @@ def test_explain_names_time_scales_and_limits():
     assert "retrograde orbit" in motor and "a0 < 1 nm" not in motor
 
 
+def test_explain_does_not_expect_contact_loss_where_adhesion_holds_the_contact():
+    """A 2 um silica sphere with w = 0.05 J/m^2 on LiNbO3 (A* > 1): the pull-off is 1.4e5 times
+    the weight, and the run keeps contact; --explain said "expect contact loss"."""
+    from sawdrift.scene.device import normalized
+
+    path = EXAMPLES / "micro_silica_on_linbo3.toml"
+    text = _cli("run", str(path), "--explain").stdout
+    n = normalized(sd.Scene.from_toml(path).device)
+    assert n["amplitude"] > 1.0 and n["pulloff_dmt_n"] > 1e3 * n["weight_n"]
+    assert "A* > 1" in text and "expect contact loss" not in text and "pull-off" in text
+
+
 # --- the rule for device scenes: device fields override, derived fields are errors ----------
 
 #: each derived scene field, a value other than the motor's, and the device field to name

@@ -490,7 +490,13 @@ def explain_device(device: Device, mu: float) -> list[str]:
     lines.append(f"  expected approach to the steady drift ~ m*/mu = {approach:.4g} periods = "
                  f"{approach / f:.4g} s")
     lines.extend(f"  WARNING: {w}" for w in device_warnings(device))
-    if n["amplitude"] > 1.0:
+    if n["amplitude"] > 1.0 and device.adhesion == 0.0:
         lines.append("  note: A* > 1: the substrate moves further than the static compression; "
                      "expect contact loss for a heavy particle")
+    elif n["amplitude"] > 1.0:
+        # the contact holds in tension up to the pull-off: gravity alone does not decide it
+        lines.append(f"  note: A* > 1: the substrate moves further than the static compression "
+                     f"under the load alone, but adhesion holds the contact in tension up to a "
+                     f"pull-off of {n['pulloff_dmt_n']:.3g} N (DMT; JKR 3/4 of it), "
+                     f"{n['pulloff_dmt_n'] / n['weight_n']:.3g} times the load")
     return lines
