@@ -54,3 +54,48 @@ def test_export_refuses_a_bad_output_and_a_table_without_axes(table, tmp_path, s
              progress=False)
     with pytest.raises(sd.SceneError, match="no swept field"):
         sd.to_dataset(__import__("pandas").read_parquet(one))
+
+
+@pytest.fixture(scope="module")
+def irregular_table(tmp_path_factory):
+    """A default sweep with chaotic and irregular cells (long-time means with their errors and
+    warnings) beside settled hopping ones."""
+    path = tmp_path_factory.mktemp("export_irregular") / "t.parquet"
+    sd.sweep(["mmd"], "0.0316,0.1,1", "1.28,3", table=path, workers=1, progress=False)
+    return path
+
+
+def test_export_carries_errors_resolution_warnings_chaos_and_orbits(irregular_table, tmp_path):
+    """The netCDF grid used to drop drift_ratio_se, resolved_as, warnings, chaotic and
+    orbit_period: a chaotic cell's mean lost its error bar and its caveats."""
+    import pandas as pd
+
+    rows = pd.read_parquet(irregular_table)
+    # the facts the export must carry are there to carry: errors, warnings, chaos, settled cells
+    assert rows["drift_ratio_se"].notna().any() and rows["drift_ratio_se"].isna().any()
+    assert rows["warnings"].notna().any() and rows["chaotic"].any()
+    out = tmp_path / "grid.nc"
+    run = run_main("export", irregular_table, "-o", out)
+    assert run.returncode == 0, run.stderr
+    ds = sd.load_grid(out)
+    assert ds["resolved_as"].dtype.kind == "U" and ds["warnings"].dtype.kind == "U"
+    for r in rows.itertuples():
+        cell = ds.sel(m_star=r.m_star, amplitude=r.amplitude)
+        se = float(cell["drift_ratio_se"])
+        assert (se == r.drift_ratio_se) if r.drift_ratio_se == r.drift_ratio_se else se != se
+        assert str(cell["resolved_as"].item()) == r.resolved_as
+        assert str(cell["warnings"].item()) == (r.warnings if isinstance(r.warnings, str) else "")
+        assert float(cell["chaotic"]) == float(r.chaotic)
+        assert int(cell["orbit_period"]) == r.orbit_period
+    assert "standard error" in ds["drift_ratio_se"].attrs["long_name"]
+
+
+def test_a_grid_point_without_a_cell_has_empty_text(irregular_table):
+    import pandas as pd
+
+    rows = pd.read_parquet(irregular_table)
+    gone = rows.iloc[0]
+    ds = sd.to_dataset(rows.drop(index=rows.index[0]))
+    cell = ds.sel(m_star=gone.m_star, amplitude=gone.amplitude)
+    assert str(cell["resolved_as"].item()) == "" and str(cell["warnings"].item()) == ""
+    assert int(cell["regime"]) == -1 and float(cell["drift_ratio_se"]) != float(cell["drift_ratio_se"])

@@ -6,6 +6,7 @@ import json
 import math
 
 import numpy as np
+import pytest
 
 import sawdrift as sd
 from sawdrift.study.force_velocity import force_velocity
@@ -61,3 +62,86 @@ def test_the_command_refuses_a_load_it_would_replace(sawdrift_main):
     bad = sawdrift_main("force-velocity", "--model", "mmd", "--m-star", "1", "--load", "0.2")
     assert bad.returncode == 2 and "particle.load = 0.2" in bad.stderr
     assert "Traceback" not in bad.stderr and bad.stdout == ""
+
+
+CHAOTIC = ["--model", "mmd", "--m-star", "0.1", "--amplitude", "1"]
+
+
+def _chaotic_scene() -> sd.Scene:
+    """mmd at m* = 0.1, A* = 1, mu = 0.1: chaotic bouncing, a long-time mean with its error."""
+    return sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": 1.0})
+
+
+def test_a_chaotic_curve_keeps_each_points_error_and_warnings(tmp_path, sawdrift_main):
+    """Chaotic points used to lose their standard errors and warnings: the text, the JSON and
+    the plot showed a bare mean, and the free drift was drawn as a firm point though it is zero
+    within its error. Each point's error and warnings are those of its own run."""
+    from matplotlib.container import ErrorbarContainer
+
+    from sawdrift.report.force_velocity_plot import plot_force_velocity
+
+    free = sd.run(_chaotic_scene())
+    assert math.isfinite(free.drift_ratio_se)  # a long-time mean: the fact to carry
+    curve = force_velocity(_chaotic_scene(), points=3, workers=1)
+    data = curve.to_json()
+    i = data["force"].index(0.0)
+    speed = free.drift_velocity / free.drift_ratio
+    assert data["drift_ratio_se"][i] == free.drift_ratio_se
+    assert data["drift_velocity_se"][i] == pytest.approx(free.drift_ratio_se * speed, rel=1e-12)
+    assert data["warnings"][i] == list(free.warnings)
+    assert curve.free_drift_se == pytest.approx(free.drift_ratio_se * speed, rel=1e-12)
+    zero_within = abs(free.drift_velocity) <= 3.0 * curve.free_drift_se
+    assert data["free_drift_resolved"] is (not zero_within)
+    for j, force in enumerate(data["force"]):  # every point: its own run's error
+        run = sd.run(_chaotic_scene().with_updates(**{"particle.load": force}))
+        se = data["drift_ratio_se"][j]
+        assert se == (run.drift_ratio_se if math.isfinite(run.drift_ratio_se) else None)
+    fig = plot_force_velocity(curve)
+    bars = [c for c in fig.axes[0].containers if isinstance(c, ErrorbarContainer)]
+    finite = sum(se is not None for se in data["drift_velocity_se"])
+    assert finite >= 1 and len(bars) == finite + 1  # each point's, and the free drift's
+    star = [t.get_text() for t in fig.axes[0].get_legend().get_texts() if "free drift" in t.get_text()]
+    assert star and f"+- {curve.free_drift_se:.2g}" in star[0]
+    assert ("zero within 3 errors" in star[0]) is zero_within
+    done = sawdrift_main("force-velocity", *CHAOTIC, "--points", "3", "--workers", "1")
+    assert done.returncode == 0, done.stderr
+    assert f"free drift {free.drift_velocity:.6g} +- {curve.free_drift_se:.2g} a0 f" in done.stdout
+    assert ("zero within 3 standard errors" in done.stdout) is zero_within
+
+
+@pytest.mark.parametrize("name", ["fv.csv", "fv.png", "fv.json"])
+def test_an_output_with_a_file_suffix_is_refused_not_made_a_folder(name, tmp_path, sawdrift_main):
+    """-o fv.csv used to create a folder named fv.csv; the command writes a folder only."""
+    bad = sawdrift_main("force-velocity", *CHAOTIC, "--points", "3", "-o", str(tmp_path / name))
+    lines = bad.stderr.strip().splitlines()
+    assert bad.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: -o"), bad.stderr
+    assert "give a folder" in lines[0] and "Traceback" not in bad.stderr
+    assert not any(tmp_path.iterdir())
+
+
+def test_an_unwritable_output_is_refused_before_any_run(tmp_path, sawdrift_main, monkeypatch):
+    """The output folder is checked before the size calibration and the runs, as sweep does."""
+    import sawdrift.study.estimate as estimate
+    import sawdrift.study.force_velocity as study
+
+    def ran(*_args, **_kwargs):
+        raise AssertionError("ran before checking -o")
+
+    monkeypatch.setattr(estimate, "size_check", ran)
+    monkeypatch.setattr(study, "force_velocity", ran)
+    (tmp_path / "file").write_text("")
+    bad = sawdrift_main("force-velocity", *CHAOTIC, "-o", str(tmp_path / "file" / "fv"))
+    lines = bad.stderr.strip().splitlines()
+    assert bad.returncode == 2 and len(lines) == 1 and "is a file, not a folder" in lines[0]
+
+
+def test_a_refused_size_leaves_no_output_folder(tmp_path, sawdrift_main, monkeypatch):
+    import sawdrift.study.estimate as estimate
+
+    def refuse(*_args, **_kwargs):
+        raise sd.SceneError("force-velocity: too big; give --yes to start it anyway")
+
+    monkeypatch.setattr(estimate, "size_check", refuse)
+    bad = sawdrift_main("force-velocity", *CHAOTIC, "-o", str(tmp_path / "a" / "fv"))
+    assert bad.returncode == 2 and "too big" in bad.stderr
+    assert not any(tmp_path.iterdir())

@@ -322,3 +322,91 @@ def test_load_curve_axis_overlays_species_each_as_its_own_curve(tmp_path):
         assert s["stall_load"] == pytest.approx(alone.stall_load, rel=1e-12)
         assert s["stall_load"] > 0.0
     assert (tmp_path / "lc" / "load_curve.png").stat().st_size > 10_000
+
+
+# -- load curves of long-time means: errors carried, no stall load from noise --------------------
+
+
+def _bouncer(amplitude: float) -> sd.Scene:
+    """mmd, m* = 0.1, mu = 0.1: bouncing whose drift is a long-time mean with its error."""
+    return sd.Scene(model="mmd", particle={"m_star": 0.1}, drive={"amplitude": amplitude})
+
+
+def test_a_free_drift_zero_within_its_error_gives_no_stall_load(sawdrift_main):
+    """A* = 1: chaotic bouncing, -0.035 +- 0.38 a0 f without load. The curve used to load
+    against that sign and quote a stall load (8e-4 M g) and a power made of noise, with the hint
+    --settle, which cannot make a chaotic mean steady."""
+    free = sd.run(_bouncer(1.0))
+    se = free.drift_ratio_se * free.drift_velocity / free.drift_ratio
+    assert math.isfinite(se) and abs(free.drift_velocity) <= 3.0 * abs(se)  # the case at hand
+    curve = load_curve(_bouncer(1.0), loads=3, workers=1)
+    data = curve.to_json()
+    json.dumps(data, allow_nan=False)  # unknown values are None, not NaN
+    assert curve.free_state == "zero_within_error" and data["direction"] == "none"
+    assert data["stall_load"] is None and data["max_power"] is None
+    assert data["start_acceleration"] is None and curve.runs == 1
+    assert data["free_drift_velocity"] == free.drift_velocity
+    assert data["free_drift_velocity_se"] == pytest.approx(abs(se), rel=1e-12)
+    assert data["warnings"] == [list(free.warnings)]
+    done = sawdrift_main("load-curve", "--model", "mmd", "--m-star", "0.1", "--amplitude", "1",
+                         "--loads", "3", "--workers", "1", "--no-progress")
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.strip().splitlines()
+    assert len(lines) == 1 and "zero within 3 standard errors" in lines[0], done.stdout
+    assert f"{free.drift_velocity:.6g} +- {abs(se):.2g} a0 f" in lines[0]
+    assert "stall load" not in done.stdout.replace("no stall load", "")
+    assert "--settle" not in done.stdout + done.stderr
+
+
+def test_a_curve_of_long_time_means_carries_their_errors_without_the_settle_hint(sawdrift_main):
+    """A* = 0.5477: irregular bouncing, 0.55 +- 0.07 a0 f without load, every load a long-time
+    mean. Each speed carries its error (the stall load the error of the speed at it), and the
+    hint --settle, which no long-time mean can use, is not given."""
+    amplitude = "0.5477225575051661"
+    free = sd.run(_bouncer(float(amplitude)))
+    speed = free.drift_velocity / free.drift_ratio
+    assert not free.settled and abs(free.drift_ratio) > 3.0 * free.drift_ratio_se
+    curve = load_curve(_bouncer(float(amplitude)), loads=3, workers=1)
+    data = curve.to_json()
+    assert curve.free_state == "mean" and data["stall_load"] is not None
+    assert data["drift_velocity_se"][0] == pytest.approx(free.drift_ratio_se * speed, rel=1e-12)
+    for load, se in zip(data["applied_load"], data["drift_velocity_se"], strict=True):
+        run = curve.table[load]
+        assert se == (None if run["drift_ratio_se"] is None else
+                      pytest.approx(run["drift_ratio_se"] * speed, rel=1e-12))
+    means = [not s and se is not None for s, se in zip(data["settled"], data["drift_velocity_se"],
+                                                          strict=True)]
+    assert any(means)
+    if data["drift_velocity_se"][-1] is not None:
+        drop = data["drift_velocity"][0] - data["drift_velocity"][-1]
+        assert data["stall_load_se"] == pytest.approx(
+            data["drift_velocity_se"][-1] * data["stall_load"] / drop, rel=1e-12)
+    from matplotlib.container import ErrorbarContainer
+
+    from sawdrift.report.load_curve_plot import plot_load_curve
+
+    fig = plot_load_curve(curve)
+    bars = [c for c in fig.axes[0].containers if isinstance(c, ErrorbarContainer)]
+    assert len(bars) == 1 and len(bars[0].lines[2][0].get_segments()) == sum(means)
+    done = sawdrift_main("load-curve", "--model", "mmd", "--m-star", "0.1", "--amplitude",
+                         amplitude, "--loads", "3", "--workers", "1", "--no-progress")
+    assert done.returncode == 0, done.stderr
+    v, se = data["drift_velocity"][0], data["drift_velocity_se"][0]
+    assert f"without load: {v:.6g} +- {se:.2g} a0 f" in done.stdout
+    early = [not s and se is None for s, se in zip(data["settled"], data["drift_velocity_se"],
+                                                      strict=True)]
+    assert ("--settle" in done.stderr) is any(early), done.stderr
+    assert "long-time means" in done.stderr
+
+
+def test_no_drift_without_load_is_one_line(sawdrift_main):
+    """No wave: the particle sticks. The command used to print a stall load of 0 M g and a
+    largest power of 0 at 0 M g; it says in one line that there is nothing to stall."""
+    done = sawdrift_main("load-curve", "--amplitude", "0", "--loads", "3", "--workers", "1",
+                         "--no-progress")
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.strip().splitlines()
+    assert len(lines) == 1 and "no drift without load" in lines[0], done.stdout
+    assert "nothing to stall" in lines[0]
+    curve = load_curve(sd.Scene(drive={"amplitude": 0.0}), loads=3, workers=1)
+    assert curve.free_state == "no_drift" and curve.stall_load == 0.0

@@ -10,7 +10,18 @@ from typing import Annotated, Any
 import typer
 
 from .._startup import fast_start
-from .app import Engine, Param, Yes, _fail, _parse_param, _writable, app, check_engine, write_outputs
+from .app import (
+    Engine,
+    Param,
+    Yes,
+    _fail,
+    _parse_param,
+    _writable,
+    app,
+    check_engine,
+    out_kind,
+    write_outputs,
+)
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -57,10 +68,13 @@ def force_velocity_cmd(
               "speed under one load is where the curve crosses it, or `sawdrift run --load`")
     from ..study.estimate import size_check
 
-    size_check("force-velocity", [scene], points + 1, workers=workers, engine=engine, yes=yes,
-               unit="steady run", smaller="fewer --points")
-    if out is not None:  # after every check: a refused command leaves no folder behind
-        _writable(out, folder=True)
+    created = _prepare_out(out)  # before the calibration and the runs, as sweep does
+    try:
+        size_check("force-velocity", [scene], points + 1, workers=workers, engine=engine,
+                   yes=yes, unit="steady run", smaller="fewer --points")
+    except BaseException:
+        _remove_new(created)  # a refused command leaves no folder behind
+        raise
     curve = force_velocity(scene, points=points, workers=workers, engine=engine)
     data = curve.to_json()
     if out is not None:
@@ -69,23 +83,65 @@ def force_velocity_cmd(
     if as_json:
         typer.echo(json.dumps(data))
         return
-    dev = data.get("device")
-    zero = curve.zero
-    if dev is not None:
-        speed = curve.device["speed_m_s"]  # type: ignore[index]
-        typer.echo(f"free drift {curve.free_drift * speed:.4g} m/s; the curve crosses zero force "
-                   f"at {zero * speed:.4g} m/s" if math.isfinite(zero) else "")
-        rows = zip(dev["force_mN"], dev["speed_m_s"], data["regimes"], data["settled"], strict=True)
-        typer.echo(f"{'force (mN)':>12} {'speed (m/s)':>12}  regime")
-    else:
-        typer.echo(f"free drift {curve.free_drift:.6g} a0 f"
-                   + (f"; the curve crosses zero force at {zero:.6g} a0 f"
-                      if math.isfinite(zero) else ""))
-        rows = zip(data["force"], data["drift_velocity"], data["regimes"], data["settled"],
-                   strict=True)
-        typer.echo(f"{'<F> (M g)':>12} {'v (a0 f)':>12}  regime")
-    for f, v, regime, settled in rows:
-        v_text = f"{v:12.5g}" if v is not None else f"{'none':>12}"
-        typer.echo(f"{f:12.5g} {v_text}  {regime}" + ("" if settled else " (not settled)"))
+    _print_curve(curve, data)
     if out is not None:
         typer.echo(f"wrote {out}/force_velocity.json, force_velocity.png, scene.toml")
+
+
+def _prepare_out(out: Path | None) -> list[Path]:
+    """Check before any work that ``out`` is a folder that can be written (one line, exit 2 if
+    not: a name with a file suffix is refused, since the command writes a folder); return the
+    folders this check created, for removal if the command is refused later."""
+    if out is None:
+        return []
+    out_kind(out, (), "")  # NAME.csv, NAME.png, ...: this command writes a folder only
+    created = [p for p in (out, *out.parents) if not p.exists()]
+    _writable(out, folder=True)
+    return created
+
+
+def _remove_new(created: list[Path]) -> None:
+    """Remove the folders :func:`_prepare_out` created, innermost first, where still empty."""
+    for folder in created:
+        try:
+            folder.rmdir()
+        except OSError:
+            return
+
+
+def _pm(value: float | None, se: float | None, digits: int = 5) -> str:
+    """``value +- se`` (the error with 2 significant digits), or the value alone without one."""
+    if value is None or not math.isfinite(value):
+        return "none"
+    text = f"{value:.{digits}g}"
+    return text if se is None or not math.isfinite(se) else f"{text} +- {se:.2g}"
+
+
+def _print_curve(curve: Any, data: dict[str, Any]) -> None:
+    """The curve as text: the free drift (with its error), then force, speed +- error, regime."""
+    dev = data.get("device")
+    zero = curve.zero
+    scale, unit = (curve.device["speed_m_s"], "m/s") if dev is not None else (1.0, "a0 f")
+    free = _pm(curve.free_drift * scale, curve.free_drift_se * scale, 6)
+    line = f"free drift {free} {unit}"
+    if not math.isfinite(curve.free_drift):
+        line += " (no steady drift without load)"
+    elif not curve.free_drift_resolved:
+        line += " (a long-time mean: zero within 3 standard errors)"
+    if math.isfinite(zero):
+        line += f"; the curve crosses zero force at {zero * scale:.4g} {unit}"
+    typer.echo(line)
+    if dev is not None:
+        forces, speeds, errors = dev["force_mN"], dev["speed_m_s"], dev["speed_se_m_s"]
+        typer.echo(f"{'force (mN)':>12} {'speed (m/s)':>22}  regime")
+    else:
+        forces, speeds, errors = data["force"], data["drift_velocity"], data["drift_velocity_se"]
+        typer.echo(f"{'<F> (M g)':>12} {'v (a0 f)':>22}  regime")
+    rows = zip(forces, speeds, errors, data["regimes"], data["settled"], strict=True)
+    for f, v, se, regime, settled in rows:
+        typer.echo(f"{f:12.5g} {_pm(v, se):>22}  {regime}" + ("" if settled else " (not settled)"))
+    flagged = sum(1 for w in data["warnings"] if w)
+    if flagged:
+        typer.echo(f"note: {flagged} of {len(data['warnings'])} points carry warnings (a lower-"
+                   "bound error, a motion still heating up); --json and force_velocity.json list "
+                   "them", err=True)

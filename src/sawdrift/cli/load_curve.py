@@ -97,30 +97,94 @@ def load_curve_cmd(
     if as_json:
         typer.echo(json.dumps(data))
         return
+    _print_curve(data, scene)
+    _wrote(out)
+
+
+def _pm(value: float, se: float | None, spec: str) -> str:
+    """``value +- se`` (the error with 2 significant digits), or the value alone without one."""
+    text = format(value, spec)
+    return text if se is None else f"{text} +- {se:.2g}"
+
+
+def _free_line(data: dict[str, Any]) -> str | None:
+    """The one line that replaces the curve where the unloaded run gives nothing to load against
+    (``free_state`` no_drift, zero_within_error, no_steady_state), else None."""
+    regime, state = data["regimes"][0], data["free_state"]
+    if state == "no_drift":
+        return f"no drift without load ({regime}), so nothing to stall"
+    if state == "no_steady_state":
+        return f"no steady drift without load ({regime}), so no load curve"
+    if state == "zero_within_error":
+        dev = data.get("device")
+        free = (_pm(dev["free_speed_m_s"], dev["free_speed_se_m_s"], ".4g") + " m/s"
+                if dev is not None else
+                _pm(data["free_drift_velocity"], data["free_drift_velocity_se"], ".6g") + " a0 f")
+        return (f"drift without load {free} ({regime}, a long-time mean) is "
+                "zero within 3 standard errors: no direction to load against, so no stall load "
+                "or power; a longer --mean-periods narrows the error")
+    return None
+
+
+def _print_curve(data: dict[str, Any], scene: Any) -> None:
+    """The load curve as text: the free drift (+- its error), the stall, the loads; a caveat
+    where the free drift did not settle, and the hint that can help unsettled loads."""
+    line = _free_line(data)
+    if line is not None:
+        typer.echo(line)
+        return
     dev = data.get("device")
     if dev is not None:
-        typer.echo(f"drift to {data['direction']} without load: {dev['free_speed_m_s']:.4g} m/s")
-        typer.echo(f"stall thrust {dev['stall_load_mN']:.4g} mN (of a normal load "
+        typer.echo(f"drift to {data['direction']} without load: "
+                   f"{_pm(dev['free_speed_m_s'], dev['free_speed_se_m_s'], '.4g')} m/s")
+        typer.echo(f"stall thrust {_pm(dev['stall_load_mN'], dev['stall_load_se_mN'], '.4g')} mN "
+                   f"(of a normal load "
                    f"{dev['normal_load_mN']:.4g} mN), largest power {dev['max_power_mW']:.4g} mW "
                    f"at {dev['load_at_max_power_mN']:.4g} mN, start-up acceleration "
                    f"{dev['start_acceleration_g']:.3g} g")
-        rows = zip(dev["loads_mN"], dev["speed_m_s"], dev["power_mW"], data["regimes"],
-                   data["settled"], strict=True)
-        typer.echo(f"{'load (mN)':>12} {'speed (m/s)':>12} {'power (mW)':>12}  regime")
+        rows = zip(dev["loads_mN"], dev["speed_m_s"], dev["speed_se_m_s"], dev["power_mW"],
+                   data["regimes"], data["settled"], strict=True)
+        typer.echo(f"{'load (mN)':>12} {'speed (m/s)':>22} {'power (mW)':>12}  regime")
     else:
-        typer.echo(f"drift to {data['direction']} without load: {data['drift_velocity'][0]:.6g} "
-                   "a0 f")
-        typer.echo(f"stall load {data['stall_load']:.6g} M g, largest power "
+        typer.echo(f"drift to {data['direction']} without load: "
+                   f"{_pm(data['drift_velocity'][0], data['drift_velocity_se'][0], '.6g')} a0 f")
+        typer.echo(f"stall load {_pm(data['stall_load'], data['stall_load_se'], '.6g')} M g, "
+                   "largest power "
                    f"{data['max_power']:.6g} M g a0 f at {data['load_at_max_power']:.6g} M g")
-        rows = zip(data["loads"], data["drift_velocity"], data["power"], data["regimes"],
-                   data["settled"], strict=True)
-        typer.echo(f"{'load (M g)':>12} {'v (a0 f)':>12} {'F v':>12}  regime")
-    for f, v, p, regime, settled in rows:
-        typer.echo(f"{f:12.5g} {v:12.5g} {p:12.5g}  {regime}" + ("" if settled else " (not settled)"))
-    if not all(data["settled"]):
-        typer.echo("note: some loads did not settle; use --settle or raise numerics.max_periods",
+        rows = zip(data["loads"], data["drift_velocity"], data["drift_velocity_se"], data["power"],
+                   data["regimes"], data["settled"], strict=True)
+        typer.echo(f"{'load (M g)':>12} {'v (a0 f)':>22} {'F v':>12}  regime")
+    for f, v, se, p, regime, settled in rows:
+        typer.echo(f"{f:12.5g} {_pm(v, se, '.5g'):>22} {p:12.5g}  {regime}"
+                   + ("" if settled else " (not settled)"))
+    _notes(data, scene)
+
+
+def _notes(data: dict[str, Any], scene: Any) -> None:
+    """Caveats on stderr: an unsettled free drift, unsettled loads (with the hint that can help
+    them: --settle for a run that stopped early, not for a long-time mean), warnings."""
+    if data["stall_load_se"] is not None:
+        typer.echo("note: the speed at the stall is a long-time mean; the stall load's error is "
+                   "that speed's error over the curve's mean slope", err=True)
+    if data["free_state"] == "not_settled":
+        typer.echo("caveat: the drift without load did not settle, so the stall load and power "
+                   "above are those of unsettled runs", err=True)
+    means = [not s and se is not None for s, se in zip(data["settled"], data["drift_velocity_se"],
+                                                          strict=True)]
+    early = [not s and se is None for s, se in zip(data["settled"], data["drift_velocity_se"],
+                                                      strict=True)]
+    if any(means):
+        typer.echo(f"note: {sum(means)} loads are long-time means of irregular motion (+- their "
+                   "standard error), with no steady drift to settle to; a longer --mean-periods "
+                   "narrows their errors", err=True)
+    if any(early):
+        hint = ("raise numerics.max_periods" if scene.numerics.settle
+                else "use --settle or raise numerics.max_periods")
+        typer.echo(f"note: {sum(early)} loads did not settle; {hint}", err=True)
+    flagged = sum(1 for w in data["warnings"] if w)
+    if flagged:
+        typer.echo(f"note: {flagged} loads carry warnings; --json and load_curve.json list them",
                    err=True)
-    _wrote(out)
 
 
 def _wrote(out: Path | None) -> None:
@@ -217,10 +281,17 @@ def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engi
         return
     for label, curve in curves:
         d = curve.to_json()
+        line = _free_line(d)
+        if line is not None:
+            typer.echo(f"{label}: {line}")
+            continue
         dev = d.get("device")
         stall = (f"{dev['stall_load_mN']:.4g} mN" if dev is not None
                  else f"{d['stall_load']:.4g} M g")
-        free = (f"{dev['free_speed_m_s']:.4g} m/s" if dev is not None
-                else f"{d['drift_velocity'][0]:.4g} a0 f")
-        typer.echo(f"{label}: drifts to {d['direction']} at {free} without load, stalls at {stall}")
+        free = (_pm(dev["free_speed_m_s"], dev["free_speed_se_m_s"], ".4g") + " m/s"
+                if dev is not None else _pm(d["drift_velocity"][0], d["drift_velocity_se"][0], ".4g")
+                + " a0 f")
+        caveat = " (the drift without load did not settle)" if d["free_state"] == "not_settled" else ""
+        typer.echo(f"{label}: drifts to {d['direction']} at {free} without load, stalls at "
+                   f"{stall}{caveat}")
     _wrote(out)

@@ -11,7 +11,11 @@ model when the table holds several), with
   fields with their ``units`` in ``attrs``;
 
 * ``regime`` as an integer variable carrying CF ``flag_values`` / ``flag_meanings`` (-1: no cell);
-* the drift (``drift_ratio``, ``drift_velocity``) and the evidence of each cell as variables;
+* the drift (``drift_ratio``, ``drift_velocity``, the standard error ``drift_ratio_se`` of a
+  long-time mean, NaN where the drift settled) and the evidence of each cell as variables;
+* how each cell was resolved (``resolved_as``) and its ``warnings`` (joined with "; ", as the
+  table stores them; "" for none or no cell) as string variables, ``chaotic`` as 1/0 and
+  ``orbit_period`` (0: no periodic orbit);
 * the provenance in ``attrs``: ``sawdrift_version``, ``sawdrift_code`` (the code hash, see
   :mod:`sawdrift.study.provenance`), ``base_scene`` (the sweep's base scene as
   JSON, when the table's metadata has it) and ``Conventions = "CF-1.8"``.
@@ -39,8 +43,23 @@ VARIABLES = (
     "hop_period",
     "liftoff_phase", "liftoff_phase_spread", "lyapunov", "periodicity", "out_of_contact_fraction",
     "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s", "settled",
-    "settle_periods", "events_dropped", "drift_speed_m_s", "a0_m", "load_N",
+    "settle_periods", "events_dropped", "drift_speed_m_s", "a0_m", "load_N", "drift_ratio_se",
+    "chaotic", "orbit_period",
 )
+
+#: per-cell text variables exported when present, as strings ("" where a cell has none)
+STRINGS = ("resolved_as", "warnings")
+
+#: descriptions of the exported variables that sawdrift.study.axes does not name
+_LONG_NAMES = {
+    "drift_ratio_se": "standard error of drift_ratio of a long-time mean (batch means); NaN "
+                      "where the drift settled",
+    "resolved_as": "how the cell's steady state was resolved: periodic_orbit, fixed_point, "
+                   "chaotic_mean, long_time_mean, runaway, ejected or not_settled",
+    "warnings": "the cell's warnings, joined with '; ' ('' for none)",
+    "chaotic": "1 if the largest Lyapunov exponent shows chaos, 0 if not (NaN: no cell)",
+    "orbit_period": "periods after which the stroboscopic state repeats (0: no periodic orbit)",
+}
 
 #: regime codes: flag_values are 0..n-1 in the order of sawdrift.result.regimes.REGIMES
 REGIME_FLAGS = (*REGIMES, "error")
@@ -103,13 +122,18 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
     frame = table.copy()
     frame["regime_code"] = [REGIME_FLAGS.index(r) if r in REGIME_FLAGS else REGIME_FLAGS.index("error")
                             for r in frame["regime"]]
-    keep = ["regime_code", *[v for v in VARIABLES if v in frame.columns]]
+    strings = [v for v in STRINGS if v in frame.columns]
+    for name in strings:  # missing text (no warning) as "", the rest as plain str objects
+        frame[name] = np.array([_text(v) for v in frame[name]], dtype=object)
+    keep = ["regime_code", *[v for v in VARIABLES if v in frame.columns], *strings]
     indexed = frame.set_index(dims)[keep]
     if indexed.index.has_duplicates:
         raise SceneError("the table holds two cells for one point of its swept fields")
     ds = xr.Dataset.from_dataframe(indexed)
     for name in list(ds.data_vars):
-        if ds[name].dtype == bool or ds[name].dtype == object:
+        if name in strings:  # a point of the grid without a cell: ""
+            ds[name] = ds[name].fillna("").astype(str)
+        elif ds[name].dtype == bool or ds[name].dtype == object:
             ds[name] = ds[name].astype(float)
     codes = ds["regime_code"].fillna(-1).astype(np.int16)
     ds = ds.drop_vars("regime_code")
@@ -141,7 +165,7 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
 
 def _describe(ds) -> None:
     """``long_name`` and ``units`` of the normalized and SI coordinates and variables."""
-    names = {"m_star": "m* = a0 m f^2 / (M g)", "amplitude": "A* = A_y / a0"}
+    names = {"m_star": "m* = a0 m f^2 / (M g)", "amplitude": "A* = A_y / a0", **_LONG_NAMES}
     for name in [*ds.coords, *ds.data_vars]:
         text = names.get(str(name)) or long_name(str(name))
         if text:
@@ -149,6 +173,16 @@ def _describe(ds) -> None:
         unit = column_unit(str(name))
         if unit:
             ds[name].attrs["units"] = unit
+
+
+def _text(value: Any) -> str:
+    """A table's text cell as a string: "" for a missing one, a sequence (warnings kept as a
+    list) joined with "; " as sweep tables join them."""
+    if value is None or (isinstance(value, float) and value != value) or value is pd.NA:
+        return ""
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return "; ".join(str(v) for v in value)
+    return str(value)
 
 
 def _codes(table: pd.DataFrame) -> str:

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -41,6 +41,9 @@ class ForceVelocity:
     M g (the applied load plus a device's incline pull): at a steady state the period-averaged
     friction force balances them, mu <T*> = force. ``velocities`` are the steady drift
     velocities (x* per period, units a0 f), NaN where the run found no steady state.
+    ``velocity_se`` is the standard error of a velocity that is a long-time mean (a chaotic or
+    irregular point, ``drift_ratio_se`` times the surface speed), NaN where the drift settled;
+    ``warnings`` are each run's (a lower-bound error, a motion still heating up).
     """
 
     forces: np.ndarray
@@ -53,6 +56,22 @@ class ForceVelocity:
     free_drift: float
     wall_time_s: float
     device: dict[str, float] | None = None
+    drift_ratio_se: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    warnings: tuple[tuple[str, ...], ...] = ()
+    #: standard error of the free drift (a0 f), NaN where it settled
+    free_drift_se: float = math.nan
+
+    @property
+    def velocity_se(self) -> np.ndarray:
+        """Standard errors of the velocities (a0 f): NaN where the drift settled."""
+        return self.drift_ratio_se * self.surface_speed
+
+    @property
+    def free_drift_resolved(self) -> bool:
+        """Whether the free drift is told apart from zero: settled, or a long-time mean more than
+        three standard errors from zero (False where it is zero within its error)."""
+        se = self.free_drift_se
+        return math.isfinite(self.free_drift) and not abs(self.free_drift) <= 3.0 * se
 
     @property
     def zero(self) -> float:
@@ -77,18 +96,24 @@ class ForceVelocity:
         out: dict[str, Any] = {
             "force": plain(self.forces),
             "drift_velocity": plain(self.velocities),
+            "drift_velocity_se": plain(self.velocity_se),
             "drift_ratio": plain(self.drift_ratios),
+            "drift_ratio_se": plain(self.drift_ratio_se),
             "regimes": list(self.regimes),
             "settled": list(self.settled),
+            "warnings": [list(w) for w in self.warnings],
             "mu": self.mu,
             "free_drift_velocity": self.free_drift,
+            "free_drift_velocity_se": None if math.isnan(self.free_drift_se) else self.free_drift_se,
+            "free_drift_resolved": self.free_drift_resolved,
             "zero_of_curve": None if math.isnan(self.zero) else self.zero,
             "units": {"force": "M g", "drift_velocity": "a0 f"},
             "wall_time_s": self.wall_time_s,
         }
         if self.device is not None:
             out["device"] = {"force_mN": plain(1e3 * self.device["force_n"] * self.forces),
-                             "speed_m_s": plain(self.device["speed_m_s"] * self.velocities)}
+                             "speed_m_s": plain(self.device["speed_m_s"] * self.velocities),
+                             "speed_se_m_s": plain(self.device["speed_m_s"] * self.velocity_se)}
         return out
 
 
@@ -138,12 +163,16 @@ def force_velocity(
     forces = np.array(applied) + runner.background
     vel = np.array([_value(r["drift_velocity"]) for r in rows])
     ratio = np.array([_value(r["drift_ratio"]) for r in rows])
-    free = float(vel[applied.index(0.0)])
+    se = np.array([_value(r.get("drift_ratio_se")) for r in rows])
+    free = applied.index(0.0)
     return ForceVelocity(
         forces=forces, velocities=vel, drift_ratios=ratio,
         regimes=tuple(str(r["regime"]) for r in rows),
         settled=tuple(bool(r["settled"]) for r in rows), mu=mu, surface_speed=speed,
-        free_drift=free, wall_time_s=time.perf_counter() - t0, device=_device_scales(scene))
+        free_drift=float(vel[free]), wall_time_s=time.perf_counter() - t0,
+        device=_device_scales(scene), drift_ratio_se=se,
+        warnings=tuple(tuple(str(w) for w in r.get("warnings") or ()) for r in rows),
+        free_drift_se=float(se[free] * speed))
 
 
 def _value(x: Any) -> float:

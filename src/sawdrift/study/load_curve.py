@@ -16,9 +16,11 @@ longer advances (docs/physics.md, "Loads, inclines and restitution"). :func:`loa
 
 "Advances" means a drift along the unloaded direction above the scene's
 ``numerics.drift_tolerance`` times the horizontal surface speed 2 pi r A* (the regime
-classifier's threshold for "stick"). Device scenes are reported in mN, m/s and mW as well, with
-the start-up acceleration F_s / m (the net force on the unloaded slider at rest is the stall
-load, by its definition).
+classifier's threshold for "stick"). A drift that is a long-time mean (a chaotic or irregular
+bouncer) carries its standard error; an unloaded one within three errors of zero gives no
+direction to load against, and so no stall load (``free_state``, :data:`FREE_STATES`). Device
+scenes are reported in mN, m/s and mW as well, with the start-up acceleration F_s / m (the net
+force on the unloaded slider at rest is the stall load, by its definition).
 """
 
 from __future__ import annotations
@@ -44,9 +46,19 @@ from .executor import Executor
 __all__ = ["LoadCurve", "load_curve"]
 
 #: summary fields kept of each run
-_KEPT = ("drift_velocity", "drift_ratio", "regime", "settled", "settle_periods")
+_KEPT = ("drift_velocity", "drift_ratio", "regime", "settled", "settle_periods", "drift_ratio_se",
+         "chaotic", "warnings")
 
 G_N = 9.80665  # standard gravity, for start-up accelerations in g
+
+#: what the unloaded run says (``LoadCurve.free_state``): ``settled`` (a steady drift),
+#: ``mean`` (a long-time mean told apart from zero by more than three standard errors),
+#: ``not_settled`` (a drift whose run ended before it settled, without an error), ``no_drift``
+#: (no drift above the stick threshold: nothing to stall, stall load 0), ``zero_within_error``
+#: (a long-time mean within three standard errors of zero: no direction, stall load unknown) and
+#: ``no_steady_state`` (a runaway or an ejected particle: no drift at all)
+FREE_STATES = ("settled", "mean", "not_settled", "no_drift", "zero_within_error",
+               "no_steady_state")
 
 
 def _run_load(scene_json: str, engine: str) -> dict[str, Any]:
@@ -63,7 +75,10 @@ class LoadCurve:
     Loads ``F`` are magnitudes against the unloaded drift, in units of the static normal load
     M g; the applied ``particle.load`` is ``-direction F``. Velocities are drift velocities
     (x* per period, i.e. in units of a0 f) along the unloaded drift: positive while the particle
-    advances. Power is F v in units of M g a0 f.
+    advances (along +x where there is no direction). Power is F v in units of M g a0 f.
+    ``velocity_se`` is the standard error of a velocity that is a long-time mean, NaN where it
+    settled. ``stall_load`` is NaN where the unloaded drift is zero within its error or there is
+    none (``free_state``), so that no stall load or power is quoted from noise.
     """
 
     direction: int
@@ -82,36 +97,64 @@ class LoadCurve:
     device: dict[str, float] | None = None
     #: every run made, {load: summary}
     table: dict[float, dict[str, Any]] = field(default_factory=dict, repr=False)
+    #: standard errors of ``velocities`` (a0 f), NaN where the drift settled
+    velocity_se: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: each point's warnings (a lower-bound error, a motion still heating up)
+    warnings: tuple[tuple[str, ...], ...] = ()
+    #: the unloaded drift velocity along +x (a0 f), its standard error, what it says
+    free_drift: float = math.nan
+    free_drift_se: float = math.nan
+    free_state: str = "settled"
 
     @property
     def power(self) -> np.ndarray:
         """Output power F v (M g a0 f); negative where the particle is pushed back."""
-        return self.loads * self.velocities
+        return self.loads * self.velocities + 0.0  # + 0.0: no -0 at zero load
+
+    @property
+    def stall_load_se(self) -> float:
+        """Standard error of the stall load where the speed at it is a long-time mean: that
+        speed's error over the curve's mean slope, se(v_s) F_s / (v(0) - v_s); NaN where the
+        speed at the stall settled (or the curve does not end at the stall)."""
+        se = self._se()
+        if (self.loads.size < 2 or self.loads[-1] != self.stall_load
+                or not math.isfinite(se[-1])):
+            return math.nan
+        drop = float(self.velocities[0] - self.velocities[-1])
+        return float(se[-1] * self.stall_load / drop) if drop > 0.0 else math.nan
 
     @property
     def max_power(self) -> tuple[float, float]:
-        """(largest sampled power, its load)."""
+        """(largest sampled power, its load); NaN where the stall load is unknown."""
+        if not math.isfinite(self.stall_load):
+            return math.nan, math.nan
         if self.loads.size == 0:
             return 0.0, 0.0
         i = int(np.argmax(self.power))
         return float(self.power[i]), float(self.loads[i])
 
     def to_json(self) -> dict[str, Any]:
-        """The curve as plain JSON values, with device units where the scene is a device."""
+        """The curve as plain JSON values (NaN as None), with device units on a device."""
         p_max, at = self.max_power
         out: dict[str, Any] = {
             "direction": {1: "+x", -1: "-x"}.get(self.direction, "none"),
+            "free_state": self.free_state,
+            "free_drift_velocity": _plain(self.free_drift),
+            "free_drift_velocity_se": _plain(self.free_drift_se),
             "loads": self.loads.tolist(),
             "applied_load": (0.0 - self.direction * self.loads).tolist(),
             "drift_velocity": self.velocities.tolist(),
+            "drift_velocity_se": [_plain(x) for x in self._se()],
             "power": self.power.tolist(),
             "regimes": list(self.regimes),
             "settled": list(self.settled),
-            "stall_load": self.stall_load,
-            "stall_bracket": list(self.stall_bracket),
-            "max_power": p_max,
-            "load_at_max_power": at,
-            "start_acceleration": self.stall_load / self.m_star,
+            "warnings": [list(w) for w in self.warnings],
+            "stall_load": _plain(self.stall_load),
+            "stall_load_se": _plain(self.stall_load_se),
+            "stall_bracket": [_plain(x) for x in self.stall_bracket],
+            "max_power": _plain(p_max),
+            "load_at_max_power": _plain(at),
+            "start_acceleration": _plain(self.stall_load / self.m_star),
             "units": {"load": "M g", "drift_velocity": "a0 f", "power": "M g a0 f",
                       "start_acceleration": "a0 f^2"},
             "advance_threshold": self.threshold,
@@ -120,20 +163,43 @@ class LoadCurve:
             "wall_time_s": self.wall_time_s,
         }
         if self.device is not None:
-            force, speed = self.device["force_n"], self.device["speed_m_s"]
-            out["device"] = {
-                "loads_mN": (1e3 * force * self.loads).tolist(),
-                "speed_m_s": (speed * self.velocities).tolist(),
-                "power_mW": (1e3 * force * speed * self.power).tolist(),
-                "stall_load_mN": 1e3 * force * self.stall_load,
-                "max_power_mW": 1e3 * force * speed * p_max,
-                "load_at_max_power_mN": 1e3 * force * at,
-                "free_speed_m_s": speed * float(self.velocities[0]) if self.velocities.size else 0.0,
-                "start_acceleration_m_s2": force * self.stall_load / self.device["mass_kg"],
-                "start_acceleration_g": force * self.stall_load / self.device["mass_kg"] / G_N,
-                "normal_load_mN": 1e3 * force,
-            }
+            out["device"] = self._device_json(p_max, at)
         return out
+
+    def _se(self) -> np.ndarray:
+        return self.velocity_se if self.velocity_se.size else np.full(self.loads.size, math.nan)
+
+    def _device_json(self, p_max: float, at: float) -> dict[str, Any]:
+        """The curve in mN, m/s and mW (None where a value is unknown)."""
+        assert self.device is not None
+        force, speed = self.device["force_n"], self.device["speed_m_s"]
+        start = force * self.stall_load / self.device["mass_kg"]
+        return {
+            "loads_mN": (1e3 * force * self.loads).tolist(),
+            "speed_m_s": (speed * self.velocities).tolist(),
+            "speed_se_m_s": [_plain(speed * x) for x in self._se()],
+            "power_mW": (1e3 * force * speed * self.power).tolist(),
+            "stall_load_mN": _plain(1e3 * force * self.stall_load),
+            "stall_load_se_mN": _plain(1e3 * force * self.stall_load_se),
+            "max_power_mW": _plain(1e3 * force * speed * p_max),
+            "load_at_max_power_mN": _plain(1e3 * force * at),
+            "free_speed_m_s": speed * float(self.velocities[0]) if self.velocities.size else 0.0,
+            "free_speed_se_m_s": _plain(speed * self.free_drift_se),
+            "start_acceleration_m_s2": _plain(start),
+            "start_acceleration_g": _plain(start / G_N),
+            "normal_load_mN": 1e3 * force,
+        }
+
+
+def _plain(x: float) -> float | None:
+    """A JSON number, None for NaN (an unknown value)."""
+    return float(x) if math.isfinite(x) else None
+
+
+def _value(x: Any) -> float:
+    """A run's summary number, NaN for None (no value: no steady state, or settled for an
+    error)."""
+    return float(x) if x is not None else math.nan
 
 
 class _Runner:
@@ -240,21 +306,40 @@ def load_curve(
                      device=_device_scales(scene), table=dict(runner.table))
 
 
+def _free_state(free: dict[str, Any], threshold: float, speed: float) -> tuple[int, str, float]:
+    """(direction, state, standard error in a0 f) of the unloaded run (:data:`FREE_STATES`)."""
+    v0 = _value(free["drift_velocity"])
+    se = _value(free.get("drift_ratio_se")) * speed
+    if not math.isfinite(v0):
+        return 0, "no_steady_state", se
+    if math.isfinite(se) and abs(v0) <= 3.0 * se:
+        return 0, "zero_within_error", se
+    if abs(v0) <= threshold:
+        return 0, "no_drift", se
+    state = "settled" if free["settled"] else ("mean" if math.isfinite(se) else "not_settled")
+    return (1 if v0 > 0.0 else -1), state, se
+
+
 def _curve(scene: Scene, runner: _Runner, speed: float, n: int, tolerance: float,
            note: Callable[[str], None]) -> dict[str, Any]:
     threshold = scene.numerics.drift_tolerance * speed
     free = runner.run([0.0])[0]
-    v0 = float(free["drift_velocity"])
-    direction = 0 if abs(v0) <= threshold else (1 if v0 > 0.0 else -1)
+    v0 = _value(free["drift_velocity"])
+    direction, state, se0 = _free_state(free, threshold, speed)
     note(f"without load: drift velocity {v0:.6g} ({free['regime']})")
     f_max = scene.material.mu + direction * runner.background
+    common = {"threshold": threshold, "m_star": scene.particle.m_star, "free_drift": v0,
+              "free_drift_se": se0, "free_state": state}
     if direction == 0 or f_max <= 0.0:
-        # nothing to hold against: the curve is the single unloaded point
+        # nothing to hold against: the curve is the single unloaded point; its stall load is 0
+        # where there is no drift, unknown (NaN) where the drift is zero only within its error
+        stall = 0.0 if state == "no_drift" or direction != 0 else math.nan
         return {"direction": direction, "loads": np.zeros(1),
-                "velocities": np.array([abs(v0) if direction else 0.0]),
+                "velocities": np.array([abs(v0) if direction else v0]),
+                "velocity_se": np.array([se0]), "warnings": (_warnings(free),),
                 "regimes": (str(free["regime"]),), "settled": (bool(free["settled"]),),
-                "stall_load": 0.0, "stall_bracket": (0.0, 0.0), "max_load": max(f_max, 0.0),
-                "threshold": threshold, "m_star": scene.particle.m_star}
+                "stall_load": stall, "stall_bracket": (stall, stall),
+                "max_load": max(f_max, 0.0), **common}
 
     def advances(f: float) -> bool:
         return direction * float(runner.table[-direction * f]["drift_velocity"]) > threshold
@@ -280,12 +365,17 @@ def _curve(scene: Scene, runner: _Runner, speed: float, n: int, tolerance: float
     note(f"{n} loads from 0 to the stall load {stall:.6g} M g")
     return {
         "direction": direction, "loads": grid,
-        "velocities": np.array([direction * float(r["drift_velocity"]) for r in rows]),
+        "velocities": np.array([direction * _value(r["drift_velocity"]) for r in rows]),
+        "velocity_se": np.array([_value(r.get("drift_ratio_se")) * speed for r in rows]),
+        "warnings": tuple(_warnings(r) for r in rows),
         "regimes": tuple(str(r["regime"]) for r in rows),
         "settled": tuple(bool(r["settled"]) for r in rows),
-        "stall_load": stall, "stall_bracket": (lo, hi), "max_load": f_max,
-        "threshold": threshold, "m_star": scene.particle.m_star,
+        "stall_load": stall, "stall_bracket": (lo, hi), "max_load": f_max, **common,
     }
+
+
+def _warnings(row: dict[str, Any]) -> tuple[str, ...]:
+    return tuple(str(w) for w in row.get("warnings") or ())
 
 
 def _device_scales(scene: Scene) -> dict[str, float] | None:
