@@ -169,7 +169,7 @@ def long_time_mean(stepper: Stepper, window, periods: int,
     (:func:`~.window.orbit_period`, at the scale of ``window``) has ended its irregular transient
     on a periodic orbit, which it keeps for ever: ``orbit`` holds its period, and the caller
     reports the orbit rather than the mean of its transient (:mod:`.transient`; a rigid point at
-    m* = 0.9, A* = 1.71: 0.0635 +- 0.0061 over about a thousand irregular periods, then an orbit
+    m* = 0.9, A* = 1.7105: 0.0635 +- 0.0061 over about a thousand irregular periods, then an orbit
     of 26 periods drifting at 0.046173).
     """
     parts = [period_rows(window, stepper)]

@@ -267,9 +267,9 @@ def _go_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, win:
     budget, ``numerics.mean_periods`` (thrown higher than a window lasts,
     :func:`~.window.ballistic_return`, ``vertical`` the drive's vertical amplitude), the
     long-time mean of its bounces, whose flights a window cannot average over, over at least
-    :data:`FLIGHTS_PER_MEAN` flights as long as this one (a rigid point at m* = 1.99, A* = 8.7
+    :data:`FLIGHTS_PER_MEAN` flights as long as this one (a rigid point at m* = 1.986, A* = 8.7
     lands about every 190 periods: over the budget's 527 periods, 0.066 +- 0.074 against 0.347
-    from brute force; over 16 flights, 0.360 +- 0.095). A load, or a flight that outlasts both
+    from brute force; over 16 flights, 0.280 +- 0.061). A load, or a flight that outlasts both
     (an ejection), is left to the Result's outcome. The long-time mean counts the windows
     already run (``series``, their per-period rows since the last jump of the speed) against
     its budget. Last, the twin the mean ran on (None without a mean)."""

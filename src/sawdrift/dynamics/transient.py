@@ -3,7 +3,7 @@
 A motion that looks chaotic or irregular over hundreds of periods can be a transient (transient
 chaos): the trajectory wanders until it falls onto a stable periodic orbit, and then stays on it
 for ever. A long-time mean over the wandering is not the motion's long-time behaviour, and its
-error bar says nothing of the orbit to come. A rigid point at m* = 0.9, A* = 1.71, mu = 0.1
+error bar says nothing of the orbit to come. A rigid point at m* = 0.9, A* = 1.7105, mu = 0.1
 wanders for about a thousand periods (a mean of 0.0635 +- 0.0061 in drift ratio over them),
 then bounces on an orbit of 26 periods at 0.046173, which brute force over 2000 and 4000 periods
 gives to 1e-10. The long-time mean (:func:`~.batch_means.long_time_mean`) looks at the
