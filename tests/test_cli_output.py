@@ -238,8 +238,12 @@ def test_load_curve_o_csv_writes_the_curve(load_curve_csv):
     path, proc = load_curve_csv
     assert proc.returncode == 0, proc.stderr
     got = pd.read_csv(path)
-    assert list(got.columns) == ["load", "drift_velocity", "power", "regime", "settled"]
+    assert list(got.columns) == ["load", "drift_velocity", "drift_velocity_se", "power",
+                                 "regime", "settled"]
     assert len(got) == 3
+    # a settled drift has no standard error: the column is empty there, never a made-up 0
+    settled = got["settled"].astype(bool)
+    assert got.loc[settled, "drift_velocity_se"].isna().all()
 
 
 # --- unknown keys ---------------------------------------------------------------------------

@@ -43,8 +43,8 @@ def load_curve_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: load_curve.json, load_curve.png, scene.toml; or NAME.csv: "
-        "the curve only (species, load, drift_velocity, power, regime, settled; a device's in "
-        "load_mN, speed_m_s, power_mW)")] = None,
+        "the curve only (species, load, drift_velocity, drift_velocity_se, power, regime, "
+        "settled; a device's in load_mN, speed_m_s, speed_se_m_s, power_mW)")] = None,
     axis: Annotated[str | None, typer.Option(
         "--axis", help="FIELD=a,b: one curve per value of a particle field, overlaid (sorting), "
         "e.g. particle.m_star=0.05,0.5 or 'device.particle.radius=0.2 mm,1 mm'")] = None,
@@ -69,8 +69,8 @@ def load_curve_cmd(
         _fail(f"--loads = {loads}: a load curve needs at least 2 loads")
     if workers is not None and workers < 1:
         _fail(f"--workers = {workers}: give at least 1")
-    kind = (out_kind(out, (".csv",), "the curve: load, drift velocity, power, regime, settled")
-            if out is not None else None)
+    what = "the curve: load, drift velocity and its error, power, regime, settled"
+    kind = out_kind(out, (".csv",), what) if out is not None else None
     if out is not None:
         _writable(out, folder=kind == "folder")
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
@@ -195,7 +195,8 @@ def _wrote(out: Path | None) -> None:
 
 
 def _curve_csv(curves: list[tuple[str, dict[str, Any]]], out: Path) -> None:
-    """Load curve(s) as CSV: (species,) load, drift velocity, power, regime, settled.
+    """Load curve(s) as CSV: (species,) load, drift velocity and its standard error (empty where
+    the drift settled), power, regime, settled.
 
     Normalized units (M g, a0 f, M g a0 f), or a device's mN, m/s, mW (columns named so).
     """
@@ -206,9 +207,10 @@ def _curve_csv(curves: list[tuple[str, dict[str, Any]]], out: Path) -> None:
         dev = d.get("device")
         if dev is not None:
             cols = {"load_mN": dev["loads_mN"], "speed_m_s": dev["speed_m_s"],
-                    "power_mW": dev["power_mW"]}
+                    "speed_se_m_s": dev["speed_se_m_s"], "power_mW": dev["power_mW"]}
         else:
-            cols = {"load": d["loads"], "drift_velocity": d["drift_velocity"], "power": d["power"]}
+            cols = {"load": d["loads"], "drift_velocity": d["drift_velocity"],
+                    "drift_velocity_se": d["drift_velocity_se"], "power": d["power"]}
         frame = pd.DataFrame({**cols, "regime": d["regimes"], "settled": d["settled"]})
         if len(curves) > 1:
             frame.insert(0, "species", label)
