@@ -299,3 +299,17 @@ def test_window_means_beating_slower_than_the_last_windows_give_a_long_time_mean
         assert abs(r.drift_ratio - brute.drift_ratio) <= 3.0 * r.drift_ratio_se
     # the swing itself is far wider than the error: one window is not the answer
     assert r.drift_ratio_se < 0.25 * (0.062 - 0.014)
+
+
+def test_the_regime_of_a_long_time_mean_in_contact_reads_the_mean():
+    """mmd m* = 0.0042, A* = 0.89 (rounded inputs) keeps contact and is a long-time mean,
+    0.0082 +- 0.0027 in drift ratio, more than 3 errors and the 1e-3 threshold above zero: it
+    was called oscillating_slip, from its last window's drift."""
+    from sawdrift.result.regimes import classify
+
+    r = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.0042}, drive={"amplitude": 0.89}))
+    assert not r.contact_lost and math.isfinite(r.drift_ratio_se)
+    assert abs(r.drift_ratio) > 3.0 * r.drift_ratio_se
+    tol = r.scene["numerics"]["drift_tolerance"]
+    assert r.regime == classify(False, r.drift_ratio, tol, gross_slip_fraction=1.0)
+    assert r.regime == "drift_with"
