@@ -263,3 +263,17 @@ def test_a_run_gone_on_to_its_orbit_is_not_called_fixed():
     res = sd.run(sd.Scene(model="mmd", particle={"m_star": 0.3}, drive={"amplitude": 1.5}))
     assert res.settled and res.periods > 60
     assert res.settle_method == "fixed_then_windows"
+
+
+def test_a_load_above_friction_is_a_runaway_even_in_a_long_flight():
+    """A rigid point at m* = 10, A* = 3.16 under L = 0.2 > mu = 0.1, run for 40 periods, ends in
+    a flight longer than the run and was called ejected; without the load the same cell lands
+    and bounces on (a horizontal load does not change a rigid point's vertical motion), so under
+    it the particle runs away at (L - mu)/m*."""
+    scene = {"model": "material_point", "particle": {"m_star": 10.0, "load": 0.2},
+             "drive": {"amplitude": 3.1622776601683795}, "numerics": {"periods": 40}}
+    res = sd.run(sd.Scene(**scene))
+    assert res.regime == "runaway"
+    assert abs(res.mean_acceleration - 0.01) <= 1e-12
+    free = sd.run(sd.Scene(**{**scene, "particle": {"m_star": 10.0}}))
+    assert free.regime != "ejected"
