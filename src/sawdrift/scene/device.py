@@ -439,12 +439,10 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
 
 
 def device_warnings(device: Device) -> list[str]:
-    """Where the scene leaves the model's assumptions, one sentence each (also in every Result).
-
-    A static compression below 1 nm without device.adhesion (adhesion and roughness then set
+    """Where the scene leaves the model's assumptions, one sentence each (also in every Result):
+    a static compression below 1 nm without device.adhesion (adhesion and roughness then set
     the contact, not gravity and preload), a sphere's contact radius above 0.1 R (beyond small
-    strain), a cone's half-angle below 60 deg (Sneddon's small-slope solution).
-    """
+    strain), a cone's half-angle below 60 deg (Sneddon's small-slope solution)."""
     n = normalized(device)
     part = device.particle
     out = []
@@ -490,13 +488,10 @@ def explain_device(device: Device, mu: float) -> list[str]:
     lines.append(f"  expected approach to the steady drift ~ m*/mu = {approach:.4g} periods = "
                  f"{approach / f:.4g} s")
     lines.extend(f"  WARNING: {w}" for w in device_warnings(device))
-    if n["amplitude"] > 1.0 and device.adhesion == 0.0:
+    if n["amplitude"] > 1.0:
+        pull = n["pulloff_dmt_n"]  # adhesion holds the contact in tension up to the pull-off
         lines.append("  note: A* > 1: the substrate moves further than the static compression; "
-                     "expect contact loss for a heavy particle")
-    elif n["amplitude"] > 1.0:
-        # the contact holds in tension up to the pull-off: gravity alone does not decide it
-        lines.append(f"  note: A* > 1: the substrate moves further than the static compression "
-                     f"under the load alone, but adhesion holds the contact in tension up to a "
-                     f"pull-off of {n['pulloff_dmt_n']:.3g} N (DMT; JKR 3/4 of it), "
-                     f"{n['pulloff_dmt_n'] / n['weight_n']:.3g} times the load")
+                     + ("expect contact loss for a heavy particle" if device.adhesion == 0.0 else
+                        f"adhesion holds the contact up to a pull-off of {pull:.3g} N (DMT; JKR "
+                        f"3/4), {pull / n['weight_n']:.3g} times the load"))
     return lines
