@@ -15,6 +15,7 @@ import pytest
 import sawdrift as sd
 from sawdrift.errors import SawdriftError, SceneError
 from sawdrift.report.explore import explorer_data, write_explorer
+from sawdrift.report.explore_page import build_document
 from sawdrift.study.adaptive import regime_map
 from sawdrift.study.sweep import cell_id, grid
 from sawdrift.study.traces import (
@@ -463,10 +464,13 @@ def test_a_long_time_mean_shows_its_error_in_the_tooltip(tmp_path):
                      table=path, workers=1, progress=False)
     se = frame.set_index("amplitude")["drift_ratio_se"]
     assert se[1.0] > 0.0 and se[heavy] > 0.0 and not np.isfinite(se[0.05])
+    chaotic = frame.set_index("amplitude")["chaotic"].astype(bool)
+    kind = {a: "chaotic, long-time mean" if chaotic[a] else "long-time mean" for a in (1.0, heavy)}
     src = explorer_data(path).sources[0]
     texts = dict(zip(src["amplitude"].astype(float).round(3), src["se_text"], strict=True))
-    assert texts[1.0] == f"+- {se[1.0]:.2g} (long-time mean, heating up: it depends on the run's length)"
-    assert texts[0.891] == f"+- {se[heavy]:.2g} (long-time mean)" and texts[0.05] == ""
+    assert texts[1.0] == (f"+- {se[1.0]:.2g} ({kind[1.0]}, heating up: it depends on the run's "
+                          "length)")
+    assert texts[0.891] == f"+- {se[heavy]:.2g} ({kind[heavy]})" and texts[0.05] == ""
     page = write_explorer(path, tmp_path / "three.html").read_text()
     assert "drift ratio: @drift_ratio{custom} @se_text" in page and "d.se_text[i]" in page
 
@@ -539,4 +543,105 @@ def test_device_axis_tick_labels_do_not_collide_in_chromium(browser, tmp_path):
         assert gap >= 11.0, (labels[k], labels[k + 1], gap)
     labels, _, _ = browser.execute_script(_TICKS, "regimes-0", "y")
     assert all(t.endswith(" MHz") for t in labels)
+    assert _severe(browser) == []
+
+
+# -- warnings, chaos and runaway / ejected cells in the tooltip; comparison within each value ----
+
+
+def _two_load_frame(detach: bool = True) -> pd.DataFrame:
+    """Two models on a 3 x 3 grid at two loads: at load 0 the models disagree at 4 cells, at 0.2
+    every cell runs away but one of mmd's, which is ejected; one lower-bound long-time mean and
+    one chaotic mean at load 0."""
+    from tests.test_report_axes import two_load_table
+
+    frame = two_load_table()
+    frame["drift_ratio_se"] = np.nan
+    frame["chaotic"] = False
+    frame["warnings"] = None
+    frame["resolved_as"] = np.where(frame["regime"] == "runaway", "runaway", "fixed_point")
+    lower = (frame["cell_id"] == "mat07")
+    frame.loc[lower, ["drift_ratio_se", "resolved_as"]] = [0.0011, "long_time_mean"]
+    frame.loc[lower, "warnings"] = ("long-time mean: its batch-means error still grew with the "
+                                    "batch length at 4299 periods, so +-0.0011 is a lower bound "
+                                    "(correlations longer than the run)")
+    chaos = frame["cell_id"] == "mmd08"
+    frame.loc[chaos, ["drift_ratio_se", "chaotic", "resolved_as"]] = [0.12, True, "chaotic_mean"]
+    eject = frame["cell_id"] == "mmd0.20"
+    frame.loc[eject, ["regime", "mean_acceleration"]] = ["ejected", np.nan]
+    if detach:
+        frame["detach_time"] = np.where(eject, 12.5, np.nan)
+    return frame
+
+
+def test_tooltip_carries_warnings_chaos_and_why_a_cell_has_no_drift():
+    from bokeh.models import HoverTool
+
+    data = explorer_data(_two_load_frame(), traces={})
+    cells = {cid: (src, k) for src in data.sources for k, cid in enumerate(src["cell_id"])}
+
+    def text(cid: str, column: str) -> str:
+        src, k = cells[cid]
+        return str(src[column][k])
+
+    # a long-time mean whose error still grew: the "+-" says it is a lower bound
+    assert text("mat07", "se_text") == ("+- 0.0011 (long-time mean, error only a lower bound: it "
+                                        "still grew with the batch length)")
+    assert "is a lower bound" in text("mat07", "warnings")
+    # a chaotic mean is named so, beside its error and in the tooltip's first line
+    assert text("mmd08", "se_text") == "+- 0.12 (chaotic, long-time mean)"
+    assert text("mmd08", "chaos_mark") == " (chaotic)" and text("mat07", "chaos_mark") == ""
+    # no steady state: the runaway's mean acceleration, the ejected cell's detach time
+    assert text("mmd0.24", "se_text") == ("(runaway, no steady state: the mean speed grows by "
+                                          "2 per period, its mean acceleration)")
+    assert text("mmd0.20", "se_text") == "(ejected, no steady state: out of contact since t* = 12.5)"
+    assert text("mmd03", "warnings") == "none"
+    page = build_document(data)
+    tips = {t.tooltips for t in page.select({"type": HoverTool})}
+    assert all("@regime</b>@chaos_mark" in t and "warnings: @warnings" in t for t in tips)
+    # a table without a detach_time column says so rather than nothing
+    bare = explorer_data(_two_load_frame(detach=False), traces={})
+    src = next(s for s in bare.sources if "mmd0.20" in s["cell_id"])
+    k = list(src["cell_id"]).index("mmd0.20")
+    assert src["se_text"][k] == "(ejected, no steady state; detach time not stored in this table)"
+
+
+def test_models_are_compared_within_each_value_of_another_swept_column():
+    frame = _two_load_frame()
+    data = explorer_data(frame, traces={})
+    assert [p.label for p in data.panels] == [
+        "material_point, particle.load = 0.0", "material_point, particle.load = 0.2",
+        "mmd, particle.load = 0.0", "mmd, particle.load = 0.2"]
+    wide = frame.pivot_table(index=["particle.load", "m_star", "amplitude"], columns="model",
+                             values="regime", aggfunc="first")
+    differ = (wide["material_point"] != wide["mmd"]).groupby(level=0).sum()
+    assert (int(differ[0.0]), int(differ[0.2])) == (4, 1)  # (the ejected cell differs at 0.2)
+    # each panel against the other model at its own load, not against every panel (9 of 9)
+    assert [int(m.sum()) for m in data.marks] == [4, 1, 4, 1]
+    doc = build_document(data)
+    titles = [doc.select_one({"name": f"regimes-{k}"}).title.text for k in range(4)]
+    assert [t.rsplit("(", 1)[-1] for t in titles] == ["disagree: 4 of 9)", "disagree: 1 of 9)"] * 2
+    summary = doc.select_one({"name": "summary"}).text
+    assert summary == "4 panels compared, the models within each value of particle.load"
+
+
+def test_the_page_recomputes_the_comparison_within_each_value(browser, tmp_path):
+    page = write_explorer(_two_load_frame(), tmp_path / "loads.html", traces={})
+    _open(browser, page)
+    count = """const d = Bokeh.documents[0];
+      return [0, 1, 2, 3].map((k) => d.get_model_by_name('regimes-' + k).renderers[1]
+                                      .view.filter.indices.length);"""
+    compare = "Bokeh.documents[0].get_model_by_name('compare').active = arguments[0]"
+    summary = "return Bokeh.documents[0].get_model_by_name('summary').text"
+    browser.execute_script(compare, [0, 1, 2])
+    assert browser.execute_script(count) == [4, 0, 4, 0]  # load 0.2 has one model ticked
+    browser.execute_script(compare, [0, 1, 2, 3])
+    assert browser.execute_script(count) == [4, 1, 4, 1]
+    title = "return Bokeh.documents[0].get_model_by_name('regimes-3').title.text"
+    assert browser.execute_script(title).endswith("(disagree: 1 of 9)")
+    assert "within each value of particle.load" in browser.execute_script(summary)
+    browser.execute_script(compare, [0, 1])
+    assert browser.execute_script(count) == [0, 0, 0, 0]
+    assert browser.execute_script(summary) == ("tick two or more panels of one particle.load to "
+                                               "compare")
     assert _severe(browser) == []

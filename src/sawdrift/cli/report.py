@@ -14,6 +14,43 @@ from .app import Progress, _fail, _load_table, _writable, app, bench_app, figure
 
 #: the help of a figure's -o
 FIGURE_HELP = "figure: NAME.png (or .pdf, .svg, .jpg, .tif, .webp, .eps, .ps; no suffix: .png)"
+#: the help of --where
+WHERE_HELP = ("FIELD=VALUE: only the cells with this value of another swept column (e.g. "
+              "particle.load=0.2); needed where the table holds several (repeatable)")
+#: the suffixes of the explorer page
+PAGE_SUFFIXES = (".html", ".htm")
+
+Where = Annotated[list[str] | None, typer.Option("--where", help=WHERE_HELP)]
+
+
+def parse_where(items: list[str] | None) -> dict[str, str]:
+    """``{FIELD: VALUE}`` of the ``--where FIELD=VALUE`` options, or one line and exit 2."""
+    where: dict[str, str] = {}
+    for item in items or []:
+        field, sep, value = item.partition("=")
+        if not sep or not field.strip() or not value.strip():
+            _fail(f"--where {item!r} must look like FIELD=VALUE (e.g. particle.load=0.2)")
+        if field.strip() in where:
+            _fail(f"--where {field.strip()} is given twice; give each column one value")
+        where[field.strip()] = value.strip()
+    return where
+
+
+def page_path(path: Path) -> Path:
+    """The file the explorer page given as ``path`` is written to, or one line and exit 2.
+
+    A name without a file suffix gets ``.html`` (``-o explore`` writes ``explore.html``, and
+    the command says so); another suffix than .html or .htm is refused. A folder is refused
+    (:func:`sawdrift.cli.app._writable`): the page is one file.
+    """
+    if path.is_dir():
+        _fail(f"-o {str(path)!r} is a directory; give a file name ending in .html")
+    if not path.suffix:
+        return path.with_name(path.name + ".html")
+    if path.suffix.lower() not in PAGE_SUFFIXES:
+        _fail(f"-o {str(path)!r}: {path.suffix} is not a page format; give a name ending in "
+              ".html or .htm (no suffix: .html)")
+    return path
 
 
 @app.command("phase-diagram")
@@ -27,15 +64,21 @@ def phase_diagram_cmd(
         bool, typer.Option("--drift", help="regimes beside the drift ratio, boundaries drawn over it "
                            "(uniform or adaptive tables)")
     ] = False,
+    where: Where = None,
 ) -> None:
-    """Draw the regime phase diagram of one model over two swept axes (default A*, m*)."""
+    """Draw the regime phase diagram of one model over two swept axes (default A*, m*).
+
+    A table swept over another column too (--axis particle.load=0,0.2) is drawn for one value
+    of it: --where particle.load=0.2.
+    """
     out = figure_path(out)
+    picked = parse_where(where)
     frame = _load_table(table)
     _writable(out, folder=False)
     if drift:
-        path = sd.plot_drift_map(frame, out, model, x, y)
+        path = sd.plot_drift_map(frame, out, model, x, y, where=picked)
     else:
-        path = sd.plot_phase_diagram(frame, out, model, x, y)
+        path = sd.plot_phase_diagram(frame, out, model, x, y, where=picked)
     typer.echo(f"wrote {path}")
 
 
@@ -50,17 +93,20 @@ def compare_cmd(
     ] = None,
     x: Annotated[str, typer.Option("--x", help="column on the horizontal axis")] = "amplitude",
     y: Annotated[str, typer.Option("--y", help="column on the vertical axis")] = "m_star",
+    where: Where = None,
 ) -> None:
     """Side-by-side phase diagrams, the cells where they disagree, and an agreement table.
 
     Compare models (--models a,b), or the values of a swept field for each model
-    (--by effects.rotation after a sweep with --axis effects.rotation=false,true).
+    (--by effects.rotation after a sweep with --axis effects.rotation=false,true). Any other
+    swept column is held at one value: --where particle.load=0.2.
     """
     out = figure_path(out)
+    picked = parse_where(where)
     frame = _load_table(table)
     _writable(out, folder=False)
     path, md = sd.plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out, by,
-                            x, y)
+                               x, y, where=picked)
     typer.echo(md)
     typer.echo(f"wrote {path} and {path.with_suffix('.md')}")
 
@@ -81,8 +127,8 @@ def export_cmd(
 @app.command("explore")
 def explore_cmd(
     table: Annotated[Path, typer.Argument(help="sweep table (Parquet)")],
-    out: Annotated[Path, typer.Option("-o", "--out", help="page (one self-contained HTML file)")] = Path(
-        "explore.html"),
+    out: Annotated[Path, typer.Option("-o", "--out", help="page: NAME.html (or .htm; no suffix: "
+                                      ".html), one self-contained file")] = Path("explore.html"),
     traces: Annotated[
         Path | None, typer.Option("--traces", help="traces file (default: TABLE.traces.parquet beside "
                                   "the table, if any)")
@@ -95,6 +141,7 @@ def explore_cmd(
     """An offline page of a table's phase diagrams: hover a cell for its metrics, click it for its
     last periods (tables swept with --traces), compare the models' regimes.
     """
+    out = page_path(out)
     _writable(out, folder=False)
     path = sd.write_explorer(table, out, traces, x=x, y=y)
     typer.echo(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB): open it in a browser")

@@ -28,9 +28,12 @@ from .diagrams import (  # noqa: E402
     _legend,
     _material_label,
     creep_grid,
+    one_map,
+    pick_rows,
     regime_grid,
     select,
     unsettled_grid,
+    where_label,
 )
 from .marks import format_device_axes  # noqa: E402
 
@@ -97,12 +100,32 @@ def _layout(n_models: int, values: list | None) -> tuple[int, int]:
     return n_models + (n_models > 1), len(values) + (len(values) > 1)
 
 
-def compare_figure(table: pd.DataFrame, models: list[str], by: str | None = None,
-                   x: str = "amplitude", y: str = "m_star"):
-    """The comparison figure (see the module docstring) and its markdown agreement table."""
+def _panels(table: pd.DataFrame, models: list[str], by: str | None, x: str,
+            y: str) -> list[tuple[str, str, dict]]:
+    """:func:`variants`, checked: two panels or more, and none that mixes the values of a swept
+    column other than ``by`` (a one-line SceneError naming it and how to pick a value)."""
     panels = variants(table, models, by)
     if len(panels) < 2:
         raise SceneError("compare needs at least two panels: two models, or a --by column")
+    for column in (x, y):
+        if column not in table.columns:
+            raise SceneError(f"axis {column!r} is not a column of the table")
+    one_map(table[table["model"].isin(models)], ["model", x, y, *([by] if by else [])],
+            by=by is None)
+    return panels
+
+
+def compare_figure(table: pd.DataFrame, models: list[str], by: str | None = None,
+                   x: str = "amplitude", y: str = "m_star", where: dict | None = None):
+    """The comparison figure (see the module docstring) and its markdown agreement table.
+
+    ``where`` (``{column: value}``) keeps the cells with those values of other swept columns
+    (:func:`sawdrift.report.diagrams.pick_rows`); a table with several values of a swept column
+    other than ``by`` needs it: a panel never mixes them.
+    """
+    table = pick_rows(table, where)
+    picked = where_label(table, where)  # (the loops below name each panel's columns ``where``)
+    panels = _panels(table, models, by, x, y)
     grids = [regime_grid(table, m, x, y, where) for _, m, where in panels]
     amps, masses = grids[0][0], grids[0][1]
     for (label, _, _), (a2, m2, _) in zip(panels, grids, strict=True):
@@ -151,20 +174,22 @@ def compare_figure(table: pd.DataFrame, models: list[str], by: str | None = None
                 axes[i - 1, j].xaxis.set_tick_params(labelbottom=True)
     _legend(fig, codes, any(m.any() for m in masks), marks)
     head = " vs ".join(models) + (f", {by} = {' / '.join(map(str, values))}" if values else "")
-    fig.suptitle(f"{head}: {_material_label(table)}")
+    fig.suptitle(f"{head}{picked}: {_material_label(table)}")
     md = agreement_markdown(agreement_from_grids([p[0] for p in panels], codes))
     return fig, md
 
 
 def plot_compare(table: pd.DataFrame, models: list[str], path: str | Path, by: str | None = None,
-                 x: str = "amplitude", y: str = "m_star") -> tuple[Path, str]:
+                 x: str = "amplitude", y: str = "m_star",
+                 where: dict | None = None) -> tuple[Path, str]:
     """Phase diagrams side by side on shared axes with their differences (module docstring).
 
     ``by`` names a swept column (e.g. ``effects.rotation``): then every model gets one panel per
-    value of it. Returns the figure path and the markdown agreement table (also written next to
-    the figure as ``<name>.md``).
+    value of it; ``where`` (``{column: value}``) keeps one value of other swept columns. Returns
+    the figure path and the markdown agreement table (also written next to the figure as
+    ``<name>.md``).
     """
-    fig, md = compare_figure(table, models, by, x, y)
+    fig, md = compare_figure(table, models, by, x, y, where)
     path = Path(path)
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -68,6 +68,89 @@ def select(table: pd.DataFrame, model: str, where: dict | None = None) -> pd.Dat
     return sub
 
 
+def _value_text(value: object) -> str:
+    """A column's value as the user types it (``0.2``, ``true``, ``a``)."""
+    if isinstance(value, bool | np.bool_):
+        return "true" if value else "false"
+    if isinstance(value, float | np.floating):
+        return f"{float(value):g}"
+    return str(value)
+
+
+def _values_text(values: pd.Series) -> str:
+    return ", ".join(_value_text(v) for v in sorted(values.dropna().unique().tolist()))
+
+
+def _matches(column: pd.Series, value: object) -> np.ndarray:
+    """Which entries of ``column`` equal ``value`` (a string as typed, or a value)."""
+    if not isinstance(value, str):
+        return (column == value).fillna(False).to_numpy(bool)
+    if pd.api.types.is_bool_dtype(column):
+        word = value.strip().lower()
+        if word not in ("true", "false"):
+            return np.zeros(len(column), dtype=bool)
+        return (column.astype("boolean") == (word == "true")).fillna(False).to_numpy(bool)
+    if pd.api.types.is_numeric_dtype(column):
+        try:
+            number = float(value)
+        except ValueError:
+            return np.zeros(len(column), dtype=bool)
+        return np.isclose(column.to_numpy(float), number, rtol=1e-9, atol=0.0)
+    return (column.astype(str) == value.strip()).to_numpy(bool)
+
+
+def pick_rows(table: pd.DataFrame, where: dict | None) -> pd.DataFrame:
+    """The rows with the value ``where`` gives each column (``--where FIELD=VALUE``).
+
+    A column the table does not hold, or a value it does not hold, is a one-line SceneError
+    naming what it holds.
+    """
+    for column, value in (where or {}).items():
+        if column not in table.columns:
+            swept = ", ".join(c for c in table.columns if "." in c and table[c].nunique() > 1)
+            raise SceneError(f"--where {column}={_value_text(value)}: {column!r} is not a column of "
+                             f"the table; its other swept columns: {swept or 'none'}")
+        keep = _matches(table[column], value)
+        if not keep.any():
+            raise SceneError(f"--where {column}={_value_text(value)}: the table holds no cell with "
+                             f"that value; its values of {column}: {_values_text(table[column])}")
+        table = table[keep]
+    return table
+
+
+def where_label(table: pd.DataFrame, where: dict | None) -> str:
+    """``", particle.load = 0.2"``: the values :func:`pick_rows` kept, for a figure's title."""
+    return "".join(f", {c} = {_value_text(table[c].iloc[0])}" for c in (where or {})
+                   if c in table.columns and len(table))
+
+
+def mixed_columns(rows: pd.DataFrame, keys: list[str]) -> list[str]:
+    """The swept (dotted) columns that take several values at one cell (the rows with equal
+    ``keys``, e.g. model, x and y): one map of these rows would mix them."""
+    repeated = rows[rows.duplicated(keys, keep=False)]
+    if repeated.empty:
+        return []
+    groups = repeated.groupby(keys, dropna=False, sort=False)
+    return [c for c in rows.columns if "." in c and c not in keys
+            and bool((groups[c].nunique(dropna=False) > 1).any())]
+
+
+def one_map(rows: pd.DataFrame, keys: list[str], by: bool = False) -> None:
+    """A one-line SceneError where one map of ``rows`` would hold several rows at a cell (rows of
+    another swept column's values: a patchwork); it names the column, its values and the option
+    to pick one (``by``: the figure also takes ``--by``)."""
+    mixed = mixed_columns(rows, keys)
+    if not mixed and not rows.duplicated(keys).any():
+        return
+    if not mixed:
+        raise SceneError(f"the table holds several rows at one cell of {', '.join(keys)}; one map "
+                         "would mix them: pick one with --where FIELD=VALUE")
+    column = mixed[0]
+    also = f", or draw a panel per value with --by {column}" if by else ""
+    raise SceneError(f"the table holds several values of {column} ({_values_text(rows[column])}) "
+                     f"and one map would mix them: pick one with --where {column}=VALUE{also}")
+
+
 def regime_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = "m_star",
                 where: dict | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(x values, y values, regime codes [y, x]) of one model; missing cells are -1.
@@ -210,23 +293,39 @@ def _material_label(table: pd.DataFrame) -> str:
     return f"mu = {mu}, nu = {nu}"
 
 
-def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None = None,
-                       x: str = "amplitude", y: str = "m_star") -> Path:
-    """Regimes over two swept axes (default A*, m*) on log axes, one colour per regime (Fig. 3).
-
-    A table swept over one field only gets the line plot of :mod:`sawdrift.report.line_plot`.
-    """
-    if swept_field(table) is not None:
-        return plot_line(table, path, model, colours=COLOURS)
+def _one_model(table: pd.DataFrame, model: str | None, x: str, y: str) -> str:
+    """``model``, or the table's only one; a one-line SceneError where the choice is missing or
+    its rows would mix the values of another swept column on one map (:func:`one_map`)."""
     models = sorted(table["model"].dropna().unique())
     if model is None:
         if len(models) != 1:
             raise SceneError(f"the table holds several models ({', '.join(models)}); choose one with --model")
         model = models[0]
+    rows = select(table, model)
+    for column in (x, y):
+        if column not in rows.columns:
+            raise SceneError(f"axis {column!r} is not a column of the table")
+    one_map(rows, [x, y])
+    return model
+
+
+def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None = None,
+                       x: str = "amplitude", y: str = "m_star", where: dict | None = None) -> Path:
+    """Regimes over two swept axes (default A*, m*) on log axes, one colour per regime (Fig. 3).
+
+    A table swept over one field only gets the line plot of :mod:`sawdrift.report.line_plot`.
+    ``where`` (``{column: value}``) keeps the cells with those values of other swept columns; a
+    table with several values of another swept column needs it (one map never mixes them).
+    """
+    table = pick_rows(table, where)
+    if swept_field(table) is not None:
+        return plot_line(table, path, model, colours=COLOURS)
+    model = _one_model(table, model, x, y)
     amps, masses, codes = regime_grid(table, model, x, y)
     unsettled = unsettled_grid(table, model, x, y)
     fig, ax = plt.subplots(figsize=(6.4, 5.6), layout="constrained")
-    marks = _draw(ax, amps, masses, codes, f"{model}: {_material_label(table)}", x, y, unsettled,
+    title = f"{model}{where_label(table, where)}: {_material_label(table)}"
+    marks = _draw(ax, amps, masses, codes, title, x, y, unsettled,
                   creep_grid(table, model, x, y), select(table, model))
     _legend(fig, [codes], bool(unsettled.any()), marks)
     path = Path(path)
@@ -250,7 +349,7 @@ def _padded(logs: np.ndarray) -> tuple[float, float]:
 
 
 def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = None,
-                   x: str = "amplitude", y: str = "m_star") -> Path:
+                   x: str = "amplitude", y: str = "m_star", where: dict | None = None) -> Path:
     """The regime map and, beside it, the drift ratio coloured on a diverging scale.
 
     Works for uniform and scattered (adaptive) tables alike: each point's cell is the region of
@@ -258,15 +357,14 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     beyond the outer points, so the outer cells are whole). Regime boundaries (where the regime
     changes between neighbouring points of that grid) are drawn over the drift map. A scattered
     table's computed points are dotted (a full grid's are the cell centres and are not).
+    ``where`` picks the values of other swept columns, as in :func:`plot_phase_diagram`.
     """
     from matplotlib.colors import TwoSlopeNorm
     from matplotlib.lines import Line2D
     from scipy.spatial import cKDTree
 
-    models = sorted(table["model"].dropna().unique())
-    model = model or (models[0] if len(models) == 1 else None)
-    if model is None:
-        raise SceneError(f"the table holds several models ({', '.join(models)}); choose one with --model")
+    table = pick_rows(table, where)
+    model = _one_model(table, model, x, y)
     sub = select(table, model)
     for col in (x, y):
         if sub[col].nunique() < 2:
@@ -294,7 +392,8 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
                 linewidths=0.7)
     fig.colorbar(mesh, ax=ax2, label="drift ratio <x*'> / (2 pi r A*)",
                  extend="both" if peak > lim else "neither")
-    title2 = f"{model}: drift ratio, regime boundaries"
+    name = f"{model}{where_label(table, where)}"
+    title2 = f"{name}: drift ratio, regime boundaries"
     # cells whose drift is still on its approach (Result.settled false) are hatched
     unsettled = unsettled_cells(sub)
     mask = unsettled[idx].reshape(mx.shape)
@@ -302,7 +401,7 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
         _hatch_unsettled(ax1, 10**gx, 10**gy, mask)
         title2 += f"; hatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
     marks: list = []
-    for ax, title in ((ax1, f"{model}: regimes"), (ax2, title2)):
+    for ax, title in ((ax1, f"{name}: regimes"), (ax2, title2)):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlim(ext[0], ext[1])

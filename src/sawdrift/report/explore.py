@@ -29,7 +29,6 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._texts import HEATING
 from ..errors import SawdriftError, SceneError
 from ..result.regimes import CONTACT_LOST, DRIFTING
 from ..scene.device import Device, normalized
@@ -38,7 +37,14 @@ from ..study.axes import column_unit
 from ..study.table import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
 from .diagrams import COLOURS
-from .explore_page import build_document
+from .explore_page import (  # noqa: F401 - the tooltip's texts, also read from here
+    build_document,
+    chaotic_cells,
+    drift_notes,
+    error_text,
+    heating_cells,
+    warning_texts,
+)
 from .marks import creep_cells
 
 #: Columns a sweep table must have for the page.
@@ -77,6 +83,8 @@ class Panel:
     rows: pd.DataFrame
     quads: dict[str, np.ndarray] | None = None
     patches: dict[str, list[np.ndarray]] | None = None
+    #: the values of the other swept columns this panel holds fixed (``{column: value}``)
+    fixed: dict[str, Any] | None = None
 
 
 def load_table(table: str | Path | pd.DataFrame) -> tuple[pd.DataFrame, dict[str, Any], str]:
@@ -225,7 +233,7 @@ def make_panels(frame: pd.DataFrame, xa: Axis, ya: Axis) -> list[Panel]:
         key = key if isinstance(key, tuple) else (key,)
         label = ", ".join([str(key[0]), *(f"{c} = {v}" for c, v in zip(extra, key[1:], strict=True))])
         rows = rows.drop_duplicates([xa.column, ya.column], keep="last").reset_index(drop=True)
-        panels.append(Panel(label, str(key[0]), rows))
+        panels.append(Panel(label, str(key[0]), rows, fixed=dict(zip(extra, key[1:], strict=True))))
     all_u = np.concatenate([xa.plane(p.rows[xa.column]) for p in panels])
     all_w = np.concatenate([ya.plane(p.rows[ya.column]) for p in panels])
     box = (all_u.min() - _pad(all_u), all_u.max() + _pad(all_u), all_w.min() - _pad(all_w),
@@ -277,6 +285,17 @@ def disagreement(codes: np.ndarray, selected: list[int]) -> np.ndarray:
     return (known & np.any(sub != sub[0], axis=0)).astype(np.float32)
 
 
+def compare_groups(panels: list[Panel]) -> list[int]:
+    """The comparison group of each panel: the models are compared within each value of the
+    other swept columns (as ``compare --by`` does), a panel with the panels of its own values;
+    a table of one model compares its values with each other (one group)."""
+    if len({p.model for p in panels}) < 2:
+        return [0] * len(panels)
+    keys = [tuple(sorted((p.fixed or {}).items(), key=lambda kv: kv[0])) for p in panels]
+    index = {k: i for i, k in enumerate(dict.fromkeys(keys))}
+    return [index[k] for k in keys]
+
+
 def _traces_for(traces: Any, table: Any) -> dict[str, Trace]:
     if isinstance(traces, Mapping):
         return dict(traces)
@@ -313,31 +332,14 @@ def _cell_columns(panel: Panel, xa: Axis, ya: Axis, scale: np.ndarray | None) ->
         "version": r["version"].astype(str).to_numpy() if "version" in r.columns else blank,
         "error": r["error"].fillna("").astype(str).to_numpy() if "error" in r.columns else blank,
         "cell_id": r["cell_id"].astype(str).to_numpy(),
-        "se_text": error_text(num("drift_ratio_se"), heating_cells(r)),
+        "se_text": drift_notes(r),
+        "chaos_mark": np.where(chaotic_cells(r), " (chaotic)", ""),
+        "warnings": warning_texts(r),
     }
     if scale is not None:
         cols["speed"] = (num("drift_velocity") * scale).astype(np.float32)
     cols.update(panel.quads or panel.patches or {})
     return cols
-
-
-def error_text(se: np.ndarray, heating: np.ndarray | None = None) -> np.ndarray:
-    """The tooltip's "+- error" beside a long-time mean's drift ratio (its batch-means standard
-    error), and where the bounces heat up (``heating``) that the mean depends on the run's
-    length; empty where the drift is not a long-time mean."""
-    heating = np.zeros(len(se), dtype=bool) if heating is None else heating
-    return np.array([
-        "" if not np.isfinite(v) else f"+- {float(v):.2g} (long-time mean"
-        + (", heating up: it depends on the run's length)" if hot else ")")
-        for v, hot in zip(se, heating, strict=True)])
-
-
-def heating_cells(rows: pd.DataFrame) -> np.ndarray:
-    """Whether each row's warnings say its bounces heat up (a long-time mean that depends on
-    how long it was run)."""
-    if "warnings" not in rows.columns:
-        return np.zeros(len(rows), dtype=bool)
-    return rows["warnings"].fillna("").astype(str).str.contains(HEATING, regex=False).to_numpy(bool)
 
 
 def lyapunov_text(rows: pd.DataFrame) -> np.ndarray:
@@ -396,9 +398,10 @@ def explorer_data(table: str | Path | pd.DataFrame,
         raise SceneError(f"table {name!r} has no cell with finite {xa.column} and {ya.column}")
     codes = codes_at(panels, xa, ya)
     everyone = list(range(len(panels)))
+    groups = compare_groups(panels)
     order: list[str] = []
     sources, marks = [], []
-    for panel, code in zip(panels, codes, strict=True):
+    for p, (panel, code) in enumerate(zip(panels, codes, strict=True)):
         cols = _cell_columns(panel, xa, ya, _speed_scale(panel.rows, meta))
         rows = np.full(len(panel.rows), -1, dtype=np.int32)
         for k, cid in enumerate(cols["cell_id"]):
@@ -409,7 +412,7 @@ def explorer_data(table: str | Path | pd.DataFrame,
         for q in everyone:
             cols[f"c{q}"] = code[q]
         sources.append(cols)
-        marks.append(disagreement(code, everyone))
+        marks.append(disagreement(code, [q for q in everyone if groups[q] == groups[p]]))
     blob, m = pack_traces([stored[c] for c in order], samples) if order else (b"", 0)
     versions = sorted(frame["version"].dropna().astype(str).unique()) if "version" in frame else []
     info = {
@@ -419,6 +422,8 @@ def explorer_data(table: str | Path | pd.DataFrame,
         "has_errors": bool("error" in frame.columns and frame["error"].notna().any()),
         "device": any("speed" in s for s in sources),
         "stored": len(order), "cells": int(sum(len(p.rows) for p in panels)),
+        "has_warnings": "warnings" in frame.columns, "groups": groups,
+        "within": sorted(panels[0].fixed or {}) if len(set(groups)) > 1 else [],
     }
     return ExplorerData(panels, sources, marks, xa, ya, info, base64.b64encode(blob).decode("ascii"), m,
                         list(PACKED_FIELDS), _drift_limit(frame))

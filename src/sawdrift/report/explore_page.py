@@ -13,6 +13,10 @@ from __future__ import annotations
 import html
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+import pandas as pd
+
+from .._texts import HEATING
 from .diagrams import COLOURS
 from .marks import device_unit
 
@@ -29,19 +33,24 @@ _NUM = """return Number.isFinite(value) ? String(Number(value.toPrecision(4))) :
 _PERIOD = """if (!Number.isFinite(value)) return "n/a";
 return value > 0 ? value + (value == 1 ? " period" : " periods") : "none";"""
 
-# disagreement layer: a cell is marked where the compared panels' regimes (c<q> columns) differ
+# disagreement layer: a cell is marked where the compared panels' regimes (c<q> columns) differ;
+# a panel is compared with the ticked panels of its own group (the models at its values of the
+# other swept columns)
 _DISAGREE_JS = """
 const S = compare.active;
 const show = toggle.active.length > 0;
+let compared = 0;
 for (let p = 0; p < sources.length; p++) {
   const d = sources[p].data;
   const n = d.regime.length;
   const marked = [];
-  if (S.length > 1) {
+  const G = S.filter((q) => groups[q] === groups[p]);
+  if (G.length > 1) {
+    compared += 1;
     for (let i = 0; i < n; i++) {
-      const first = d["c" + S[0]][i];
+      const first = d["c" + G[0]][i];
       let known = first >= 0, differ = false;
-      for (const q of S) {
+      for (const q of G) {
         const c = d["c" + q][i];
         if (c < 0) known = false;
         if (c !== first) differ = true;
@@ -51,9 +60,11 @@ for (let p = 0; p < sources.length; p++) {
   }
   overlays[p].view.filter.indices = marked;
   overlays[p].visible = show;
-  titles[p].text = base[p] + (S.length > 1 ? ` (disagree: ${marked.length} of ${n})` : "");
+  titles[p].text = base[p] + (G.length > 1 ? ` (disagree: ${marked.length} of ${n})` : "");
 }
-summary.text = S.length > 1 ? `${S.length} panels compared` : "select two or more panels to compare";
+summary.text = compared ? `${S.length} panels compared${within}` :
+  (columns ? `tick two or more panels of one ${columns} to compare` :
+   "select two or more panels to compare");
 """
 
 # click: the tapped cell's header line, then its trace decoded from the page's blob
@@ -66,8 +77,9 @@ for (let q = 0; q < sources.length; q++)
 const d = sources[p].data;
 const fmt = (v) => Number.isFinite(v) ? String(Number(v.toPrecision(4))) : "n/a";
 const head = `<b>${labels[p]}</b>: ${xlabel} = ${fmt(d.xv[i])}, ${ylabel} = ${fmt(d.yv[i])}: ` +
-  `<b>${d.regime[i]}</b>, drift ratio ${fmt(d.drift_ratio[i])}` +
-  (d.se_text[i] ? ` ${d.se_text[i]}` : "");
+  `<b>${d.regime[i]}</b>${d.chaos_mark[i]}, drift ratio ${fmt(d.drift_ratio[i])}` +
+  (d.se_text[i] ? ` ${d.se_text[i]}` : "") +
+  (d.warnings && d.warnings[i] !== "none" ? `<br>warnings: ${d.warnings[i]}` : "");
 const empty = {t: []};
 for (const f of fields) empty[f] = [];
 if (!blob) { trace.data = empty; info.text = head + "<br>" + no_traces; return; }
@@ -111,6 +123,101 @@ window.__sawdrift_traces.then((buf) => {
   info.text = head + `<br>the last ${fmt(h[1] - h[0])} periods, t* = ${fmt(h[0])} to ${fmt(h[1])}`;
 }).catch((e) => { info.text = head + "<br>the stored traces could not be read: " + e; });
 """
+
+
+# -- the tooltip's texts of each cell (numpy arrays of strings, one per row) ------------------
+
+#: the words of the warning of a long-time mean whose batch-means error still grew with the
+#: batch length (:func:`sawdrift.result.runner._warnings`): its "+- error" is a lower bound
+LOWER_BOUND = "is a lower bound"
+
+
+def _flags(rows: pd.DataFrame, column: str) -> np.ndarray:
+    """A boolean column of ``rows`` (missing: false)."""
+    if column not in rows.columns:
+        return np.zeros(len(rows), dtype=bool)
+    return rows[column].astype("boolean").fillna(False).to_numpy(bool)
+
+
+def _number(rows: pd.DataFrame, column: str) -> np.ndarray:
+    if column not in rows.columns:
+        return np.full(len(rows), np.nan)
+    return pd.to_numeric(rows[column], errors="coerce").to_numpy(float)
+
+
+def warning_texts(rows: pd.DataFrame) -> np.ndarray:
+    """Each row's warnings (the table's ``warnings`` column, "; "-joined), "none" where it has none."""
+    if "warnings" not in rows.columns:
+        return np.full(len(rows), "none")
+    text = rows["warnings"].astype(object).where(rows["warnings"].notna(), "").astype(str)
+    return np.array([t.strip() or "none" for t in text])
+
+
+def chaotic_cells(rows: pd.DataFrame) -> np.ndarray:
+    """Whether each row's motion is chaotic: its ``chaotic`` column, else its ``resolved_as``."""
+    if "chaotic" in rows.columns:
+        return _flags(rows, "chaotic")
+    if "resolved_as" in rows.columns:
+        return (rows["resolved_as"].astype(str) == "chaotic_mean").to_numpy(bool)
+    return np.zeros(len(rows), dtype=bool)
+
+
+def drift_notes(rows: pd.DataFrame) -> np.ndarray:
+    """What the tooltip and the click header print beside each row's drift ratio.
+
+    A long-time mean: its "+- error" (:func:`error_text`, which says whether the motion is
+    chaotic, whether the error is only a lower bound and whether the bounces heat up); a cell
+    with no steady state: why there is no drift ratio, a runaway's mean acceleration (the growth
+    of its mean speed per period) or an ejected cell's detach time; else empty.
+    """
+    warnings = warning_texts(rows)
+    notes = list(error_text(_number(rows, "drift_ratio_se"), heating_cells(rows),
+                            chaotic_cells(rows), np.array([LOWER_BOUND in w for w in warnings])))
+    accel, detach = _number(rows, "mean_acceleration"), _number(rows, "detach_time")
+    stored = {"mean_acceleration": "mean_acceleration" in rows.columns,
+              "detach_time": "detach_time" in rows.columns}
+    for k, regime in enumerate(rows["regime"].astype(str)):
+        if regime == "runaway":
+            notes[k] = ("(runaway, no steady state: the mean speed grows by "
+                        f"{accel[k]:.4g} per period, its mean acceleration)" if np.isfinite(accel[k])
+                        else "(runaway, no steady state; mean acceleration "
+                        + ("not computed)" if stored["mean_acceleration"] else
+                           "not stored in this table)"))
+        elif regime == "ejected":
+            notes[k] = (f"(ejected, no steady state: out of contact since t* = {detach[k]:.4g})"
+                        if np.isfinite(detach[k]) else "(ejected, no steady state; detach time "
+                        + ("not computed)" if stored["detach_time"] else "not stored in this table)"))
+    return np.array(notes, dtype=str)
+
+
+def error_text(se: np.ndarray, heating: np.ndarray | None = None,
+               chaotic: np.ndarray | None = None, lower: np.ndarray | None = None) -> np.ndarray:
+    """The "+- error" beside a long-time mean's drift ratio (its batch-means standard error):
+    whether the motion is ``chaotic``, whether the error is only a ``lower`` bound (it still
+    grew with the batch length) and whether the bounces heat up (``heating``: the mean depends
+    on the run's length); empty where the drift is not a long-time mean."""
+    none = np.zeros(len(se), dtype=bool)
+    heating, chaotic, lower = (none if a is None else a for a in (heating, chaotic, lower))
+    out = []
+    for v, hot, chaos, low in zip(se, heating, chaotic, lower, strict=True):
+        if not np.isfinite(v):
+            out.append("")
+            continue
+        parts = ["chaotic, long-time mean" if chaos else "long-time mean"]
+        if low:
+            parts.append("error only a lower bound: it still grew with the batch length")
+        if hot:
+            parts.append("heating up: it depends on the run's length")
+        out.append(f"+- {float(v):.2g} ({', '.join(parts)})")
+    return np.array(out, dtype=object).astype(str)
+
+
+def heating_cells(rows: pd.DataFrame) -> np.ndarray:
+    """Whether each row's warnings say its bounces heat up (a long-time mean that depends on
+    how long it was run)."""
+    if "warnings" not in rows.columns:
+        return np.zeros(len(rows), dtype=bool)
+    return rows["warnings"].fillna("").astype(str).str.contains(HEATING, regex=False).to_numpy(bool)
 
 
 #: characters of a title line: a 13 px bold title fits a 360 px figure (the regimes; 44 in the
@@ -166,7 +273,7 @@ def _swatches() -> str:
 def _tooltip(label: str, xa: Any, ya: Any, info: dict[str, Any]) -> str:
     # xa, ya: sawdrift.report.explore.Axis (not imported: explore imports this module)
     safe = html.escape(label).replace("@", "&#64;").replace("$", "&#36;")
-    lines = [f"<b>@regime</b> &mdash; {safe}",
+    lines = [f"<b>@regime</b>@chaos_mark &mdash; {safe}",
              f"{html.escape(xa.label)} = @xv{{custom}}, {html.escape(ya.label)} = @yv{{custom}}"]
     if {xa.column, ya.column} != {"m_star", "amplitude"}:
         lines.append("m* = @m_star{custom}, A* = @amplitude{custom}")
@@ -181,6 +288,8 @@ def _tooltip(label: str, xa: Any, ya: Any, info: dict[str, Any]) -> str:
               "gross-slip fraction: @gross_slip{custom}",
               "creep (drift with no gross slip): @creep", "lift-offs per period: @liftoffs{custom}",
               "model version: @version"]
+    if info["has_warnings"]:
+        lines.append("warnings: @warnings")
     if info["has_errors"]:
         lines.append("error: @error")
     lines.append('<span style="color:#777">cell @cell_id</span>')
@@ -196,46 +305,157 @@ def _drift_palette() -> list[str]:
     return [to_hex(cmap(k / 255.0)) for k in range(256)]
 
 
+def _compare_controls(labels: list[str], cds: list, overlays: list, titles: list,
+                      base: list[str], marks: list, info: dict[str, Any]) -> Any:
+    """The compare check boxes, the layer's toggle and the summary, wired to the disagreement
+    layer; every panel ticked, each compared with the ticked panels of its own group
+    (``info["groups"]``: the models within each value of the other swept columns)."""
+    from bokeh.layouts import column
+    from bokeh.models import CheckboxGroup, CustomJS, Div
+
+    groups, n = [int(g) for g in info["groups"]], len(labels)
+    columns = " and ".join(info["within"])
+    within = f", the models within each value of {columns}" if columns else ""
+    compare = CheckboxGroup(labels=labels, active=list(range(n)), inline=True, name="compare")
+    toggle = CheckboxGroup(labels=["hatch (x) the cells where the compared panels disagree in regime"],
+                           active=[0], name="layer")
+    paired = [groups.count(g) > 1 for g in groups]
+    summary = Div(text=f"{n} panels compared{within}" if any(paired) else
+                  "one panel: nothing to compare", name="summary")
+    again = CustomJS(args={"sources": cds, "overlays": overlays, "titles": titles, "base": base,
+                           "compare": compare, "toggle": toggle, "summary": summary,
+                           "groups": groups, "within": within, "columns": columns},
+                     code=_DISAGREE_JS)
+    compare.js_on_change("active", again)
+    toggle.js_on_change("active", again)
+    for k, mark in enumerate(marks):
+        if paired[k]:
+            titles[k].text = f"{base[k]} (disagree: {int(np.sum(mark))} of {len(mark)})"
+    head = "<b>Compare</b> (the hatched layer)" + (
+        f": each panel with the ticked panels of its own {html.escape(columns)}" if columns else "")
+    return column(Div(text=head + ":"), compare, toggle, summary)
+
+
+def _trace_panel(fields: list[str], info: dict[str, Any]) -> tuple[Any, Any, list, list, Any]:
+    """The click panel: its source (filled by the click), its time range and value ranges, its
+    figures (one per packed field) and its text line."""
+    from bokeh.models import ColumnDataSource, Div, Range1d
+    from bokeh.plotting import figure
+
+    trace = ColumnDataSource({"t": [], **{f: [] for f in fields}}, name="trace-source")
+    # explicit ranges, set by the click (an empty source leaves a data range nothing to fit)
+    t_range = Range1d(0, 1)
+    y_ranges = [Range1d(0, 1) for _ in fields]
+    trace_figs = []
+    names = {"x": "x*", "a": "a*", "N": "N*", "T": "T*"}
+    for j, f in enumerate(fields):
+        fig = figure(width=430, height=150 if j < len(fields) - 1 else 175, x_range=t_range,
+                     y_range=y_ranges[j], tools="pan,wheel_zoom,box_zoom,reset,save", name=f"trace-{f}")
+        fig.toolbar.logo, fig.toolbar.autohide = None, True
+        fig.line("t", f, source=trace, line_width=1.4, color="#1f4e9c")
+        fig.yaxis.axis_label = names.get(f, f)
+        fig.min_border_left = 60
+        if j == len(fields) - 1:
+            fig.xaxis.axis_label = "t* (wave periods)"
+        trace_figs.append(fig)
+    first = ("Click a cell to draw its last periods here." if info["stored"]
+             else NO_TRACES)
+    trace_info = Div(text=first, width=430, name="trace-info", styles={"font-size": "13px"})
+    return trace, t_range, y_ranges, trace_figs, trace_info
+
+
+def _regime_marks(fig: Any, draw: Any, shape: dict, src: Any, data: dict, mark: Any) -> Any:
+    """On a regime view: the disagreement layer (returned) and circles on the creep cells."""
+    from bokeh.models import CDSView, IndexFilter
+
+    # the disagreeing cells only: a hatch drawn at zero alpha still costs its time
+    marked = IndexFilter([int(i) for i in np.flatnonzero(mark)])
+    layer = draw(**shape, source=src, view=CDSView(filter=marked), fill_alpha=0,
+                 line_alpha=0, hatch_pattern="x", hatch_color="#1a1a1a", hatch_alpha=0.55,
+                 hatch_scale=9, hatch_weight=0.7)
+    layer.selection_glyph = layer.nonselection_glyph = layer.glyph
+    creeping = [i for i, c in enumerate(data["creep"]) if c == "yes"]
+    if creeping:  # circled, as in the static figures
+        dots = fig.scatter("xv", "yv", source=src, size=6, fill_color="white",
+                           line_color="black", line_width=1,
+                           view=CDSView(filter=IndexFilter(creeping)))
+        dots.selection_glyph = dots.nonselection_glyph = dots.glyph
+    return layer
+
+
+def _unsettled_marks(fig: Any, draw: Any, shape: dict, src: Any, data: dict) -> None:
+    """On a drift view: the unsettled cells hatched, and counted in the title."""
+    from bokeh.models import CDSView, IndexFilter
+
+    unsettled = [i for i, s in enumerate(data["settled"]) if s == "no"]
+    if not unsettled:
+        return
+    hatch = draw(**shape, source=src, view=CDSView(filter=IndexFilter(unsettled)),
+                 fill_alpha=0, line_alpha=0, hatch_pattern="/", hatch_color="#444",
+                 hatch_alpha=0.45, hatch_scale=9, hatch_weight=0.7)
+    hatch.selection_glyph = hatch.nonselection_glyph = hatch.glyph
+    fig.title.text += f"; hatched: not settled ({len(unsettled)})"
+    if len(fig.title.text.rsplit("\n", 1)[-1]) > DRIFT_TITLE_CHARS:
+        fig.title.text = fig.title.text.replace("; hatched", "\nhatched")
+
+
+def _phase_ranges(sources: list[dict[str, Any]]) -> tuple[Any, Any]:
+    """The x and y ranges every phase view shares: the box of all cells, its bounds too."""
+    from bokeh.models import Range1d
+
+    box = [np.inf, -np.inf, np.inf, -np.inf]
+    for s in sources:
+        xs = np.concatenate(s["xs"]) if "xs" in s else np.concatenate([s["left"], s["right"]])
+        ys = np.concatenate(s["ys"]) if "ys" in s else np.concatenate([s["bottom"], s["top"]])
+        box = [min(box[0], xs.min()), max(box[1], xs.max()), min(box[2], ys.min()), max(box[3], ys.max())]
+    return (Range1d(float(box[0]), float(box[1]), bounds=(float(box[0]), float(box[1]))),
+            Range1d(float(box[2]), float(box[3]), bounds=(float(box[2]), float(box[3]))))
+
+
+def _formatters() -> dict[str, Any]:
+    """The tooltip's number formats: 4 significant digits ("n/a" for none), periods in words."""
+    from bokeh.models import CustomJSHover
+
+    num, period = CustomJSHover(code=_NUM), CustomJSHover(code=_PERIOD)
+    out: dict[str, Any] = {f"@{c}": num for c in ("xv", "yv", "m_star", "amplitude", "drift_ratio",
+                                                   "drift_velocity", "speed", "settle_periods",
+                                                   "gross_slip", "liftoffs")}
+    out.update({"@orbit_period": period, "@hop_period": period})
+    return out
+
+
+def _colour_mappers(lim: float) -> tuple[Any, Any]:
+    """The regime colours and the drift ratio's diverging scale, from -``lim`` to ``lim``."""
+    from bokeh.models import CategoricalColorMapper, LinearColorMapper
+
+    regimes = CategoricalColorMapper(factors=list(COLOURS), palette=list(COLOURS.values()),
+                                     nan_color="white")
+    return regimes, LinearColorMapper(palette=_drift_palette(), low=-lim, high=lim,
+                                      nan_color="#d9d9d9")
+
+
 def build_document(page: Any) -> Document:
-    # page: sawdrift.report.explore.ExplorerData (not imported: explore imports this module)
-    """The page: header and controls, one (regimes, drift) row per panel, the trace panel."""
-    import numpy as np
+    """The page: header and controls, one (regimes, drift) row per panel, the trace panel.
+
+    ``page`` is a :class:`sawdrift.report.explore.ExplorerData` (not imported: explore imports
+    this module)."""
     from bokeh.document import Document
     from bokeh.layouts import column, row
     from bokeh.models import (
-        CategoricalColorMapper,
-        CDSView,
-        CheckboxGroup,
         ColorBar,
         ColumnDataSource,
         CustomJS,
-        CustomJSHover,
         Div,
         HoverTool,
-        IndexFilter,
-        LinearColorMapper,
-        Range1d,
         TapTool,
     )
     from bokeh.plotting import figure
 
     panels, sources, marks, xa, ya, info = page.panels, page.sources, page.marks, page.xa, page.ya, page.info
     blob, m, fields, lim = page.blob, page.samples, page.fields, page.limit
-    regimes = CategoricalColorMapper(factors=list(COLOURS), palette=list(COLOURS.values()),
-                                     nan_color="white")
-    drift = LinearColorMapper(palette=_drift_palette(), low=-lim, high=lim, nan_color="#d9d9d9")
-    num, period = CustomJSHover(code=_NUM), CustomJSHover(code=_PERIOD)
-    formatters = {f"@{c}": num for c in ("xv", "yv", "m_star", "amplitude", "drift_ratio",
-                                          "drift_velocity", "speed", "settle_periods",
-                                          "gross_slip", "liftoffs")}
-    formatters.update({"@orbit_period": period, "@hop_period": period})
-    box = [np.inf, -np.inf, np.inf, -np.inf]
-    for s in sources:
-        xs = np.concatenate(s["xs"]) if "xs" in s else np.concatenate([s["left"], s["right"]])
-        ys = np.concatenate(s["ys"]) if "ys" in s else np.concatenate([s["bottom"], s["top"]])
-        box = [min(box[0], xs.min()), max(box[1], xs.max()), min(box[2], ys.min()), max(box[3], ys.max())]
-    x_range = Range1d(float(box[0]), float(box[1]), bounds=(float(box[0]), float(box[1])))
-    y_range = Range1d(float(box[2]), float(box[3]), bounds=(float(box[2]), float(box[3])))
+    regimes, drift = _colour_mappers(lim)
+    formatters = _formatters()
+    x_range, y_range = _phase_ranges(sources)
     axis_type = {"x_axis_type": "log" if xa.log else "linear", "y_axis_type": "log" if ya.log else "linear"}
     rows, cds, overlays, titles, base = [], [], [], [], []
     for k, (panel, data) in enumerate(zip(panels, sources, strict=True)):
@@ -263,53 +483,15 @@ def build_document(page: Any) -> Document:
             fig.add_tools(HoverTool(renderers=[cells], tooltips=_tooltip(panel.label, xa, ya, info),
                                     formatters=formatters), TapTool(renderers=[cells]))
             if kind == "regimes":
-                # the disagreeing cells only: a hatch drawn at zero alpha still costs its time
-                marked = IndexFilter([int(i) for i in np.flatnonzero(marks[k])])
-                layer = draw(**shape, source=src, view=CDSView(filter=marked), fill_alpha=0,
-                             line_alpha=0, hatch_pattern="x", hatch_color="#1a1a1a", hatch_alpha=0.55,
-                             hatch_scale=9, hatch_weight=0.7)
-                layer.selection_glyph = layer.nonselection_glyph = layer.glyph
-                overlays.append(layer)
+                overlays.append(_regime_marks(fig, draw, shape, src, data, marks[k]))
                 titles.append(fig.title)
                 base.append(f"{head}\nregimes")
-                creeping = [i for i, c in enumerate(data["creep"]) if c == "yes"]
-                if creeping:  # circled, as in the static figures
-                    dots = fig.scatter("xv", "yv", source=src, size=6, fill_color="white",
-                                       line_color="black", line_width=1,
-                                       view=CDSView(filter=IndexFilter(creeping)))
-                    dots.selection_glyph = dots.nonselection_glyph = dots.glyph
             else:
                 fig.add_layout(ColorBar(color_mapper=drift, width=10, title="drift ratio"), "right")
-                unsettled = [i for i, s in enumerate(data["settled"]) if s == "no"]
-                if unsettled:
-                    hatch = draw(**shape, source=src, view=CDSView(filter=IndexFilter(unsettled)),
-                                 fill_alpha=0, line_alpha=0, hatch_pattern="/", hatch_color="#444",
-                                 hatch_alpha=0.45, hatch_scale=9, hatch_weight=0.7)
-                    hatch.selection_glyph = hatch.nonselection_glyph = hatch.glyph
-                    fig.title.text += f"; hatched: not settled ({len(unsettled)})"
-                    if len(fig.title.text.rsplit("\n", 1)[-1]) > DRIFT_TITLE_CHARS:
-                        fig.title.text = fig.title.text.replace("; hatched", "\nhatched")
+                _unsettled_marks(fig, draw, shape, src, data)
             views.append(fig)
         rows.append(row(*views))
-    trace = ColumnDataSource({"t": [], **{f: [] for f in fields}}, name="trace-source")
-    # explicit ranges, set by the click (an empty source leaves a data range nothing to fit)
-    t_range = Range1d(0, 1)
-    y_ranges = [Range1d(0, 1) for _ in fields]
-    trace_figs = []
-    names = {"x": "x*", "a": "a*", "N": "N*", "T": "T*"}
-    for j, f in enumerate(fields):
-        fig = figure(width=430, height=150 if j < len(fields) - 1 else 175, x_range=t_range,
-                     y_range=y_ranges[j], tools="pan,wheel_zoom,box_zoom,reset,save", name=f"trace-{f}")
-        fig.toolbar.logo, fig.toolbar.autohide = None, True
-        fig.line("t", f, source=trace, line_width=1.4, color="#1f4e9c")
-        fig.yaxis.axis_label = names.get(f, f)
-        fig.min_border_left = 60
-        if j == len(fields) - 1:
-            fig.xaxis.axis_label = "t* (wave periods)"
-        trace_figs.append(fig)
-    first = ("Click a cell to draw its last periods here." if info["stored"]
-             else NO_TRACES)
-    trace_info = Div(text=first, width=430, name="trace-info", styles={"font-size": "13px"})
+    trace, t_range, y_ranges, trace_figs, trace_info = _trace_panel(fields, info)
     labels = [p.label for p in panels]
     tap = CustomJS(args={"sources": cds, "labels": labels, "trace": trace, "info": trace_info,
                          "blob": blob, "m": m, "fields": fields, "no_traces": NO_TRACES,
@@ -317,18 +499,7 @@ def build_document(page: Any) -> Document:
                          "y_ranges": y_ranges}, code=_TAP_JS)
     for src in cds:
         src.selected.js_on_change("indices", tap)
-    compare = CheckboxGroup(labels=labels, active=list(range(len(panels))), inline=True, name="compare")
-    toggle = CheckboxGroup(labels=["hatch (x) the cells where the compared panels disagree in regime"],
-                           active=[0], name="layer")
-    summary = Div(text=f"{len(panels)} panels compared" if len(panels) > 1 else
-                  "one panel: nothing to compare", name="summary")
-    again = CustomJS(args={"sources": cds, "overlays": overlays, "titles": titles, "base": base,
-                           "compare": compare, "toggle": toggle, "summary": summary}, code=_DISAGREE_JS)
-    compare.js_on_change("active", again)
-    toggle.js_on_change("active", again)
-    for k, mark in enumerate(marks):
-        if len(panels) > 1:
-            titles[k].text = f"{base[k]} (disagree: {int(np.sum(mark))} of {len(mark)})"
+    controls = _compare_controls(labels, cds, overlays, titles, base, page.marks, info)
     stored = (f"{info['stored']} of {info['cells']} cells have a stored trace: click one."
               if info["stored"] else f"<b>{NO_TRACES}</b>")
     header = Div(width=1250, name="header", text=(
@@ -336,7 +507,6 @@ def build_document(page: Any) -> Document:
         f"<div>{info['cells']} cells in {len(panels)} panel(s); sawdrift "
         f"{html.escape(str(info['version']))}. Hover a cell for its metrics; zoom and pan move every "
         f"diagram together. {stored}</div><div style='margin-top:4px'>{_swatches()}</div>"))
-    controls = column(Div(text="<b>Compare</b> (the hatched layer):"), compare, toggle, summary)
     side = column(trace_info, *trace_figs)
     doc = Document()
     doc.add_root(column(header, controls, row(column(*rows), side)))
