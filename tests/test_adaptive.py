@@ -233,3 +233,58 @@ def test_sampled_inferred_points_are_checked_and_a_wrong_guess_is_refined():
     checked = adaptive_sweep("stand-in", m, a, **kw)
     assert checked.attrs["wrong_guesses"] >= 1
     assert misclassified_area(checked, uniform) == 0.0
+
+
+#: a small adaptive map of the material point on the command line (5 x 5 base, 17 x 17 fine grid)
+CLI_MAP = ("sweep", "--model", "material_point", "--adaptive", "--levels", "2", "--periods", "30",
+           "--no-settle", "--workers", "1", "--no-progress", "--amplitude", "1e-2:10:5")
+
+
+def test_adaptive_rerun_says_what_it_computed_and_what_the_table_holds(tmp_path):
+    from .cli_call import run_main
+
+    out = tmp_path / "adx.parquet"
+    first = run_main(*CLI_MAP, "--m-star", "1e-3:1e2:5", "--budget", "60", "-o", out, check=True)
+    held = len(pd.read_parquet(out))
+    assert f"({held} cells computed: {held} in this run, 0 already in the table;" in first.stdout
+    assert "now holds" not in first.stdout
+    # a smaller budget computes nothing: it used to print "(25 cells computed, ...)"
+    again = run_main(*CLI_MAP, "--m-star", "1e-3:1e2:5", "--budget", "25", "-o", out, check=True)
+    assert "(25 cells computed: 0 in this run, 25 already in the table;" in again.stdout
+    assert (f"{out} now holds {held} cells: {held - 25} more of this map's grid from an earlier "
+            "run with a larger --budget") in again.stdout
+    assert len(pd.read_parquet(out)) == held
+    # another m* range: a second map in the same table is said, not silently appended
+    other = run_main(*CLI_MAP, "--m-star", "1e-1:1e3:5", "--budget", "25", "-o", out, check=True)
+    total = len(pd.read_parquet(out))
+    assert total > held
+    line = next(t for t in other.stdout.splitlines() if "now holds" in t)
+    assert line.startswith(f"{out} now holds {total} cells:")
+    assert "from an earlier sweep outside this map" in line and "give a new -o" in line
+
+
+def test_interrupted_adaptive_sweep_says_so_and_resumes(tmp_path, monkeypatch):
+    from sawdrift.study.adaptive import Refinement
+
+    from .cli_call import run_main
+
+    original = Refinement._compute
+    rounds = []
+
+    def stop_in_second_round(self, keys):
+        rounds.append(1)
+        if len(rounds) > 1:
+            raise KeyboardInterrupt
+        original(self, keys)
+
+    monkeypatch.setattr(Refinement, "_compute", stop_in_second_round)
+    out = tmp_path / "ad.parquet"
+    args = (*CLI_MAP, "--m-star", "1e-3:1e2:5", "--budget", "40", "-o", out)
+    stopped = run_main(*args)
+    assert stopped.returncode == 130 and "Traceback" not in stopped.stderr
+    assert (f"interrupted: 25 finished cells are kept in {out} and its journal; run the same "
+            "command again to resume") in stopped.stderr
+    monkeypatch.setattr(Refinement, "_compute", original)
+    resumed = run_main(*args, check=True)
+    assert "already in the table;" in resumed.stdout
+    assert ": 25 in this run" not in resumed.stdout

@@ -152,6 +152,40 @@ def test_a_folder_of_other_code_or_another_axis_is_refused(tmp_path):
     assert res.computed == 0 and len(res.table) == 8
 
 
+def test_a_run_with_fewer_branches_keeps_the_folders_other_branches(tmp_path):
+    """A folder holding a --direction both diagram: an up run used to print "0 values computed"
+    and rewrite the table with the up rows only (the down branch and the hysteresis lost)."""
+    out = tmp_path / "both"
+    kw = dict(samples=4, out=out, workers=1, progress=False)
+    bifurcation(ball(), "drive.amplitude", "3.5,3.6", direction="both", **kw)
+    before = pd.read_parquet(out / TABLE)
+    assert set(before["direction"]) == {"up", "down"}
+    for way in ("up", "down"):
+        with pytest.raises(SceneError, match=rf"holds this diagram's material_point "
+                           rf"{'down' if way == 'up' else 'up'} branch, .*direction='both'") as info:
+            bifurcation(ball(), "drive.amplitude", "3.5,3.6", direction=way, **kw)
+        assert "\n" not in str(info.value)
+        pd.testing.assert_frame_equal(pd.read_parquet(out / TABLE), before)
+    again = bifurcation(ball(), "drive.amplitude", "3.5,3.6", direction="both", **kw)
+    assert again.computed == 0 and len(again.table) == len(before)
+    # force replaces the table, as documented
+    only_up = bifurcation(ball(), "drive.amplitude", "3.5,3.6", direction="up", force=True, **kw)
+    assert set(pd.read_parquet(out / TABLE)["direction"]) == {"up"} and only_up.computed == 0
+
+
+def test_a_run_with_fewer_branches_is_refused_in_one_line_on_the_command_line(tmp_path):
+    from .cli_call import run_main
+
+    args = ("bifurcation", "--model", "material_point", "--m-star", str(M_GAMMA),
+            "--horizontal-ratio", "0", "--axis", "drive.amplitude=3.5,3.6", "--samples", "4",
+            "--workers", "1", "--no-progress", "-o", tmp_path / "bif")
+    run_main(*args, "--direction", "both", check=True)
+    proc = run_main(*args, "--direction", "up")
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.count("\n") == 1 and "--direction both" in proc.stderr
+    assert set(pd.read_parquet(tmp_path / "bif" / TABLE)["direction"]) == {"up", "down"}
+
+
 @pytest.mark.parametrize(("kwargs", "match"), [
     ({"values": "a,b"}, "not a number"),
     ({"values": "1.5"}, "at least two different values"),

@@ -209,3 +209,40 @@ def test_profile_exponent_beside_a_named_shape_names_the_field_and_power(monkeyp
     assert exc.value.code == 2
     assert "profile.exponent = 2" in err and "'power'" in err and "p = 1.5" in err
 
+
+
+@pytest.mark.parametrize(("option", "value", "named"), [
+    ("--bisections", "-1", "--bisections = -1 must be in [0, 60]"),
+    ("--start", "0", "--start = 0 must be in (0, 1000)"),
+    ("--per-decade", "0", "--per-decade = 0 must be >= 1"),
+    ("--periods", "5", "--periods = 5 must be >= 10"),
+])
+def test_a_bad_threshold_option_is_named_alone(option, value, named, monkeypatch, capsys):
+    """--bisections -1 gave one line listing the ranges of all four scan options."""
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml"
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "threshold", str(example), "--axis",
+                                      "device.particle.radius=1 um", option, value])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and err == [f"error: {named}" + (
+        " (units of the rigid removal amplitude)" if option == "--start" else "")], err
+    others = {"--start", "--per-decade", "--bisections", "--periods"} - {option}
+    assert not any(o in err[0] for o in others)
+
+
+def test_a_progress_line_before_the_first_value_prints_no_nan_eta(monkeypatch, capsys):
+    """`sawdrift threshold` (a counter without a size estimate) printed "ETA nan s" on its first
+    line, drawn by the clock before the first value was done."""
+    from sawdrift.study import progress as pg
+
+    clock = iter([0.0, 1.0, 3.0])
+    monkeypatch.setattr(pg.time, "perf_counter", lambda: next(clock))
+    bar = pg._Lines(15, 0, "value", "threshold")  # t0 = 0
+    bar.tick()  # at 1 s, nothing done
+    bar.update(1)  # at 3 s
+    first, second = capsys.readouterr().err.strip().splitlines()
+    assert first == "threshold: 0/15 values (0%), 1.0 s so far"
+    assert second.startswith("threshold: 1/15 values (7%), 0.3 values/s, ETA 42.0 s")

@@ -121,3 +121,33 @@ def test_sort_without_particles_is_one_line(tmp_path, monkeypatch, capsys):
         main()
     err = capsys.readouterr().err.strip().splitlines()
     assert exc.value.code == 2 and len(err) == 1 and "needs a [particles] table" in err[0]
+
+
+def _report(chains: tuple[float, float], periods: tuple[float, float]) -> dict:
+    """The smallest sorting-ensemble result the text report of `sawdrift sort` takes."""
+    stat = {"mean": [0.5, 1.0], "std": [0.0, 0.0]}
+    return {"frequency_hz": 2e4, "periods": np.array([1.0, 1e6]), "seeds": [1, 2], "count": 200,
+            "geometry": "line", "wall_time_s": 1.0, "curve_source": "native",
+            "curve_wall_time_s": 1.0, "species": [],
+            "over_time": {"purity": stat, "purity_index": stat, "lacey": stat},
+            "target_purity": 0.9, "time_to_target": {
+                "reached": 2, "of": 2, "periods": {"mean": periods[0], "std": periods[1]},
+                "seconds": {"mean": periods[0] / 2e4, "std": periods[1] / 2e4}},
+            "final": {"chains": {"mean": chains[0], "std": chains[1]},
+                      "merges": {"mean": 3.0}, "splits": {"mean": 1.0}, "mean_chain_size": 1.02,
+                      "largest_chain": 3, "purity": {"mean": 1.0, "std": 0.0}},
+            "validated": "validated", "assumed": "assumed"}
+
+
+def test_sort_report_prints_each_mean_to_the_digits_of_its_spread():
+    """Chain counts 196 and 197 over two placements printed "196 +- 0.707": the mean, 196.5,
+    cut to three digits below its own spread."""
+    from sawdrift.cli.sort import _lines
+
+    lines = _lines(_report((196.5, 0.7071), (1.6123e7, 7.6e5)))
+    final = next(x for x in lines if x.startswith("  final:"))
+    assert final.startswith("  final: 196.50 +- 0.71 groups of touching beads")
+    hit = next(x for x in lines if "time to purity" in x)
+    assert "1.612e+07 +- 7.6e+05 periods = 806 +- 38 s" in hit
+    same = _lines(_report((196.5, 0.0), (1.6123e7, 7.6e5)))
+    assert next(x for x in same if x.startswith("  final:")).startswith("  final: 196.5 +- 0 ")

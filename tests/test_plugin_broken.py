@@ -1,4 +1,5 @@
-"""The installed example plugin made to raise on import: a warning names it, the rest works."""
+"""Broken plugins: one that raises on import or whose hook returns something other than model
+classes becomes a one-line warning naming it; the other models keep working."""
 
 from __future__ import annotations
 
@@ -6,15 +7,87 @@ import json
 import os
 import subprocess
 import sys
+import warnings
+from types import SimpleNamespace
 
 import pytest
 
+from sawdrift.contact.registry import PluginWarning, Registry
+from sawdrift.errors import ModelNotFoundError
+
 from .cli_call import run_main
 
-pytest.importorskip("sawdrift_tsuji")
+
+def _write_bad_hook_dist(root) -> None:
+    """A distribution ``brokenplug`` whose hook returns ``["hello", 42]`` (entry point
+    ``not_a_class``), importable with ``root`` on PYTHONPATH."""
+    (root / "brokenplug").mkdir()
+    (root / "brokenplug" / "__init__.py").write_text(
+        "def sawdrift_contact_models():\n    return ['hello', 42]\n")
+    info = root / "brokenplug-0.1.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: brokenplug\nVersion: 0.1\n")
+    (info / "entry_points.txt").write_text("[sawdrift.models]\nnot_a_class = brokenplug\n")
+
+
+def _entry_point(name: str, returned: object) -> SimpleNamespace:
+    plugin = SimpleNamespace(sawdrift_contact_models=lambda: returned)
+    return SimpleNamespace(name=name, value=name, dist=SimpleNamespace(name="badpkg"),
+                           load=lambda: plugin)
+
+
+@pytest.mark.parametrize("returned", [["hello", 42], None, "mmd"])
+def test_hook_returning_non_models_is_skipped_with_one_warning(returned):
+    from sawdrift.contact.registry import registry
+
+    good = [ep for ep in registry.models.values()]
+    entry_points = [_entry_point("not_a_class", returned)]
+    entry_points += [_entry_point(e.entry_point + "_ok", [e.cls]) for e in good[:1]]
+    reg = Registry(lambda: entry_points)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        names = reg.names()  # used to raise PluginError for the whole registry
+    assert names == [good[0].cls.name]
+    plugin_warnings = [w for w in caught if issubclass(w.category, PluginWarning)]
+    assert len(plugin_warnings) == 1
+    text = str(plugin_warnings[0].message)
+    assert "\n" not in text and "'not_a_class'" in text and "'badpkg'" in text
+    with pytest.raises(ModelNotFoundError, match="'not_a_class' is unavailable: plugin 'not_a_class'"):
+        reg.get("not_a_class")
+
+
+def test_hook_mixing_models_and_junk_keeps_its_models():
+    from sawdrift.contact.registry import registry
+
+    cls = registry.get("mmd")
+    reg = Registry(lambda: [_entry_point("mixed", [cls, "hello"])])
+    with pytest.warns(PluginWarning, match="'hello'.*those entries are skipped"):
+        assert reg.get("mmd") is cls
+
+
+def test_bad_hook_plugin_in_the_command_line_warns_once_and_builtins_work(tmp_path):
+    _write_bad_hook_dist(tmp_path)
+    env = dict(os.environ, PYTHONPATH=str(tmp_path) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    out = subprocess.run([sys.executable, "-m", "sawdrift", "models", "--json"], capture_output=True,
+                         text=True, env=env, timeout=300)
+    assert out.returncode == 0, out.stderr
+    names = {row["name"] for row in json.loads(out.stdout)}
+    assert {"material_point", "mmd", "mdr", "jaeger", "hertz_mindlin_dem"} <= names
+    warning = [line for line in out.stderr.splitlines() if line.startswith("warning")]
+    assert len(warning) == 1 and "'not_a_class'" in warning[0] and "'brokenplug'" in warning[0]
+    run = subprocess.run([sys.executable, "-m", "sawdrift", "run", "--model", "mmd", "--periods", "10",
+                          "--json"], capture_output=True, text=True, env=env, timeout=300)
+    assert run.returncode == 0 and json.loads(run.stdout)["model"] == "mmd"
+    ask = subprocess.run([sys.executable, "-m", "sawdrift", "run", "--model", "not_a_class",
+                          "--periods", "10"], capture_output=True, text=True, env=env, timeout=300)
+    errors = [line for line in ask.stderr.splitlines() if line.startswith("error")]
+    assert ask.returncode == 2 and "Traceback" not in ask.stderr
+    assert len(errors) == 1 and "'not_a_class' is unavailable" in errors[0]
+    assert "'hello', 42" in errors[0]
 
 
 def test_broken_example_plugin_warns_and_others_work(tmp_path):
+    pytest.importorskip("sawdrift_tsuji")
     # shadow the installed plugin package with one whose model module raises on import
     pkg = tmp_path / "sawdrift_tsuji"
     pkg.mkdir()
@@ -37,6 +110,7 @@ def test_broken_example_plugin_warns_and_others_work(tmp_path):
 
 
 def test_plugin_listed_with_parameters_when_installed():
+    pytest.importorskip("sawdrift_tsuji")
     out = run_main("models", "--json", check=True)  # in this process (tests/cli_call.py)
     rows = {row["name"]: row for row in json.loads(out.stdout)}
     assert rows["hertz_tsuji"]["distribution"] == "sawdrift-tsuji"

@@ -21,6 +21,22 @@ def test_defaults_follow_the_paper():
     assert s.horizontal_ratio == pytest.approx(sd.rayleigh_ratio(0.3), rel=1e-15)
 
 
+@pytest.mark.parametrize(("drive", "field"), [
+    ({"amplitude": float("nan")}, "drive.amplitude"),
+    ({"kind": "impact", "velocity": -1.0}, "drive.velocity"),
+    ({"kind": "prescribed", "typo": 1.0}, "drive.typo"),
+])
+def test_scene_constructor_names_drive_fields_as_written(drive, field):
+    """sd.Scene(drive={"amplitude": nan}) named the drive union's internal drive.wave.amplitude."""
+    from pydantic import ValidationError
+
+    with pytest.raises(ValidationError) as info:
+        sd.Scene(drive=drive)
+    assert [".".join(map(str, e["loc"])) for e in info.value.errors()] == [field]
+    assert f"\n{field}\n" in f"\n{info.value}" and ".wave." not in str(info.value)
+    assert sd.scene.format_validation_error(info.value).startswith(field)
+
+
 def test_scene_is_frozen():
     s = sd.Scene()
     with pytest.raises(Exception):  # noqa: B017 - pydantic raises ValidationError on frozen models

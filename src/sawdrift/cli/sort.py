@@ -131,6 +131,24 @@ def _fmt(x: float | None, spec: str = ".3g") -> str:
     return "-" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)
 
 
+def _pm(mean: float | None, std: float | None) -> str:
+    """``mean +- std``: the spread to two significant digits, the mean to the same decimal place
+    (``196.50 +- 0.71``, not ``196 +- 0.707`` for 196.5); a zero spread leaves the mean at up
+    to six significant digits."""
+    if mean is None or std is None or not (math.isfinite(mean) and math.isfinite(std)):
+        return f"{_fmt(mean)} +- {_fmt(std)}"
+    if std == 0.0:
+        return f"{mean:.6g} +- 0"
+    places = 1 - math.floor(math.log10(abs(std)))  # decimals of the spread's second digit
+    if places > 0:
+        return f"{mean:.{places}f} +- {std:.{places}f}"
+    if abs(mean) >= 1e5:  # large: in powers of ten, the mean's digits down to the spread's
+        digits = math.floor(math.log10(abs(mean))) + places
+        return f"{mean:.{max(digits, 0)}e} +- {std:.1e}"
+    step = 10.0 ** -places
+    return f"{round(mean / step) * step:.0f} +- {round(std / step) * step:.0f}"
+
+
 def _lines(data: dict[str, Any]) -> list[str]:
     """The text report of a sorting ensemble."""
     import numpy as np  # kept out of the command line's start-up
@@ -164,8 +182,8 @@ def _lines(data: dict[str, Any]) -> list[str]:
     target = data["target_purity"]
     if hit["reached"]:
         p, s = hit["periods"], hit["seconds"]
-        lines.append(f"  time to purity {target:g}: {_fmt(p['mean'])} +- {_fmt(p['std'])} periods "
-                     f"= {_fmt(s['mean'])} +- {_fmt(s['std'])} s (reached in {hit['reached']} "
+        lines.append(f"  time to purity {target:g}: {_pm(p['mean'], p['std'])} periods "
+                     f"= {_pm(s['mean'], s['std'])} s (reached in {hit['reached']} "
                      f"of {hit['of']} placements)")
     else:
         fin = data["final"]["purity"]
@@ -179,7 +197,7 @@ def _lines(data: dict[str, Any]) -> list[str]:
     else:
         cost = (f"{_fmt(fin['steps']['mean'])} steps per placement, largest overlap "
                 f"{fin['largest_overlap_over_tolerance']:.2g} of the tolerance")
-    lines.append(f"  final: {_fmt(fin['chains']['mean'])} +- {_fmt(fin['chains']['std'])} "
+    lines.append(f"  final: {_pm(fin['chains']['mean'], fin['chains']['std'])} "
                  f"groups of touching beads (mean size {_fmt(fin['mean_chain_size'])}, largest "
                  f"{fin['largest_chain']}), {cost}")
     lines.append(f"  {data['validated']}")

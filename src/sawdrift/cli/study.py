@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -103,36 +105,61 @@ def sweep_cmd(
     base = scene_from_options(scene_file, named[0] if named else None, _parse_param(param),
                               scene_overrides)
     models = named or [base.model]
-    if adaptive:
-        if axes or len(models) != 1:
-            _fail("--adaptive works on the (m*, A*) plane of one model: no --axis, one --model")
-        m_axis = sd.parse_axis(m_star or "1e-3:1e2:21", "m_star")
-        a_axis = sd.parse_axis(amplitude or "1e-2:10:21", "amplitude")
-        if m_axis.size != a_axis.size or m_axis.size < 2:
-            _fail("--adaptive needs --m-star and --amplitude as START:STOP:N with the same N >= 2")
-        from ..study.estimate import size_check
-
-        corners = [base.with_updates(**{"particle.m_star": m, "drive.amplitude": a})
-                   for m in (m_axis[0], m_axis[-1]) for a in (a_axis[0], a_axis[-1])]
-        # refused above the bound; not printed (the study checks its own options after this)
-        size_check("sweep --adaptive", corners, budget, workers=workers, engine=engine, yes=yes,
-                   show=False, smaller="a smaller --budget")
-        frame = sd.adaptive_sweep(models[0], (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
-                               budget=budget, base=int(m_axis.size), levels=levels, scene=base,
-                               table=out, workers=workers, scheduler=scheduler, progress=progress,
-                               engine=engine, force=force, traces=traces)
-    else:
-        if base.device is None:
-            # the (m*, A*) plane unless an axis replaces it: --axis effects.rotation=false,true
-            # alone sweeps rotation over the whole default plane, not over one cell
-            if m_star is None and "particle.m_star" not in axes:
-                m_star = "1e-3:1e2:11"
-            if amplitude is None and "drive.amplitude" not in axes:
-                amplitude = "1e-2:10:11"
-        frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
-                         workers=workers, scheduler=scheduler, progress=progress, engine=engine,
-                         force=force, traces=traces, size=True, yes=yes)
+    with _resume_hint(out):
+        if adaptive:
+            if axes or len(models) != 1:
+                _fail("--adaptive works on the (m*, A*) plane of one model: no --axis, one --model")
+            frame = _adaptive(models[0], base, m_star, amplitude, out, budget=budget, levels=levels,
+                              workers=workers, scheduler=scheduler, progress=progress,
+                              engine=engine, force=force, traces=traces, yes=yes)
+        else:
+            if base.device is None:
+                # the (m*, A*) plane unless an axis replaces it: --axis effects.rotation=false,true
+                # alone sweeps rotation over the whole default plane, not over one cell
+                if m_star is None and "particle.m_star" not in axes:
+                    m_star = "1e-3:1e2:11"
+                if amplitude is None and "drive.amplitude" not in axes:
+                    amplitude = "1e-2:10:11"
+            frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
+                             workers=workers, scheduler=scheduler, progress=progress,
+                             engine=engine, force=force, traces=traces, size=True, yes=yes)
     _sweep_text(frame, out, adaptive)
+
+
+@contextmanager
+def _resume_hint(out: Path) -> Iterator[None]:
+    """A sweep stopped by Ctrl-C: one line on what is kept and how to resume, exit status 130."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        from ..study.table import read_rows
+
+        try:
+            kept = f"{len(read_rows(out))} finished cells are kept"
+        except Exception:  # noqa: BLE001 - the hint must not hide the interruption
+            kept = "the finished cells are kept"
+        typer.echo(f"interrupted: {kept} in {out} and its journal; run the same command again "
+                   "to resume (only the missing cells are computed)", err=True)
+        raise typer.Exit(130) from None
+
+
+def _adaptive(model: str, base: Any, m_star: str | None, amplitude: str | None, out: Path, *,
+              budget: int, levels: int, yes: bool, **run: Any) -> Any:
+    """Run ``sweep --adaptive``: the (m*, A*) ranges and base grid from --m-star/--amplitude."""
+    from ..study.estimate import size_check
+
+    m_axis = sd.parse_axis(m_star or "1e-3:1e2:21", "m_star")
+    a_axis = sd.parse_axis(amplitude or "1e-2:10:21", "amplitude")
+    if m_axis.size != a_axis.size or m_axis.size < 2:
+        _fail("--adaptive needs --m-star and --amplitude as START:STOP:N with the same N >= 2")
+    corners = [base.with_updates(**{"particle.m_star": m, "drive.amplitude": a})
+               for m in (m_axis[0], m_axis[-1]) for a in (a_axis[0], a_axis[-1])]
+    # refused above the bound; not printed (the study checks its own options after this)
+    size_check("sweep --adaptive", corners, budget, workers=run["workers"], engine=run["engine"],
+               yes=yes, show=False, smaller="a smaller --budget")
+    return sd.adaptive_sweep(model, (m_axis[0], m_axis[-1]), (a_axis[0], a_axis[-1]),
+                             budget=budget, base=int(m_axis.size), levels=levels, scene=base,
+                             table=out, **run)
 
 
 def _sweep_text(frame: Any, out: Path, adaptive: bool) -> None:
@@ -151,10 +178,7 @@ def _sweep_text(frame: Any, out: Path, adaptive: bool) -> None:
     errors = int(frame["error"].notna().sum())
     line = None if adaptive else _line_plot(frame, out)
     if adaptive:
-        # the table holds the computed points; the inferred ones only complete the diagram
-        typer.echo(f"wrote {out} ({frame.attrs['computed']} cells computed, {errors} with errors; "
-                   f"{frame.attrs['inferred']} more inferred from their neighbours, "
-                   f"{frame.attrs['wrong_guesses']} wrong guesses found by the check sample)")
+        _adaptive_text(frame, out, errors)
     else:
         typer.echo(f"wrote {out} ({len(frame)} cells, {errors} with errors)"
                    + (f" and {line} (line plot)" if line is not None else ""))
@@ -163,6 +187,28 @@ def _sweep_text(frame: Any, out: Path, adaptive: bool) -> None:
             typer.echo(f"{out} now holds {frame.attrs['table_cells']} cells: {other} from an "
                        "earlier sweep outside this grid (the counts above are this grid's; "
                        "give a new -o for a table of this grid only)")
+
+
+def _adaptive_text(frame: Any, out: Path, errors: int) -> None:
+    """What an adaptive sweep wrote: its computed points (run now or found in the table), the
+    inferred ones, and the table's cells that are not this map's (an earlier run's)."""
+    computed, now = int(frame.attrs["computed"]), int(frame.attrs["computed_now"])
+    # the table holds the computed points; the inferred ones only complete the diagram
+    typer.echo(f"wrote {out} ({computed} cells computed: {now} in this run, "
+               f"{computed - now} already in the table; {errors} with errors; "
+               f"{frame.attrs['inferred']} more inferred from their neighbours, "
+               f"{frame.attrs['wrong_guesses']} wrong guesses found by the check sample)")
+    grid, other = int(frame.attrs.get("grid_cells", 0)), int(frame.attrs.get("other_cells", 0))
+    parts = []
+    if grid:
+        parts.append(f"{grid} more of this map's grid from an earlier run with a larger --budget")
+    if other:
+        parts.append(f"{other} from an earlier sweep outside this map (another --m-star/--amplitude "
+                     "range, base grid, model or a grid sweep)")
+    if parts:
+        fresh = "; give a new -o for a table of this map only" if other else ""
+        typer.echo(f"{out} now holds {frame.attrs['table_cells']} cells: {' and '.join(parts)} "
+                   f"(the counts above are this map's{fresh})")
 
 
 #: the longest warning a sweep's summary prints (the table's warnings column holds it in full)

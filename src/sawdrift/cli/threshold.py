@@ -48,9 +48,7 @@ def threshold_cmd(
 
     fast_start()
     check_engine(engine)
-    if not 0.0 < start < 1e3 or per_decade < 1 or not 0 <= bisections <= 60 or not periods >= 10:
-        _fail("--start must be in (0, 1000), --per-decade >= 1, --bisections in [0, 60], "
-              "--periods >= 10")
+    _check_scan(start, per_decade, bisections, periods)
     try:
         stop_m = to_si(stop, "length")
     except ValueError as exc:
@@ -88,6 +86,18 @@ def threshold_cmd(
            for v in (r.slide_amplitude_m, r.removal_amplitude_m)):
         typer.echo(f"'{above}': no crossing up to --stop {stop.strip()} (raise --stop to find it);"
                    " 'n/a': a slope needs two thresholds")
+
+
+def _check_scan(start: float, per_decade: int, bisections: int, periods: float) -> None:
+    """One line naming the first scan option out of its range (exit status 2)."""
+    if not 0.0 < start < 1e3:
+        _fail(f"--start = {start:g} must be in (0, 1000) (units of the rigid removal amplitude)")
+    if per_decade < 1:
+        _fail(f"--per-decade = {per_decade} must be >= 1")
+    if not 0 <= bisections <= 60:
+        _fail(f"--bisections = {bisections} must be in [0, 60]")
+    if not periods >= 10:
+        _fail(f"--periods = {periods:g} must be >= 10")
 
 
 def _g(value: float | None) -> str:

@@ -34,6 +34,38 @@ class ModelEntry:
     entry_point: str
 
 
+def _named_models(returned: Any) -> tuple[list[type[ContactModel]], str]:
+    """Split what a plugin's hook returned into named ContactModel subclasses and the rest.
+
+    Parameters
+    ----------
+    returned
+        The value of ``sawdrift_contact_models()``: it should be an iterable of classes.
+
+    Returns
+    -------
+    tuple
+        The usable classes, and a short description of the unusable entries ('' if none).
+    """
+    if isinstance(returned, str | bytes) or not isinstance(returned, Iterable):
+        return [], _short(returned)
+    good: list[type[ContactModel]] = []
+    bad: list[str] = []
+    for cls in returned:
+        if (isinstance(cls, type) and issubclass(cls, ContactModel)
+                and isinstance(getattr(cls, "name", None), str) and cls.name):
+            good.append(cls)
+        else:
+            bad.append(_short(cls))
+    return good, ", ".join(bad)
+
+
+def _short(obj: Any) -> str:
+    """``repr(obj)`` on one line, cut to 60 characters."""
+    text = " ".join(repr(obj).split())
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 class Registry:
     """Contact models by name. Discovery runs once, on first use.
 
@@ -71,13 +103,16 @@ class Registry:
                     stacklevel=3,
                 )
                 continue
+            classes, bad = _named_models(classes)
+            if bad:
+                # a plugin handing back something else loses those entries, never the other models
+                msg = (f"plugin {ep.name!r} from distribution {dist!r} returned {bad} from "
+                       "sawdrift_contact_models(), not named ContactModel subclasses")
+                self.failed[ep.name] = msg
+                skipped = "those entries are skipped" if classes else "it is skipped"
+                warnings.warn(f"sawdrift {msg}; {skipped}", PluginWarning, stacklevel=3)
             for cls in classes:
-                name = getattr(cls, "name", None)
-                if not isinstance(name, str) or not issubclass(cls, ContactModel):
-                    raise PluginError(
-                        f"plugin {ep.name!r} from {dist!r} returned {cls!r}, "
-                        "which is not a named ContactModel subclass"
-                    )
+                name = cls.name
                 version = getattr(cls, "kernel_interface", None)
                 if version != KERNEL_INTERFACE:
                     msg = (f"model {name!r} is written for kernel interface {version!r}; this "

@@ -98,6 +98,12 @@ class Scene(BaseModel):
         "sawdrift.scene.overrides)"
     )
 
+    def __init__(self, /, **data: Any) -> None:
+        try:
+            super().__init__(**data)
+        except ValidationError as exc:
+            raise _untagged(exc) from None
+
     @model_validator(mode="before")
     @classmethod
     def _device_conversion(cls, data: Any) -> Any:
@@ -222,6 +228,36 @@ def _drop_none(obj: Any) -> Any:
     if isinstance(obj, list):
         return [_drop_none(v) for v in obj]
     return obj
+
+
+def _untagged(exc: ValidationError) -> ValidationError:
+    """``exc`` with the fields named as the user wrote them: ``drive.amplitude``, not the drive
+    union's internal ``drive.wave.amplitude`` (nor a validator's ``function-...`` step).
+
+    Parameters
+    ----------
+    exc
+        The error of validating a Scene.
+
+    Returns
+    -------
+    pydantic.ValidationError
+        The same errors with those locations, or ``exc`` itself if it cannot be rebuilt.
+    """
+    kinds = {"wave", "prescribed", "impact", "biharmonic"}
+    details = []
+    for err in exc.errors(include_url=False):
+        loc = [p for p in err["loc"] if not str(p).startswith("function-")]
+        if len(loc) > 1 and loc[0] == "drive" and loc[1] in kinds:
+            del loc[1]
+        detail = {"type": err["type"], "loc": tuple(loc), "input": err.get("input")}
+        if "ctx" in err:
+            detail["ctx"] = err["ctx"]
+        details.append(detail)
+    try:
+        return ValidationError.from_exception_data(exc.title, details)  # type: ignore[arg-type]
+    except Exception:  # noqa: BLE001 - a custom error type: keep pydantic's own message
+        return exc
 
 
 def build_scene(data: dict[str, Any], source: str | None = None) -> Scene:

@@ -230,9 +230,11 @@ def adaptive_sweep(
     -------
     pandas.DataFrame
         The computed points' table rows (``inferred`` False) and the inferred points (``inferred``
-        True, with model, m_star, amplitude and regime only). The table, if any, holds exactly
-        the computed rows; ``frame.attrs`` has ``computed``, ``inferred`` and ``wrong_guesses``
-        (sampled inferred points whose run disagreed).
+        True, with model, m_star, amplitude and regime only). ``frame.attrs`` has ``computed``
+        (the map's computed points), ``computed_now`` (those run by this call; the others were
+        in the table), ``inferred`` and ``wrong_guesses`` (sampled inferred points whose run
+        disagreed); with a table also those of :func:`table_share`: the table keeps rows it
+        held before, also of an earlier run with a larger budget or of another map.
     """
     from .sweep import sweep
 
@@ -250,13 +252,20 @@ def adaptive_sweep(
     lm = np.linspace(math.log10(m_range[0]), math.log10(m_range[1]), fine)
     la = np.linspace(math.log10(a_range[0]), math.log10(a_range[1]), fine)
     frames: list[pd.DataFrame] = []
+    ran = [0]  # cells run by this call (those already in the table are not)
+
+    def counted(row: dict[str, Any]) -> None:
+        ran[0] += 1
+        if on_row is not None:
+            on_row(row)
 
     def evaluate(keys: list[Key]) -> dict[Key, str]:
         pts = [(10.0 ** lm[i], 10.0 ** la[j]) for i, j in keys]
         if regime_of is not None:
+            ran[0] += len(keys)
             return {k: regime_of(m, a) for k, (m, a) in zip(keys, pts, strict=True)}
         frame = sweep([model], points=pts, base=scene, table=table, progress=progress,
-                      on_row=on_row, engine=engine, force=force, traces=traces,
+                      on_row=counted, engine=engine, force=force, traces=traces,
                       executor=executor)
         lookup = {(round(math.log10(r.m_star), 9), round(math.log10(r.amplitude), 9)): r.regime
                   for r in frame.itertuples()}
@@ -283,8 +292,42 @@ def adaptive_sweep(
                             "amplitude": [10.0 ** la[j] for _, j in keys],
                             "regime": [ref.inferred[k] for k in keys], "inferred": True})
     frame = pd.concat([out, guesses], ignore_index=True) if keys else out.reset_index(drop=True)
-    frame.attrs.update(computed=len(out), inferred=len(keys), wrong_guesses=ref.wrong_guesses)
+    frame.attrs.update(computed=len(out), inferred=len(keys), wrong_guesses=ref.wrong_guesses,
+                       computed_now=ran[0])
+    if table is not None and regime_of is None:
+        frame.attrs.update(table_share(Path(table), model, lm, la, set(out["cell_id"])))
     return frame
+
+
+def table_share(table: Path, model: str, lm: np.ndarray, la: np.ndarray,
+                cells: set[str]) -> dict[str, int]:
+    """What an adaptive map's table holds besides this map's computed points.
+
+    Parameters
+    ----------
+    table
+        The written table.
+    model, lm, la
+        The map's model and its fine grid's log10 m* and log10 A*.
+    cells
+        Cell ids of this map's computed points.
+
+    Returns
+    -------
+    dict
+        ``table_cells`` (rows of the table), ``grid_cells`` (rows of this model on this map's fine
+        grid but not among its points: an earlier run with a larger budget) and ``other_cells``
+        (rows off that grid: another range, base grid, model or a plain grid sweep).
+    """
+    held = pd.read_parquet(table, columns=["cell_id", "model", "m_star", "amplitude"])
+    extra = held[~held["cell_id"].isin(cells)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        em = np.round(np.log10(pd.to_numeric(extra["m_star"], errors="coerce").to_numpy(float)), 9)
+        ea = np.round(np.log10(pd.to_numeric(extra["amplitude"], errors="coerce").to_numpy(float)), 9)
+    on_grid = ((extra["model"] == model).to_numpy() & np.isin(em, np.round(lm, 9))
+               & np.isin(ea, np.round(la, 9)))
+    grid = int(on_grid.sum())
+    return {"table_cells": len(held), "grid_cells": grid, "other_cells": len(extra) - grid}
 
 
 def regime_map(points: pd.DataFrame, m_values: np.ndarray, a_values: np.ndarray) -> np.ndarray:

@@ -236,6 +236,8 @@ def bifurcation(
     if folder is not None:
         _check_table(folder, scene, force)
     directions = ["up", "down"] if direction == "both" else [direction]
+    if folder is not None and not force:
+        _check_branches(folder, field, axis, samples, [(m, d) for m in bases for d in directions])
     tasks = [{"model": name, "direction": d, "field": field,
               "values": axis if d == "up" else axis[::-1], "samples": int(samples),
               "transient": transient, "scene": base.model_dump_json(), "engine": engine,
@@ -358,6 +360,56 @@ def _check_table(folder: Path, scene: Scene, force: bool) -> None:
     rows = rows.to_dict(orient="records")
     check_resume(path, rows, table_metadata(path)["base_scene"],
                  json.loads(scene.model_dump_json()), force)
+
+
+def _check_branches(folder: Path, field_name: str, axis: list[float], samples: int,
+                    branches: list[tuple[str, str]]) -> None:
+    """Refuse a run that would drop branches of the same diagram from the folder's table.
+
+    Parameters
+    ----------
+    folder
+        The output folder.
+    field_name, axis, samples
+        This run's axis and samples: a table of another axis is another diagram (the journals'
+        check names it).
+    branches
+        This run's (model, direction) branches.
+
+    Raises
+    ------
+    SceneError
+        The table holds a branch of this diagram (a direction or a model) that the run leaves out:
+        its rewritten table would lose it.
+    """
+    import pyarrow.parquet as pq
+
+    path = folder / TABLE
+    if not path.exists():
+        return
+    meta = pq.read_schema(path).metadata or {}
+    try:
+        spec = json.loads(meta[META_SPEC].decode())
+    except (KeyError, ValueError):
+        return
+    if (spec.get("field"), spec.get("values"), spec.get("samples")) != (field_name, axis, samples):
+        return
+    held = pd.read_parquet(path, columns=["model", "direction"]).drop_duplicates()
+    dropped = sorted({(str(m), str(d)) for m, d in held.itertuples(index=False)} - set(branches))
+    if not dropped:
+        return
+    ways = {d for _, d in dropped} | {d for _, d in branches}
+    models = sorted({m for m, _ in dropped} | {m for m, _ in branches})
+    way = "both" if len(ways) > 1 else next(iter(ways))
+    wider = [f"direction='{way}' (--direction {way})"]
+    if len(models) > len({m for m, _ in branches}):
+        wider.append(f"models='{','.join(models)}' (--model {','.join(models)})")
+    what = ", ".join(f"{m} {d}" for m, d in dropped)
+    raise SceneError(
+        f"out = {str(folder)!r} already holds this diagram's {what} branch"
+        f"{'es' if len(dropped) > 1 else ''}, which this run would drop from its table: give "
+        f"{' and '.join(wider)} (values already computed are read back), another output folder, "
+        "or force=True (--force) to replace the table")
 
 
 def _write(folder: Path, result: BifurcationResult, scene: Scene) -> None:

@@ -4,7 +4,8 @@ tqdm redraws its bar with carriage returns and cursor codes, which end up as gar
 file or a CI transcript. When stderr is not a terminal, the counters here print one plain line
 whenever another tenth of the work is done, or :data:`EVERY` seconds have passed since the last
 line, and at the end, with the rate and an estimate of the time left:
-``sweep: 441/882 cells (50%), 612.3 cells/s, ETA 0.7 s``.
+``sweep: 441/882 cells (50%), 612.3 cells/s, ETA 0.7 s`` (before the first unit is done, and
+without a size estimate, only the time so far: ``threshold: 0/15 values (0%), 1.0 s so far``).
 
 Cells of seconds each must not leave the user staring at a still line: the bars of
 :func:`progress` are redrawn by a clock (:class:`_Ticking`), not only when a cell finishes, the
@@ -74,15 +75,17 @@ class _Lines:
         self.lines += 1
         dt = now - self.t0
         done = self.n - self.start_n
-        rate = done / dt if dt > 0 else float("nan")
-        eta = (self.total - self.n) / rate if rate > 0 else float("nan")
-        guess = ""
-        if done == 0 and self.expected is not None:
-            eta, guess = max(self.expected - dt, 0.0), " (estimate)"
         pct = 100.0 * self.n / self.total if self.total else 100.0
         note = f" [{self.postfix}]" if self.postfix else ""
-        sys.stderr.write(f"{self.desc}: {self.n}/{self.total} {self.unit}s ({pct:.0f}%), "
-                         f"{rate:.1f} {self.unit}s/s, ETA {eta:.1f} s{guess}{note}\n")
+        head = f"{self.desc}: {self.n}/{self.total} {self.unit}s ({pct:.0f}%), "
+        if done > 0 and dt > 0:
+            rate = done / dt
+            tail = f"{rate:.1f} {self.unit}s/s, ETA {(self.total - self.n) / rate:.1f} s"
+        elif self.expected is not None:
+            tail = f"0.0 {self.unit}s/s, ETA {max(self.expected - dt, 0.0):.1f} s (estimate)"
+        else:  # nothing done yet and no estimate: no rate, no time left to print
+            tail = f"{dt:.1f} s so far"
+        sys.stderr.write(f"{head}{tail}{note}\n")
         sys.stderr.flush()
 
     def close(self) -> None:
