@@ -277,3 +277,15 @@ def test_a_load_above_friction_is_a_runaway_even_in_a_long_flight():
     assert abs(res.mean_acceleration - 0.01) <= 1e-12
     free = sd.run(sd.Scene(**{**scene, "particle": {"m_star": 10.0}}))
     assert free.regime != "ejected"
+
+
+def test_a_sweep_row_keeps_an_ejection_s_detach_time():
+    """The table row of an ejected cell holds its detach time (the explorer shows it): the
+    column was not kept, so a table said only that the cell had no drift."""
+    from sawdrift.study.sweep import run_cell
+
+    scene = sd.Scene(**DEVICE)
+    res = sd.run(scene)
+    row = run_cell(scene.model_dump_json())
+    assert res.regime == row["regime"] == "ejected" and row["resolved_as"] == "ejected"
+    assert row["detach_time"] == res.detach_time and math.isfinite(row["detach_time"])

@@ -32,7 +32,7 @@ from .provenance import code_hash
 #: (:func:`sawdrift.study.provenance.code_hash`).
 TABLE_COLUMNS = tuple(dict.fromkeys(("cell_id", "scene_id", *SUMMARY_FIELDS, "settled",
                                      "settle_periods", "orbit_period", "chaotic", "drift_ratio_se",
-                                     "mean_acceleration", "resolved_as", "warnings",
+                                     "mean_acceleration", "detach_time", "resolved_as", "warnings",
                                      "events_dropped", "code_hash", "error")))
 
 #: Parquet metadata keys of a sweep table (provenance).
