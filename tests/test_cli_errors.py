@@ -246,3 +246,15 @@ def test_a_progress_line_before_the_first_value_prints_no_nan_eta(monkeypatch, c
     first, second = capsys.readouterr().err.strip().splitlines()
     assert first == "threshold: 0/15 values (0%), 1.0 s so far"
     assert second.startswith("threshold: 1/15 values (7%), 0.3 values/s, ETA 42.0 s")
+
+
+@pytest.mark.parametrize("command", ["run", "check-model"])
+def test_a_bad_model_parameter_names_what_the_model_takes(command, monkeypatch, capsys):
+    # check-model said only "model_params.strips = 1: ..." where run names the parameters
+    args = ["--model", "mdr"] if command == "run" else ["mdr"]
+    monkeypatch.setattr(sys, "argv", ["sawdrift", command, *args, "--param", "strips=1"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1
+    assert "model_params.strips" in err[0] and "(model 'mdr' takes: strips, z_max)" in err[0]

@@ -411,7 +411,9 @@ def check_model(name: str, profile: str | Profile | None = None,
     try:
         model_params = cls.Params.model_validate(params)
     except ValidationError as exc:
-        raise SceneError("model_params." + format_validation_error(exc)) from None
+        known = ", ".join(cls.Params.model_fields) or "no parameters"
+        raise SceneError(f"model_params.{format_validation_error(exc)} (model {name!r} takes: "
+                         f"{known})") from None
     declared = cls.capabilities.profiles
     if adhesion is not None:
         if not supports_adhesion(cls):
