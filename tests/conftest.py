@@ -67,6 +67,16 @@ def _click_commands_built_once():
     typer.main.get_command = original
 
 
+@pytest.fixture(autouse=True)
+def _figures_closed_after_each_test():
+    """Close the figures a test left open (many keep theirs to read them): a worker process
+    otherwise gathers them from test to test, past matplotlib's warning at 20."""
+    yield
+    plt = sys.modules.get("matplotlib.pyplot")  # never imported just to close nothing
+    if plt is not None:
+        plt.close("all")
+
+
 @pytest.fixture
 def sawdrift_main(monkeypatch, capsys):
     """``sawdrift ARGS`` run in this process: the console entry point
