@@ -267,3 +267,17 @@ def test_table_rows_read_back_as_pandas_gives_them(tmp_path):
     assert [[(type(v), repr(v)) for v in r.values()] for r in got] == \
         [[(type(v), repr(v)) for v in r.values()] for r in expected]
 
+
+
+def test_a_resumed_sweep_says_how_many_of_its_cells_it_still_runs(tmp_path, capsys):
+    """The size printed before a sweep is the whole grid's; a sweep resumed into a table that
+    already holds some of its cells said nothing of them until its bar started part-way."""
+    import sawdrift as sd
+
+    table = tmp_path / "t.parquet"
+    base = sd.Scene(model="mmd", numerics={"periods": 12})
+    sd.sweep("mmd", "0.1:1:2", "0.1:1:2", base=base, table=table, progress=False)
+    capsys.readouterr()
+    sd.sweep("mmd", "0.1:1:3", "0.1:1:2", base=base, table=table, progress=True)
+    err = capsys.readouterr().err
+    assert "4 of the 6 cells already in t.parquet, 2 to run" in err

@@ -17,6 +17,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import sys
 from collections.abc import Callable, Iterable, Sequence
 from functools import partial
 from pathlib import Path
@@ -331,6 +332,10 @@ def sweep(
     if executor is None:
         executor = Executor(resolve_workers(workers), scheduler)
     rows = {cid: row for cid, row in done.items() if cid in wanted}
+    if progress and rows and todo and path is not None:
+        # the size printed above is the whole grid's: say what a resumed sweep still runs
+        print(f"{label[0]}: {len(rows)} of the {len(wanted)} cells already in {path.name}, "
+              f"{len(todo)} to run", file=sys.stderr)
     journal = journal_path(path) if path is not None else None
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
