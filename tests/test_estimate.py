@@ -81,3 +81,16 @@ def test_a_sweep_prints_its_size_before_its_cells(monkeypatch, capsys, tmp_path)
     from sawdrift.dynamics.assembly import steps_per_period
 
     assert first.startswith(f"sweep: 2 cells, about {2 * 10 * steps_per_period(k):.2g} steps")
+
+
+def test_a_contact_too_stiff_for_the_probe_step_is_calibrated_at_its_own_step():
+    """mmd m* = 1e-8 needs 229575 steps a period: the calibration probe at 4096 went non-finite
+    at step 48, so the command line refused (and a sweep lost) a scene sawdrift.run integrates."""
+    import math
+
+    from sawdrift.study.estimate import calibrate
+
+    scene = sd.Scene(model="mmd", particle={"m_star": 1e-8}, drive={"amplitude": 0.3})
+    rate, overhead = calibrate(scene)
+    assert math.isfinite(rate) and rate > 0.0 and overhead >= 0.0
+    assert sd.run(scene).regime == "stick"
