@@ -188,6 +188,24 @@ def test_a_derived_field_on_a_device_scene_is_an_error_naming_the_device_field(f
         assert needle in str(info.value) and "\n" not in str(info.value)
 
 
+@pytest.mark.parametrize("args", [["--pulloff", "3"], ["--set", "material.adhesion=3"]])
+def test_material_adhesion_on_a_device_scene_names_device_adhesion(args, sawdrift_main):
+    # an internal failure ('material.adhesion', exit 3): no device field was named for it
+    out = sawdrift_main("run", str(EXAMPLES / "micro_silica_on_linbo3.toml"), *args, "--json")
+    assert out.returncode == 2, out.stderr
+    err = out.stderr.strip().splitlines()
+    assert len(err) == 1 and "derives material.adhesion" in err[0]
+    assert 'device.adhesion="0.05 J/m^2"' in err[0]
+
+
+def test_adhesion_without_a_work_of_adhesion_on_a_device_names_device_adhesion(sawdrift_main):
+    # it named material.adhesion, the derived field a device scene refuses
+    out = sawdrift_main("run", str(MOTOR), "--adhesion", "jkr", "--json")
+    assert out.returncode == 2
+    err = out.stderr.strip().splitlines()
+    assert len(err) == 1 and "needs device.adhesion > 0" in err[0], err
+
+
 @pytest.mark.parametrize("option, value, device_field", [
     ("--m-star", "5", "device.particle"), ("--mu", "0.3", "device.friction"),
     ("--amplitude", "1", "device.amplitude"), ("--orbit", "prograde", "device.orbit")])

@@ -40,8 +40,10 @@ def adhesion_consistent(scene: Any) -> None:
         raise ValueError(f"material.adhesion = {w:g} needs effects.adhesion = 'dmt' or 'jkr' "
                          "(or leave material.adhesion at 0)")
     if eff.adhesion != "none" and w == 0.0:
-        raise ValueError(f"effects.adhesion = {eff.adhesion!r} needs material.adhesion > 0 (the "
-                         "pull-off force over M g)")
+        needs = ('device.adhesion > 0 (the work of adhesion, e.g. "0.05 J/m^2")'
+                 if getattr(scene, "device", None) is not None
+                 else "material.adhesion > 0 (the pull-off force over M g)")
+        raise ValueError(f"effects.adhesion = {eff.adhesion!r} needs {needs}")
     if eff.adhesion_detach != "instability" and eff.adhesion != "jkr":
         raise ValueError(f"effects.adhesion_detach = {eff.adhesion_detach!r} applies to "
                          "effects.adhesion = 'jkr' only")

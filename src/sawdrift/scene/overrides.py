@@ -64,6 +64,7 @@ SET_INSTEAD: dict[str, str] = {
     "material.mu": "device.friction=0.2",
     "material.nu": "device.substrate.poisson=0.25",
     "material.theta": 'device.particle.youngs_modulus="210 GPa" (or a poisson ratio)',
+    "material.adhesion": 'device.adhesion="0.05 J/m^2"',
 }
 
 
