@@ -56,9 +56,10 @@ def load_curve_cmd(
 
     The load opposes the unloaded drift (a motor's thrust, or what a conveyor can lift); the stall
     load, where the particle no longer advances, is bracketed and narrowed by k-section (one run
-    per worker per round) to 1e-3 of mu M g, then --loads loads from 0 to it are run. Heavy
-    particles need --settle. The scene's own particle.load (device.load) is replaced by the
-    curve's; a device's incline stays. Device scenes are reported in mN, m/s and mW.
+    per worker per round) to 1e-3 of mu M g, then --loads loads from 0 to it are run, each
+    settled as a default run is (--settle forces it). The scene's own particle.load
+    (device.load) is replaced by the curve's; a device's incline stays. Device scenes are
+    reported in mN, m/s and mW.
     """
     from ..report.load_curve_plot import plot_load_curve
     from ..study.load_curve import load_curve
