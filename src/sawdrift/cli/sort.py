@@ -13,11 +13,12 @@ import sawdrift as sd
 
 from .._startup import fast_start
 from .app import _fail, _writable, app
-from .lammps import _scene_and_particles
+from .lammps import _scene_and_particles, with_particle_sets
 from .scene_options import with_scene_options
 
 
 @app.command("sort")
+@with_particle_sets
 @with_scene_options()
 def sort_cmd(
     scene_file: Annotated[Path, typer.Argument(help="device scene TOML with a \\[particles] "
@@ -48,6 +49,7 @@ def sort_cmd(
                                              "the scene here")] = None,
     *,
     scene_overrides: dict[str, Any],
+    particle_sets: dict[str, Any],
 ) -> None:
     r"""Sorting times of a two-size mixture: random placements moved by the slow model.
 
@@ -65,17 +67,14 @@ def sort_cmd(
     fast_start()
     from ..mixture.sort import sort_mixture
 
-    if curves not in ("native", "lammps_rule"):
-        _fail(f"--curves = {curves!r}: use 'native' or 'lammps_rule'")
-    if geometry not in ("plane", "line"):
-        _fail(f"--geometry = {geometry!r}: use 'plane' or 'line'")
-    if not (transverse > 0.0 and math.isfinite(transverse)):
-        _fail(f"--transverse = {transverse!r}: give a positive factor")
-    if not (jitter >= 0.0 and math.isfinite(jitter)):
-        _fail(f"--jitter = {jitter!r}: give a number of small radii >= 0")
-    scene, particles = _scene_and_particles(scene_file, None, {}, scene_overrides)
+    _check_options(curves, geometry, transverse, jitter)
+    scene, particles = _scene_and_particles(scene_file, None, {}, scene_overrides,
+                                            particle_sets)
     if particles is None:
         _fail(f"{scene_file}: sort needs a [particles] table (two radii)")
+    why = slow_model_refusal(scene)
+    if why is not None:
+        _fail(why)
     if out is not None:
         _writable(out)
     note = (lambda line: typer.echo(line, err=True)) if progress else None
@@ -99,6 +98,51 @@ def sort_cmd(
         typer.echo(line)
     if out is not None:
         typer.echo(f"wrote {out}/sort.json, sort.png, scene.toml")
+
+
+def _check_options(curves: str, geometry: str, transverse: float, jitter: float) -> None:
+    """One line (exit 2) for a bad --curves, --geometry, --transverse or --jitter."""
+    if curves not in ("native", "lammps_rule"):
+        _fail(f"--curves = {curves!r}: use 'native' or 'lammps_rule'")
+    if geometry not in ("plane", "line"):
+        _fail(f"--geometry = {geometry!r}: use 'plane' or 'line'")
+    if not (transverse > 0.0 and math.isfinite(transverse)):
+        _fail(f"--transverse = {transverse!r}: give a positive factor")
+    if not (jitter >= 0.0 and math.isfinite(jitter)):
+        _fail(f"--jitter = {jitter!r}: give a number of small radii >= 0")
+
+
+#: where docs/mixtures.md lists what the slow model leaves out
+NOT_INCLUDED = "docs/mixtures.md, 'Not included'"
+
+
+def slow_model_refusal(scene: sd.Scene) -> str | None:
+    """What the slow model of chains cannot run (one line naming the field), or None.
+
+    Rotation, a second wave and adhesion are not in the model (:data:`NOT_INCLUDED`); the rest
+    is what the SI realization it shares with LAMMPS refuses (:func:`sawdrift.lammps.refusal`).
+    """
+    from ..lammps import refusal
+    from ..scene.schema import Wave
+
+    eff = scene.effects
+    if eff.rotation:
+        return (f"effects.rotation = true: the slow sorting model has no rotation ({NOT_INCLUDED}); "
+                "drop --rotation")
+    d = scene.drive
+    if isinstance(d, Wave):
+        extra = {"backward": d.backward > 0.0, "wavelength": d.wavelength is not None,
+                 "position": d.position != 0.0, "backward_phase_rate": bool(d.backward_phase_rate)}
+        for name, given in extra.items():
+            if given:
+                return (f"drive.{name} = {getattr(d, name)!r}: the slow sorting model runs one "
+                        f"travelling wave's local orbit ({NOT_INCLUDED}): no backward wave, position, "
+                        "wavelength or phase rate")
+    if eff.adhesion != "none":
+        return (f"effects.adhesion = {eff.adhesion!r}: the slow sorting model has no adhesion "
+                f"({NOT_INCLUDED}); set effects.adhesion = 'none'")
+    why = refusal(scene)
+    return None if why is None else f"{why} (sort sizes its beads as the LAMMPS engine does)"
 
 
 def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int) -> dict[str, Any]:

@@ -88,7 +88,7 @@ def frame_forces(real: Realization) -> list[str]:
 
 def input_script(scene: Scene, k_per: int, rest_overlap: float) -> tuple[str, Realization]:
     """The LAMMPS input (SI) of the adhesive particle in the wall frame, without the runs."""
-    real = realize(scene)
+    real = realize(scene, wall_frame=True)
     model = contact_string(scene, real)
     big = 1e3 * real.radius
     z0 = real.radius - rest_overlap * real.a0

@@ -127,8 +127,29 @@ class Realization:
         return self.a0 * self.frequency
 
 
-def refusal(scene: Scene) -> str | None:
-    """Why ``scene`` has no LAMMPS equivalent (one line), or None if it has one."""
+def adhesion_refusal(scene: Scene) -> str | None:
+    """Why the moving-wall LAMMPS run cannot carry ``scene``'s adhesion (one line), or None.
+
+    ``fix wall/gran/region`` on a moving region loses an adhesive contact at zero overlap, which
+    drops the tensile branch: the particle would fly off where the native one is held. Only the
+    wall-frame bridge :mod:`sawdrift.lammps.adhesion` (a still wall, the wall's inertial force on
+    the particle) runs an adhesive particle.
+    """
+    law = scene.effects.adhesion
+    if law == "none":
+        return None
+    return (f"effects.adhesion = {law!r}: this LAMMPS run moves its wall as a region, which loses "
+            "an adhesive contact's tensile branch; one adhesive particle runs in LAMMPS only "
+            "through the wall-frame bridge sawdrift.lammps.adhesion.compare (validation case "
+            "lammps_adhesion, docs/adhesion.md), or set effects.adhesion = 'none'")
+
+
+def refusal(scene: Scene, *, wall_frame: bool = False) -> str | None:
+    """Why ``scene`` has no LAMMPS equivalent (one line), or None if it has one.
+
+    ``wall_frame``: for the wall-frame bridge of :mod:`sawdrift.lammps.adhesion`, which carries
+    an adhesive contact; every other LAMMPS run refuses adhesion (:func:`adhesion_refusal`).
+    """
     if scene.model not in LAMMPS_EQUIVALENT:
         return (f"model = {scene.model!r} has no LAMMPS equivalent; the LAMMPS engine runs "
                 + ", ".join(LAMMPS_EQUIVALENT) + " (pair granular hertz/material, "
@@ -156,19 +177,22 @@ def refusal(scene: Scene) -> str | None:
                 "(kappa = 0.4); use 0.4")
     if scene.device is not None and scene.device.particle.shape != "sphere":
         return f"device.particle.shape = {scene.device.particle.shape!r}: LAMMPS has spheres only"
-    return None
+    return None if wall_frame else adhesion_refusal(scene)
 
 
-def check_equivalent(scene: Scene) -> None:
+def check_equivalent(scene: Scene, *, wall_frame: bool = False) -> None:
     """Raise a one-line SceneError if ``scene`` has no LAMMPS equivalent (see :func:`refusal`)."""
-    why = refusal(scene)
+    why = refusal(scene, wall_frame=wall_frame)
     if why is not None:
         raise SceneError(why)
 
 
-def realize(scene: Scene) -> Realization:
-    """The SI realization of ``scene`` (module docstring): the device's values, or a chosen one."""
-    check_equivalent(scene)
+def realize(scene: Scene, *, wall_frame: bool = False) -> Realization:
+    """The SI realization of ``scene`` (module docstring): the device's values, or a chosen one.
+
+    ``wall_frame`` admits an adhesive scene, for :mod:`sawdrift.lammps.adhesion` only.
+    """
+    check_equivalent(scene, wall_frame=wall_frame)
     m_star = scene.particle.m_star
     theta = scene.theta
     if scene.device is not None:
