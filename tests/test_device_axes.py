@@ -176,7 +176,11 @@ def test_phase_diagram_of_a_one_field_sweep_is_a_line_plot(frequency_table, tmp_
         else:  # open: white face, the regime's colour around it
             assert to_hex(dot.get_markerfacecolor()) == "#ffffff"
             assert to_hex(dot.get_markeredgecolor()) == colour
-    assert ax.get_xlabel() == "device.frequency (Hz)" and ax.get_ylabel() == "drift speed (m/s)"
+    # the ticks carry the prefixed unit (8 MHz, -50 mm/s): the labels name the quantity, with no
+    # unit that would disagree with them ("(Hz)" over "8 MHz")
+    assert ax.get_xlabel() == "device.frequency" and ax.get_ylabel() == "drift speed"
+    assert ax.xaxis.get_major_formatter()(8e6) == "8 MHz"
+    assert ax.yaxis.get_major_formatter()(-0.05).endswith("50 mm/s")
 
 
 def test_a_one_field_sweep_prints_its_points_and_draws_them(monkeypatch, capsys, tmp_path):
@@ -190,7 +194,11 @@ def test_a_one_field_sweep_prints_its_points_and_draws_them(monkeypatch, capsys,
     text = capsys.readouterr().out
     assert exc.value.code == 0
     assert (tmp_path / "amp.png").stat().st_size > 10_000
-    assert "device.amplitude (m)" in text and "drift speed (m/s)" in text
+    # the amplitudes are printed with their prefix (20 nm), so the header gives no "(m)"; the
+    # speeds are bare numbers in m/s, which their header names
+    header = next(line for line in text.splitlines() if line.strip().startswith("model "))
+    assert header.split()[:3] == ["model", "device.amplitude", "drift"], header
+    assert "(m)" not in header and header.rstrip().endswith("drift speed (m/s)  regime")
     assert "20 nm" in text and "(line plot)" in text
 
 

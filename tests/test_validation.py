@@ -125,6 +125,73 @@ def test_expected_deviation_is_reported_not_failed(tmp_path):
     assert report.count("expected deviation") == 1 and not report.passed
 
 
+def test_expected_deviation_states_its_declared_reason(tmp_path):
+    """Each expected deviation carries the case's one-line reason into the page and results.json."""
+    cases = tmp_path / "cases"
+    cases.mkdir()
+    (cases / "dev.py").write_text(
+        "from sawdrift.validation import Case\n"
+        "CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9,\n"
+        "            models=('mmd', 'jaeger', 'mdr'), expected_deviation=('jaeger', 'mdr'),\n"
+        "            deviation_reason={'jaeger': 'exact only at  constant a*'})\n"
+        "def run(model):\n"
+        "    return CASE.result(0.0 if model == 'mmd' else 0.25, model=model, message='W = 1.3')\n"
+    )
+    report = validate(tmp_path / "out", cases_dir=cases, progress=False)
+    assert report.get("dev[jaeger]").deviation_reason == "exact only at constant a*"
+    assert report.get("dev[mmd]").deviation_reason == ""
+    data = json.loads((tmp_path / "out" / "results.json").read_text())
+    rows = {c["name"]: c for c in data["cases"]}
+    assert rows["dev[jaeger]"]["deviation_reason"] == "exact only at constant a*"
+    assert rows["dev[mmd]"]["deviation_reason"] == ""
+    assert data["expected_deviations"] == [
+        {"name": "dev[jaeger]", "reason": "exact only at constant a*"},
+        {"name": "dev[mdr]", "reason": "no reason declared by the case"}]
+    page = (tmp_path / "out" / "index.html").read_text()
+    assert "Not exact by design:</b> exact only at constant a*<br>W = 1.3" in page
+    assert "Not exact by design:</b> no reason declared by the case" in page
+    assert page.count("Not exact by design") == 2
+
+
+def test_every_shipped_expected_deviation_declares_its_reason():
+    """No shipped case marks a model as deviating by design without saying why."""
+    declared = 0
+    for lc in load_cases():
+        case = lc.case
+        if case.expected_deviation is False:
+            continue
+        models = case.models if case.models else (None,)
+        for model in models:
+            if case.deviation_expected(model):
+                declared += 1
+                assert len(case.reason_for(model)) > 20, (case.name, model)
+    assert declared >= 7
+
+
+def test_steady_message_states_the_judged_quantity_first():
+    """The message of steady_vs_full_inertia leads with the value it is judged on.
+
+    The worst relative error over all cells can sit in a cell inside the absolute bound (a tiny
+    creep speed); it must not read as the judged value.
+    """
+    from sawdrift.validation.cases import g9c_steady_vs_full_inertia as steady
+
+    def row(key, ref, got):
+        err = abs(got - ref)
+        return {"key": key, "kind": "creep", "reference": ref, "default": got, "abs_error": err,
+                "rel_error": err / abs(ref), "within": err <= max(1e-3 * abs(ref), 2e-5),
+                "same_regime": True, "regime": "creep", "regime_ref": "creep"}
+
+    rows = [row("jaeger/m10000", -1.47406e-6, -6.0865e-6), row("mmd/m30", 0.2, 0.2000424)]
+    msg = steady.judged_message(rows)
+    assert msg.startswith("worst relative error among the cells outside the 2e-5 absolute bound "
+                          "2.12e-04 at mmd/m30")
+    assert msg.index("2.12e-04") < msg.index("3.13e+00")
+    assert "(not judged: within the absolute bound) 3.13e+00 at jaeger/m10000" in msg
+    inside = steady.judged_message(rows[:1])
+    assert inside.startswith("every cell within the 2e-5 absolute bound (judged relative error 0)")
+
+
 def test_skipped_case_is_counted_and_listed_neither_pass_nor_fail(tmp_path, monkeypatch):
     """A case that cannot run here (Case.skip) is 'skipped' with its reason: not a pass, not a failure.
 

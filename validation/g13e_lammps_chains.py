@@ -37,6 +37,11 @@ CASE = Case(
     tolerance=1.0,
     quick=False,
     expected_deviation=True,
+    deviation_reason=(
+        "the documented limit (docs/lammps.md): at e = 0.9 the first impact knocks a small bead "
+        "behind a large one into a second steady state and no chain forms in LAMMPS; LAMMPS "
+        "contacts carry force in impacts, not the steady push the slow model assumes"
+    ),
 )
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "mixture.toml"

@@ -1,4 +1,4 @@
-"""DMT and JKR against their closed forms on the 10 um silica sphere of the example (SI).
+"""DMT and JKR against their closed forms on the silica sphere of the example (R = 5 um, SI).
 
 JKR (Johnson, Kendall and Roberts 1971): pull-off 1.5 pi R w, zero-load contact radius
 (9 pi w R^2 / (2 E*))^(1/3), the loading curve F(c), d(c) through its tensile branch; DMT
@@ -24,7 +24,8 @@ CASE = Case(
     name="adhesion_closed_forms",
     group="adhesion",
     title="JKR pull-off 1.5 pi R w, DMT pull-off 2 pi R w, JKR zero-load contact radius and "
-    "quasi-static JKR loading curve against their closed forms (10 um silica, w = 0.05 J/m^2)",
+    "quasi-static JKR loading curve against their closed forms (silica sphere of radius 5 um, "
+    "10 um diameter; w = 0.05 J/m^2)",
     tolerance=1e-8,
     quick=True,
 )

@@ -1,6 +1,7 @@
 """LAMMPS pair granular jkr with tangential mindlin_rescale/force against the native adhesive DEM.
 
-The 10 um silica sphere of examples/micro_silica_on_linbo3.toml (JKR, w = 0.05 J/m^2, 20 MHz) in
+The silica sphere of examples/micro_silica_on_linbo3.toml (radius 5 um, 10 um diameter; JKR,
+w = 0.05 J/m^2, 20 MHz) in
 the wall frame of :mod:`sawdrift.lammps.adhesion` (a still zplane wall, the wall's inertial force
 on the particle) against ``hertz_mindlin_dem`` with the JKR contact broken at the pull-off
 overlap, as LAMMPS breaks it; 60-period fixed runs. Values: the relative difference of the drift

@@ -19,6 +19,13 @@ CASE = Case(
     tolerance=1e-9,
     model_tolerance={"mdr": 1e-3},
     expected_deviation=("jaeger",),
+    deviation_reason={
+        "jaeger": (
+            "jaeger keeps its profile attached to the moving contact edge, so oblique "
+            "loading from zero gives N*(a*) - N*((1 - lambda) a*), not lambda N*(a*): it is exact "
+            "only at constant a*"
+        ),
+    },
     models=COMPLIANT_MODELS,
     quick=True,
 )

@@ -50,6 +50,26 @@ def value_column(table: pd.DataFrame) -> str:
     return "drift_ratio"
 
 
+def _prefixed(column: str) -> str | None:
+    """The SI unit a column's ticks or printed values carry with a prefix (5 MHz, -50 mm/s),
+    or None where they are bare numbers (a normalized column, an angle in rad)."""
+    unit = column_unit(column)
+    return unit if unit and unit != "rad" else None
+
+
+def axis_label(column: str) -> str:
+    """The label of an axis whose ticks are written by :func:`_prefixed`'s rule.
+
+    Ticks that carry a prefixed unit (``8 MHz``, ``-50 mm/s``) make a unit in the label wrong
+    (``(Hz)`` over ``8 MHz``): the label is then the bare name (``device.frequency``,
+    ``drift speed``); a column whose ticks are bare numbers keeps :func:`column_label`.
+    """
+    label = column_label(column)
+    unit = _prefixed(column)
+    suffix = f" ({unit})"
+    return label[: -len(suffix)] if unit and label.endswith(suffix) else label
+
+
 def _unsettled(sub: pd.DataFrame) -> np.ndarray:
     if "settled" not in sub.columns:
         return np.zeros(len(sub), dtype=bool)
@@ -116,12 +136,13 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
         ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
     # SI ticks with prefixes: 5 MHz, -120 um/s (not 5e6, -0.00012)
     for axis, column in ((ax.xaxis, field), (ax.yaxis, value)):
-        unit = column_unit(column)
-        if unit and unit != "rad":
+        unit = _prefixed(column)
+        if unit:
             axis.set_major_formatter(EngFormatter(unit=unit, sep=" "))
     ax.axhline(0.0, color="0.8", lw=0.8, zorder=0)
-    ax.set_xlabel(column_label(field))
-    ax.set_ylabel(column_label(value) if column_unit(value) else _normalized_label(value))
+    # the unit is on every tick (5 MHz, -50 mm/s), so the labels name the quantity only
+    ax.set_xlabel(axis_label(field))
+    ax.set_ylabel(axis_label(value) if column_unit(value) else _normalized_label(value))
     notes = [f"open: not settled ({loose} of {total})" if loose else "",
              f"{failed} failed (not drawn)" if failed else "",
              f"{none} without a drift (runaway or ejected, not drawn)" if none else "",
@@ -172,10 +193,12 @@ def _legend(fig, ax, used: set[str], loose: bool, models: bool, colours: dict[st
 def line_rows(table: pd.DataFrame, field: str, value: str | None = None) -> list[str]:
     """The points of a one-dimensional table as text: field, value, regime (per model)."""
     value = value or value_column(table)
-    head_x, head_v = column_label(field), column_label(value)
+    # the swept values are written with their prefixed unit (5 MHz): the header names the field
+    # only; the value column is printed as a bare number in its SI unit, which the header names
+    head_x, head_v = axis_label(field), column_label(value)
     width = max(len(head_x), 14)
-    unit = column_unit(field)
-    fmt = EngFormatter(unit=unit, sep=" ") if unit and unit != "rad" else None
+    unit = _prefixed(field)
+    fmt = EngFormatter(unit=unit, sep=" ") if unit else None
     lines = [f"{'model':>20} {head_x:>{width}} {head_v:>18}  regime"]
     ordered = table.sort_values(["model", field])
     for data, err in zip(ordered.to_dict(orient="records"), drift_errors(ordered, value),

@@ -98,6 +98,9 @@ class CaseResult:
         the harness).
     expected_deviation
         True if the model is marked as not exact by design for this case.
+    deviation_reason
+        Why the model is not exact by design (one line, from :attr:`Case.deviation_reason`);
+        empty if no deviation is expected.
     seconds
         Wall time of the case.
     figure_file
@@ -120,6 +123,7 @@ class CaseResult:
     model: str | None = None
     status: Status | Literal[""] = ""
     expected_deviation: bool = False
+    deviation_reason: str = ""
     seconds: float = 0.0
     figure_file: str | None = None
     skip_reason: str | None = None
@@ -145,6 +149,7 @@ class CaseResult:
             "status": self.status,
             "passed": self.passed,
             "expected_deviation": self.expected_deviation,
+            "deviation_reason": self.deviation_reason if self.expected_deviation else "",
             "value": _finite(self.value),
             "compare": self.compare,
             "tolerance": _finite(self.tolerance),
@@ -179,6 +184,9 @@ class Case:
     expected_deviation
         True, or the model names, for which the fact does not hold by design: a miss is reported
         as an expected deviation with its value, not as a failure.
+    deviation_reason
+        Why the fact does not hold by design, in one line: one text for every deviating model,
+        or a mapping model name -> text. Shown with each expected deviation in the report.
     compare
         ``"<="``: pass if value <= tolerance; ``">="``: pass if value >= tolerance.
     """
@@ -191,6 +199,7 @@ class Case:
     models: tuple[str, ...] = ()
     model_tolerance: Mapping[str, float] = field(default_factory=dict)
     expected_deviation: bool | tuple[str, ...] = False
+    deviation_reason: str | Mapping[str, str] = ""
     compare: Compare = "<="
 
     def tolerance_for(self, model: str | None) -> float:
@@ -204,6 +213,15 @@ class Case:
         if isinstance(self.expected_deviation, bool):
             return self.expected_deviation
         return model is not None and model in self.expected_deviation
+
+    def reason_for(self, model: str | None) -> str:
+        """The one-line reason why ``model`` deviates by design ("" if none is expected or given)."""
+        if not self.deviation_expected(model):
+            return ""
+        reason = self.deviation_reason
+        if not isinstance(reason, str):
+            reason = reason.get(model, "") if model is not None else ""
+        return " ".join(reason.split())
 
     def within(self, value: float, model: str | None = None) -> bool:
         """True if ``value`` satisfies the tolerance for ``model`` (NaN never does)."""
@@ -258,6 +276,7 @@ class Case:
             figure=figure,
             compare=self.compare,
             details=dict(details or {}),
+            deviation_reason=self.reason_for(model),
         )
 
 

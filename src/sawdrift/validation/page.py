@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from ..report.texts import asset
-from .api import GROUPS, MU, NU, ValidationReport, _environment, _fmt, _one_line
+from .api import GROUPS, MU, NU, CaseResult, ValidationReport, _environment, _fmt, _one_line
 
 # -- report writers ----------------------------------------------------------------------------
 
@@ -59,6 +59,8 @@ def write_json(report: ValidationReport, path: Path) -> None:
             "total": len(report.results),
         },
         "skipped": [{"name": r.name, "reason": r.skip_reason} for r in report.skipped],
+        "expected_deviations": [{"name": r.name, "reason": _deviation_reason(r)}
+                                for r in report.results if r.status == "expected deviation"],
         "quick": report.quick,
         "seconds": round(report.seconds, 3),
         "environment": _environment(),
@@ -69,6 +71,20 @@ def write_json(report: ValidationReport, path: Path) -> None:
 
 
 _SYMBOL = {"<=": "&le;", ">=": "&ge;"}
+
+
+def _deviation_reason(res: CaseResult) -> str:
+    """The declared reason of an expected deviation, or a note that the case gives none."""
+    return res.deviation_reason or "no reason declared by the case"
+
+
+def _message_cell(res: CaseResult) -> str:
+    """The message cell of a row: an expected deviation states its reason before the numbers."""
+    text = html.escape(res.message)
+    if res.status != "expected deviation":
+        return text
+    return (f"<b>Not exact by design:</b> {html.escape(_deviation_reason(res))}"
+            + (f"<br>{text}" if text else ""))
 
 #: the skipped label's style (the page's stylesheet has the other statuses)
 _SKIP_CSS = ".st-skip{background:#bdbdbd;color:#222}.skips{font-size:13px;color:#444}"
@@ -118,7 +134,7 @@ def write_html(report: ValidationReport, path: Path) -> None:
                 f"<td><span class='st {cls}'>{label}</span></td>"
                 f"<td class='num'>{esc(_fmt(r.value))}</td>"
                 f"<td class='num'>{_SYMBOL[r.compare]} {esc(_fmt(r.tolerance))}</td>"
-                f"<td>{esc(r.message)}</td><td class='num'>{r.seconds:.2f}</td></tr>"
+                f"<td>{_message_cell(r)}</td><td class='num'>{r.seconds:.2f}</td></tr>"
             )
         parts.append("</table>")
         figs = [r for r in rows if isinstance(r.figure, bytes)]
@@ -128,7 +144,9 @@ def write_html(report: ValidationReport, path: Path) -> None:
                 b64 = base64.b64encode(r.figure).decode("ascii")
                 parts.append(
                     f"<figure><img alt='{esc(r.name)}' src='data:image/png;base64,{b64}'>"
-                    f"<figcaption><b>{esc(r.name)}</b>: {esc(r.status)}</figcaption></figure>"
+                    f"<figcaption><b>{esc(r.name)}</b>: {esc(r.status)}"
+                    + (f" ({esc(_deviation_reason(r))})" if r.status == "expected deviation" else "")
+                    + "</figcaption></figure>"
                 )
             parts.append("</div>")
     parts.append("</body></html>")
