@@ -355,3 +355,14 @@ def test_cli_refuses_a_unitless_amplitude_at_once(tmp_path, sawdrift_main):
         assert len(lines) == 1 and "device.amplitude = 10 is outside" in lines[0]
         assert "a bare number is in m" in lines[0]
         assert "Traceback" not in out.stderr and out.stdout == ""
+
+
+def test_an_ejected_device_run_heads_its_text_with_why_it_has_no_speed(sawdrift_main):
+    # a device run's text opens with its drift speed; an ejected one opened with nothing, and
+    # gave its detach time in periods only
+    out = sawdrift_main("run", str(EXAMPLES / "micro_silica_on_linbo3.toml"), "--set",
+                        'device.amplitude="0.2 nm"')
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    assert lines[0].startswith("no drift speed: no steady state, out of contact since t* = ")
+    assert any(line.split()[:1] == ["detach_time_s"] and line.endswith(" s") for line in lines)

@@ -113,6 +113,8 @@ def test_a_thrown_off_micro_particle_is_ejected_without_a_speed():
     # detached during the 5-period ramp, at a phase in [0, 1)
     assert 0.0 < res.detach_time < res.ramp_periods and 0.0 <= res.detach_phase < 1.0
     assert any("a0 < 1 nm" in w for w in res.warnings)
+    # and when, in seconds: t* counts wave periods, 1 / (20 MHz) each (it was in periods only)
+    assert res.extra["detach_time_s"] == pytest.approx(res.detach_time / 20e6, rel=1e-12)
 
 
 def test_a_point_thrown_into_long_flights_bounces_and_is_not_ejected():

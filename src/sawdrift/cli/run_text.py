@@ -17,7 +17,7 @@ from typing import Any
 GROUPS: dict[str, tuple[str, ...]] = {
     "regime": ("regime", "direction", "hop_period", "liftoffs_per_hop", "liftoff_phases",
                "orbit_period", "chaotic", "contact_lost", "mean_acceleration", "detach_time",
-               "detach_phase", "warnings"),
+               "detach_time_s", "detach_phase", "warnings"),
     "drift": ("drift_speed_m_s", "drift_velocity", "drift_ratio", "drift_ratio_se", "t90_s",
               "load_n", "power_w", "rebound_ratio", "contact_duration", "max_compression", "dissipated_work"),
     "settled": ("settled", "settle_method", "settle_periods", "t90_periods", "horizontal_inertia"),
@@ -34,7 +34,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
 DRIFTS = ("drift_speed_m_s", "drift_velocity", "drift_ratio")
 
 #: units of fields that have them
-UNITS = {"drift_speed_m_s": "m/s", "t90_s": "s", "load_n": "N", "power_w": "W",
+UNITS = {"drift_speed_m_s": "m/s", "t90_s": "s", "detach_time_s": "s", "load_n": "N", "power_w": "W",
          "wall_time_s": "s", "compile_s": "s", "drift_velocity": "a0 f"}
 
 #: rows of the side-by-side table of several models
@@ -131,6 +131,8 @@ def grouped(summary: dict[str, Any]) -> list[str]:
         if summary.get("settled") is False:
             head += f" ({unsettled_text(summary)})"
         lines.append(head)
+    elif "drift_speed_m_s" in summary and summary.get("regime") in ("runaway", "ejected"):
+        lines.append(unsettled_text(summary, "no drift speed"))  # a device run without one
     placed: dict[str, list[str]] = {group: [] for group in GROUPS}
     home = {key: group for group, keys in GROUPS.items() for key in keys}
     for key in flat:

@@ -94,7 +94,8 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     if not settled and not ending and out.long_mean is None and scene.numerics.settle is not False:
         warnings += (_unsettled_reason(out, scene.numerics.settle is True),)
     if scene.device is not None:
-        extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None))
+        extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None,
+                                    detach))
     k_per = stepper.k_per
     steps = max(stepper.step, out.steps)  # a long-time mean's twin ran on after the window
     return Result(

@@ -417,12 +417,13 @@ SHAPE_EXPONENT = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}
 
 
 def device_outputs(device: Device, drift_velocity: float, regime: str,
-                   t90_periods: float | None) -> dict[str, Any]:
-    """Physical outputs of a run of a device scene (see ``sawdrift run device.toml --json``)."""
+                   t90_periods: float | None, detach_time: float = math.nan) -> dict[str, Any]:
+    """Physical outputs of a run of a device scene (``sawdrift run device.toml --json``): the
+    drift speed, t90 and an ejection's detach time (t* in periods) in s, a load's power."""
     norm = normalized(device)
     speed = drift_velocity * norm["a0_m"] * norm["frequency_hz"]
-    moving = (regime not in ("stick", "oscillating_slip", "runaway", "ejected")
-              and math.isfinite(speed) and speed != 0.0)
+    still = regime in ("stick", "oscillating_slip", "runaway", "ejected")
+    moving = not still and math.isfinite(speed) and speed != 0.0
     out = {
         "normalized": {k: norm[k] for k in ("m_star", "amplitude", "theta", "horizontal_ratio", "a0_m")},
         "drift_speed_m_s": speed,
@@ -430,6 +431,7 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
         "t90_s": (t90_periods / norm["frequency_hz"]
                   if t90_periods is not None and math.isfinite(t90_periods) else None),
     }
+    out["detach_time_s"] = detach_time / norm["frequency_hz"] if math.isfinite(detach_time) else None
     if norm["load_n"] != 0.0:
         # the tangential load (device.load and the slope's pull) and the power the particle
         # delivers against it, -F v (positive while it advances against the load)
