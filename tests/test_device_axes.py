@@ -266,3 +266,25 @@ def test_a_long_time_mean_gets_its_error_in_the_line_plot_and_its_rows(tmp_path)
     assert np.allclose(segment[:, 1], [-0.0085 - 0.092, -0.0085 + 0.092])
     assert "bars: long-time mean" in ax.get_title()
     close(grabbed["fig"])
+
+
+def test_a_device_swept_over_two_fields_prints_its_points_in_si(sawdrift_main, tmp_path):
+    """Two device axes: the sweep printed no table and drew no line, so the SI units were lost
+    from its output. Each cell's line holds both fields with their units and the speed in m/s,
+    which is the drift velocity times a0 f of that cell."""
+    import pandas as pd
+
+    table = tmp_path / "two.parquet"
+    out = sawdrift_main("sweep", str(MOTOR), "--axis", "device.frequency=5 MHz,10 MHz",
+                        "--axis", "device.amplitude=10 nm,20 nm", "-o", str(table))
+    assert out.returncode == 0, out.stderr
+    rows = [line for line in out.stdout.splitlines() if " MHz " in line and " nm " in line]
+    assert len(rows) == 4
+    frame = pd.read_parquet(table)
+    for line in rows:
+        amp, freq = line.split()[1:3], line.split()[3:5]
+        speed = float(line.split()[5])
+        cell = frame[np.isclose(frame["device.amplitude"], float(amp[0]) * 1e-9, rtol=1e-9, atol=0)
+                     & np.isclose(frame["device.frequency"], float(freq[0]) * 1e6, rtol=1e-9, atol=0)]
+        assert len(cell) == 1
+        assert speed == pytest.approx(float(cell["drift_speed_m_s"].iloc[0]), rel=1e-5)

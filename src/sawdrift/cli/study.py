@@ -247,9 +247,15 @@ def _line_plot(frame: Any, out: Path) -> Path | None:
     """A sweep over one field: print its points and draw them beside the table (TABLE.png)."""
     from ..report.diagrams import COLOURS
     from ..report.line_plot import line_rows, plot_line, swept_field
+    from ..study.export import dimensions
 
     field = swept_field(frame)
     if field is None:
+        # a device swept over several fields: its points in SI units (no line to draw)
+        dims = [d for d in dimensions(frame) if d.startswith("device.")]
+        if len(dims) > 1 and "drift_speed_m_s" in frame.columns:
+            for text in line_rows(frame, dims):
+                typer.echo(text)
         return None
     for text in line_rows(frame, field):
         typer.echo(text)

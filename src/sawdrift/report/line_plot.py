@@ -190,17 +190,21 @@ def _legend(fig, ax, used: set[str], loose: bool, models: bool, colours: dict[st
         ax.legend(loc="best", fontsize=8, frameon=False)
 
 
-def line_rows(table: pd.DataFrame, field: str, value: str | None = None) -> list[str]:
-    """The points of a one-dimensional table as text: field, value, regime (per model)."""
+def line_rows(table: pd.DataFrame, field: str | list[str],
+              value: str | None = None) -> list[str]:
+    """The points of a table as text: its swept field(s), value, regime (per model). A device
+    table swept over several fields is printed so too, in SI units (its regime maps are drawn
+    over m* and A*)."""
+    fields = [field] if isinstance(field, str) else list(field)
     value = value or value_column(table)
     # the swept values are written with their prefixed unit (5 MHz): the header names the field
     # only; the value column is printed as a bare number in its SI unit, which the header names
-    head_x, head_v = axis_label(field), column_label(value)
-    width = max(len(head_x), 14)
-    unit = _prefixed(field)
-    fmt = EngFormatter(unit=unit, sep=" ") if unit else None
-    lines = [f"{'model':>20} {head_x:>{width}} {head_v:>18}  regime"]
-    ordered = table.sort_values(["model", field])
+    heads = [axis_label(f) for f in fields]
+    widths = [max(len(h), 14) for h in heads]
+    fmts = [EngFormatter(unit=u, sep=" ") if (u := _prefixed(f)) else None for f in fields]
+    lines = [f"{'model':>20} " + " ".join(f"{h:>{w}}" for h, w in zip(heads, widths, strict=True))
+             + f" {column_label(value):>18}  regime"]
+    ordered = table.sort_values(["model", *fields])
     for data, err in zip(ordered.to_dict(orient="records"), drift_errors(ordered, value),
                          strict=True):
         v = pd.to_numeric(pd.Series([data.get(value)]), errors="coerce").iloc[0]
@@ -208,6 +212,7 @@ def line_rows(table: pd.DataFrame, field: str, value: str | None = None) -> list
         mark = " (not settled)" if data.get("settled") is False or data.get("settled") == 0 else ""
         if np.isfinite(err):  # a long-time mean: drift +- its standard error
             mark = f" (long-time mean +- {err:.2g})"
-        where = fmt(data[field]) if fmt is not None else f"{data[field]:.6g}"
-        lines.append(f"{data['model']:>20} {where:>{width}} {shown}  {data['regime']}{mark}")
+        where = " ".join(f"{fmt(data[f]) if fmt is not None else f'{data[f]:.6g}':>{w}}"
+                         for f, fmt, w in zip(fields, fmts, widths, strict=True))
+        lines.append(f"{data['model']:>20} {where} {shown}  {data['regime']}{mark}")
     return lines
