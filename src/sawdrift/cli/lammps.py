@@ -16,6 +16,7 @@ import sawdrift as sd
 
 from .._startup import fast_start
 from .app import Param, _fail, _parse_param, _writable, app
+from .run_text import grouped
 from .scene_options import _SET, apply_options, with_scene_options
 
 #: the keyword that carries the ``--set particles.FIELD=VALUE`` items to a command (hidden from
@@ -216,8 +217,6 @@ def _num(value: Any, spec: str = ".6g") -> str:
 
 def _single_lines(summary: dict[str, Any]) -> list[str]:
     """The text report of one particle: ``run``'s groups, then the comparison with --compare."""
-    from .run_text import grouped
-
     lines = grouped({k: v for k, v in summary.items() if k != "native"})
     native = summary.get("native")
     if native is None:
