@@ -76,16 +76,22 @@ def test_oracles_catch_a_flipped_friction_sign(tmp_path, flipped_model):
     assert "FAIL" in (tmp_path / "index.html").read_text()
 
 
-def test_missing_model_and_broken_case_file_are_errors_not_crashes(tmp_path):
+def _cases(tmp_path, **sources: str):
+    """A folder of case files ``NAME.py`` with the given sources."""
     cases = tmp_path / "cases"
     cases.mkdir()
-    (cases / "good.py").write_text(
+    for name, source in sources.items():
+        (cases / f"{name}.py").write_text(source)
+    return cases
+
+
+def test_missing_model_and_broken_case_file_are_errors_not_crashes(tmp_path):
+    cases = _cases(tmp_path, good=(
         "from sawdrift.validation import Case\n"
         "CASE = Case(name='good', group='convergence', title='1 <= 2', tolerance=2.0, quick=True,\n"
         "            models=('mmd', 'no_such_model'))\n"
         "def run(model):\n"
-        "    return CASE.result(1.0, model=model, message='ok')\n"
-    )
+        "    return CASE.result(1.0, model=model, message='ok')\n"))
     (cases / "raises.py").write_text(
         "from sawdrift.validation import Case\n"
         "CASE = Case(name='raises', group='convergence', title='raises', tolerance=0.0, quick=True)\n"
@@ -127,16 +133,13 @@ def test_expected_deviation_is_reported_not_failed(tmp_path):
 
 def test_expected_deviation_states_its_declared_reason(tmp_path):
     """Each expected deviation carries the case's one-line reason into the page and results.json."""
-    cases = tmp_path / "cases"
-    cases.mkdir()
-    (cases / "dev.py").write_text(
+    cases = _cases(tmp_path, dev=(
         "from sawdrift.validation import Case\n"
         "CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9,\n"
         "            models=('mmd', 'jaeger', 'mdr'), expected_deviation=('jaeger', 'mdr'),\n"
         "            deviation_reason={'jaeger': 'exact only at  constant a*'})\n"
         "def run(model):\n"
-        "    return CASE.result(0.0 if model == 'mmd' else 0.25, model=model, message='W = 1.3')\n"
-    )
+        "    return CASE.result(0.0 if model == 'mmd' else 0.25, model=model, message='W = 1.3')\n"))
     report = validate(tmp_path / "out", cases_dir=cases, progress=False)
     assert report.get("dev[jaeger]").deviation_reason == "exact only at constant a*"
     assert report.get("dev[mmd]").deviation_reason == ""
