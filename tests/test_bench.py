@@ -127,3 +127,30 @@ def test_speed_quick_reports_every_target(tmp_path, capsys):
     details = result["targets"]["vs_mdr"]["details"]
     assert math.isfinite(details["mdr_max_error"]) and details["mmd_max_error"] < 1e-10
     assert json.loads(path.read_text())["targets"].keys() == names
+
+
+def test_every_benchmark_script_answers_help_without_running():
+    """``python benchmarks/X.py --help`` prints its usage and runs nothing: four scripts took no
+    options, so --help started them (a 25921-cell sweep; bench_bifurcation rewrote its stored
+    results)."""
+    import subprocess
+    import sys
+    from concurrent.futures import ThreadPoolExecutor
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1] / "benchmarks"
+    scripts = sorted(p for p in root.glob("*.py") if "__main__" in p.read_text())
+    results = root / "results"
+    before = {p: p.stat().st_mtime_ns for p in results.iterdir()}
+
+    def helped(script: Path) -> subprocess.CompletedProcess:
+        return subprocess.run([sys.executable, str(script), "--help"], capture_output=True,
+                              text=True, timeout=120, cwd=root.parent)
+
+    with ThreadPoolExecutor(4) as pool:
+        done = dict(zip(scripts, pool.map(helped, scripts), strict=True))
+    assert len(scripts) >= 15
+    for script, proc in done.items():
+        assert proc.returncode == 0 and proc.stdout.startswith("usage:"), (script.name,
+                                                                           proc.stderr[-300:])
+    assert {p: p.stat().st_mtime_ns for p in results.iterdir()} == before
