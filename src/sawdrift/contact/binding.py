@@ -109,6 +109,9 @@ def bind(scene: Scene, source: str | None = None) -> Scene:
         does not take or a value outside its range, ``scene: model ... `` for something the
         model cannot do.
     """
+    if not isinstance(scene, Scene):
+        raise SceneError(f"scene must be a sawdrift.Scene, not a {type(scene).__name__}: "
+                         "Scene(**fields), Scene.model_validate(a dict) or Scene.from_toml(path)")
     _, params = _checked(scene, source)
     filled = params.model_dump()
     if filled == scene.model_params:

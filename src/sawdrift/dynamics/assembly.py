@@ -13,7 +13,7 @@ from typing import Literal
 
 from ..contact.adhesion import adhesive_stiffness
 from ..contact.base import ContactModel
-from ..contact.binding import describe_body, model_for
+from ..contact.binding import bind, describe_body, model_for
 from ..contact.registry import get_model
 from ..errors import SceneError
 from ..scene.device import explain_device
@@ -385,6 +385,7 @@ def _restitution(scene: Scene, model: ContactModel,
 
 def explain(scene: Scene, engine: Engine = "compiled") -> str:
     """A readable description of the system :func:`run` assembles for ``scene``."""
+    scene = bind(scene)  # checked as a run checks it (one line)
     plan = assemble(scene, engine)
     lines = [f"model {scene.model!r} ({describe_body(scene)}), scheme {plan.scheme}, engine {plan.engine}",
              "equations:"]

@@ -9,6 +9,7 @@ the :class:`~sawdrift.result.Result`.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import replace
 
 from .._texts import HEATING, STILL_MOVING
@@ -20,6 +21,7 @@ from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
 from ..dynamics.steady import runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
+from ..errors import SceneError
 from ..scene.device import device_outputs, device_warnings
 from ..scene.schema import Scene
 from .regimes import classify, outcome
@@ -48,6 +50,10 @@ def run(
     record_every
         Record the trajectory every this many steps (default: about 200 samples per period).
     """
+    if record_every is not None and not (isinstance(record_every, numbers.Integral)
+                                         and record_every >= 1):
+        raise SceneError(f"record_every = {record_every!r} must be a whole number of steps >= 1 "
+                         "(or None: about 200 samples a period)")
     scene = bind(scene)
     model = model_for(scene)
     plan = assemble(scene, engine, model)

@@ -17,7 +17,9 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import os
 import sys
+import tempfile
 from collections.abc import Callable, Iterable, Sequence
 from functools import partial
 from pathlib import Path
@@ -269,7 +271,8 @@ def sweep(
     extra_axes = {field: parse_values(spec, field) for field, spec in (axes or {}).items()}
     m_values = None if m_star is None else parse_axis(m_star, "m_star")
     a_values = None if amplitude is None else parse_axis(amplitude, "amplitude")
-    path = Path(table) if table is not None else None
+    path = _table_path(table)
+    points = _points(points)
     done = read_rows(path) if path is not None else {}
     if traces and path is None:
         raise SceneError("traces are stored next to a table: give table= (--out)")
@@ -373,6 +376,41 @@ def sweep(
     if path is not None:
         _write_back(frame, path, done, rows, wanted, swept_from, traces)
     return frame
+
+
+def _table_path(table: str | Path | None) -> Path | None:
+    """The Parquet table's path, or one line (SceneError) for a name that is not ``.parquet``
+    (a ``.csv`` got Parquet bytes) or a folder that cannot hold it (the error came from the
+    journal's first write, as a FileNotFoundError)."""
+    if table is None:
+        return None
+    path = Path(table)
+    if path.suffix.lower() != ".parquet":
+        raise SceneError(f"table = {str(path)!r}: a sweep table is Parquet; give a name ending "
+                         "in .parquet (sawdrift export turns it into NetCDF or CSV)")
+    try:  # the folder made and a file written in it, before any cell runs
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=path.parent, prefix=".sawdrift-probe-")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        raise SceneError(f"table = {str(path)!r} cannot be written ({exc.strerror or exc})"
+                         ) from None
+    return path
+
+
+def _points(points: Sequence[Sequence[float]] | None) -> list[tuple[float, float]] | None:
+    """``points`` as (m*, A*) pairs of positive numbers, or one line (SceneError)."""
+    if points is None:
+        return None
+    out = []
+    for point in points:
+        try:
+            m, a = (float(v) for v in point)
+        except (TypeError, ValueError):
+            raise SceneError(f"points: {point!r} is not an (m*, A*) pair of numbers") from None
+        out.append((m, a))
+    return out
 
 
 def _write_back(frame: pd.DataFrame, path: Path, done: dict[str, dict[str, Any]],
