@@ -208,7 +208,7 @@ def test_thin_islands_and_bands_between_the_base_points_are_found(cell):
                         ("hopping", 0.0, band_y, 10.0, 0.035)])
     uniform = _uniform(regime_of)
     assert (uniform["regime"] == "drift_against").sum() >= 4
-    pts = adaptive_sweep("stand-in", M, A, budget=int(0.15 * N * N), base=21, levels=3,
+    pts = adaptive_sweep("mmd", M, A, budget=int(0.15 * N * N), base=21, levels=3,
                          regime_of=regime_of)
     computed = pts[~pts["inferred"]]
     assert {"drift_against", "hopping"} <= set(computed["regime"])
@@ -228,9 +228,9 @@ def test_sampled_inferred_points_are_checked_and_a_wrong_guess_is_refined():
     uniform = _uniform(regime_of, 33, m, a)
     assert (uniform["regime"] == "drift_against").sum() == 1
     kw = dict(budget=600, base=9, levels=2, regime_of=regime_of)
-    blind = adaptive_sweep("stand-in", m, a, verify=0.0, **kw)
+    blind = adaptive_sweep("mmd", m, a, verify=0.0, **kw)
     assert misclassified_area(blind, uniform) == pytest.approx(1 / 33**2)
-    checked = adaptive_sweep("stand-in", m, a, **kw)
+    checked = adaptive_sweep("mmd", m, a, **kw)
     assert checked.attrs["wrong_guesses"] >= 1
     assert misclassified_area(checked, uniform) == 0.0
 
@@ -288,3 +288,41 @@ def test_interrupted_adaptive_sweep_says_so_and_resumes(tmp_path, monkeypatch):
     resumed = run_main(*args, check=True)
     assert "already in the table;" in resumed.stdout
     assert ": 25 in this run" not in resumed.stdout
+
+
+# -- bad arguments: one plain SceneError line naming the argument --------------------------------
+
+
+def _stick(m: float, a: float) -> str:
+    """A fake classifier: nothing runs."""
+    return "stick"
+
+
+@pytest.mark.parametrize("m_range", [(0, 1e2), (-1, 1e2), (1, 1), (1e2, 1e-3), (1, math.inf)])
+def test_a_bad_m_range_is_one_plain_line(m_range):
+    """Zero or negative ends used to raise a bare 'math domain error'; an empty range (1, 1) made
+    999 cells at m* = 1 and a reversed one was silently accepted."""
+    with pytest.raises(sd.SceneError, match=r"^adaptive: m_range = .* must be two positive "
+                       r"numbers \(low, high\) with low < high"):
+        adaptive_sweep("mmd", m_range, (1e-2, 10.0), budget=1000, regime_of=_stick)
+
+
+def test_a_bad_a_range_is_one_plain_line():
+    with pytest.raises(sd.SceneError, match=r"^adaptive: a_range = "):
+        adaptive_sweep("mmd", (1e-3, 1e2), (0.0, 10.0), budget=1000, regime_of=_stick)
+
+
+def test_an_unknown_model_is_refused_as_elsewhere_in_the_api():
+    with pytest.raises(sd.ModelNotFoundError) as adaptive:
+        adaptive_sweep("nope", (1e-3, 1e2), (1e-2, 10.0), budget=1000, regime_of=_stick)
+    with pytest.raises(sd.ModelNotFoundError) as sweep:
+        sd.sweep("nope", "0.1", "0.3")
+    assert str(adaptive.value) == str(sweep.value)
+    assert "\n" not in str(adaptive.value)
+
+
+@pytest.mark.parametrize("budget", [0, 2_000_000])
+def test_the_budget_error_names_the_argument_not_the_cli_flag(budget):
+    with pytest.raises(sd.SceneError, match=rf"^adaptive: budget = {budget} ") as err:
+        adaptive_sweep("mmd", (1e-3, 1e2), (1e-2, 10.0), budget=budget, regime_of=_stick)
+    assert "--" not in str(err.value)

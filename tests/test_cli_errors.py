@@ -32,6 +32,7 @@ def files(tmp_path):
 
 
 CORPUS = [
+    "sweep --model mmd --adaptive --m-star lin:0.1:1:5 --amplitude 0.1:1:5 -o {d}/ad.parquet",
     "run --m-star -1",
     "run --m-star abc",
     "run --mu 0",

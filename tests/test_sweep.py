@@ -281,3 +281,22 @@ def test_a_resumed_sweep_says_how_many_of_its_cells_it_still_runs(tmp_path, caps
     sd.sweep("mmd", "0.1:1:3", "0.1:1:2", base=base, table=table, progress=True)
     err = capsys.readouterr().err
     assert "4 of the 6 cells already in t.parquet, 2 to run" in err
+
+
+def test_parse_axis_takes_lin_and_log_ranges_as_the_other_axes_do():
+    """``lin:START:STOP:N`` was refused for m* and A* ("must be START:STOP:N (N log-spaced
+    values)") while ``axes={'material.mu': 'lin:...'}`` took it; its error now lists the forms."""
+    assert parse_axis("lin:0:1:3").tolist() == [0.0, 0.5, 1.0]
+    assert parse_axis("lin:0.1:1:3", "m_star").tolist() == [0.1, 0.55, 1.0]
+    assert np.allclose(parse_axis("log:1:100:3"), [1.0, 10.0, 100.0], rtol=1e-12)
+    with pytest.raises(SceneError, match="> 0 for a log-spaced axis"):
+        parse_axis("log:0:1:3", "m_star")
+    with pytest.raises(SceneError) as info:
+        parse_axis("1:2", "m_star")
+    assert all(form in str(info.value) for form in ("START:STOP:N", "log:START:STOP:N",
+                                                    "lin:START:STOP:N", "a,b,c"))
+    fixed = sd.Scene(numerics={"periods": 2, "settle": False})
+    frame = sd.sweep("mmd", "lin:0.1:1:3", "0.3", base=fixed, progress=False, workers=1)
+    assert sorted(frame["m_star"]) == [0.1, 0.55, 1.0]
+    with pytest.raises(SceneError, match="m_star"):  # the scene refuses m* = 0, in one line
+        sd.sweep("mmd", "lin:0:1:3", "0.3", base=fixed, progress=False, workers=1)

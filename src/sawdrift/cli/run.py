@@ -90,10 +90,13 @@ def check_model_cmd(
 ) -> None:
     """Run the conformance suite on one model; exit status 1 if a check fails.
 
-    Checks, on every declared profile: normalization (N*(1) = 1), passivity (loop work of
-    N* da* + T* db* >= 0 on closed (a*, b*) cycles, both orientations), coulomb_bound,
-    kernel_vs_reference, velocity_independence, split_invariance, contact_loss_reset, replay,
-    normal_slot.
+    Checks, on every profile the model declares:
+
+    - normalization: N*(1) = 1
+    - passivity: loop work of N* da* + T* db* >= 0 on closed cycles, both ways
+    - coulomb_bound, kernel_vs_reference, velocity_independence
+    - split_invariance, contact_loss_reset, replay, normal_slot
+
     A failing check that the model declares is reported as 'declared'.
     """
     fast_start()

@@ -148,6 +148,9 @@ def _adaptive(model: str, base: Any, m_star: str | None, amplitude: str | None, 
     """Run ``sweep --adaptive``: the (m*, A*) ranges and base grid from --m-star/--amplitude."""
     from ..study.estimate import size_check
 
+    if any((spec or "").strip().lower().startswith("lin:") for spec in (m_star, amplitude)):
+        _fail("--adaptive spaces its base grid logarithmically: give --m-star and --amplitude "
+              "as START:STOP:N (or log:START:STOP:N), not lin:")
     m_axis = sd.parse_axis(m_star or "1e-3:1e2:21", "m_star")
     a_axis = sd.parse_axis(amplitude or "1e-2:10:21", "amplitude")
     if m_axis.size != a_axis.size or m_axis.size < 2:

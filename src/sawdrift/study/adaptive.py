@@ -212,7 +212,7 @@ def adaptive_sweep(
     Parameters
     ----------
     m_range, a_range
-        (min, max) of m* and A* (log axes).
+        (low, high) of m* and A* (log axes): two positive numbers, low < high.
     budget
         Largest number of points computed (the base grid counts).
     base, levels
@@ -238,16 +238,8 @@ def adaptive_sweep(
     """
     from .sweep import sweep
 
-    if not 2 <= base <= 401 or not 0 <= levels <= 10:
-        raise SceneError(f"adaptive: base = {base} must be in [2, 401] (points per axis) and "
-                         f"levels = {levels} in [0, 10] (halvings of a cell)")
-    if budget > 1_000_000:
-        raise SceneError(f"--budget = {budget} is more than 1000000 cells; split the study")
-    if budget < base * base:
-        raise SceneError(f"--budget = {budget} must be at least the base grid, {base} x {base} = "
-                         f"{base * base}")
-    if not 0.0 <= verify <= 1.0:
-        raise SceneError(f"adaptive: verify = {verify} must be in [0, 1]")
+    _check_arguments(model, m_range, a_range, budget=budget, base=base, levels=levels,
+                     verify=verify)
     fine = (base - 1) * 2**levels + 1
     lm = np.linspace(math.log10(m_range[0]), math.log10(m_range[1]), fine)
     la = np.linspace(math.log10(a_range[0]), math.log10(a_range[1]), fine)
@@ -297,6 +289,64 @@ def adaptive_sweep(
     if table is not None and regime_of is None:
         frame.attrs.update(table_share(Path(table), model, lm, la, set(out["cell_id"])))
     return frame
+
+
+def _check_arguments(model: str, m_range: Any, a_range: Any, *, budget: int, base: int,
+                     levels: int, verify: float) -> None:
+    """Refuse bad arguments of :func:`adaptive_sweep` before anything runs.
+
+    Parameters
+    ----------
+    model, m_range, a_range, budget, base, levels, verify
+        As for :func:`adaptive_sweep`.
+
+    Raises
+    ------
+    SceneError
+        One line naming the argument and what is allowed.
+    ModelNotFoundError
+        For an unknown model, the message the rest of the API gives.
+    """
+    from ..contact.registry import get_model
+
+    get_model(model)  # the one-line ModelNotFoundError the rest of the API gives
+    _check_range("m_range", m_range)
+    _check_range("a_range", a_range)
+    if not 2 <= base <= 401 or not 0 <= levels <= 10:
+        raise SceneError(f"adaptive: base = {base} must be in [2, 401] (points per axis) and "
+                         f"levels = {levels} in [0, 10] (halvings of a cell)")
+    if budget > 1_000_000:
+        raise SceneError(f"adaptive: budget = {budget} is more than 1000000 cells; split the "
+                         "study")
+    if budget < base * base:
+        raise SceneError(f"adaptive: budget = {budget} must be at least the base grid, {base} x "
+                         f"{base} = {base * base}")
+    if not 0.0 <= verify <= 1.0:
+        raise SceneError(f"adaptive: verify = {verify} must be in [0, 1]")
+
+
+def _check_range(name: str, bounds: Any) -> None:
+    """Refuse a range that is not two finite positive numbers, low < high (a log axis).
+
+    Parameters
+    ----------
+    name
+        The argument's name, said in the error.
+    bounds
+        The ``(low, high)`` given.
+
+    Raises
+    ------
+    SceneError
+        One line naming the argument and what is allowed.
+    """
+    try:
+        low, high = (float(v) for v in bounds)
+    except (TypeError, ValueError):
+        low = high = math.nan
+    if not (math.isfinite(low) and math.isfinite(high) and 0.0 < low < high):
+        raise SceneError(f"adaptive: {name} = {bounds!r} must be two positive numbers (low, high) "
+                         "with low < high (a log axis)")
 
 
 def table_share(table: Path, model: str, lm: np.ndarray, la: np.ndarray,

@@ -135,42 +135,74 @@ def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
     return out
 
 
+#: the forms :func:`parse_axis` accepts, said by its errors
+AXIS_FORMS = ("START:STOP:N or log:START:STOP:N (N log-spaced values, ends > 0), "
+              "lin:START:STOP:N (N evenly spaced values) or a comma list a,b,c")
+
+
 def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
-    """Grid values from ``START:STOP:N`` (N >= 2 log-spaced values, both ends included; N = 1
-    only when START = STOP) or ``a,b,c`` (no empty item).
+    """Grid values of an m* or A* axis.
+
+    ``START:STOP:N`` or ``log:START:STOP:N`` gives N log-spaced values (both ends included and
+    > 0), ``lin:START:STOP:N`` N evenly spaced ones (as an ``--axis`` range does; a value the
+    field does not allow is refused by the scene's validation), ``a,b,c`` its items (no empty
+    one). A range needs N >= 2, or N = 1 when START = STOP.
+
+    Parameters
+    ----------
+    spec
+        The specification, or a sequence of numbers.
+    name
+        The axis's name, said in an error.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values, all finite.
 
     Raises
     ------
     SceneError
-        With one line naming ``name`` when the specification is malformed.
+        With one line naming ``name`` (and the accepted forms) when ``spec`` is malformed.
     """
     if not isinstance(spec, str):
         values = np.asarray(list(spec), dtype=float)
     elif ":" in spec:
-        parts = spec.split(":")
-        if len(parts) != 3:
-            raise SceneError(f"{name} = {spec!r} must be START:STOP:N (N log-spaced values)")
-        try:
-            start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
-        except ValueError:
-            raise SceneError(
-                f"{name} = {spec!r} must be START:STOP:N with numbers START, STOP > 0 and an integer N"
-            ) from None
-        if not (start > 0 and stop > 0 and math.isfinite(start) and math.isfinite(stop)):
-            raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis")
-        if not 1 <= n <= 100_000:
-            raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
-        _two_ends(spec, name, start, stop, n)
-        values = np.geomspace(start, stop, n) if n > 1 else np.array([start])
+        values = _axis_range(spec, name)
     else:
         items = _items(spec, name)
         try:
             values = np.array([float(v) for v in items], dtype=float)
         except ValueError:
-            raise SceneError(f"{name} = {spec!r} must be START:STOP:N or a comma list of numbers") from None
+            raise SceneError(f"{name} = {spec!r} must be {AXIS_FORMS} of numbers") from None
     if values.size == 0 or not np.all(np.isfinite(values)):
         raise SceneError(f"{name} = {spec!r} must hold at least one finite value")
     return values
+
+
+def _axis_range(spec: str, name: str) -> np.ndarray:
+    """The values of a range ``[lin:|log:]START:STOP:N`` of :func:`parse_axis` (no units)."""
+    head, _, rest = spec.partition(":")
+    way = head.strip().lower()
+    parts = rest.split(":") if way in ("lin", "log") else spec.split(":")
+    if len(parts) != 3:
+        raise SceneError(f"{name} = {spec!r} must be {AXIS_FORMS}")
+    try:
+        start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
+    except ValueError:
+        raise SceneError(f"{name} = {spec!r} must be {AXIS_FORMS}, with numbers START, STOP "
+                         "and an integer N") from None
+    if not (math.isfinite(start) and math.isfinite(stop)):
+        raise SceneError(f"{name} = {spec!r}: START and STOP must be finite")
+    if not 1 <= n <= 100_000:
+        raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
+    _two_ends(spec, name, start, stop, n)
+    if way == "lin":
+        return np.array(_tidy(np.linspace(start, stop, n)))
+    if not (start > 0 and stop > 0):
+        raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis "
+                         "(lin:START:STOP:N spaces them evenly)")
+    return np.geomspace(start, stop, n) if n > 1 else np.array([start])
 
 
 #: SI units of the device columns a sweep table adds (:func:`sawdrift.study.sweep.run_cell`)
