@@ -40,14 +40,15 @@ def _end(text: str, spec: str, name: str, kind: str | None) -> tuple[float, bool
         raise SceneError(f"{name} = {spec!r}: {text.strip()!r} {exc}") from None
 
 
-def parse_range(spec: str, name: str = "axis") -> list[float] | None:
+def parse_range(spec: str, name: str = "axis", tidy: bool = True) -> list[float] | None:
     """The values of a range ``[lin:|log:]START:STOP:N``, or None if ``spec`` is not a range.
 
     Without a prefix, and with ``log:``, N log-spaced values (ends included, both > 0); with
     ``lin:`` N evenly spaced ones. On a device field both ends may carry units
     (``2 MHz:30 MHz:15``); the values are then in SI units (Hz, m, N, Pa, kg, rad: what a bare
     number of that field means). A unit on one end only, or two of different dimensions, is one
-    line naming the field.
+    line naming the field. Log-spaced values are rounded to 12 significant digits (a column's
+    name) unless ``tidy`` is false (the m* and A* axes, :func:`parse_axis`, keep them whole).
     """
     if ":" not in spec:
         return None
@@ -77,7 +78,8 @@ def parse_range(spec: str, name: str = "axis") -> list[float] | None:
     if not (start > 0 and stop > 0):
         raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis "
                          "(lin:START:STOP:N spaces them evenly)")
-    return _tidy(np.geomspace(start, stop, n) if n > 1 else np.array([start]))
+    values = np.geomspace(start, stop, n) if n > 1 else np.array([start])
+    return _tidy(values) if tidy else [float(v) for v in values]
 
 
 def _two_ends(spec: str, name: str, start: float, stop: float, n: int) -> None:
@@ -181,28 +183,13 @@ def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
 
 
 def _axis_range(spec: str, name: str) -> np.ndarray:
-    """The values of a range ``[lin:|log:]START:STOP:N`` of :func:`parse_axis` (no units)."""
+    """The values of a range ``[lin:|log:]START:STOP:N`` of :func:`parse_axis`
+    (:func:`parse_range`, its log-spaced values kept whole); a malformed one names the forms an
+    axis takes."""
     head, _, rest = spec.partition(":")
-    way = head.strip().lower()
-    parts = rest.split(":") if way in ("lin", "log") else spec.split(":")
-    if len(parts) != 3:
+    if len((rest if head.strip().lower() in ("lin", "log") else spec).split(":")) != 3:
         raise SceneError(f"{name} = {spec!r} must be {AXIS_FORMS}")
-    try:
-        start, stop, n = float(parts[0]), float(parts[1]), int(parts[2])
-    except ValueError:
-        raise SceneError(f"{name} = {spec!r} must be {AXIS_FORMS}, with numbers START, STOP "
-                         "and an integer N") from None
-    if not (math.isfinite(start) and math.isfinite(stop)):
-        raise SceneError(f"{name} = {spec!r}: START and STOP must be finite")
-    if not 1 <= n <= 100_000:
-        raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
-    _two_ends(spec, name, start, stop, n)
-    if way == "lin":
-        return np.array(_tidy(np.linspace(start, stop, n)))
-    if not (start > 0 and stop > 0):
-        raise SceneError(f"{name} = {spec!r}: START and STOP must be > 0 for a log-spaced axis "
-                         "(lin:START:STOP:N spaces them evenly)")
-    return np.geomspace(start, stop, n) if n > 1 else np.array([start])
+    return np.array(parse_range(spec, name, tidy=False))
 
 
 #: SI units of the device columns a sweep table adds (:func:`sawdrift.study.sweep.run_cell`)
