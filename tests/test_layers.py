@@ -33,9 +33,10 @@ SOURCES = ((ROOT / "src" / "sawdrift", "sawdrift"),
 
 #: Layers, lowest first: layer name -> module prefixes (a module belongs to its longest prefix).
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
-    # the version, the error types, the plugin hook specification, the words the warnings share:
-    # import nothing of sawdrift
-    ("base", ("sawdrift._version", "sawdrift.errors", "sawdrift.hookspecs", "sawdrift._texts")),
+    # the version, the error types, the plugin hook specification, the words the warnings share,
+    # the check that a folder takes files: import nothing of sawdrift
+    ("base", ("sawdrift._version", "sawdrift.errors", "sawdrift.hookspecs", "sawdrift._texts",
+              "sawdrift._paths")),
     # the one generator of compiled modules and the compile cache's key (used by contact, dynamics)
     ("codegen", ("sawdrift.codegen",)),
     # the experiment, and closed-form results of its physics

@@ -18,6 +18,7 @@ import typer
 
 import sawdrift as sd
 
+from .._paths import write_problem
 from .._startup import stored_help
 
 app = typer.Typer(
@@ -55,9 +56,6 @@ def _writable(path: Path, option: str = "-o", folder: bool = True) -> Path:
 
     A run or a sweep must not compute for minutes and then lose its results to a bad path.
     """
-    import os
-    import tempfile
-
     where = path if folder else path.parent
     if not folder and path.is_dir():
         _fail(f"{option} {str(path)!r} is a directory; give a file name")
@@ -66,13 +64,9 @@ def _writable(path: Path, option: str = "-o", folder: bool = True) -> Path:
     blocker = next((p for p in (where, *where.parents) if p.exists() and not p.is_dir()), None)
     if blocker is not None:
         _fail(f"{option} {str(path)!r} cannot be written: {str(blocker)!r} is a file, not a folder")
-    try:
-        where.mkdir(parents=True, exist_ok=True)
-        fd, probe = tempfile.mkstemp(dir=where, prefix=".sawdrift-probe-")
-        os.close(fd)
-        os.unlink(probe)
-    except OSError as exc:
-        _fail(f"{option} {str(path)!r} cannot be written ({exc.strerror or exc})")
+    problem = write_problem(where)
+    if problem is not None:
+        _fail(f"{option} {str(path)!r} cannot be written ({problem})")
     return path
 
 

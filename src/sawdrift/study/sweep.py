@@ -17,9 +17,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
-import os
 import sys
-import tempfile
 from collections.abc import Callable, Iterable, Sequence
 from functools import partial
 from pathlib import Path
@@ -27,6 +25,7 @@ from typing import Any
 
 import pandas as pd
 
+from .._paths import write_problem
 from .._version import __version__
 from ..contact.binding import bind
 from ..errors import SawdriftError, SceneError
@@ -340,8 +339,6 @@ def sweep(
         print(f"{label[0]}: {len(rows)} of the {len(wanted)} cells already in {path.name}, "
               f"{len(todo)} to run", file=sys.stderr)
     journal = journal_path(path) if path is not None else None
-    if path is not None:
-        path.parent.mkdir(parents=True, exist_ok=True)
     bar = None
     if progress and todo:
         bar = make_progress(len(wanted), label[0], label[1], initial=len(rows), expected=expected)
@@ -388,19 +385,15 @@ def _table_path(table: str | Path | None) -> Path | None:
     if path.suffix.lower() != ".parquet":
         raise SceneError(f"table = {str(path)!r}: a sweep table is Parquet; give a name ending "
                          "in .parquet (sawdrift export turns it into NetCDF or CSV)")
-    try:  # the folder made and a file written in it, before any cell runs
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, probe = tempfile.mkstemp(dir=path.parent, prefix=".sawdrift-probe-")
-        os.close(fd)
-        os.unlink(probe)
-    except OSError as exc:
-        raise SceneError(f"table = {str(path)!r} cannot be written ({exc.strerror or exc})"
-                         ) from None
+    problem = write_problem(path.parent)  # the folder made, before any cell runs
+    if problem is not None:
+        raise SceneError(f"table = {str(path)!r} cannot be written ({problem})")
     return path
 
 
 def _points(points: Sequence[Sequence[float]] | None) -> list[tuple[float, float]] | None:
-    """``points`` as (m*, A*) pairs of positive numbers, or one line (SceneError)."""
+    """``points`` as (m*, A*) pairs of numbers, or one line (SceneError); their values are
+    checked by the scenes they make."""
     if points is None:
         return None
     out = []
