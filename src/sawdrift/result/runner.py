@@ -103,7 +103,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None,
                                     detach))
     k_per = stepper.k_per
-    steps = max(stepper.step, out.steps)  # a long-time mean's twin ran on after the window
+    steps = out.steps  # a long-time mean's twin ran on after the window: its steps count
     return Result(
         model=scene.model,
         engine=engine,
