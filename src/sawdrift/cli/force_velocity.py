@@ -22,6 +22,7 @@ from .app import (
     out_kind,
     write_outputs,
 )
+from .run_text import pm_text
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -109,20 +110,12 @@ def _remove_new(created: list[Path]) -> None:
             return
 
 
-def _pm(value: float | None, se: float | None, digits: int = 5) -> str:
-    """``value +- se`` (the error with 2 significant digits), or the value alone without one."""
-    if value is None or not math.isfinite(value):
-        return "none"
-    text = f"{value:.{digits}g}"
-    return text if se is None or not math.isfinite(se) else f"{text} +- {se:.2g}"
-
-
 def _print_curve(curve: Any, data: dict[str, Any]) -> None:
     """The curve as text: the free drift (with its error), then force, speed +- error, regime."""
     dev = data.get("device")
     zero = curve.zero
     scale, unit = (curve.device["speed_m_s"], "m/s") if dev is not None else (1.0, "a0 f")
-    free = _pm(curve.free_drift * scale, curve.free_drift_se * scale, 6)
+    free = pm_text(curve.free_drift * scale, curve.free_drift_se * scale)
     line = f"free drift {free} {unit}"
     if not math.isfinite(curve.free_drift):
         line += " (no steady drift without load)"
@@ -139,7 +132,7 @@ def _print_curve(curve: Any, data: dict[str, Any]) -> None:
         typer.echo(f"{'<F> (M g)':>12} {'v (a0 f)':>22}  regime")
     rows = zip(forces, speeds, errors, data["regimes"], data["settled"], strict=True)
     for f, v, se, regime, settled in rows:
-        typer.echo(f"{f:12.5g} {_pm(v, se):>22}  {regime}" + ("" if settled else " (not settled)"))
+        typer.echo(f"{f:12.5g} {pm_text(v, se, '.5g'):>22}  {regime}" + ("" if settled else " (not settled)"))
     flagged = sum(1 for w in data["warnings"] if w)
     if flagged:
         typer.echo(f"note: {flagged} of {len(data['warnings'])} points carry warnings (a lower-"

@@ -24,6 +24,7 @@ from .app import (
     out_kind,
     write_outputs,
 )
+from .run_text import pm_text
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -102,12 +103,6 @@ def load_curve_cmd(
     _wrote(out)
 
 
-def _pm(value: float, se: float | None, spec: str) -> str:
-    """``value +- se`` (the error with 2 significant digits), or the value alone without one."""
-    text = format(value, spec)
-    return text if se is None else f"{text} +- {se:.2g}"
-
-
 def _free_line(data: dict[str, Any]) -> str | None:
     """The one line that replaces the curve where the unloaded run gives nothing to load against
     (``free_state`` no_drift, zero_within_error, no_steady_state), else None."""
@@ -118,9 +113,9 @@ def _free_line(data: dict[str, Any]) -> str | None:
         return f"no steady drift without load ({regime}), so no load curve"
     if state == "zero_within_error":
         dev = data.get("device")
-        free = (_pm(dev["free_speed_m_s"], dev["free_speed_se_m_s"], ".4g") + " m/s"
+        free = (pm_text(dev["free_speed_m_s"], dev["free_speed_se_m_s"], ".4g") + " m/s"
                 if dev is not None else
-                _pm(data["free_drift_velocity"], data["free_drift_velocity_se"], ".6g") + " a0 f")
+                pm_text(data["free_drift_velocity"], data["free_drift_velocity_se"], ".6g") + " a0 f")
         return (f"drift without load {free} ({regime}, a long-time mean) is "
                 "zero within 3 standard errors: no direction to load against, so no stall load "
                 "or power; a longer --mean-periods narrows the error")
@@ -137,8 +132,8 @@ def _print_curve(data: dict[str, Any], scene: Any) -> None:
     dev = data.get("device")
     if dev is not None:
         typer.echo(f"drift to {data['direction']} without load: "
-                   f"{_pm(dev['free_speed_m_s'], dev['free_speed_se_m_s'], '.4g')} m/s")
-        typer.echo(f"stall thrust {_pm(dev['stall_load_mN'], dev['stall_load_se_mN'], '.4g')} mN "
+                   f"{pm_text(dev['free_speed_m_s'], dev['free_speed_se_m_s'], '.4g')} m/s")
+        typer.echo(f"stall thrust {pm_text(dev['stall_load_mN'], dev['stall_load_se_mN'], '.4g')} mN "
                    f"(of a normal load "
                    f"{dev['normal_load_mN']:.4g} mN), largest power {dev['max_power_mW']:.4g} mW "
                    f"at {dev['load_at_max_power_mN']:.4g} mN, start-up acceleration "
@@ -148,15 +143,15 @@ def _print_curve(data: dict[str, Any], scene: Any) -> None:
         typer.echo(f"{'load (mN)':>12} {'speed (m/s)':>22} {'power (mW)':>12}  regime")
     else:
         typer.echo(f"drift to {data['direction']} without load: "
-                   f"{_pm(data['drift_velocity'][0], data['drift_velocity_se'][0], '.6g')} a0 f")
-        typer.echo(f"stall load {_pm(data['stall_load'], data['stall_load_se'], '.6g')} M g, "
+                   f"{pm_text(data['drift_velocity'][0], data['drift_velocity_se'][0], '.6g')} a0 f")
+        typer.echo(f"stall load {pm_text(data['stall_load'], data['stall_load_se'], '.6g')} M g, "
                    "largest power "
                    f"{data['max_power']:.6g} M g a0 f at {data['load_at_max_power']:.6g} M g")
         rows = zip(data["loads"], data["drift_velocity"], data["drift_velocity_se"], data["power"],
                    data["regimes"], data["settled"], strict=True)
         typer.echo(f"{'load (M g)':>12} {'v (a0 f)':>22} {'F v':>12}  regime")
     for f, v, se, p, regime, settled in rows:
-        typer.echo(f"{f:12.5g} {_pm(v, se, '.5g'):>22} {p:12.5g}  {regime}"
+        typer.echo(f"{f:12.5g} {pm_text(v, se, '.5g'):>22} {p:12.5g}  {regime}"
                    + ("" if settled else " (not settled)"))
     _notes(data, scene)
 
@@ -291,8 +286,8 @@ def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engi
         dev = d.get("device")
         stall = (f"{dev['stall_load_mN']:.4g} mN" if dev is not None
                  else f"{d['stall_load']:.4g} M g")
-        free = (_pm(dev["free_speed_m_s"], dev["free_speed_se_m_s"], ".4g") + " m/s"
-                if dev is not None else _pm(d["drift_velocity"][0], d["drift_velocity_se"][0], ".4g")
+        free = (pm_text(dev["free_speed_m_s"], dev["free_speed_se_m_s"], ".4g") + " m/s"
+                if dev is not None else pm_text(d["drift_velocity"][0], d["drift_velocity_se"][0], ".4g")
                 + " a0 f")
         caveat = " (the drift without load did not settle)" if d["free_state"] == "not_settled" else ""
         typer.echo(f"{label}: drifts to {d['direction']} at {free} without load, stalls at "

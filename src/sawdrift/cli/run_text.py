@@ -99,6 +99,15 @@ def drift_error(summary: dict[str, Any], key: str) -> float | None:
     return abs(value / ratio) * se if ratio != 0.0 else None
 
 
+def pm_text(value: float | None, se: float | None, spec: str = ".6g") -> str:
+    """``value +- se`` (the error to 2 significant digits), the value alone where it has no
+    finite error, ``none`` for no value: a drift, speed or load as the curves print it."""
+    if value is None or not math.isfinite(value):
+        return "none"
+    text = format(value, spec)
+    return text if se is None or not math.isfinite(se) else f"{text} +- {se:.2g}"
+
+
 def drift_text(summary: dict[str, Any], key: str) -> str:
     """A drift field as printed: its value, and +- its standard error for a long-time mean."""
     text = value_text(summary.get(key))

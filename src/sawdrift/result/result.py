@@ -211,17 +211,17 @@ class Result:
         """
         out: dict[str, Any] = {}
         for key in SUMMARY_FIELDS + EVIDENCE_FIELDS:
-            out[key] = _plain(getattr(self, key))
+            out[key] = json_value(getattr(self, key))
         for key, value in self.extra.items():
-            out[key] = _plain(value)
+            out[key] = json_value(value)
         out["scene"] = self.scene
         return out
 
 
-def _plain(value: Any) -> Any:
+def json_value(value: Any) -> Any:
     """A JSON-ready value: numpy scalars become Python ones, non-finite floats None, tuples lists."""
     if isinstance(value, tuple):
-        return [_plain(v) for v in value]
+        return [json_value(v) for v in value]
     if hasattr(value, "item") and not isinstance(value, (str, bytes)):
         value = value.item()
     if isinstance(value, float) and not math.isfinite(value):

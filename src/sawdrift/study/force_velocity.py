@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from ..contact.binding import bind
+from ..result.result import json_value
 from ..scene.schema import Scene
 from .load_curve import _device_scales, _Runner, _surface_speed
 
@@ -91,7 +92,7 @@ class ForceVelocity:
     def to_json(self) -> dict[str, Any]:
         """The curve as plain JSON values (NaN as None), with SI columns on a device."""
         def plain(x: np.ndarray) -> list[float | None]:
-            return [float(a) if math.isfinite(a) else None for a in x]
+            return [json_value(a) for a in x]
 
         out: dict[str, Any] = {
             "force": plain(self.forces),

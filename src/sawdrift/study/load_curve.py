@@ -38,6 +38,7 @@ import numpy as np
 from ..contact.binding import bind
 from ..dynamics.drives import drive_of
 from ..errors import SceneError
+from ..result.result import json_value
 from ..result.runner import run
 from ..scene.device import normalized
 from ..scene.schema import Scene, Wave
@@ -139,22 +140,22 @@ class LoadCurve:
         out: dict[str, Any] = {
             "direction": {1: "+x", -1: "-x"}.get(self.direction, "none"),
             "free_state": self.free_state,
-            "free_drift_velocity": _plain(self.free_drift),
-            "free_drift_velocity_se": _plain(self.free_drift_se),
+            "free_drift_velocity": json_value(self.free_drift),
+            "free_drift_velocity_se": json_value(self.free_drift_se),
             "loads": self.loads.tolist(),
             "applied_load": (0.0 - self.direction * self.loads).tolist(),
             "drift_velocity": self.velocities.tolist(),
-            "drift_velocity_se": [_plain(x) for x in self._se()],
+            "drift_velocity_se": [json_value(x) for x in self._se()],
             "power": self.power.tolist(),
             "regimes": list(self.regimes),
             "settled": list(self.settled),
             "warnings": [list(w) for w in self.warnings],
-            "stall_load": _plain(self.stall_load),
-            "stall_load_se": _plain(self.stall_load_se),
-            "stall_bracket": [_plain(x) for x in self.stall_bracket],
-            "max_power": _plain(p_max),
-            "load_at_max_power": _plain(at),
-            "start_acceleration": _plain(self.stall_load / self.m_star),
+            "stall_load": json_value(self.stall_load),
+            "stall_load_se": json_value(self.stall_load_se),
+            "stall_bracket": [json_value(x) for x in self.stall_bracket],
+            "max_power": json_value(p_max),
+            "load_at_max_power": json_value(at),
+            "start_acceleration": json_value(self.stall_load / self.m_star),
             "units": {"load": "M g", "drift_velocity": "a0 f", "power": "M g a0 f",
                       "start_acceleration": "a0 f^2"},
             "advance_threshold": self.threshold,
@@ -177,23 +178,18 @@ class LoadCurve:
         return {
             "loads_mN": (1e3 * force * self.loads).tolist(),
             "speed_m_s": (speed * self.velocities).tolist(),
-            "speed_se_m_s": [_plain(speed * x) for x in self._se()],
+            "speed_se_m_s": [json_value(speed * x) for x in self._se()],
             "power_mW": (1e3 * force * speed * self.power).tolist(),
-            "stall_load_mN": _plain(1e3 * force * self.stall_load),
-            "stall_load_se_mN": _plain(1e3 * force * self.stall_load_se),
-            "max_power_mW": _plain(1e3 * force * speed * p_max),
-            "load_at_max_power_mN": _plain(1e3 * force * at),
+            "stall_load_mN": json_value(1e3 * force * self.stall_load),
+            "stall_load_se_mN": json_value(1e3 * force * self.stall_load_se),
+            "max_power_mW": json_value(1e3 * force * speed * p_max),
+            "load_at_max_power_mN": json_value(1e3 * force * at),
             "free_speed_m_s": speed * float(self.velocities[0]) if self.velocities.size else 0.0,
-            "free_speed_se_m_s": _plain(speed * self.free_drift_se),
-            "start_acceleration_m_s2": _plain(start),
-            "start_acceleration_g": _plain(start / G_N),
+            "free_speed_se_m_s": json_value(speed * self.free_drift_se),
+            "start_acceleration_m_s2": json_value(start),
+            "start_acceleration_g": json_value(start / G_N),
             "normal_load_mN": 1e3 * force,
         }
-
-
-def _plain(x: float) -> float | None:
-    """A JSON number, None for NaN (an unknown value)."""
-    return float(x) if math.isfinite(x) else None
 
 
 def _value(x: Any) -> float:
