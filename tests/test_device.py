@@ -138,6 +138,39 @@ def test_wrong_units_are_one_line_errors(tmp_path, edit, needle, sawdrift_main):
     assert len(err) == 1 and needle in err[0], err
 
 
+def test_a_frequency_given_as_an_angular_rate_is_its_cycles_per_second():
+    # f = omega / 2 pi: 628.3185 rad/s, 6000 rpm, 100 cycle/s and 100 turn/s are all 100 Hz
+    # (pint counts the radian as dimensionless: each was taken for 628 Hz, m* 39.5 times too big)
+    base = sd.Scene.from_toml(MOTOR)
+    want = base.with_updates(**{"device.frequency": "100 Hz"}).particle.m_star
+    for given in ("628.3185307179586 rad/s", "6000 rpm", "100 cycle/s", "100 turn/s"):
+        got = base.with_updates(**{"device.frequency": given}).particle.m_star
+        assert got == pytest.approx(want, rel=1e-12), given
+
+
+@pytest.mark.parametrize("given", ["9,6 MHz", "9.6 MHz 2", "10 nm 5", "10e nm", "nan MHz",
+                                   "1,000 Hz", "3 m/s2"])
+def test_a_value_that_is_not_one_number_with_units_is_refused(given):
+    # pint evaluates a string as an expression: "9,6 MHz" was 96 MHz, "10 nm 5" 50 nm, with no
+    # error; a decimal comma or a stray number must be an error naming the field
+    field = "device.amplitude" if "nm" in given else "device.frequency"
+    if "m/s2" in given:
+        field = "device.gravity"
+    with pytest.raises(SceneError) as err:
+        sd.Scene.from_toml(MOTOR).with_updates(**{field: given})
+    text = str(err.value)
+    assert "\n" not in text and field in text and "is not a quantity" in text, text
+
+
+@pytest.mark.parametrize("field, given", [("device.amplitude", "10 nm/m"),
+                                          ("device.amplitude", "5 deg"),
+                                          ("device.preload", "7 mN rad")])
+def test_units_that_cancel_or_hold_an_angle_are_the_wrong_dimension(field, given):
+    # "10 nm/m" was read as 10 m and "5 deg" as 5 m: their magnitudes, units dropped
+    with pytest.raises(SceneError, match="wrong dimension"):
+        sd.Scene.from_toml(MOTOR).with_updates(**{field: given})
+
+
 def test_explain_names_time_scales_and_limits():
     text = _cli("run", str(EXAMPLES / "silica_bead_on_quartz.toml"), "--explain").stdout
     assert "a0 < 1 nm" in text and "natural frequency" in text and "approach" in text

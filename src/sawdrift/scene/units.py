@@ -8,6 +8,7 @@ A device value is a number (SI; an angle in radians) or a string with units ("9.
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 from typing import Any
 
@@ -49,38 +50,85 @@ def _registry():
         return pint.UnitRegistry()
 
 
+#: a device value written as a string: one number (no thousands separator, no decimal comma),
+#: then, optionally, one unit expression
+_NUMBER = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$")
+
+#: digits a unit expression may hold: exponents ("kg/m^3", "m s**-2")
+_EXPONENT = re.compile(r"(?:\^|\*\*)\s*\(?\s*[+-]?\d+(?:\.\d+)?\s*\)?")
+
+
+def _split(text: str) -> tuple[float, str] | None:
+    """(number, unit expression) of a device value written as a string, or None where it is not
+    one number followed by units: pint would evaluate the string as an expression ("9,6 MHz" as
+    96 MHz, "10 nm 5" as 50 nm), so anything else is refused before it gets there."""
+    m = _NUMBER.fullmatch(text)
+    if m is None:
+        return None
+    unit = m.group(2)
+    if unit and (not (unit[0].isalpha() or unit[0] in "µμ°%") or unit[0] in "eE" and (
+            len(unit) == 1 or not unit[1].isalpha())):
+        return None  # "10e nm": a malformed exponent, not the elementary charge
+    if any(ch.isdigit() for ch in _EXPONENT.sub("", unit)):
+        return None
+    return float(m.group(1)), unit
+
+
 def to_si(value: Any, kind: str) -> float:
     """The SI magnitude of ``value`` (a number, or a string with units) of dimension ``kind``.
 
-    An angle is returned in radians (a bare number is taken as radians). Raises ValueError with a
-    plain message when the string is not a quantity or has another dimension.
+    An angle is returned in radians (a bare number is taken as radians). A frequency given as an
+    angular rate ("628 rad/s", "6000 rpm") is its cycles per second, omega / 2 pi (pint counts
+    the radian as dimensionless and would take 628 rad/s for 628 Hz). Raises ValueError with a
+    plain message when the string is not one number with units, or has another dimension.
     """
     dims, unit, example = UNITS[kind]
     if isinstance(value, bool):
-        raise ValueError(f"is not a {kind}: give one in {unit}, e.g. {example}")
+        raise ValueError(f"is not {_article(kind)} {kind}: give one in {unit}, e.g. {example}")
     if isinstance(value, (int, float)):
         out = float(value)
     else:
-        ureg = _registry()
-        try:
-            q = ureg.Quantity(str(value).strip())
-        except Exception:  # noqa: BLE001 - pint raises several kinds for a bad string
-            raise ValueError(f"is not a quantity: give a {kind} in {unit}, e.g. {example}") from None
-        if kind == "angle":
-            if not q.dimensionless:
-                raise ValueError(f"is not an angle (wrong dimension): give one in deg or rad, "
-                                 f"e.g. {example}")
-            out = float(q.to("radian").magnitude)
-        elif q.dimensionless:
-            out = float(q.magnitude)
-        else:
-            if q.dimensionality != ureg.Quantity(1, unit).dimensionality:
-                raise ValueError(f"is not a {kind} (wrong dimension): give one in {unit}, "
-                                 f"e.g. {example}")
-            out = float(q.to(unit).magnitude)
+        out = _string_si(str(value), kind)
     if not math.isfinite(out):
-        raise ValueError("is not finite")
+        raise ValueError(f"is not finite: give {_article(kind)} {kind} in {unit}, e.g. {example}")
     return out
+
+
+def _article(kind: str) -> str:
+    """'a' or 'an' before the name of a kind of quantity."""
+    return "an" if kind[0] in "aeiou" else "a"
+
+
+def _string_si(text: str, kind: str) -> float:
+    """:func:`to_si` of a string."""
+    dims, unit, example = UNITS[kind]
+    parts = _split(text)
+    if parts is None:
+        raise ValueError(f"is not a quantity: give one number and its unit, e.g. {example} "
+                         f"({_article(kind)} {kind} in {unit})")
+    number, units = parts
+    if not units:
+        return number  # a bare number written as a string: SI, as a bare number
+    ureg = _registry()
+    try:
+        q = ureg.Quantity(number, units)
+    except Exception:  # noqa: BLE001 - pint raises several kinds for a bad unit
+        raise ValueError(f"has no unit '{units}' that this knows: give {_article(kind)} {kind} "
+                         f"in {unit}, e.g. {example}") from None
+    angular = any(name == "radian" for name, _ in q.to_base_units().unit_items())
+    wrong = f"is not {_article(kind)} {kind} (wrong dimension): give one in {unit}, e.g. {example}"
+    if kind == "angle":
+        if not q.dimensionless:
+            raise ValueError(f"is not an angle (wrong dimension): give one in deg or rad, "
+                             f"e.g. {example}")
+        return float(q.to("radian").magnitude)
+    if q.dimensionality != ureg.Quantity(1, unit).dimensionality or q.dimensionless:
+        raise ValueError(wrong)
+    if angular:
+        if kind != "frequency":
+            raise ValueError(wrong)
+        return float(q.to("turn / second").magnitude)  # cycles per second: omega / 2 pi
+    return float(q.to(unit).magnitude)
 
 
 #: The allowed range of each device quantity, in SI units (an angle in radians): the lowest and
