@@ -288,3 +288,22 @@ def test_a_device_swept_over_two_fields_prints_its_points_in_si(sawdrift_main, t
                      & np.isclose(frame["device.frequency"], float(freq[0]) * 1e6, rtol=1e-9, atol=0)]
         assert len(cell) == 1
         assert speed == pytest.approx(float(cell["drift_speed_m_s"].iloc[0]), rel=1e-5)
+
+
+@pytest.mark.parametrize("axis, words", [("device.orbit=prograde,retrograde",
+                                          ["prograde", "retrograde"]),
+                                         ("effects.rotation=false,true", ["False", "True"])])
+def test_a_sweep_over_words_prints_and_draws_them(axis, words, monkeypatch, capsys, tmp_path):
+    # the text formatted every swept value as a number and the plot converted it to float: a
+    # sweep over the orbit's sense stopped after its cells with 'internal failure', exit 3
+    out = tmp_path / "w.parquet"
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sweep", str(MOTOR), "--axis", axis,
+                                      "--no-settle", "--periods", "4", "--steps-per-period",
+                                      "64", "--workers", "1", "--no-progress", "-o", str(out)])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    text = capsys.readouterr().out
+    assert exc.value.code == 0
+    rows = [line.split() for line in text.splitlines() if line.strip().startswith("mmd ")]
+    assert sorted(r[1] for r in rows if r[1] in words) == words, text
+    assert (tmp_path / "w.png").stat().st_size > 10_000 and "(line plot)" in text

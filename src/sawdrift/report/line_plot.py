@@ -99,7 +99,10 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
     models = [model] if model is not None else sorted(table["model"].dropna().unique())
     fig, ax = plt.subplots(figsize=(6.4, 4.6), layout="constrained")
     # the axis first: autoscaling a log axis on a single drawn point warns of a zero width
-    swept = table[field].to_numpy(float)
+    categories = _categories(table[field])
+    place = {c: float(i) for i, c in enumerate(categories or [])}
+    swept = (np.arange(len(categories), dtype=float) if categories is not None
+             else table[field].to_numpy(float))
     if _log(swept):
         ax.set_xscale("log")
     _span(ax, swept)
@@ -110,7 +113,8 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
         if sub.empty:
             known = ", ".join(sorted(table["model"].dropna().unique()))
             raise SceneError(f"model {name!r} is not in the table; it holds: {known}")
-        x = sub[field].to_numpy(float)
+        x = (sub[field].map(place).to_numpy(float) if categories is not None
+             else sub[field].to_numpy(float))
         y = pd.to_numeric(sub[value], errors="coerce").to_numpy(float)
         ok = np.isfinite(x) & np.isfinite(y)
         open_ = _unsettled(sub)
@@ -120,7 +124,7 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
         none += int(gone.sum())
         failed += int((~ok & ~gone).sum())
         loose += int((open_ & ok).sum())
-        ax.plot(x[ok], y[ok], "-", color="0.55", lw=1.0, zorder=1,
+        ax.plot(x[ok], y[ok], "-" if categories is None else "", color="0.55", lw=1.0, zorder=1,
                 label=name if len(models) > 1 else None)
         errors = drift_errors(sub, value)
         for xi, yi, regime, is_open, err in zip(x[ok], y[ok], sub["regime"].to_numpy()[ok],
@@ -132,10 +136,15 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
             used.add(str(regime) if str(regime) in colours else "error")
             ax.plot(xi, yi, "o", ms=SIZE, zorder=2, mec=colour if is_open else "k",
                     mfc="white" if is_open else colour, mew=2.0 if is_open else 0.6)
-    if not _log(swept):  # few ticks: a unit on each must not collide with the next
+    if categories is not None:  # a word swept (an orbit's sense, a switch): one tick each
+        ax.set_xticks(swept, [str(c) for c in categories])
+        ax.set_xlim(-0.5, len(categories) - 0.5)
+    elif not _log(swept):  # few ticks: a unit on each must not collide with the next
         ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
     # SI ticks with prefixes: 5 MHz, -120 um/s (not 5e6, -0.00012)
     for axis, column in ((ax.xaxis, field), (ax.yaxis, value)):
+        if axis is ax.xaxis and categories is not None:
+            continue
         unit = _prefixed(column)
         if unit:
             axis.set_major_formatter(EngFormatter(unit=unit, sep=" "))
@@ -155,6 +164,14 @@ def plot_line(table: pd.DataFrame, path: str | Path, model: str | None = None,
     fig.savefig(path, dpi=120)
     plt.close(fig)
     return path
+
+
+def _categories(column: pd.Series) -> list | None:
+    """The values of a swept column of words or switches (``device.orbit``,
+    ``effects.rotation``), in the table's order, each drawn at its own tick; None for numbers."""
+    if pd.api.types.is_numeric_dtype(column) and not pd.api.types.is_bool_dtype(column):
+        return None
+    return list(dict.fromkeys(column.dropna().tolist()))
 
 
 def _span(ax, swept: np.ndarray) -> None:
@@ -212,7 +229,15 @@ def line_rows(table: pd.DataFrame, field: str | list[str],
         mark = " (not settled)" if data.get("settled") is False or data.get("settled") == 0 else ""
         if np.isfinite(err):  # a long-time mean: drift +- its standard error
             mark = f" (long-time mean +- {err:.2g})"
-        where = " ".join(f"{fmt(data[f]) if fmt is not None else f'{data[f]:.6g}':>{w}}"
+        where = " ".join(f"{_swept_text(data[f], fmt):>{w}}"
                          for f, fmt, w in zip(fields, fmts, widths, strict=True))
         lines.append(f"{data['model']:>20} {where} {shown}  {data['regime']}{mark}")
     return lines
+
+
+def _swept_text(value: object, fmt: EngFormatter | None) -> str:
+    """A swept value as the table prints it: with its prefixed unit, a number to 6 figures, or a
+    word as it is (``device.orbit = retrograde``, ``effects.rotation = True``)."""
+    if isinstance(value, bool | str | np.bool_) or value is None:
+        return str(value)
+    return fmt(value) if fmt is not None else f"{value:.6g}"
