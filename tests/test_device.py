@@ -399,3 +399,20 @@ def test_an_ejected_device_run_heads_its_text_with_why_it_has_no_speed(sawdrift_
     lines = out.stdout.splitlines()
     assert lines[0].startswith("no drift speed: no steady state, out of contact since t* = ")
     assert any(line.split()[:1] == ["detach_time_s"] and line.endswith(" s") for line in lines)
+
+
+def test_a_mass_set_on_a_particle_given_by_its_density_replaces_it():
+    # 'give exactly one of density or mass': a density-based example could not be run or swept
+    # with a mass, from the command line, an axis or Python
+    base = sd.Scene.from_toml(MOTOR)
+    rho, radius = 7850.0, 0.5e-3
+    same = rho * 4.0 / 3.0 * math.pi * radius**3
+    for mass in (same, 2.0 * same):
+        got = base.with_updates(**{"device.particle.mass": f"{mass * 1e6:.12g} mg"})
+        assert got.device.particle.density is None
+        want = _hand(radius, rho * mass / same, 210e9, 0.3, 170e9, 0.25, 9.6e6, 10e-9, 7.35e-3)
+        assert got.particle.m_star == pytest.approx(want["m_star"], rel=1e-9)
+    back = got.with_updates(**{"device.particle.density": "7850 kg/m^3"})
+    assert back.particle.m_star == pytest.approx(base.particle.m_star, rel=1e-12)
+    with pytest.raises(SceneError, match="exactly one of density"):
+        base.with_updates(**{"device.particle.mass": "4 mg", "device.particle.density": 7850})

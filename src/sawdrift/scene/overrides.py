@@ -206,6 +206,26 @@ def strip_derived(data: dict[str, Any]) -> dict[str, Any]:
     return data
 
 
+#: device fields of which a particle gives one: setting one drops the other
+EITHER_OR: dict[str, str] = {"device.particle.mass": "device.particle.density",
+                             "device.particle.density": "device.particle.mass"}
+
+
+def drop_replaced(data: dict[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:
+    """Remove from a scene dict, in place, the device field an override replaces (a mass set on
+    a particle given by its density, or the other way round: :data:`EITHER_OR`), unless the
+    overrides set both; returns ``data``."""
+    for key, other in EITHER_OR.items():
+        if overrides.get(key) is not None and overrides.get(other) is None:
+            section, _, leaf = other.rpartition(".")
+            node = data
+            for part in section.split("."):
+                node = node.get(part) if isinstance(node, dict) else None
+            if isinstance(node, dict):
+                node.pop(leaf, None)
+    return data
+
+
 def nearest(key: str, known: list[str], listing: bool = True) -> str:
     """``"; did you mean 'x'?"`` for the known name nearest to ``key`` (difflib), or the list
     (``listing``)."""

@@ -33,7 +33,7 @@ from pydantic import (
 from ..errors import SceneError
 from .adhesion import adhesion_consistent
 from .device import Device
-from .overrides import DERIVED, apply_device, nearest, plain_section, strip_derived
+from .overrides import DERIVED, apply_device, drop_replaced, nearest, plain_section, strip_derived
 from .parts import (
     FROZEN,
     Biharmonic,
@@ -372,6 +372,7 @@ def apply_overrides(data: Mapping[str, Any] | BaseModel,
         # check the given scene against its own device, then drop what the device derives: the
         # overrides may change the device
         out = strip_derived(apply_device(out))
+    drop_replaced(out, overrides)  # a mass set replaces a density given, and the other way
     for key, value in overrides.items():
         if value is None:
             continue
