@@ -416,3 +416,14 @@ def test_a_mass_set_on_a_particle_given_by_its_density_replaces_it():
     assert back.particle.m_star == pytest.approx(base.particle.m_star, rel=1e-12)
     with pytest.raises(SceneError, match="exactly one of density"):
         base.with_updates(**{"device.particle.mass": "4 mg", "device.particle.density": 7850})
+
+
+def test_the_value_a_device_error_shows_may_be_given_back(sawdrift_main):
+    # the line says '(here 929.267)'; giving 929.267 back was refused (only 16 figures passed)
+    motor = sd.Scene.from_toml(MOTOR)
+    shown = float(f"{motor.particle.m_star:.6g}")
+    assert shown != motor.particle.m_star
+    assert motor.with_updates(**{"particle.m_star": shown}) == motor
+    out = sawdrift_main("run", str(MOTOR), "--m-star", f"{1.0001 * shown:.6g}", "--json")
+    assert out.returncode == 2 and f"here {shown:.6g}" in out.stderr
+    assert motor.with_updates(**{"drive.amplitude": float(f"{motor.drive.amplitude:.6g}")}) == motor

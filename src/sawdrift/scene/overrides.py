@@ -103,6 +103,11 @@ def derived_values(device: Device, adhesion: str = "none") -> dict[str, Any]:
     }
 
 
+#: a derived value given to within this (relative) repeats the device's: half a unit in the
+#: sixth figure, as :func:`_shown` writes it
+SHOWN_REL = 5e-6
+
+
 def _same(given: Any, derived: Any, field: str) -> bool:
     if field == "particle.profile":
         try:
@@ -110,8 +115,10 @@ def _same(given: Any, derived: Any, field: str) -> bool:
         except (ValidationError, TypeError):
             return False
     if isinstance(derived, float):
+        # the value as shown (:func:`_shown`, six figures: in an error line, in a saved scene's
+        # comment) repeats the device's own
         return (isinstance(given, (int, float)) and not isinstance(given, bool)
-                and math.isclose(float(given), derived, rel_tol=1e-12, abs_tol=0.0))
+                and math.isclose(float(given), derived, rel_tol=SHOWN_REL, abs_tol=0.0))
     return given == derived
 
 
