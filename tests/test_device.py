@@ -427,3 +427,22 @@ def test_the_value_a_device_error_shows_may_be_given_back(sawdrift_main):
     out = sawdrift_main("run", str(MOTOR), "--m-star", f"{1.0001 * shown:.6g}", "--json")
     assert out.returncode == 2 and f"here {shown:.6g}" in out.stderr
     assert motor.with_updates(**{"drive.amplitude": float(f"{motor.drive.amplitude:.6g}")}) == motor
+
+
+@pytest.mark.parametrize("option, value, field", [
+    ("--mu", "0.3", "material.mu"), ("--nu", "0.3", "material.nu"),
+    ("--horizontal-ratio", "0.7", "drive.horizontal_ratio"), ("--load", "0.1", "particle.load"),
+    ("--amplitude", "2", "drive.amplitude")])
+def test_the_device_setting_named_instead_gives_the_value_asked_for(option, value, field,
+                                                                     sawdrift_main):
+    # the hint named a fixed example ('--mu 0.3' -> 'device.friction=0.2', the current value;
+    # '--load 0.1' -> '-1 mN' where 0.739 mN is meant): following it changed nothing
+    out = sawdrift_main("run", str(MOTOR), option, value, "--json")
+    assert out.returncode == 2
+    hint = out.stderr.split("--set ", 1)[1].split(" (A*", 1)[0].strip()
+    key, _, given = hint.partition("=")
+    scene = sd.Scene.from_toml(MOTOR).with_updates(**{key: given.strip('"')})
+    got = {"material.mu": scene.material.mu, "material.nu": scene.material.nu,
+           "drive.horizontal_ratio": scene.horizontal_ratio,
+           "particle.load": scene.particle.load, "drive.amplitude": scene.drive.amplitude}[field]
+    assert got == pytest.approx(float(value), rel=1e-3), hint

@@ -204,7 +204,7 @@ def apply_options(data: dict[str, Any], values: dict[str, Any],
         shown = f"{exc.derived:.6g}" if isinstance(exc.derived, float) else repr(exc.derived)
         line = (f"{typed}: a device scene derives {exc.field} from its [device] table (here "
                 f"{shown}); set the device field with its unit instead: --set "
-                f"{SET_INSTEAD.get(exc.field, 'device.FIELD=VALUE (sawdrift run --explain)')}")
+                f"{exc.instead or SET_INSTEAD.get(exc.field, 'device.FIELD=VALUE')}")
         if exc.field == "drive.amplitude" and isinstance(exc.value, (int, float)):
             line += f" (A* = {exc.value:g} is {exc.value * exc.a0_m * 1e9:.4g} nm on this device)"
         raise sd.SceneError(line) from None

@@ -54,7 +54,16 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_valida
 
 from ..errors import SceneError
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio
-from .units import FIELD_KIND, RANGES, UNITS, field_si, in_range, to_si
+from .units import (
+    FIELD_KIND,
+    RANGES,
+    UNITS,
+    field_si,
+    friction_value,
+    half_angle_value,
+    in_range,
+    to_si,
+)
 
 __all__ = ["FIELD_KIND", "RANGES", "UNITS", "field_si", "to_si"]  # imported from here by others
 
@@ -81,22 +90,6 @@ def _quantity(kind: str, field: str, positive: bool = True, allow_zero: bool = F
     return BeforeValidator(check)
 
 
-def _friction(value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError("is not a number: give the friction coefficient, e.g. 0.2")
-    if not math.isfinite(value) or value <= 0.0:
-        raise ValueError("is not > 0: the friction coefficient, e.g. 0.2")
-    return in_range("friction", float(value), "", value)
-
-
-def _half_angle(value: Any) -> float:
-    out = to_si(value, "angle")
-    if not 0.0 < out < 0.5 * math.pi:
-        raise ValueError("is outside (0, 90) deg: the angle between the cone's axis and its "
-                         "surface, e.g. '80 deg' (a bare number is in radians)")
-    return in_range("particle.half_angle", out, "rad", value)
-
-
 Pressure = Annotated[float, _quantity("pressure", "particle.youngs_modulus")]
 Poisson = Annotated[float, Field(gt=-1.0, lt=0.5)]
 
@@ -116,7 +109,7 @@ class DeviceParticle(BaseModel):
         "sphere", description="contact profile: sphere (Hertz), cone (Sneddon), flat punch")
     radius: Annotated[float, _quantity("length", "particle.radius")] | None = Field(
         None, description="sphere radius R, or the flat punch's radius, 1 nm to 10 cm")
-    half_angle: Annotated[float, BeforeValidator(_half_angle)] | None = Field(
+    half_angle: Annotated[float, BeforeValidator(half_angle_value)] | None = Field(
         None, description="cone only: half-angle alpha between axis and surface, 1 to 89.9 deg")
     density: Annotated[float, _quantity("density", "particle.density")] | None = Field(
         None, description="or mass")
@@ -193,7 +186,7 @@ class Device(BaseModel):
         0.0, description="slope alpha of the substrate, -85 deg to 85 deg, positive where the "
         "surface rises towards +x: gravity's normal part m g cos(alpha) holds the particle, its "
         "part m g sin(alpha) pulls it down the slope")
-    friction: Annotated[float, BeforeValidator(_friction)] = Field(description="mu, 0.001 to 10")
+    friction: Annotated[float, BeforeValidator(friction_value)] = Field(description="mu, 0.001 to 10")
     wavelength: Annotated[float, _quantity("length", "wavelength")] | None = Field(
         None, description="surface wavelength, 10 nm to 100 m; overrides c_R/f from device.substrate.density "
         "(anisotropic crystals)")

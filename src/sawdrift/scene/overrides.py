@@ -75,9 +75,12 @@ class DerivedFieldError(SceneError):
     compression ``a0_m`` (in m), so that the command line can name its own option.
     """
 
-    def __init__(self, message: str, field: str, value: Any, derived: Any, a0_m: float) -> None:
+    def __init__(self, message: str, field: str, value: Any, derived: Any, a0_m: float,
+                 instead: str | None = None) -> None:
         super().__init__(message)
         self.field, self.value, self.derived, self.a0_m = field, value, derived, a0_m
+        #: the device setting that gives the value asked for (:func:`instead_for`), or None
+        self.instead = instead
 
 
 #: The sections of a scene that hold derived fields.
@@ -128,12 +131,38 @@ def _shown(value: Any) -> str:
     return f"{value:.6g}" if isinstance(value, float) else repr(value)
 
 
-def derived_error(field: str, value: Any, derived: Any, a0_m: float = math.nan) -> DerivedFieldError:
+def derived_error(field: str, value: Any, derived: Any, a0_m: float = math.nan,
+                  device: Device | None = None) -> DerivedFieldError:
     """The one-line error for a derived ``field`` given as ``value`` on a device scene."""
     given = value.model_dump(exclude_none=True) if isinstance(value, BaseModel) else value
+    instead = instead_for(field, given, device) if device is not None else None
     return DerivedFieldError(f"{field} = {_shown(given)}: a device scene derives {field} from its "
                              f"[device] table (here {_shown(derived)}); set {DERIVED[field]} "
-                             "instead", field, given, derived, a0_m)
+                             "instead", field, given, derived, a0_m, instead)
+
+
+def instead_for(field: str, value: Any, device: Device) -> str | None:
+    """The device setting (``--set`` form) that gives the derived ``field`` the ``value`` asked
+    for, where one device field sets it alone: the friction for mu, A* a0 for the amplitude, the
+    load L M g (plus the slope's pull) for the load; None for the others (m*, theta: several
+    device fields enter)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        return None
+    simple = {"material.mu": "device.friction", "material.nu": "device.substrate.poisson",
+              "drive.horizontal_ratio": "device.horizontal_ratio", "drive.orbit": "device.orbit"}
+    if field in simple:
+        return f"{simple[field]}={value:g}" if not isinstance(value, str) else \
+            f"{simple[field]}={value}"
+    if isinstance(value, str):
+        return None
+    norm = normalized(device)
+    if field == "drive.amplitude":
+        return f'device.amplitude="{value * norm["a0_m"] * 1e9:.4g} nm"'
+    if field == "particle.load":
+        # L = (F - m g sin(alpha)) / (m g cos(alpha) + F_ext): F = L (M g) + the slope's pull
+        force = value * norm["weight_n"] + (device.load - norm["load_n"])
+        return f'device.load="{force * 1e3:.4g} mN"'
+    return None
 
 
 def plain_section(value: Any) -> Any:
@@ -196,7 +225,7 @@ def apply_device(data: Mapping[str, Any]) -> dict[str, Any]:
     for field, derived in values.items():
         given = get_dotted(out, field)
         if given is not None and not _same(given, derived, field):
-            raise derived_error(field, given, derived, normalized(device)["a0_m"])
+            raise derived_error(field, given, derived, normalized(device)["a0_m"], device)
     out["device"] = device.model_dump()
     for field, derived in values.items():
         set_dotted(out, field, copy.deepcopy(derived))

@@ -182,6 +182,29 @@ def in_range(field: str, out: float, unit: str, given: Any) -> float:
     raise ValueError(f"is {shown}outside the allowed range {text} ({why}{hint})")
 
 
+def friction_value(value: Any) -> float:
+    """device.friction: a plain number (or one written as a string), inside its range."""
+    if isinstance(value, str):  # a number written as a string, as the other plain numbers take
+        try:
+            value = float(value.strip())
+        except ValueError:
+            raise ValueError("is not a number: give the friction coefficient, e.g. 0.2") from None
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError("is not a number: give the friction coefficient, e.g. 0.2")
+    if not math.isfinite(value) or value <= 0.0:
+        raise ValueError("is not > 0: the friction coefficient, e.g. 0.2")
+    return in_range("friction", float(value), "", value)
+
+
+def half_angle_value(value: Any) -> float:
+    """device.particle.half_angle: an angle in (0, 90) deg (a bare number in radians)."""
+    out = to_si(value, "angle")
+    if not 0.0 < out < 0.5 * math.pi:
+        raise ValueError("is outside (0, 90) deg: the angle between the cone's axis and its "
+                         "surface, e.g. '80 deg' (a bare number is in radians)")
+    return in_range("particle.half_angle", out, "rad", value)
+
+
 def field_si(name: str, value: Any) -> float:
     """The SI value of the device field ``name`` (dotted, ``device.particle.radius``) given as
     ``value`` (a number, or a string with units), checked against its :data:`RANGES` entry if it
