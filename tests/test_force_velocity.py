@@ -145,3 +145,22 @@ def test_a_refused_size_leaves_no_output_folder(tmp_path, sawdrift_main, monkeyp
     bad = sawdrift_main("force-velocity", *CHAOTIC, "-o", str(tmp_path / "a" / "fv"))
     assert bad.returncode == 2 and "too big" in bad.stderr
     assert not any(tmp_path.iterdir())
+
+
+def test_adhesion_widens_the_loads_sampled_and_the_load_curve_to_its_friction_bound():
+    # loads were sampled inside (-mu, mu) and the stall load bracketed below mu although an
+    # adhesive contact holds up to mu (1 + 2 F*_pull): here the stall lies above mu = 0.3
+    scene = sd.Scene(model="mmd", particle={"m_star": 0.2}, material={"mu": 0.3, "adhesion": 1.0},
+                     effects={"adhesion": "jkr"}, drive={"amplitude": 0.3})
+    curve = force_velocity(scene, points=5, workers=1)
+    assert curve.friction_bound == pytest.approx(0.9, rel=1e-12)
+    assert max(abs(curve.forces)) == pytest.approx(0.9 * 4 / 6, rel=1e-12)  # inside (-0.9, 0.9)
+    free = sd.run(scene).drift_ratio
+    lc = sd.load_curve(scene, loads=2, workers=1)
+    # direct runs either side of the stall: the drift keeps its unloaded sign below it only
+    below = sd.run(scene.with_updates(**{"particle.load": -math.copysign(0.98 * lc.stall_load,
+                                                                          free)}))
+    above = sd.run(scene.with_updates(**{"particle.load": -math.copysign(1.02 * lc.stall_load,
+                                                                          free)}))
+    assert lc.stall_load > 0.3
+    assert below.drift_ratio * free > 0.0 and not above.drift_ratio * free > 0.0

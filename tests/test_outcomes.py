@@ -91,6 +91,24 @@ def test_a_load_below_friction_is_not_a_runaway():
     assert math.isfinite(res.drift_ratio)
 
 
+@pytest.mark.parametrize("law", ["jkr", "dmt"])
+def test_adhesion_raises_the_load_friction_holds_to_mu_1_plus_2_pulloff(law):
+    # friction is capped at mu |N* + 2 F*_pull|; with the weight as mean normal force a contact
+    # held all the time resists mu (1 + 2 F*_pull) = 0.9 here. A load of 0.5 was a 'runaway'
+    # (|L| > mu = 0.3) with a fitted acceleration of -8.7e-5 against the load, while it stuck
+    def scene(load):
+        return sd.Scene(model="mmd", particle={"m_star": 0.2, "load": load},
+                        material={"mu": 0.3, "adhesion": 1.0}, effects={"adhesion": law},
+                        drive={"amplitude": 0.0})
+    held = sd.run(scene(0.5))
+    assert held.regime == "stick" and held.settled
+    assert held.gross_slip_fraction == 0.0
+    away = sd.run(scene(0.95))
+    assert away.regime == "runaway"
+    # sliding on, in contact: m* x'' = L - mu (1 + 2 F*_pull)
+    assert away.mean_acceleration == pytest.approx((0.95 - 0.9) / 0.2, rel=1e-6)
+
+
 DEVICE = {
     "model": "mmd",
     "device": {"frequency": "20 MHz", "amplitude": "1 nm", "orbit": "retrograde",

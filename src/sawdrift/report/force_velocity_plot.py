@@ -59,7 +59,7 @@ def plot_force_velocity(curve: ForceVelocity, path: str | Path | None = None,
                 label=None if regime in seen else regime.replace("_", " "))
         seen.add(regime)
     for sign in (-1.0, 1.0):
-        ax.axhline(sign * curve.mu * scale_f, color="0.4", ls="--", lw=0.8)
+        ax.axhline(sign * curve.friction_bound * scale_f, color="0.4", ls="--", lw=0.8)
     ax.axhline(0.0, color="k", lw=0.6)
     ax.axvline(0.0, color="k", lw=0.6)
     _free_drift(ax, curve, scale_v)
@@ -68,7 +68,7 @@ def plot_force_velocity(curve: ForceVelocity, path: str | Path | None = None,
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7.5, loc="lower right")
     ax.set_title((title or "Force-velocity curve (each point a steady state at full inertia)")
-                 + f"\ndashed: +- mu M g, the most friction can hold (mu = {curve.mu:g}); "
+                 + f"\ndashed: +- {_bound_text(curve)}, the most friction can hold; "
                  "open markers: not settled\nbars: +- 1 standard error of a long-time mean",
                  fontsize=8.5)
     if path is not None:
@@ -92,3 +92,10 @@ def _free_drift(ax, curve: ForceVelocity, scale: float) -> None:
         label += " (zero within 3 errors)"
     ax.plot([v], [0.0], "*", color="k", ms=12, zorder=4,
             mfc="k" if curve.free_drift_resolved else "white", label=label)
+
+
+def _bound_text(curve) -> str:
+    """The friction bound as the title names it: mu M g, or mu (1 + 2 F*_pull) M g."""
+    if curve.friction_bound == curve.mu:
+        return f"mu M g (mu = {curve.mu:g})"
+    return f"mu (1 + 2 F*_pull) M g = {curve.friction_bound:.4g} M g (adhesion)"

@@ -19,7 +19,7 @@ from ..dynamics.batch_means import HALVES_Z, TREND_Z
 from ..dynamics.drives import Drive
 from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate_wave
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
-from ..dynamics.steady import runs_away
+from ..dynamics.steady import friction_bound, runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
 from ..errors import SceneError
 from ..scene.device import device_outputs, device_warnings
@@ -83,7 +83,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     stepper = out.stepper
     ret = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
                            drive.vertical_amplitude(scene))
-    ending = outcome(scene.particle.load, scene.material.mu, scene.effects.friction,
+    ending = outcome(scene.particle.load, friction_bound(scene), scene.effects.friction,
                      scene.effects.air_drag, in_flight(win) and out.long_mean is None, ret,
                      stepper.step / stepper.k_per,
                      win.drift, acceleration, out.speed)

@@ -9,7 +9,8 @@ the same curve read the other way, and the stall load is the force at v = 0 (doc
 
 :func:`force_velocity` samples it by imposing loads: each run holds a constant load L, strictly
 inside (-mu, mu) M g (beyond, no steady speed exists: the mean friction is at most mu times the
-weight, and the run is a ``runaway``), and reports its steady drift at full inertia (the default
+weight, and the run is a ``runaway``; with adhesion mu (1 + 2 F*_pull), friction being capped at
+mu |N* + 2 F*_pull|), and reports its steady drift at full inertia (the default
 settle, :mod:`sawdrift.dynamics.full_inertia`). Every point is therefore a steady state of the
 particle's own dynamics, with its fast horizontal oscillation and contact memory at the full m*.
 Where the contact sticks the curve is vertical: a range of loads holds the particle at v = 0
@@ -27,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from ..contact.binding import bind
+from ..dynamics.steady import friction_bound
 from ..result.result import json_value
 from ..scene.schema import Scene
 from .load_curve import _device_scales, _Runner, _surface_speed
@@ -61,6 +63,14 @@ class ForceVelocity:
     warnings: tuple[tuple[str, ...], ...] = ()
     #: standard error of the free drift (a0 f), NaN where it settled
     free_drift_se: float = math.nan
+    #: the most friction can hold on average, in M g: mu, or mu (1 + 2 F*_pull) with adhesion
+    #: (:func:`~sawdrift.dynamics.steady.friction_bound`); NaN: mu
+    bound: float = math.nan
+
+    @property
+    def friction_bound(self) -> float:
+        """The most friction can hold on average (M g): :attr:`bound`, or mu if not given."""
+        return self.mu if math.isnan(self.bound) else self.bound
 
     @property
     def velocity_se(self) -> np.ndarray:
@@ -104,6 +114,7 @@ class ForceVelocity:
             "settled": list(self.settled),
             "warnings": [list(w) for w in self.warnings],
             "mu": self.mu,
+            "friction_bound": self.friction_bound,
             "free_drift_velocity": self.free_drift,
             "free_drift_velocity_se": None if math.isnan(self.free_drift_se) else self.free_drift_se,
             "free_drift_resolved": self.free_drift_resolved,
@@ -134,7 +145,8 @@ def force_velocity(
         A wave scene, normalized or a device. Its own load is replaced by each sampled one; a
         device's incline stays (its pull is part of every force).
     points
-        Loads, evenly spaced strictly inside (-mu, mu) M g, plus the unloaded run.
+        Loads, evenly spaced strictly inside (-mu, mu) M g (mu (1 + 2 F*_pull) with adhesion),
+        plus the unloaded run.
     workers
         Local processes (default: all cores).
     engine
@@ -149,10 +161,11 @@ def force_velocity(
         raise ValueError(f"points = {points}: a force-velocity curve needs at least 3")
     speed = _surface_speed(scene)
     mu = scene.material.mu
+    bound = friction_bound(scene)  # mu, or mu (1 + 2 F*_pull) with adhesion
     t0 = time.perf_counter()
     runner = _Runner(scene, engine, workers or os.cpu_count() or 1)
     try:
-        applied = list(mu * np.linspace(-1.0, 1.0, points + 2)[1:-1])
+        applied = list(bound * np.linspace(-1.0, 1.0, points + 2)[1:-1])
         if 0.0 not in applied:
             applied.append(0.0)
         applied.sort()
@@ -173,7 +186,7 @@ def force_velocity(
         free_drift=float(vel[free]), wall_time_s=time.perf_counter() - t0,
         device=_device_scales(scene), drift_ratio_se=se,
         warnings=tuple(tuple(str(w) for w in r.get("warnings") or ()) for r in rows),
-        free_drift_se=float(se[free] * speed))
+        free_drift_se=float(se[free] * speed), bound=bound)
 
 
 def _value(x: Any) -> float:

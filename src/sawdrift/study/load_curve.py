@@ -8,7 +8,8 @@ longer advances (docs/physics.md, "Loads, inclines and restitution"). :func:`loa
 1. runs the scene without load (the direction of the drift, V0);
 2. brackets the stall load in [0, F_max], F_max = mu + (the scene's own load along the drift,
    an incline's pull): against a load of mu M g or more nothing can advance, since the
-   period-averaged normal force is M g and friction is at most mu times it; F_max itself is not
+   period-averaged normal force is M g and friction is at most mu times it (with adhesion, which
+   caps friction at mu |N* + 2 F*_pull|, mu (1 + 2 F*_pull) in place of mu); F_max itself is not
    run (it is known not to advance), and the bracket is narrowed by k-section, k - 1 runs in
    parallel per round (bisection with one worker), to ``tolerance`` F_max;
 3. runs ``loads`` loads evenly from 0 to the stall load (in parallel), and reports the speed,
@@ -37,6 +38,7 @@ import numpy as np
 
 from ..contact.binding import bind
 from ..dynamics.drives import drive_of
+from ..dynamics.steady import friction_bound
 from ..errors import SceneError
 from ..result.result import json_value
 from ..result.runner import run
@@ -323,7 +325,7 @@ def _curve(scene: Scene, runner: _Runner, speed: float, n: int, tolerance: float
     v0 = _value(free["drift_velocity"])
     direction, state, se0 = _free_state(free, threshold, speed)
     note(f"without load: drift velocity {v0:.6g} ({free['regime']})")
-    f_max = scene.material.mu + direction * runner.background
+    f_max = friction_bound(scene) + direction * runner.background
     common = {"threshold": threshold, "m_star": scene.particle.m_star, "free_drift": v0,
               "free_drift_se": se0, "free_state": state}
     if direction == 0 or f_max <= 0.0:
