@@ -204,3 +204,18 @@ def test_example_drifts_below_removal_and_is_ejected_above():
     thrown = sd.run(scene.with_updates(**{"device.amplitude": "0.2 nm"}))
     assert thrown.regime == "ejected" and thrown.detach_time > 0.0
     assert 0.0 <= thrown.detach_phase < 1.0
+
+
+def test_a_model_with_its_own_normal_damping_refuses_adhesion():
+    # hertz_tsuji took adhesion and dropped its damping with the normal slots: damping 0 and 2
+    # gave the same drift (0.169761), as undamped hertz_mindlin_dem does
+    from sawdrift.contact.adhesion import supports_adhesion
+
+    assert supports_adhesion(get_model("hertz_mindlin_dem"))
+    assert not supports_adhesion(get_model("hertz_tsuji"))
+    data = {"model": "hertz_tsuji", "model_params": {"damping": 2.0},
+            "material": {"adhesion": 0.5}, "effects": {"adhesion": "jkr"}}
+    with pytest.raises(SceneError, match="normal damping of its own") as info:
+        model_for(build_scene(data))
+    assert "\n" not in str(info.value)
+    assert get_model("hertz_tsuji").describe()["adhesion"] == ""

@@ -58,8 +58,11 @@ def _capability_problem(cls: type[ContactModel], scene: Scene) -> str | None:
     if eff.normal_damping > 0.0 and rigid:
         return f"effects.normal_damping needs a compliant model; {scene.model!r} is rigid"
     if eff.adhesion != "none" and not supports_adhesion(cls):
+        why = ("has a normal damping of its own, which the adhesive normal law would drop"
+               if getattr(cls, "damping", None) is not None else "has none")
         return (f"effects.adhesion = {eff.adhesion!r} needs a compliant model with an adhesive "
-                f"tangential law (hertz_mindlin_dem, mmd); {scene.model!r} has none")
+                f"tangential law and no normal damping of its own (hertz_mindlin_dem, mmd); "
+                f"{scene.model!r} {why}")
     if eff.rolling_resistance > 0.0 and (rigid or not eff.rotation):
         return ("effects.rolling_resistance needs effects.rotation = true and a compliant model"
                 + (f"; {scene.model!r} is rigid" if rigid else ""))

@@ -412,8 +412,11 @@ class TangentialLaw(ContactModel):
         from dataclasses import replace
 
         caps = replace(cls.capabilities, uses_velocity=True)
+        # no adhesive variant: the DMT or JKR law would replace the normal slots, its damping
+        # with them, without a word (hertz_tsuji gave the same drift at damping 0 and 2)
         return type(name, (cls,), {"name": name, "summary": summary, "Params": params,
                                    "damping": damping, "capabilities": caps,
+                                   "adhesive_step": None, "adhesive_summary": "",
                                    "__module__": damping.__module__})
 
 
