@@ -43,9 +43,9 @@ def test_a_derived_option_on_a_device_scene_points_at_set(monkeypatch, capsys):
     lines = err.strip().splitlines()
     assert code == 2 and len(lines) == 1
     assert lines[0].startswith("error: --amplitude 20: ")
-    assert '--set device.amplitude="20 nm"' in lines[0]
-    # A* = 20 on the motor (a0 = 18.13 nm) is 20 a0
-    assert f"{20 * _hertz(0.5e-3)[0] * 1e9:.4g} nm" in lines[0]
+    # A* = 20 on the motor (a0 = 18.13 nm) is 20 a0: the --set named gives that amplitude (it
+    # named a fixed '20 nm', A* = 1.1)
+    assert f'--set device.amplitude="{20 * _hertz(0.5e-3)[0] * 1e9:.4g} nm"' in lines[0]
 
 
 @pytest.mark.parametrize(("item", "words"), [

@@ -190,6 +190,25 @@ def test_explain_does_not_expect_contact_loss_where_adhesion_holds_the_contact()
     assert "A* > 1" in text and "expect contact loss" not in text and "pull-off" in text
 
 
+def test_explain_describes_the_adhesive_contact_of_its_own_law():
+    """The JKR example: --explain printed the DMT pull-off (1.57e-6 N, 'DMT; JKR 3/4') and only
+    the Hertz contact under M g (1.5 MHz, a0 = 1.7e-13 m), with no word of the adhesive law in
+    the equations. JKR at zero load (Johnson 1985): a^3 = 9 pi w R^2 / (2 E*); the particle on
+    the contact's stiffness dF/d delta rings near 10 MHz (docs/adhesion.md's table)."""
+    path = EXAMPLES / "micro_silica_on_linbo3.toml"
+    text = _cli("run", str(path), "--explain").stdout
+    radius, w = 5e-6, 0.05
+    pull = float(text.split("pull-off force ")[1].split(" N")[0])
+    assert pull == pytest.approx(1.5 * math.pi * radius * w, rel=1e-3)
+    e_star = 1.0 / ((1 - 0.17**2) / 73e9 + (1 - 0.3**2) / 200e9)
+    a_zero = (9 * math.pi * w * radius**2 / (2 * e_star)) ** (1 / 3)
+    a = float(text.split("at rest under M g: contact radius ")[1].split(" m")[0])
+    assert a == pytest.approx(a_zero, rel=1e-3)  # the weight is 1e-5 of the pull-off
+    f_n = float(text.split("on the adhesive contact ")[1].split(" Hz")[0])
+    assert 9.5e6 < f_n < 10.5e6
+    assert "JKR adhesive normal law" in text and "|N* + 2 F*_pull|" in text
+
+
 # --- the rule for device scenes: device fields override, derived fields are errors ----------
 
 #: each derived scene field, a value other than the motor's, and the device field to name

@@ -16,6 +16,7 @@ from ..contact.base import ContactModel
 from ..contact.binding import bind, describe_body, model_for
 from ..contact.registry import get_model
 from ..errors import SceneError
+from ..scene.adhesion import explain_adhesion
 from ..scene.device import explain_device
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from . import air_drag
@@ -231,6 +232,12 @@ def _compliant_lines(scene: Scene, kernel: str, slot: object, rest_lines: list[s
     eff = scene.effects
     load = scene.particle.load
     normal = f"{scene.model} normal law" + ("" if eff.friction else " alone (its normal slot)")
+    if eff.adhesion != "none":
+        pull = scene.material.adhesion
+        normal = (f"{eff.adhesion.upper()} adhesive normal law (pull-off F*_pull = {pull:.6g}, "
+                  f"N* >= -F*_pull; the contact breaks on retraction"
+                  + (" at the pull-off" if eff.adhesion_detach == "pulloff" else "")
+                  + "); |T*| <= |N* + 2 F*_pull|, the friction cap with adhesion")
     equations = [f"m* y*'' = 1 - N*(a*), a* = y* - u_y; N* from the {normal}"]
     calls: list[str] = []
     if eff.normal_damping > 0.0:
@@ -398,4 +405,5 @@ def explain(scene: Scene, engine: Engine = "compiled") -> str:
     lines.append("outputs: " + ", ".join(plan.outputs))
     if scene.device is not None:
         lines += explain_device(scene.device, scene.material.mu)
+        lines += explain_adhesion(scene.device, scene.effects.adhesion, scene.material.mu)
     return "\n".join(lines)

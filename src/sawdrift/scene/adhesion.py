@@ -13,6 +13,7 @@ normal load M g (the scale of every normalized force); a device derives it from
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from .device import Device, normalized
@@ -56,3 +57,53 @@ def adhesion_consistent(scene: Any) -> None:
     if eff.normal_damping > 0.0 or scene.material.restitution is not None:
         raise ValueError(f"effects.adhesion = {eff.adhesion!r} is undamped: leave "
                          "effects.normal_damping at 0 and material.restitution unset")
+
+
+def adhesive_rest(device: Device, law: str) -> dict[str, float]:
+    """The adhesive sphere at rest under its load M g (SI): pull-off force, contact radius a,
+    overlap delta, normal stiffness dF/d delta and the particle's natural frequency on it.
+
+    JKR (Johnson 1985, with K = 4 E*/3): a^3 = (R/K) (P + 3 pi w R + sqrt(6 pi w R P +
+    (3 pi w R)^2)), delta = a^2/R - sqrt(2 pi w a / E*), and the stiffness the ratio of
+    dF/da = 4 E* a^2/R - (3/2) sqrt(8 pi w E*) a^(1/2) to d delta/da = 2 a/R - (1/2) sqrt(2 pi w /
+    E*) a^(-1/2). DMT: a^3 = (R/K) (P + 2 pi w R), delta = a^2/R, stiffness 2 E* a. For the 10 um
+    silica sphere on lithium niobate (w = 0.05 J/m^2): a = 68 nm, delta = 0.31 nm, 10 MHz (JKR).
+    """
+    n = normalized(device)
+    e_star, radius, w, load = n["e_star_pa"], float(device.particle.radius), device.adhesion, \
+        n["weight_n"]
+    k = 4.0 * e_star / 3.0
+    if law == "jkr":
+        third = 3.0 * math.pi * w * radius
+        a = (radius / k * (load + third + math.sqrt(2.0 * third * load + third**2))) ** (1 / 3)
+        delta = a * a / radius - math.sqrt(2.0 * math.pi * w * a / e_star)
+        d_force = 4.0 * e_star * a * a / radius - 1.5 * math.sqrt(8.0 * math.pi * w * e_star * a)
+        d_delta = 2.0 * a / radius - 0.5 * math.sqrt(2.0 * math.pi * w / (e_star * a))
+        stiffness = d_force / d_delta
+    else:
+        a = (radius / k * (load + 2.0 * math.pi * w * radius)) ** (1 / 3)
+        delta, stiffness = a * a / radius, 2.0 * e_star * a
+    return {"pulloff_n": PULLOFF_FACTOR[law] * n["pulloff_dmt_n"], "contact_radius_m": a,
+            "overlap_m": delta, "stiffness_n_m": stiffness,
+            "natural_hz": math.sqrt(stiffness / n["mass_kg"]) / (2.0 * math.pi)}
+
+
+def explain_adhesion(device: Device, law: str, mu: float) -> list[str]:
+    """The ``--explain`` lines of an adhesive device (:func:`adhesive_rest`): none without."""
+    if device.adhesion == 0.0 or law not in PULLOFF_FACTOR:
+        return []
+    n, rest = normalized(device), adhesive_rest(device, law)
+    f, pull, weight = n["frequency_hz"], rest["pulloff_n"], n["weight_n"]
+    return [
+        f"adhesion ({law.upper()}, work of adhesion w = {device.adhesion:g} J/m^2):",
+        f"  pull-off force {pull:.4g} N = {pull / weight:.4g} M g "
+        f"({'1.5' if law == 'jkr' else '2'} pi R w)",
+        f"  at rest under M g: contact radius {rest['contact_radius_m']:.4g} m, overlap "
+        f"{rest['overlap_m']:.4g} m = {rest['overlap_m'] / n['a0_m']:.4g} a0",
+        f"  contact (normal) natural frequency on the adhesive contact {rest['natural_hz']:.4g} Hz"
+        f" = {rest['natural_hz'] / f:.4g} f",
+        f"  the most friction can hold: mu (M g + 2 F_pull) = {mu * (weight + 2.0 * pull):.4g} N "
+        "(friction is capped at mu |N + 2 F_pull|)",
+    ] + ([f"  note: A* > 1: the surface moves {n['amplitude']:.4g} a0, against the adhesive "
+          f"contact's rest overlap of {rest['overlap_m'] / n['a0_m']:.4g} a0 (Hertz's a0 under "
+          "M g is not the contact's scale here)"] if n["amplitude"] > 1.0 else [])

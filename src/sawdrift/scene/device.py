@@ -467,26 +467,29 @@ def explain_device(device: Device, mu: float) -> list[str]:
         f"  E* = {n['e_star_pa']:.4g} Pa, G* = {n['g_star_pa']:.4g} Pa, theta = E*/(4 G*) = "
         f"{n['theta']:.6g}",
         f"  static compression a0 = {n['a0_m']:.4g} m ({law[part.shape]}), contact radius "
-        f"{n['contact_radius_m']:.4g} m",
+        f"{n['contact_radius_m']:.4g} m" + (" (without adhesion: the scale of x*, a*; the "
+                                            "adhesive contact below)" if device.adhesion > 0.0
+                                            else ""),
         f"  m* = {n['m_star']:.6g}, A* = {n['amplitude']:.6g}, r = {n['horizontal_ratio']:.6g}, "
         f"orbit {device.orbit}",
         f"  speed scale a0 f = {n['a0_m'] * f:.4g} m/s, time scale 1/f = {1 / f:.4g} s",
     ]
     if n["load_n"] != 0.0:
         lines.append(f"  tangential load F = device.load - m g sin(alpha) = {n['load_n']:.4g} N "
-                     f"(along +x): particle.load L = F / (M g) = {n['load']:.6g}; the most "
-                     f"friction can hold is mu M g = {mu * n['weight_n']:.4g} N")
+                     f"(along +x): particle.load L = F / (M g) = {n['load']:.6g}"
+                     + (f"; the most friction can hold is mu M g = {mu * n['weight_n']:.4g} N"
+                        if device.adhesion == 0.0 else ""))
     # small-amplitude normal natural frequency: omega^2 = N*'(1)/m* = p/m* per unit t*
     f_n = math.sqrt(SHAPE_EXPONENT[part.shape] / n["m_star"]) / (2 * math.pi) * f
-    lines.append(f"  contact (normal) natural frequency {f_n:.4g} Hz = {f_n / f:.4g} f")
+    lines.append(f"  contact (normal) natural frequency {f_n:.4g} Hz = {f_n / f:.4g} f"
+                 + (" without adhesion (with it: below)" if device.adhesion > 0.0 else ""))
     approach = n["m_star"] / mu
     lines.append(f"  expected approach to the steady drift ~ m*/mu = {approach:.4g} periods = "
-                 f"{approach / f:.4g} s")
+                 f"{approach / f:.4g} s" if approach >= 1.0 else
+                 f"  m*/mu = {approach:.4g}: the horizontal speed follows the surface within a "
+                 "period (no slow approach to the steady drift)")
     lines.extend(f"  WARNING: {w}" for w in device_warnings(device))
-    if n["amplitude"] > 1.0:
-        pull = n["pulloff_dmt_n"]  # adhesion holds the contact in tension up to the pull-off
+    if n["amplitude"] > 1.0 and device.adhesion == 0.0:
         lines.append("  note: A* > 1: the substrate moves further than the static compression; "
-                     + ("expect contact loss for a heavy particle" if device.adhesion == 0.0 else
-                        f"adhesion holds the contact up to a pull-off of {pull:.3g} N (DMT; JKR "
-                        f"3/4), {pull / n['weight_n']:.3g} times the load"))
+                     "expect contact loss for a heavy particle")
     return lines
