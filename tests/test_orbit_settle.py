@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 import sawdrift as sd
 from sawdrift.dynamics.synchrony import orbit_pattern
@@ -18,7 +19,7 @@ def _run(model: str, m: float, amp: float, mu: float = 0.1, **drive) -> sd.Resul
                            drive={"amplitude": amp, **drive}))
 
 
-def _period_two_phases(gamma: float) -> tuple[float, float]:
+def _period_two_phases(gamma: float, hops: int = 200) -> tuple[float, float]:
     """Take-off phases of the period-2 orbit of the completely inelastic bouncing ball.
 
     Plate u = Gamma sin(tau) (units g / omega^2), take-off where Gamma sin(tau) = 1 with the
@@ -48,7 +49,7 @@ def _period_two_phases(gamma: float) -> tuple[float, float]:
 
     t = math.asin(1.0 / gamma) + 0.05
     phases = []
-    for _ in range(200):  # at Gamma 3.8 the phases repeat to 5e-13 after 100 hops (4000: 8 s)
+    for _ in range(hops):  # at Gamma 3.8 the phases repeat to 5e-13 after 100 hops (4000: 8 s)
         t = take_off(flight(t))
         # the scene's surface height is -A cos(2 pi t*) = A sin(2 pi t* - pi/2): tau = 2 pi t* - pi/2
         phases.append((t / (2 * math.pi) + 0.25) % 1.0)
@@ -69,6 +70,40 @@ def test_the_bouncing_ball_past_its_period_doubling_hops_with_period_two():
     got = sorted(res.liftoff_phases)
     assert len(got) == 2
     assert np.allclose(got, expected, atol=1e-4), (got, expected)
+
+
+def _ball(gamma: float) -> sd.Result:
+    """The completely inelastic bouncing ball (a rigid point, no horizontal motion) at Gamma."""
+    return _run("material_point", 0.1, gamma / (4 * math.pi**2 * 0.1), horizontal_ratio=0.0)
+
+
+def test_a_decaying_alternation_below_the_doubling_is_a_hop_of_one():
+    """Gamma = 3.7 < 3.724: the period-1 orbit is stable, its multiplier 1 - sqrt(Gamma^2 - pi^2)
+    = -0.955, so a transient alternates for hundreds of periods while it decays. It repeated
+    after two periods to 1e-8 while its take-offs still differed by 2e-8, and was called a hop
+    of period 2 with the phases 0.33858 and 0.33858; the orbit is period 1 at the take-off
+    (acos(pi / Gamma) + pi/2) / (2 pi)."""
+    gamma = 3.7
+    res = _ball(gamma)
+    assert res.hop_period == 1 and res.orbit_period == 1 and res.settled is True
+    phase = (math.acos(math.pi / gamma) + math.pi / 2) / (2 * math.pi)
+    assert res.liftoff_phases == pytest.approx([phase], abs=1e-6)
+    # its exponent is the multiplier's log per period
+    assert res.lyapunov == pytest.approx(math.log(math.sqrt(gamma**2 - math.pi**2) - 1.0),
+                                         abs=0.005)
+
+
+def test_past_the_doubling_a_growing_alternation_is_followed_to_its_orbit_of_two():
+    """Gamma = 3.73, multiplier -1.0108: the alternation away from the unstable period-1 orbit
+    grows by 1 % a period, and settles on the orbit of 2 after about 700 periods. The default
+    settled on the hop of 1 (its zero drift agreed window to window) with the fixed window's
+    exponent +0.010, the unstable orbit's; the 2-cycle is stable (its exponent negative)."""
+    gamma = 3.73
+    res = _ball(gamma)
+    assert res.hop_period == 2 and res.orbit_period == 2 and res.settled is True
+    expected = sorted(_period_two_phases(gamma, hops=1600))
+    assert np.allclose(sorted(res.liftoff_phases), expected, atol=1e-4)
+    assert res.lyapunov < 0.0
 
 
 def test_a_growing_period_two_hop_is_not_settled_and_then_found():

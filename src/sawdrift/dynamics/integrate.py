@@ -132,7 +132,14 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     if settling is None and num.settle is not False and not chaotic and win.contact_lost:
         # the run goes on to its periodic orbit (its events and trajectory with it), as a
         # settling run goes on to its steady drift
-        win, before = _find_orbit(stepper, win, speed, scale, series, before)
+        fixed_win = win
+        win, before, leaving = _find_orbit(stepper, win, speed, scale, series, before)
+        if win is not fixed_win:
+            # the exponent of the window the evidence comes from (a stable orbit of 2 reached
+            # after its doubling kept the fixed window's +0.029, the unstable orbit of 1's)
+            lyap, chaotic = lyapunov(win, scale)
+    else:
+        leaving = False
     periods_run = stepper.step / stepper.k_per
     # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
@@ -150,7 +157,10 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
             settling = replace(settling, drift=None)  # a fixed run reports its window's mean
         elif stepper.step > fixed_end:  # it went on in windows to its periodic orbit
             settling = replace(settling, method="fixed_then_windows")
-        if (not settling.settled and num.settle is None and num.periods == DEFAULT_PERIODS
+        if leaving and num.settle is not False:
+            # still leaving its old orbit for another: no steady motion to settle on yet
+            settling = replace(settling, settled=False, drift=None, leaving=True)
+        elif (not settling.settled and num.settle is None and num.periods == DEFAULT_PERIODS
                 and not chaotic):
             # a default run that its own window could not confirm goes on to the steady drift (a
             # run given another length keeps it)
@@ -381,10 +391,14 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
 #: periods a regular (not chaotic) window that lost contact may run on to reach its periodic orbit
 ORBIT_PERIODS = 300
 
+#: periods the orbit search goes on while the motion leaves its hop (:func:`_still_leaving`):
+#: the new orbit it heads for may lie that far
+LEAVING_PERIODS = 1000
+
 
 def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
                 series: list[np.ndarray] | None = None, before: Window | None = None
-                ) -> tuple[Window, Window | None]:
+                ) -> tuple[Window, Window | None, bool]:
     """Run on, window after window, until a regular window that lost contact is on its orbit.
 
     A motion with contact loss that is not chaotic settles on a periodic orbit (or is still on
@@ -395,21 +409,73 @@ def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
     alternately, which 60 periods averaged into one phase). At most :data:`ORBIT_PERIODS` more,
     and no more once the distance from repeating (:func:`~.window.orbit_residual`) shows that
     they would not reach an orbit (:func:`_no_orbit_ahead`). Each window's per-period rows
-    (:func:`~.batch_means.period_rows`) are appended to ``series``. Returns the last window
-    and the one before it (``before`` where no window was run).
+    (:func:`~.batch_means.period_rows`) are appended to ``series``. Returns the last window,
+    the one before it (``before`` where no window was run), and whether the motion was still
+    leaving its orbit when the periods ran out (:func:`_still_leaving`: the bouncing ball just
+    past its period doubling, Gamma = 3.73, multiplier -1.0108, whose alternation grows for
+    about a thousand periods before it settles on the orbit of 2, was called a settled hop of 1).
     """
     spent = 0
     residuals = [orbit_residual(win.samples, scale)]
-    while win.contact_lost and win.orbit_period == 0 and spent < ORBIT_PERIODS:
+    gaps = [_hop_gap(win, scale)]
+    cap = ORBIT_PERIODS
+    while win.contact_lost and win.orbit_period == 0 and spent < cap:
         before = win
         win = measure_window(stepper, win.periods, speed, scale)
         if series is not None:
             series.append(period_rows(win, stepper))
         spent += win.periods
         residuals.append(orbit_residual(win.samples, scale))
-        if _no_orbit_ahead(residuals, (ORBIT_PERIODS - spent) / win.periods):
+        gaps.append(_hop_gap(win, scale))
+        if _still_leaving(win, gaps):
+            cap = LEAVING_PERIODS  # leaving its hop for another orbit: follow it there
+            continue
+        if _no_orbit_ahead(residuals, (cap - spent) / win.periods) and not _rising(gaps):
             break
-    return win, before
+    return win, before, _still_leaving(win, gaps)
+
+
+#: window-to-window growth of a hop's distance from repeating after its own period that makes
+#: a motion without an orbit still leaving its hop, over each of :data:`LEAVING_WINDOWS` windows
+LEAVING_RATIO = 1.02
+
+#: windows of steady growth (the logs of their ratios within a factor :data:`LEAVING_SPREAD` of
+#: each other: an exponential departure) that tell an unstable hop from a quasi-periodic wobble
+LEAVING_WINDOWS = 4
+LEAVING_SPREAD = 2.0
+
+
+def _hop_gap(win: Window, scale: np.ndarray) -> float:
+    """The largest scaled change of the last 8 period-end states (x*', y*, y*') of ``win``
+    against its hop period earlier (NaN without a synchronous hop)."""
+    k = win.sync.hop_period
+    s = np.asarray(win.samples)[:, 1:4] / scale
+    if k <= 0 or s.shape[0] < k + 8:
+        return math.nan
+    return float(np.abs(s[-8:] - s[-8 - k:-k]).max())
+
+
+def _rising(gaps: list[float]) -> bool:
+    """Whether every window so far, fewer than :func:`_still_leaving` needs, moved further from
+    repeating after the hop period than the one before (by :data:`LEAVING_RATIO`): the orbit
+    search waits for the windows that tell."""
+    g = np.asarray(gaps)
+    return bool(1 < g.size <= LEAVING_WINDOWS and np.isfinite(g).all() and (g > 0.0).all()
+                and (g[1:] > LEAVING_RATIO * g[:-1]).all())
+
+
+def _still_leaving(win: Window, gaps: list[float]) -> bool:
+    """Whether a window with contact loss and no orbit ends the orbit search leaving its hop: the
+    distance from repeating after the hop period (:func:`_hop_gap`, one per window) grew by more
+    than :data:`LEAVING_RATIO` over each of the last :data:`LEAVING_WINDOWS` windows, at a steady
+    rate (an exponential departure: an orbit losing its stability, as at a period doubling)."""
+    if not win.contact_lost or win.orbit_period > 0 or len(gaps) < LEAVING_WINDOWS + 1:
+        return False
+    g = np.asarray(gaps[-LEAVING_WINDOWS - 1:])
+    if not (np.isfinite(g).all() and (g > 0.0).all()):
+        return False
+    rates = np.log(g[1:] / g[:-1])
+    return bool(rates.min() > math.log(LEAVING_RATIO) and rates.max() < LEAVING_SPREAD * rates.min())
 
 
 #: window-to-window ratios of the distance from repeating within this factor of 1 (twice in a

@@ -42,3 +42,6 @@ class Settling:
     #: the beat (periods) of the free vertical oscillation after which a contact that had held
     #: slid again (:mod:`.slip_return`), 0 where none did: why such a run may not settle
     slip_beat: float = 0.0
+    #: the motion still moved away from repeating when the search for its periodic orbit ended
+    #: (a period doubling unfolding): no steady motion yet, why such a run is not settled
+    leaving: bool = False

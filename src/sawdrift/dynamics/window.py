@@ -114,6 +114,14 @@ def periodicity(samples: np.ndarray, scale: np.ndarray, last: int = 10) -> float
 #: scaled stroboscopic change below which the state counts as repeating (round-off level)
 PERIODIC_TOL = 1e-8
 
+#: scaled change by which the states of an orbit of p, d periods apart (d a divisor of p), must
+#: differ: below it the motion is on its way to an orbit of d, not on one of p. The inelastic
+#: bouncing ball at Gamma = 3.7, below its period doubling (multiplier 1 - sqrt(Gamma^2 - pi^2)
+#: = -0.955), repeated after 2 periods to 1e-8 while its take-offs still alternated by 2e-8
+#: about the period-1 phase 0.338579; an orbit of 2 just past the doubling differs by
+#: sqrt(Gamma - 3.7242) in its take-offs, 1e-4 within 1e-8 of the threshold
+DISTINCT = 1e-4
+
 #: longest periodic orbit read as a hop (its period the hop period): an orbit that repeats only
 #: after more periods is settled on and its drift taken over whole orbits, but its lift-offs
 #: are called bouncing, as a phase diagram sees them (of the 33 x 33 material point diagram,
@@ -141,7 +149,16 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int | None = N
     # those p alone
     near = ps[_gaps(s, ps, 1) <= PERIODIC_TOL]
     hit = near[_gaps(s, near, last) <= PERIODIC_TOL]
-    return int(hit[0]) if hit.size else 0
+    if not hit.size:
+        return 0
+    p = int(hit[0])
+    # an orbit of p has its states p / d periods apart distinct for every divisor d of p; a
+    # motion still approaching an orbit of d with multiplier near -1 repeats after 2 d periods
+    # long before it does after d (|lambda^2 - 1| << |lambda - 1|): it is not yet periodic
+    divisors = np.array([d for d in range(1, p) if p % d == 0], dtype=np.int64)
+    if divisors.size and (_gaps(s, divisors, last) <= DISTINCT).any():
+        return 0
+    return p
 
 
 def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int | None = None,

@@ -218,6 +218,11 @@ def _unsettled_reason(out: WaveRun, settling: bool) -> str:
     longer = ("numerics.max_periods (--max-periods)" if settling else
               "numerics.settle = true (--settle) with numerics.max_periods (--max-periods)")
     beat = out.settling.slip_beat
+    if out.settling.leaving:
+        return (f"not settled: its take-offs still moved away from repeating when the run "
+                f"stopped after {periods:.0f} periods (an orbit losing its stability, as at a "
+                f"period doubling: the hop period and phases are those of the orbit it leaves); "
+                f"{longer} runs it longer")
     if beat > 0.0:
         return (f"not settled: its contact held for a while and then slid again, as its undamped "
                 f"free vertical oscillation beats against the wave over about {beat:.0f} periods "
