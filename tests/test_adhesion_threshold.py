@@ -64,3 +64,14 @@ def test_a_threshold_above_the_scan_is_named_not_printed_as_nan(monkeypatch, cap
                         "device.particle.radius=1 um", "--stop", "0.01 nm", "--json")
     row = json.loads(out)["rows"][0]
     assert row["removal_amplitude_m"] is None and row["slide_amplitude_m"] is None
+
+
+@pytest.mark.parametrize("stop", ["-1 nm", "0 nm"])
+def test_a_stop_that_is_not_a_positive_amplitude_is_refused(stop, monkeypatch, capsys):
+    # it ran and printed '> -1 nm' for every row
+    from .cli_call import call
+
+    example = str(Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml")
+    code, _, err = call(monkeypatch, capsys, "threshold", example, "--axis",
+                        "device.particle.radius=1 um", "--stop", stop)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "--stop" in err

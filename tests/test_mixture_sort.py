@@ -112,6 +112,34 @@ def test_bad_sort_options_are_one_line(args, needle, monkeypatch, capsys):
     assert exc.value.code == 2 and len(err) == 1 and needle in err[0], err
 
 
+def test_two_equal_radii_are_refused(monkeypatch, capsys):
+    # one species in two names ran, and reported purities of 0.563 for beads nothing tells apart
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
+                                      "--set", 'particles.radius=["1 mm","1 mm"]'])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1 and "two different radii" in err[0], err
+
+
+def test_one_placement_gives_strict_json_with_no_spread(monkeypatch, capsys):
+    # --seeds 1 wrote NaN spreads (strict JSON parsers refuse them) and numpy's warnings
+    import json
+
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
+                                      "--seeds", "1", "--until", "1e4", "--json"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    captured = capsys.readouterr()
+    assert exc.value.code in (0, None)
+
+    def strict(text):
+        raise ValueError(f"non-standard JSON constant {text}")
+    data = json.loads(captured.out, parse_constant=strict)
+    assert data["over_time"]["purity"]["std"] is None
+    assert "warning" not in captured.err
+
+
 def test_sort_without_particles_is_one_line(tmp_path, monkeypatch, capsys):
     scene = tmp_path / "one.toml"
     text = (EXAMPLES / "mixture.toml").read_text()

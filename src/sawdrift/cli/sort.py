@@ -218,7 +218,8 @@ def _lines(data: dict[str, Any]) -> list[str]:
     wanted = [0] + [int(abs(np.log10(np.maximum(periods, 1e-300)) - d).argmin())
                     for d in range(0, int(np.log10(periods[-1])) + 1)] + [len(periods) - 1]
     for k in sorted(set(wanted)):
-        cells = [f"{_fmt(over[m]['mean'][k], '.3f')} +- {_fmt(over[m]['std'][k], '.3f')}"
+        cells = [f"{_fmt(over[m]['mean'][k], '.3f')} +- "
+                 f"{_fmt(over[m]['std'][k] if over[m]['std'] else None, '.3f')}"
                  for m in ("purity", "purity_index", "lacey")]
         lines.append(f"  {periods[k]:>10.3g} {periods[k] / f:>10.3g} {cells[0]:>16} "
                      f"{cells[1]:>16} {cells[2]:>16}")

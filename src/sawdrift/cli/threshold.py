@@ -53,6 +53,8 @@ def threshold_cmd(
         stop_m = to_si(stop, "length")
     except ValueError as exc:
         _fail(f"--stop = {stop!r} {exc}")
+    if not stop_m > 0.0:
+        _fail(f"--stop = {stop!r} must be a positive amplitude, e.g. '10 nm' (the scan's top)")
     if out is not None:
         _writable(out, folder=True)
     scene = Scene.from_toml(scene_arg)

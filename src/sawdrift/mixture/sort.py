@@ -124,7 +124,9 @@ class SortResult:
             "seeds": self.seeds, "count": int(self.runs[0].kinds.size) if self.runs else 0,
             "frequency_hz": self.frequency, "periods": self.periods.tolist(),
             "seconds": self.seconds.tolist(),
-            "over_time": {k: {"mean": v.mean(axis=0).tolist(), "std": v.std(axis=0, ddof=1).tolist()}
+            # one placement has no spread: null, not NaN (which strict JSON refuses)
+            "over_time": {k: {"mean": v.mean(axis=0).tolist(),
+                              "std": v.std(axis=0, ddof=1).tolist() if v.shape[0] > 1 else None}
                           for k, v in self.measures.items()},
             "target_purity": self.target,
             "time_to_target": {
@@ -193,6 +195,10 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     check_many(scene)
     if len(spec.radius) != 2:
         raise SceneError("particles.radius: sorting needs two species (two radii)")
+    r0, r1 = spec.radii_m()
+    if math.isclose(r0, r1, rel_tol=1e-9):
+        raise SceneError(f"particles.radius = {list(spec.radius)}: sorting needs two different "
+                         "radii (one species cannot segregate from itself)")
     if not 0.5 < target <= 1.0:
         raise SceneError(f"--purity = {target!r}: give a purity in (0.5, 1]")
     if not periods >= 1.0 or not math.isfinite(periods):
