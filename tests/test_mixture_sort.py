@@ -227,3 +227,18 @@ def test_sort_report_prints_each_mean_to_the_digits_of_its_spread():
     assert "1.612e+07 +- 7.6e+05 periods = 806 +- 38 s" in hit
     same = _lines(_report((196.5, 0.0), (1.6123e7, 7.6e5)))
     assert next(x for x in same if x.startswith("  final:")).startswith("  final: 196.5 +- 0 ")
+
+
+def test_undamped_beads_are_warned_of(monkeypatch, capsys):
+    # the slow model assumes steady contacts (checked at e = 0.5, 0.9); an undamped run said
+    # nothing of it
+    import json
+
+    for extra, warned in (([], False), (["--restitution", "1"], True)):
+        monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
+                                          "--seeds", "2", "--until", "1e3", "--json", *extra])
+        with pytest.raises(SystemExit):
+            main()
+        data = json.loads(capsys.readouterr().out)
+        assert bool(data["warnings"]) is warned
+        assert not warned or "undamped" in data["warnings"][0]

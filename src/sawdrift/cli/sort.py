@@ -245,6 +245,7 @@ def _lines(data: dict[str, Any]) -> list[str]:
     lines.append(f"  final: {_pm(fin['chains']['mean'], fin['chains']['std'])} "
                  f"groups of touching beads (mean size {_fmt(fin['mean_chain_size'])}, largest "
                  f"{fin['largest_chain']}), {cost}")
+    lines.extend(f"  WARNING: {w}" for w in data.get("warnings", ()))
     lines.append(f"  {data['validated']}")
     lines.append(f"  model: {data['assumed']}")
     if "check" in data:

@@ -44,8 +44,13 @@ VALIDATED = (
     "e = 0.9; their slowdown by the small beads within 1 % (10 small + 1 large, e = 0.5), 9 % "
     "(the same, e = 0.9) and 25 % (a mixed chain of 20, e = 0.9). Not in the model: at e = 0.9 "
     "LAMMPS's first impact knocks a small bead behind a large one into a backward drift (-0.96) "
-    "instead of a chain; the native curves and LAMMPS's rule agree on the free beads (1 mm bead "
-    "-0.3187 native, -0.3189 LAMMPS's rule at e = 0.9)")
+    "instead of a chain; the native curves and LAMMPS's rule agree on the free beads (on "
+    "examples/mixture.toml's 1 mm bead: -0.3187 native, -0.3189 LAMMPS's rule at e = 0.9)")
+
+#: the warning of a run whose bead contacts are undamped (no restitution below 1, no damping)
+UNDAMPED = ("undamped contacts: in LAMMPS the first touch throws a small bead into bouncing; the "
+            "slow model assumes steady contacts and was checked at e = 0.5 and 0.9 only: give "
+            "material.restitution (--restitution) below 1")
 
 #: what the 2-D model assumes beyond the checked chains (docs/mixtures.md, "The 2-D model")
 PLANE = (
@@ -93,6 +98,8 @@ class SortResult:
     geometry: str = "plane"
     jitter: float = 0.0
     perp: float = 1.0
+    #: where the scene leaves the model's checked range (:data:`UNDAMPED`)
+    warnings: tuple[str, ...] = ()
 
     @property
     def seconds(self) -> np.ndarray:
@@ -142,6 +149,7 @@ class SortResult:
             "geometry": self.geometry, "jitter_small_radii": self.jitter,
             "transverse_mobility_factor": self.perp,
             "validated": VALIDATED,
+            "warnings": list(self.warnings),
             "assumed": PLANE.format(sensitivity=SENSITIVITY, jitter=self.jitter, perp=self.perp)
             if self.geometry == "plane" else LINE,
         }
@@ -259,7 +267,15 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
                       measures={k: np.array(v) for k, v in values.items()}, target=target,
                       runs=runs, species=rows, wall_time_s=time.perf_counter() - t0,
                       curve_source=source, curve_wall_s=curve_wall, geometry=geometry,
-                      jitter=jitter_radii if geometry == "plane" else 0.0, perp=perp)
+                      jitter=jitter_radii if geometry == "plane" else 0.0, perp=perp,
+                      warnings=_warnings(scene))
+
+
+def _warnings(scene: Scene) -> tuple[str, ...]:
+    """Where the scene leaves what the slow model was checked on: undamped bead contacts."""
+    e = scene.material.restitution
+    damped = (e is not None and e < 1.0) or scene.effects.normal_damping > 0.0
+    return () if damped else (UNDAMPED,)
 
 
 def slow_window(scene: Scene, spec: Particles, result: SortResult, periods: int) -> dict[str, Any]:
