@@ -18,6 +18,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq, minimize_scalar
 
+import sawdrift as sd
 from sawdrift.contact.adhesion import Adhesion, adhesive_model, rest_compression
 from sawdrift.contact.adhesion_law import adhesive_normal, jkr_hysteresis
 from sawdrift.contact.binding import model_for
@@ -219,3 +220,14 @@ def test_a_model_with_its_own_normal_damping_refuses_adhesion():
         model_for(build_scene(data))
     assert "\n" not in str(info.value)
     assert get_model("hertz_tsuji").describe()["adhesion"] == ""
+
+
+def test_restitution_one_is_the_undamped_contact_adhesion_takes():
+    # e = 1 is the undamped contact bit for bit; adhesion refused it as damping
+    base = {"model": "mmd", "particle": {"m_star": 0.1}, "drive": {"amplitude": 0.3},
+            "material": {"adhesion": 1.0}, "effects": {"adhesion": "dmt"}}
+    plain = sd.run(build_scene(base))
+    one = sd.run(build_scene({**base, "material": {"adhesion": 1.0, "restitution": 1.0}}))
+    assert one.drift_ratio == plain.drift_ratio
+    with pytest.raises(SceneError, match="undamped"):
+        build_scene({**base, "material": {"adhesion": 1.0, "restitution": 0.9}})

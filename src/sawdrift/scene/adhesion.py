@@ -54,9 +54,11 @@ def adhesion_consistent(scene: Any) -> None:
     if shape != "sphere":
         raise ValueError(f"effects.adhesion = {eff.adhesion!r} needs particle.profile.shape = "
                          f"'sphere' (the adhesive laws are those of a sphere), not {shape!r}")
-    if eff.normal_damping > 0.0 or scene.material.restitution is not None:
+    e = scene.material.restitution
+    if eff.normal_damping > 0.0 or (e is not None and e < 1.0):
+        # e = 1 is the undamped contact, bit for bit: no conflict
         raise ValueError(f"effects.adhesion = {eff.adhesion!r} is undamped: leave "
-                         "effects.normal_damping at 0 and material.restitution unset")
+                         "effects.normal_damping at 0 and material.restitution unset (or 1)")
 
 
 def adhesive_rest(device: Device, law: str) -> dict[str, float]:
