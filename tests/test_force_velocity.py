@@ -64,6 +64,25 @@ def test_the_command_refuses_a_load_it_would_replace(sawdrift_main):
     assert "Traceback" not in bad.stderr and bad.stdout == ""
 
 
+def test_load_curve_refuses_a_load_and_an_incline_is_no_load(sawdrift_main):
+    # load-curve ignored a --load without a word; force-velocity refused a device on an incline
+    # (whose pull, particle.load -1.9e-4, is part of every force of the curve) as a given load
+    from pathlib import Path
+
+    motor = str(Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml")
+    bad = sawdrift_main("load-curve", "--model", "mmd", "--m-star", "1", "--load", "0.2")
+    assert bad.returncode == 2 and "particle.load = 0.2" in bad.stderr and bad.stdout == ""
+    bad = sawdrift_main("load-curve", motor, "--set", 'device.load="1 mN"')
+    assert bad.returncode == 2 and "device.load" in bad.stderr
+    ok = sawdrift_main("force-velocity", motor, "--set", 'device.incline="2 deg"', "--points",
+                       "3", "--workers", "1", "--json")
+    assert ok.returncode == 0, ok.stderr
+    data = json.loads(ok.stdout)
+    pull = sd.Scene.from_toml(motor).with_updates(**{"device.incline": "2 deg"}).particle.load
+    # the unloaded point of the curve carries the incline's pull
+    assert pull in [pytest.approx(f, abs=1e-12) for f in data["force"]]
+
+
 CHAOTIC = ["--model", "mmd", "--m-star", "0.1", "--amplitude", "1"]
 
 

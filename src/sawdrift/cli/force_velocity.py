@@ -23,7 +23,7 @@ from .app import (
     write_outputs,
 )
 from .run_text import pm_text
-from .scene_options import scene_from_options, with_scene_options
+from .scene_options import refuse_given_load, scene_from_options, with_scene_options
 
 
 @app.command("force-velocity")
@@ -63,10 +63,8 @@ def force_velocity_cmd(
     if workers is not None and workers < 1:
         _fail(f"--workers = {workers}: give at least 1")
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
-    if scene.particle.load != 0.0:
-        _fail(f"particle.load = {scene.particle.load:g}: force-velocity samples the loads itself "
-              "(--points of them inside (-mu, mu) M g), so a given load would be ignored; the "
-              "speed under one load is where the curve crosses it, or `sawdrift run --load`")
+    refuse_given_load(scene, "force-velocity", "samples the loads itself (--points of them "
+                      "inside (-mu, mu) M g, mu (1 + 2 F*_pull) with adhesion)")
     from ..study.estimate import size_check
 
     created = _prepare_out(out)  # before the calibration and the runs, as sweep does

@@ -25,7 +25,7 @@ from .app import (
     write_outputs,
 )
 from .run_text import pm_text
-from .scene_options import scene_from_options, with_scene_options
+from .scene_options import refuse_given_load, scene_from_options, with_scene_options
 
 
 @app.command("load-curve")
@@ -58,8 +58,8 @@ def load_curve_cmd(
     The load opposes the unloaded drift (a motor's thrust, or what a conveyor can lift); the stall
     load, where the particle no longer advances, is bracketed and narrowed by k-section (one run
     per worker per round) to 1e-3 of mu M g, then --loads loads from 0 to it are run, each
-    settled as a default run is (--settle forces it). The scene's own particle.load
-    (device.load) is replaced by the curve's; a device's incline stays. Device scenes are
+    settled as a default run is (--settle forces it). A scene given a load of its own
+    (particle.load, device.load) is refused; a device's incline stays. Device scenes are
     reported in mN, m/s and mW.
     """
     from ..report.load_curve_plot import plot_load_curve
@@ -76,6 +76,7 @@ def load_curve_cmd(
     if out is not None:
         _writable(out, folder=kind == "folder")
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
+    refuse_given_load(scene, "load-curve", "runs its own loads, from 0 to the stall load")
     species = 1
     if axis is not None:
         from ..study.axes import parse_values

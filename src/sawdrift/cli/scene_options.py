@@ -229,3 +229,20 @@ def _check_keys(scene_file: Path, model: str | None) -> None:
     params = data.get("model_params")
     if isinstance(params, dict) and model in (None, data.get("model", "mmd")):
         check_model_params(str(data.get("model", "mmd")), params, str(scene_file))
+
+
+def refuse_given_load(scene: Any, command: str, how: str) -> None:
+    """One line (exit 2) where a curve over loads (``command``: force-velocity, load-curve) is
+    given a load of its own: ``particle.load`` on a normalized scene, ``device.load`` on a
+    device (whose incline's pull stays: it is part of every force of the curve). ``how`` says
+    how the command picks its loads."""
+    device = getattr(scene, "device", None)
+    if device is not None:
+        if device.load != 0.0:
+            raise sd.SceneError(f"device.load = {device.load:g} N: {command} {how}, so a given "
+                                "load would be ignored (an incline's pull stays); the speed "
+                                "under one load is `sawdrift run`'s")
+    elif scene.particle.load != 0.0:
+        raise sd.SceneError(f"particle.load = {scene.particle.load:g}: {command} {how}, so a "
+                            "given load would be ignored; the speed under one load is `sawdrift "
+                            "run --load`'s")
