@@ -192,3 +192,15 @@ def test_the_default_step_keeps_a_strong_viscous_damping_stable():
     fine = sd.run(scene.with_updates(**{"numerics.steps_per_period": 2 * k}))
     assert coarse.orbit_period == fine.orbit_period
     assert coarse.drift_ratio == pytest.approx(fine.drift_ratio, abs=1e-3)
+
+
+def test_a_scene_beyond_the_finest_step_names_its_fields_not_the_step():
+    # m* 1e-300 failed at steps_per_period 1e7 with the advice to take a larger steps_per_period,
+    # which is refused above 1e7
+    from sawdrift.scene.parts import FINEST_STEPS
+
+    with pytest.raises(NonFiniteStateError) as info:
+        sd.run(sd.Scene(particle={"m_star": 1e-300}))
+    msg = str(info.value)
+    assert f"finest step allowed, 1/{FINEST_STEPS}" in msg and "particle.m_star = 1e-300" in msg
+    assert "larger --steps-per-period" not in msg and "\n" not in msg

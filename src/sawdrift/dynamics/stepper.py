@@ -12,6 +12,7 @@ from __future__ import annotations
 import base64
 import copy
 import io
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -23,6 +24,7 @@ from ..contact.binding import model_for
 from ..contact.history import ContactHistory
 from ..contact.scene_damping import damped_law
 from ..errors import NonFiniteStateError
+from ..scene.parts import FINEST_STEPS
 from ..scene.schema import Scene
 from . import adams_bashforth as ig
 from . import evidence as ev
@@ -294,11 +296,15 @@ class Stepper:
                 f"stick-slip changes) in the step at t* = {k * self.h:.6g} ({state}) and would "
                 "fall behind in time; try a larger --steps-per-period or a restitution below 1"
             )
-        raise NonFiniteStateError(
-            f"non-finite state at t* = {k * self.h:.6g} (step {k}; {state}): the step "
-            f"1/{self.k_per} is likely too coarse for m* = {m:g}; try a larger "
-            "--steps-per-period or a lower Adams-Bashforth order"
-        )
+        amp = float(getattr(self.scene.drive, "amplitude", math.nan))
+        # at the finest step allowed, the scene itself is beyond what the scheme resolves
+        hint = (f"at the finest step allowed, 1/{self.k_per}: particle.m_star = {m:g} with "
+                f"drive.amplitude = {amp:g} is beyond what the scheme resolves; give values "
+                "nearer m* 1e-6..1e8, A* below 1e6" if self.k_per >= FINEST_STEPS else
+                f"the step 1/{self.k_per} is likely too coarse for m* = {m:g}; try a larger "
+                "--steps-per-period or a lower Adams-Bashforth order")
+        raise NonFiniteStateError(f"non-finite state at t* = {k * self.h:.6g} (step {k}; "
+                                  f"{state}): {hint}")
 
     def continued(self, scene: Scene, model: ContactModel | None = None) -> Stepper:
         """A stepper for ``scene`` that starts from this one's state (warm start, continuation).

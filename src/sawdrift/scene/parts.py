@@ -52,6 +52,9 @@ NonNegative = Annotated[float, bounded(0.0, None)]
 
 FROZEN = ConfigDict(frozen=True, extra="forbid")
 
+#: the most steps per period a scene may ask for (numerics.steps_per_period)
+FINEST_STEPS = 10_000_000
+
 
 class Material(BaseModel):
     """Friction coefficient, Poisson's ratio and, for two materials, the contact's theta."""
@@ -300,7 +303,7 @@ class Numerics(BaseModel):
             "history is exact)"
         ),
     )
-    steps_per_period: Annotated[int, Field(ge=8, le=10_000_000)] | None = Field(
+    steps_per_period: Annotated[int, Field(ge=8, le=FINEST_STEPS)] | None = Field(
         None, description="steps per wave period; default resolves sqrt(1.5/m*) and the wave"
     )
     periods: Annotated[float, bounded(0.0, 1e7, lo_open=True)] = Field(
