@@ -92,7 +92,8 @@ def test_device_tables_carry_si_columns_with_units(device_table):
     assert sorted(set(frame["load_N"])) == pytest.approx([-1e-4, 0.0], abs=1e-15)
     units = table_metadata(device_table)["units"]
     assert units == {"device.amplitude": "m", "device.load": "N", "drift_speed_m_s": "m/s",
-                     "a0_m": "m", "load_N": "N"}
+                     "a0_m": "m", "load_N": "N", "drift_speed_se_m_s": "m/s",
+                     "detach_time_s": "s"}
 
 
 def test_export_and_figures_label_device_axes_with_units(device_table, tmp_path, monkeypatch):
@@ -307,3 +308,30 @@ def test_a_sweep_over_words_prints_and_draws_them(axis, words, monkeypatch, caps
     rows = [line.split() for line in text.splitlines() if line.strip().startswith("mmd ")]
     assert sorted(r[1] for r in rows if r[1] in words) == words, text
     assert (tmp_path / "w.png").stat().st_size > 10_000 and "(line plot)" in text
+
+
+def test_device_tables_give_a_long_time_means_error_and_a_detach_time_in_si(tmp_path):
+    """`run --json` gave detach_time_s and a speed's error in m/s; a device sweep's table only
+    the normalized detach_time and drift_ratio_se. An ejected silica sphere (0.5 nm at 20 MHz)
+    leaves at t* = detach_time, detach_time / f seconds."""
+    import sawdrift as sd
+    from sawdrift.scene.device import normalized
+    from sawdrift.study.axes import add_columns, device_columns
+
+    silica = Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml"
+    base = sd.Scene.from_toml(silica)
+    table = sd.sweep(base.model, axes={"device.amplitude": ["0.5 nm"]}, base=base,
+                     table=tmp_path / "t.parquet", progress=False)
+    row = table.iloc[0]
+    assert row["regime"] == "ejected"
+    assert row["detach_time_s"] == pytest.approx(row["detach_time"] / 20e6, rel=1e-12)
+    # a long-time mean's error: drift_ratio_se times the surface speed 2 pi r A*, times a0 f
+    scene = sd.Scene.from_toml(silica)
+    si, scale = device_columns(scene)
+    cell = {"drift_velocity": -0.5, "drift_ratio_se": 0.01, "amplitude": 2.0,
+            "horizontal_ratio": 0.6, "detach_time": float("nan")}
+    add_columns(cell, {**si, "_speed_scale": scale})
+    norm = normalized(scene.device)
+    assert cell["drift_speed_se_m_s"] == pytest.approx(
+        0.01 * 2 * math.pi * 0.6 * 2.0 * norm["a0_m"] * norm["frequency_hz"], rel=1e-12)
+    assert cell["detach_time_s"] is None and "_frequency" not in cell

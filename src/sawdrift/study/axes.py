@@ -193,14 +193,17 @@ def _axis_range(spec: str, name: str) -> np.ndarray:
 
 
 #: SI units of the device columns a sweep table adds (:func:`sawdrift.study.sweep.run_cell`)
-SI_COLUMNS = {"drift_speed_m_s": "m/s", "a0_m": "m", "load_N": "N"}
+SI_COLUMNS = {"drift_speed_m_s": "m/s", "drift_speed_se_m_s": "m/s", "a0_m": "m", "load_N": "N",
+              "detach_time_s": "s"}
 
 #: how the normalized columns are written on an axis
 NORMALIZED_LABELS = {"amplitude": "A*", "m_star": "m*", "drift_ratio": "drift ratio",
                      "drift_velocity": "drift velocity x*' (a0 f)"}
 
 _LONG = {"drift_speed_m_s": "drift speed", "a0_m": "static compression a0",
-         "load_N": "tangential load on the particle, along +x"}
+         "load_N": "tangential load on the particle, along +x",
+         "drift_speed_se_m_s": "standard error of a long-time mean drift speed",
+         "detach_time_s": "time of an ejected particle's last lift-off"}
 
 
 def column_unit(column: str) -> str | None:
@@ -231,15 +234,24 @@ def device_columns(scene: Scene) -> tuple[dict[str, float], float]:
     tangential load F = device.load - m g sin(alpha) along +x.
     """
     norm = normalized(scene.device)  # type: ignore[arg-type]
-    return ({"a0_m": norm["a0_m"], "load_N": norm["load_n"]},
+    return ({"a0_m": norm["a0_m"], "load_N": norm["load_n"], "_frequency": norm["frequency_hz"]},
             norm["a0_m"] * norm["frequency_hz"])
 
 
 def add_columns(row: dict[str, Any], columns: dict[str, Any]) -> None:
-    """Add a cell's swept-field and SI columns to its row; ``drift_speed_m_s`` = x*' a0 f."""
+    """Add a cell's swept-field and SI columns to its row: ``drift_speed_m_s`` = x*' a0 f, its
+    standard error (a long-time mean's: drift_ratio_se 2 pi r A* a0 f) and an ejection's
+    ``detach_time_s`` = t* / f, as ``sawdrift run --json`` gives them."""
     extra = dict(columns)
     scale = extra.pop("_speed_scale", None)
+    frequency = extra.pop("_frequency", None)
     row.update(extra)
     if scale is not None:
         v = row.get("drift_velocity")
         row["drift_speed_m_s"] = v * scale if v is not None else None
+        se, a, r = (row.get(k) for k in ("drift_ratio_se", "amplitude", "horizontal_ratio"))
+        row["drift_speed_se_m_s"] = (se * 2.0 * math.pi * r * a * scale
+                                     if None not in (se, a, r) and math.isfinite(se) else None)
+    if frequency is not None:
+        t = row.get("detach_time")
+        row["detach_time_s"] = t / frequency if t is not None and math.isfinite(t) else None
