@@ -48,8 +48,8 @@ def force_velocity_cmd(
     """The mean friction force against the steady drift speed it allows (force-velocity curve).
 
     Each point holds the particle under a constant tangential load L inside (-mu, mu) M g and
-    reports its steady drift at full inertia: at that speed the period-averaged friction force
-    equals L. The free drift is the curve's zero; a load curve is the same curve read the other
+    reports its steady drift at full inertia: at that speed the period-averaged friction
+    balances it, mu <T*> = L (the friction force on the particle is -L). The free drift is the curve's zero; a load curve is the same curve read the other
     way, the stall load its value at zero speed. Where the contact sticks, a range of loads holds
     the particle at rest (a vertical segment).
     """
@@ -127,7 +127,7 @@ def _print_curve(curve: Any, data: dict[str, Any]) -> None:
         typer.echo(f"{'force (mN)':>12} {'speed (m/s)':>22}  regime")
     else:
         forces, speeds, errors = data["force"], data["drift_velocity"], data["drift_velocity_se"]
-        typer.echo(f"{'<F> (M g)':>12} {'v (a0 f)':>22}  regime")
+        typer.echo(f"{'load L (M g)':>12} {'v (a0 f)':>22}  regime")
     rows = zip(forces, speeds, errors, data["regimes"], data["settled"], strict=True)
     for f, v, se, regime, settled in rows:
         typer.echo(f"{f:12.5g} {pm_text(v, se, '.5g'):>22}  {regime}" + ("" if settled else " (not settled)"))
