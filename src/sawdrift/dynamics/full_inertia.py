@@ -460,13 +460,10 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
         win = measure_window(stepper, state.w, speed, scale)
         log.append(period_rows(win, stepper))
         values.append(tapered_drift_ratio(win, speed))
-        if on_orbit(win):
-            settled = True  # its drift over whole orbits is the steady one, exactly
-            break
         action, jump = state.judge(values[-1], win, partial(change_noise, log[-1], speed))
         action = slips.overrule(action, win)
-        if not slips.waits(win) and held(win, values[-1], state.tol):
-            settled = True
+        if on_orbit(win) or (not slips.waits(win) and held(win, values[-1], state.tol)):
+            settled = True  # an exact orbit (its drift over whole orbits), or a held contact
             break
         if action == "settled" and beats(log, win, values[-1], speed,
                                          accuracy(values[-1], state.tol)):

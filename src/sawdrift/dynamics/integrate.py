@@ -129,17 +129,12 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     # stretch of its own trajectory up to now: a long-time mean after them starts from all of it
     series = [period_rows(win, stepper)]
     fixed_end = stepper.step
+    leaving = False
     if settling is None and num.settle is not False and not chaotic and win.contact_lost:
         # the run goes on to its periodic orbit (its events and trajectory with it), as a
         # settling run goes on to its steady drift
-        fixed_win = win
-        win, before, leaving = _find_orbit(stepper, win, speed, scale, series, before)
-        if win is not fixed_win:
-            # the exponent of the window the evidence comes from (a stable orbit of 2 reached
-            # after its doubling kept the fixed window's +0.029, the unstable orbit of 1's)
-            lyap, chaotic = lyapunov(win, scale)
-    else:
-        leaving = False
+        win, before, leaving, lyap, chaotic = _orbit_search(stepper, win, speed, scale, series,
+                                                            before, (lyap, chaotic))
     periods_run = stepper.step / stepper.k_per
     # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
     # periods) ends with its window; a run asked to be fixed (settle = false) stays as it is
@@ -185,6 +180,18 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                    wall_time_s=wall, trajectory=path,
                    last_liftoff=float(stepper.st[S_LASTLIFT]), long_mean=chaos,
                    steps=max(stepper.step, 0 if twin is None else twin.step))
+
+
+def _orbit_search(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
+                  series: list[np.ndarray], before: Window | None,
+                  exponent: tuple[float, bool]) -> tuple[Window, Window | None, bool, float, bool]:
+    """:func:`_find_orbit` from the fixed window ``win``, and the Lyapunov exponent and verdict
+    of the window it ends on (``exponent``, the fixed window's, where it ran none): the evidence
+    comes from one window (a stable orbit of 2 reached after its doubling kept the fixed window's
+    +0.029, the unstable orbit of 1's)."""
+    found, before, leaving = _find_orbit(stepper, win, speed, scale, series, before)
+    lyap, chaotic = lyapunov(found, scale) if found is not win else exponent
+    return found, before, leaving, lyap, chaotic
 
 
 def _long_mean(stepper: Stepper, win: Window, budget: int, target: float,
