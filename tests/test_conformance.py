@@ -220,6 +220,14 @@ def _elastic(fs, is_, pp, a, b, adot, bdot):
     return law_normal(a, pp, 0), 0.0
 
 
+@njit(cache=True)
+def _nan_above_fifteen(fs, is_, pp, a, b, adot, bdot):
+    # the elastic law, but NaN beyond a* = 15 (a plugin's overflow)
+    if a > 15.0:
+        return math.nan, math.nan
+    return law_normal(a, pp, 0), 0.0
+
+
 def _sphere_only(fs, is_, pp, a, b, adot, bdot):
     # a readable reference that hard-codes the sphere's N* = a*^1.5, whatever the profile
     return (a**1.5 if a > 0.0 else 0.0), 0.0
@@ -290,6 +298,7 @@ ViscousUndeclared = _law("test_viscous_undeclared", _viscous, uses_velocity=Fals
 ViscousElasticReference = _law("test_viscous_elastic_reference", _viscous, _elastic.py_func,
                                uses_velocity=True)
 StifferAboveThree = _law("test_stiffer_above_three", _stiffer_above_three, _elastic.py_func)
+NanAboveFifteen = _law("test_nan_above_fifteen", _nan_above_fifteen)
 SphereOnlyReference = _law("test_sphere_only_reference", _elastic, _sphere_only,
                            profiles=("sphere", "cone"))
 
@@ -300,6 +309,13 @@ def test_the_frictionless_elastic_and_viscous_laws_pass(register):
     viscous = check_model(register(Viscous))
     assert viscous.passed, viscous.table()
     assert viscous.get("passivity").value > 1e-3  # the dashpot dissipates
+
+
+def test_a_law_returning_nan_fails_finite_forces(register):
+    # NaN compares false with every bound: the nine other checks all passed such a law
+    res = check_model(register(NanAboveFifteen))
+    assert _failed(res) == {("sphere", "finite_forces")}
+    assert res.get("finite_forces").value > 0
 
 
 def test_normalization_fails_a_law_with_n_of_1_not_1(register):

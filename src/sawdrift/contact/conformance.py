@@ -264,6 +264,23 @@ def _passivity(model: ContactModel) -> Check:
                   "passes if >= -tolerance")
 
 
+def _finite(model: ContactModel) -> Check:
+    """N* and T* finite on the random histories the other checks drive: a NaN compares false
+    with every bound, so the checks after this one would pass a law that returns it (one that
+    returned NaN above a* = 15 passed all nine, and a run later failed on a 'too coarse step')."""
+    bad, where = 0, ""
+    for p in histories(range(3)):
+        n, t = p.drive(ContactHistory(model, _engine(model)))
+        wrong = ~(np.isfinite(n) & np.isfinite(t))
+        if wrong.any() and not bad:
+            k = int(np.argmax(wrong))
+            where = f"; first at step {k} (N* = {n[k]:.6g}, T* = {t[k]:.6g})"
+        bad += int(wrong.sum())
+    return _check(model, "finite_forces", bad == 0, float(bad), 0.0,
+                  f"non-finite (N*, T*) on 6 random histories up to a* = {LARGE_A:g}: {bad}"
+                  + where)
+
+
 def _coulomb(model: ContactModel) -> Check:
     excess, n_max = -math.inf, 0.0
     pull2 = 2.0 * pulloff(model)  # an adhesive contact slides at |N* + 2 F*_pull|
@@ -372,11 +389,11 @@ def _normal_slot(model: ContactModel) -> Check:
                   "step that hands N* back must hand the slot's)")
 
 
-CHECKS = (_normalization, _passivity, _coulomb, _kernel_vs_reference, _velocity_independence,
-          _split, _contact_loss, _replay, _normal_slot)
-CHECK_NAMES = ("normalization", "passivity", "coulomb_bound", "kernel_vs_reference",
-               "velocity_independence", "split_invariance", "contact_loss_reset", "replay",
-               "normal_slot")
+CHECKS = (_finite, _normalization, _passivity, _coulomb, _kernel_vs_reference,
+          _velocity_independence, _split, _contact_loss, _replay, _normal_slot)
+CHECK_NAMES = ("finite_forces", "normalization", "passivity", "coulomb_bound",
+               "kernel_vs_reference", "velocity_independence", "split_invariance",
+               "contact_loss_reset", "replay", "normal_slot")
 
 
 def check_model(name: str, profile: str | Profile | None = None,
