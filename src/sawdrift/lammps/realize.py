@@ -172,6 +172,12 @@ def refusal(scene: Scene, *, wall_frame: bool = False) -> str | None:
                 f"{MIN_LAMMPS_RESTITUTION:.4g} (LAMMPS coeff_restitution damps at most critically)")
     if eff.rolling_resistance > 0.0:
         return "effects.rolling_resistance has no LAMMPS equivalent here; set it to 0"
+    if eff.air_drag > 0.0:
+        # not in the input scripts: it ran drag-free and compared 0.4238 against 0.0301
+        return "effects.air_drag has no LAMMPS equivalent here; set it to 0"
+    if wall_frame and eff.rotation:
+        return ("effects.rotation: the wall-frame bridge of an adhesive contact integrates the "
+                "centre only (fix nve); set effects.rotation = false")
     if eff.rotation and scene.particle.gyration != 0.4:
         return (f"particle.gyration = {scene.particle.gyration:g}: LAMMPS spheres are solid "
                 "(kappa = 0.4); use 0.4")
