@@ -173,3 +173,19 @@ def test_schema_module_is_split_below_500_lines_and_keeps_its_imports():
 def test_a_power_profile_takes_its_exponent():
     assert build_scene({"particle": {"profile": {"shape": "power", "exponent": 2}}}).particle.profile.p == 2.0
 
+
+
+def test_a_phase_given_alone_survives_updates_dumps_and_sweeps(tmp_path):
+    # its dump carried the default orbit 'prograde', which read back conflicted with phase 0:
+    # with_updates, every sweep cell and lammps --compare refused a scene that runs
+    scene = sd.Scene.model_validate({"drive": {"phase": 0.0}})
+    assert scene.with_updates(**{"numerics.settle": False}).drive.phase == 0.0
+    assert sd.Scene.model_validate_json(scene.model_dump_json()) == scene
+    table = sd.sweep("mmd", [0.1], [0.3], base=scene.with_updates(**{"numerics.settle": False}),
+                     table=tmp_path / "t.parquet", progress=False)
+    assert table["error"].isna().all()
+    # an orbit given with a phase that disagrees is still refused
+    from pydantic import ValidationError
+
+    with pytest.raises(ValidationError, match="disagree"):
+        sd.Scene.model_validate({"drive": {"phase": 0.0, "orbit": "prograde"}})

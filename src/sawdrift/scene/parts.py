@@ -12,7 +12,15 @@ import math
 from typing import Annotated, Any, Literal
 
 import numpy as np
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    model_serializer,
+    model_validator,
+)
 
 from .profiles import Profile
 
@@ -182,6 +190,17 @@ class Wave(BaseModel):
             "orbit; phase + 180 mirrors x"
         ),
     )
+
+    @model_serializer(mode="wrap")
+    def _dump(self, handler: Any) -> Any:
+        """A phase given sets the orbit: the default orbit is left out of the dump, or reading
+        it back (a sweep's cell, ``with_updates``) would take it for a second, conflicting
+        choice (``--phase 0`` was refused by every sweep and ``lammps --compare``)."""
+        out = handler(self)
+        if self.phase is not None and "orbit" not in self.model_fields_set and isinstance(out,
+                                                                                         dict):
+            out.pop("orbit", None)
+        return out
 
     @model_validator(mode="after")
     def _phase_and_orbit_agree(self) -> Wave:
