@@ -71,21 +71,40 @@ def test_broken_plugin_is_a_warning_naming_it(monkeypatch):
     assert "broken_model" in fresh.failed
 
 
-def test_a_duplicate_name_disables_only_the_duplicates(monkeypatch):
+def test_a_plugin_reusing_a_builtin_name_is_skipped_and_the_builtin_kept(monkeypatch):
+    # a plugin called 'mmd' disabled sawdrift's own mmd too: the default scene, the demo and
+    # the validation report failed
     class Clash(sd.ContactModel):
         name = "mmd"
         summary = "clash"
 
     fresh = _with_entry_points(monkeypatch, [_FakeEntryPoint("clash", "other-dist", lambda: _plugin(Clash))])
-    with pytest.warns(PluginWarning, match=r"'mmd' is claimed by .*'other-dist'.*'sawdrift'|"
-                                           r"'mmd' is claimed by .*'sawdrift'.*'other-dist'"):
+    with pytest.warns(PluginWarning, match=r"'mmd' is sawdrift's own; the one from 'other-dist'"):
         names = fresh.names()
-    assert "mmd" not in names
-    # every other model keeps working
+    assert "mmd" in names and fresh.get("mmd") is not Clash
+    assert fresh.models["mmd"].distribution == "sawdrift"
     assert {"mdr", "jaeger", "material_point", "hertz_mindlin_dem"} <= set(names)
-    assert fresh.get("mdr").name == "mdr"
-    with pytest.raises(sd.ModelNotFoundError, match="unavailable: model name 'mmd' is claimed"):
-        fresh.get("mmd")
+
+
+def test_two_plugins_claiming_one_name_disable_only_that_name(monkeypatch):
+    class First(sd.ContactModel):
+        name = "twice"
+        summary = "first"
+
+    class Second(sd.ContactModel):
+        name = "twice"
+        summary = "second"
+
+    fresh = _with_entry_points(monkeypatch, [
+        _FakeEntryPoint("first", "dist-a", lambda: _plugin(First)),
+        _FakeEntryPoint("second", "dist-b", lambda: _plugin(Second))])
+    with pytest.warns(PluginWarning, match=r"'twice' is claimed by .*'dist-a'.*'dist-b'"):
+        names = fresh.names()
+    assert "twice" not in names
+    # every other model keeps working
+    assert {"mmd", "mdr", "jaeger", "material_point", "hertz_mindlin_dem"} <= set(names)
+    with pytest.raises(sd.ModelNotFoundError, match="unavailable: model name 'twice' is claimed"):
+        fresh.get("twice")
 
 
 def test_trial_never_corrupts_the_committed_history():

@@ -21,6 +21,10 @@ from .base import KERNEL_INTERFACE, ContactModel
 ENTRY_POINT_GROUP = "sawdrift.models"
 
 
+
+#: the distribution of sawdrift's own models, which keep their names in a conflict
+BUILTIN_DISTRIBUTION = "sawdrift"
+
 class PluginWarning(UserWarning):
     """A plugin could not be loaded; the other models keep working."""
 
@@ -129,8 +133,18 @@ class Registry:
                 else:
                     models[name] = entry
         for name, entries in clashes.items():
-            # a duplicate disables only the name it duplicates: every other model keeps working
+            # a duplicate disables only the name it duplicates: every other model keeps working;
+            # sawdrift's own model keeps its name (a plugin called 'mmd' broke the default scene,
+            # the demo and the validation report)
             who = " and ".join(f"{e.distribution!r} (entry point {e.entry_point!r})" for e in entries)
+            own = [e for e in entries if e.distribution == BUILTIN_DISTRIBUTION]
+            if len(own) == 1:
+                models[name] = own[0]
+                others = " and ".join(f"{e.distribution!r} (entry point {e.entry_point!r})"
+                                      for e in entries if e is not own[0])
+                warnings.warn(f"sawdrift plugin conflict: model name {name!r} is sawdrift's own; "
+                              f"the one from {others} is skipped", PluginWarning, stacklevel=3)
+                continue
             msg = f"model name {name!r} is claimed by {who}; neither is loaded"
             self.failed[name] = msg
             warnings.warn(f"sawdrift plugin conflict: {msg}", PluginWarning, stacklevel=3)
