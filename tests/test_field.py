@@ -118,6 +118,12 @@ def test_a_phase_ramp_carries_the_trapped_particle_along():
     assert run["final_position"] < trap - 1.5
     assert abs(run["final_position"] - moved) < 0.05
     assert abs(run["final_position"] - run["predicted"]["final_position"]) < 0.02
+    # the end is the run's end: the last row was up to a row interval short of it (2992.5 of
+    # 3000, 5e-3 wavelengths of the carried particle's path), and the trap was taken there
+    assert run["trajectory"]["t"][-1] == pytest.approx(periods, abs=1e-9)
+    assert run["predicted"]["trap"] == pytest.approx(
+        nearest_zero(fld, run["predicted"]["final_position"] + rate * periods / 720.0)
+        - rate * periods / 720.0, abs=1e-12)
 
 
 def test_species_of_an_axis_are_the_fields_of_each_scene_alone():
@@ -171,7 +177,10 @@ def test_bad_input_is_one_line():
 
 @pytest.mark.parametrize("line", ["run --backward 1.5", "run --backward -0.1",
                                   "field --points 3 --backward 0.5", "field --backward 2",
-                                  "field --backward 0.5 --direct --start 0.1"])
+                                  "field --backward 0.5 --direct --start 0.1",
+                                  # --periods 0 ran the default 2000 periods
+                                  "field --backward 0.5 --direct --wavelength 200 --periods 0",
+                                  "field --backward 0.5 --direct --wavelength 200 --periods 0.5"])
 def test_the_command_line_answers_bad_input_with_one_line_and_exit_2(line, monkeypatch, capsys):
     from sawdrift.cli import app, main
 
@@ -232,3 +241,22 @@ def test_a_field_of_noisy_means_only_has_no_known_direction():
     assert _summarize(fld).startswith("no known direction")
     fld.drift_velocity_se = np.full(4, np.nan)  # the same speeds, steady: it goes to +x
     assert _summarize(fld).startswith("goes to +x everywhere")
+
+
+def test_the_field_csv_keeps_each_long_time_means_error(tmp_path, monkeypatch, capsys):
+    # -o NAME.csv dropped drift_velocity_se: the zeros of a bouncing field could not be told
+    # from noise
+    import pandas as pd
+
+    from sawdrift.cli import main
+
+    out = tmp_path / "f.csv"
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "field", "--backward", "1", "--m-star", "0.1",
+                                      "--points", "8", "--no-progress", "-o", str(out)])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    assert exc.value.code in (0, None)
+    frame = pd.read_csv(out)
+    assert "drift_velocity_se" in frame.columns
+    means = frame["regime"] == "bouncing"
+    assert means.any() and frame.loc[means, "drift_velocity_se"].notna().any()

@@ -51,7 +51,7 @@ def field_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: field.json, field.png, scene.toml; or NAME.csv: the field "
-        "only (species, position, drift_velocity, regime, settled)")] = None,
+        "only (species, position, drift_velocity, drift_velocity_se, regime, settled)")] = None,
     yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
@@ -68,7 +68,7 @@ def field_cmd(
 
     fast_start()
     check_engine(engine)
-    kind = (out_kind(out, (".csv",), "the field: position, drift velocity, regime, settled")
+    kind = (out_kind(out, (".csv",), "the field: position, drift velocity and its error, regime, settled")
             if out is not None else None)
     species = None
     if axis is not None:
@@ -84,6 +84,8 @@ def field_cmd(
         if wavelength_star(scene) is None:
             _fail("--direct needs the wavelength: --wavelength L* (wavelength / a0), or a device "
                   "with device.wavelength or device.substrate.density")
+        if direct_periods is not None and not float(direct_periods) >= 1.0:
+            _fail(f"--periods = {direct_periods!r}: a direct run needs at least 1 period")
     from ..study.estimate import size_check
     from ..study.field import MIN_POINTS, species_scenes
 
@@ -98,7 +100,7 @@ def field_cmd(
     study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
                         progress=progress, engine=engine)
     if direct:
-        periods = float(direct_periods or 2000.0)
+        periods = float(2000.0 if direct_periods is None else direct_periods)
         with notice(f"field: direct run of {periods:g} periods through the field", 2.0, progress):
             study.direct = direct_run(scene, start, periods, study.fields[0], engine=engine)
     data = study.to_json()
@@ -138,13 +140,18 @@ def field_cmd(
 
 
 def _field_csv(study: Any, out: Path) -> None:
-    """The field(s) as CSV: (species,) position xi, drift velocity, regime, settled."""
+    """The field(s) as CSV: (species,) position xi, drift velocity and its standard error (a
+    long-time mean's; empty where the drift settled), regime, settled."""
+    import numpy as np
     import pandas as pd
 
     frames = []
     for fld in study.fields:
+        se = (fld.drift_velocity_se if fld.drift_velocity_se is not None
+              else np.full(len(fld.positions), np.nan))
         frame = pd.DataFrame({"position": fld.positions, "drift_velocity": fld.drift_velocity,
-                              "regime": fld.regimes, "settled": fld.settled})
+                              "drift_velocity_se": se, "regime": fld.regimes,
+                              "settled": fld.settled})
         if study.axis is not None:
             frame.insert(0, "species", fld.label)
         frames.append(frame)

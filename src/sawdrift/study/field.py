@@ -404,6 +404,16 @@ def nearest_zero(fld: Field, xi: float, kind: str = "trap") -> float | None:
     return best
 
 
+def _row_interval(total: int, samples: int) -> int:
+    """Steps between trajectory rows: a divisor of ``total`` (so that a row falls at its end),
+    the largest giving at least ``samples`` rows."""
+    target = max(1, total // max(samples, 2))
+    for every in range(target, 0, -1):
+        if total % every == 0:
+            return every
+    return 1
+
+
 def direct_run(scene: Scene, start: float, periods: float, fld: Field | None = None, *,
                wavelength: float | None = None, samples: int = 400,
                engine: str = "compiled") -> dict[str, Any]:
@@ -421,16 +431,21 @@ def direct_run(scene: Scene, start: float, periods: float, fld: Field | None = N
         raise SceneError("a direct run needs the wavelength: drive.wavelength = L* (wavelength / "
                          "a0, --wavelength), or a device with device.wavelength or "
                          "device.substrate.density")
-    if not (math.isfinite(periods) and periods > 0):
-        raise SceneError(f"periods = {periods!r}: a direct run needs periods > 0")
+    if not (math.isfinite(periods) and periods >= 1.0):
+        raise SceneError(f"periods = {periods!r}: a direct run needs at least 1 period")
     window = max(1, min(20, int(periods) // 2))
     sc = scene.with_updates(**{"drive.wavelength": float(lstar), "drive.position": float(start),
                                "numerics.periods": float(periods), "numerics.settle": False,
                                "numerics.measure_periods": window})
-
-    every = max(1, int(steps_per_period(sc) * periods / max(samples, 2)))
-    res = run(sc, trajectory=True, engine=engine, record_every=every)  # type: ignore[arg-type]
+    # rows are taken before each step: the run goes on one row interval past its end, so that a
+    # row falls at t* = periods (the last one was up to an interval short of it: 2992.5 of 3000)
+    k_per = steps_per_period(sc)
+    total = int(round(k_per * periods))
+    every = _row_interval(total, samples)
+    longer = sc.with_updates(**{"numerics.periods": (total + every) / k_per})
+    res = run(longer, trajectory=True, engine=engine, record_every=every)  # type: ignore[arg-type]
     tr = res.trajectory
+    tr = tr[tr["t"] <= total / k_per + 0.5 / k_per]
     t = tr["t"].to_numpy(dtype=float)
     xi = float(start) + tr["x"].to_numpy(dtype=float) / lstar
     out: dict[str, Any] = {
