@@ -271,3 +271,15 @@ def test_default_cases_are_the_installed_package_resources():
     checkout = Path(__file__).resolve().parents[1] / "validation"
     assert shipped == {p.name for p in checkout.glob("g*.py")}
     assert {lc.path.name for lc in load_cases()} == shipped
+
+
+def test_the_cases_run_the_scenes_they_ship_and_those_are_the_examples():
+    # three cases read examples/*.toml next to the cases: an installed wheel has no examples/,
+    # and `sawdrift validate` failed there with FileNotFoundError. They ship copies in data/.
+    root = Path(__file__).resolve().parents[1]
+    for name in ("mixture.toml", "micro_silica_on_linbo3.toml"):
+        shipped = root / "validation" / "data" / name
+        assert shipped.read_bytes() == (root / "examples" / name).read_bytes(), name
+    for case in root.joinpath("validation").glob("g*.py"):
+        text = case.read_text()
+        assert 'parents[1] / "examples"' not in text, case.name

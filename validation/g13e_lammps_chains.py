@@ -44,7 +44,9 @@ CASE = Case(
     ),
 )
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "mixture.toml"
+# a copy of examples/mixture.toml that ships with the cases (tests/test_validation.py holds
+# the two equal): an installed wheel has no examples/
+EXAMPLE = Path(__file__).resolve().parent / "data" / "mixture.toml"
 RADII = ["0.2 mm", "1 mm"]
 #: a slowdown LAMMPS resolves (drift ratio): the engines' free speeds agree to about 4e-4
 RESOLVED = 2e-3
