@@ -283,3 +283,12 @@ def test_the_cases_run_the_scenes_they_ship_and_those_are_the_examples():
     for case in root.joinpath("validation").glob("g*.py"):
         text = case.read_text()
         assert 'parents[1] / "examples"' not in text, case.name
+
+
+def test_an_empty_cases_folder_is_one_line_exit_2(tmp_path, sawdrift_main):
+    # it printed 'FAIL: 0 passed, 0 failed' and exited 1 with no reason
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    out = sawdrift_main("validate", "--cases", str(empty), "-o", str(tmp_path / "out"))
+    err = out.stderr.strip().splitlines()
+    assert out.returncode == 2 and len(err) == 1 and "holds no case files" in err[0], err

@@ -84,6 +84,9 @@ def load_cases(cases_dir: Path | None = None) -> list[LoadedCase]:
             loaded.append(LoadedCase(path, case, run))
         except Exception as exc:  # noqa: BLE001 - a broken case file is reported, not fatal
             loaded.append(LoadedCase(path, fallback, None, _one_line(exc)))
+    if not loaded:
+        raise SawdriftError(f"validation cases folder {str(cases_dir)!r} holds no case files "
+                            "(*.py, each with CASE = Case(...) and run())")
     names = [lc.case.name for lc in loaded]
     for lc in loaded:
         if names.count(lc.case.name) > 1 and lc.error is None:
