@@ -150,7 +150,10 @@ class Conformance:
 
     def table(self) -> str:
         """A readable table, one line per check and profile."""
-        rows = [f"model {self.model!r}: {'PASS' if self.passed else 'FAIL'}"]
+        declared = sorted({c.name for c in self.checks if c.status == "declared"})
+        # a deviation the model declares is shown in the verdict, not only in its row
+        note = f" (declared deviations: {', '.join(declared)})" if declared else ""
+        rows = [f"model {self.model!r}: {'PASS' if self.passed else 'FAIL'}{note}"]
         if self.laws:
             rows.append("  profiles: " + "; ".join(law for _, law in self.laws))
         width = max((len(c.profile) for c in self.checks), default=6)
