@@ -224,3 +224,17 @@ def test_two_models_side_by_side_on_one_axis():
 
     fig = plot_bifurcation(res)
     assert len(fig.axes) == 2 * 4  # two columns: samples, lift-off phase, period, Lyapunov
+
+
+def test_just_past_the_doubling_the_slow_alternation_is_followed_to_its_orbit_of_two():
+    # Gamma = 3.7263, multiplier 1 - sqrt(Gamma^2 - pi^2) = -1.003: the alternation away from
+    # the unstable period-1 orbit grows 4 % a 64-period window and never comes closer to
+    # repeating on the way; the search gave up after two windows (356 periods) and reported
+    # period 0 with the unstable orbit's exponent. The 2-cycle it reaches is stable.
+    gamma = 3.7263
+    res = bifurcation(ball(), "drive.amplitude", f"{gamma},{gamma + 1e-3}", samples=16,
+                      workers=1, progress=False)
+    for p in res.summary["points"]["material_point"]["up"]:
+        assert p["period"] == 2, p
+    rows = res.table[np.isclose(res.table["value"], gamma)]
+    assert rows["lyapunov"].iloc[0] < 0.0
