@@ -238,3 +238,25 @@ def test_just_past_the_doubling_the_slow_alternation_is_followed_to_its_orbit_of
         assert p["period"] == 2, p
     rows = res.table[np.isclose(res.table["value"], gamma)]
     assert rows["lyapunov"].iloc[0] < 0.0
+
+
+def test_a_failed_value_is_named_on_the_console(monkeypatch, capsys, tmp_path):
+    # the ball at e = 0.8 collapses into more events than a step holds at Gamma = 1.01 on this
+    # branch: the console said only 'no period: 18, period 1: 102', the failure in the table
+    import sys
+
+    from sawdrift.cli import main
+
+    monkeypatch.setattr(sys, "argv", [
+        "sawdrift", "bifurcation", "--model", "material_point", "--m-star",
+        "0.025330295910584444", "--horizontal-ratio", "0", "--param", "restitution=0.8",
+        "--axis", "drive.amplitude=lin:0.2:1.4:121", "-o", str(tmp_path / "b"), "--no-progress"])
+    with pytest.raises(SystemExit):
+        main()
+    out = capsys.readouterr().out
+    table = pd.read_parquet(tmp_path / "b" / TABLE)
+    bad = table[table["error"].notna()]
+    for value in bad["value"]:
+        assert f"failed at drive.amplitude = {value:.6g}: " in out
+    assert bad.empty or f"failed: {len(bad)}" in out
+    assert "restitution below 1" not in out  # it is 0.8 already

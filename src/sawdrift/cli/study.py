@@ -345,11 +345,17 @@ def bifurcation_cmd(
     for name, branches in res.summary["points"].items():
         for way, points in branches.items():
             periods: dict[int, int] = {}
+            failed = [p for p in points if p.get("error")]
             for p in points:
-                periods[p["period"]] = periods.get(p["period"], 0) + 1
+                if not p.get("error"):
+                    periods[p["period"]] = periods.get(p["period"], 0) + 1
             shown = ", ".join(f"period {k}: {n}" if k else f"no period: {n}"
                               for k, n in sorted(periods.items()))
-            typer.echo(f"{name:>20} {way:>4}: {shown}")
+            typer.echo(f"{name:>20} {way:>4}: {shown}" + (f", failed: {len(failed)}"
+                                                          if failed else ""))
+            for p in failed:  # a failed value is no 'no period': it says why, in its row too
+                typer.echo(f"{name:>20} {way:>4}: failed at {field} = {p['value']:.6g}: "
+                           f"{p['error']}")
     for b in res.bifurcations:
         where = f"{b['value']:.6g}" if b["located"] else f"{b['bracket'][0]:.6g}..{b['bracket'][1]:.6g}"
         typer.echo(f"{b['model']:>20} {b['direction']:>4}: {b['kind']} {b['from_period']} -> "

@@ -294,7 +294,9 @@ class Stepper:
             raise NonFiniteStateError(
                 f"the rigid scheme met more than {rg._MAX_EVENTS} events (impacts, lift-offs, "
                 f"stick-slip changes) in the step at t* = {k * self.h:.6g} ({state}) and would "
-                "fall behind in time; try a larger --steps-per-period or a restitution below 1"
+                "fall behind in time (an inelastic collapse of bounces); try a larger "
+                "--steps-per-period" + ("" if float(self.prm[rg.P_RESTITUTION]) < 1.0
+                                        else " or a restitution below 1")
             )
         amp = float(getattr(self.scene.drive, "amplitude", math.nan))
         # at the finest step allowed, the scene itself is beyond what the scheme resolves
