@@ -47,11 +47,12 @@ def force_velocity_cmd(
 ) -> None:
     """The mean friction force against the steady drift speed it allows (force-velocity curve).
 
-    Each point holds the particle under a constant tangential load L inside (-mu, mu) M g and
-    reports its steady drift at full inertia: at that speed the period-averaged friction
-    balances it, mu <T*> = L (the friction force on the particle is -L). The free drift is the curve's zero; a load curve is the same curve read the other
-    way, the stall load its value at zero speed. Where the contact sticks, a range of loads holds
-    the particle at rest (a vertical segment).
+    Each point holds the particle under a constant tangential load L inside (-mu, mu) M g
+    (mu (1 + 2 F*_pull) with adhesion) and reports its steady drift at full inertia: at that
+    speed the period-averaged friction balances it, mu <T*> = L (the friction force on the
+    particle is -L). The free drift is the curve's zero; a load curve is the same curve read the
+    other way, the stall load its value at zero speed. Where the contact sticks, a range of loads
+    holds the particle at rest (a vertical segment).
     """
     from ..report.force_velocity_plot import plot_force_velocity
     from ..study.force_velocity import force_velocity
