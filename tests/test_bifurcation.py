@@ -260,3 +260,14 @@ def test_a_failed_value_is_named_on_the_console(monkeypatch, capsys, tmp_path):
         assert f"failed at drive.amplitude = {value:.6g}: " in out
     assert bad.empty or f"failed: {len(bad)}" in out
     assert "restitution below 1" not in out  # it is 0.8 already
+
+
+def test_a_one_value_hysteresis_is_printed_as_such():
+    # mmd's gallery diagram printed 'hysteresis from 0.87 to 0.87': at 1024 steps per period
+    # the two branches agree there (the step's error on a compliant contact)
+    from sawdrift.cli.study import hysteresis_line
+
+    one = hysteresis_line({"model": "mmd", "from": 0.87, "to": 0.87, "values": 1})
+    assert "hysteresis at 0.87 only" in one and "--steps-per-period" in one
+    span = hysteresis_line({"model": "mmd", "from": 0.8, "to": 0.85, "values": 6})
+    assert span.endswith("hysteresis from 0.8 to 0.85")

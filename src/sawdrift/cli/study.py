@@ -361,9 +361,19 @@ def bifurcation_cmd(
         typer.echo(f"{b['model']:>20} {b['direction']:>4}: {b['kind']} {b['from_period']} -> "
                    f"{b['to_period']} at {field} = {where}")
     for h in res.hysteresis:
-        typer.echo(f"{h['model']:>20} both: hysteresis from {h['from']:.6g} to {h['to']:.6g}")
+        typer.echo(hysteresis_line(h))
     typer.echo(f"wrote {out}/bifurcation.parquet, bifurcation.json, bifurcation.png "
                f"({res.computed} values computed)")
+
+
+def hysteresis_line(h: dict[str, Any]) -> str:
+    """A hysteresis interval as the console prints it: one value alone may be the step's error
+    on a compliant contact rather than two attractors (mmd at A* 0.87: two period-2 orbits 0.036
+    apart in a*, one orbit at 1024 steps per period), and says so."""
+    if h["values"] > 1:
+        return f"{h['model']:>20} both: hysteresis from {h['from']:.6g} to {h['to']:.6g}"
+    return (f"{h['model']:>20} both: hysteresis at {h['from']:.6g} only (one value: check it "
+            "with a larger --steps-per-period)")
 
 
 def _bifurcation_size(base: Any, field: str, spec: str, models: int, direction: str,
