@@ -300,3 +300,15 @@ def test_parse_axis_takes_lin_and_log_ranges_as_the_other_axes_do():
     assert sorted(frame["m_star"]) == [0.1, 0.55, 1.0]
     with pytest.raises(SceneError, match="m_star"):  # the scene refuses m* = 0, in one line
         sd.sweep("mmd", "lin:0:1:3", "0.3", base=fixed, progress=False, workers=1)
+
+
+def test_an_axis_added_to_a_table_reaches_the_cells_it_keeps(tmp_path):
+    # the cells already in the table (mu = 0.1, the default) kept NaN for material.mu: the
+    # mu = 0.1 half of the grid could not be selected, and export refused the table
+    table = tmp_path / "t.parquet"
+    base = sd.Scene(model="mmd", numerics={"settle": False, "periods": 10})
+    sd.sweep("mmd", [0.01, 1.0], [0.1, 1.0], base=base, table=table, progress=False)
+    frame = sd.sweep("mmd", [0.01, 1.0], [0.1, 1.0], axes={"material.mu": [0.1, 0.2]}, base=base,
+                     table=table, progress=False)
+    assert len(frame) == 8 and frame["material.mu"].notna().all()
+    assert sorted(frame["material.mu"].value_counts().to_dict().items()) == [(0.1, 4), (0.2, 4)]

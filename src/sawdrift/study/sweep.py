@@ -334,6 +334,10 @@ def sweep(
     if executor is None:
         executor = Executor(resolve_workers(workers), scheduler)
     rows = {cid: row for cid, row in done.items() if cid in wanted}
+    for cid, row in rows.items():
+        # a kept cell gets this sweep's columns too: an axis added to an existing table (the
+        # mu = 0.1 half of a grid whose cells were there) had NaN for its value
+        add_columns(row, columns.get(cid, {}))
     if progress and rows and todo and path is not None:
         # the size printed above is the whole grid's: say what a resumed sweep still runs
         print(f"{label[0]}: {len(rows)} of the {len(wanted)} cells already in {path.name}, "
