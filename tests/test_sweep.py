@@ -312,3 +312,17 @@ def test_an_axis_added_to_a_table_reaches_the_cells_it_keeps(tmp_path):
                      table=table, progress=False)
     assert len(frame) == 8 and frame["material.mu"].notna().all()
     assert sorted(frame["material.mu"].value_counts().to_dict().items()) == [(0.1, 4), (0.2, 4)]
+
+
+def test_a_cell_whose_model_fails_does_not_stop_the_size_estimate(tmp_path, sawdrift_main):
+    # the calibration probe ran the grid's first cell, whose memory diagram overflows: the whole
+    # sweep stopped with that error (exit 2, no table), while the same cells in another order
+    # ran and tabled the failing ones as error rows
+    out = tmp_path / "t.parquet"
+    done = sawdrift_main("sweep", "--model", "mmd", "--param", "max_memory_points=16",
+                         "--m-star", "1,2", "--amplitude", "0.1,1,2", "-o", str(out))
+    assert done.returncode == 0, done.stderr
+    frame = pd.read_parquet(out)
+    failed = frame[frame["error"].notna()]
+    assert len(frame) == 6 and len(failed) == 2
+    assert (failed["amplitude"] == 0.1).all() and failed["error"].str.contains("memory").all()
