@@ -155,3 +155,52 @@ def test_explore_refuses_a_suffix_that_is_not_a_page(table, tmp_path):
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "page.html").read_text().lstrip().lower().startswith("<!doctype html")
     assert "page.html" in result.stdout and not (tmp_path / "page").exists()
+
+
+@pytest.mark.parametrize(("cmd", "axis", "needle"), [
+    (["phase-diagram", "--model", "mmd"], ["--y", "drift_ratio"], "an output of the runs"),
+    (["phase-diagram", "--model", "mmd", "--drift"], ["--y", "drift_ratio"], "an output"),
+    (["phase-diagram", "--model", "mmd"], ["--x", "settled"], "an output of the runs"),
+    (["compare", "--models", "mmd,material_point"], ["--x", "regime"], "an output of the runs"),
+])
+def test_a_map_over_an_output_is_refused_in_one_line(table, tmp_path, cmd, axis, needle):
+    # --y drift_ratio ended in 'internal failure (x and y arguments to pcolormesh cannot have
+    # non-finite values)', exit 3
+    out = run_main(cmd[0], str(table), *cmd[1:], *axis, "--where", "particle.load=0",
+                   "-o", str(tmp_path / "m.png"))
+    assert needle in _one_error_line(out)
+
+
+def test_a_map_over_a_column_of_words_is_refused(tmp_path):
+    # --x effects.rotation (bools) and particle.profile.shape (words) ended in internal failures
+    frame = two_load_table()
+    frame["effects.rotation"] = frame["particle.load"] > 0.0
+    path = tmp_path / "rot.parquet"
+    frame.to_parquet(path)
+    out = run_main("phase-diagram", str(path), "--model", "mmd", "--x", "effects.rotation",
+                   "--where", "amplitude=1", "-o", str(tmp_path / "m.png"))
+    assert "holds no numbers" in _one_error_line(out)
+
+
+def test_where_takes_a_value_as_the_error_prints_it(tmp_path):
+    # the error listed 'its values of amplitude: ..., 0.316228, ...' and refused 0.316228
+    frame = two_load_table()
+    frame["amplitude"] = frame["amplitude"].replace(1.0, 10 ** -0.5)
+    path = tmp_path / "t.parquet"
+    frame.to_parquet(path)
+    bad = run_main("phase-diagram", str(path), "--model", "mmd", "--x", "m_star", "--y",
+                   "particle.load", "--where", "amplitude=0.3", "-o", str(tmp_path / "m.png"))
+    assert "0.316228" in _one_error_line(bad)
+    frame = frame[frame["particle.load"] == 0.0]
+    frame.to_parquet(path)
+    ok = run_main("phase-diagram", str(path), "--model", "mmd",
+                  "--where", "amplitude=0.316228", "--x", "m_star", "--y", "mu",
+                  "-o", str(tmp_path / "m.png"))
+    assert ok.returncode == 0, ok.stderr
+
+
+def test_a_map_over_an_axis_holding_zero_is_refused(table, tmp_path):
+    # the maps are drawn on log axes: --x particle.load (0 and 0.2) ended in an internal failure
+    out = run_main("phase-diagram", str(table), "--model", "mmd", "--x", "particle.load",
+                   "--where", "amplitude=1", "-o", str(tmp_path / "m.png"))
+    assert "holds values <= 0" in _one_error_line(out)

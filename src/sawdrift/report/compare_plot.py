@@ -27,6 +27,7 @@ from .diagrams import (  # noqa: E402
     _edges,
     _legend,
     _material_label,
+    check_axis,
     creep_grid,
     one_map,
     pick_rows,
@@ -108,8 +109,7 @@ def _panels(table: pd.DataFrame, models: list[str], by: str | None, x: str,
     if len(panels) < 2:
         raise SceneError("compare needs at least two panels: two models, or a --by column")
     for column in (x, y):
-        if column not in table.columns:
-            raise SceneError(f"axis {column!r} is not a column of the table")
+        check_axis(table, column)
     one_map(table[table["model"].isin(models)], ["model", x, y, *([by] if by else [])],
             by=by is None)
     return panels

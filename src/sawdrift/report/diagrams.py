@@ -95,7 +95,14 @@ def _matches(column: pd.Series, value: object) -> np.ndarray:
             number = float(value)
         except ValueError:
             return np.zeros(len(column), dtype=bool)
-        return np.isclose(column.to_numpy(float), number, rtol=1e-9, atol=0.0)
+        values = column.to_numpy(float)
+        exact = np.isclose(values, number, rtol=1e-9, atol=0.0)
+        if exact.any():
+            return exact
+        # the value as this module prints it (six figures: 0.316228 for 0.31622776601683794),
+        # which the error naming a table's values offered and then refused
+        shown = f"{number:g}"
+        return np.array([f"{v:g}" == shown for v in values], dtype=bool)
     return (column.astype(str) == value.strip()).to_numpy(bool)
 
 
@@ -135,6 +142,34 @@ def mixed_columns(rows: pd.DataFrame, keys: list[str]) -> list[str]:
             and bool((groups[c].nunique(dropna=False) > 1).any())]
 
 
+#: the scene columns a table holds for every cell besides the swept dotted fields: a map's axes
+#: are drawn over these or over a swept field (``material.mu``), never over an output
+SCENE_COLUMNS = ("m_star", "amplitude", "mu", "nu", "horizontal_ratio", "steps_per_period",
+                 "periods", "ramp_periods", "measure_periods")
+
+
+def check_axis(table: pd.DataFrame, column: str) -> None:
+    """One line where ``column`` cannot be a map's axis: not in the table, an output of the runs
+    (``drift_ratio``, ``lyapunov``: the table holds one cell per point of its swept fields, not
+    of its results), or not numbers (``effects.rotation``, ``particle.profile.shape``: they
+    ended in an internal failure of the plot)."""
+    if column not in table.columns:
+        raise SceneError(f"axis {column!r} is not a column of the table")
+    if column not in SCENE_COLUMNS and "." not in column:
+        raise SceneError(f"axis {column!r} is an output of the runs, not a swept field: a map's "
+                         "axes are two swept fields (amplitude, m_star, or an --axis field such "
+                         "as material.mu)")
+    values = table[column]
+    if pd.api.types.is_bool_dtype(values) or not pd.api.types.is_numeric_dtype(values):
+        raise SceneError(f"axis {column!r} holds no numbers: a map's axes are numeric swept fields; "
+                         f"pick one of its values with --where {column}=VALUE")
+    if not (values.to_numpy(float) > 0.0).all():
+        # the maps are drawn on log axes (a load of 0 ended in an internal failure of the plot)
+        raise SceneError(f"axis {column!r} holds values <= 0 ({_value_text(values.min())}): a "
+                         "map's axes are logarithmic; pick one of its values with --where "
+                         f"{column}=VALUE, or draw the values above 0")
+
+
 def one_map(rows: pd.DataFrame, keys: list[str], by: bool = False) -> None:
     """A one-line SceneError where one map of ``rows`` would hold several rows at a cell (rows of
     another swept column's values: a patchwork); it names the column, its values and the option
@@ -159,8 +194,7 @@ def regime_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = 
     """
     sub = select(table, model, where)
     for column in (x, y):
-        if column not in sub.columns:
-            raise SceneError(f"axis {column!r} is not a column of the table")
+        check_axis(sub, column)
     xs = np.sort(sub[x].unique())
     ys = np.sort(sub[y].unique())
     codes = np.full((ys.size, xs.size), -1, dtype=int)
@@ -303,8 +337,7 @@ def _one_model(table: pd.DataFrame, model: str | None, x: str, y: str) -> str:
         model = models[0]
     rows = select(table, model)
     for column in (x, y):
-        if column not in rows.columns:
-            raise SceneError(f"axis {column!r} is not a column of the table")
+        check_axis(rows, column)
     one_map(rows, [x, y])
     return model
 
