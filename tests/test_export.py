@@ -99,3 +99,20 @@ def test_a_grid_point_without_a_cell_has_empty_text(irregular_table):
     cell = ds.sel(m_star=gone.m_star, amplitude=gone.amplitude)
     assert str(cell["resolved_as"].item()) == "" and str(cell["warnings"].item()) == ""
     assert int(cell["regime"]) == -1 and float(cell["drift_ratio_se"]) != float(cell["drift_ratio_se"])
+
+
+def test_fixed_scene_values_and_runaway_columns_reach_the_grid(tmp_path):
+    # a line over A* at m* 0.5 wrote no m* at all, and base_scene (the scene the sweep started
+    # from) said 0.1; mean_acceleration, a runaway's only number, was dropped
+    table = tmp_path / "t.parquet"
+    base = sd.Scene(model="mmd", particle={"m_star": 0.5, "load": 0.2},
+                    numerics={"settle": False, "periods": 10})
+    sd.sweep("mmd", [0.5], [0.1, 1.0], base=base, table=table, progress=False)
+    from sawdrift.study.export import write_grid
+
+    ds = write_grid(table, tmp_path / "g.nc")
+    assert list(ds.sizes) == ["amplitude"]
+    assert float(ds["m_star"]) == 0.5 and float(ds["mu"]) == 0.1
+    assert "mean_acceleration" in ds and np.isfinite(ds["mean_acceleration"]).all()
+    # m* 0.5 x'' = L - mu: a load of 0.2 above mu = 0.1 runs away at 0.2 per period squared
+    assert np.allclose(ds["mean_acceleration"], (0.2 - 0.1) / 0.5, rtol=1e-6)

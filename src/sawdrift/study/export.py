@@ -44,8 +44,14 @@ VARIABLES = (
     "liftoff_phase", "liftoff_phase_spread", "lyapunov", "periodicity", "out_of_contact_fraction",
     "min_compression", "contact_lost", "spin_rate", "steps_per_period", "wall_time_s", "settled",
     "settle_periods", "events_dropped", "drift_speed_m_s", "a0_m", "load_N", "drift_ratio_se",
-    "chaotic", "orbit_period",
+    "chaotic", "orbit_period", "drift_speed_se_m_s", "mean_acceleration", "detach_time",
+    "detach_time_s",
 )
+
+#: scene columns every table holds: kept as scalar coordinates where they take one value (a
+#: reader of the file otherwise had only base_scene, the scene the sweep started from, whose
+#: m* = 0.1 was not the cells' 0.5)
+FIXED = ("m_star", "amplitude", "mu", "nu", "horizontal_ratio")
 
 #: per-cell text variables exported when present, as strings ("" where a cell has none)
 STRINGS = ("resolved_as", "warnings")
@@ -59,6 +65,8 @@ _LONG_NAMES = {
     "warnings": "the cell's warnings, joined with '; ' ('' for none)",
     "chaotic": "1 if the largest Lyapunov exponent shows chaos, 0 if not (NaN: no cell)",
     "orbit_period": "periods after which the stroboscopic state repeats (0: no periodic orbit)",
+    "mean_acceleration": "a runaway's mean acceleration, x* per period squared (NaN otherwise)",
+    "detach_time": "an ejected particle's last lift-off, t* in periods (NaN otherwise)",
 }
 
 #: regime codes: flag_values are 0..n-1 in the order of sawdrift.result.regimes.REGIMES
@@ -148,9 +156,15 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
     if "settled" in ds:
         ds["settled"].attrs.update(long_name="1 if the drift is the steady one, 0 if still on "
                                    "its approach (NaN: no cell)")
-    for column, over in derived(table, dims).items():
+    varied = derived(table, dims)
+    for column, over in varied.items():
         values = frame.groupby(over)[column].first().to_xarray()
         ds = ds.assign_coords({column: values})
+    for column in [*FIXED, *(c for c in table.columns if "." in c)]:
+        if (column in table.columns and column not in dims and column not in varied
+                and column not in ds.coords and table[column].nunique(dropna=True) == 1):
+            value = table[column].dropna().iloc[0]
+            ds = ds.assign_coords({column: value if not isinstance(value, np.bool_) else bool(value)})
     _describe(ds)
     meta = metadata or {}
     ds.attrs.update(
@@ -159,6 +173,8 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
         sawdrift_version=str(meta.get("sawdrift_version") or _versions(table)),
         sawdrift_code=str(meta.get("code_hash") or _codes(table)),
         base_scene=json.dumps(meta["base_scene"]) if meta.get("base_scene") else "",
+        base_scene_note="the scene the sweep started from; each cell's own values are the "
+                        "dimensions and coordinates",
     )
     return ds
 
