@@ -97,6 +97,10 @@ CORPUS = [
     "run -o {d}/malformed.toml/traj.csv",
     "force-velocity --model mmd --m-star 1 --load 0.2 -o {d}/fv",
     "field --points 3 -o {d}/f3",
+    # conflicting sweep specifications: the first was dropped without a word
+    "sweep --model mmd --axis material.mu=0.1,0.2 --axis material.mu=0.3 -o {d}/c2.parquet",
+    "sweep --model mmd --m-star 0.1,1 --axis particle.m_star=0.5,5 -o {d}/c1.parquet",
+    "sweep --model mmd,mmd --m-star 0.1 --amplitude 0.3 -o {d}/c3.parquet",
     # a figure suffix matplotlib cannot write: exit 3 (internal failure) after the drawing
     "phase-diagram {d}/sweep.parquet --model mmd -o {d}/x.jpg2",
     "phase-diagram {d}/sweep.parquet --model mmd --drift -o {d}/x.foo",

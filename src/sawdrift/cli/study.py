@@ -97,8 +97,18 @@ def sweep_cmd(
     axes: dict[str, str] = {}
     for item in axis or []:
         field, spec = _split_axis(item, "FIELD=SPEC", "material.mu=0.05,0.1,0.2")
+        if field in axes:  # the first was dropped without a word
+            _fail(f"--axis {field} is given twice ({axes[field]} and {spec}); give its values "
+                  f"in one --axis {field}=a,b,c")
+        given = {"particle.m_star": m_star, "drive.amplitude": amplitude}.get(field)
+        if given is not None:
+            _fail(f"--axis {field}={spec} and --{'m-star' if 'm_star' in field else 'amplitude'} "
+                  f"{given} both sweep {field}; give one of them")
         axes[field] = spec
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
+    if len(set(named)) != len(named):
+        _fail(f"--model {model}: a model is named twice")
+
     fast_start()
     for name in named:
         sd.get_model(name)
