@@ -326,3 +326,22 @@ def test_the_budget_error_names_the_argument_not_the_cli_flag(budget):
     with pytest.raises(sd.SceneError, match=rf"^adaptive: budget = {budget} ") as err:
         adaptive_sweep("mmd", (1e-3, 1e2), (1e-2, 10.0), budget=budget, regime_of=_stick)
     assert "--" not in str(err.value)
+
+
+def test_adaptive_counts_say_they_cover_the_inferred_points(tmp_path):
+    # the regime counts summed to the map's points (computed and inferred) while the table
+    # holds the computed ones only, and nothing said so
+    import re
+
+    from .cli_call import run_main
+
+    out = tmp_path / "ad.parquet"
+    done = run_main(*CLI_MAP, "--m-star", "1e-3:1e2:5", "--budget", "60", "-o", out, check=True)
+    held = len(pd.read_parquet(out))
+    head = re.search(r"regimes of the map's (\d+) points \((\d+) computed, the ones the table "
+                     r"holds; (\d+) inferred", done.stdout)
+    assert head is not None, done.stdout
+    points, computed, inferred = (int(g) for g in head.groups())
+    assert computed == held and points == computed + inferred
+    counts = [int(m) for m in re.findall(r"^\s+material_point\s+\w+: (\d+)", done.stdout, re.M)]
+    assert sum(counts) == points

@@ -181,6 +181,11 @@ def _sweep_text(frame: Any, out: Path, adaptive: bool) -> None:
     from ..report.diagrams import unsettled_cells
 
     frame = frame.assign(_unsettled=unsettled_cells(frame))
+    if adaptive:
+        # the counts cover the map's points, the inferred ones too: the table holds the computed
+        computed = int(frame.attrs["computed"])
+        typer.echo(f"regimes of the map's {len(frame)} points ({computed} computed, the ones the "
+                   f"table holds; {frame.attrs['inferred']} inferred from their neighbours):")
     counts = frame.groupby(["model", "regime"])["_unsettled"].agg(["size", "sum"])
     for (name, regime), row in counts.iterrows():
         loose = int(row["sum"])
