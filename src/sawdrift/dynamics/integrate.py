@@ -37,10 +37,13 @@ from .steady import (
 from .stepper import Stepper
 from .transient import orbit_settling, orbit_window
 from .window import (
+    GROWTH_RATIO,
     PERIODIC_TOL,
     Window,
     ballistic_return,
+    grows_steadily,
     in_flight,
+    lag_change,
     lyapunov,
     measure_window,
     orbit_residual,
@@ -442,47 +445,33 @@ def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
     return win, before, _still_leaving(win, gaps)
 
 
-#: window-to-window growth of a hop's distance from repeating after its own period that makes
-#: a motion without an orbit still leaving its hop, over each of :data:`LEAVING_WINDOWS` windows
-LEAVING_RATIO = 1.02
-
-#: windows of steady growth (the logs of their ratios within a factor :data:`LEAVING_SPREAD` of
-#: each other: an exponential departure) that tell an unstable hop from a quasi-periodic wobble
+#: windows of steady growth (:func:`~.window.grows_steadily`) that tell a hop leaving its orbit
+#: from a quasi-periodic wobble
 LEAVING_WINDOWS = 4
-LEAVING_SPREAD = 2.0
 
 
 def _hop_gap(win: Window, scale: np.ndarray) -> float:
-    """The largest scaled change of the last 8 period-end states (x*', y*, y*') of ``win``
-    against its hop period earlier (NaN without a synchronous hop)."""
-    k = win.sync.hop_period
-    s = np.asarray(win.samples)[:, 1:4] / scale
-    if k <= 0 or s.shape[0] < k + 8:
-        return math.nan
-    return float(np.abs(s[-8:] - s[-8 - k:-k]).max())
+    """The distance of ``win`` from repeating after its hop period (:func:`~.window.lag_change`
+    of its scaled states; NaN without a synchronous hop)."""
+    return lag_change(np.asarray(win.samples)[:, 1:4] / scale, win.sync.hop_period)
 
 
 def _rising(gaps: list[float]) -> bool:
     """Whether every window so far, fewer than :func:`_still_leaving` needs, moved further from
-    repeating after the hop period than the one before (by :data:`LEAVING_RATIO`): the orbit
-    search waits for the windows that tell."""
+    repeating after the hop period than the one before (by :data:`~.window.GROWTH_RATIO`): the
+    orbit search waits for the windows that tell."""
     g = np.asarray(gaps)
     return bool(1 < g.size <= LEAVING_WINDOWS and np.isfinite(g).all() and (g > 0.0).all()
-                and (g[1:] > LEAVING_RATIO * g[:-1]).all())
+                and (g[1:] > GROWTH_RATIO * g[:-1]).all())
 
 
 def _still_leaving(win: Window, gaps: list[float]) -> bool:
-    """Whether a window with contact loss and no orbit ends the orbit search leaving its hop: the
-    distance from repeating after the hop period (:func:`_hop_gap`, one per window) grew by more
-    than :data:`LEAVING_RATIO` over each of the last :data:`LEAVING_WINDOWS` windows, at a steady
-    rate (an exponential departure: an orbit losing its stability, as at a period doubling)."""
-    if not win.contact_lost or win.orbit_period > 0 or len(gaps) < LEAVING_WINDOWS + 1:
-        return False
-    g = np.asarray(gaps[-LEAVING_WINDOWS - 1:])
-    if not (np.isfinite(g).all() and (g > 0.0).all()):
-        return False
-    rates = np.log(g[1:] / g[:-1])
-    return bool(rates.min() > math.log(LEAVING_RATIO) and rates.max() < LEAVING_SPREAD * rates.min())
+    """Whether a window with contact loss and no orbit ends the orbit search leaving its hop: its
+    distance from repeating after the hop period (:func:`_hop_gap`, one per window) grew steadily
+    over the last :data:`LEAVING_WINDOWS` windows (:func:`~.window.grows_steadily`: an orbit
+    losing its stability, as at a period doubling)."""
+    return (win.contact_lost and win.orbit_period == 0
+            and grows_steadily(gaps, LEAVING_WINDOWS))
 
 
 #: window-to-window ratios of the distance from repeating within this factor of 1 (twice in a

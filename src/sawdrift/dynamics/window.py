@@ -161,6 +161,35 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int | None = N
     return p
 
 
+def lag_change(states: np.ndarray, lag: int, last: int = 8) -> float:
+    """The largest change of the last ``last`` scaled stroboscopic states against ``lag`` periods
+    earlier (:func:`_gaps`; NaN for no lag or a window too short to tell)."""
+    s = np.asarray(states, dtype=float)
+    if lag <= 0 or s.shape[0] < lag + last:
+        return math.nan
+    return float(_gaps(s, np.array([lag]), last)[0])
+
+
+#: window-to-window growth of a distance from repeating, and the factor within which the logs of
+#: the growths must lie, that make a steady, exponential departure (:func:`grows_steadily`)
+GROWTH_RATIO = 1.02
+GROWTH_SPREAD = 2.0
+
+
+def grows_steadily(values: list[float], windows: int) -> bool:
+    """Whether the last ``windows`` window-to-window ratios of ``values`` (one distance from
+    repeating a window) all exceed :data:`GROWTH_RATIO`, their logs within :data:`GROWTH_SPREAD`
+    of each other: a motion leaving an unstable orbit (as past a period doubling), not a
+    quasi-periodic wobble, whose growths come and go."""
+    if len(values) < windows + 1:
+        return False
+    g = np.asarray(values[-windows - 1:], dtype=float)
+    if not (np.isfinite(g).all() and (g > 0.0).all()):
+        return False
+    rates = np.log(g[1:] / g[:-1])
+    return bool(rates.min() > math.log(GROWTH_RATIO) and rates.max() < GROWTH_SPREAD * rates.min())
+
+
 def orbit_residual(samples: np.ndarray, scale: np.ndarray, longest: int | None = None,
                    last: int = 8) -> float:
     """How far the stroboscopic state is from repeating: the smallest over p <= ``longest`` (by

@@ -26,7 +26,14 @@ from ..dynamics.assembly import assemble
 from ..dynamics.drives import drive_of
 from ..dynamics.steady import default_max_periods, relaxation_periods, rolling_frequency
 from ..dynamics.stepper import Stepper, StepperState
-from ..dynamics.window import Window, hop_liftoffs, measure_window, stretching_logs
+from ..dynamics.window import (
+    Window,
+    grows_steadily,
+    hop_liftoffs,
+    lag_change,
+    measure_window,
+    stretching_logs,
+)
 from ..scene.schema import Scene, Wave
 from .orbits import LONGEST, OrbitClass, alternation_side, classify, nearest
 
@@ -220,7 +227,7 @@ def attractor(stepper: Stepper, scene: Scene, budget: Budget, value: float) -> P
     win = measure_window(stepper, budget.window, speed, scale)
     cls = classify(_scaled(win, scale))
     tries = 0
-    steps = [_step_change(_scaled(win, scale))]
+    steps = [lag_change(_scaled(win, scale), 1)]
     while not cls.exact:
         used = (stepper.step - start) / k
         left = budget.cap - used - budget.window
@@ -230,7 +237,7 @@ def attractor(stepper: Stepper, scene: Scene, budget: Budget, value: float) -> P
             before = nearest(_scaled(win, scale))
             win = measure_window(stepper, budget.window, speed, scale)
             cls = classify(_scaled(win, scale))
-            steps.append(_step_change(_scaled(win, scale)))
+            steps.append(lag_change(_scaled(win, scale), 1))
             if nearest(_scaled(win, scale)) > 0.5 * before and not _departing(steps):
                 tries += 1  # no progress towards any period: two more windows at most
                 if tries > 2:
@@ -247,29 +254,14 @@ def attractor(stepper: Stepper, scene: Scene, budget: Budget, value: float) -> P
     return _point(stepper, value, win, cls, scale, (stepper.step - start) / k, budget.samples)
 
 
-def _step_change(states: np.ndarray, last: int = 8) -> float:
-    """The largest change of the scaled stroboscopic state from one period to the next over the
-    last ``last`` periods of a window."""
-    s = np.asarray(states, dtype=float)[-last - 1:]
-    return float(np.abs(np.diff(s, axis=0)).max()) if s.shape[0] > 1 else math.nan
-
-
-#: window-to-window growth of the period-to-period change (:func:`_departing`)
-DEPARTING_RATIO = 1.02
-
-
 def _departing(steps: list[float]) -> bool:
     """Whether the motion leaves an unstable orbit at a steady rate: its period-to-period change
-    grew by more than :data:`DEPARTING_RATIO` over each of the last two windows, the logs of the
-    two growths within a factor 2. Just past the inelastic ball's period doubling (Gamma 3.7263,
-    multiplier -1.003) the alternation grows 4 % a window for hundreds of periods and never
-    comes closer to repeating: it was cut off after two windows and called period 0, with the
-    unstable orbit's positive exponent, where it settles on the orbit of 2."""
-    if len(steps) < 3 or not all(math.isfinite(x) and x > 0.0 for x in steps[-3:]):
-        return False
-    g1, g2 = math.log(steps[-2] / steps[-3]), math.log(steps[-1] / steps[-2])
-    floor = math.log(DEPARTING_RATIO)
-    return g1 > floor and g2 > floor and max(g1, g2) < 2.0 * min(g1, g2)
+    grew steadily over the last two windows (:func:`~sawdrift.dynamics.window.grows_steadily`).
+    Just past the inelastic ball's period doubling (Gamma 3.7263, multiplier -1.003) the
+    alternation grows 4 % a window for hundreds of periods and never comes closer to repeating:
+    it was cut off after two windows and called period 0, with the unstable orbit's positive
+    exponent, where it settles on the orbit of 2."""
+    return grows_steadily(steps, 2)
 
 
 def _confirms(before: OrbitClass, after: OrbitClass, periods: float) -> bool:
