@@ -51,7 +51,14 @@ import numpy as np
 from . import adams_bashforth as ig
 from .direct import settle_direct
 from .evidence import EV_LANDING
-from .full_inertia import held, relative_bound, relaxation_rate, settle_full, tapered_drift_ratio
+from .full_inertia import (
+    held,
+    on_orbit,
+    relative_bound,
+    relaxation_rate,
+    settle_full,
+    tapered_drift_ratio,
+)
 from .separated import SOLVED_MIN_MASS, STUCK, solvable
 from .settling import SLOPE, Settling
 from .slip_return import free_vertical_period
@@ -369,7 +376,7 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
     # the drift a default run reports where the window settles (the box mean over whole orbits
     # for a periodic orbit of several periods)
     d = tapered_drift_ratio(win, speed)
-    if win.orbit_period > 0 and not chaotic and not in_flight(win):
+    if on_orbit(win) and not chaotic:
         # an exact periodic orbit (the stroboscopic state repeats to round-off, x*' included):
         # its drift, measured over whole orbits, is the steady one
         return Settling(True, "fixed", math.nan, win.periods, periods_run, math.nan, (d,),

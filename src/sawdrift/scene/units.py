@@ -82,7 +82,7 @@ def to_si(value: Any, kind: str) -> float:
     the radian as dimensionless and would take 628 rad/s for 628 Hz). Raises ValueError with a
     plain message when the string is not one number with units, or has another dimension.
     """
-    dims, unit, example = UNITS[kind]
+    _, unit, example = UNITS[kind]
     if isinstance(value, bool):
         raise ValueError(f"is not {_article(kind)} {kind}: give one in {unit}, e.g. {example}")
     if isinstance(value, (int, float)):
@@ -101,7 +101,7 @@ def _article(kind: str) -> str:
 
 def _string_si(text: str, kind: str) -> float:
     """:func:`to_si` of a string."""
-    dims, unit, example = UNITS[kind]
+    _, unit, example = UNITS[kind]
     parts = _split(text)
     if parts is None:
         raise ValueError(f"is not a quantity: give one number and its unit, e.g. {example} "
