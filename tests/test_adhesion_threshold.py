@@ -19,9 +19,38 @@ def test_first_crossing_is_located_from_below():
     def crosses(x: float) -> bool:
         return 2.0 <= x < 4.0 or x >= 8.0
 
-    found, runs = first_crossing(crosses, 0.1, 10 ** 0.25, 100.0, 30)
-    assert found == pytest.approx(2.0, rel=1e-6)
-    assert math.isnan(first_crossing(lambda x: False, 0.1, 2.0, 10.0, 5)[0])
+    found, runs, how = first_crossing(crosses, 0.1, 10 ** 0.25, 100.0, 30)
+    assert found == pytest.approx(2.0, rel=1e-6) and how == "found"
+    none, _, how = first_crossing(lambda x: False, 0.1, 2.0, 10.0, 5)
+    assert math.isnan(none) and how == "above_stop"
+
+
+def test_a_crossing_between_the_last_grid_point_and_stop_is_found():
+    """The grid 0.1, 1, 10, ... and --stop 5: a crossing at 3 lies past the grid's last point
+    below --stop, which is tested itself (it was reported as '> stop')."""
+    found, _, how = first_crossing(lambda x: x >= 3.0, 0.1, 10.0, 5.0, 40)
+    assert how == "found" and found == pytest.approx(3.0, rel=1e-6)
+    none, _, how = first_crossing(lambda x: x >= 6.0, 0.1, 10.0, 5.0, 40)
+    assert math.isnan(none) and how == "above_stop"
+
+
+def test_a_crossing_at_the_first_amplitude_is_no_threshold():
+    """Already crossed at the scan's start: the threshold lies below it, not at it (the start
+    amplitude was printed as the threshold)."""
+    value, runs, how = first_crossing(lambda x: True, 0.5, 2.0, 10.0, 8)
+    assert math.isnan(value) and how == "below_start" and runs == 1
+
+
+def test_an_amplitude_the_device_refuses_ends_the_scan():
+    from sawdrift.study.threshold import OutOfRange
+
+    def crosses(x: float) -> bool:
+        if x > 1.0:
+            raise OutOfRange(x)
+        return False
+
+    value, _, how = first_crossing(crosses, 0.01, 10.0, 100.0, 8)
+    assert math.isnan(value) and how == "above_bound"
 
 
 def test_axis_with_units_and_its_errors():
@@ -75,3 +104,49 @@ def test_a_stop_that_is_not_a_positive_amplitude_is_refused(stop, monkeypatch, c
     code, _, err = call(monkeypatch, capsys, "threshold", example, "--axis",
                         "device.particle.radius=1 um", "--stop", stop)
     assert code == 2 and len(err.strip().splitlines()) == 1 and "--stop" in err
+
+
+def _cli(monkeypatch, capsys, *args):
+    from .cli_call import call
+
+    return call(monkeypatch, capsys, "threshold", str(EXAMPLE), *args)
+
+
+def test_the_scanned_amplitude_is_no_axis(monkeypatch, capsys):
+    # it ran, overwrote the axis with the scan and fitted a slope of 5e-17
+    code, _, err = _cli(monkeypatch, capsys, "--axis", "device.amplitude=1 nm,2 nm")
+    assert code == 2 and "device.amplitude" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_one_point_range_with_two_ends_is_refused(monkeypatch, capsys):
+    code, _, err = _cli(monkeypatch, capsys, "--axis", "device.particle.radius=1 um:2 um:1")
+    assert code == 2 and "N = 1" in err
+
+
+def test_a_scan_past_the_strain_bound_keeps_its_rows(monkeypatch, capsys, tmp_path):
+    """At 30 GHz the wave's strain bound lies below the removal amplitude: the scan ends there
+    ('> bound') instead of the whole study stopping with an error and its rows lost."""
+    import json
+
+    out = tmp_path / "th"
+    code, text, err = _cli(monkeypatch, capsys, "--axis", "device.frequency=20 MHz,30 GHz",
+                           "--set", 'device.substrate.density="4650 kg/m^3"', "--bisections",
+                           "2", "-o", str(out))
+    assert code == 0, err
+    rows = json.loads((out / "threshold.json").read_text())["rows"]
+    assert len(rows) == 2 and rows[1]["removal_found"] == "above_bound"
+    assert rows[1]["removal_amplitude_m"] is None and "> bound" in text
+
+
+def test_threshold_takes_set_and_carries_the_warnings(monkeypatch, capsys):
+    """--set as on every command with a scene; a 1 um sphere pressed by 1 mN has a contact
+    radius above 0.1 R: the warning is in the JSON rows and the text as in a run's."""
+    import json
+
+    args = ("--axis", "device.particle.radius=1 um", "--set", 'device.preload="1 mN"',
+            "--start", "1e-4", "--stop", "100 nm", "--bisections", "1")
+    code, out, err = _cli(monkeypatch, capsys, *args, "--json")
+    assert code == 0, err
+    assert any("above 0.1 R" in w for w in json.loads(out)["rows"][0]["warnings"])
+    code, out, _ = _cli(monkeypatch, capsys, *args)
+    assert "WARNING at device.particle.radius = 1e-06: contact radius" in out

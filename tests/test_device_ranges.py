@@ -148,3 +148,67 @@ def test_corners_of_the_ranges_run_or_fail_in_one_line(tmp_path, corner):
     path.write_text(tomli_w.dumps({"model": "mmd", "device": corner}))
     proc = run_main("run", path, "--periods", "5", "--no-settle")
     assert proc.returncode in (0, 2) and "internal failure" not in proc.stderr, proc.stderr
+
+
+def _silica(**device):
+    data = tomllib.loads(SILICA.read_text())
+    for dotted, value in device.items():
+        node = data["device"]
+        *path, leaf = dotted.split(".")
+        for key in path:
+            node = node.setdefault(key, {})
+        node[leaf] = value
+    return data
+
+
+def test_an_adhesive_particle_takes_loads_friction_can_hold():
+    """The 10 um silica sphere holds mu (M g + 2 F_pull) = 7.07e-7 N by friction, 6.3e4 M g: a
+    load of 2e-9 N (177 M g) is a scene (it was refused at 100 M g, and load-curve failed on
+    its own stall load); beyond 100 (M g + 2 F_pull) the line names device.load."""
+    scene = build_scene(_silica(load="2e-9 N"))
+    assert scene.particle.load == pytest.approx(2e-9 / 1.1305e-11, rel=2e-3)
+    with pytest.raises(SceneError, match=r"device.load = 0.001 N .* times its normal load M g "
+                                         r"\+ 2 F_pull"):
+        build_scene(_silica(load="1 mN"))
+
+
+def test_the_normalized_load_bound_grows_with_the_pulloff():
+    base = {"model": "mmd", "particle": {"load": 150.0}}
+    with pytest.raises(SceneError, match=r"particle.load = 150 .*\[-100, 100\]"):
+        build_scene(base)
+    adhesive = {**base, "effects": {"adhesion": "dmt"}, "material": {"adhesion": 1.0}}
+    assert build_scene(adhesive).particle.load == 150.0
+    with pytest.raises(SceneError, match=r"\[-300, 300\] = 100 \(1 \+ 2 material.adhesion\)"):
+        build_scene({**adhesive, "particle": {"load": 350.0}})
+
+
+def test_the_pulloff_bound_is_the_laws_own():
+    """JKR pulls with 1.5 pi R w: at g = 1.2e-6 m/s^2 that is 8.5e11 M g, inside the 1e12
+    bound (it was refused quoting DMT's 2 pi R w); DMT's 1.1e12 is refused, named so."""
+    jkr = build_scene(_silica(gravity="1.2e-6 m/s^2"))
+    assert jkr.material.adhesion == pytest.approx(8.5e11, rel=0.02)
+    dmt = _silica(gravity="1.2e-6 m/s^2")
+    dmt["effects"]["adhesion"] = "dmt"
+    with pytest.raises(SceneError, match=r"2 pi R w = .* above 1e\+12"):
+        build_scene(dmt)
+
+
+def test_validity_warnings_see_the_adhesive_contact():
+    """A pull-off far below M g does not set the contact: a0 < 1 nm still warns (it was dropped
+    whenever adhesion was on); an adhesive contact radius above 0.1 R warns (only the Hertz
+    radius under M g was looked at): a 0.5 um polymer sphere, w = 0.1 J/m^2, c = 0.118 R."""
+    from sawdrift.scene.device import device_warnings
+
+    weak = build_scene(_silica(adhesion="1e-18 J/m^2"))
+    assert weak.material.adhesion < 1e-3
+    assert any("a0 < 1 nm" in w for w in device_warnings(weak.device, "jkr"))
+    held = build_scene(_silica())
+    assert not any("a0 < 1 nm" in w for w in device_warnings(held.device, "jkr"))
+    soft = build_scene({"model": "hertz_mindlin_dem", "effects": {"adhesion": "jkr"},
+                        "device": {"frequency": "20 MHz", "amplitude": "0.01 nm",
+                                   "friction": 0.3, "adhesion": "0.1 J/m^2",
+                                   "particle": {"radius": "0.5 um", "density": "1050 kg/m^3",
+                                                "youngs_modulus": "3 GPa", "poisson": 0.35},
+                                   "substrate": {"youngs_modulus": "3 GPa", "poisson": 0.35}}})
+    warned = [w for w in device_warnings(soft.device, "jkr") if "above 0.1 R" in w]
+    assert len(warned) == 1 and "5.91e-08 m" in warned[0]

@@ -13,7 +13,7 @@ OPTIONS = (
     ('m-star', 'particle.m_star', 'float', (), 'particle.m_star: m* = a0 m f^2 / (M g) (paper eq. 4), > 0; in (0, inf); scene default 0.1'),
     ('gyration', 'particle.gyration', 'float', (), 'particle.gyration: kappa = I / (m R^2), in (0, 1]: 2/5 solid sphere, 2/3 thin shell; only with effects.rotation = true (another value without rotation is an error); scene default 0.4'),
     ('preload', 'particle.preload', 'float', (), 'particle.preload: F_ext / (m g). It enters the normalized equations only through M = m + F_ext/g in m*; kept for conversion from dimensional inputs; in [0, inf); scene default 0.0'),
-    ('load', 'particle.load', 'float', (), "particle.load: constant external tangential force on the particle, in units of its static normal load M g, positive along +x (a motor's thrust, gravity along an incline); in [-100, 100]; scene default 0.0"),
+    ('load', 'particle.load', 'float', (), "particle.load: constant external tangential force on the particle, in units of its static normal load M g, positive along +x (a motor's thrust, gravity along an incline); in [-100, 100], with adhesion 100 (1 + 2 material.adhesion); scene default 0.0"),
     ('profile', 'particle.profile.shape', 'choice', ('sphere', 'cone', 'flat', 'power', 'table'), 'particle.profile.shape: one of sphere, cone, flat, power, table; scene default sphere'),
     ('profile-exponent', 'particle.profile.exponent', 'float', (), "particle.profile.exponent: p of N* = a*^p for shape 'power'; in [1, 10]"),
     ('amplitude', 'drive.amplitude', 'float', (), 'drive.amplitude: A* = A_y / a0, >= 0; in [0, inf); scene default 0.316'),

@@ -5,15 +5,17 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
 from .._startup import fast_start
 from .app import Engine, _fail, _writable, app, check_engine, write_outputs
+from .scene_options import scene_from_options, with_scene_options
 
 
 @app.command("threshold")
+@with_scene_options(exclude=("periods",))
 def threshold_cmd(
     scene_arg: Annotated[Path, typer.Argument(help="device scene TOML with effects.adhesion")],
     axis: Annotated[str, typer.Option(
@@ -32,6 +34,8 @@ def threshold_cmd(
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: threshold.csv, threshold.parquet, threshold.json, "
         "threshold.png, scene.toml")] = None,
+    *,
+    scene_overrides: dict[str, Any],
 ) -> None:
     """The amplitude where sliding starts and the amplitude of removal, against a device field.
 
@@ -39,11 +43,12 @@ def threshold_cmd(
     grid from --start times the rigid removal amplitude (F_pull + m g) / (m (2 pi f)^2) until the
     contact first slides as a whole (or loses contact), and until the run first ends 'ejected';
     each first crossing is then located by bisection. Fixed runs of --periods periods. The table
-    is in SI; the figure is log-log with the fitted slopes.
+    is in SI; the figure is log-log with the fitted slopes. A threshold not located is shown as
+    '< A' (crossed already at the scan's first amplitude A), '> STOP' (not up to --stop) or
+    '> bound' (not up to the largest amplitude the device's wave may have).
     """
     from ..report.threshold_plot import plot_thresholds
     from ..scene.device import to_si
-    from ..scene.schema import Scene
     from ..study.threshold import parse_device_axis, thresholds
 
     fast_start()
@@ -57,11 +62,12 @@ def threshold_cmd(
         _fail(f"--stop = {stop!r} must be a positive amplitude, e.g. '10 nm' (the scan's top)")
     if out is not None:
         _writable(out, folder=True)
-    scene = Scene.from_toml(scene_arg)
+    scene = scene_from_options(scene_arg, None, {}, scene_overrides)
     name, values = parse_device_axis(axis)
     study = thresholds(scene, name, values, start=start, stop=stop_m, per_decade=per_decade,
                        bisections=bisections, periods=periods, engine=engine)
-    # a threshold above --stop is NaN in the table, null in JSON (NaN is not JSON), "> stop" in text
+    # a threshold not located is NaN in the table, null in JSON (NaN is not JSON), with its
+    # *_found saying where it lies ("> STOP", "< A", "> bound" in the text)
     data = _nulls(study.to_json())
     if out is not None:
         write_outputs(out, "threshold", data, lambda path: plot_thresholds(study, path), scene)
@@ -71,23 +77,44 @@ def threshold_cmd(
     if as_json:
         typer.echo(json.dumps(data, indent=1))
         return
-    typer.echo(f"{name:>24}  {'slides at (m)':>14}  {'removed at (m)':>14}  {'rigid (m)':>11}")
-    above = f"> {stop.strip()}"
+    _print_rows(study, name, stop.strip(), data)
 
-    def amp(v: float) -> str:
-        return f"{v:>14.4g}" if math.isfinite(v) else f"{above:>14}"
+
+#: the text of a threshold not located (ThresholdRow.*_found), and the note explaining it
+_UNFOUND = {
+    "below_start": "'< A': crossed already at the scan's first amplitude A (lower --start)",
+    "above_stop": "'> STOP': no crossing up to --stop (raise --stop to find it)",
+    "above_bound": ("'> bound': no crossing up to the largest amplitude the device's wave may "
+                    "have (its surface strain or speed bound)"),
+}
+
+
+def _print_rows(study, name: str, stop: str, data: dict) -> None:
+    """The study as text: one row per value, the slopes, notes for thresholds not located and
+    the scenes' warnings."""
+    typer.echo(f"{name:>24}  {'slides at (m)':>14}  {'removed at (m)':>14}  {'rigid (m)':>11}")
+    seen: set[str] = set()
+
+    def amp(v: float, found: str, start: float) -> str:
+        seen.add(found)
+        text = {"found": f"{v:.4g}", "below_start": f"< {start:.4g}", "above_stop": f"> {stop}",
+                "above_bound": "> bound"}[found]
+        return f"{text:>14}"
 
     for r in study.rows:
-        typer.echo(f"{r.value:>24.4g}  {amp(r.slide_amplitude_m)}  "
-                   f"{amp(r.removal_amplitude_m)}  {r.rigid_removal_m:>11.4g}")
+        typer.echo(f"{r.value:>24.4g}  {amp(r.slide_amplitude_m, r.slide_found, r.scan_start_m)}"
+                   f"  {amp(r.removal_amplitude_m, r.removal_found, r.scan_start_m)}  "
+                   f"{r.rigid_removal_m:>11.4g}")
     for column, slope in data["slopes"].items():
         typer.echo(f"slope of log {column} against log {name.rsplit('.', 1)[-1]}: "
                    f"{_g(slope['all'])} (smallest {data['small_rows']} values: "
                    f"{_g(slope['small'])})")
-    if any(not math.isfinite(v) for r in study.rows
-           for v in (r.slide_amplitude_m, r.removal_amplitude_m)):
-        typer.echo(f"'{above}': no crossing up to --stop {stop.strip()} (raise --stop to find it);"
-                   " 'n/a': a slope needs two thresholds")
+    notes = [_UNFOUND[k] for k in _UNFOUND if k in seen]
+    if notes:
+        typer.echo("; ".join(notes) + "; 'n/a': a slope needs two thresholds")
+    for r in study.rows:
+        for warning in r.warnings:
+            typer.echo(f"WARNING at {name} = {r.value:.4g}: {warning}")
 
 
 def _check_scan(start: float, per_decade: int, bisections: int, periods: float) -> None:

@@ -404,6 +404,6 @@ def explain(scene: Scene, engine: Engine = "compiled") -> str:
                                                        if k != "x_q"))
     lines.append("outputs: " + ", ".join(plan.outputs))
     if scene.device is not None:
-        lines += explain_device(scene.device, scene.material.mu)
+        lines += explain_device(scene.device, scene.material.mu, scene.effects.adhesion)
         lines += explain_adhesion(scene.device, scene.effects.adhesion, scene.material.mu)
     return "\n".join(lines)

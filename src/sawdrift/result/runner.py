@@ -178,7 +178,8 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
     """A device scene's validity warnings, a long-time mean's whose error is a lower bound,
     whose halves differ (the error then half their difference) or whose bounces heat up, and
     a measuring window too long for all its events to be kept."""
-    warnings = tuple(device_warnings(scene.device)) if scene.device is not None else ()
+    warnings = (tuple(device_warnings(scene.device, scene.effects.adhesion))
+                if scene.device is not None else ())
     if out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
         warnings += (f"not settled: {STILL_MOVING} over its last "
                      f"{out.long_mean.periods} periods (its two halves differ by more than "

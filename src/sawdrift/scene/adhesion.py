@@ -21,6 +21,51 @@ from .device import Device, normalized
 #: pull-off force of each adhesive law over the DMT one, 2 pi R w
 PULLOFF_FACTOR = {"dmt": 1.0, "jkr": 0.75}
 
+#: The largest tangential load |L| = |F_load - m g sin(alpha)| of a device over what friction
+#: can hold at mu = 1, M g + 2 F_pull (M g without adhesion; the range of ``particle.load`` is
+#: the same in normalized units): beyond it friction holds nothing and the particle is pushed.
+MAX_LOAD_RATIO = 100.0
+
+#: The largest pull-off force of a device over its normal load, F_pull / (M g) (the range of
+#: ``material.adhesion``).
+MAX_PULLOFF_RATIO = 1e12
+
+
+def load_bound(adhesion: float) -> float:
+    """The largest |particle.load| with ``material.adhesion`` = F*_pull:
+    :data:`MAX_LOAD_RATIO` (1 + 2 F*_pull), the normalized friction bound at mu = 1 times 100."""
+    return MAX_LOAD_RATIO * (1.0 + 2.0 * adhesion)
+
+
+def adhesive_out_of_range(device: Device, law: str) -> str | None:
+    """Why a device's tangential load or pull-off is beyond what the model stands for under the
+    adhesive ``law`` (``effects.adhesion``), or None: a load above :func:`load_bound` times M g
+    (an adhesive micro-particle held by 6e4 M g of friction may carry far more than 100 M g), a
+    pull-off above :data:`MAX_PULLOFF_RATIO` M g. The line names the device fields to change."""
+    n = normalized(device)
+    pull = normalized_adhesion(device, law)
+    bound = load_bound(pull)
+    if abs(n["load"]) > bound:
+        held = f"M g + 2 F_pull = {n['weight_n'] * (1.0 + 2.0 * pull):.4g} N" if pull > 0.0 else \
+            f"M g = {n['weight_n']:.3g} N"
+        return (f"device.load = {device.load:.4g} N and device.incline = "
+                f"{math.degrees(device.incline):.4g} deg push the particle with "
+                f"{n['load_n']:.4g} N, {abs(n['load']) / (1.0 + 2.0 * pull):.3g} times its "
+                f"normal load {held}, above {MAX_LOAD_RATIO:g} times: lower "
+                "|device.load| or raise device.preload")
+    if pull > MAX_PULLOFF_RATIO:
+        formula = "1.5 pi R w" if law == "jkr" else "2 pi R w"
+        return (f"device.adhesion = {device.adhesion:.4g} J/m^2 pulls the particle with "
+                f"{formula} = {pull * n['weight_n']:.3g} N, above {MAX_PULLOFF_RATIO:g} times its "
+                f"normal load M g = {n['weight_n']:.3g} N: lower device.adhesion or raise "
+                "device.preload")
+    return None
+
+
+def adhesive_sets_contact(device: Device, law: str) -> bool:
+    """Whether adhesion rather than the load sets the contact: a pull-off of at least M g."""
+    return normalized_adhesion(device, law) >= 1.0
+
 
 def normalized_adhesion(device: Device, law: str) -> float:
     """material.adhesion of ``device`` under the adhesive ``law``: F_pull / (M g) (module text).
@@ -45,6 +90,11 @@ def adhesion_consistent(scene: Any) -> None:
                  if getattr(scene, "device", None) is not None
                  else "material.adhesion > 0 (the pull-off force over M g)")
         raise ValueError(f"effects.adhesion = {eff.adhesion!r} needs {needs}")
+    load, bound = scene.particle.load, load_bound(w)
+    if abs(load) > bound:
+        with_pull = f" = {MAX_LOAD_RATIO:g} (1 + 2 material.adhesion)" if w > 0.0 else ""
+        raise ValueError(f"particle.load = {load:g} is outside the allowed range [-{bound:g}, "
+                         f"{bound:g}]{with_pull}: beyond it friction holds nothing")
     if eff.adhesion_detach != "instability" and eff.adhesion != "jkr":
         raise ValueError(f"effects.adhesion_detach = {eff.adhesion_detach!r} applies to "
                          "effects.adhesion = 'jkr' only")

@@ -301,22 +301,13 @@ def wave_implausibility(device: Device) -> str | None:
 #: the 1e7 steps a period a compliant model takes at most.
 M_STAR_RANGE = (1e-12, 1e10)
 
-#: The largest tangential load |L| = |F_load - m g sin(alpha)| / (M g) of a device (the range
-#: of ``particle.load``): beyond it friction holds nothing and the particle is simply pushed.
-MAX_LOAD_RATIO = 100.0
-
-#: The largest pull-off force over the normal load 2 pi R w / (M g) of a device (the range of
-#: ``material.adhesion``; JKR's pull-off is 3/4 of this DMT value).
-MAX_PULLOFF_RATIO = 1e12
-
-
 def derived_out_of_range(device: Device) -> str | None:
     """Why the device's normalized quantities are outside what the model can integrate, or None.
 
     Each field may be inside its own range (:data:`RANGES`) while the combination gives an m*
-    outside :data:`M_STAR_RANGE` (a 10 cm ball on a 100 GHz wave), a tangential load beyond
-    :data:`MAX_LOAD_RATIO` times the normal load, or a pull-off beyond :data:`MAX_PULLOFF_RATIO`
-    times it. The line names the device fields that set the quantity.
+    outside :data:`M_STAR_RANGE` (a 10 cm ball on a 100 GHz wave). The line names the device
+    fields that set it. The load and the pull-off, whose bounds depend on the adhesive law, are
+    checked with the scene's law (:func:`~sawdrift.scene.adhesion.adhesive_out_of_range`).
     """
     n = normalized(device)
     m_star, (lo, hi) = n["m_star"], M_STAR_RANGE
@@ -329,17 +320,6 @@ def derived_out_of_range(device: Device) -> str | None:
                 f"{lo:g} to {hi:g} the model integrates (a0 = {n['a0_m']:.3g} m, m = "
                 f"{n['mass_kg']:.3g} kg, f = {n['frequency_hz']:.4g} Hz, M g = "
                 f"{n['weight_n']:.3g} N): {what}")
-    if abs(n["load"]) > MAX_LOAD_RATIO:
-        return (f"device.load = {device.load:.4g} N and device.incline = "
-                f"{math.degrees(device.incline):.4g} deg push the particle with "
-                f"{n['load_n']:.4g} N, {abs(n['load']):.3g} times its normal load M g = "
-                f"{n['weight_n']:.3g} N, above {MAX_LOAD_RATIO:g} times: lower |device.load| or "
-                "raise device.preload")
-    if n["pulloff_dmt_n"] > MAX_PULLOFF_RATIO * n["weight_n"]:
-        return (f"device.adhesion = {device.adhesion:.4g} J/m^2 pulls the particle with "
-                f"2 pi R w = {n['pulloff_dmt_n']:.3g} N, above {MAX_PULLOFF_RATIO:g} times its "
-                f"normal load M g = {n['weight_n']:.3g} N: lower device.adhesion or raise "
-                "device.preload")
     return None
 
 
@@ -433,26 +413,35 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
     return out
 
 
-def device_warnings(device: Device) -> list[str]:
+def device_warnings(device: Device, law: str = "none") -> list[str]:
     """Where the scene leaves the model's assumptions, one sentence each (also in every Result):
-    a static compression below 1 nm without device.adhesion (adhesion and roughness then set
-    the contact, not gravity and preload), a sphere's contact radius above 0.1 R (beyond small
-    strain), a cone's half-angle below 60 deg (Sneddon's small-slope solution)."""
+    a static compression below 1 nm that adhesion does not set (none, or a pull-off below M g:
+    adhesion and roughness then set the contact, not gravity and preload), a sphere's contact
+    radius above 0.1 R (beyond small strain; with adhesion the adhesive contact's at rest), a
+    cone's half-angle below 60 deg (Sneddon's small-slope solution). ``law``: the scene's
+    ``effects.adhesion``."""
+    from .adhesion import adhesive_rest, adhesive_sets_contact
+
     n = normalized(device)
     part = device.particle
     out = []
-    if n["a0_m"] < 1e-9 and device.adhesion == 0.0:
+    adhesive = device.adhesion > 0.0 and law in ("dmt", "jkr")
+    if n["a0_m"] < 1e-9 and not (adhesive and adhesive_sets_contact(device, law)):
         out.append(f"a0 < 1 nm (a0 = {n['a0_m']:.3g} m): adhesion and roughness, not gravity and "
                    "preload, then set the contact; the model's assumptions do not hold")
-    if part.shape == "sphere" and n["contact_radius_m"] > 0.1 * float(part.radius):
-        out.append("contact radius above 0.1 R: beyond Hertz's small-strain theory")
+    if part.shape == "sphere":
+        radius = (adhesive_rest(device, law)["contact_radius_m"] if adhesive
+                  else n["contact_radius_m"])
+        if radius > 0.1 * float(part.radius):
+            out.append(f"contact radius {radius:.3g} m above 0.1 R: beyond Hertz's small-strain "
+                       "theory")
     if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
         out.append("half-angle below 60 deg: Sneddon's small-slope solution underestimates the "
                    "contact radius (by 27 % at 42 deg)")
     return out
 
 
-def explain_device(device: Device, mu: float) -> list[str]:
+def explain_device(device: Device, mu: float, law: str = "none") -> list[str]:
     """Derived quantities with units, time scales, and where the scene leaves the model."""
     n = normalized(device)
     f = n["frequency_hz"]
@@ -488,7 +477,7 @@ def explain_device(device: Device, mu: float) -> list[str]:
                  f"{approach / f:.4g} s" if approach >= 1.0 else
                  f"  m*/mu = {approach:.4g}: the horizontal speed follows the surface within a "
                  "period (no slow approach to the steady drift)")
-    lines.extend(f"  WARNING: {w}" for w in device_warnings(device))
+    lines.extend(f"  WARNING: {w}" for w in device_warnings(device, law))
     if n["amplitude"] > 1.0 and device.adhesion == 0.0:
         lines.append("  note: A* > 1: the substrate moves further than the static compression; "
                      "expect contact loss for a heavy particle")

@@ -28,7 +28,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from ..errors import SceneError
-from .adhesion import normalized_adhesion
+from .adhesion import adhesive_out_of_range, normalized_adhesion
 from .device import FIELD_KIND, UNITS, Device, normalized
 from .parts import format_validation_error, get_dotted, set_dotted
 from .profiles import Profile
@@ -221,6 +221,9 @@ def apply_device(data: Mapping[str, Any]) -> dict[str, Any]:
     if device.adhesion > 0.0 and law == "none":
         raise SceneError(f"device.adhesion = {device.adhesion:g} J/m^2 needs effects.adhesion = "
                          "'dmt' or 'jkr'")
+    problem = adhesive_out_of_range(device, law)
+    if problem is not None:
+        raise SceneError(problem)
     values = derived_values(device, law)
     for field, derived in values.items():
         given = get_dotted(out, field)

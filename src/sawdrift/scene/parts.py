@@ -51,7 +51,8 @@ def bounded(
             raise ValueError(f"is outside the allowed range {text}")
         return value
 
-    check.interval = text  # type: ignore[attr-defined]  # read by sawdrift.scene.options
+    # read by sawdrift.scene.options (a field bounded by another field says so in its description)
+    check.interval = text if lo is not None or hi is not None else ""  # type: ignore[attr-defined]
     return AfterValidator(check)
 
 
@@ -124,11 +125,12 @@ class Particle(BaseModel):
             "m*; kept for conversion from dimensional inputs"
         ),
     )
-    load: Annotated[float, bounded(-100.0, 100.0)] = Field(
+    load: Annotated[float, bounded()] = Field(
         0.0,
         description=(
             "constant external tangential force on the particle, in units of its static normal "
-            "load M g, positive along +x (a motor's thrust, gravity along an incline)"
+            "load M g, positive along +x (a motor's thrust, gravity along an incline); in "
+            "[-100, 100], with adhesion 100 (1 + 2 material.adhesion)"
         ),
     )
 

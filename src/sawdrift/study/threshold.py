@@ -34,14 +34,21 @@ from ..contact.binding import bind
 from ..errors import SceneError
 from ..result.runner import run
 from ..scene.adhesion import normalized_adhesion
-from ..scene.device import FIELD_KIND, field_si, normalized
+from ..scene.device import FIELD_KIND, device_warnings, field_si, normalized
 from ..scene.schema import Scene, check_dotted
 from .progress import counter
+
+#: how a threshold was found (``ThresholdRow.slide_found``, ``removal_found``): located by
+#: bisection; already crossed at the scan's first amplitude (the threshold lies below
+#: ``start`` times the rigid removal amplitude); not crossed up to ``stop``; not crossed up to the
+#: largest amplitude the device's wave may have (its surface strain or speed bound)
+FOUND, BELOW_START, ABOVE_STOP, ABOVE_BOUND = "found", "below_start", "above_stop", "above_bound"
 
 
 @dataclass(frozen=True)
 class ThresholdRow:
-    """The thresholds at one value of the field (SI units)."""
+    """The thresholds at one value of the field (SI units). An amplitude is NaN unless its
+    ``*_found`` is :data:`FOUND`; then that field says on which side of the scan it lies."""
 
     value: float
     slide_amplitude_m: float
@@ -50,6 +57,12 @@ class ThresholdRow:
     pulloff_n: float
     weight_n: float
     runs: int
+    slide_found: str = FOUND
+    removal_found: str = FOUND
+    #: the scan's first amplitude (m): a threshold BELOW_START lies under it
+    scan_start_m: float = math.nan
+    #: where the scene at this value leaves the model's assumptions (as a Result's warnings)
+    warnings: tuple[str, ...] = ()
 
 
 @dataclass
@@ -60,10 +73,12 @@ class ThresholdStudy:
     rows: list[ThresholdRow] = field(default_factory=list)
 
     def table(self):
-        """The rows as a pandas DataFrame (SI columns; the field's values in ``value``)."""
+        """The rows as a pandas DataFrame (SI columns; the field's values in ``value``; the
+        warnings of a row joined by '; ', empty for none)."""
         import pandas as pd
 
-        return pd.DataFrame([asdict(r) for r in self.rows])
+        rows = [{**asdict(r), "warnings": "; ".join(r.warnings)} for r in self.rows]
+        return pd.DataFrame(rows)
 
     def slope(self, column: str, first: int | None = None) -> float:
         """The least-squares slope of log(column) against log(value), over the ``first`` rows."""
@@ -78,7 +93,8 @@ class ThresholdStudy:
     def to_json(self) -> dict[str, Any]:
         """The rows and the slopes (all rows, and the smallest third: the small-particle end)."""
         small = max(2, len(self.rows) // 3)
-        return {"field": self.field, "rows": [asdict(r) for r in self.rows],
+        return {"field": self.field,
+                "rows": [{**asdict(r), "warnings": list(r.warnings)} for r in self.rows],
                 "slopes": {c: {"all": self.slope(c), "small": self.slope(c, small)}
                            for c in ("slide_amplitude_m", "removal_amplitude_m",
                                      "rigid_removal_m")},
@@ -113,6 +129,9 @@ def parse_device_axis(spec: str) -> tuple[str, list[float]]:
         lo, hi = si(parts[0]), si(parts[1])
         if not (lo > 0 and hi > 0 and 1 <= n <= 1000):
             raise SceneError(f"--axis {name}: START, STOP must be > 0 and 1 <= N <= 1000")
+        if n == 1 and lo != hi:
+            raise SceneError(f"--axis {name}: N = 1 cannot hold both ends {parts[0].strip()!r} "
+                             f"and {parts[1].strip()!r}: give N >= 2, or one value")
         return name, np.geomspace(lo, hi, n).tolist() if n > 1 else [lo]
     out = [si(v) for v in values.split(",") if v.strip()]
     if not out:
@@ -144,26 +163,43 @@ def stiff_removal_lost(law: str, ratio: float, m_star: float = 1e-5,
     return bool(run(scene).contact_lost)
 
 
+class OutOfRange(Exception):
+    """An amplitude of the scan beyond what the device's wave may have (a scene refused)."""
+
+
 def first_crossing(crosses: Callable[[float], bool], start: float, factor: float,
-                   stop: float, bisections: int) -> tuple[float, int]:
-    """The smallest amplitude where ``crosses`` turns True, from below (module text); NaN if none
-    up to ``stop``. Returns (amplitude, runs)."""
+                   stop: float, bisections: int) -> tuple[float, int, str]:
+    """The smallest amplitude where ``crosses`` turns True, from below (module text), the runs it
+    took and how it was found (:data:`FOUND`, or NaN and :data:`BELOW_START` where the first
+    amplitude already crosses, :data:`ABOVE_STOP` where none up to ``stop`` does, the last
+    grid point put at ``stop`` itself, :data:`ABOVE_BOUND` where ``crosses`` raised
+    :class:`OutOfRange` before any did)."""
     lo, amp, runs = math.nan, start, 0
-    while amp <= stop:
+    if start > stop:
+        return math.nan, runs, ABOVE_STOP
+    while True:
+        amp = min(amp, stop)
         runs += 1
-        if crosses(amp):
+        try:
+            crossed = crosses(amp)
+        except OutOfRange:
+            return math.nan, runs, ABOVE_BOUND
+        if crossed:
             break
+        if amp >= stop:
+            return math.nan, runs, ABOVE_STOP
         lo, amp = amp, amp * factor
-    else:
-        return math.nan, runs
-    hi = amp
     if math.isnan(lo):
-        return hi, runs  # already crossed at the start: an upper bound
+        return math.nan, runs, BELOW_START  # crossed at the start: no bracket to bisect
+    hi = amp
     for _ in range(bisections):
         mid = math.sqrt(lo * hi)
         runs += 1
-        lo, hi = (lo, mid) if crosses(mid) else (mid, hi)
-    return math.sqrt(lo * hi), runs
+        try:
+            lo, hi = (lo, mid) if crosses(mid) else (mid, hi)
+        except OutOfRange:
+            hi = mid  # not reached here: the bound lies above the bracket's top
+    return math.sqrt(lo * hi), runs, FOUND
 
 
 def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float = 0.01,
@@ -181,6 +217,9 @@ def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float
     if scene.device is None or scene.effects.adhesion == "none":
         raise SceneError("sawdrift threshold needs a device scene with effects.adhesion = 'dmt' "
                          "or 'jkr' and device.adhesion > 0")
+    if name == "device.amplitude":
+        raise SceneError("--axis device.amplitude: the amplitude is what the study scans; sweep "
+                         "another device field, e.g. device.particle.radius")
     factor = 10.0 ** (1.0 / per_decade)
     study = ThresholdStudy(name)
     fixed: dict[str, Any] = {"numerics.settle": False}
@@ -195,18 +234,26 @@ def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float
 
         def result(amp: float, base: Scene = base, cache: dict = cache) -> Any:
             if amp not in cache:
-                cache[amp] = run(base.with_updates(**{"device.amplitude": amp}), engine=engine)
+                try:
+                    scene_at = base.with_updates(**{"device.amplitude": amp})
+                except SceneError:
+                    raise OutOfRange(amp) from None  # beyond the wave's strain or speed bound
+                cache[amp] = run(scene_at, engine=engine)
             return cache[amp]
 
         def slides(amp: float) -> bool:
             res = result(amp)
             return bool(res.contact_lost or res.gross_slip_fraction > 0.0)
 
-        slide, _ = first_crossing(slides, start * a_rigid, factor, stop, bisections)
-        removal, _ = first_crossing(lambda amp: result(amp).regime == "ejected",
-                                    start * a_rigid, factor, stop, bisections)
+        slide, _, slide_found = first_crossing(slides, start * a_rigid, factor, stop,
+                                               bisections)
+        removal, _, removal_found = first_crossing(
+            lambda amp: result(amp).regime == "ejected", start * a_rigid, factor, stop,
+            bisections)
         study.rows.append(ThresholdRow(float(value), slide, removal, a_rigid, pull, weight,
-                                       len(cache)))
+                                       len(cache), slide_found, removal_found,
+                                       start * a_rigid,
+                                       tuple(device_warnings(base.device, base.effects.adhesion))))
         bar.update(1)
     bar.close()
     return study
