@@ -465,3 +465,30 @@ def test_the_device_setting_named_instead_gives_the_value_asked_for(option, valu
            "drive.horizontal_ratio": scene.horizontal_ratio,
            "particle.load": scene.particle.load, "drive.amplitude": scene.drive.amplitude}[field]
     assert got == pytest.approx(float(value), rel=1e-3), hint
+
+
+def test_a_long_time_means_error_in_m_s_is_the_same_in_run_json_and_the_sweep_table():
+    """The 10 um silica sphere at 0.05 nm drifts irregularly: its speed's standard error was in
+    the sweep table (drift_speed_se_m_s) and the text, not in the Result (run --json)."""
+    import sawdrift as sd
+
+    scene = sd.Scene.from_toml(EXAMPLES / "micro_silica_on_linbo3.toml").with_updates(
+        **{"device.amplitude": 5e-11})
+    res = sd.run(scene)
+    se = res.extra["drift_speed_se_m_s"]
+    assert math.isfinite(res.drift_ratio_se) and se > 0.0
+    row = sd.sweep(scene.model, base=scene, axes={"device.amplitude": [5e-11]}).iloc[0]
+    assert se == pytest.approx(row["drift_speed_se_m_s"], rel=1e-9)
+    # and the speed's error over its speed is the drift ratio's over the drift ratio
+    assert se / abs(res.extra["drift_speed_m_s"]) == pytest.approx(
+        res.drift_ratio_se / abs(res.drift_ratio), rel=1e-9)
+
+
+def test_a_device_table_with_no_speed_is_still_plotted_as_speed():
+    import pandas as pd
+
+    from sawdrift.report.line_plot import value_column
+
+    table = pd.DataFrame({"device.amplitude": [5e-10, 1e-9], "drift_ratio": [math.nan] * 2,
+                          "drift_speed_m_s": [math.nan] * 2, "regime": ["ejected"] * 2})
+    assert value_column(table) == "drift_speed_m_s"

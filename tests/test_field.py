@@ -260,3 +260,24 @@ def test_the_field_csv_keeps_each_long_time_means_error(tmp_path, monkeypatch, c
     assert "drift_velocity_se" in frame.columns
     means = frame["regime"] == "bouncing"
     assert means.any() and frame.loc[means, "drift_velocity_se"].notna().any()
+
+
+def test_an_ejected_field_says_so_in_valid_json_with_the_warnings(monkeypatch, capsys):
+    """The 2 um silica bead on quartz at 1 nm (a0 = 4.5e-14 m) is thrown off everywhere: the
+    JSON held NaN for every V (no JSON: JSON.parse refuses it) and no warnings, the text said
+    'no drift' and called the positions not settled."""
+    import json
+    from pathlib import Path
+
+    from .cli_call import call
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "silica_bead_on_quartz.toml"
+    args = ("field", str(example), "--backward", "0.5", "--points", "4", "--no-progress")
+    code, out, err = call(monkeypatch, capsys, *args, "--json")
+    assert code == 0, err
+    data = json.loads(out, parse_constant=lambda c: pytest.fail(f"{c} in the JSON"))
+    assert data["regimes"] == ["ejected"] * 4 and data["drift_velocity"] == [None] * 4
+    assert any("a0 < 1 nm" in w for w in data["warnings"])
+    code, out, _ = call(monkeypatch, capsys, *args)
+    assert out.splitlines()[0].startswith("ejected at every position")
+    assert "NOT settled" not in out and "WARNING: a0 < 1 nm" in out

@@ -9,6 +9,7 @@ please report it) exits with :data:`INTERNAL_FAILURE`.
 from __future__ import annotations
 
 import json
+import math
 import sys
 import warnings
 from pathlib import Path
@@ -268,9 +269,21 @@ def check_engine(engine: str, lammps: bool = False) -> None:
         _fail(f"--engine = {engine!r} is not allowed; use " + ", ".join(repr(a) for a in allowed))
 
 
+def json_nulls(data: Any) -> Any:
+    """``data`` with every NaN or infinite float replaced by None (JSON null: NaN is no JSON)."""
+    if isinstance(data, dict):
+        return {k: json_nulls(v) for k, v in data.items()}
+    if isinstance(data, list | tuple):
+        return [json_nulls(v) for v in data]
+    if isinstance(data, float) and not math.isfinite(data):
+        return None
+    return data
+
+
 def write_outputs(out: Path, stem: str, data: dict[str, Any], plot: Any, scene: Any) -> None:
-    """Write a study's ``STEM.json``, its figure ``STEM.png`` (``plot(path)``) and its scene."""
+    """Write a study's ``STEM.json`` (NaN as null), its figure ``STEM.png`` (``plot(path)``)
+    and its scene."""
     out.mkdir(parents=True, exist_ok=True)
-    (out / f"{stem}.json").write_text(json.dumps(data, indent=1) + "\n")
+    (out / f"{stem}.json").write_text(json.dumps(json_nulls(data), indent=1) + "\n")
     plot(out / f"{stem}.png")
     scene.to_toml(out / "scene.toml")

@@ -22,6 +22,7 @@ from .app import (
     _writable,
     app,
     check_engine,
+    json_nulls,
     out_kind,
     write_outputs,
 )
@@ -111,14 +112,19 @@ def field_cmd(
 
         write_outputs(out, "field", data, lambda path: plot_field(study, path), scene)
     if as_json:
-        typer.echo(json.dumps(data))
+        typer.echo(json.dumps(json_nulls(data)))  # a failed or ejected position's V: null
         return
     for fld in study.fields:
         head = f"{fld.label}: " if fld.label else ""
         typer.echo(f"{head}{fld.summary}")
         for z in fld.zeros:
             typer.echo(f"  {z['kind']:>9} at xi = {z['position']:.5f} (+ k/2)")
-        loose = sum(1 for ok in fld.settled if ok is False)
+        ejected = sum(r == "ejected" for r in fld.regimes)
+        if 0 < ejected < len(fld.regimes):
+            typer.echo(f"  {ejected} of {len(fld.regimes)} positions ejected: thrown off, no "
+                       "drift speed there")
+        loose = sum(1 for ok, r in zip(fld.settled, fld.regimes, strict=True)
+                    if ok is False and r != "ejected")
         if loose:
             hint = (" (use --settle)" if scene.numerics.settle is False else
                     " (irregular motion: a long-time mean, or not settled within the period cap)")
@@ -126,6 +132,8 @@ def field_cmd(
                        f"not a steady one{hint}")
         if fld.errors:
             typer.echo(f"  {len(fld.errors)} kinds of run errors, e.g. {fld.errors[0]}", err=True)
+        for warning in fld.warnings:
+            typer.echo(f"  WARNING: {warning}")
     if study.direct is not None:
         d = study.direct
         pred = d.get("predicted", {})

@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 
 from .._startup import fast_start
-from .app import Engine, _fail, _writable, app, check_engine, write_outputs
+from .app import Engine, _fail, _writable, app, check_engine, json_nulls, write_outputs
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -68,7 +67,7 @@ def threshold_cmd(
                        bisections=bisections, periods=periods, engine=engine)
     # a threshold not located is NaN in the table, null in JSON (NaN is not JSON), with its
     # *_found saying where it lies ("> STOP", "< A", "> bound" in the text)
-    data = _nulls(study.to_json())
+    data = json_nulls(study.to_json())
     if out is not None:
         write_outputs(out, "threshold", data, lambda path: plot_thresholds(study, path), scene)
         table = study.table()
@@ -132,14 +131,3 @@ def _check_scan(start: float, per_decade: int, bisections: int, periods: float) 
 def _g(value: float | None) -> str:
     """A slope, or 'n/a' where fewer than two thresholds were found."""
     return f"{value:.3g}" if value is not None else "n/a"
-
-
-def _nulls(data):
-    """``data`` with every NaN float replaced by None (JSON null)."""
-    if isinstance(data, dict):
-        return {k: _nulls(v) for k, v in data.items()}
-    if isinstance(data, list):
-        return [_nulls(v) for v in data]
-    if isinstance(data, float) and not math.isfinite(data):
-        return None
-    return data

@@ -44,8 +44,9 @@ def swept_field(table: pd.DataFrame) -> str | None:
 
 
 def value_column(table: pd.DataFrame) -> str:
-    """What a line plot shows: the speed in m/s of a device table, else the drift ratio."""
-    if "drift_speed_m_s" in table.columns and table["drift_speed_m_s"].notna().any():
+    """What a line plot shows: the speed in m/s of a device table (even where no cell has one:
+    every cell ejected), else the drift ratio."""
+    if "drift_speed_m_s" in table.columns:
         return "drift_speed_m_s"
     return "drift_ratio"
 

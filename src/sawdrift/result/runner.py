@@ -101,7 +101,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         warnings += (_unsettled_reason(out, scene.numerics.settle is True),)
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None,
-                                    detach))
+                                    detach, drift_se * out.speed))
     k_per = stepper.k_per
     steps = out.steps  # a long-time mean's twin ran on after the window: its steps count
     return Result(

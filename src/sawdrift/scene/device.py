@@ -390,16 +390,20 @@ SHAPE_EXPONENT = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}
 
 
 def device_outputs(device: Device, drift_velocity: float, regime: str,
-                   t90_periods: float | None, detach_time: float = math.nan) -> dict[str, Any]:
+                   t90_periods: float | None, detach_time: float = math.nan,
+                   drift_se: float = math.nan) -> dict[str, Any]:
     """Physical outputs of a run of a device scene (``sawdrift run device.toml --json``): the
-    drift speed, t90 and an ejection's detach time (t* in periods) in s, a load's power."""
+    drift speed and a long-time mean's standard error (``drift_se``, x* per period) in m/s, t90
+    and an ejection's detach time (t* in periods) in s, a load's power."""
     norm = normalized(device)
     speed = drift_velocity * norm["a0_m"] * norm["frequency_hz"]
+    se = drift_se * norm["a0_m"] * norm["frequency_hz"]
     still = regime in ("stick", "oscillating_slip", "runaway", "ejected")
     moving = not still and math.isfinite(speed) and speed != 0.0
     out = {
         "normalized": {k: norm[k] for k in ("m_star", "amplitude", "theta", "horizontal_ratio", "a0_m")},
         "drift_speed_m_s": speed,
+        "drift_speed_se_m_s": se if math.isfinite(se) else None,
         "direction": ("with" if speed > 0.0 else "against") if moving else "none",
         "t90_s": (t90_periods / norm["frequency_hz"]
                   if t90_periods is not None and math.isfinite(t90_periods) else None),

@@ -75,6 +75,8 @@ class Field:
     #: standard error of each drift velocity that is a long-time mean (irregular motion; NaN
     #: for a steady drift), scaled from the run's ``drift_ratio_se``
     drift_velocity_se: np.ndarray | None = None
+    #: the runs' warnings, each once (a device scene's validity warnings are every position's)
+    warnings: list[str] = field(default_factory=list)
 
     def velocity_at(self, xi: np.ndarray | float) -> np.ndarray:
         """V at ``xi``: periodic linear interpolation of the samples and the zeros (period 1/2)."""
@@ -98,7 +100,7 @@ class Field:
                 "drift_velocity_se": [float(e) if np.isfinite(e) else None for e in se],
                 "regimes": list(self.regimes),
                 "settled": list(self.settled), "zeros": self.zeros, "summary": self.summary,
-                "errors": self.errors}
+                "errors": self.errors, "warnings": self.warnings}
 
 
 @dataclass
@@ -277,11 +279,14 @@ def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
                              "positions computed")
         v = rows["drift_velocity"].to_numpy(dtype=float)
         errors = [str(e) for e in rows["error"].dropna().unique()]
+        # each position's warnings as its row holds them (one text), each text once
+        warnings = (list(dict.fromkeys(str(w) for w in rows["warnings"].dropna()))
+                    if "warnings" in rows else [])
         fields.append(Field(label=label, positions=positions.copy(), drift_velocity=v,
                             regimes=[str(r) for r in rows["regime"]],
                             settled=[None if s is None or s != s else bool(s)
                                      for s in rows["settled"]],
-                            zeros=[], scene=sp, errors=errors,
+                            zeros=[], scene=sp, errors=errors, warnings=warnings,
                             drift_velocity_se=drift_errors(rows, "drift_velocity")))
     for f in fields:
         ok = np.isfinite(f.drift_velocity)  # a failed run (its error is kept) is left out
@@ -350,6 +355,9 @@ def _refine(fields: list[Field], rounds: int, executor: Executor, engine: str) -
 
 
 def _summarize(f: Field) -> str:
+    ejected = sum(r == "ejected" for r in f.regimes)
+    if ejected == len(f.regimes):
+        return "ejected at every position: the particle is thrown off, no drift field"
     traps = [z["position"] for z in f.zeros if z["kind"] == "trap"]
     if traps:
         return "collects at xi = " + ", ".join(f"{t:.4f}" for t in traps) + " (+ k/2)"
