@@ -281,3 +281,33 @@ def test_an_ejected_field_says_so_in_valid_json_with_the_warnings(monkeypatch, c
     code, out, _ = call(monkeypatch, capsys, *args)
     assert out.splitlines()[0].startswith("ejected at every position")
     assert "NOT settled" not in out and "WARNING: a0 < 1 nm" in out
+
+
+def test_a_device_field_holds_its_speeds_in_m_s_as_a_run_gives_them(monkeypatch, capsys,
+                                                                   tmp_path):
+    """The figure of a device field is in mm/s; the JSON and CSV held only x* per period, with
+    no a0 (which differs per species) to convert them. Each speed in m/s is the run's at that
+    position (examples/sorting.toml, the 0.2 mm bead at xi = 0.0625: 2.6056e-5 m/s)."""
+    import json
+    from pathlib import Path
+
+    import pandas as pd
+
+    from .cli_call import call
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "sorting.toml"
+    args = ("field", str(example), "--axis", "device.particle.radius=0.2 mm,1 mm", "--points",
+            "4", "--no-progress")
+    code, out, err = call(monkeypatch, capsys, *args, "--json")
+    assert code == 0, err
+    small = json.loads(out)["species"][0]
+    scene = sd.Scene.from_toml(example).with_updates(
+        **{"device.particle.radius": 2e-4, "drive.position": small["positions"][1]})
+    run = sd.run(scene)
+    assert small["drift_velocity_m_s"][1] == pytest.approx(run.extra["drift_speed_m_s"],
+                                                           rel=1e-9)
+    code, _, err = call(monkeypatch, capsys, *args, "-o", str(tmp_path / "f.csv"))
+    table = pd.read_csv(tmp_path / "f.csv")
+    assert code == 0, err
+    assert table["drift_velocity_m_s"].iloc[1] == pytest.approx(run.extra["drift_speed_m_s"],
+                                                                rel=1e-9)

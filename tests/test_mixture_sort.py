@@ -242,3 +242,34 @@ def test_undamped_beads_are_warned_of(monkeypatch, capsys):
         data = json.loads(capsys.readouterr().out)
         assert bool(data["warnings"]) is warned
         assert not warned or "undamped" in data["warnings"][0]
+
+
+def test_a_negative_seed_is_one_line(monkeypatch, capsys):
+    # it was "internal failure (expected non-negative integer)", exit 3
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
+                                      "--seeds", "2", "--set", "particles.seed=-1"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1 and "particles.seed = -1" in err[0], err
+
+
+def test_the_written_scene_sorts_again_to_the_same_result(tmp_path, monkeypatch, capsys):
+    """sort -o wrote scene.toml without its [particles] table: it could not be sorted again
+    ('sort needs a [particles] table'), and a --set particles.FIELD value was lost."""
+    import json
+
+    def sort_json(*args: str) -> dict:
+        monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", *args, "--seeds", "2", "--until",
+                                          "1e6", "--no-progress", "--json"])
+        with pytest.raises(SystemExit) as exc:
+            main()
+        captured = capsys.readouterr()
+        assert exc.value.code in (0, None), captured.err
+        return json.loads(captured.out)
+
+    first = sort_json(str(EXAMPLES / "mixture.toml"), "--set", "particles.seed=3", "--set",
+                      "particles.fraction=0.3", "-o", str(tmp_path / "d"))
+    again = sort_json(str(tmp_path / "d" / "scene.toml"))
+    assert again["seeds"] == [3, 4] and again["over_time"] == first["over_time"]
+    assert again["species"] == first["species"]

@@ -52,7 +52,8 @@ def field_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: field.json, field.png, scene.toml; or NAME.csv: the field "
-        "only (species, position, drift_velocity, drift_velocity_se, regime, settled)")] = None,
+        "only (species, position, drift_velocity, drift_velocity_se, with a device also "
+        "drift_velocity_m_s and drift_velocity_se_m_s, regime, settled)")] = None,
     yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
@@ -149,7 +150,7 @@ def field_cmd(
 
 def _field_csv(study: Any, out: Path) -> None:
     """The field(s) as CSV: (species,) position xi, drift velocity and its standard error (a
-    long-time mean's; empty where the drift settled), regime, settled."""
+    long-time mean's; empty where the drift settled), a device's also in m/s, regime, settled."""
     import numpy as np
     import pandas as pd
 
@@ -160,6 +161,10 @@ def _field_csv(study: Any, out: Path) -> None:
         frame = pd.DataFrame({"position": fld.positions, "drift_velocity": fld.drift_velocity,
                               "drift_velocity_se": se, "regime": fld.regimes,
                               "settled": fld.settled})
+        scale = fld.speed_scale()
+        if scale is not None:  # a device: the speeds in m/s too (the figure's, in mm/s)
+            frame.insert(3, "drift_velocity_m_s", fld.drift_velocity * scale)
+            frame.insert(4, "drift_velocity_se_m_s", se * scale)
         if study.axis is not None:
             frame.insert(0, "species", fld.label)
         frames.append(frame)

@@ -90,7 +90,7 @@ def sort_cmd(
         out.mkdir(parents=True, exist_ok=True)
         (out / "sort.json").write_text(json.dumps(data, indent=1) + "\n")
         plot_sort(result, out / "sort.png")
-        scene.to_toml(out / "scene.toml")
+        _write_scene(scene, particles, out / "scene.toml")
     if as_json:
         typer.echo(json.dumps(data))
         return
@@ -98,6 +98,14 @@ def sort_cmd(
         typer.echo(line)
     if out is not None:
         typer.echo(f"wrote {out}/sort.json, sort.png, scene.toml")
+
+
+def _write_scene(scene: sd.Scene, particles: dict[str, Any], path: Path) -> None:
+    """The scene with its ``[particles]`` table (the --set particles.FIELD values in it): the
+    file a sort is run again from."""
+    import tomli_w
+
+    path.write_text(scene.to_toml() + "\n" + tomli_w.dumps({"particles": particles}))
 
 
 def _check_options(curves: str, geometry: str, transverse: float, jitter: float) -> None:

@@ -61,7 +61,8 @@ class Particles(BaseModel):
         "limit); 'rows': rows along x of spheres touching their neighbours from the start")
     row: Annotated[int, Field(ge=1, le=100_000)] | None = Field(
         None, description="spheres per row with packing = 'rows' (default: ceil(sqrt(count)))")
-    seed: int = Field(0, description="seed of the placement and the species' assignment")
+    seed: Annotated[int, Field(ge=0)] = Field(
+        0, description="seed of the placement and the species' assignment, >= 0")
     positions: list[list[float | str]] | None = Field(
         None, description="explicit placement [[x, y, species], ...]: x, y lengths inside the "
         "box, species 0 or 1 (the index into radius); replaces packing, count follows from it")

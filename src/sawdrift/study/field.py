@@ -95,12 +95,27 @@ class Field:
         """``{"positions", "drift_velocity", "regimes", "zeros", ...}`` (positions in wavelengths)."""
         se = (self.drift_velocity_se if self.drift_velocity_se is not None
               else np.full(self.drift_velocity.shape, np.nan))
-        return {"label": self.label, "positions": self.positions.tolist(),
-                "drift_velocity": self.drift_velocity.tolist(),
-                "drift_velocity_se": [float(e) if np.isfinite(e) else None for e in se],
-                "regimes": list(self.regimes),
-                "settled": list(self.settled), "zeros": self.zeros, "summary": self.summary,
-                "errors": self.errors, "warnings": self.warnings}
+        out = {"label": self.label, "positions": self.positions.tolist(),
+               "drift_velocity": self.drift_velocity.tolist(),
+               "drift_velocity_se": [float(e) if np.isfinite(e) else None for e in se],
+               "regimes": list(self.regimes),
+               "settled": list(self.settled), "zeros": self.zeros, "summary": self.summary,
+               "errors": self.errors, "warnings": self.warnings}
+        scale = self.speed_scale()
+        if scale is not None:  # a device: the speeds in m/s too, as the figure shows them
+            out["drift_velocity_m_s"] = (self.drift_velocity * scale).tolist()
+            out["drift_velocity_se_m_s"] = [float(e * scale) if np.isfinite(e) else None
+                                            for e in se]
+        return out
+
+    def speed_scale(self) -> float | None:
+        """a0 f (m/s per x* a period) of a device scene's species, else None."""
+        if self.scene.device is None:
+            return None
+        from ..scene.device import normalized
+
+        norm = normalized(self.scene.device)
+        return float(norm["a0_m"] * norm["frequency_hz"])
 
 
 @dataclass
