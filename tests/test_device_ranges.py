@@ -197,7 +197,7 @@ def test_validity_warnings_see_the_adhesive_contact():
     """A pull-off far below M g does not set the contact: a0 < 1 nm still warns (it was dropped
     whenever adhesion was on); an adhesive contact radius above 0.1 R warns (only the Hertz
     radius under M g was looked at): a 0.5 um polymer sphere, w = 0.1 J/m^2, c = 0.118 R."""
-    from sawdrift.scene.device import device_warnings
+    from sawdrift.scene.validity import device_warnings
 
     weak = build_scene(_silica(adhesion="1e-18 J/m^2"))
     assert weak.material.adhesion < 1e-3

@@ -19,6 +19,7 @@ from ..errors import SceneError
 from ..scene.adhesion import explain_adhesion
 from ..scene.device import explain_device
 from ..scene.schema import Impact, Prescribed, Scene, Wave
+from ..scene.validity import device_warnings
 from . import air_drag
 from .adams_bashforth import MIN_RESTITUTION, damping_ratio, restitution_damping
 from .drives import DRIVES, Drive, drive_of
@@ -404,6 +405,7 @@ def explain(scene: Scene, engine: Engine = "compiled") -> str:
                                                        if k != "x_q"))
     lines.append("outputs: " + ", ".join(plan.outputs))
     if scene.device is not None:
-        lines += explain_device(scene.device, scene.material.mu, scene.effects.adhesion)
+        lines += explain_device(scene.device, scene.material.mu,
+                                tuple(device_warnings(scene.device, scene.effects.adhesion)))
         lines += explain_adhesion(scene.device, scene.effects.adhesion, scene.material.mu)
     return "\n".join(lines)

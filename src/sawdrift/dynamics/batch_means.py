@@ -88,6 +88,9 @@ class BatchMeans:
     #: the motion was on a periodic orbit of this many periods at the end of the mean (0: not):
     #: an irregular transient that has ended (:func:`long_time_mean`)
     orbit: int = 0
+    #: the windows before the mean still moved one way (``moving`` is then set too): a monotone
+    #: approach cut off by its cap, whatever the mean's own halves say
+    approaching: bool = False
 
 
 def blocked_error(per_period: np.ndarray, coarse: bool = False) -> tuple[float, float, int]:

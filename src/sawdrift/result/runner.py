@@ -22,8 +22,9 @@ from ..dynamics.prescribed import PrescribedRun, run_prescribed
 from ..dynamics.steady import friction_bound, runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
 from ..errors import SceneError
-from ..scene.device import device_outputs, device_warnings
+from ..scene.device import device_outputs
 from ..scene.schema import Scene
+from ..scene.validity import device_warnings
 from .regimes import classify, outcome
 from .result import Result
 
@@ -180,7 +181,14 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
     a measuring window too long for all its events to be kept."""
     warnings = (tuple(device_warnings(scene.device, scene.effects.adhesion))
                 if scene.device is not None else ())
-    if out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
+    if out.long_mean is not None and out.long_mean.approaching and out.speed > 0.0:
+        periods = out.stepper.step / out.stepper.k_per
+        warnings += (f"not settled: {STILL_MOVING}: its windows still moved one way when they "
+                     f"stopped after {periods:.0f} periods (a slow approach; the drift is the "
+                     f"mean of the {out.long_mean.periods} periods after them, not a steady one); "
+                     "numerics.settle = true (--settle) with numerics.max_periods "
+                     "(--max-periods) runs it longer",)
+    elif out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
         warnings += (f"not settled: {STILL_MOVING} over its last "
                      f"{out.long_mean.periods} periods (its two halves differ by more than "
                      f"{HALVES_Z:g} errors: a slow approach); numerics.mean_periods "

@@ -417,36 +417,9 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
     return out
 
 
-def device_warnings(device: Device, law: str = "none") -> list[str]:
-    """Where the scene leaves the model's assumptions, one sentence each (also in every Result):
-    a static compression below 1 nm that adhesion does not set (none, or a pull-off below M g:
-    adhesion and roughness then set the contact, not gravity and preload), a sphere's contact
-    radius above 0.1 R (beyond small strain; with adhesion the adhesive contact's at rest), a
-    cone's half-angle below 60 deg (Sneddon's small-slope solution). ``law``: the scene's
-    ``effects.adhesion``."""
-    from .adhesion import adhesive_rest, adhesive_sets_contact
-
-    n = normalized(device)
-    part = device.particle
-    out = []
-    adhesive = device.adhesion > 0.0 and law in ("dmt", "jkr")
-    if n["a0_m"] < 1e-9 and not (adhesive and adhesive_sets_contact(device, law)):
-        out.append(f"a0 < 1 nm (a0 = {n['a0_m']:.3g} m): adhesion and roughness, not gravity and "
-                   "preload, then set the contact; the model's assumptions do not hold")
-    if part.shape == "sphere":
-        radius = (adhesive_rest(device, law)["contact_radius_m"] if adhesive
-                  else n["contact_radius_m"])
-        if radius > 0.1 * float(part.radius):
-            out.append(f"contact radius {radius:.3g} m above 0.1 R: beyond Hertz's small-strain "
-                       "theory")
-    if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
-        out.append("half-angle below 60 deg: Sneddon's small-slope solution underestimates the "
-                   "contact radius (by 27 % at 42 deg)")
-    return out
-
-
-def explain_device(device: Device, mu: float, law: str = "none") -> list[str]:
-    """Derived quantities with units, time scales, and where the scene leaves the model."""
+def explain_device(device: Device, mu: float, warnings: tuple[str, ...] = ()) -> list[str]:
+    """Derived quantities with units, time scales, and where the scene leaves the model (its
+    ``warnings``, :func:`~sawdrift.scene.validity.device_warnings`)."""
     n = normalized(device)
     f = n["frequency_hz"]
     part = device.particle
@@ -481,7 +454,7 @@ def explain_device(device: Device, mu: float, law: str = "none") -> list[str]:
                  f"{approach / f:.4g} s" if approach >= 1.0 else
                  f"  m*/mu = {approach:.4g}: the horizontal speed follows the surface within a "
                  "period (no slow approach to the steady drift)")
-    lines.extend(f"  WARNING: {w}" for w in device_warnings(device, law))
+    lines.extend(f"  WARNING: {w}" for w in warnings)
     if n["amplitude"] > 1.0 and device.adhesion == 0.0:
         lines.append("  note: A* > 1: the substrate moves further than the static compression; "
                      "expect contact loss for a heavy particle")

@@ -112,8 +112,6 @@ class Field:
         """a0 f (m/s per x* a period) of a device scene's species, else None."""
         if self.scene.device is None:
             return None
-        from ..scene.device import normalized
-
         norm = normalized(self.scene.device)
         return float(norm["a0_m"] * norm["frequency_hz"])
 

@@ -34,8 +34,9 @@ from ..contact.binding import bind
 from ..errors import SceneError
 from ..result.runner import run
 from ..scene.adhesion import normalized_adhesion
-from ..scene.device import FIELD_KIND, device_warnings, field_si, normalized
+from ..scene.device import FIELD_KIND, field_si, normalized
 from ..scene.schema import Scene, check_dotted
+from ..scene.validity import device_warnings
 from .progress import counter
 
 #: how a threshold was found (``ThresholdRow.slide_found``, ``removal_found``): located by

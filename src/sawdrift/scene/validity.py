@@ -1,0 +1,39 @@
+"""Where a device scene leaves the model's assumptions: its validity warnings.
+
+They depend on the device and on the scene's adhesive law (an adhesive contact at rest is not
+the Hertz contact under M g), so they live beside both: every Result carries them, and the
+text, JSON, sweep tables, exports, fields and thresholds print them.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .adhesion import adhesive_rest, adhesive_sets_contact
+from .device import Device, normalized
+
+
+def device_warnings(device: Device, law: str = "none") -> list[str]:
+    """Where the scene leaves the model's assumptions, one sentence each (also in every Result):
+    a static compression below 1 nm that adhesion does not set (none, or a pull-off below M g:
+    adhesion and roughness then set the contact, not gravity and preload), a sphere's contact
+    radius above 0.1 R (beyond small strain; with adhesion the adhesive contact's at rest), a
+    cone's half-angle below 60 deg (Sneddon's small-slope solution). ``law``: the scene's
+    ``effects.adhesion``."""
+    n = normalized(device)
+    part = device.particle
+    out = []
+    adhesive = device.adhesion > 0.0 and law in ("dmt", "jkr")
+    if n["a0_m"] < 1e-9 and not (adhesive and adhesive_sets_contact(device, law)):
+        out.append(f"a0 < 1 nm (a0 = {n['a0_m']:.3g} m): adhesion and roughness, not gravity and "
+                   "preload, then set the contact; the model's assumptions do not hold")
+    if part.shape == "sphere":
+        radius = (adhesive_rest(device, law)["contact_radius_m"] if adhesive
+                  else n["contact_radius_m"])
+        if radius > 0.1 * float(part.radius):
+            out.append(f"contact radius {radius:.3g} m above 0.1 R: beyond Hertz's small-strain "
+                       "theory")
+    if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
+        out.append("half-angle below 60 deg: Sneddon's small-slope solution underestimates the "
+                   "contact radius (by 27 % at 42 deg)")
+    return out
