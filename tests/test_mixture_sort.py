@@ -102,6 +102,8 @@ def test_chains_carry_small_beads_against_their_drift(monkeypatch):
     (["--until", "0"], "--until = 0.0"),
     (["--geometry", "disk"], "--geometry = 'disk'"),
     (["--transverse", "0"], "--transverse = 0.0"),
+    # 1e9 ran for minutes and did not stop on Ctrl-C (which waits for the placement)
+    (["--transverse", "1e9"], "--transverse = 1000000000.0: give a factor in (0, 100]"),
     (["--jitter", "-1"], "--jitter = -1.0"),
 ])
 def test_bad_sort_options_are_one_line(args, needle, monkeypatch, capsys):
@@ -273,3 +275,25 @@ def test_the_written_scene_sorts_again_to_the_same_result(tmp_path, monkeypatch,
     again = sort_json(str(tmp_path / "d" / "scene.toml"))
     assert again["seeds"] == [3, 4] and again["over_time"] == first["over_time"]
     assert again["species"] == first["species"]
+
+
+def test_the_line_figure_draws_the_large_beads_over_the_small(tmp_path):
+    """--geometry line: every large (orange) path was drawn under a small (blue) one, the small
+    beads a chain carries sitting on the same positions: the large beads did not show."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from sawdrift.report.sort_plot import plot_sort
+
+    from sawdrift.report.sort_plot import COLORS
+
+    scene, particles = plate()
+    result = sort_mixture(scene, {**particles, "count": 40}, seeds=1, periods=1e5,
+                          geometry="line")
+    order: dict[str, list[float]] = {}
+    for line in plot_sort(result).axes[1].get_lines():
+        if len(line.get_xdata()) == 0:
+            continue  # a legend entry's empty line
+        order.setdefault(matplotlib.colors.to_hex(line.get_color()), []).append(line.get_zorder())
+    small, large = (order[c] for c in COLORS[:2])
+    assert min(large) > max(small)

@@ -13,6 +13,7 @@ from .._startup import fast_start
 from .app import (
     Engine,
     Param,
+    Progress,
     Yes,
     _fail,
     _parse_param,
@@ -38,6 +39,7 @@ def force_velocity_cmd(
     workers: Annotated[int | None, typer.Option("--workers", help="local processes (default: all "
                                                 "cores)")] = None,
     engine: Engine = "compiled",
+    progress: Progress = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: force_velocity.json, force_velocity.png, scene.toml")] = None,
@@ -71,7 +73,7 @@ def force_velocity_cmd(
     created = _prepare_out(out)  # before the calibration and the runs, as sweep does
     try:
         size_check("force-velocity", [scene], points + 1, workers=workers, engine=engine,
-                   yes=yes, unit="steady run", smaller="fewer --points")
+                   yes=yes, show=progress, unit="steady run", smaller="fewer --points")
     except BaseException:
         _remove_new(created)  # a refused command leaves no folder behind
         raise
@@ -125,7 +127,7 @@ def _print_curve(curve: Any, data: dict[str, Any]) -> None:
     typer.echo(line)
     if dev is not None:
         forces, speeds, errors = dev["force_mN"], dev["speed_m_s"], dev["speed_se_m_s"]
-        typer.echo(f"{'force (mN)':>12} {'speed (m/s)':>22}  regime")
+        typer.echo(f"{'load L (mN)':>12} {'speed (m/s)':>22}  regime")
     else:
         forces, speeds, errors = data["force"], data["drift_velocity"], data["drift_velocity_se"]
         typer.echo(f"{'load L (M g)':>12} {'v (a0 f)':>22}  regime")

@@ -35,7 +35,8 @@ def sort_cmd(
                                           "sliding round each other; 'line': lanes along the "
                                           "wave, beads cannot pass (1-D)")] = "plane",
     transverse: Annotated[float, typer.Option("--transverse", help="plane: factor on the "
-                                              "assumed transverse mobility (docs/mixtures.md)")] = 1.0,
+                                              "assumed transverse mobility, in (0, 100] "
+                                              "(docs/mixtures.md)")] = 1.0,
     jitter: Annotated[float, typer.Option("--jitter", help="plane: beads moved across the wave "
                                           "by this many small radii (seeded), which breaks "
                                           "exactly head-on rows")] = 1e-3,
@@ -108,14 +109,21 @@ def _write_scene(scene: sd.Scene, particles: dict[str, Any], path: Path) -> None
     path.write_text(scene.to_toml() + "\n" + tomli_w.dumps({"particles": particles}))
 
 
+#: the largest --transverse factor
+MAX_TRANSVERSE = 100.0
+
+
 def _check_options(curves: str, geometry: str, transverse: float, jitter: float) -> None:
     """One line (exit 2) for a bad --curves, --geometry, --transverse or --jitter."""
     if curves not in ("native", "lammps_rule"):
         _fail(f"--curves = {curves!r}: use 'native' or 'lammps_rule'")
     if geometry not in ("plane", "line"):
         _fail(f"--geometry = {geometry!r}: use 'plane' or 'line'")
-    if not (transverse > 0.0 and math.isfinite(transverse)):
-        _fail(f"--transverse = {transverse!r}: give a positive factor")
+    if not (0.0 < transverse <= MAX_TRANSVERSE):
+        # a stiffer sideways motion takes steps its factor times finer: 1e5 took 16 s a
+        # placement, 1e9 did not end (nor stop on Ctrl-C, which waits for the placement)
+        _fail(f"--transverse = {transverse!r}: give a factor in (0, {MAX_TRANSVERSE:g}] (the "
+              "documented sensitivity runs 0.3 to 3)")
     if not (jitter >= 0.0 and math.isfinite(jitter)):
         _fail(f"--jitter = {jitter!r}: give a number of small radii >= 0")
 
