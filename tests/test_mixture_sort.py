@@ -283,9 +283,7 @@ def test_the_line_figure_draws_the_large_beads_over_the_small(tmp_path):
     import matplotlib
 
     matplotlib.use("Agg")
-    from sawdrift.report.sort_plot import plot_sort
-
-    from sawdrift.report.sort_plot import COLORS
+    from sawdrift.report.sort_plot import COLORS, plot_sort
 
     scene, particles = plate()
     result = sort_mixture(scene, {**particles, "count": 40}, seeds=1, periods=1e5,
