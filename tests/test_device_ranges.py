@@ -174,7 +174,7 @@ def test_an_adhesive_particle_takes_loads_friction_can_hold():
 
 def test_the_normalized_load_bound_grows_with_the_pulloff():
     base = {"model": "mmd", "particle": {"load": 150.0}}
-    with pytest.raises(SceneError, match=r"particle.load = 150 .*\[-100, 100\]"):
+    with pytest.raises(SceneError, match=r"particle.load = 150.0 .*\[-100, 100\]"):
         build_scene(base)
     adhesive = {**base, "effects": {"adhesion": "dmt"}, "material": {"adhesion": 1.0}}
     assert build_scene(adhesive).particle.load == 150.0

@@ -93,7 +93,7 @@ def adhesion_consistent(scene: Any) -> None:
     load, bound = scene.particle.load, load_bound(w)
     if abs(load) > bound:
         with_pull = f" = {MAX_LOAD_RATIO:g} (1 + 2 material.adhesion)" if w > 0.0 else ""
-        raise ValueError(f"particle.load = {load:g} is outside the allowed range [-{bound:g}, "
+        raise ValueError(f"particle.load = {load!r} is outside the allowed range [-{bound:g}, "
                          f"{bound:g}]{with_pull}: beyond it friction holds nothing")
     if eff.adhesion_detach != "instability" and eff.adhesion != "jkr":
         raise ValueError(f"effects.adhesion_detach = {eff.adhesion_detach!r} applies to "
