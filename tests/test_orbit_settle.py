@@ -205,3 +205,42 @@ def test_a_window_on_an_exact_orbit_settles_the_full_inertia_windows():
                             numerics={"settle": False, "periods": 1500, "measure_periods": 400}))
     assert brute.orbit_period == 20
     assert res.drift_ratio == pytest.approx(brute.drift_ratio, abs=1e-9)
+
+
+def test_a_window_approaching_an_orbit_reads_its_hops_against_it():
+    """material_point m* 3, A* 0.3, mu 0.2 settles by its windows (its changes within the
+    tolerance) before its state repeats after 17 periods to round-off: its two lift-offs a
+    window were called 'bouncing' (the docs' irregular motion) with no hop period. Brute force
+    over 2600 periods: hopping, hop period 17 on an orbit of 17, the same two take-off phases."""
+    import sawdrift as sd
+
+    scene = dict(model="material_point", particle={"m_star": 3.0}, drive={"amplitude": 0.3},
+                 material={"mu": 0.2})
+    res = sd.run(sd.Scene(**scene))
+    brute = sd.run(sd.Scene(**scene, numerics={"settle": False, "periods": 2600,
+                                               "measure_periods": 1300}))
+    assert brute.orbit_period == 17 and brute.hop_period == 17
+    assert res.settled and res.regime == brute.regime == "hopping" and res.hop_period == 17
+    assert sorted(res.liftoff_phases) == pytest.approx(sorted(brute.liftoff_phases), abs=1e-6)
+
+
+def test_near_orbit_needs_one_period_clearly_nearer_than_every_other():
+    import numpy as np
+
+    from sawdrift.dynamics.window import near_orbit
+
+    n, p = 60, 5
+    k = np.arange(n)
+    base = np.stack([np.sin(2 * np.pi * k / p), np.cos(2 * np.pi * k / p),
+                     np.sin(4 * np.pi * k / p)], axis=1)
+    scale = np.ones(3)
+
+    def samples(states):
+        return np.column_stack([k, states])  # x*, then the scaled (x*', y*, y*')
+
+    approaching = base + 1e-3 * 0.8 ** k[:, None]  # 0.8^52 ~ 1e-5 at the end
+    assert near_orbit(samples(approaching), scale) == p
+    assert near_orbit(samples(base + 1e-2), scale) == p  # a constant offset repeats too
+    quasi = np.stack([np.sin(2 * np.pi * k * 0.3819), np.cos(2 * np.pi * k * 0.3819),
+                      np.sin(2 * np.pi * k * 0.7234)], axis=1)
+    assert near_orbit(samples(quasi), scale) == 0

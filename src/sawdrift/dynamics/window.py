@@ -73,6 +73,8 @@ class Window:
                     t0, periods = t0 + skip, periods - skip
                     events = events[events[:, 0] >= t0]
             orbit = self.orbit_period if self.orbit_period <= LONGEST_HOP else 0
+            if self.orbit_period == 0 and self.scale is not None:
+                orbit = near_orbit(self.samples, self.scale)  # the hops of an orbit approached
             self._sync = hop_synchrony(events, t0, periods, orbit)
         return self._sync
 
@@ -159,6 +161,32 @@ def orbit_period(samples: np.ndarray, scale: np.ndarray, longest: int | None = N
     if divisors.size and (_gaps(s, divisors, last) <= DISTINCT).any():
         return 0
     return p
+
+
+#: scaled stroboscopic change within which a state repeats after p periods while every p it
+#: is no multiple of stays :data:`NEAR_APART` times further off: an orbit of p being
+#: approached (:func:`near_orbit`)
+NEAR_ORBIT = 1e-4
+NEAR_APART = 100.0
+
+
+def near_orbit(samples: np.ndarray, scale: np.ndarray, last: int = 8) -> int:
+    """The period p <= :data:`LONGEST_HOP` of an orbit the window's state is approaching but
+    does not yet repeat to :data:`PERIODIC_TOL` (:func:`orbit_period`), or 0: the smallest p
+    whose change is within :data:`NEAR_ORBIT`, every other p (not a multiple of it) at least
+    :data:`NEAR_APART` times further. The hops are read against it (a rigid point on its way to a
+    period-17 hop, material_point m* 3, A* 0.3, mu 0.2, repeated after 17 periods to 7.7e-6
+    and after any other to 1.1 at least; its two lift-offs a window were called bouncing)."""
+    s, ps = _states(samples, scale, LONGEST_HOP, last)
+    if ps.size == 0:
+        return 0
+    gaps = _gaps(s, ps, last)
+    near = ps[gaps <= NEAR_ORBIT]
+    if near.size == 0:
+        return 0
+    p = int(near[0])
+    others = gaps[ps % p != 0]
+    return p if others.size and others.min() >= NEAR_APART * gaps[p - 1] else 0
 
 
 def lag_change(states: np.ndarray, lag: int, last: int = 8) -> float:
