@@ -295,3 +295,18 @@ def test_the_line_figure_draws_the_large_beads_over_the_small(tmp_path):
         order.setdefault(matplotlib.colors.to_hex(line.get_color()), []).append(line.get_zorder())
     small, large = (order[c] for c in COLORS[:2])
     assert min(large) > max(small)
+
+
+@pytest.mark.parametrize(("setting", "needle"), [
+    # was "model_params.rescale is not a known field": the file's parameters of another model
+    ("model=mmd", "model = 'mmd' has no LAMMPS equivalent"),
+    # was "a force-velocity run found no steady drift (NaN)", naming no field
+    ('device.amplitude="0 nm"', "device.amplitude = 0: no wave moves the beads"),
+])
+def test_sort_names_the_setting_it_cannot_run(setting, needle, monkeypatch, capsys):
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
+                                      "--set", setting])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1 and needle in err[0], err

@@ -117,7 +117,8 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
         values["model"] = model
     base_model = data.get("model")
     data = apply_options(data, values, overrides)
-    if model not in (None, base_model) and base_model is not None:
+    # another model (--model or --set model=...) does not inherit the file's model parameters
+    if values.get("model") not in (None, base_model) and base_model is not None:
         data["model_params"] = {}
     if params:
         data.setdefault("model_params", {}).update(params)

@@ -146,6 +146,9 @@ def slow_model_refusal(scene: sd.Scene) -> str | None:
         return (f"effects.rotation = true: the slow sorting model has no rotation ({NOT_INCLUDED}); "
                 "drop --rotation")
     d = scene.drive
+    if isinstance(d, Wave) and d.amplitude == 0.0:
+        field = "device.amplitude" if scene.device is not None else "drive.amplitude"
+        return f"{field} = 0: no wave moves the beads; give an amplitude > 0"
     if isinstance(d, Wave):
         extra = {"backward": d.backward > 0.0, "wavelength": d.wavelength is not None,
                  "position": d.position != 0.0, "backward_phase_rate": bool(d.backward_phase_rate)}
