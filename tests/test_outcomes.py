@@ -344,3 +344,15 @@ def test_a_settling_run_stopped_within_a_flight_means_its_bounces():
     res = sd.run(sd.Scene(**scene))
     assert math.isfinite(res.drift_ratio_se) and res.drift_ratio_se > 1e-6
     assert abs(res.drift_ratio - truth.drift_ratio) <= 3.0 * res.drift_ratio_se
+
+
+def test_a_load_equal_to_the_friction_bound_has_no_steady_drift():
+    """At L = mu the sliding particle's mean force vanishes at every speed: mmd m* 1, A* 0.5,
+    mu = L = 0.1 settled at 1.0088 while brute force went on rising (1.0143 at 2400 periods,
+    1.0170 at 40000). Below the bound the same scene settles."""
+    scene = dict(model="mmd", particle={"m_star": 1.0, "load": 0.1}, drive={"amplitude": 0.5},
+                 material={"mu": 0.1})
+    res = sd.run(sd.Scene(**scene))
+    assert not res.settled and any("(neutral)" in w for w in res.warnings)
+    below = sd.run(sd.Scene(**{**scene, "particle": {"m_star": 1.0, "load": 0.05}}))
+    assert below.settled and not any("(neutral)" in w for w in below.warnings)

@@ -249,6 +249,9 @@ def _unsettled_note(summary: dict[str, Any], tau: float) -> str:
     if regime in ("runaway", "ejected"):
         # no steady state to wait for: longer runs would not settle anything
         return f"note: {unsettled_text(summary, 'no drift speed')}; a longer run would not settle it"
+    if any("(neutral)" in w for w in summary.get("warnings") or ()):
+        return ("note: the load equals the friction bound: no steady drift for any run length "
+                "(a load below it settles, one above runs away)")
     se = summary.get("drift_ratio_se")
     if isinstance(se, float) and math.isfinite(se):
         if says_heating(summary.get("warnings")):

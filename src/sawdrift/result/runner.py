@@ -98,7 +98,15 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     extra: dict[str, object] = {}
     # a runaway or an ejection has no steady drift: nothing of a long-time mean to warn about
     warnings = _warnings(scene, replace(out, long_mean=None) if ending else out, drift_se)
-    if not settled and not ending and out.long_mean is None and scene.numerics.settle is not False:
+    if not ending and _neutral_load(scene):
+        # friction at its bound balances the load exactly once the particle slides on: nothing
+        # pulls its speed back (mmd m* 1, A* 0.5, mu = L = 0.1 settled at 1.0088, brute force
+        # went on to 1.0170 over 4e4 periods)
+        settled = False
+        warnings += ("not settled: the load equals the most friction can hold, mu (1 + 2 F*_pull)"
+                     ": nothing restores the mean speed, which drifts on (neutral), no steady "
+                     "drift",)
+    elif not settled and not ending and out.long_mean is None and scene.numerics.settle is not False:
         warnings += (_unsettled_reason(out, scene.numerics.settle is True),)
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None,
@@ -216,6 +224,18 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
                      f"changes) are not kept, only its last {out.window.events.shape[0]}; its "
                      "counts (lift-offs, contact loss, gross slip) cover the whole window",)
     return warnings
+
+
+#: relative distance of |L| from the friction bound within which the load is the bound itself
+NEUTRAL_LOAD = 1e-9
+
+
+def _neutral_load(scene: Scene) -> bool:
+    """A load equal to the friction bound (:func:`~sawdrift.dynamics.steady.friction_bound`),
+    with friction on and no air drag: the sliding particle's mean force vanishes at every speed."""
+    load, bound = abs(scene.particle.load), friction_bound(scene)
+    return (load > 0.0 and scene.effects.friction and scene.effects.air_drag == 0.0
+            and abs(load - bound) <= NEUTRAL_LOAD * bound)
 
 
 def _unsettled_reason(out: WaveRun, settling: bool) -> str:
