@@ -76,21 +76,22 @@ def test_small_particle_is_removed_at_the_rigid_limit():
 
 
 def test_a_threshold_above_the_scan_is_named_not_printed_as_nan(monkeypatch, capsys):
-    """--stop below the first amplitude of the scan (0.01 of the rigid removal amplitude, 16 pm
-    at R = 1 um): no crossing is found; the text says '> STOP', the JSON holds null (NaN is not
-    JSON), and a slope of fewer than two thresholds is 'n/a'."""
+    """--stop 0.1 nm, above the scan's first amplitude (0.01 of the rigid removal amplitude, 16 pm
+    at R = 1 um) and below both thresholds (about 1 nm): no crossing is found; the text says
+    '> STOP', the JSON holds null (NaN is not JSON), and a slope of fewer than two thresholds is
+    'n/a'."""
     import json
 
     from .cli_call import call
 
     example = str(Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml")
     code, out, _ = call(monkeypatch, capsys, "threshold", example, "--axis",
-                        "device.particle.radius=1 um", "--stop", "0.01 nm")
+                        "device.particle.radius=1 um", "--stop", "0.1 nm")
     assert code == 0 and "nan" not in out
-    assert out.splitlines()[1].split()[1:4] == [">", "0.01", "nm"]
+    assert out.splitlines()[1].split()[1:4] == [">", "0.1", "nm"]
     assert "slope of log removal_amplitude_m against log radius: n/a" in out
     code, out, _ = call(monkeypatch, capsys, "threshold", example, "--axis",
-                        "device.particle.radius=1 um", "--stop", "0.01 nm", "--json")
+                        "device.particle.radius=1 um", "--stop", "0.1 nm", "--json")
     row = json.loads(out)["rows"][0]
     assert row["removal_amplitude_m"] is None and row["slide_amplitude_m"] is None
 
@@ -150,3 +151,45 @@ def test_threshold_takes_set_and_carries_the_warnings(monkeypatch, capsys):
     assert any("above 0.1 R" in w for w in json.loads(out)["rows"][0]["warnings"])
     code, out, _ = _cli(monkeypatch, capsys, *args)
     assert "WARNING at device.particle.radius = 1e-06: contact radius" in out
+
+
+def test_the_grid_ends_at_the_largest_amplitude_the_wave_may_have():
+    """A crossing between the grid's last allowed point and the wave's bound (2.5 here) was
+    never tried: the scan said '> bound'. The bound is located from the refusals alone (no
+    run) and tried itself."""
+    from sawdrift.study.threshold import OutOfRange
+
+    def crosses(x: float) -> bool:
+        if x > 2.5:
+            raise OutOfRange(x)
+        return x >= 2.2
+
+    crosses.refuses = lambda x: x > 2.5
+    found, _, how = first_crossing(crosses, 0.01, 10.0, 100.0, 40)
+    assert how == "found" and found == pytest.approx(2.2, rel=1e-6)
+
+    def never(x: float) -> bool:
+        if x > 2.5:
+            raise OutOfRange(x)
+        return False
+
+    tried = []
+
+    def logged(x: float) -> bool:
+        tried.append(x)
+        return never(x)
+
+    logged.refuses = lambda x: x > 2.5
+    none, _, how = first_crossing(logged, 0.01, 10.0, 100.0, 4)
+    assert math.isnan(none) and how == "above_bound"
+    assert max(t for t in tried if t <= 2.5) == pytest.approx(2.5, rel=1e-9)
+
+
+@pytest.mark.parametrize(("args", "needle"), [
+    # it printed '> 10 nm' for both thresholds after 0 runs (removal is at 1.13 nm)
+    (("--start", "100"), "above --stop"),
+    (("--per-decade", "1000000"), "--per-decade = 1000000 must be in [1, 100]"),
+])
+def test_a_scan_that_cannot_say_anything_is_refused(args, needle, monkeypatch, capsys):
+    code, _, err = _cli(monkeypatch, capsys, "--axis", "device.particle.radius=1 um", *args)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err, err

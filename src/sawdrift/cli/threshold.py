@@ -9,7 +9,16 @@ from typing import Annotated, Any
 import typer
 
 from .._startup import fast_start
-from .app import Engine, _fail, _writable, app, check_engine, json_nulls, write_outputs
+from .app import (
+    Engine,
+    Progress,
+    _fail,
+    _writable,
+    app,
+    check_engine,
+    json_nulls,
+    write_outputs,
+)
 from .scene_options import scene_from_options, with_scene_options
 
 
@@ -24,11 +33,13 @@ def threshold_cmd(
                                          "of the rigid removal amplitude")] = 0.01,
     stop: Annotated[str, typer.Option("--stop", help="last amplitude of the scan (a threshold "
                                       "above it is NaN)")] = "10 nm",
-    per_decade: Annotated[int, typer.Option("--per-decade", help="scan points per decade")] = 4,
+    per_decade: Annotated[int, typer.Option("--per-decade", help="scan points per decade, "
+                                             "1 to 100")] = 4,
     bisections: Annotated[int, typer.Option("--bisections", help="halvings of each bracket")] = 8,
     periods: Annotated[float, typer.Option("--periods", help="wave periods of each run: removed "
                                            "means thrown off and not back by its end")] = 200.0,
     engine: Engine = "compiled",
+    progress: Progress = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: threshold.csv, threshold.parquet, threshold.json, "
@@ -64,7 +75,7 @@ def threshold_cmd(
     scene = scene_from_options(scene_arg, None, {}, scene_overrides)
     name, values = parse_device_axis(axis)
     study = thresholds(scene, name, values, start=start, stop=stop_m, per_decade=per_decade,
-                       bisections=bisections, periods=periods, engine=engine)
+                       bisections=bisections, periods=periods, engine=engine, show=progress)
     # a threshold not located is NaN in the table, null in JSON (NaN is not JSON), with its
     # *_found saying where it lies ("> STOP", "< A", "> bound" in the text)
     data = json_nulls(study.to_json())
@@ -120,8 +131,8 @@ def _check_scan(start: float, per_decade: int, bisections: int, periods: float) 
     """One line naming the first scan option out of its range (exit status 2)."""
     if not 0.0 < start < 1e3:
         _fail(f"--start = {start:g} must be in (0, 1000) (units of the rigid removal amplitude)")
-    if per_decade < 1:
-        _fail(f"--per-decade = {per_decade} must be >= 1")
+    if not 1 <= per_decade <= 100:
+        _fail(f"--per-decade = {per_decade} must be in [1, 100]")
     if not 0 <= bisections <= 60:
         _fail(f"--bisections = {bisections} must be in [0, 60]")
     if not periods >= 10:

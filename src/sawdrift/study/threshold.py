@@ -168,27 +168,50 @@ class OutOfRange(Exception):
     """An amplitude of the scan beyond what the device's wave may have (a scene refused)."""
 
 
+#: halvings (in log) that locate the largest amplitude the device's wave may have
+BOUND_HALVINGS = 40
+
+
+def _allowed_top(crosses: Callable[[float], bool], ok: float, bad: float) -> float:
+    """The largest amplitude in [``ok``, ``bad``) that ``crosses`` does not refuse with
+    :class:`OutOfRange`: ``ok`` is allowed, ``bad`` is not. Only the refusals are asked for (a
+    scene that cannot be built is refused before it runs), so this costs no run."""
+    probe_refuses = getattr(crosses, "refuses", None)
+    if probe_refuses is None:
+        return ok
+    for _ in range(BOUND_HALVINGS):
+        mid = math.sqrt(ok * bad)
+        ok, bad = (ok, mid) if probe_refuses(mid) else (mid, bad)
+    return ok
+
+
 def first_crossing(crosses: Callable[[float], bool], start: float, factor: float,
                    stop: float, bisections: int) -> tuple[float, int, str]:
     """The smallest amplitude where ``crosses`` turns True, from below (module text), the runs it
     took and how it was found (:data:`FOUND`, or NaN and :data:`BELOW_START` where the first
     amplitude already crosses, :data:`ABOVE_STOP` where none up to ``stop`` does, the last
-    grid point put at ``stop`` itself, :data:`ABOVE_BOUND` where ``crosses`` raised
-    :class:`OutOfRange` before any did)."""
-    lo, amp, runs = math.nan, start, 0
+    grid point put at ``stop`` itself, :data:`ABOVE_BOUND` where none does up to the largest
+    amplitude ``crosses`` accepts: the grid's last point is put there too, located from
+    ``crosses.refuses(amp)`` if it has that attribute). ``start`` must not exceed ``stop``."""
     if start > stop:
-        return math.nan, runs, ABOVE_STOP
+        raise ValueError(f"the scan's start {start:g} is above its stop {stop:g}")
+    lo, amp, runs, top = math.nan, start, 0, stop
     while True:
-        amp = min(amp, stop)
+        amp = min(amp, top)
         runs += 1
         try:
             crossed = crosses(amp)
         except OutOfRange:
-            return math.nan, runs, ABOVE_BOUND
+            if math.isnan(lo) or top < stop:
+                return math.nan, runs, ABOVE_BOUND  # nothing allowed left to try
+            top = _allowed_top(crosses, lo, amp)  # the grid's last point: the bound itself
+            if top <= lo:
+                return math.nan, runs, ABOVE_BOUND
+            continue
         if crossed:
             break
-        if amp >= stop:
-            return math.nan, runs, ABOVE_STOP
+        if amp >= top:
+            return math.nan, runs, ABOVE_STOP if top >= stop else ABOVE_BOUND
         lo, amp = amp, amp * factor
     if math.isnan(lo):
         return math.nan, runs, BELOW_START  # crossed at the start: no bracket to bisect
@@ -196,11 +219,25 @@ def first_crossing(crosses: Callable[[float], bool], start: float, factor: float
     for _ in range(bisections):
         mid = math.sqrt(lo * hi)
         runs += 1
-        try:
-            lo, hi = (lo, mid) if crosses(mid) else (mid, hi)
-        except OutOfRange:
-            hi = mid  # not reached here: the bound lies above the bracket's top
+        lo, hi = (lo, mid) if crosses(mid) else (mid, hi)
     return math.sqrt(lo * hi), runs, FOUND
+
+
+def _check_start(base: Scene, name: str, value: float, start: float, stop: float) -> None:
+    """One line where a value's scan cannot start: ``start`` times its rigid removal amplitude
+    above ``stop``, or beyond the largest amplitude its wave may have (nothing would be run,
+    and '> STOP' would claim what no run showed)."""
+    first = start * rigid_removal(base)[0]
+    where = f"at {name} = {value:g}"
+    if first > stop:
+        raise SceneError(f"--start {start:g} times the rigid removal amplitude is {first:.4g} m "
+                         f"{where}, above --stop {stop:.4g} m: lower --start or raise --stop")
+    try:
+        base.with_updates(**{"device.amplitude": first})
+    except SceneError:
+        raise SceneError(f"--start {start:g} times the rigid removal amplitude is {first:.4g} m "
+                         f"{where}, beyond the largest amplitude its wave may have (its surface "
+                         "strain or speed bound): lower --start") from None
 
 
 def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float = 0.01,
@@ -226,31 +263,46 @@ def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float
     fixed: dict[str, Any] = {"numerics.settle": False}
     if periods is not None:
         fixed["numerics.periods"] = periods
-    # every value's scene first: a value outside its field's range is refused before any run
+    # every value's scene first: a value outside its field's range, or whose scan would start
+    # above --stop or beyond its wave's bound, is refused before any run
     bases = [bind(scene.with_updates(**{name: value, **fixed})) for value in values]
+    for value, base in zip(values, bases, strict=True):
+        _check_start(base, name, value, start, stop)
     bar = counter(len(values), "threshold", "value", enabled=show)
     for value, base in zip(values, bases, strict=True):
         a_rigid, pull, weight = rigid_removal(base)
         cache: dict[float, Any] = {}
 
-        def result(amp: float, base: Scene = base, cache: dict = cache) -> Any:
+        def at(amp: float, base: Scene = base) -> Scene:
+            try:
+                return base.with_updates(**{"device.amplitude": amp})
+            except SceneError:
+                raise OutOfRange(amp) from None  # beyond the wave's strain or speed bound
+
+        def refuses(amp: float, at: Callable[[float], Scene] = at) -> bool:
+            try:
+                at(amp)
+            except OutOfRange:
+                return True
+            return False
+
+        def result(amp: float, at: Callable[[float], Scene] = at, cache: dict = cache) -> Any:
             if amp not in cache:
-                try:
-                    scene_at = base.with_updates(**{"device.amplitude": amp})
-                except SceneError:
-                    raise OutOfRange(amp) from None  # beyond the wave's strain or speed bound
-                cache[amp] = run(scene_at, engine=engine)
+                cache[amp] = run(at(amp), engine=engine)
             return cache[amp]
 
-        def slides(amp: float) -> bool:
+        def slides(amp: float, result: Callable[[float], Any] = result) -> bool:
             res = result(amp)
             return bool(res.contact_lost or res.gross_slip_fraction > 0.0)
 
+        def removed(amp: float, result: Callable[[float], Any] = result) -> bool:
+            return result(amp).regime == "ejected"
+
+        slides.refuses = removed.refuses = refuses  # type: ignore[attr-defined]
         slide, _, slide_found = first_crossing(slides, start * a_rigid, factor, stop,
                                                bisections)
-        removal, _, removal_found = first_crossing(
-            lambda amp: result(amp).regime == "ejected", start * a_rigid, factor, stop,
-            bisections)
+        removal, _, removal_found = first_crossing(removed, start * a_rigid, factor, stop,
+                                                   bisections)
         study.rows.append(ThresholdRow(float(value), slide, removal, a_rigid, pull, weight,
                                        len(cache), slide_found, removal_found,
                                        start * a_rigid,
