@@ -212,3 +212,11 @@ def test_validity_warnings_see_the_adhesive_contact():
                                    "substrate": {"youngs_modulus": "3 GPa", "poisson": 0.35}}})
     warned = [w for w in device_warnings(soft.device, "jkr") if "above 0.1 R" in w]
     assert len(warned) == 1 and "5.91e-08 m" in warned[0]
+
+
+@pytest.mark.parametrize("value", [float("-inf"), float("nan"), float("inf")])
+def test_a_non_finite_load_is_refused_with_its_real_range(value):
+    # it said "outside the allowed range [-inf, inf)"
+    with pytest.raises(SceneError, match=r"particle.load = .* is not finite: give a load in "
+                                         r"\[-100, 100\]"):
+        build_scene({"model": "mmd", "particle": {"load": value}})

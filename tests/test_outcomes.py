@@ -331,6 +331,10 @@ def test_a_slow_approach_of_a_damped_heavy_hopper_is_no_long_time_mean():
               and abs(res.drift_ratio - truth.drift_ratio) <= 3.0 * res.drift_ratio_se)
     assert honest or not math.isfinite(res.drift_ratio_se)
     assert any("moved one way" in w for w in res.warnings), res.warnings
+    # the advice is the one that follows it further (--max-periods changed nothing)
+    longer = sd.run(sd.Scene(**{**scene, "numerics": {"mean_periods": 5000}}))
+    assert abs(longer.drift_ratio - truth.drift_ratio) < abs(res.drift_ratio - truth.drift_ratio)
+    assert any("--mean-periods" in w for w in res.warnings)
 
 
 def test_a_settling_run_stopped_within_a_flight_means_its_bounces():

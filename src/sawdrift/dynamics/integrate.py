@@ -373,7 +373,8 @@ def _irregular_mean(stepper: Stepper, win: Window, settling: Settling, num: Nume
     """The long-time mean of an :func:`_irregular` run and its twin; marked still moving (no
     error: the mean of a stretch, not a long-time mean) where the run hops in step with the wave
     and its window means still moved one way (:func:`~.window_noise.approaches`): a monotone
-    approach cut off by its cap, whose halves a mean of a few hundred periods cannot tell apart
+    approach its windows stopped on (their cap, or their most windows), whose halves a mean of a
+    few hundred periods cannot tell apart
     (mmd m* 30, A* 2, mu 0.2, e = 0.6 reported 0.793 +- 0.005, brute force reaches 0.878)."""
     mean, twin = _long_mean(stepper, win, _mean_budget(num, win), target, series)
     history = settling.history

@@ -194,8 +194,7 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
         warnings += (f"not settled: {STILL_MOVING}: its windows still moved one way when they "
                      f"stopped after {periods:.0f} periods (a slow approach; the drift is the "
                      f"mean of the {out.long_mean.periods} periods after them, not a steady one); "
-                     "numerics.settle = true (--settle) with numerics.max_periods "
-                     "(--max-periods) runs it longer",)
+                     "a longer mean (numerics.mean_periods, --mean-periods) follows it further",)
     elif out.long_mean is not None and out.long_mean.moving and out.speed > 0.0:
         warnings += (f"not settled: {STILL_MOVING} over its last "
                      f"{out.long_mean.periods} periods (its two halves differ by more than "

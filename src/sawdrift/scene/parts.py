@@ -40,6 +40,8 @@ def bounded(
 ) -> AfterValidator:
     """A validator that rejects NaN, infinities and values outside an interval, naming it."""
     text = _interval(lo, hi, lo_open, hi_open)
+    # a field bounded by another field: its finite check says so, not "outside [-inf, inf)"
+    what = "outside the allowed range " + text if lo is not None or hi is not None else "not finite"
 
     def check(value: float) -> float:
         ok = math.isfinite(value)
@@ -48,12 +50,20 @@ def bounded(
         if ok and hi is not None:
             ok = value < hi if hi_open else value <= hi
         if not ok:
-            raise ValueError(f"is outside the allowed range {text}")
+            raise ValueError(f"is {what}")
         return value
 
     # read by sawdrift.scene.options (a field bounded by another field says so in its description)
     check.interval = text if lo is not None or hi is not None else ""  # type: ignore[attr-defined]
     return AfterValidator(check)
+
+
+def _finite_load(value: float) -> float:
+    """particle.load is finite; its range depends on material.adhesion (checked by the scene)."""
+    if not math.isfinite(value):
+        raise ValueError("is not finite: give a load in [-100, 100] (in M g; 100 (1 + 2 "
+                         "material.adhesion) with adhesion)")
+    return value
 
 
 Positive = Annotated[float, bounded(0.0, None, lo_open=True)]
@@ -125,7 +135,7 @@ class Particle(BaseModel):
             "m*; kept for conversion from dimensional inputs"
         ),
     )
-    load: Annotated[float, bounded()] = Field(
+    load: Annotated[float, AfterValidator(_finite_load)] = Field(
         0.0,
         description=(
             "constant external tangential force on the particle, in units of its static normal "
