@@ -311,3 +311,34 @@ def test_a_device_field_holds_its_speeds_in_m_s_as_a_run_gives_them(monkeypatch,
     assert code == 0, err
     assert table["drift_velocity_m_s"].iloc[1] == pytest.approx(run.extra["drift_speed_m_s"],
                                                                 rel=1e-9)
+
+
+def test_no_zero_is_read_across_positions_without_a_drift():
+    """An ejected (or failed) position has no drift: a sign change across it is no zero (a
+    repeller was reported at xi = 0.064 bracketed by 0.3125 and 0.6875, across three ejected
+    positions), and a zero band beside it has no known side."""
+    from sawdrift.study.field import find_zeros
+
+    x = np.arange(8) / 16.0
+    nan = float("nan")
+    v = np.array([nan, nan, nan, 30.0, -0.8, -0.5, nan, nan])
+    zeros = find_zeros(x, v, 1e-6)
+    assert [z["kind"] for z in zeros] == ["trap"]
+    assert zeros[0]["bracket"] == [pytest.approx(0.1875), pytest.approx(0.25)]
+    band = np.array([1.0, 0.0, nan, 1.0, -1.0, 1.0, 0.0, 1.0])
+    kinds = [z["kind"] for z in find_zeros(x, band, 1e-6)]
+    assert kinds == ["trap", "repeller", "one-sided"]  # none for the band beside the gap
+
+
+def test_a_field_stuck_everywhere_has_no_direction(monkeypatch, capsys):
+    """mmd m* 0.1, A* 0.02: every position sticks (creep of 1e-7 a0 f); the summary said 'goes
+    to +x everywhere'."""
+    from .cli_call import call
+
+    code, out, err = call(monkeypatch, capsys, "field", "--model", "mmd", "--m-star", "0.1",
+                          "--amplitude", "0.02", "--points", "4", "--no-progress", "--json")
+    import json
+
+    data = json.loads(out)
+    assert code == 0 and data["regimes"] == ["stick"] * 4, err
+    assert data["summary"] == "stuck at every position: no drift" and data["zeros"] == []

@@ -151,30 +151,38 @@ def find_zeros(positions: np.ndarray, velocity: np.ndarray,
     x = np.asarray(positions, dtype=float)
     v = np.asarray(velocity, dtype=float)
     n = x.size
-    sign = np.where(np.abs(v) <= eps, 0, np.sign(v)).astype(int)
-    if not np.any(sign):
+    gap = 2  # a sample with no drift (NaN: ejected, failed): no zero is read across it
+    sign = np.where(~np.isfinite(v), gap,
+                    np.where(np.abs(v) <= eps, 0, np.sign(np.nan_to_num(v)))).astype(int)
+    moving = np.flatnonzero((sign == 1) | (sign == -1))
+    if moving.size == 0:
         return []
 
     def at(idx: int) -> float:  # position of sample idx on the unrolled circle
         return float(x[idx % n] + PERIOD * (idx // n))
 
     zeros: list[dict[str, Any]] = []
-    k = int(np.nonzero(sign)[0][0])  # walk the circle once from a non-zero sample
+    k = int(moving[0])  # walk the circle once from a sample that moves
     end = k + n
     while k < end:
         j = k + 1
+        if sign[k % n] == gap:
+            k = j
+            continue
         if sign[j % n] == 0:
             m = j
             while sign[m % n] == 0:
                 m += 1
             lo, hi = at(j), at(m - 1)
             pair = (sign[k % n], sign[m % n])
-            kind = "trap" if pair == (1, -1) else "repeller" if pair == (-1, 1) else "one-sided"
-            zeros.append({"position": _wrap(0.5 * (lo + hi), x[0]), "kind": kind,
-                          "bracket": [lo, hi]})
+            if gap not in pair:
+                kind = ("trap" if pair == (1, -1) else "repeller" if pair == (-1, 1)
+                        else "one-sided")
+                zeros.append({"position": _wrap(0.5 * (lo + hi), x[0]), "kind": kind,
+                              "bracket": [lo, hi]})
             k = m
             continue
-        if sign[k % n] * sign[j % n] < 0:
+        if sign[j % n] != gap and sign[k % n] * sign[j % n] < 0:
             x0, x1, v0, v1 = at(k), at(j), float(v[k % n]), float(v[j % n])
             zeros.append({"position": _wrap(x0 + v0 / (v0 - v1) * (x1 - x0), x[0]),
                           "kind": "trap" if v0 > 0 else "repeller", "bracket": [x0, x1],
@@ -302,8 +310,9 @@ def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
                             zeros=[], scene=sp, errors=errors, warnings=warnings,
                             drift_velocity_se=drift_errors(rows, "drift_velocity")))
     for f in fields:
-        ok = np.isfinite(f.drift_velocity)  # a failed run (its error is kept) is left out
-        f.zeros = (find_zeros(f.positions[ok], f.drift_velocity[ok], _zero_band(f)[ok])
+        # a failed or ejected run (no drift) is a gap no zero is read across
+        ok = np.isfinite(f.drift_velocity)
+        f.zeros = (find_zeros(f.positions, f.drift_velocity, _zero_band(f))
                    if ok.sum() >= 2 else [])
     return fields
 
@@ -318,6 +327,8 @@ def _zero_band(f: Field) -> np.ndarray:
     means of opposite signs are no trap: mmd 0.2 mm steel beads of examples/sorting.toml bounce
     from xi = 0.45 to 0.05 with means of 1 to 4.5 a0 f and errors of 3 to 12)."""
     eps = np.full(f.drift_velocity.shape, _zero_eps(f.scene))
+    # a stuck contact's creep of 1e-7 a0 f is no direction
+    eps[np.array([r == "stick" for r in f.regimes], dtype=bool)] = np.inf
     if f.drift_velocity_se is not None:
         se = np.where(np.isfinite(f.drift_velocity_se), f.drift_velocity_se, 0.0)
         eps = np.maximum(eps, SIGN_ERRORS * se)
@@ -371,6 +382,8 @@ def _summarize(f: Field) -> str:
     ejected = sum(r == "ejected" for r in f.regimes)
     if ejected == len(f.regimes):
         return "ejected at every position: the particle is thrown off, no drift field"
+    if all(r == "stick" for r in f.regimes):
+        return "stuck at every position: no drift"
     traps = [z["position"] for z in f.zeros if z["kind"] == "trap"]
     if traps:
         return "collects at xi = " + ", ".join(f"{t:.4f}" for t in traps) + " (+ k/2)"
