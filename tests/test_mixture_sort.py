@@ -277,9 +277,10 @@ def test_the_written_scene_sorts_again_to_the_same_result(tmp_path, monkeypatch,
     assert again["species"] == first["species"]
 
 
-def test_the_line_figure_draws_the_large_beads_over_the_small(tmp_path):
-    """--geometry line: every large (orange) path was drawn under a small (blue) one, the small
-    beads a chain carries sitting on the same positions: the large beads did not show."""
+def test_the_line_figure_shows_both_species_where_they_overlap(tmp_path):
+    """--geometry line: the small beads a chain carries sit on the large beads' positions; each
+    species drawn over the other hid it. The large beads are wide pale bands under thin small
+    lines: both show."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -288,13 +289,16 @@ def test_the_line_figure_draws_the_large_beads_over_the_small(tmp_path):
     scene, particles = plate()
     result = sort_mixture(scene, {**particles, "count": 40}, seeds=1, periods=1e5,
                           geometry="line")
-    order: dict[str, list[float]] = {}
+    drawn: dict[str, list[tuple[float, float, float]]] = {}
     for line in plot_sort(result).axes[1].get_lines():
         if len(line.get_xdata()) == 0:
             continue  # a legend entry's empty line
-        order.setdefault(matplotlib.colors.to_hex(line.get_color()), []).append(line.get_zorder())
-    small, large = (order[c] for c in COLORS[:2])
-    assert min(large) > max(small)
+        drawn.setdefault(matplotlib.colors.to_hex(line.get_color()), []).append(
+            (line.get_zorder(), line.get_linewidth(), line.get_alpha()))
+    small, large = (drawn[c] for c in COLORS[:2])
+    assert min(z for z, _, _ in small) > max(z for z, _, _ in large)  # small on top ...
+    assert min(w for _, w, _ in large) >= 3 * max(w for _, w, _ in small)  # ... inside bands
+    assert max(a for _, _, a in large) < 0.5
 
 
 @pytest.mark.parametrize(("setting", "needle"), [

@@ -66,13 +66,13 @@ def plot_sort(result: SortResult, path: str | Path | None = None) -> Figure:
 def _strips(bx: plt.Axes, result: SortResult, t: np.ndarray) -> None:
     """x of every bead of the first placement against time (1-D)."""
     run = result.runs[0]
-    for k in (0, 1):
+    for k in (1, 0):
         sel = run.kinds == k
         if sel.any():
-            # the large beads on top, thicker: the small ones a chain carries sit on the same
-            # positions and hid them (every orange path was under a blue one)
-            bx.plot(t, run.x[1:, sel] * 1e3, color=COLORS[k], lw=0.5 + 0.7 * k,
-                    alpha=0.5 + 0.4 * k, zorder=2 + k)
+            # the small beads a chain carries sit on the large ones' positions: the large as
+            # wide pale bands underneath, the small as thin lines on top, so that both show
+            bx.plot(t, run.x[1:, sel] * 1e3, color=COLORS[k], lw=3.0 if k else 0.6,
+                    alpha=0.35 if k else 0.9, zorder=3 - k, solid_capstyle="butt")
     bx.set_xscale("log")
     bx.set_xlabel("time (wave periods)")
     bx.set_ylabel("x (mm)")
