@@ -91,6 +91,9 @@ class BatchMeans:
     #: the windows before the mean still moved one way (``moving`` is then set too): a monotone
     #: approach cut off by its cap, whatever the mean's own halves say
     approaching: bool = False
+    #: a mean of bounces whose budget was capped below the flights it asks for: how many of its
+    #: longest flights it covers (0: not such a mean, or not capped)
+    few_flights: float = 0.0
 
 
 def blocked_error(per_period: np.ndarray, coarse: bool = False) -> tuple[float, float, int]:

@@ -331,7 +331,12 @@ def _flights_mean(stepper: Stepper, scene: Scene, win: Window, settling: Settlin
     # an error of 0 that says nothing about the bounces)
     lift = float(stepper.st[S_LASTLIFT])
     flight = ret + (now - lift if lift >= 0.0 else now)
-    return _long_mean(stepper, win, _mean_budget(num, win, flight), 0.0, series)
+    budget = _mean_budget(num, win, flight)
+    mean, twin = _long_mean(stepper, win, budget, 0.0, series)
+    longest = max(longest_flight(win), flight)
+    if budget < FLIGHTS_PER_MEAN * longest:  # capped: fewer flights than a mean of bounces asks
+        mean = replace(mean, few_flights=mean.periods / longest)
+    return mean, twin
 
 
 #: flights (as long as the longest of the run's window) a long-time mean of bounces runs at

@@ -17,7 +17,14 @@ from ..contact.binding import bind, model_for
 from ..dynamics.assembly import Engine, assemble
 from ..dynamics.batch_means import HALVES_Z, TREND_Z
 from ..dynamics.drives import Drive
-from ..dynamics.integrate import ImpactRun, WaveRun, integrate_impact, integrate_wave
+from ..dynamics.integrate import (
+    FLIGHTS_PER_MEAN,
+    MOST_FLIGHT_BUDGETS,
+    ImpactRun,
+    WaveRun,
+    integrate_impact,
+    integrate_wave,
+)
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
 from ..dynamics.steady import friction_bound, runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
@@ -204,6 +211,11 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
         warnings += (f"long-time mean: its batch-means error still grew with the batch length "
                      f"at {out.long_mean.periods} periods, so +-{drift_se:.2g} is a lower bound "
                      f"(correlations longer than the run)",)
+    if out.long_mean is not None and out.long_mean.few_flights > 0.0 and out.speed > 0.0:
+        warnings += (f"long-time mean of bounces over about {out.long_mean.few_flights:.1f} of its "
+                     f"longest flights only ({FLIGHTS_PER_MEAN} asked for; its budget is at most "
+                     f"{MOST_FLIGHT_BUDGETS} times numerics.mean_periods): its sign may be that "
+                     "of a few flights; --mean-periods for more",)
     if (out.long_mean is not None and out.long_mean.trend and not out.long_mean.moving
             and out.speed > 0.0):
         warnings += (f"long-time mean: its two halves differ by more than {TREND_Z:g} errors "
