@@ -219,7 +219,7 @@ def test_profile_exponent_beside_a_named_shape_names_the_field_and_power(monkeyp
 @pytest.mark.parametrize(("option", "value", "named"), [
     ("--bisections", "-1", "--bisections = -1 must be in [0, 60]"),
     ("--start", "0", "--start = 0 must be in (0, 1000)"),
-    ("--per-decade", "0", "--per-decade = 0 must be >= 1"),
+    ("--per-decade", "0", "--per-decade = 0 must be in [1, 100]"),
     ("--periods", "5", "--periods = 5 must be >= 10"),
 ])
 def test_a_bad_threshold_option_is_named_alone(option, value, named, monkeypatch, capsys):

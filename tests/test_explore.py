@@ -645,3 +645,64 @@ def test_the_page_recomputes_the_comparison_within_each_value(browser, tmp_path)
     assert browser.execute_script(summary) == ("tick two or more panels of one particle.load to "
                                                "compare")
     assert _severe(browser) == []
+
+
+def _grid(model: str, mu: float, regimes: list[str], errors: list[str | None] | None = None):
+    """A 2 x 2 table of one model at one mu (the columns the reports read)."""
+    cells = [(m, a) for m in (0.1, 1.0) for a in (0.1, 1.0)]
+    return pd.DataFrame({
+        "model": model, "m_star": [c[0] for c in cells], "amplitude": [c[1] for c in cells],
+        "mu": mu, "regime": regimes, "drift_ratio": 0.1, "settled": True,
+        "error": errors or [None] * 4, "cell_id": [f"{model}{mu}{i}" for i in range(4)]})
+
+
+def test_the_explorer_refuses_a_table_that_mixes_two_base_scenes():
+    """A table forced to hold mu = 0.1 and 0.2 cells at the same points: phase-diagram,
+    compare and export refuse it; the explorer drew one panel per model mixing both (34 + 47
+    cells) and counted disagreements on that mixture."""
+    from sawdrift.report.explore import choose_axes, make_panels
+
+    mixed = pd.concat([_grid("mmd", 0.1, ["stick"] * 4), _grid("mmd", 0.2, ["hopping"] * 4)])
+    xa, ya = choose_axes(mixed)
+    with pytest.raises(SceneError, match=r"several values of mu \(0.1, 0.2\).*--where mu="):
+        make_panels(mixed, xa, ya)
+    assert len(make_panels(_grid("mmd", 0.1, ["stick"] * 4), xa, ya)) == 1
+
+
+def test_compare_counts_only_cells_both_models_computed():
+    """A cell where one model failed is no disagreement: 14 failed cells of 25 read as 44 %
+    agreement of two models that agreed on the 11 others."""
+    from sawdrift.report.compare_plot import agreement_from_grids
+    from sawdrift.report.diagrams import ERROR_CODE
+
+    a = np.array([[0, 1], [2, ERROR_CODE]])
+    b = np.array([[0, 1], [2, 3]])
+    row = agreement_from_grids(["a", "b"], [a, b]).iloc[0]
+    assert row["cells"] == 3 and row["same_regime"] == 3 and row["agreement"] == 1.0
+
+
+def test_a_map_needs_two_values_on_each_axis():
+    """A one-cell table was drawn as a map on invented A* and m* ranges (export refused it)."""
+    from sawdrift.report.diagrams import check_axis
+
+    one = _grid("mmd", 0.1, ["stick"] * 4).iloc[:1]
+    with pytest.raises(SceneError, match="holds one value"):
+        check_axis(one, "amplitude")
+
+
+def test_the_hatched_count_is_of_the_cells_computed(tmp_path):
+    """On a merged grid (9 x 9 and 11 x 11 into one table) the title counted every point of the
+    17 x 17 union, 289, as cells: 42 of 289 where 193 were computed."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from sawdrift.report.diagrams import _draw
+
+    codes = np.array([[0, -1], [1, 2]])
+    unsettled = np.array([[True, False], [False, False]])
+    fig, ax = plt.subplots()
+    _draw(ax, np.array([0.1, 1.0]), np.array([0.1, 1.0]), codes, "t", unsettled=unsettled)
+    assert "not settled (1 of 3)" in ax.get_title()
+    plt.close(fig)

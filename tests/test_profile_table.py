@@ -91,3 +91,22 @@ def test_scene_file_finds_its_table_next_to_it(tmp_path, sphere_csv, monkeypatch
     out = run_main("run", tmp_path / "scene.toml", "--json")  # in this process (tests/cli_call.py)
     assert out.returncode == 0, out.stderr
     assert '"profile": "table"' in out.stdout
+
+
+def test_a_rewritten_law_file_is_another_base_scene_for_a_sweep(tmp_path):
+    """A sweep resumed after its table's law file was rewritten (N = a^1.5, then a^2) computed
+    only the new cells with the new law, beside the old ones: one table, two contact laws."""
+    law = tmp_path / "law.csv"
+    a = np.linspace(0.0, 6.0, 61)
+    _table(law, a, a**1.5)
+    base = sd.Scene(model="mmd", particle={"profile": {"shape": "table", "file": str(law)}},
+                    numerics={"periods": 20})
+    out = tmp_path / "t.parquet"
+    sd.sweep("mmd", "0.1,1", "0.1", base=base, table=out)
+    _table(law, a, a**2.0)
+    from sawdrift.study.provenance import TableProvenanceError
+
+    with pytest.raises(TableProvenanceError, match="file_sha1"):
+        sd.sweep("mmd", "0.1,1,3", "0.1", base=base, table=out)
+    _table(law, a, a**1.5)  # the same law again: the table resumes
+    assert len(sd.sweep("mmd", "0.1,1,3", "0.1", base=base, table=out)) == 3

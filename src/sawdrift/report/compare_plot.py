@@ -23,6 +23,7 @@ from matplotlib.colors import ListedColormap  # noqa: E402
 from ..errors import SceneError  # noqa: E402
 from ..study.axes import column_label  # noqa: E402
 from .diagrams import (  # noqa: E402
+    ERROR_CODE,
     _draw,
     _edges,
     _legend,
@@ -54,11 +55,18 @@ def variants(table: pd.DataFrame, models: list[str], by: str | None) -> list[tup
     return [(f"{m}, {by} = {v}", m, {by: v}) for m in models for v in values]
 
 
+def _computed(codes: np.ndarray) -> np.ndarray:
+    """Cells with a regime: neither missing (-1) nor a run that failed (the 'error' code)."""
+    return (codes >= 0) & (codes != ERROR_CODE)
+
+
 def agreement_from_grids(labels: list[str], codes: list[np.ndarray]) -> pd.DataFrame:
-    """Agreement of every pair of panels over the cells both computed."""
+    """Agreement of every pair of panels over the cells both computed (a cell where one of
+    them failed is not counted: 14 failed cells of 25 read as 44 % agreement of two models
+    that agreed on all 11 others)."""
     rows = []
     for (la, ca), (lb, cb) in combinations(list(zip(labels, codes, strict=True)), 2):
-        both = (ca >= 0) & (cb >= 0)
+        both = _computed(ca) & _computed(cb)
         same = int(np.sum((ca == cb) & both))
         n = int(both.sum())
         rows.append({"model_a": la, "model_b": lb, "cells": n, "same_regime": same,
@@ -78,8 +86,9 @@ def _differ(ax, amps, masses, codes: list[np.ndarray], title: str, x: str, y: st
     """Mark the cells where the regimes ``codes`` differ (red; grey where they agree, white where
     one is missing); return how many differ."""
     stack = np.stack(codes)
-    differ = np.any(stack != stack[0], axis=0) & np.all(stack >= 0, axis=0)
-    shown = np.where(np.any(stack < 0, axis=0), -1, differ.astype(int))
+    every = np.all(_computed(stack), axis=0)
+    differ = np.any(stack != stack[0], axis=0) & every
+    shown = np.where(every, differ.astype(int), -1)
     ax.pcolormesh(_edges(amps), _edges(masses), shown + 1,
                   cmap=ListedColormap(["white", "#f0f0f0", "#d62728"]), vmin=0, vmax=2,
                   shading="flat")
@@ -87,7 +96,8 @@ def _differ(ax, amps, masses, codes: list[np.ndarray], title: str, x: str, y: st
     ax.set_yscale("log")
     ax.set_xlabel(column_label(x))
     ax.set_ylabel(column_label(y))
-    ax.set_title(f"{title}\n({int(differ.sum())} of {differ.size} cells)", fontsize=10)
+    ax.set_title(f"{title}\n({int(differ.sum())} of {int(every.sum())} cells all computed)",
+                 fontsize=10)
     format_device_axes(ax, x, y)
     return int(differ.sum())
 

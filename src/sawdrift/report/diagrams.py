@@ -42,6 +42,9 @@ COLOURS = {
 }
 _ORDER = list(COLOURS)
 
+#: the regime code of a cell whose run failed (its error is in the table)
+ERROR_CODE = _ORDER.index("error")
+
 
 def _edges(values: np.ndarray) -> np.ndarray:
     """Cell edges for log-spaced centres (geometric midpoints, extended at the ends)."""
@@ -132,13 +135,14 @@ def where_label(table: pd.DataFrame, where: dict | None) -> str:
 
 
 def mixed_columns(rows: pd.DataFrame, keys: list[str]) -> list[str]:
-    """The swept (dotted) columns that take several values at one cell (the rows with equal
+    """The swept (dotted) or scene columns (:data:`SCENE_COLUMNS`: a table forced to hold
+    another base scene's cells) that take several values at one cell (the rows with equal
     ``keys``, e.g. model, x and y): one map of these rows would mix them."""
     repeated = rows[rows.duplicated(keys, keep=False)]
     if repeated.empty:
         return []
     groups = repeated.groupby(keys, dropna=False, sort=False)
-    return [c for c in rows.columns if "." in c and c not in keys
+    return [c for c in rows.columns if ("." in c or c in SCENE_COLUMNS) and c not in keys
             and bool((groups[c].nunique(dropna=False) > 1).any())]
 
 
@@ -168,6 +172,11 @@ def check_axis(table: pd.DataFrame, column: str) -> None:
         raise SceneError(f"axis {column!r} holds values <= 0 ({_value_text(values.min())}): a "
                          "map's axes are logarithmic; pick one of its values with --where "
                          f"{column}=VALUE, or draw the values above 0")
+    if values.nunique() < 2:
+        # one value spans no axis: a one-cell table was drawn on invented A* and m* ranges
+        raise SceneError(f"axis {column!r} holds one value ({_value_text(values.iloc[0])}): a "
+                         "map needs two swept fields (a sweep over one field is drawn as a line, "
+                         "TABLE.png, by sawdrift sweep; one cell is a run)")
 
 
 def one_map(rows: pd.DataFrame, keys: list[str], by: bool = False) -> None:
@@ -259,14 +268,16 @@ def _fine(edges: np.ndarray, n: int = 400) -> tuple[np.ndarray, np.ndarray]:
     return fine, np.clip(np.searchsorted(edges, fine) - 1, 0, edges.size - 2)
 
 
-def _hatch_cells(ax, amps: np.ndarray, masses: np.ndarray, mask: np.ndarray) -> str:
-    """:func:`_hatch_unsettled` for a grid of cells (their centres ``amps``, ``masses``)."""
+def _hatch_cells(ax, amps: np.ndarray, masses: np.ndarray, mask: np.ndarray,
+                 cells: int | None = None) -> str:
+    """:func:`_hatch_unsettled` for a grid of cells (their centres ``amps``, ``masses``), of
+    which ``cells`` were computed (by default all: a merged grid has empty points)."""
     if not mask.any():
         return ""
     fx, ix = _fine(_edges(amps))
     fy, iy = _fine(_edges(masses))
-    # the title counts cells, not points of the fine grid
-    suffix = f"hatched: not settled ({int(mask.sum())} of {mask.size})"
+    # the title counts computed cells, not points of the fine grid nor empty ones
+    suffix = f"hatched: not settled ({int(mask.sum())} of {mask.size if cells is None else cells})"
     _hatch_unsettled(ax, fx, fy, mask[np.ix_(iy, ix)])
     return suffix
 
@@ -279,7 +290,8 @@ def _draw(ax, amps, masses, codes, title: str, x: str = "amplitude", y: str = "m
     cmap = ListedColormap(["white", *COLOURS.values()])
     ax.pcolormesh(_edges(amps), _edges(masses), codes + 1, cmap=cmap, vmin=0, vmax=len(COLOURS),
                   shading="flat", edgecolors="none")
-    note = _hatch_cells(ax, amps, masses, unsettled) if unsettled is not None else ""
+    note = (_hatch_cells(ax, amps, masses, unsettled, int((codes >= 0).sum()))
+            if unsettled is not None else "")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel(column_label(x))

@@ -36,7 +36,7 @@ from ..scene.schema import set_dotted
 from ..study.axes import column_unit
 from ..study.table import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
-from .diagrams import COLOURS
+from .diagrams import COLOURS, one_map
 from .explore_page import (  # noqa: F401 - the tooltip's texts, also read from here
     build_document,
     chaotic_cells,
@@ -232,7 +232,10 @@ def make_panels(frame: pd.DataFrame, xa: Axis, ya: Axis) -> list[Panel]:
     for key, rows in frame.groupby(["model", *extra], sort=True, dropna=False):
         key = key if isinstance(key, tuple) else (key,)
         label = ", ".join([str(key[0]), *(f"{c} = {v}" for c, v in zip(extra, key[1:], strict=True))])
-        rows = rows.drop_duplicates([xa.column, ya.column], keep="last").reset_index(drop=True)
+        # several cells at one point (another base scene forced into the table): refused as
+        # phase-diagram, compare and export do (one panel mixed mu = 0.1 and 0.2 cells)
+        one_map(rows, [xa.column, ya.column])
+        rows = rows.reset_index(drop=True)
         panels.append(Panel(label, str(key[0]), rows, fixed=dict(zip(extra, key[1:], strict=True))))
     all_u = np.concatenate([xa.plane(p.rows[xa.column]) for p in panels])
     all_w = np.concatenate([ya.plane(p.rows[ya.column]) for p in panels])

@@ -8,6 +8,7 @@ the base scene the rows were computed with (:func:`table_metadata`).
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import os
@@ -182,7 +183,14 @@ def base_json(base: Scene | None, overrides: dict[str, Any] | None) -> dict[str,
         for dotted, value in overrides.items():
             set_dotted(data, dotted, value)
         scene = build_scene(data)
-    return json.loads(bind(scene).model_dump_json())
+    out = json.loads(bind(scene).model_dump_json())
+    profile = scene.particle.profile
+    if profile.shape == "table":
+        # the law's values, not only its file's name: a rewritten file is another contact law
+        # (a table swept with N = a^1.5 took N = a^2 cells on resume, without a word)
+        law = np.ascontiguousarray(profile.law(), dtype=np.float64)
+        out["particle"]["profile"]["file_sha1"] = hashlib.sha1(law.tobytes()).hexdigest()[:16]
+    return out
 
 
 def stored_base(table: Path) -> dict[str, Any] | None:
