@@ -364,3 +364,15 @@ def test_a_load_equal_to_the_friction_bound_has_no_steady_drift():
     assert not res.settled and any("(neutral)" in w for w in res.warnings)
     below = sd.run(sd.Scene(**{**scene, "particle": {"m_star": 1.0, "load": 0.05}}))
     assert below.settled and not any("(neutral)" in w for w in below.warnings)
+
+
+def test_a_run_recording_its_trajectory_reports_what_a_plain_one_does():
+    """A default run whose contact held through its first window ends there; one recording its
+    trajectory went on to its whole length and reported its last window instead (mmd m* 1.3335,
+    A* 0.13335: 5.79e-6 became -2.69e-6, and a table swept with --traces differed in 50 of 162
+    rows from the same sweep without)."""
+    scene = sd.Scene(model="mmd", particle={"m_star": 1.3335}, drive={"amplitude": 0.13335})
+    plain, traced = sd.run(scene), sd.run(scene, trajectory=True)
+    assert plain.regime == traced.regime == "stick"
+    assert traced.drift_ratio == plain.drift_ratio and traced.periods == plain.periods
+    assert traced.trajectory is not None and len(traced.trajectory) > 0
