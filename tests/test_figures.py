@@ -150,9 +150,11 @@ def test_rotation_comparison_is_narrow_and_keeps_model_and_rotation_differences_
         return int((a["regime"].to_numpy() != b["regime"].to_numpy()).sum())
 
     for model, off, on in (("material_point", parts[0], parts[1]), ("mmd", parts[2], parts[3])):
-        assert f"cells where rotation changes {model}'s regime\n({differ(off, on)} of 25 cells all computed)" in titles
+        assert (f"cells where rotation changes {model}'s regime\n({differ(off, on)} of 25 cells "
+                "all computed)") in titles
     for value, a, b in ((False, parts[0], parts[2]), (True, parts[1], parts[3])):
-        assert f"cells where the models disagree, rotation = {value}\n({differ(a, b)} of 25 cells all computed)" in titles
+        assert (f"cells where the models disagree, rotation = {value}\n({differ(a, b)} of 25 "
+                "cells all computed)") in titles
     assert not any(t.startswith("cells where they disagree") for t in titles)
 
 
