@@ -706,3 +706,29 @@ def test_the_hatched_count_is_of_the_cells_computed(tmp_path):
     _draw(ax, np.array([0.1, 1.0]), np.array([0.1, 1.0]), codes, "t", unsettled=unsettled)
     assert "not settled (1 of 3)" in ax.get_title()
     plt.close(fig)
+
+
+@pytest.mark.parametrize(("spec", "needle"), [
+    ("1,nan", "holds a value that is not a finite number (nan)"),  # said: at least one finite
+    ("1e-3:1e2:0", "N = 0 cannot hold both ends"),  # said N in [1, ...], then refused N = 1
+])
+def test_axis_messages_say_what_is_wrong(spec, needle):
+    from sawdrift.study.axes import parse_axis
+
+    with pytest.raises(SceneError, match=re.escape(needle)):
+        parse_axis(spec, "m_star")
+
+
+def test_an_empty_table_and_a_model_named_twice_are_said_so(tmp_path, monkeypatch, capsys):
+    from .cli_call import call
+
+    empty = tmp_path / "empty.parquet"
+    _grid("mmd", 0.1, ["stick"] * 4).iloc[:0].to_parquet(empty)
+    code, _, err = call(monkeypatch, capsys, "phase-diagram", str(empty), "-o",
+                        str(tmp_path / "e.png"))
+    assert code == 2 and "the table holds no cells" in err  # was: several models ()
+    full = tmp_path / "full.parquet"
+    pd.concat([_grid("mmd", 0.1, ["stick"] * 4), _grid("jaeger", 0.1, ["stick"] * 4)]).to_parquet(full)
+    code, _, err = call(monkeypatch, capsys, "compare", str(full), "--models", "mmd,mmd", "-o",
+                        str(tmp_path / "c.png"))
+    assert code == 2 and "names mmd twice" in err  # a model against itself agreed 100 %

@@ -103,10 +103,13 @@ def compare_cmd(
     """
     out = figure_path(out)
     picked = parse_where(where)
+    names = [m.strip() for m in models.split(",") if m.strip()]
+    twice = sorted({m for m in names if names.count(m) > 1})
+    if twice:  # a model against itself agreed 100 %
+        _fail(f"--models {models!r} names {', '.join(twice)} twice: give each model once")
     frame = _load_table(table)
     _writable(out, folder=False)
-    path, md = sd.plot_compare(frame, [m.strip() for m in models.split(",") if m.strip()], out, by,
-                               x, y, where=picked)
+    path, md = sd.plot_compare(frame, names, out, by, x, y, where=picked)
     typer.echo(md)
     typer.echo(f"wrote {path} and {path.with_suffix('.md')}")
 

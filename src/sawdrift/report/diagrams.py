@@ -63,6 +63,8 @@ def select(table: pd.DataFrame, model: str, where: dict | None = None) -> pd.Dat
     sub = table[table["model"] == model]
     if sub.empty:
         known = ", ".join(sorted(table["model"].dropna().unique()))
+        if not known:  # an empty table was said to hold "" (nothing after the colon)
+            raise SceneError("the table holds no cells: sweep into it first")
         raise SceneError(f"model {model!r} is not in the table; it holds: {known}")
     for column, value in (where or {}).items():
         if column not in sub.columns:
@@ -344,6 +346,8 @@ def _one_model(table: pd.DataFrame, model: str | None, x: str, y: str) -> str:
     its rows would mix the values of another swept column on one map (:func:`one_map`)."""
     models = sorted(table["model"].dropna().unique())
     if model is None:
+        if not models:
+            raise SceneError("the table holds no cells: sweep into it first")
         if len(models) != 1:
             raise SceneError(f"the table holds several models ({', '.join(models)}); choose one with --model")
         model = models[0]

@@ -68,9 +68,10 @@ def parse_range(spec: str, name: str = "axis", tidy: bool = True) -> list[float]
         n = int(parts[2])
     except ValueError:
         raise SceneError(f"{name} = {spec!r}: N = {parts[2].strip()!r} must be an integer") from None
-    if not 1 <= n <= 100_000:
-        raise SceneError(f"{name} = {spec!r}: N must be in [1, 100000]")
     _two_ends(spec, name, start, stop, n)
+    if not 1 <= n <= 100_000:
+        lowest = 1 if start == stop else 2  # a range of two ends holds both
+        raise SceneError(f"{name} = {spec!r}: N must be in [{lowest}, 100000]")
     if not (math.isfinite(start) and math.isfinite(stop)):
         raise SceneError(f"{name} = {spec!r}: START and STOP must be finite")
     if way == "lin":
@@ -80,6 +81,10 @@ def parse_range(spec: str, name: str = "axis", tidy: bool = True) -> list[float]
                          "(lin:START:STOP:N spaces them evenly)")
     values = np.geomspace(start, stop, n) if n > 1 else np.array([start])
     return _tidy(values) if tidy else [float(v) for v in values]
+
+
+def _value_list(values: np.ndarray) -> str:
+    return ", ".join(str(float(v)) for v in values[:3])
 
 
 def _two_ends(spec: str, name: str, start: float, stop: float, n: int) -> None:
@@ -177,8 +182,12 @@ def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
             values = np.array([float(v) for v in items], dtype=float)
         except ValueError:
             raise SceneError(f"{name} = {spec!r} must be {AXIS_FORMS} of numbers") from None
-    if values.size == 0 or not np.all(np.isfinite(values)):
-        raise SceneError(f"{name} = {spec!r} must hold at least one finite value")
+    if values.size == 0:
+        raise SceneError(f"{name} = {spec!r} must hold at least one value")
+    if not np.all(np.isfinite(values)):
+        # '1,nan' was told it must hold at least one finite value
+        raise SceneError(f"{name} = {spec!r} holds a value that is not a finite number "
+                         f"({_value_list(values[~np.isfinite(values)])}): every value must be")
     return values
 
 
