@@ -252,7 +252,7 @@ def test_adaptive_rerun_says_what_it_computed_and_what_the_table_holds(tmp_path)
     again = run_main(*CLI_MAP, "--m-star", "1e-3:1e2:5", "--budget", "25", "-o", out, check=True)
     assert "(25 cells computed: 0 in this run, 25 already in the table;" in again.stdout
     assert (f"{out} now holds {held} cells: {held - 25} more of this map's grid from an earlier "
-            "run with a larger --budget") in again.stdout
+            "run that refined other cells (another --budget or --levels)") in again.stdout
     assert len(pd.read_parquet(out)) == held
     # another m* range: a second map in the same table is said, not silently appended
     other = run_main(*CLI_MAP, "--m-star", "1e-1:1e3:5", "--budget", "25", "-o", out, check=True)

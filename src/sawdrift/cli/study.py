@@ -219,7 +219,9 @@ def _adaptive_text(frame: Any, out: Path, errors: int) -> None:
     grid, other = int(frame.attrs.get("grid_cells", 0)), int(frame.attrs.get("other_cells", 0))
     parts = []
     if grid:
-        parts.append(f"{grid} more of this map's grid from an earlier run with a larger --budget")
+        # not necessarily a larger budget: a smaller one at other --levels refines other cells
+        parts.append(f"{grid} more of this map's grid from an earlier run that refined other "
+                     "cells (another --budget or --levels)")
     if other:
         parts.append(f"{other} from an earlier sweep outside this map (another --m-star/--amplitude "
                      "range, base grid, model or a grid sweep)")
