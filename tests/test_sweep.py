@@ -326,3 +326,14 @@ def test_a_cell_whose_model_fails_does_not_stop_the_size_estimate(tmp_path, sawd
     failed = frame[frame["error"].notna()]
     assert len(frame) == 6 and len(failed) == 2
     assert (failed["amplitude"] == 0.1).all() and failed["error"].str.contains("memory").all()
+
+
+def test_a_failed_cell_names_its_version():
+    """A failed row stored version None: a later refusal of other code read 'sawdrift None
+    code ...'."""
+    from sawdrift.study.sweep import run_cell
+
+    scene = sd.Scene(model="mmd", model_params={"max_memory_points": 16},
+                     particle={"m_star": 0.01}, drive={"amplitude": 5.0})
+    row = run_cell(scene.model_dump_json())
+    assert row["regime"] == "error" and row["version"] == sd.__version__

@@ -179,6 +179,7 @@ def run_cell(scene_json: str, engine: str = "compiled", traces: bool = False) ->
             profile=scene.particle.profile.shape,
             regime="error",
             error=(kind + str(exc)).splitlines()[0],
+            version=__version__,  # a failed row names its code too ("sawdrift None code ...")
         )
     out = {key: row.get(key) for key in TABLE_COLUMNS}
     if trace is not None and row["error"] is None:
