@@ -124,3 +124,69 @@ def test_ensemble_over_seeds_reports_mean_and_spread():
     assert data["purity_index"]["std"] == pytest.approx(np.std(values, ddof=1), rel=1e-12)
     # three different placements (the seed reaches the shuffle)
     assert len({tuple(r.kinds.tolist()) for r in runs}) == 3
+
+
+def _four(box=None):
+    table = {"radius": ["0.2 mm", "1 mm"],
+             "positions": [["0 mm", "0 mm", 0], ["5 mm", "0 mm", 1], ["0 mm", "5 mm", 0],
+                           ["5 mm", "5 mm", 1]]}
+    if box is not None:
+        table["box"] = box
+    return parse_particles(table)
+
+
+def test_positions_overlapping_through_the_periodic_box_are_refused():
+    """Two 1 mm spheres at y = 0 and y = 5 mm in a box 6 mm across are 1 mm apart through its
+    boundary: accepted, they slowed the 1 mm species from -0.318 to -5e-5 in drift ratio."""
+    scene = plate()
+    spec = _four(box=["10 mm", "6 mm"])
+    with pytest.raises(SceneError, match="spheres 1 and 3 overlap by 0.001 m .*periodic"):
+        placement(spec, species_of(scene, spec))
+
+
+def test_the_box_made_for_positions_clears_the_images():
+    scene = plate()
+    spec = _four()
+    species = species_of(scene, spec)
+    xy, kinds, lx, ly = placement(spec, species)
+    r = np.array([species[k].radius for k in kinds])
+    gap_y = ly - (xy[:, 1].max() - xy[:, 1].min())  # across the boundary
+    assert gap_y >= 2 * r.max() - 1e-12
+
+
+@needs_lammps
+def test_a_species_without_a_sphere_is_said_so_not_nan(tmp_path, monkeypatch, capsys):
+    """A radius no position uses (a pair of large beads placed by hand): its drift was printed
+    as 'nan m/s'."""
+    from .cli_call import call
+
+    data = tomllib.loads((EXAMPLES / "mixture_dilute.toml").read_text())
+    data["particles"] = {"radius": ["0.2 mm", "1 mm"],
+                         "positions": [["0 mm", "0 mm", 1], ["5 mm", "0 mm", 1]]}
+    import tomli_w
+
+    path = tmp_path / "ones.toml"
+    path.write_text(tomli_w.dumps(data))
+    code, out, err = call(monkeypatch, capsys, "lammps", str(path), "--periods", "4",
+                          "--no-progress")
+    assert code == 0, err
+    assert "R = 0.2 mm (0): no sphere of this size" in out and "nan" not in out
+
+
+@needs_lammps
+def test_one_sphere_a_species_prints_without_an_index(tmp_path, monkeypatch, capsys):
+    """One sphere of each species has no purity index or Lacey value: the text output failed
+    with an internal error formatting None (exit 3)."""
+    from .cli_call import call
+
+    data = tomllib.loads((EXAMPLES / "mixture_dilute.toml").read_text())
+    data["particles"] = {"radius": ["0.2 mm", "1 mm"],
+                         "positions": [["0 mm", "0 mm", 0], ["5 mm", "0 mm", 1]]}
+    import tomli_w
+
+    path = tmp_path / "two.toml"
+    path.write_text(tomli_w.dumps(data))
+    code, out, err = call(monkeypatch, capsys, "lammps", str(path), "--periods", "4",
+                          "--no-progress")
+    assert code == 0, err
+    assert "purity index -, Lacey -" in out

@@ -15,7 +15,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import Param, _fail, _parse_param, _writable, app
+from .app import Param, _fail, _parse_param, _writable, app, json_nulls
 from .run_text import grouped
 from .scene_options import _SET, apply_options, with_scene_options
 
@@ -270,11 +270,11 @@ def _many(scene: sd.Scene, particles: Any, processes: int | None, progress: bool
         from ..report.lammps_plot import plot_mixture
 
         out.mkdir(parents=True, exist_ok=True)
-        (out / "mixture.json").write_text(json.dumps(data, indent=1) + "\n")
+        (out / "mixture.json").write_text(json.dumps(json_nulls(data), indent=1) + "\n")
         plot_mixture(result, out / "mixture.png", dilute=data.get("dilute_single_particle"))
         scene.to_toml(out / "scene.toml")
     if as_json:
-        typer.echo(json.dumps(data))
+        typer.echo(json.dumps(json_nulls(data)))
         return
     for line in _many_lines(result, data):
         typer.echo(line)
@@ -293,14 +293,19 @@ def _many_lines(result: Any, data: dict[str, Any]) -> list[str]:
              f"  touching pairs at non-zero force {result.window_pairs:.4g} (window mean over the "
              f"phase; by species pair {by_pair}), at zero force {result.zero_force_pairs:.4g}"]
     for row in data["species"]:
+        if not row["count"]:  # a radius no position uses: nothing to report (it printed NaN)
+            lines.append(f"  R = {row['radius_m'] * 1e3:.4g} mm (0): no sphere of this size")
+            continue
         lines.append(f"  R = {row['radius_m'] * 1e3:.4g} mm ({row['count']}): drift "
                      f"{row['drift_speed_m_s']:.4g} m/s (ratio {_num(row['drift_ratio'], '+#.4g')}), spread "
                      f"{row['drift_spread_m_s']:.3g} m/s; {row['contacts_per_sphere']:.3g} contacts "
                      f"per sphere; m* = {row['m_star']:.4g}, A* = {row['amplitude']:.4g}")
     if data["purity"] is not None:
-        lines.append(f"  positions: purity {data['purity']:.4g}, purity index "
-                     f"{data['purity_index']:.4g}, Lacey {data['lacey']:.4g} (0 random, 1 sorted); "
-                     f"velocities: segregation index S = {data['segregation_index']:.4g}")
+        # one sphere of a species has no index or Lacey value (None: '-', not an internal failure)
+        lines.append(f"  positions: purity {_num(data['purity'], '.4g')}, purity index "
+                     f"{_num(data['purity_index'], '.4g')}, Lacey {_num(data['lacey'], '.4g')} (0 "
+                     f"random, 1 sorted); velocities: segregation index S = "
+                     f"{_num(data['segregation_index'], '.4g')}")
     dilute = data.get("dilute_single_particle", [])
     for row in dilute:
         lines.append(f"  single particle R = {row['radius_m'] * 1e3:.4g} mm (native, alone): drift "
@@ -323,9 +328,9 @@ def _ensemble(scene: sd.Scene, spec: Any, seeds: int, processes: int | None, pro
                            processes=processes, progress=progress)
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
-        (out / "ensemble.json").write_text(json.dumps(data, indent=1) + "\n")
+        (out / "ensemble.json").write_text(json.dumps(json_nulls(data), indent=1) + "\n")
     if as_json:
-        typer.echo(json.dumps(data))
+        typer.echo(json.dumps(json_nulls(data)))
         return
     typer.echo(f"{seeds} placements (seeds {data['seeds'][0]}-{data['seeds'][-1]}), "
                f"{data['wall_time_s']:.3g} s of LAMMPS; mean +- spread (standard deviation):")

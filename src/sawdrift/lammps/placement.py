@@ -242,18 +242,24 @@ def _explicit(spec: Particles, species: list[Species]) -> tuple[np.ndarray, np.n
     if spec.box is not None:
         lx, ly = (to_si(v, "length") for v in spec.box)
     else:
+        # periodic: the spheres at the far edges must clear the images of those at 0
         lx = float((xy[:, 0] + r).max()) + 2.0 * r_max
-        ly = max(float((xy[:, 1] + r).max()), 2.0 * r_max * spec.spacing)
+        ly = max(float((xy[:, 1] + r).max()) + r_max, 2.0 * r_max * spec.spacing)
     if (xy[:, 0] >= lx).any() or (xy[:, 1] >= ly).any():
         raise SceneError(f"particles.positions: every x, y must lie inside the box [{lx:g}, {ly:g}] m")
     if kinds.size <= 2000:
-        d2 = ((xy[:, None, :] - xy[None, :, :]) ** 2).sum(axis=2) + (z[:, None] - z[None, :]) ** 2
+        # the box is periodic in x and y: the nearest image of each pair (two spheres 1 mm
+        # apart across the boundary overlapped unseen and slowed the 1 mm species 6000-fold)
+        dxy = xy[:, None, :] - xy[None, :, :]
+        dxy -= np.array([lx, ly]) * np.round(dxy / np.array([lx, ly]))
+        d2 = (dxy ** 2).sum(axis=2) + (z[:, None] - z[None, :]) ** 2
         gap = np.sqrt(d2) - (r[:, None] + r[None, :])
         np.fill_diagonal(gap, np.inf)
         i, j = np.unravel_index(int(np.argmin(gap)), gap.shape)
         if gap[i, j] < -1e-9 * r_max:
             raise SceneError(f"particles.positions: spheres {min(i, j)} and {max(i, j)} overlap by "
-                             f"{-gap[i, j]:.3g} m; place them at least R_i + R_j apart")
+                             f"{-gap[i, j]:.3g} m (the box [{lx:g}, {ly:g}] m is periodic); place "
+                             "them at least R_i + R_j apart, or give a larger particles.box")
     return xy, kinds, lx, ly
 
 
