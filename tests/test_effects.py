@@ -113,6 +113,16 @@ def test_nan_model_fails_only_its_own_cell(faulty_models):
     assert by_model.loc["mmd", "regime"] == "drift_with"
 
 
+def test_a_nan_force_from_rest_is_blamed_on_the_model_not_the_step(faulty_models):
+    """A model whose force is NaN fails at step 0, at rest on its static compression, where no
+    step is too coarse: the line said 'the step 1/128 is likely too coarse'."""
+    with pytest.raises(NonFiniteStateError) as info:
+        sd.run(sd.Scene(model="test_nan"))
+    msg = str(info.value)
+    assert "step 0;" in msg and "too coarse" not in msg
+    assert "sawdrift check-model test_nan" in msg
+
+
 def test_coarse_step_error_names_time_state_and_cause():
     scene = sd.Scene(particle={"m_star": 1e-4}, numerics={"steps_per_period": 8, "order": 4})
     with pytest.raises(NonFiniteStateError) as info:

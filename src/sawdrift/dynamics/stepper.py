@@ -59,6 +59,10 @@ _HISTORY_KEYS = ("fs", "is", "ref")
 KEPT_EVENT_ROWS = 1 << 20
 
 
+#: steps from rest within which a non-finite state is the contact model's, not the step's
+START_STEPS = 4
+
+
 @dataclass(frozen=True)
 class StepperState:
     """A snapshot of one integration: what :meth:`Stepper.save` keeps and :meth:`Stepper.restore`
@@ -286,6 +290,7 @@ class Stepper:
                     self.st = ev.grown(self.st, 2 * self.ev_margin, KEPT_EVENT_ROWS)
 
     def _fail(self) -> None:
+        """One line on why the state became non-finite (or the rigid scheme fell behind)."""
         k = int(self.st[ev.S_BADSTEP])
         m = self.scene.particle.m_star
         state = (f"x* = {self.y[0]:.6g}, x*' = {self.y[1]:.6g}, y* = {self.y[2]:.6g}, "
@@ -299,12 +304,18 @@ class Stepper:
                                         else " or a restitution below 1")
             )
         amp = float(getattr(self.scene.drive, "amplitude", math.nan))
+        model = self.scene.model
+        check = f"the contact model returned a non-finite force: sawdrift check-model {model}"
         # at the finest step allowed, the scene itself is beyond what the scheme resolves
         hint = (f"at the finest step allowed, 1/{self.k_per}: particle.m_star = {m:g} with "
                 f"drive.amplitude = {amp:g} is beyond what the scheme resolves; give values "
                 "nearer m* 1e-6..1e8, A* below 1e6" if self.k_per >= FINEST_STEPS else
                 f"the step 1/{self.k_per} is likely too coarse for m* = {m:g}; try a larger "
-                "--steps-per-period or a lower Adams-Bashforth order")
+                f"--steps-per-period or a lower Adams-Bashforth order, or {check}")
+        if k <= START_STEPS:
+            # at rest on its static compression no step can be too coarse (a plugin's NaN force
+            # was blamed on the step)
+            hint = f"in the first steps from rest, {check}"
         raise NonFiniteStateError(f"non-finite state at t* = {k * self.h:.6g} (step {k}; "
                                   f"{state}): {hint}")
 
