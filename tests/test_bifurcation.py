@@ -271,3 +271,19 @@ def test_a_one_value_hysteresis_is_printed_as_such():
     assert "hysteresis at 0.87 only" in one and "--steps-per-period" in one
     span = hysteresis_line({"model": "mmd", "from": 0.8, "to": 0.85, "values": 6})
     assert span.endswith("hysteresis from 0.8 to 0.85")
+
+
+def test_a_device_axis_is_labelled_with_its_unit():
+    """device.frequency was labelled bare, with ticks 0.5-3.0 and a '1e7' offset."""
+    from pathlib import Path
+
+    from sawdrift.report.bifurcation_plot import plot_bifurcation
+
+    base = sd.Scene.from_toml(Path(__file__).resolve().parents[1] / "examples"
+                              / "saw_linear_motor.toml")
+    res = bifurcation(base, "device.frequency", "8 MHz:10 MHz:2", samples=4, workers=1,
+                      progress=False)
+    fig = plot_bifurcation(res)
+    assert fig.axes[-1].get_xlabel() == "device.frequency (Hz)"
+    fig.canvas.draw()
+    assert any("MHz" in t.get_text() for t in fig.axes[-1].get_xticklabels())

@@ -20,6 +20,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
+from ..study.axes import column_label  # noqa: E402
+from .marks import format_device_axes  # noqa: E402
+
 #: colours of the two sweep directions and of the bifurcation kinds
 COLOURS = {"up": "#1f77b4", "down": "#ff7f0e"}
 KINDS = {"period_doubling": "#d62728", "other": "#7f7f7f", "lift_off": "#2ca02c",
@@ -74,7 +77,8 @@ def plot_bifurcation(result: Any, path: str | Path | None = None,
         panel["lyap"].set_ylim(1.05 * _floor(finite), top)
         _marks(panel, summary, name)
         panel["a"].set_title(name, fontsize=10)
-        axes[-1, col].set_xlabel(field)
+        axes[-1, col].set_xlabel(column_label(field))  # with its unit: device.frequency (Hz)
+        format_device_axes(axes[-1, col], field, "")
     axes[0, 0].set_ylabel("a* at integer t*")
     if lifts:
         panel_l = axes[rows.index("lift"), 0]
