@@ -287,3 +287,12 @@ def test_a_device_axis_is_labelled_with_its_unit():
     assert fig.axes[-1].get_xlabel() == "device.frequency (Hz)"
     fig.canvas.draw()
     assert any("MHz" in t.get_text() for t in fig.axes[-1].get_xticklabels())
+
+
+def test_a_device_axis_list_takes_quantities_as_its_range_does():
+    """'device.amplitude=5 nm:10 nm:2' ran; '5 nm,10 nm' was refused as not a number."""
+    from sawdrift.study.bifurcation import _values
+
+    assert _values("5 nm,10 nm", "device.amplitude") == pytest.approx([5e-9, 1e-8])
+    with pytest.raises(sd.SceneError, match="is not a length"):
+        _values("5 s,10 nm", "device.amplitude")

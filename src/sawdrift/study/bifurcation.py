@@ -35,7 +35,7 @@ from ..contact.binding import bind
 from ..contact.registry import get_model
 from ..errors import SceneError
 from ..scene.schema import Scene, Wave, build_scene, get_dotted
-from .axes import parse_values
+from .axes import _end, field_kind, parse_values
 from .bifurcation_tasks import changes, run_branches
 from .branch import SAMPLE_COLUMNS, Point
 from .provenance import check_resume, code_hash
@@ -92,8 +92,12 @@ class BifurcationResult:
 
 def _values(values: str | Sequence[Any], field_name: str) -> list[float]:
     items = parse_values(values, field_name) if isinstance(values, str) else list(values)
+    kind = field_kind(field_name)
     out = []
     for item in items:
+        if isinstance(item, str) and kind is not None:
+            # a quantity of a device field ('5 nm'), as the range form takes it, in SI
+            item = _end(item, str(values), field_name, kind)[0]
         if isinstance(item, bool) or not isinstance(item, int | float | np.integer | np.floating):
             raise SceneError(f"axis {field_name} = {values!r}: {item!r} is not a number; a "
                              "bifurcation axis takes numbers (a,b,c | START:STOP:N | lin:START:STOP:N)")
