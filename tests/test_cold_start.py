@@ -147,6 +147,13 @@ def test_a_broken_plugin_is_listed_as_computed_and_never_stored(tmp_path):
         listed = [line for line in run.stdout.splitlines() if line.startswith("hertz_tsuji ")]
         assert len(listed) == 1 and "unavailable: RuntimeError" in listed[0]
     assert len(list((tmp_path / "cache" / "cli").glob("models-*"))) == 1
+    # the JSON lists it too, unavailable with its reason (it was left out)
+    rows = json.loads(_sawdrift(["models", "--json"], tmp_path / "cache",
+                                {"PYTHONPATH": path}).stdout)
+    broken = [r for r in rows if r["name"] == "hertz_tsuji"]
+    assert len(broken) == 1 and broken[0]["available"] is False
+    assert "RuntimeError" in broken[0]["reason"]
+    assert all(r["available"] for r in rows if r["name"] == "mmd")
 
 
 def test_cache_root_is_the_generated_modules_folder(monkeypatch, tmp_path):

@@ -27,7 +27,11 @@ def models_cmd(
     (set with --param NAME=VALUE or in a scene file's model_params table)."""
     rows, failed = stored_models(_describe_models)
     if as_json:
-        typer.echo(json.dumps(rows, indent=2))
+        # the models that failed to load too, as the text lists them (a JSON reader saw none)
+        listed = [{**r, "available": True} for r in rows]
+        listed += [{"name": name, "available": False, "reason": reason}
+                   for name, reason in sorted(failed.items())]
+        typer.echo(json.dumps(listed, indent=2))
         return
     width = max((len(r["name"]) for r in rows), default=4)
     for r in rows:
