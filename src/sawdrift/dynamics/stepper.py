@@ -59,10 +59,6 @@ _HISTORY_KEYS = ("fs", "is", "ref")
 KEPT_EVENT_ROWS = 1 << 20
 
 
-#: steps from rest within which a non-finite state is the contact model's, not the step's
-START_STEPS = 4
-
-
 @dataclass(frozen=True)
 class StepperState:
     """A snapshot of one integration: what :meth:`Stepper.save` keeps and :meth:`Stepper.restore`
@@ -312,10 +308,10 @@ class Stepper:
                 "nearer m* 1e-6..1e8, A* below 1e6" if self.k_per >= FINEST_STEPS else
                 f"the step 1/{self.k_per} is likely too coarse for m* = {m:g}; try a larger "
                 f"--steps-per-period or a lower Adams-Bashforth order, or {check}")
-        if k <= START_STEPS:
-            # at rest on its static compression no step can be too coarse (a plugin's NaN force
-            # was blamed on the step)
-            hint = f"in the first steps from rest, {check}"
+        if k == 0:
+            # the first step from rest on its static compression: its state is finite, so the
+            # force was not (a plugin's NaN force was blamed on the step size)
+            hint = f"at the first step from rest, {check}"
         raise NonFiniteStateError(f"non-finite state at t* = {k * self.h:.6g} (step {k}; "
                                   f"{state}): {hint}")
 
