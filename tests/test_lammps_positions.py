@@ -154,22 +154,28 @@ def test_the_box_made_for_positions_clears_the_images():
     assert gap_y >= 2 * r.max() - 1e-12
 
 
-@needs_lammps
-def test_a_species_without_a_sphere_is_said_so_not_nan(tmp_path, monkeypatch, capsys):
-    """A radius no position uses (a pair of large beads placed by hand): its drift was printed
-    as 'nan m/s'."""
+def _lammps_text(tmp_path, monkeypatch, capsys, kinds: list[int]) -> str:
+    """`sawdrift lammps` text of the dilute plate with two spheres of the given species."""
+    import tomli_w
+
     from .cli_call import call
 
     data = tomllib.loads((EXAMPLES / "mixture_dilute.toml").read_text())
     data["particles"] = {"radius": ["0.2 mm", "1 mm"],
-                         "positions": [["0 mm", "0 mm", 1], ["5 mm", "0 mm", 1]]}
-    import tomli_w
-
-    path = tmp_path / "ones.toml"
+                         "positions": [["0 mm", "0 mm", kinds[0]], ["5 mm", "0 mm", kinds[1]]]}
+    path = tmp_path / "pair.toml"
     path.write_text(tomli_w.dumps(data))
     code, out, err = call(monkeypatch, capsys, "lammps", str(path), "--periods", "4",
                           "--no-progress")
     assert code == 0, err
+    return out
+
+
+@needs_lammps
+def test_a_species_without_a_sphere_is_said_so_not_nan(tmp_path, monkeypatch, capsys):
+    """A radius no position uses (a pair of large beads placed by hand): its drift was printed
+    as 'nan m/s'."""
+    out = _lammps_text(tmp_path, monkeypatch, capsys, [1, 1])
     assert "R = 0.2 mm (0): no sphere of this size" in out and "nan" not in out
 
 
@@ -177,16 +183,5 @@ def test_a_species_without_a_sphere_is_said_so_not_nan(tmp_path, monkeypatch, ca
 def test_one_sphere_a_species_prints_without_an_index(tmp_path, monkeypatch, capsys):
     """One sphere of each species has no purity index or Lacey value: the text output failed
     with an internal error formatting None (exit 3)."""
-    from .cli_call import call
-
-    data = tomllib.loads((EXAMPLES / "mixture_dilute.toml").read_text())
-    data["particles"] = {"radius": ["0.2 mm", "1 mm"],
-                         "positions": [["0 mm", "0 mm", 0], ["5 mm", "0 mm", 1]]}
-    import tomli_w
-
-    path = tmp_path / "two.toml"
-    path.write_text(tomli_w.dumps(data))
-    code, out, err = call(monkeypatch, capsys, "lammps", str(path), "--periods", "4",
-                          "--no-progress")
-    assert code == 0, err
+    out = _lammps_text(tmp_path, monkeypatch, capsys, [0, 1])
     assert "purity index -, Lacey -" in out
