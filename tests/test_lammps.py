@@ -113,6 +113,14 @@ def test_the_wall_frame_bridge_refuses_rotation_and_air_drag():
         assert needle in refusal(scene, wall_frame=True)
 
 
+@pytest.mark.parametrize("option", [("--seeds", "3"), ("--np", "2")])
+def test_options_of_many_particles_are_refused_for_one(option, sawdrift_main):
+    # they were ignored without a word (exit 0)
+    out = sawdrift_main("lammps", "--model", "hertz_mindlin_dem", *option)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1
+    assert out.stderr.startswith(f"error: {option[0]} applies to a scene with a [particles]")
+
+
 def test_cli_refuses_another_model_in_one_line(sawdrift_main):
     out = sawdrift_main("lammps", "--model", "mmd")  # in this process: refused before any run
     assert out.returncode == 2

@@ -179,6 +179,11 @@ def lammps_cmd(
     if particles is not None:
         _many(scene, particles, processes, progress, as_json, out, write_input, compare, seeds)
         return
+    if seeds > 1 or processes is not None:
+        # one particle has no placements to seed nor an MPI decomposition: they were ignored
+        given = "--seeds" if seeds > 1 else "--np"
+        _fail(f"{given} applies to a scene with a [particles] table (many spheres); this scene "
+              "runs one particle")
     from ..lammps import input_script, run_scene
 
     if write_input is not None:
