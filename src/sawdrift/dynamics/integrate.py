@@ -126,7 +126,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     speed = drive.horizontal_speed(scene)
     scale = drive.state_scale(scene)
     settle_on = settles(scene, speed, stepper.rigid)
-    win, settling, before = _measure(stepper, scene, speed, scale, settle_on, trajectory)
+    win, settling, before = _measure(stepper, scene, speed, scale, settle_on)
     lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     # the per-period rows of the run's windows (displacement, vertical energy), one contiguous
     # stretch of its own trajectory up to now: a long-time mean after them starts from all of it
@@ -210,8 +210,7 @@ def _long_mean(stepper: Stepper, win: Window, budget: int, target: float,
 
 
 def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
-             settle_on: bool, trajectory: bool = False
-             ) -> tuple[Window, Settling | None, Window | None]:
+             settle_on: bool) -> tuple[Window, Settling | None, Window | None]:
     """Run to the measuring window and measure it: settled windows (``numerics.settle``, up to
     the period cap) or the fixed run's last window (a default one may end at its first window
     after the ramp, :func:`_held_first`). The settling is None for a fixed run. Last, the window
@@ -231,9 +230,8 @@ def _measure(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray,
     n_max = max(n_total, int(round(cap * k_per)))
     first = None
     if not settle_on and _default_length(scene):
-        # a run recording its trajectory ends there too: the same result, table row and
-        # trajectory of the run as it ran (it went on to its whole length and reported its last
-        # window: a stuck contact's creep of 5.8e-6 became -2.7e-6 in a table swept --traces)
+        # a run recording its trajectory ends there too (the same result, table row and
+        # trajectory of the run as it ran)
         first = _held_first(stepper, scene, speed, scale, n_total - n_measure)
         if first is not None and first[1] is not None:
             return first[0], first[1], None
