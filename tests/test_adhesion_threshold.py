@@ -42,14 +42,11 @@ def test_a_crossing_at_the_first_amplitude_is_no_threshold():
 
 
 def test_an_amplitude_the_device_refuses_ends_the_scan():
-    from sawdrift.study.threshold import OutOfRange
-
     def crosses(x: float) -> bool:
-        if x > 1.0:
-            raise OutOfRange(x)
+        assert x <= 1.0, "an amplitude the device refuses was run"
         return False
 
-    value, _, how = first_crossing(crosses, 0.01, 10.0, 100.0, 8)
+    value, _, how = first_crossing(crosses, 0.01, 10.0, 100.0, 8, refuses=lambda x: x > 1.0)
     assert math.isnan(value) and how == "above_bound"
 
 
@@ -157,30 +154,24 @@ def test_the_grid_ends_at_the_largest_amplitude_the_wave_may_have():
     """A crossing between the grid's last allowed point and the wave's bound (2.5 here) was
     never tried: the scan said '> bound'. The bound is located from the refusals alone (no
     run) and tried itself."""
-    from sawdrift.study.threshold import OutOfRange
+    def refuses(x: float) -> bool:
+        return x > 2.5
 
     def crosses(x: float) -> bool:
-        if x > 2.5:
-            raise OutOfRange(x)
+        assert not refuses(x), "an amplitude the device refuses was run"
         return x >= 2.2
 
-    crosses.refuses = lambda x: x > 2.5
-    found, _, how = first_crossing(crosses, 0.01, 10.0, 100.0, 40)
+    found, _, how = first_crossing(crosses, 0.01, 10.0, 100.0, 40, refuses)
     assert how == "found" and found == pytest.approx(2.2, rel=1e-6)
-
-    def never(x: float) -> bool:
-        if x > 2.5:
-            raise OutOfRange(x)
-        return False
 
     tried = []
 
-    def logged(x: float) -> bool:
+    def never(x: float) -> bool:
+        assert not refuses(x), "an amplitude the device refuses was run"
         tried.append(x)
-        return never(x)
+        return False
 
-    logged.refuses = lambda x: x > 2.5
-    none, _, how = first_crossing(logged, 0.01, 10.0, 100.0, 4)
+    none, _, how = first_crossing(never, 0.01, 10.0, 100.0, 4, refuses)
     assert math.isnan(none) and how == "above_bound"
     assert max(t for t in tried if t <= 2.5) == pytest.approx(2.5, rel=1e-9)
 

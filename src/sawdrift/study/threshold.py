@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -164,51 +165,43 @@ def stiff_removal_lost(law: str, ratio: float, m_star: float = 1e-5,
     return bool(run(scene).contact_lost)
 
 
-class OutOfRange(Exception):
-    """An amplitude of the scan beyond what the device's wave may have (a scene refused)."""
-
-
 #: halvings (in log) that locate the largest amplitude the device's wave may have
 BOUND_HALVINGS = 40
 
 
-def _allowed_top(crosses: Callable[[float], bool], ok: float, bad: float) -> float:
-    """The largest amplitude in [``ok``, ``bad``) that ``crosses`` does not refuse with
-    :class:`OutOfRange`: ``ok`` is allowed, ``bad`` is not. Only the refusals are asked for (a
-    scene that cannot be built is refused before it runs), so this costs no run."""
-    probe_refuses = getattr(crosses, "refuses", None)
-    if probe_refuses is None:
-        return ok
+def _allowed_top(refuses: Callable[[float], bool], ok: float, bad: float) -> float:
+    """The largest amplitude in [``ok``, ``bad``) that ``refuses`` allows: ``ok`` is allowed,
+    ``bad`` is not. Only the scenes are built (a scene beyond the bound is refused before it
+    runs), so this costs no run."""
     for _ in range(BOUND_HALVINGS):
         mid = math.sqrt(ok * bad)
-        ok, bad = (ok, mid) if probe_refuses(mid) else (mid, bad)
+        ok, bad = (ok, mid) if refuses(mid) else (mid, bad)
     return ok
 
 
 def first_crossing(crosses: Callable[[float], bool], start: float, factor: float,
-                   stop: float, bisections: int) -> tuple[float, int, str]:
+                   stop: float, bisections: int,
+                   refuses: Callable[[float], bool] | None = None) -> tuple[float, int, str]:
     """The smallest amplitude where ``crosses`` turns True, from below (module text), the runs it
     took and how it was found (:data:`FOUND`, or NaN and :data:`BELOW_START` where the first
     amplitude already crosses, :data:`ABOVE_STOP` where none up to ``stop`` does, the last
     grid point put at ``stop`` itself, :data:`ABOVE_BOUND` where none does up to the largest
-    amplitude ``crosses`` accepts: the grid's last point is put there too, located from
-    ``crosses.refuses(amp)`` if it has that attribute). ``start`` must not exceed ``stop``."""
+    amplitude ``refuses`` allows: the grid's last point is put there too). ``crosses`` is asked
+    only of allowed amplitudes; ``start`` must be allowed and not exceed ``stop``."""
     if start > stop:
         raise ValueError(f"the scan's start {start:g} is above its stop {stop:g}")
     lo, amp, runs, top = math.nan, start, 0, stop
     while True:
         amp = min(amp, top)
-        runs += 1
-        try:
-            crossed = crosses(amp)
-        except OutOfRange:
-            if math.isnan(lo) or top < stop:
-                return math.nan, runs, ABOVE_BOUND  # nothing allowed left to try
-            top = _allowed_top(crosses, lo, amp)  # the grid's last point: the bound itself
+        if refuses is not None and refuses(amp):
+            if math.isnan(lo):
+                return math.nan, runs, ABOVE_BOUND  # nothing allowed to try
+            top = _allowed_top(refuses, lo, amp)  # the grid's last point: the bound itself
             if top <= lo:
                 return math.nan, runs, ABOVE_BOUND
             continue
-        if crossed:
+        runs += 1
+        if crosses(amp):
             break
         if amp >= top:
             return math.nan, runs, ABOVE_STOP if top >= stop else ABOVE_BOUND
@@ -223,6 +216,16 @@ def first_crossing(crosses: Callable[[float], bool], start: float, factor: float
     return math.sqrt(lo * hi), runs, FOUND
 
 
+def _refused(base: Scene, amp: float) -> bool:
+    """Whether the device of ``base`` refuses the wave amplitude ``amp`` (its surface strain or
+    speed bound, its range)."""
+    try:
+        base.with_updates(**{"device.amplitude": amp})
+    except SceneError:
+        return True
+    return False
+
+
 def _check_start(base: Scene, name: str, value: float, start: float, stop: float) -> None:
     """One line where a value's scan cannot start: ``start`` times its rigid removal amplitude
     above ``stop``, or beyond the largest amplitude its wave may have (nothing would be run,
@@ -232,12 +235,10 @@ def _check_start(base: Scene, name: str, value: float, start: float, stop: float
     if first > stop:
         raise SceneError(f"--start {start:g} times the rigid removal amplitude is {first:.4g} m "
                          f"{where}, above --stop {stop:.4g} m: lower --start or raise --stop")
-    try:
-        base.with_updates(**{"device.amplitude": first})
-    except SceneError:
+    if _refused(base, first):
         raise SceneError(f"--start {start:g} times the rigid removal amplitude is {first:.4g} m "
                          f"{where}, beyond the largest amplitude its wave may have (its surface "
-                         "strain or speed bound): lower --start") from None
+                         "strain or speed bound): lower --start")
 
 
 def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float = 0.01,
@@ -273,22 +274,9 @@ def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float
         a_rigid, pull, weight = rigid_removal(base)
         cache: dict[float, Any] = {}
 
-        def at(amp: float, base: Scene = base) -> Scene:
-            try:
-                return base.with_updates(**{"device.amplitude": amp})
-            except SceneError:
-                raise OutOfRange(amp) from None  # beyond the wave's strain or speed bound
-
-        def refuses(amp: float, at: Callable[[float], Scene] = at) -> bool:
-            try:
-                at(amp)
-            except OutOfRange:
-                return True
-            return False
-
-        def result(amp: float, at: Callable[[float], Scene] = at, cache: dict = cache) -> Any:
+        def result(amp: float, base: Scene = base, cache: dict = cache) -> Any:
             if amp not in cache:
-                cache[amp] = run(at(amp), engine=engine)
+                cache[amp] = run(base.with_updates(**{"device.amplitude": amp}), engine=engine)
             return cache[amp]
 
         def slides(amp: float, result: Callable[[float], Any] = result) -> bool:
@@ -298,11 +286,11 @@ def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float
         def removed(amp: float, result: Callable[[float], Any] = result) -> bool:
             return result(amp).regime == "ejected"
 
-        slides.refuses = removed.refuses = refuses  # type: ignore[attr-defined]
+        refuses = partial(_refused, base)
         slide, _, slide_found = first_crossing(slides, start * a_rigid, factor, stop,
-                                               bisections)
+                                               bisections, refuses)
         removal, _, removal_found = first_crossing(removed, start * a_rigid, factor, stop,
-                                                   bisections)
+                                                   bisections, refuses)
         study.rows.append(ThresholdRow(float(value), slide, removal, a_rigid, pull, weight,
                                        len(cache), slide_found, removal_found,
                                        start * a_rigid,
