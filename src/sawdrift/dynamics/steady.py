@@ -161,6 +161,18 @@ def load_runs_away(load: float, mu: float, friction: bool, air_drag: float) -> b
     return (not friction) or abs(load) > mu
 
 
+#: relative distance of |L| from the friction bound within which the load is the bound itself
+NEUTRAL_LOAD = 1e-9
+
+
+def load_is_neutral(load: float, mu: float, friction: bool, air_drag: float) -> bool:
+    """A load equal to the friction bound ``mu`` (:func:`friction_bound`), with friction on and
+    no air drag: once the particle slides on, its mean force vanishes at every speed, so nothing
+    restores it (the edge of :func:`load_runs_away`)."""
+    return (load != 0.0 and friction and air_drag == 0.0
+            and abs(abs(load) - mu) <= NEUTRAL_LOAD * mu)
+
+
 def horizontal_relaxation(scene, m_x: float, speed: float) -> float:
     """U m*_x / mu periods (U = min(1, speed)): the approach of the horizontal velocity alone.
 

@@ -26,7 +26,7 @@ from ..dynamics.integrate import (
     integrate_wave,
 )
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
-from ..dynamics.steady import friction_bound, runs_away
+from ..dynamics.steady import friction_bound, load_is_neutral, runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
 from ..errors import SceneError
 from ..scene.device import device_outputs
@@ -105,7 +105,8 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     extra: dict[str, object] = {}
     # a runaway or an ejection has no steady drift: nothing of a long-time mean to warn about
     warnings = _warnings(scene, replace(out, long_mean=None) if ending else out, drift_se)
-    if not ending and _neutral_load(scene):
+    if not ending and load_is_neutral(scene.particle.load, friction_bound(scene),
+                                      scene.effects.friction, scene.effects.air_drag):
         # friction at its bound balances the load exactly once the particle slides on: nothing
         # pulls its speed back (mmd m* 1, A* 0.5, mu = L = 0.1 settled at 1.0088, brute force
         # went on to 1.0170 over 4e4 periods)
@@ -235,18 +236,6 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
                      f"changes) are not kept, only its last {out.window.events.shape[0]}; its "
                      "counts (lift-offs, contact loss, gross slip) cover the whole window",)
     return warnings
-
-
-#: relative distance of |L| from the friction bound within which the load is the bound itself
-NEUTRAL_LOAD = 1e-9
-
-
-def _neutral_load(scene: Scene) -> bool:
-    """A load equal to the friction bound (:func:`~sawdrift.dynamics.steady.friction_bound`),
-    with friction on and no air drag: the sliding particle's mean force vanishes at every speed."""
-    load, bound = abs(scene.particle.load), friction_bound(scene)
-    return (load > 0.0 and scene.effects.friction and scene.effects.air_drag == 0.0
-            and abs(load - bound) <= NEUTRAL_LOAD * bound)
 
 
 def _unsettled_reason(out: WaveRun, settling: bool) -> str:
