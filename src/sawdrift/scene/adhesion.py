@@ -17,14 +17,10 @@ import math
 from typing import Any
 
 from .device import Device, normalized
+from .parts import MAX_LOAD_RATIO
 
 #: pull-off force of each adhesive law over the DMT one, 2 pi R w
 PULLOFF_FACTOR = {"dmt": 1.0, "jkr": 0.75}
-
-#: The largest tangential load |L| = |F_load - m g sin(alpha)| of a device over what friction
-#: can hold at mu = 1, M g + 2 F_pull (M g without adhesion; the range of ``particle.load`` is
-#: the same in normalized units): beyond it friction holds nothing and the particle is pushed.
-MAX_LOAD_RATIO = 100.0
 
 #: The largest pull-off force of a device over its normal load, F_pull / (M g) (the range of
 #: ``material.adhesion``).

@@ -58,11 +58,21 @@ def bounded(
     return AfterValidator(check)
 
 
+#: The largest tangential load |L| over what friction can hold at mu = 1, M g + 2 F_pull (M g
+#: without adhesion): beyond it friction holds nothing and the particle is simply pushed. The
+#: range of ``particle.load`` is this times 1 + 2 ``material.adhesion``
+#: (:func:`sawdrift.scene.adhesion.load_bound`), a device's ``load`` the same in newtons.
+MAX_LOAD_RATIO = 100.0
+
+#: how the range of ``particle.load`` reads in its option's help and its error
+LOAD_RANGE = (f"[-{MAX_LOAD_RATIO:g}, {MAX_LOAD_RATIO:g}], with adhesion {MAX_LOAD_RATIO:g} "
+              "(1 + 2 material.adhesion)")
+
+
 def _finite_load(value: float) -> float:
     """particle.load is finite; its range depends on material.adhesion (checked by the scene)."""
     if not math.isfinite(value):
-        raise ValueError("is not finite: give a load in [-100, 100] (in M g; 100 (1 + 2 "
-                         "material.adhesion) with adhesion)")
+        raise ValueError(f"is not finite: give a load in {LOAD_RANGE} (in M g)")
     return value
 
 
@@ -140,7 +150,7 @@ class Particle(BaseModel):
         description=(
             "constant external tangential force on the particle, in units of its static normal "
             "load M g, positive along +x (a motor's thrust, gravity along an incline); in "
-            "[-100, 100], with adhesion 100 (1 + 2 material.adhesion)"
+            f"{LOAD_RANGE}"
         ),
     )
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from .adhesion import adhesive_rest, adhesive_sets_contact
+from .adhesion import PULLOFF_FACTOR, adhesive_rest, adhesive_sets_contact
 from .device import Device, normalized
 
 
@@ -23,7 +23,7 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
     n = normalized(device)
     part = device.particle
     out = []
-    adhesive = device.adhesion > 0.0 and law in ("dmt", "jkr")
+    adhesive = device.adhesion > 0.0 and law in PULLOFF_FACTOR
     if n["a0_m"] < 1e-9 and not (adhesive and adhesive_sets_contact(device, law)):
         out.append(f"a0 < 1 nm (a0 = {n['a0_m']:.3g} m): adhesion and roughness, not gravity and "
                    "preload, then set the contact; the model's assumptions do not hold")
