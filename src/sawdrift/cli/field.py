@@ -151,13 +151,11 @@ def field_cmd(
 def _field_csv(study: Any, out: Path) -> None:
     """The field(s) as CSV: (species,) position xi, drift velocity and its standard error (a
     long-time mean's; empty where the drift settled), a device's also in m/s, regime, settled."""
-    import numpy as np
     import pandas as pd
 
     frames = []
     for fld in study.fields:
-        se = (fld.drift_velocity_se if fld.drift_velocity_se is not None
-              else np.full(len(fld.positions), np.nan))
+        se = fld.errors()
         frame = pd.DataFrame({"position": fld.positions, "drift_velocity": fld.drift_velocity,
                               "drift_velocity_se": se, "regime": fld.regimes,
                               "settled": fld.settled})

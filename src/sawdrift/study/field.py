@@ -93,8 +93,7 @@ class Field:
 
     def to_json(self) -> dict[str, Any]:
         """``{"positions", "drift_velocity", "regimes", "zeros", ...}`` (positions in wavelengths)."""
-        se = (self.drift_velocity_se if self.drift_velocity_se is not None
-              else np.full(self.drift_velocity.shape, np.nan))
+        se = self.errors()
         out = {"label": self.label, "positions": self.positions.tolist(),
                "drift_velocity": self.drift_velocity.tolist(),
                "drift_velocity_se": [float(e) if np.isfinite(e) else None for e in se],
@@ -107,6 +106,11 @@ class Field:
             out["drift_velocity_se_m_s"] = [float(e * scale) if np.isfinite(e) else None
                                             for e in se]
         return out
+
+    def errors(self) -> np.ndarray:
+        """Each drift velocity's standard error: a long-time mean's, NaN for a steady drift."""
+        return (self.drift_velocity_se if self.drift_velocity_se is not None
+                else np.full(self.drift_velocity.shape, np.nan))
 
     def speed_scale(self) -> float | None:
         """a0 f (m/s per x* a period) of a device scene's species, else None."""
