@@ -155,7 +155,7 @@ def _field_csv(study: Any, out: Path) -> None:
 
     frames = []
     for fld in study.fields:
-        se = fld.errors()
+        se = fld.velocity_errors()
         frame = pd.DataFrame({"position": fld.positions, "drift_velocity": fld.drift_velocity,
                               "drift_velocity_se": se, "regime": fld.regimes,
                               "settled": fld.settled})

@@ -93,7 +93,7 @@ class Field:
 
     def to_json(self) -> dict[str, Any]:
         """``{"positions", "drift_velocity", "regimes", "zeros", ...}`` (positions in wavelengths)."""
-        se = self.errors()
+        se = self.velocity_errors()
         out = {"label": self.label, "positions": self.positions.tolist(),
                "drift_velocity": self.drift_velocity.tolist(),
                "drift_velocity_se": [float(e) if np.isfinite(e) else None for e in se],
@@ -107,7 +107,7 @@ class Field:
                                             for e in se]
         return out
 
-    def errors(self) -> np.ndarray:
+    def velocity_errors(self) -> np.ndarray:
         """Each drift velocity's standard error: a long-time mean's, NaN for a steady drift."""
         return (self.drift_velocity_se if self.drift_velocity_se is not None
                 else np.full(self.drift_velocity.shape, np.nan))
