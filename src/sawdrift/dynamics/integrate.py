@@ -3,9 +3,11 @@
 Compliant models go through the Adams-Bashforth loop of :mod:`sawdrift.dynamics.adams_bashforth`;
 rigid ones through the unilateral-contact scheme of :mod:`sawdrift.dynamics.rigid`; a prescribed
 drive feeds a*(t*), b*(t*) straight into the contact law (:mod:`sawdrift.dynamics.prescribed`).
-Each scheme returns what it measured (:class:`WaveRun`, :class:`ImpactRun`,
-:class:`~sawdrift.dynamics.prescribed.PrescribedRun`); :func:`sawdrift.result.runner.run` names the
-regime and builds the :class:`~sawdrift.result.Result` from it.
+Each scheme returns what it measured (:class:`WaveRun`,
+:class:`~sawdrift.dynamics.impact.ImpactRun`, :class:`~sawdrift.dynamics.prescribed.PrescribedRun`);
+:func:`sawdrift.result.runner.run` names the regime and builds the :class:`~sawdrift.result.Result`
+from it. A window with contact loss goes on to its periodic orbit in
+:mod:`sawdrift.dynamics.orbit_search`.
 """
 
 from __future__ import annotations
@@ -18,11 +20,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..contact.base import ContactModel
-from ..scene.schema import Impact, Numerics, Scene
+from ..scene.schema import Numerics, Scene
 from .assembly import Assembly
 from .batch_means import BatchMeans, long_time_mean, period_rows
 from .evidence import S_LASTLIFT
 from .full_inertia import Watch, accuracy, held, longest_flight, settle_full, tapered_drift_ratio
+from .orbit_search import orbit_search
 from .steady import (
     Settling,
     assess_fixed,
@@ -37,23 +40,18 @@ from .steady import (
 from .stepper import Stepper
 from .transient import orbit_settling, orbit_window
 from .window import (
-    GROWTH_RATIO,
-    PERIODIC_TOL,
     Window,
     ballistic_return,
-    grows_steadily,
     in_flight,
-    lag_change,
     lyapunov,
     measure_window,
-    orbit_residual,
 )
 from .window_noise import WANDER_WINDOWS, approaches, wanders
 
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["ImpactRun", "WaveRun", "integrate_impact", "integrate_wave"]
+__all__ = ["WaveRun", "integrate_wave"]
 
 
 @dataclass
@@ -136,7 +134,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     if settling is None and num.settle is not False and not chaotic and win.contact_lost:
         # the run goes on to its periodic orbit (its events and trajectory with it), as a
         # settling run goes on to its steady drift
-        win, before, leaving, lyap, chaotic = _orbit_search(stepper, win, speed, scale, series,
+        win, before, leaving, lyap, chaotic = orbit_search(stepper, win, speed, scale, series,
                                                             before, (lyap, chaotic))
     periods_run = stepper.step / stepper.k_per
     # the long-time mean of a chaotic window runs on a twin: the run itself (its trajectory, its
@@ -187,18 +185,6 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                    wall_time_s=wall, trajectory=path,
                    last_liftoff=float(stepper.st[S_LASTLIFT]), long_mean=chaos,
                    steps=max(stepper.step, 0 if twin is None else twin.step))
-
-
-def _orbit_search(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
-                  series: list[np.ndarray], before: Window | None,
-                  exponent: tuple[float, bool]) -> tuple[Window, Window | None, bool, float, bool]:
-    """:func:`_find_orbit` from the fixed window ``win``, and the Lyapunov exponent and verdict
-    of the window it ends on (``exponent``, the fixed window's, where it ran none): the evidence
-    comes from one window (a stable orbit of 2 reached after its doubling kept the fixed window's
-    +0.029, the unstable orbit of 1's)."""
-    found, before, leaving = _find_orbit(stepper, win, speed, scale, series, before)
-    lyap, chaotic = lyapunov(found, scale) if found is not win else exponent
-    return found, before, leaving, lyap, chaotic
 
 
 def _long_mean(stepper: Stepper, win: Window, budget: int, target: float,
@@ -442,162 +428,3 @@ def _settle_on(stepper: Stepper, scene: Scene, speed: float, scale: np.ndarray, 
                     periods_run + (stepper.step - start) / stepper.k_per, math.nan, full.history,
                     drift=full.drift(speed), slip_beat=full.slip_beat)
     return win, info
-
-
-#: periods a regular (not chaotic) window that lost contact may run on to reach its periodic orbit
-ORBIT_PERIODS = 300
-
-#: periods the orbit search goes on while the motion leaves its hop (:func:`_still_leaving`):
-#: the new orbit it heads for may lie that far
-LEAVING_PERIODS = 1000
-
-
-def _find_orbit(stepper: Stepper, win: Window, speed: float, scale: np.ndarray,
-                series: list[np.ndarray] | None = None, before: Window | None = None
-                ) -> tuple[Window, Window | None, bool]:
-    """Run on, window after window, until a regular window that lost contact is on its orbit.
-
-    A motion with contact loss that is not chaotic settles on a periodic orbit (or is still on
-    its way, or is quasi-periodic): its hop period and take-off phases are the orbit's
-    (:func:`~sawdrift.dynamics.synchrony.orbit_pattern`), and a window before the orbit is reached
-    can show a slowly decaying or growing alternation that looks like a hop of another period
-    (the inelastic bouncing ball just past its period doubling: lift-offs at 0.3765 and 0.3034
-    alternately, which 60 periods averaged into one phase). At most :data:`ORBIT_PERIODS` more,
-    and no more once the distance from repeating (:func:`~.window.orbit_residual`) shows that
-    they would not reach an orbit (:func:`_no_orbit_ahead`). Each window's per-period rows
-    (:func:`~.batch_means.period_rows`) are appended to ``series``. Returns the last window,
-    the one before it (``before`` where no window was run), and whether the motion was still
-    leaving its orbit when the periods ran out (:func:`_still_leaving`: the bouncing ball just
-    past its period doubling, Gamma = 3.73, multiplier -1.0108, whose alternation grows for
-    about a thousand periods before it settles on the orbit of 2, was called a settled hop of 1).
-    """
-    spent = 0
-    residuals = [orbit_residual(win.samples, scale)]
-    gaps = [_hop_gap(win, scale)]
-    cap = ORBIT_PERIODS
-    while win.contact_lost and win.orbit_period == 0 and spent < cap:
-        before = win
-        win = measure_window(stepper, win.periods, speed, scale)
-        if series is not None:
-            series.append(period_rows(win, stepper))
-        spent += win.periods
-        residuals.append(orbit_residual(win.samples, scale))
-        gaps.append(_hop_gap(win, scale))
-        if _still_leaving(win, gaps):
-            cap = LEAVING_PERIODS  # leaving its hop for another orbit: follow it there
-            continue
-        if _no_orbit_ahead(residuals, (cap - spent) / win.periods) and not _rising(gaps):
-            break
-    return win, before, _still_leaving(win, gaps)
-
-
-#: windows of steady growth (:func:`~.window.grows_steadily`) that tell a hop leaving its orbit
-#: from a quasi-periodic wobble
-LEAVING_WINDOWS = 4
-
-
-def _hop_gap(win: Window, scale: np.ndarray) -> float:
-    """The distance of ``win`` from repeating after its hop period (:func:`~.window.lag_change`
-    of its scaled states; NaN without a synchronous hop)."""
-    return lag_change(np.asarray(win.samples)[:, 1:4] / scale, win.sync.hop_period)
-
-
-def _rising(gaps: list[float]) -> bool:
-    """Whether every window so far, fewer than :func:`_still_leaving` needs, moved further from
-    repeating after the hop period than the one before (by :data:`~.window.GROWTH_RATIO`): the
-    orbit search waits for the windows that tell."""
-    g = np.asarray(gaps)
-    return bool(1 < g.size <= LEAVING_WINDOWS and np.isfinite(g).all() and (g > 0.0).all()
-                and (g[1:] > GROWTH_RATIO * g[:-1]).all())
-
-
-def _still_leaving(win: Window, gaps: list[float]) -> bool:
-    """Whether a window with contact loss and no orbit ends the orbit search leaving its hop: its
-    distance from repeating after the hop period (:func:`_hop_gap`, one per window) grew steadily
-    over the last :data:`LEAVING_WINDOWS` windows (:func:`~.window.grows_steadily`: an orbit
-    losing its stability, as at a period doubling)."""
-    return (win.contact_lost and win.orbit_period == 0
-            and grows_steadily(gaps, LEAVING_WINDOWS))
-
-
-#: window-to-window ratios of the distance from repeating within this factor of 1 (twice in a
-#: row): the motion neither approaches an orbit nor leaves one (a quasi-periodic hop, the undamped
-#: contact oscillation beating against it: mmd m* 0.178, A* 2.51 stays 0.02 from repeating over
-#: 1900 periods)
-FLAT_RATIO = 1.25
-
-
-def _no_orbit_ahead(residuals: list[float], windows_left: float) -> bool:
-    """Whether the windows left cannot reach a periodic orbit: the distance from repeating stays
-    flat (within :data:`FLAT_RATIO` over the last two windows), or falls so slowly that at its
-    last rate it would reach :data:`~.window.PERIODIC_TOL` only after more than three times the
-    windows left. A growing distance goes on (an alternation still unfolding can settle on an
-    orbit of another period)."""
-    if len(residuals) < 3 or not all(math.isfinite(r) and r > 0.0 for r in residuals[-3:]):
-        return False
-    q1, q2 = residuals[-2] / residuals[-3], residuals[-1] / residuals[-2]
-    if all(1.0 / FLAT_RATIO <= q <= FLAT_RATIO for q in (q1, q2)):
-        return True
-    if q2 >= 1.0:
-        return False
-    needed = math.log(PERIODIC_TOL / residuals[-1]) / math.log(q2)
-    return needed > 3.0 * windows_left
-
-
-@dataclass
-class ImpactRun:
-    """A free normal impact, from first touch until contact is lost (see :func:`integrate_impact`).
-
-    Attributes
-    ----------
-    stepper
-        The integration, one step after the separation (or at the step limit).
-    separated
-        Whether contact was lost within ``numerics.periods``.
-    rebound_ratio
-        |v_out / v_in| of the normal velocity (NaN if not separated).
-    contact_duration
-        Time in contact, in the scene's time unit (NaN if not separated).
-    trajectory
-        Every step, from first touch.
-    wall_time_s
-        The integration.
-    """
-
-    stepper: Stepper
-    separated: bool
-    rebound_ratio: float
-    contact_duration: float
-    trajectory: pd.DataFrame = field(repr=False)
-    wall_time_s: float
-
-
-def integrate_impact(scene: Scene, model: ContactModel, plan: Assembly) -> ImpactRun:
-    """A free normal impact: integrate from first touch until contact is lost again."""
-    drive = scene.drive
-    assert isinstance(drive, Impact)
-    t0 = time.perf_counter()
-    stepper = Stepper(scene, model, plan, record=True, preload=False)
-    stepper.rec_every = 1
-    stepper.y[:4] = (0.0, drive.tangential_velocity, 0.0, drive.velocity)
-    chunk = max(8, stepper.k_per // 8)
-    n_max = int(round(scene.numerics.periods * stepper.k_per))
-    separated = False
-    while stepper.step < n_max and not separated:
-        stepper.advance(chunk)
-        separated = bool(stepper.y[2] < 0.0 and stepper.step > 1)
-    if separated:
-        stepper.advance(1)  # records the first state out of contact (rows are taken before a step)
-    tr = stepper.trajectory()
-    rebound = math.nan
-    duration = math.nan
-    if separated:
-        a = tr["a"].to_numpy()
-        k = int(np.nonzero((a[:-1] > 0.0) & (a[1:] <= 0.0))[0][-1])
-        w = a[k] / (a[k] - a[k + 1])
-        v_out = (1 - w) * tr["vy"].iloc[k] + w * tr["vy"].iloc[k + 1]
-        rebound = float(abs(v_out) / drive.velocity)
-        duration = float((k + w) * stepper.h)
-    return ImpactRun(stepper=stepper, separated=separated, rebound_ratio=rebound,
-                     contact_duration=duration, trajectory=tr,
-                     wall_time_s=time.perf_counter() - t0)

@@ -9,11 +9,8 @@ estimate of the regime evidence.
 
 from __future__ import annotations
 
-import base64
 import copy
-import io
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -32,6 +29,7 @@ from . import rigid as rg
 from . import rigid_bind
 from .assembly import assemble
 from .rolling import contact_point, integrates_psi, psi_from_rest
+from .snapshot import StepperState, put_back, snapshot
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -49,40 +47,10 @@ EVENTS_PER_PERIOD = 64
 #: Most event rows a log starts with (7 floats a row: 3.7 MB), whatever the window's length
 INITIAL_EVENT_ROWS = 1 << 16
 
-#: Keys of the contact history's snapshot in a :class:`StepperState`
-#: (:meth:`~sawdrift.contact.history.ContactHistory.state`).
-_HISTORY_KEYS = ("fs", "is", "ref")
-
 #: Most event rows one window keeps (7 floats a row: 59 MB): where its log is full at this size,
 #: its oldest half is shed (counted in the window's ``events_shed``), so the memory of a run does
 #: not grow with its length (a fixed run's window is half of it)
 KEPT_EVENT_ROWS = 1 << 20
-
-
-@dataclass(frozen=True)
-class StepperState:
-    """A snapshot of one integration: what :meth:`Stepper.save` keeps and :meth:`Stepper.restore`
-    puts back (mechanical state, step counters, Adams-Bashforth derivative history, contact memory).
-
-    ``arrays`` holds ``y``, ``ctr``, with a compliant scheme ``fh``, and the contact history's
-    snapshot (:meth:`~sawdrift.contact.history.ContactHistory.state`: ``fs``, ``is``; or ``ref``, the
-    python reference pickled). :meth:`to_text` and :meth:`from_text` carry it through a JSON
-    journal (base64 of an ``.npz``), bit for bit.
-    """
-
-    arrays: dict[str, np.ndarray]
-
-    def to_text(self) -> str:
-        """The snapshot as ASCII text (base64 of ``numpy.savez``)."""
-        buf = io.BytesIO()
-        np.savez(buf, **self.arrays)
-        return base64.b64encode(buf.getvalue()).decode()
-
-    @classmethod
-    def from_text(cls, text: str) -> StepperState:
-        """Inverse of :meth:`to_text`."""
-        with np.load(io.BytesIO(base64.b64decode(text))) as data:
-            return cls({key: data[key] for key in data.files})
 
 
 class Stepper:
@@ -388,28 +356,13 @@ class Stepper:
     def save(self) -> StepperState:
         """A snapshot of the integration (copies): :meth:`restore` on a stepper of the same scene
         and engine continues from it bit for bit (the bifurcation journals, :mod:`sawdrift.study.
-        branch`)."""
-        arrays: dict[str, np.ndarray] = {
-            "y": self.y.copy(), "ctr": self.ctr.copy(),
-            "flight": self.st[ev.S_FLY : ev.S_FLY + ev.N_FLIGHT].copy()}
-        if not self.rigid:
-            arrays["fh"] = self.fh.copy()
-        if self.history is not None:
-            arrays.update(self.history.state())
-        return StepperState(arrays)
+        branch`; :func:`~.snapshot.snapshot`)."""
+        return snapshot(self)
 
     def restore(self, state: StepperState) -> None:
-        """Put back a snapshot of :meth:`save` (taken on a stepper of the same model and engine)."""
-        data = state.arrays
-        self.y[:] = data["y"]
-        self.ctr[:] = data["ctr"]
-        # a free flight's count and anchor (a snapshot without them: the flight counts afresh)
-        self.st[ev.S_FLY : ev.S_FLY + ev.N_FLIGHT] = data.get("flight", 0.0)
-        if "fh" in data:
-            self.fh[:] = data["fh"]
-        if self.history is not None:
-            # in place: the loop stays bound to the history (ContactHistory.set_state)
-            self.history.set_state({k: data[k] for k in _HISTORY_KEYS if k in data})
+        """Put back a snapshot of :meth:`save` (taken on a stepper of the same model and engine;
+        :func:`~.snapshot.put_back`)."""
+        put_back(self, state)
 
     def set_horizontal_inertia(self, m_x: float) -> None:
         """Integrate the horizontal motion with the inertia ``m_x`` (the rotation's follows, kappa

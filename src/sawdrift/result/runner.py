@@ -17,14 +17,8 @@ from ..contact.binding import bind, model_for
 from ..dynamics.assembly import Engine, assemble
 from ..dynamics.batch_means import HALVES_Z, TREND_Z
 from ..dynamics.drives import Drive
-from ..dynamics.integrate import (
-    FLIGHTS_PER_MEAN,
-    MOST_FLIGHT_BUDGETS,
-    ImpactRun,
-    WaveRun,
-    integrate_impact,
-    integrate_wave,
-)
+from ..dynamics.impact import ImpactRun, integrate_impact
+from ..dynamics.integrate import FLIGHTS_PER_MEAN, MOST_FLIGHT_BUDGETS, WaveRun, integrate_wave
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
 from ..dynamics.steady import friction_bound, load_is_neutral, runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
