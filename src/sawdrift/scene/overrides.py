@@ -30,7 +30,8 @@ from pydantic import BaseModel, ValidationError
 from ..errors import SceneError
 from .adhesion import adhesive_out_of_range, normalized_adhesion
 from .device import FIELD_KIND, UNITS, Device, normalized
-from .parts import format_validation_error, get_dotted, set_dotted
+from .dotted import get_dotted, set_dotted
+from .parts import format_validation_error
 from .profiles import Profile
 
 #: Each scene field a device derives, and the device fields that set it.

@@ -384,6 +384,16 @@ class Numerics(BaseModel):
         "(cost grows as sqrt(m*)) instead of one evidence window"
     )
 
+    @model_validator(mode="after")
+    def _window_within_run(self) -> Numerics:
+        # the window is the run's last periods: a longer one lengthened a fixed run unasked
+        if self.measure_periods is not None and self.measure_periods > self.periods:
+            raise ValueError(
+                f"measure_periods = {self.measure_periods} is longer than periods = "
+                f"{self.periods:g}: the drift is measured over the run's last periods; allowed: "
+                f"1 to {int(self.periods)} (or a longer run)")
+        return self
+
 
 class Effects(BaseModel):
     """Which physics is on (LAMMPS-style slots; an off slot is never computed)."""
@@ -443,25 +453,6 @@ class Effects(BaseModel):
         ),
     )
 
-
-
-def get_dotted(data: dict[str, Any], dotted: str) -> Any:
-    """``data["a"]["b"]`` for ``dotted = "a.b"``; None where a level is missing."""
-    node: Any = data
-    for key in dotted.split("."):
-        if not isinstance(node, dict):
-            return None
-        node = node.get(key)
-    return node
-
-
-def set_dotted(data: dict[str, Any], dotted: str, value: Any) -> None:
-    """Set ``data["a"]["b"] = value`` for ``dotted = "a.b"``, creating levels as needed."""
-    keys = dotted.split(".")
-    node = data
-    for key in keys[:-1]:
-        node = node.setdefault(key, {})
-    node[keys[-1]] = value
 
 
 #: Tags of the drive union (the ``kind`` of each drive class).

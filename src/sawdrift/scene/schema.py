@@ -33,6 +33,7 @@ from pydantic import (
 from ..errors import SceneError
 from .adhesion import adhesion_consistent
 from .device import Device
+from .dotted import get_dotted, set_dotted
 from .overrides import DERIVED, apply_device, drop_replaced, nearest, plain_section, strip_derived
 from .parts import (
     FROZEN,
@@ -48,8 +49,6 @@ from .parts import (
     Wave,
     bounded,
     format_validation_error,
-    get_dotted,
-    set_dotted,
 )
 from .rayleigh import rayleigh_ratio, theta
 
