@@ -8,6 +8,7 @@ please report it) exits with :data:`INTERNAL_FAILURE`.
 
 from __future__ import annotations
 
+import inspect
 import json
 import math
 import sys
@@ -22,7 +23,33 @@ import sawdrift as sd
 from .._paths import write_problem
 from .._startup import stored_help
 
-app = typer.Typer(
+
+def reflow(text: str | None) -> str | None:
+    """A command's docstring as help: the lines of each paragraph joined (the help renderer keeps
+    single line breaks, which a terminal narrower than the source wrapped again into ragged
+    lines); a paragraph of list items or indented lines is kept as written."""
+    if not text:
+        return text
+    paragraphs = inspect.cleandoc(text).split("\n\n")
+    kept = ("-", "*", " ", "\b")
+    return "\n\n".join(p if any(line.startswith(kept) for line in p.splitlines())
+                       else " ".join(line.strip() for line in p.splitlines())
+                       for p in paragraphs)
+
+
+class _Typer(typer.Typer):
+    """A Typer app whose commands' help is their docstring reflowed (:func:`reflow`)."""
+
+    def command(self, name: str | None = None, **kwargs: Any) -> Any:  # type: ignore[override]
+        """:meth:`typer.Typer.command`, the help taken from the docstring through :func:`reflow`."""
+        def decorator(f: Any) -> Any:
+            if kwargs.get("help") is None:
+                kwargs["help"] = reflow(f.__doc__)
+            return typer.Typer.command(self, name, **kwargs)(f)
+        return decorator
+
+
+app = _Typer(
     add_completion=False,
     no_args_is_help=True,
     help="Compare frictional contact models on a particle driven by a Rayleigh wave.",
@@ -164,7 +191,7 @@ def _load_table(path: Path, needs: tuple[str, ...] = ("model", "regime")):
     return frame
 
 
-bench_app = typer.Typer(help="Performance: work-precision study and speed targets.", no_args_is_help=True)
+bench_app = _Typer(help="Performance: work-precision study and speed targets.", no_args_is_help=True)
 app.add_typer(bench_app, name="bench")
 
 
