@@ -90,7 +90,7 @@ def test_the_scene_holds_model_params_as_given_and_bind_checks_and_fills_them():
                                "takes: strips, z_max)")
     with pytest.raises(SceneError, match=r"^model_params\.strips = 1: .*\(model 'mdr' takes"):
         bind(sd.Scene(model="mdr", model_params={"strips": 1}))
-    with pytest.raises(SceneError, match=r"^scene: model 'material_point' is rigid: a prescribed"):
+    with pytest.raises(SceneError, match=r"^scene: model 'material_point' is rigid: the prescribed"):
         bind(sd.Scene(model="material_point", drive={"kind": "prescribed"}))
     bound = bind(sd.Scene(model="mdr"))
     assert set(bound.model_params) == {"strips", "z_max"}

@@ -51,7 +51,7 @@ def _capability_problem(cls: type[ContactModel], scene: Scene) -> str | None:
     rigid = cls.capabilities.rigid
     eff = scene.effects
     if isinstance(scene.drive, (Prescribed, Impact)) and rigid:
-        return f"model {scene.model!r} is rigid: a {scene.drive.kind} drive needs a compliant model"
+        return f"model {scene.model!r} is rigid: the {scene.drive.kind} drive needs a compliant model"
     if not eff.vertical_inertia and not rigid:
         return ("effects.vertical_inertia = false applies to a rigid point only; a compliant "
                 f"model ({scene.model!r}) gets its normal force from the contact compression")

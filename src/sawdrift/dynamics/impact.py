@@ -3,6 +3,7 @@ coefficient of restitution and the contact duration (the ``impact`` drive)."""
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -10,14 +11,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..contact.base import ContactModel
-from ..scene.schema import Impact, Scene
-from .assembly import Assembly
+from ..scene.schema import Impact, Numerics, Scene
+from .assembly import Assembly, impact_duration
 from .stepper import Stepper
 
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["ImpactRun", "integrate_impact"]
+__all__ = ["IMPACT_DURATIONS", "MAX_IMPACT_STEPS", "ImpactRun", "given_periods", "impact_steps",
+           "integrate_impact"]
 
 
 @dataclass
@@ -48,8 +50,34 @@ class ImpactRun:
     wall_time_s: float
 
 
+#: contact times (:func:`~.assembly.impact_duration`) a default impact run lasts at most: a
+#: contact that outlasts them holds the particle (damped, it came to rest under gravity)
+IMPACT_DURATIONS = 4.0
+
+#: most steps of an impact run, whose trajectory keeps every step (11 floats: 176 MB)
+MAX_IMPACT_STEPS = 2_000_000
+
+
+def given_periods(scene: Scene) -> bool:
+    """Whether ``numerics.periods`` was given other than its default (a scene read from a file
+    and completed by the command line holds every field as set)."""
+    return scene.numerics.periods != Numerics.model_fields["periods"].default
+
+
+def impact_steps(scene: Scene, k_per: int) -> int:
+    """Steps an impact run may take before contact is lost: ``numerics.periods`` where given
+    (other than its default, :func:`given_periods`), else :data:`IMPACT_DURATIONS` estimated
+    contact times (the default 60 periods cut off a heavy particle's contact of 83: m* = 1e4,
+    v = 10 ended with no rebound ratio and no word why), both within :data:`MAX_IMPACT_STEPS`."""
+    periods = scene.numerics.periods
+    if not given_periods(scene):
+        periods = IMPACT_DURATIONS * impact_duration(scene)
+    return max(1, min(MAX_IMPACT_STEPS, int(math.ceil(periods * k_per))))
+
+
 def integrate_impact(scene: Scene, model: ContactModel, plan: Assembly) -> ImpactRun:
-    """A free normal impact: integrate from first touch until contact is lost again."""
+    """A free normal impact: integrate from first touch until contact is lost again, within
+    :func:`impact_steps`."""
     drive = scene.drive
     assert isinstance(drive, Impact)
     t0 = time.perf_counter()
@@ -57,16 +85,16 @@ def integrate_impact(scene: Scene, model: ContactModel, plan: Assembly) -> Impac
     stepper.rec_every = 1
     stepper.y[:4] = (0.0, drive.tangential_velocity, 0.0, drive.velocity)
     chunk = max(8, stepper.k_per // 8)
-    n_max = int(round(scene.numerics.periods * stepper.k_per))
+    n_max = impact_steps(scene, stepper.k_per)
     separated = False
     while stepper.step < n_max and not separated:
-        stepper.advance(chunk)
+        stepper.advance(min(chunk, n_max - stepper.step))
         separated = bool(stepper.y[2] < 0.0 and stepper.step > 1)
     if separated:
         stepper.advance(1)  # records the first state out of contact (rows are taken before a step)
     tr = stepper.trajectory()
-    rebound = float("nan")
-    duration = float("nan")
+    rebound = math.nan
+    duration = math.nan
     if separated:
         a = tr["a"].to_numpy()
         k = int(np.nonzero((a[:-1] > 0.0) & (a[1:] <= 0.0))[0][-1])

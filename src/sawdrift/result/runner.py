@@ -11,13 +11,20 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import replace
+from typing import Any
 
 from .._texts import HEATING, STILL_MOVING
 from ..contact.binding import bind, model_for
 from ..dynamics.assembly import Engine, assemble
 from ..dynamics.batch_means import HALVES_Z, TREND_Z
 from ..dynamics.drives import Drive
-from ..dynamics.impact import ImpactRun, integrate_impact
+from ..dynamics.impact import (
+    IMPACT_DURATIONS,
+    MAX_IMPACT_STEPS,
+    ImpactRun,
+    given_periods,
+    integrate_impact,
+)
 from ..dynamics.integrate import FLIGHTS_PER_MEAN, MOST_FLIGHT_BUDGETS, WaveRun, integrate_wave
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
 from ..dynamics.steady import friction_bound, load_is_neutral, runs_away
@@ -328,7 +335,19 @@ def _impact_result(scene: Scene, engine: str, out: ImpactRun, trajectory: bool) 
         trajectory=out.trajectory if trajectory else None,
         extra={"rebound_ratio": out.rebound_ratio, "contact_duration": out.contact_duration,
                "max_compression": float(out.trajectory["a"].max())},
+        warnings=() if out.separated else (_held_impact(scene, stepper),),
     )
+
+
+def _held_impact(scene: Scene, stepper: Any) -> str:
+    """Why an impact has no rebound ratio: its contact outlasted the run."""
+    given = given_periods(scene)
+    limit = ("numerics.periods (--periods)" if given else
+             f"{IMPACT_DURATIONS:g} estimated contact times; numerics.periods (--periods) runs "
+             "it longer")
+    return (f"contact not lost after {stepper.step / stepper.k_per:.4g} periods: no rebound "
+            f"ratio; the contact held the particle (damped to rest under gravity) or outlasted "
+            f"the run ({limit}; at most {MAX_IMPACT_STEPS:.0e} steps)")
 
 
 def _prescribed_result(scene: Scene, engine: str, out: PrescribedRun) -> Result:
