@@ -204,6 +204,31 @@ def test_the_default_step_keeps_a_strong_viscous_damping_stable():
     assert coarse.drift_ratio == pytest.approx(fine.drift_ratio, abs=1e-3)
 
 
+def test_a_models_own_dashpot_sets_the_default_step_as_the_scenes_does():
+    """hertz_tsuji's damping = 100 (a dashpot c a*^(1/4) a*' of 113 at a* = 1.63) ran at 128 steps
+    a period (h c / m* = 8.8): a numerical blow-up reported as an ejection, flight 9.5e4 a0 high,
+    with no warning. The default step keeps h c / m* <= 0.1 as for effects.normal_damping, and
+    a step twice as fine gives the same motion."""
+    from sawdrift.dynamics.assembly import model_dashpot, steps_per_period
+
+    scene = sd.Scene(model="hertz_tsuji", model_params={"damping": 100.0},
+                     numerics={"periods": 40})
+    a_ref = 1.0 + 2.0 * scene.drive.amplitude
+    assert model_dashpot(scene, a_ref) == pytest.approx(100.0 * a_ref**0.25, rel=1e-6)
+    k = steps_per_period(scene)
+    assert k * scene.particle.m_star / (100.0 * a_ref**0.25) >= 10.0
+    coarse = sd.run(scene)
+    fine = sd.run(scene.with_updates(**{"numerics.steps_per_period": 2 * k}))
+    assert coarse.regime == fine.regime == "hopping"
+    assert coarse.min_compression > -1.0  # no flight higher than a0 (the blow-up: -95272)
+    assert coarse.drift_ratio == pytest.approx(fine.drift_ratio, abs=2e-3)
+
+
+def test_a_dashpot_beyond_the_finest_step_is_refused_in_one_line():
+    with pytest.raises(sd.SceneError, match=r"needs 1\.1e\+11 steps a period.*up to 1e\+07"):
+        sd.run(sd.Scene(model="hertz_tsuji", model_params={"damping": 1e9}))
+
+
 def test_a_scene_beyond_the_finest_step_names_its_fields_not_the_step():
     # m* 1e-300 failed at steps_per_period 1e7 with the advice to take a larger steps_per_period,
     # which is refused above 1e7

@@ -11,6 +11,8 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
+import numpy as np
+
 from ..contact.adhesion import adhesive_stiffness
 from ..contact.base import ContactModel
 from ..contact.binding import bind, describe_body, model_for
@@ -18,6 +20,7 @@ from ..contact.registry import get_model
 from ..errors import SceneError
 from ..scene.adhesion import explain_adhesion
 from ..scene.device import explain_device
+from ..scene.parts import FINEST_STEPS
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from ..scene.validity import device_warnings
 from . import air_drag
@@ -37,7 +40,8 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     omega = sqrt(k / m*) (per unit t*, docs/physics.md) with h omega <= 0.06, where
     k = p a_ref^(p-1) max(1, c/theta) bounds the normal and tangential stiffness at the largest
     expected compression a_ref = 1 + 2 A* (c = 1 + 1/kappa with rotation, else 1), keeps
-    h c / m* <= 0.1 for a viscous normal damping c, and never goes below 128 per period.
+    h c / m* <= 0.1 for a viscous normal damping c (the scene's and the model's own,
+    :func:`model_dashpot`), and never goes below 128 per period.
     ``rigid`` is the model's capability (looked up when not given).
     """
     if scene.numerics.steps_per_period is not None:
@@ -69,8 +73,35 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     omega = math.sqrt(k / scene.particle.m_star)
     # viscous normal damping c: the explicit step is stable for h c / m* below about 0.3
     # (measured: mmd, m* = 0.01, c = 1 goes wrong at 295 steps); h c / m* <= 0.1 is kept
-    damping = 10.0 * scene.effects.normal_damping / scene.particle.m_star
-    return int(min(10_000_000, max(128, math.ceil(omega / 0.06), math.ceil(damping), impact)))
+    # a model's own dashpot (a normal-damping slot: hertz_tsuji's damping = 100 ran at 128 steps
+    # a period into a numerical blow-up reported as an ejection) counts as the scene's does
+    viscous = scene.effects.normal_damping + model_dashpot(scene, a_ref)
+    damping = 10.0 * viscous / scene.particle.m_star
+    if damping > FINEST_STEPS and scene.numerics.steps_per_period is None:
+        raise SceneError(
+            f"normal damping: a dashpot of {viscous:.3g} (effects.normal_damping plus the "
+            f"model's own) on m* = {scene.particle.m_star:g} needs {damping:.2g} steps a period "
+            f"for a stable step (h c / m* <= 0.1); allowed: up to {FINEST_STEPS:.0e} (a smaller "
+            f"damping or a heavier particle)")
+    return int(min(FINEST_STEPS, max(128, math.ceil(omega / 0.06), math.ceil(damping), impact)))
+
+
+def model_dashpot(scene: Scene, a: float) -> float:
+    """dN*/da*' of the model's own normal law at the compression ``a`` (0 for a model whose
+    forces do not depend on the velocity): its dashpot coefficient, from the law itself (its
+    normal law with any normal-damping slot, evaluated at two approach speeds), so that a
+    plugin's damping sets the step as ``effects.normal_damping`` does."""
+    if not get_model(scene.model).capabilities.uses_velocity:
+        return 0.0
+    model = model_for(scene)
+    law, pp = model.normal_law()
+    force = getattr(law, "py_func", law)
+    n_float, n_int = model.state_sizes()
+    fs, is_ = np.zeros(max(n_float, 1)), np.zeros(max(n_int, 1), dtype=np.int64)
+    speed = 1e-6
+    slow = force(fs, is_, pp, a, 0.0, 0.0, 0.0)[0]
+    fast = force(fs, is_, pp, a, 0.0, speed, 0.0)[0]
+    return max(0.0, float(fast - slow) / speed)
 
 
 #: steps a free impact's contact is resolved with (:func:`steps_per_period`): the rebound ratio
