@@ -181,6 +181,11 @@ def test_the_motor_gives_its_stall_thrust_in_device_units():
     # stall between 0 and mu M g, the curve in mN and m/s consistent with the normalized one
     assert 0.0 < dev["stall_load_mN"] < 1e3 * 0.2 * weight
     assert dev["speed_m_s"][0] == pytest.approx(-sd.run(scene).extra["drift_speed_m_s"], rel=1e-12)
+    # the free drift in the curve's frame, along the drift: it was along x (-0.479 beside a
+    # curve starting at +0.479), while the text and the curve give it along the drift
+    assert out["free_drift_velocity"] == pytest.approx(out["drift_velocity"][0], rel=1e-12)
+    assert out["free_drift_velocity"] > 0.0
+    assert dev["free_speed_m_s"] == pytest.approx(dev["speed_m_s"][0], rel=1e-12)
     # at the bracket's bottom it still advances, at its top (the stall) it does not
     lo, hi = curve.stall_bracket
     adv = curve.table[-curve.direction * lo]["drift_velocity"] * curve.direction

@@ -142,7 +142,9 @@ class LoadCurve:
         out: dict[str, Any] = {
             "direction": {1: "+x", -1: "-x"}.get(self.direction, "none"),
             "free_state": self.free_state,
-            "free_drift_velocity": json_value(self.free_drift),
+            # along the drift, as the curve is (it was along x: -0.479 beside a curve that
+            # starts at +0.479 for a drift to -x)
+            "free_drift_velocity": json_value(self._free_along()),
             "free_drift_velocity_se": json_value(self.free_drift_se),
             "loads": self.loads.tolist(),
             "applied_load": (0.0 - self.direction * self.loads).tolist(),
@@ -159,7 +161,9 @@ class LoadCurve:
             "load_at_max_power": json_value(at),
             "start_acceleration": json_value(self.stall_load / self.m_star),
             "units": {"load": "M g", "drift_velocity": "a0 f", "power": "M g a0 f",
-                      "start_acceleration": "a0 f^2"},
+                      "start_acceleration": "a0 f^2",
+                      "frame": "loads, drift_velocity and free_drift_velocity along the drift "
+                               "(direction); applied_load along +x"},
             "advance_threshold": self.threshold,
             "max_load": self.max_load,
             "runs": self.runs,
@@ -168,6 +172,10 @@ class LoadCurve:
         if self.device is not None:
             out["device"] = self._device_json(p_max, at)
         return out
+
+    def _free_along(self) -> float:
+        """The free drift along the drift's direction (as it is, where there is none)."""
+        return self.direction * self.free_drift if self.direction else self.free_drift
 
     def _se(self) -> np.ndarray:
         return self.velocity_se if self.velocity_se.size else np.full(self.loads.size, math.nan)
@@ -186,7 +194,7 @@ class LoadCurve:
             "stall_load_se_mN": json_value(1e3 * force * self.stall_load_se),
             "max_power_mW": json_value(1e3 * force * speed * p_max),
             "load_at_max_power_mN": json_value(1e3 * force * at),
-            "free_speed_m_s": speed * float(self.velocities[0]) if self.velocities.size else 0.0,
+            "free_speed_m_s": json_value(speed * self._free_along()),
             "free_speed_se_m_s": json_value(speed * self.free_drift_se),
             "start_acceleration_m_s2": json_value(start),
             "start_acceleration_g": json_value(start / G_N),
