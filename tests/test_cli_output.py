@@ -155,6 +155,22 @@ def test_runs_without_a_steady_state_are_not_told_to_run_longer(monkeypatch, cap
     assert code == 0 and "long-time mean" in err and "over the window" not in err
 
 
+def test_a_mean_still_moving_gets_one_advice_and_no_settling_time(monkeypatch, capsys):
+    """The motor at 1 um: a heavy bouncer whose long-time mean still moved when its budget ran
+    out. Its warning said --mean-periods, the note 'raise numerics.max_periods' (which the mean
+    does not read), and it quoted t90 = 0.067 s, the time to 90 % of a speed never reached."""
+    code, out, err = call(monkeypatch, capsys, "run", str(MOTOR), "--set",
+                          "device.amplitude=1 um", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["settled"] is False
+    assert any("--mean-periods" in w for w in data["warnings"])
+    assert data["t90_periods"] is None and data["t90_s"] is None
+    code, _, err = call(monkeypatch, capsys, "run", str(MOTOR), "--set", "device.amplitude=1 um")
+    note = [line for line in err.splitlines() if line.startswith("note:")]
+    assert code == 0 and len(note) == 1
+    assert "--mean-periods" in note[0] and "max_periods" not in note[0]
+
+
 def test_run_text_of_a_device_shows_m_per_s_first(monkeypatch, capsys):
     code, out, _ = call(monkeypatch, capsys, "run", str(MOTOR), "--no-settle", "--periods", "20")
     assert code == 0

@@ -257,6 +257,12 @@ def _unsettled_note(summary: dict[str, Any], tau: float) -> str:
         return ("note: the load equals the friction bound: no steady drift for any run length "
                 "(a load below it settles, one above runs away)")
     se = summary.get("drift_ratio_se")
+    if (not (isinstance(se, float) and math.isfinite(se))
+            and any("--mean-periods" in w for w in summary.get("warnings") or ())):
+        # a mean still moving when its budget ran out: the warning's advice, not another one
+        # (max_periods, which the mean does not read)
+        return ("note: the long-time mean was still moving when its budget ran out; "
+                "--mean-periods runs it longer")
     if isinstance(se, float) and math.isfinite(se):
         if says_heating(summary.get("warnings")):
             # a longer mean is another mean, not a tighter one (the warnings say why)

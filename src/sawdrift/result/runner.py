@@ -117,6 +117,8 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
                      "drift",)
     elif not settled and not ending and out.long_mean is None and scene.numerics.settle is not False:
         warnings += (_unsettled_reason(out, scene.numerics.settle is True),)
+    if not settled:
+        t90 = math.nan  # the time to 90 % of a speed never reached (it was quoted unsettled)
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None,
                                     detach, drift_se * out.speed))
