@@ -65,6 +65,9 @@ def test_scene_is_frozen():
         # a window longer than the run it ends lengthened a fixed run to the window, unasked
         ({"numerics": {"periods": 10, "measure_periods": 30}},
          r"measure_periods = 30 is longer than periods = 10.*allowed: 1 to 10"),
+        # a cap below the run's periods was passed over without a word
+        ({"numerics": {"settle": True, "max_periods": 10}},
+         r"max_periods = 10 is below periods = 60.*allowed: 60 to 1e\+07"),
     ],
 )
 def test_bad_fields_give_one_line_naming_the_field(data, pattern):

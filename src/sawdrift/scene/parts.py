@@ -385,13 +385,19 @@ class Numerics(BaseModel):
     )
 
     @model_validator(mode="after")
-    def _window_within_run(self) -> Numerics:
+    def _window_and_cap_within_run(self) -> Numerics:
         # the window is the run's last periods: a longer one lengthened a fixed run unasked
         if self.measure_periods is not None and self.measure_periods > self.periods:
             raise ValueError(
                 f"measure_periods = {self.measure_periods} is longer than periods = "
                 f"{self.periods:g}: the drift is measured over the run's last periods; allowed: "
                 f"1 to {int(self.periods)} (or a longer run)")
+        if self.max_periods is not None and self.max_periods < self.periods:
+            # the run takes its periods first: a smaller cap was passed over without a word
+            raise ValueError(
+                f"max_periods = {self.max_periods:g} is below periods = {self.periods:g}: a run "
+                f"takes its periods before any cap; allowed: {self.periods:g} to 1e+07 (or "
+                f"fewer periods)")
         return self
 
 
