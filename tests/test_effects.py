@@ -239,3 +239,15 @@ def test_a_scene_beyond_the_finest_step_names_its_fields_not_the_step():
     msg = str(info.value)
     assert f"finest step allowed, 1/{FINEST_STEPS}" in msg and "particle.m_star = 1e-300" in msg
     assert "larger --steps-per-period" not in msg and "\n" not in msg
+
+
+@pytest.mark.parametrize("amplitude", [0.2, 1.5])
+def test_no_horizontal_wave_reads_as_a_zero_horizontal_ratio(amplitude):
+    """The horizontal wave off and r = 0 are one motion: the drift ratio, the drift speed over
+    the horizontal surface speed, has no scale in either (it was 0.0 with the wave off and None
+    at r = 0), and the two runs agree on the regime and the drift."""
+    off = sd.run(sd.Scene(drive={"amplitude": amplitude}, effects={"horizontal_wave": False}))
+    zero = sd.run(sd.Scene(drive={"amplitude": amplitude, "horizontal_ratio": 0.0}))
+    assert math.isnan(off.drift_ratio) and math.isnan(zero.drift_ratio)
+    assert off.regime == zero.regime
+    assert off.drift_velocity == pytest.approx(zero.drift_velocity, abs=1e-12)

@@ -58,7 +58,10 @@ class Biharmonic(Drive):
         return scene.drive.ramp_periods
 
     def horizontal_speed(self, scene: Any) -> float:
-        """2 pi (|X1| + 2 |X2|): the bound of |u_x'|, the drift ratio's scale."""
+        """2 pi (|X1| + 2 |X2|): the bound of |u_x'|, the drift ratio's scale (0 with the
+        horizontal motion off)."""
+        if not scene.effects.horizontal_wave:
+            return 0.0
         d = scene.drive
         return 2.0 * math.pi * (abs(d.horizontal) + 2.0 * abs(d.second_horizontal))
 

@@ -74,6 +74,10 @@ class TravellingWave(Drive):
         return scene.drive.ramp_periods
 
     def horizontal_speed(self, scene: Any) -> float:
+        """2 pi r A*, the drift ratio's scale; 0 with the horizontal wave off (as for r = 0: a
+        drift ratio of 0.0 there and None at r = 0 told one motion two ways)."""
+        if not scene.effects.horizontal_wave:
+            return 0.0
         return 2.0 * math.pi * scene.horizontal_ratio * scene.drive.amplitude
 
     def vertical_amplitude(self, scene: Any) -> float:

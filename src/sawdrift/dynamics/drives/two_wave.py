@@ -121,7 +121,10 @@ class TwoWaves(Drive):
         return scene.drive.ramp_periods
 
     def horizontal_speed(self, scene: Any) -> float:
-        """2 pi |U_x| at ``drive.position``; for a direct run the forward wave's 2 pi r A*."""
+        """2 pi |U_x| at ``drive.position``; for a direct run the forward wave's 2 pi r A*; 0
+        with the horizontal wave off."""
+        if not scene.effects.horizontal_wave:
+            return 0.0
         if self.direct(scene):
             return self.forward_speed(scene)
         return TWO_PI * abs(self.orbit(scene)[0])
