@@ -200,6 +200,27 @@ def test_run_two_models_prints_a_table_and_overlays_their_trajectories(monkeypat
     assert [r["model"] for r in json.loads(out)] == ["material_point", "mmd"]
 
 
+def test_run_several_models_gives_each_model_its_own_parameters(monkeypatch, capsys):
+    """--param went to every model of --model a,b: mmd refused mdr's strips, so mdr at 4096
+    strips could not be compared with mmd. A NAME goes to each model that takes it, MODEL.NAME
+    to one; at 4096 strips mdr's gross slip is mmd's (0.19 at m* 0.3, A* 0.2; 0.06 at 256)."""
+    args = ("run", "--model", "mmd,mdr", "--m-star", "0.3", "--amplitude", "0.2",
+            "--periods", "20", "--json")
+    code, out, err = call(monkeypatch, capsys, *args, "--param", "strips=4096")
+    assert code == 0, err
+    mmd, mdr = json.loads(out)
+    assert mdr["scene"]["model_params"]["strips"] == 4096
+    assert "strips" not in mmd["scene"]["model_params"]
+    assert mdr["gross_slip_fraction"] == pytest.approx(mmd["gross_slip_fraction"], abs=0.01)
+    code, out, _ = call(monkeypatch, capsys, *args, "--param", "mdr.z_max=4")
+    assert code == 0 and json.loads(out)[1]["scene"]["model_params"]["z_max"] == 4
+    for bad, says in (("foo=1", "no model of --model mmd,mdr takes it"),
+                      ("jaeger.x=1", "'jaeger' is not one of --model"),
+                      ("mdr.foo=1", "model 'mdr' takes no parameter 'foo'")):
+        code, _, err = call(monkeypatch, capsys, *args, "--param", bad)
+        assert code == 2 and says in err and len(err.strip().splitlines()) == 1
+
+
 # --- models ---------------------------------------------------------------------------------
 
 

@@ -117,7 +117,9 @@ def run_cmd(
     model: Annotated[str | None, typer.Option("--model", help="contact model name; several, "
                                               "comma-separated (mmd,mdr), run the same scene "
                                               "and are compared")] = None,
-    param: Param = None,
+    param: Annotated[list[str] | None, typer.Option(
+        "--param", help="model parameter NAME=VALUE; with several models it goes to each model "
+        "that takes NAME, MODEL.NAME=VALUE to one")] = None,
     engine: Engine = "compiled",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object (a list with "
                                           "several models)")] = False,
@@ -148,8 +150,8 @@ def run_cmd(
               f"{'--json' if as_json else '-o'} (or --explain)")
     kind = out_kind(out, (".csv", ".parquet"), "the trajectory") if out is not None else None
     fast_start()
-    params = _parse_param(param)
-    scenes = [scene_from_options(scene_file, name, params, scene_overrides)
+    params = _model_params(names, _parse_param(param))
+    scenes = [scene_from_options(scene_file, name, params[name], scene_overrides)
               for name in (names or [None])]
     check_engine(engine, lammps=True)
     if explain:
@@ -187,6 +189,41 @@ def run_cmd(
             typer.echo(head + _unsettled_note(summary, sc.particle.m_star / sc.material.mu), err=True)
     if out is not None:
         typer.echo(f"wrote {written}")
+
+
+def _model_params(names: list[str], params: dict[str, Any]) -> dict[str | None, dict[str, Any]]:
+    """Each model's --param values: with one model (or none named) all of them, as given; with
+    several, ``NAME`` goes to every model that takes it and ``MODEL.NAME`` to that model (every
+    parameter went to every model: mmd refused mdr's strips, so mdr could not be compared with
+    a parameter of its own). A name no model takes is a one-line error."""
+    if len(names) <= 1:
+        return {names[0] if names else None: params}
+    from ..contact.registry import get_model
+
+    known: dict[str, set[str]] = {}
+    for name in names:
+        try:
+            known[name] = set(get_model(name).Params.model_fields)
+        except Exception:  # noqa: BLE001 - an unknown model gets the registry's own error later
+            known[name] = set()
+    out: dict[str | None, dict[str, Any]] = {name: {} for name in names}
+    for key, value in params.items():
+        model, dot, pname = key.partition(".")
+        if dot and model in known:
+            if pname not in known[model]:
+                _fail(f"--param {key}: model {model!r} takes no parameter {pname!r} (it takes: "
+                      f"{', '.join(sorted(known[model])) or 'none'})")
+            out[model][pname] = value
+            continue
+        if dot:
+            _fail(f"--param {key}: {model!r} is not one of --model {','.join(names)}")
+        takers = [name for name in names if key in known[name]]
+        if not takers:
+            _fail(f"--param {key}: no model of --model {','.join(names)} takes it; allowed: "
+                  + "; ".join(f"{n}: {', '.join(sorted(known[n])) or 'none'}" for n in names))
+        for name in takers:
+            out[name][key] = value
+    return out
 
 
 def _size(scenes: list[Any], engine: str, yes: bool) -> None:
