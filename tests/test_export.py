@@ -116,3 +116,28 @@ def test_fixed_scene_values_and_runaway_columns_reach_the_grid(tmp_path):
     assert "mean_acceleration" in ds and np.isfinite(ds["mean_acceleration"]).all()
     # m* 0.5 x'' = L - mu: a load of 0.2 above mu = 0.1 runs away at 0.2 per period squared
     assert np.allclose(ds["mean_acceleration"], (0.2 - 0.1) / 0.5, rtol=1e-6)
+
+
+def test_a_table_extended_with_an_axis_exports_each_cell_at_its_own_point(tmp_path):
+    """A 2 x 2 grid at mu = 0.1, then m* 0.01 over mu = 0.1, 0.5 into the same table: the first
+    grid's m* = 1 cells had no material.mu (NaN), and the export put them at m* = 0.01,
+    mu = 0.5 (0.2366 and -0.855 where that point's own cells are 0 and 0), m* no dimension."""
+    table = tmp_path / "t.parquet"
+    base = sd.Scene(model="material_point")
+    sd.sweep("material_point", [0.01, 1.0], [0.1, 1.0], base=base, table=table, progress=False)
+    sd.sweep("material_point", [0.01], [0.1, 1.0], base=base, table=table, progress=False,
+             axes={"material.mu": [0.1, 0.5]})
+    from sawdrift.study.export import write_grid
+
+    ds = write_grid(table, tmp_path / "g.nc")
+    assert set(ds["drift_ratio"].dims) == {"material.mu", "m_star", "amplitude"}
+    import pandas as pd
+
+    rows = pd.read_parquet(table)
+    assert len(rows) == 6 and rows["material.mu"].notna().all()
+    for _, row in rows.iterrows():
+        point = ds["drift_ratio"].sel({"material.mu": row["material.mu"], "m_star": row["m_star"],
+                                       "amplitude": row["amplitude"]})
+        assert float(point) == pytest.approx(row["drift_ratio"], abs=1e-15)
+    # m* = 1 at mu = 0.5 was never run: no cell there
+    assert np.isnan(ds["drift_ratio"].sel({"material.mu": 0.5, "m_star": 1.0})).all()

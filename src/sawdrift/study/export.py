@@ -127,6 +127,15 @@ def to_dataset(table: pd.DataFrame, metadata: dict[str, Any] | None = None):
     dims = dimensions(table)
     if not dims:
         raise SceneError("the table has no swept field (every cell has the same m*, A* and axes)")
+    for dim in dims:
+        missing = int(table[dim].isna().sum())
+        if missing:
+            # a row with no value of an axis went to another point of the grid (a table
+            # extended with an axis before sweeps filled it in the rows they kept)
+            raise SceneError(
+                f"{missing} cells have no value of {dim} (cells of an earlier sweep, without that "
+                f"axis): run a sweep into the table again (it fills them), or export a table of "
+                f"one grid")
     frame = table.copy()
     frame["regime_code"] = [REGIME_FLAGS.index(r) if r in REGIME_FLAGS else REGIME_FLAGS.index("error")
                             for r in frame["regime"]]

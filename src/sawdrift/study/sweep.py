@@ -17,6 +17,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import math
 import sys
 from collections.abc import Callable, Iterable, Sequence
 from functools import partial
@@ -380,6 +381,30 @@ def sweep(
     return frame
 
 
+#: summary columns that hold a swept field's value in every row (a row swept before the field
+#: was an axis has its value there)
+PLAIN_COLUMNS = {"particle.m_star": "m_star", "drive.amplitude": "amplitude", "material.mu": "mu",
+                 "material.nu": "nu", "drive.horizontal_ratio": "horizontal_ratio"}
+
+
+def fill_axes(rows: list[dict[str, Any]], swept_from: dict[str, Any]) -> None:
+    """Give every row a value of each swept field (dotted column) some row has: a row of an
+    earlier sweep of the table, without that axis, ran at the base scene's value (the table's
+    base scene is one), or holds it in its summary column (``mu`` for ``material.mu``). Without
+    it the row's axis value was NaN, and an export put the row at another point of the grid
+    (m* = 1, mu = 0.1 written at m* = 0.01, mu = 0.5)."""
+    axes = {k for row in rows for k in row if "." in k}
+    for row in rows:
+        for key in axes:
+            value = row.get(key)
+            if value is not None and not (isinstance(value, float) and math.isnan(value)):
+                continue
+            plain = PLAIN_COLUMNS.get(key)
+            fill = row.get(plain) if plain is not None else get_dotted(swept_from, key)
+            if fill is not None:
+                row[key] = fill
+
+
 def _table_path(table: str | Path | None) -> Path | None:
     """The Parquet table's path, or one line (SceneError) for a name that is not ``.parquet``
     (a ``.csv`` got Parquet bytes) or a folder that cannot hold it (the error came from the
@@ -424,6 +449,7 @@ def _write_back(frame: pd.DataFrame, path: Path, done: dict[str, dict[str, Any]]
     everything = dict(done)
     everything.update(rows)
     kept = supersede(everything.values())
+    fill_axes(kept, swept_from)
     write_table(to_frame(kept), path, swept_from)
     frame.attrs["table_cells"] = len(kept)
     frame.attrs["other_cells"] = sum(1 for r in kept if r["cell_id"] not in wanted)
