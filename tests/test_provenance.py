@@ -146,3 +146,27 @@ def test_an_interrupted_journal_keeps_its_base_scene(tmp_path):
     sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False,
              on_row=computed.append)
     assert len(computed) == 1 and len(pd.read_parquet(table)) == 2
+
+
+def test_a_journal_whose_header_is_damaged_is_not_mixed_with_another_base(tmp_path):
+    """A garbled first line of the journal was read as no base scene at all: a sweep of another
+    base scene took the journal's rows in as its own (25 new rows and 9 stale ones)."""
+    table = tmp_path / "t.parquet"
+    base = sd.Scene(material={"mu": 0.2}, numerics={"periods": 20})
+
+    def stop(row):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False,
+                 on_row=stop)
+    journal = sw.journal_path(table)
+    lines = journal.read_text().splitlines()
+    journal.write_text("\n".join(["{garbage", *lines[1:]]) + "\n")
+    other = sd.Scene(material={"mu": 0.3}, numerics={"periods": 20})
+    with pytest.raises(sd.SawdriftError, match=r"first line of its journal .* cannot be read"):
+        sd.sweep(["mmd"], "0.1", "0.1,0.2", base=other, table=table, workers=1, progress=False)
+    assert not table.exists() and journal.read_text().splitlines()[1:] == lines[1:]
+    mixed = sd.sweep(["mmd"], "0.1", "0.1,0.2", base=other, table=table, workers=1,
+                     progress=False, force=True)
+    assert len(mixed) == 2

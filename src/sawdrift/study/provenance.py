@@ -156,6 +156,11 @@ def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[
             f"({'; '.join(theirs[:3])}; this is sawdrift {__version__} code "
             f"{code_hash(sorted({str(r.get('model')) for r in other}))}): write a new table, or "
             "force=True (--force) to add rows of this code to it")
+    if stored_base is not None and stored_base.get("unreadable") is True:
+        raise TableProvenanceError(
+            f"table {str(table)!r}: the first line of its journal (the base scene its rows were "
+            "swept from) cannot be read, so its rows cannot be checked against this sweep: "
+            "write a new table, or force=True (--force) to keep them")
     if stored_base is not None:
         diffs = base_differences(stored_base, base)
         if diffs:

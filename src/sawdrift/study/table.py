@@ -193,17 +193,29 @@ def base_json(base: Scene | None, overrides: dict[str, Any] | None) -> dict[str,
     return out
 
 
+#: what :func:`stored_base` returns for a journal whose header (its first line, the base scene)
+#: cannot be read: its rows cannot be checked against a sweep (tested by identity)
+UNREADABLE_BASE: dict[str, Any] = {"unreadable": True}
+
+
 def stored_base(table: Path) -> dict[str, Any] | None:
-    """The base scene a table was swept from: its metadata's, else its journal's header."""
+    """The base scene a table was swept from: its metadata's, else its journal's header
+    (:data:`UNREADABLE_BASE` where that line is damaged: it was taken as no base at all, and a
+    sweep of another base scene mixed its rows in)."""
     if table.exists():
         return table_metadata(table)["base_scene"]
     journal = journal_path(table)
     if journal.exists():
         with journal.open() as fh:
-            try:
-                first = json.loads(fh.readline())
-            except json.JSONDecodeError:
-                return None
+            line = fh.readline()
+        if not line.strip():
+            return None
+        try:
+            first = json.loads(line)
+        except json.JSONDecodeError:
+            return UNREADABLE_BASE
+        if not isinstance(first, dict):
+            return UNREADABLE_BASE
         return first.get("base_scene") if "cell_id" not in first else None
     return None
 
