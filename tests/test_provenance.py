@@ -170,3 +170,18 @@ def test_a_journal_whose_header_is_damaged_is_not_mixed_with_another_base(tmp_pa
     mixed = sd.sweep(["mmd"], "0.1", "0.1,0.2", base=other, table=table, workers=1,
                      progress=False, force=True)
     assert len(mixed) == 2
+
+
+def test_a_table_of_one_engine_is_not_resumed_with_the_other(tmp_path):
+    """Resuming with --engine python reused the compiled rows as python's, without a word: a
+    cross-check of the two engines compared identical rows."""
+    table = tmp_path / "t.parquet"
+    kw = dict(table=table, workers=1, progress=False)
+    base = sd.Scene(numerics={"periods": 20})
+    sd.sweep(["material_point"], "0.01,1", "0.1", base=base, **kw)
+    with pytest.raises(sd.SawdriftError, match=r"rows of the compiled engine; this sweep runs "
+                       r"python"):
+        sd.sweep(["material_point"], "0.01,1", "0.1", base=base, engine="python", **kw)
+    assert set(pd.read_parquet(table)["engine"]) == {"compiled"}
+    sd.sweep(["material_point"], "0.01,1", "0.1,1", base=base, **kw)  # the same engine: resumed
+    assert len(pd.read_parquet(table)) == 4

@@ -131,13 +131,14 @@ def base_differences(stored: dict[str, Any], current: dict[str, Any]) -> list[st
 
 
 def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[str, Any] | None,
-                 base: dict[str, Any], force: bool) -> None:
+                 base: dict[str, Any], force: bool, engine: str | None = None) -> None:
     """Refuse to add to ``table`` when its rows come from other code or another base scene.
 
     ``rows`` are the table's (and its journal's) rows, each with ``model``, ``version`` and
     ``code_hash`` (None in tables written before the hash existed); a row is from other code when
     its hash is not :func:`code_hash` of its model now. ``stored_base`` is the base scene the
-    table was swept from (its metadata, or its journal's header), ``base`` this sweep's. With
+    table was swept from (its metadata, or its journal's header), ``base`` this sweep's;
+    ``engine`` this sweep's engine, which the rows must share (None: not checked). With
     ``force`` nothing is refused: the table then mixes, and each row names its own code.
 
     Raises
@@ -147,6 +148,14 @@ def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[
     """
     if force:
         return
+    rows = list(rows)
+    engines = sorted({str(r["engine"]) for r in rows if r.get("engine")} - {engine})
+    if engine is not None and engines:
+        # a cell is one scene: the other engine's row was reused as this engine's, without a word
+        # (a cross-check of the two engines compared identical rows)
+        raise TableProvenanceError(
+            f"table {str(table)!r} holds rows of the {' and '.join(engines)} engine; this sweep "
+            f"runs {engine}: write a new table, or force=True (--force) to keep those rows")
     other = [r for r in rows if r.get("code_hash") != code_hash([str(r.get("model"))])]
     if other:
         theirs = sorted({f"sawdrift {r.get('version')} code {r.get('code_hash') or 'unrecorded'}"

@@ -280,7 +280,7 @@ def sweep(
     have = set(read_traces(path)) if traces and path is not None else set()
     swept_from = base_json(base, overrides)
     if path is not None:
-        check_resume(path, done.values(), stored_base(path), swept_from, force)
+        check_resume(path, done.values(), stored_base(path), swept_from, force, engine)
     cells = expected = None
     if size:
         est = estimate_sweep(grid, names, m_values, a_values, extra_axes, points, base,
