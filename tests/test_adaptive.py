@@ -282,7 +282,9 @@ def test_interrupted_adaptive_sweep_says_so_and_resumes(tmp_path, monkeypatch):
     args = (*CLI_MAP, "--m-star", "1e-3:1e2:5", "--budget", "40", "-o", out)
     stopped = run_main(*args)
     assert stopped.returncode == 130 and "Traceback" not in stopped.stderr
-    assert (f"interrupted: 25 finished cells are kept in {out} and its journal; run the same "
+    # the first round's table, no journal yet: the line names what is there
+    assert not (tmp_path / "ad.parquet.journal.jsonl").exists()
+    assert (f"interrupted: 25 finished cells are kept in {out}; run the same "
             "command again to resume") in stopped.stderr
     monkeypatch.setattr(Refinement, "_compute", original)
     resumed = run_main(*args, check=True)

@@ -337,3 +337,31 @@ def test_a_failed_cell_names_its_version():
                      particle={"m_star": 0.01}, drive={"amplitude": 5.0})
     row = run_cell(scene.model_dump_json())
     assert row["regime"] == "error" and row["version"] == sd.__version__
+
+
+def test_an_interrupted_first_sweep_names_its_journal_not_a_missing_table(tmp_path, monkeypatch,
+                                                                           capsys):
+    """Ctrl-C in a new sweep: the finished cells are in the journal only; the line said they
+    were kept in the table, which did not exist (phase-diagram and export then refused it)."""
+    from .cli_call import call
+
+    out = tmp_path / "im.parquet"
+    real = sd.sweep
+
+    def stop_after_two(*args, **kwargs):
+        seen = []
+
+        def on_row(row):
+            seen.append(row)
+            if len(seen) == 2:
+                raise KeyboardInterrupt
+
+        return real(*args, **kwargs, on_row=on_row)
+
+    monkeypatch.setattr(sd, "sweep", stop_after_two)
+    code, _, err = call(monkeypatch, capsys, "sweep", "--model", "material_point", "--m-star",
+                        "0.01,0.1,1", "--amplitude", "0.1", "--periods", "10", "--workers", "1",
+                        "--no-progress", "-o", str(out))
+    assert code == 130 and not out.exists() and journal_path(out).exists()
+    assert (f"interrupted: 2 finished cells are kept in {journal_path(out)} ({out} is written "
+            "when the sweep completes)") in err

@@ -280,7 +280,8 @@ def _main() -> None:
         if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):
             typer.echo(f"error: {exc.format_message()}", err=True)
             sys.exit(exc.exit_code)
-        if type(exc).__name__ == "Abort":
+        if type(exc).__name__ == "Abort":  # Ctrl-C: a word, not a silent exit status
+            typer.echo("interrupted", err=True)
             sys.exit(130)
         text = str(exc).splitlines()[0] if str(exc) else "no details"
         typer.echo(f"error: internal failure ({text}); please report it with the command line",

@@ -133,7 +133,8 @@ def sweep_cmd(
             frame = sd.sweep(models, m_star, amplitude, axes=axes, base=base, table=out,
                              workers=workers, scheduler=scheduler, progress=progress,
                              engine=engine, force=force, traces=traces, size=True, yes=yes)
-    _sweep_text(frame, out, adaptive)
+        # inside: a Ctrl-C while the summary prints (the table written) exited 130 in silence
+        _sweep_text(frame, out, adaptive)
 
 
 @contextmanager
@@ -142,14 +143,18 @@ def _resume_hint(out: Path) -> Iterator[None]:
     try:
         yield
     except KeyboardInterrupt:
-        from ..study.table import read_rows
+        from ..study.table import journal_path, read_rows
 
         try:
             kept = f"{len(read_rows(out))} finished cells are kept"
         except Exception:  # noqa: BLE001 - the hint must not hide the interruption
             kept = "the finished cells are kept"
-        typer.echo(f"interrupted: {kept} in {out} and its journal; run the same command again "
-                   "to resume (only the missing cells are computed)", err=True)
+        journal = journal_path(out)
+        # a first sweep interrupted has only its journal: the table it named did not exist
+        where = (f"in {out}" + (" and its journal" if journal.exists() else "") if out.exists()
+                 else f"in {journal} ({out} is written when the sweep completes)")
+        typer.echo(f"interrupted: {kept} {where}; run the same command again to resume (only "
+                   "the missing cells are computed)", err=True)
         raise typer.Exit(130) from None
 
 
