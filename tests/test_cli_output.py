@@ -70,6 +70,34 @@ def test_phase_diagram_legend_lies_inside_the_saved_figure(tmp_path, figures):
             t.get_text(), bb, box)
 
 
+def test_phase_diagram_of_a_scattered_table_fills_each_points_region(tmp_path, figures):
+    """An adaptive table's points (nested grids: 1 in 4 of the finest grid's places, here the
+    coarse 5 x 5 and a refined band of 20) were drawn on the grid of all their coordinates,
+    mostly empty (white stripes). Each computed point gets its region, as in the drift map,
+    and the computed points are dotted."""
+    rows = []
+    fine = np.logspace(-2, 1, 17)
+    for i, a in enumerate(fine):
+        for j, m in enumerate(np.logspace(-3, 2, 17)):
+            coarse = i % 4 == 0 and j % 4 == 0
+            band = i == j + 1
+            if coarse or band:
+                rows.append({"model": "mmd", "amplitude": a, "m_star": m, "mu": 0.1, "nu": 0.3,
+                             "regime": "stick" if i <= j else "hopping", "settled": True,
+                             "drift_ratio": 0.0})
+    table = pd.DataFrame(rows)
+    points = len(table)
+    assert points < 0.5 * 17 * 17  # the case at hand: scattered
+    sd.plot_phase_diagram(table, tmp_path / "pd.png", "mmd")
+    ax = figures[-1].axes[0]
+    (mesh,) = [c for c in ax.collections if hasattr(c, "get_array") and c.get_array() is not None
+               and np.ndim(c.get_array()) > 0 and np.size(c.get_array()) > 1000]
+    codes = np.asarray(mesh.get_array())
+    assert (codes > 0).all()  # no white (empty) region: code + 1 = 0 was a place with no cell
+    dots = [line for line in ax.get_lines() if line.get_marker() == "."]
+    assert len(dots) == 1 and len(dots[0].get_xdata()) == points
+
+
 def test_phase_diagram_and_compare_hatch_unsettled_cells(tmp_path, figures):
     table = _table(ALL, [True, True, False, True, False, True])
     sd.plot_phase_diagram(table, tmp_path / "pd.png", "mmd")

@@ -27,6 +27,7 @@ from .marks import (  # noqa: E402
     format_device_axes,
     mark_creep,
 )
+from .nearest import nearest, scattered  # noqa: E402
 
 #: Regime colours, in legend order.
 COLOURS = {
@@ -370,13 +371,19 @@ def plot_phase_diagram(table: pd.DataFrame, path: str | Path, model: str | None 
     if swept_field(table) is not None:
         return plot_line(table, path, model, colours=COLOURS)
     model = _one_model(table, model, x, y)
-    amps, masses, codes = regime_grid(table, model, x, y)
-    unsettled = unsettled_grid(table, model, x, y)
-    fig, ax = plt.subplots(figsize=(6.4, 5.6), layout="constrained")
     title = f"{model}{where_label(table, where)}: {_material_label(table)}"
-    marks = _draw(ax, amps, masses, codes, title, x, y, unsettled,
-                  creep_grid(table, model, x, y), select(table, model))
-    _legend(fig, [codes], bool(unsettled.any()), marks)
+    fig, ax = plt.subplots(figsize=(6.4, 5.6), layout="constrained")
+    sub = select(table, model)
+    if scattered(sub, x, y):
+        # an adaptive table on the grid of all its coordinates was mostly empty points (white
+        # stripes between the computed ones): each point's region instead, as the drift map's
+        codes, unsettled, marks = _nearest_panel(ax, sub, x, y, title)
+    else:
+        amps, masses, codes = regime_grid(table, model, x, y)
+        unsettled = unsettled_grid(table, model, x, y)
+        marks = _draw(ax, amps, masses, codes, title, x, y, unsettled,
+                      creep_grid(table, model, x, y), sub)
+    _legend(fig, [np.unique(codes)], bool(unsettled.any()), marks)
     path = Path(path)
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -388,13 +395,6 @@ def unsettled_cells(table: pd.DataFrame) -> np.ndarray:
     if "settled" not in table.columns:
         return np.zeros(len(table), dtype=bool)
     return (table["settled"].astype("boolean").fillna(True) == False).to_numpy(bool)  # noqa: E712
-
-
-def _padded(logs: np.ndarray) -> tuple[float, float]:
-    """The ends of a log axis that hold whole cells: half the median gap beyond the outer points."""
-    gaps = np.diff(np.unique(logs))
-    half = 0.5 * float(np.median(gaps)) if gaps.size else 0.5
-    return float(logs.min() - half), float(logs.max() + half)
 
 
 def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = None,
@@ -409,8 +409,6 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     ``where`` picks the values of other swept columns, as in :func:`plot_phase_diagram`.
     """
     from matplotlib.colors import TwoSlopeNorm
-    from matplotlib.lines import Line2D
-    from scipy.spatial import cKDTree
 
     table = pick_rows(table, where)
     model = _one_model(table, model, x, y)
@@ -419,18 +417,11 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
         if sub[col].nunique() < 2:
             raise SceneError(f"the drift map needs at least two values of {col!r}; the table has "
                              f"{sub[col].nunique()} for model {model!r}")
-    lx, ly = np.log10(sub[x].to_numpy(float)), np.log10(sub[y].to_numpy(float))
-    gx = np.linspace(*_padded(lx), 400)
-    gy = np.linspace(*_padded(ly), 400)
-    mx, my = np.meshgrid(gx, gy)
-    _, idx = cKDTree(np.column_stack([lx, ly])).query(np.column_stack([mx.ravel(), my.ravel()]))
-    codes = np.array([_ORDER.index(r) if r in COLOURS else _ORDER.index("error")
-                      for r in sub["regime"]])[idx].reshape(mx.shape)
-    drift = sub["drift_ratio"].to_numpy(float)[idx].reshape(mx.shape)
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11.5, 5.0), layout="constrained")
-    ext = [10 ** gx[0], 10 ** gx[-1], 10 ** gy[0], 10 ** gy[-1]]
-    ax1.pcolormesh(10**gx, 10**gy, codes + 1, cmap=ListedColormap(["white", *COLOURS.values()]),
-                   vmin=0, vmax=len(COLOURS), shading="auto")
+    name = f"{model}{where_label(table, where)}"
+    codes, unsettled, marks = _nearest_panel(ax1, sub, x, y, f"{name}: regimes")
+    gx, gy, idx = nearest(sub, x, y)
+    drift = sub["drift_ratio"].to_numpy(float)[idx].reshape(gy.size, gx.size)
     # the scale stops at the surface speed (|ratio| = 1): a few chaotic cells far beyond it (long
     # flights after a violent launch) would otherwise wash out every other cell; they saturate
     peak = max(float(np.nanmax(np.abs(drift))), 1e-6)
@@ -441,34 +432,55 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
                 linewidths=0.7)
     fig.colorbar(mesh, ax=ax2, label="drift ratio <x*'> / (2 pi r A*)",
                  extend="both" if peak > lim else "neither")
-    name = f"{model}{where_label(table, where)}"
     title2 = f"{name}: drift ratio, regime boundaries"
     # cells whose drift is still on its approach (Result.settled false) are hatched
-    unsettled = unsettled_cells(sub)
-    mask = unsettled[idx].reshape(mx.shape)
+    mask = unsettled_cells(sub)[idx].reshape(gy.size, gx.size)
     if _hatch_unsettled(ax2, 10**gx, 10**gy, mask):
-        _hatch_unsettled(ax1, 10**gx, 10**gy, mask)
         title2 += f"; hatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
-    marks: list = []
-    for ax, title in ((ax1, f"{name}: regimes"), (ax2, title2)):
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlim(ext[0], ext[1])
-        ax.set_ylim(ext[2], ext[3])
-        ax.set_xlabel(column_label(x))
-        ax.set_ylabel(column_label(y))
-        ax.set_title(title, fontsize=10)
-        marks += draw_resonances(ax, sub, x, y)
-        format_device_axes(ax, x, y)
-    creeping = creep_cells(sub)
-    if creeping.any():
-        ax1.scatter(10 ** lx[creeping], 10 ** ly[creeping], **CREEP_STYLE, zorder=5)
-        marks.append(creep_handle())
-    if sub[[x, y]].drop_duplicates().shape[0] != sub[x].nunique() * sub[y].nunique():
-        ax1.plot(10**lx, 10**ly, ".", color="k", ms=2, alpha=0.5)
-        marks.append(Line2D([], [], ls="none", marker=".", color="k", ms=4, label="computed point"))
+    _nearest_axes(ax2, sub, x, y, gx, gy, title2)
     _legend(fig, [np.unique(codes)], bool(unsettled.any()), marks)
     path = Path(path)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
+
+
+def _nearest_panel(ax, sub: pd.DataFrame, x: str, y: str, title: str
+                   ) -> tuple[np.ndarray, np.ndarray, list]:
+    """The regime panel of scattered points: each point's region (:func:`~.nearest.nearest`), hatched
+    where not settled, creep marked, computed points dotted where they are no full grid.
+    Returns the fine grid's codes, each row's unsettled flag and the legend handles."""
+    from matplotlib.lines import Line2D
+
+    gx, gy, idx = nearest(sub, x, y)
+    codes = np.array([_ORDER.index(r) if r in COLOURS else _ORDER.index("error")
+                      for r in sub["regime"]])[idx].reshape(gy.size, gx.size)
+    ax.pcolormesh(10**gx, 10**gy, codes + 1, cmap=ListedColormap(["white", *COLOURS.values()]),
+                  vmin=0, vmax=len(COLOURS), shading="auto")
+    unsettled = unsettled_cells(sub)
+    if _hatch_unsettled(ax, 10**gx, 10**gy, unsettled[idx].reshape(gy.size, gx.size)):
+        title += f"\nhatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
+    marks = _nearest_axes(ax, sub, x, y, gx, gy, title)
+    lx, ly = np.log10(sub[x].to_numpy(float)), np.log10(sub[y].to_numpy(float))
+    creeping = creep_cells(sub)
+    if creeping.any():
+        ax.scatter(10 ** lx[creeping], 10 ** ly[creeping], **CREEP_STYLE, zorder=5)
+        marks.append(creep_handle())
+    if sub[[x, y]].drop_duplicates().shape[0] != sub[x].nunique() * sub[y].nunique():
+        ax.plot(10**lx, 10**ly, ".", color="k", ms=2, alpha=0.5)
+        marks.append(Line2D([], [], ls="none", marker=".", color="k", ms=4, label="computed point"))
+    return codes, unsettled, marks
+
+
+def _nearest_axes(ax, sub: pd.DataFrame, x: str, y: str, gx: np.ndarray, gy: np.ndarray,
+                  title: str) -> list:
+    """Log axes over the fine grid, labels, title and the contact resonances (their handles)."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlim(10 ** gx[0], 10 ** gx[-1])
+    ax.set_ylim(10 ** gy[0], 10 ** gy[-1])
+    ax.set_xlabel(column_label(x))
+    ax.set_ylabel(column_label(y))
+    ax.set_title(title, fontsize=10)
+    format_device_axes(ax, x, y)
+    return draw_resonances(ax, sub, x, y)
