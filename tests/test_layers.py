@@ -337,3 +337,14 @@ def test_every_report_module_imports_first():
         for key in [k for k in sys.modules if k.startswith("sawdrift.report")]:
             del sys.modules[key]
         sys.modules.update(saved)
+
+
+def test_the_conformance_suite_is_reached_from_the_package_as_the_docs_show():
+    """docs/plugins.md calls sawdrift.testing.check_model after ``import sawdrift``: testing was
+    not among the lazily imported subpackages (AttributeError)."""
+    import subprocess
+    import sys
+
+    code = "import sawdrift; assert callable(sawdrift.testing.check_model)"
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr

@@ -86,7 +86,7 @@ _LAZY: dict[str, str] = {
     "bench_speed": "bench:speed",
 }
 _SUBPACKAGES = ("scene", "contact", "dynamics", "result", "study", "report", "bench", "validation",
-                "analytic")
+                "analytic", "testing")
 
 
 def __getattr__(name: str) -> Any:
