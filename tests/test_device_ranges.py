@@ -214,6 +214,40 @@ def test_validity_warnings_see_the_adhesive_contact():
     assert len(warned) == 1 and "5.91e-08 m" in warned[0]
 
 
+def _punch_or_cone(shape: str, **particle) -> dict:
+    return {"model": "mmd", "device": {
+        "frequency": "100 Hz", "amplitude": "2 um", "friction": 0.3,
+        "particle": {"shape": shape, "mass": "1 kg", "youngs_modulus": "1 MPa", "poisson": 0.3,
+                     **particle},
+        "substrate": {"youngs_modulus": "1 MPa", "poisson": 0.3}}}
+
+
+def test_a_flat_punch_compressed_beyond_small_strain_warns():
+    """A 1 mm punch of 1 kg on 1 MPa: a0 = M g / (2 E* R) = 8.9 mm, nine times the punch
+    radius, ran without a word (a sphere's contact radius above 0.1 R warns)."""
+    from sawdrift.scene.validity import device_warnings
+
+    soft = build_scene(_punch_or_cone("flat", radius="1 mm"))
+    e_star = 1e6 / (2.0 * (1.0 - 0.3**2))
+    a0 = 1.0 * 9.81 / (2.0 * e_star * 1e-3)
+    (warned,) = [w for w in device_warnings(soft.device) if "above 0.01 R" in w]
+    assert f"a0 = {a0:.3g} m" in warned and f"a0/R = {a0 / 1e-3:.3g}" in warned
+    data = _punch_or_cone("flat", radius="1 mm", youngs_modulus="100 GPa")
+    data["device"]["substrate"]["youngs_modulus"] = "100 GPa"
+    stiff = build_scene(data)  # a0 = 89 nm
+    assert not any("above 0.01 R" in w for w in device_warnings(stiff.device))
+
+
+@pytest.mark.parametrize("angle", [20.0, 55.0])
+def test_a_sharp_cone_warning_names_its_own_half_angle(angle):
+    """The warning read "(by 27 % at 42 deg)" for every half-angle below 60 deg."""
+    from sawdrift.scene.validity import device_warnings
+
+    cone = build_scene(_punch_or_cone("cone", half_angle=f"{angle:g} deg"))
+    (warned,) = [w for w in device_warnings(cone.device) if "below 60 deg" in w]
+    assert warned.startswith(f"half-angle {angle:.3g} deg below 60 deg")
+
+
 @pytest.mark.parametrize("value", [float("-inf"), float("nan"), float("inf")])
 def test_a_non_finite_load_is_refused_with_its_real_range(value):
     # it said "outside the allowed range [-inf, inf)"

@@ -18,7 +18,8 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
     a static compression below 1 nm that adhesion does not set (none, or a pull-off below M g:
     adhesion and roughness then set the contact, not gravity and preload), a sphere's contact
     radius above 0.1 R (beyond small strain; with adhesion the adhesive contact's at rest), a
-    cone's half-angle below 60 deg (Sneddon's small-slope solution). ``law``: the scene's
+    cone's half-angle below 60 deg (Sneddon's small-slope solution), a flat punch's
+    compression above 0.01 R (its strain a0/R). ``law``: the scene's
     ``effects.adhesion``."""
     n = normalized(device)
     part = device.particle
@@ -33,7 +34,15 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
         if radius > 0.1 * float(part.radius):
             out.append(f"contact radius {radius:.3g} m above 0.1 R: beyond Hertz's small-strain "
                        "theory")
+    if part.shape == "flat" and n["a0_m"] > 0.01 * float(part.radius):
+        # the punch's strain is a0 / R (a sphere's contact radius 0.1 R is a0 = 0.01 R): a
+        # compression of 9 R (a soft, heavy punch) ran without a word
+        out.append(f"compression a0 = {n['a0_m']:.3g} m above 0.01 R (strain a0/R = "
+                   f"{n['a0_m'] / float(part.radius):.3g}): beyond Boussinesq's small-strain "
+                   "solution")
     if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
-        out.append("half-angle below 60 deg: Sneddon's small-slope solution underestimates the "
-                   "contact radius (by 27 % at 42 deg)")
+        # the angle itself: the fixed "27 % at 42 deg" read as the error at every angle
+        out.append(f"half-angle {math.degrees(float(part.half_angle)):.3g} deg below 60 deg: "
+                   "Sneddon's small-slope solution underestimates the contact radius, more the "
+                   "sharper the cone (27 % at 42 deg)")
     return out
