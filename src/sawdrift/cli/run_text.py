@@ -72,8 +72,10 @@ def unsettled_text(summary: dict[str, Any], mark: str = "NOT settled") -> str:
     """Why the drift is not the steady one, short enough to stand beside a number."""
     regime = summary.get("regime")
     if regime == "runaway":
+        si = summary.get("mean_acceleration_m_s2")  # a device's, in m/s^2 beside a0 f^2
         return (f"{mark}: no steady state, the mean speed grows by "
-                f"{value_text(summary.get('mean_acceleration'))} per period")
+                f"{value_text(summary.get('mean_acceleration'))} per period"
+                + (f" ({value_text(si)} m/s^2)" if si is not None else ""))
     if regime == "ejected":
         return (f"{mark}: no steady state, out of contact since t* = "
                 f"{value_text(summary.get('detach_time'))}")

@@ -119,9 +119,10 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         warnings += (_unsettled_reason(out, scene.numerics.settle is True),)
     if not settled:
         t90 = math.nan  # the time to 90 % of a speed never reached (it was quoted unsettled)
+    runaway = runaway_acceleration(scene, acceleration) if ending == "runaway" else math.nan
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None,
-                                    detach, drift_se * out.speed))
+                                    detach, drift_se * out.speed, runaway))
     k_per = stepper.k_per
     steps = out.steps  # a long-time mean's twin ran on after the window: its steps count
     return Result(
@@ -169,8 +170,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         horizontal_inertia=settling.horizontal_inertia if out.settle_on else math.nan,
         liftoffs_per_hop=sync.liftoffs_per_hop if hop_period else math.nan,
         liftoff_phases=sync.phases if hop_period else (),
-        mean_acceleration=(runaway_acceleration(scene, acceleration) if ending == "runaway"
-                           else math.nan),
+        mean_acceleration=runaway,
         drift_ratio_se=drift_se,
         detach_time=detach,
         warnings=warnings,

@@ -393,10 +393,11 @@ SHAPE_EXPONENT = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}
 
 def device_outputs(device: Device, drift_velocity: float, regime: str,
                    t90_periods: float | None, detach_time: float = math.nan,
-                   drift_se: float = math.nan) -> dict[str, Any]:
+                   drift_se: float = math.nan, acceleration: float = math.nan) -> dict[str, Any]:
     """Physical outputs of a run of a device scene (``sawdrift run device.toml --json``): the
     drift speed and a long-time mean's standard error (``drift_se``, x* per period) in m/s, t90
-    and an ejection's detach time (t* in periods) in s, a load's power."""
+    and an ejection's detach time (t* in periods) in s, a runaway's mean acceleration (x* per
+    period squared) in m/s^2, a load's power."""
     norm = normalized(device)
     speed = drift_velocity * norm["a0_m"] * norm["frequency_hz"]
     se = drift_se * norm["a0_m"] * norm["frequency_hz"]
@@ -411,6 +412,9 @@ def device_outputs(device: Device, drift_velocity: float, regime: str,
                   if t90_periods is not None and math.isfinite(t90_periods) else None),
     }
     out["detach_time_s"] = detach_time / norm["frequency_hz"] if math.isfinite(detach_time) else None
+    # a0 f^2: the runaway's acceleration was given in x* per period squared only
+    out["mean_acceleration_m_s2"] = (acceleration * norm["a0_m"] * norm["frequency_hz"] ** 2
+                                     if math.isfinite(acceleration) else None)
     if norm["load_n"] != 0.0:
         # the tangential load (device.load and the slope's pull) and the power the particle
         # delivers against it, -F v (positive while it advances against the load)
