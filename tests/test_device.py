@@ -143,13 +143,15 @@ def test_a_frequency_given_as_an_angular_rate_is_its_cycles_per_second():
     # (pint counts the radian as dimensionless: each was taken for 628 Hz, m* 39.5 times too big)
     base = sd.Scene.from_toml(MOTOR)
     want = base.with_updates(**{"device.frequency": "100 Hz"}).particle.m_star
-    for given in ("628.3185307179586 rad/s", "6000 rpm", "100 cycle/s", "100 turn/s"):
+    # a reciprocal second written "1/s" or "/s" was "not a quantity" while "s^-1" was taken
+    for given in ("628.3185307179586 rad/s", "6000 rpm", "100 cycle/s", "100 turn/s",
+                  "100 1/s", "100 /s", "100 s^-1", "6000 1/min"):
         got = base.with_updates(**{"device.frequency": given}).particle.m_star
         assert got == pytest.approx(want, rel=1e-12), given
 
 
 @pytest.mark.parametrize("given", ["9,6 MHz", "9.6 MHz 2", "10 nm 5", "10e nm", "nan MHz",
-                                   "1,000 Hz", "3 m/s2"])
+                                   "1,000 Hz", "3 m/s2", "100 1/", "100 1 /s", "5 /"])
 def test_a_value_that_is_not_one_number_with_units_is_refused(given):
     # pint evaluates a string as an expression: "9,6 MHz" was 96 MHz, "10 nm 5" 50 nm, with no
     # error; a decimal comma or a stray number must be an error naming the field

