@@ -278,9 +278,12 @@ def test_a_resumed_sweep_says_how_many_of_its_cells_it_still_runs(tmp_path, caps
     base = sd.Scene(model="mmd", numerics={"periods": 12})
     sd.sweep("mmd", "0.1:1:2", "0.1:1:2", base=base, table=table, progress=False)
     capsys.readouterr()
-    sd.sweep("mmd", "0.1:1:3", "0.1:1:2", base=base, table=table, progress=True)
+    sd.sweep("mmd", "0.1:1:3", "0.1:1:2", base=base, table=table, progress=True, size=True)
     err = capsys.readouterr().err
     assert "4 of the 6 cells already in t.parquet, 2 to run" in err
+    # and the size it prints (and the 1 h gate reads) is of the 2 cells it runs, not the 6
+    (size,) = [line for line in err.splitlines() if line.startswith("sweep: ") and "steps" in line]
+    assert size.startswith("sweep: 2 cells, ")
 
 
 def test_parse_axis_takes_lin_and_log_ranges_as_the_other_axes_do():

@@ -20,6 +20,7 @@ import json
 import math
 import sys
 from collections.abc import Callable, Iterable, Sequence
+from dataclasses import replace
 from functools import partial
 from pathlib import Path
 from typing import Any
@@ -285,7 +286,8 @@ def sweep(
     if size:
         est = estimate_sweep(grid, names, m_values, a_values, extra_axes, points, base,
                              overrides, workers, engine, label[0])
-        check(est, yes, smaller="fewer cells or periods")
+        if not done:  # a resumed table is checked on the cells it still runs, below
+            check(est, yes, smaller="fewer cells or periods")
         cells, expected = est.cells, est.seconds
     # a large grid takes a while to build: its size first, then a bar; a small one is built
     # (and every cell checked, one line for a bad one) before its size is printed
@@ -301,7 +303,7 @@ def sweep(
         scenes = grid(names, m_values, a_values, base, overrides, extra_axes, tick)
     if prep is not None:
         prep.close()
-    if size and progress and not large:
+    if size and progress and not large and not done:
         announce(est)
     # with force, a scene the table holds keeps its row, whatever code computed it
     held = {r["scene_id"]: cid for cid, r in done.items() if r.get("scene_id")} if force else {}
@@ -332,6 +334,15 @@ def sweep(
     # the heaviest particles first: they take the longest (the relaxation, the windows and the
     # records grow with m*), and a batch that ends on them leaves a worker idle
     todo = [todo[i] for i in sorted(range(len(todo)), key=weights.__getitem__)]
+    if size and done and est.cells:
+        # the cells still to run, not the whole grid (a finished table was estimated at 14 s
+        # and the 1 h gate read the whole grid's size)
+        left = len(todo) / est.cells
+        est = replace(est, cells=len(todo), steps=est.steps * left, most=est.most * left)
+        check(est, yes, smaller="fewer cells or periods")
+        expected = est.seconds
+        if progress and todo and not large:
+            announce(est)
     own = executor is None
     if executor is None:
         executor = Executor(resolve_workers(workers), scheduler)
