@@ -79,8 +79,10 @@ def test_flat_punch_is_exact() -> None:
 
 
 def test_coulomb_limit_holds_exactly() -> None:
-    """|T*| <= N* = a*^p at every step; full sliding gives T* = sum m_j (a* - c_j)^+, the strips'
-    quadrature of N*, short of it by at most dz m_j of the cell holding a*."""
+    """|T*| <= N* = a*^p at every step; full sliding gives |T*| = N* to rounding: the strips'
+    T* is taken on the scale of N* over their quadrature sum m_j (a* - c_j)^+, which falls short
+    of it by at most dz m_j of the cell holding a* (unscaled, 256 strips stopped that far short,
+    and the gross-slip test |T*| >= (1 - 1e-6) N* saw a third of mmd's gross slip)."""
     a, b = random_history(300, seed=4)
     n, t = ContactHistory(mdr(256)).drive(a, b)
     assert np.all(np.abs(t) <= n * (1 + 1e-13))
@@ -92,10 +94,11 @@ def test_coulomb_limit_holds_exactly() -> None:
     n2, t2 = h.advance(1.2, -5.0)
     c, m = strip_grid(256, 2.0 / 256, 1.5)
     sliding = float(np.sum(m * np.maximum(1.2 - c, 0.0)))
-    assert t1 == pytest.approx(sliding, rel=1e-14)
-    assert t2 == pytest.approx(-sliding, rel=1e-14)
+    assert 0.0 < n1 - sliding <= quadrature_bound(np.zeros((0, 2)), 1.2, 256, 1.5, 2.0)
     assert n1 == n2 == pytest.approx(1.2**1.5, rel=1e-15)
-    assert 0.0 < n1 - t1 <= quadrature_bound(np.zeros((0, 2)), 1.2, 256, 1.5, 2.0)
+    assert t1 == pytest.approx(n1, rel=1e-14)
+    assert t2 == pytest.approx(-n1, rel=1e-14)
+    assert abs(t1) >= (1.0 - 1e-6) * n1  # the gross-slip test sees the full slide
 
 
 def test_cattaneo_mindlin_converges() -> None:

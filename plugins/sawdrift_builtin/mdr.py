@@ -126,7 +126,19 @@ class MdrReference(StraightPathReference):
             v = np.where(entering, db * (a - c) / (a - a0), v)
         lim = np.where(now_in, a - c, 0.0)
         self.v = np.where(now_in, np.clip(v, -lim, lim), 0.0)
-        return float(np.sum(self.m * self.v))
+        # on the scale of N*(a*): the strips' quadrature sum m_j (a* - c_j) falls short of it by
+        # O(dz^2), and full sliding then stopped short of |T*| = N* (mdr_kernel)
+        quadrature = float(np.sum(self.m * lim))
+        t = float(np.sum(self.m * self.v))
+        if quadrature > 0.0:
+            t *= self._normal(a) / quadrature
+        return t
+
+    def _normal(self, a: float) -> float:
+        """N*(a*) of the profile's law (a power law, or a tabulated descriptor)."""
+        if np.ndim(self.p) == 0:
+            return float(a) ** self.p
+        return float(normal_force(float(a), self.p))
 
 
 class MdrModel(TangentialLaw):

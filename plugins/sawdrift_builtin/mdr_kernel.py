@@ -26,10 +26,11 @@ pointwise, so its value v_j equals the exact v(c_j) of the continuous model:
 * a strip entering along the straight path (a0 <= c_j < a1) gets db (a1 - c_j) / (a1 - a0);
 * then v_j is clipped to [-(a1 - c_j), a1 - c_j].
 
-Forces: T* = sum_j m_j v_j. The normal force is the profile's N*(a*) of the normal slot
-(:mod:`sawdrift.contact.slots`, which also handles contact entry and loss). Full sliding gives
-T* = sum_j m_j (a* - c_j)^+, the strips' quadrature of N*(a*), which falls short of it by
-O(dz^2) through the partial cell at z = a*, so |T*| <= N* holds.
+Forces: T* = (N*(a*) / Q) sum_j m_j v_j, Q = sum_j m_j (a* - c_j)^+ the strips' quadrature of
+N*(a*), which falls short of it by O(dz^2) through the partial cell at z = a*: on that scale
+full sliding gives T* = N*(a*) to rounding (the gross-slip test |T*| >= (1 - 1e-6) N* sees it
+as for an exact law) and |T*| <= N* holds. The normal force is the profile's N*(a*) of the
+normal slot (:mod:`sawdrift.contact.slots`, which also handles contact entry and loss).
 
 Adaptive growth: when a* exceeds the grid end N dz, the grid is coarsened (cells merged in
 pairs, dz doubled) until it covers a*; the values on the new centroids are interpolated
@@ -180,6 +181,7 @@ def mdr_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signatu
     n_old = is_[2]
     n_in = 0
     t = 0.0
+    q = 0.0  # the strips' quadrature of N*(a*), sum m_j (a* - c_j)
     for j in range(nst):
         c = ts[ic + j]
         if c >= a:
@@ -198,6 +200,12 @@ def mdr_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signatu
                 v = -lim
             ts[iv + j] = v
             t += ts[im + j] * v
+            q += ts[im + j] * lim
             n_in = j + 1
     is_[2] = n_in
+    if q > 0.0:
+        # the quadrature falls short of N*(a*) by O(dz^2) (the partial cell at z = a*): T* on
+        # the scale of N*, so that full sliding gives |T*| = N* to rounding (256 strips stopped
+        # 1e-4 short, and gross slip was seen a third as often as by mmd)
+        t *= law_normal(a, law, 0) / q
     return t
