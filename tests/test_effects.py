@@ -251,3 +251,13 @@ def test_no_horizontal_wave_reads_as_a_zero_horizontal_ratio(amplitude):
     assert math.isnan(off.drift_ratio) and math.isnan(zero.drift_ratio)
     assert off.regime == zero.regime
     assert off.drift_velocity == pytest.approx(zero.drift_velocity, abs=1e-12)
+
+
+def test_a_frictionless_contact_slides_it_does_not_stick():
+    """Friction off: the particle does not move along x while the surface does, so its contact
+    slides whenever it touches. It was named 'stick' (gross slip 0): the regime of a contact
+    held by friction. Now the contact is in gross slip all its time in contact, with no drift."""
+    held = sd.run(sd.Scene(effects={"friction": False}))
+    assert held.regime == "oscillating_slip" and held.drift_velocity == 0.0
+    assert held.gross_slip_fraction == pytest.approx(1.0 - held.out_of_contact_fraction)
+    assert held.gross_slip_fraction == 1.0  # in contact throughout at A* 0.316

@@ -147,7 +147,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         min_compression=win.min_compression,
         steps=steps,
         wall_time_s=out.wall_time_s,
-        gross_slip_fraction=win.gross_slip_fraction,
+        gross_slip_fraction=_gross_slip(scene, win, out.speed),
         liftoffs_per_period=win.liftoffs_per_period,
         hop_period=hop_period,
         liftoff_phase=sync.phase,
@@ -318,8 +318,17 @@ def _regime(scene: Scene, drive: Drive, win: Window, speed: float,
     ratio_for_regime = (own if speed > 0.0
                         else (win.drift / vertical if vertical > 0.0 else 0.0))
     regime = classify(win.contact_lost, ratio_for_regime, scene.numerics.drift_tolerance,
-                      gross_slip_fraction=win.gross_slip_fraction, hop_period=hop_period)
+                      gross_slip_fraction=_gross_slip(scene, win, speed), hop_period=hop_period)
     return drift_ratio, regime
+
+
+def _gross_slip(scene: Scene, win: Window, speed: float) -> float:
+    """The window's fraction in gross slip; without friction, its time in contact while the
+    surface moves under the particle (nothing holds a frictionless contact: it was named
+    'stick', gross slip 0, with the surface sliding under it all period)."""
+    if scene.effects.friction or speed <= 0.0:
+        return win.gross_slip_fraction
+    return 1.0 - win.out_of_contact_fraction
 
 
 def _impact_result(scene: Scene, engine: str, out: ImpactRun, trajectory: bool) -> Result:
