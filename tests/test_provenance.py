@@ -127,9 +127,9 @@ def test_two_base_scenes_do_not_merge_silently(tmp_path):
     assert len(pd.read_parquet(table)) == 5
 
 
-def test_an_interrupted_journal_keeps_its_base_scene(tmp_path):
-    """Before the table exists, the journal's header names the base scene the rows belong to."""
-    table = tmp_path / "t.parquet"
+def _interrupted(table: Path) -> sd.Scene:
+    """A sweep of two cells into ``table`` stopped after its first (only the journal holds it);
+    its base scene."""
     base = sd.Scene(material={"mu": 0.2}, numerics={"periods": 20})
 
     def stop(row):
@@ -138,6 +138,13 @@ def test_an_interrupted_journal_keeps_its_base_scene(tmp_path):
     with pytest.raises(KeyboardInterrupt):
         sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False,
                  on_row=stop)
+    return base
+
+
+def test_an_interrupted_journal_keeps_its_base_scene(tmp_path):
+    """Before the table exists, the journal's header names the base scene the rows belong to."""
+    table = tmp_path / "t.parquet"
+    base = _interrupted(table)
     assert not table.exists() and len(sw.read_rows(table)) == 1
     with pytest.raises(sd.SawdriftError, match=r"material\.mu: table 0\.2, this sweep 0\.3"):
         sd.sweep(["mmd"], "0.1", "0.1,0.2", base=sd.Scene(material={"mu": 0.3},
@@ -152,14 +159,7 @@ def test_a_journal_whose_header_is_damaged_is_not_mixed_with_another_base(tmp_pa
     """A garbled first line of the journal was read as no base scene at all: a sweep of another
     base scene took the journal's rows in as its own (25 new rows and 9 stale ones)."""
     table = tmp_path / "t.parquet"
-    base = sd.Scene(material={"mu": 0.2}, numerics={"periods": 20})
-
-    def stop(row):
-        raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False,
-                 on_row=stop)
+    _interrupted(table)
     journal = sw.journal_path(table)
     lines = journal.read_text().splitlines()
     journal.write_text("\n".join(["{garbage", *lines[1:]]) + "\n")
