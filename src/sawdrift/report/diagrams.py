@@ -43,6 +43,9 @@ COLOURS = {
 }
 _ORDER = list(COLOURS)
 
+#: the one line of a figure asked of an empty table
+NO_CELLS = "the table holds no cells: sweep into it first"
+
 #: the regime code of a cell whose run failed (its error is in the table)
 ERROR_CODE = _ORDER.index("error")
 
@@ -65,7 +68,7 @@ def select(table: pd.DataFrame, model: str, where: dict | None = None) -> pd.Dat
     if sub.empty:
         known = ", ".join(sorted(table["model"].dropna().unique()))
         if not known:  # an empty table was said to hold "" (nothing after the colon)
-            raise SceneError("the table holds no cells: sweep into it first")
+            raise SceneError(NO_CELLS)
         raise SceneError(f"model {model!r} is not in the table; it holds: {known}")
     for column, value in (where or {}).items():
         if column not in sub.columns:
@@ -348,7 +351,7 @@ def _one_model(table: pd.DataFrame, model: str | None, x: str, y: str) -> str:
     models = sorted(table["model"].dropna().unique())
     if model is None:
         if not models:
-            raise SceneError("the table holds no cells: sweep into it first")
+            raise SceneError(NO_CELLS)
         if len(models) != 1:
             raise SceneError(f"the table holds several models ({', '.join(models)}); choose one with --model")
         model = models[0]
