@@ -422,7 +422,7 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
                              f"{sub[col].nunique()} for model {model!r}")
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11.5, 5.0), layout="constrained")
     name = f"{model}{where_label(table, where)}"
-    codes, unsettled, marks = _nearest_panel(ax1, sub, x, y, f"{name}: regimes")
+    codes, unsettled, marks = _nearest_panel(ax1, sub, x, y, f"{name}: regimes", note=False)
     gx, gy, idx = nearest(sub, x, y)
     drift = sub["drift_ratio"].to_numpy(float)[idx].reshape(gy.size, gx.size)
     # the scale stops at the surface speed (|ratio| = 1): a few chaotic cells far beyond it (long
@@ -448,11 +448,12 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     return path
 
 
-def _nearest_panel(ax, sub: pd.DataFrame, x: str, y: str, title: str
+def _nearest_panel(ax, sub: pd.DataFrame, x: str, y: str, title: str, note: bool = True
                    ) -> tuple[np.ndarray, np.ndarray, list]:
-    """The regime panel of scattered points: each point's region (:func:`~.nearest.nearest`), hatched
-    where not settled, creep marked, computed points dotted where they are no full grid.
-    Returns the fine grid's codes, each row's unsettled flag and the legend handles."""
+    """The regime panel of scattered points: each point's region (:func:`~.nearest.nearest`),
+    hatched where not settled (said in the title with ``note``), creep marked, computed points
+    dotted where they are no full grid. Returns the fine grid's codes, each row's unsettled flag
+    and the legend handles."""
     from matplotlib.lines import Line2D
 
     gx, gy, idx = nearest(sub, x, y)
@@ -461,7 +462,8 @@ def _nearest_panel(ax, sub: pd.DataFrame, x: str, y: str, title: str
     ax.pcolormesh(10**gx, 10**gy, codes + 1, cmap=ListedColormap(["white", *COLOURS.values()]),
                   vmin=0, vmax=len(COLOURS), shading="auto")
     unsettled = unsettled_cells(sub)
-    if _hatch_unsettled(ax, 10**gx, 10**gy, unsettled[idx].reshape(gy.size, gx.size)):
+    hatched = _hatch_unsettled(ax, 10**gx, 10**gy, unsettled[idx].reshape(gy.size, gx.size))
+    if hatched and note:
         title += f"\nhatched: not settled ({int(unsettled.sum())} of {unsettled.size})"
     marks = _nearest_axes(ax, sub, x, y, gx, gy, title)
     lx, ly = np.log10(sub[x].to_numpy(float)), np.log10(sub[y].to_numpy(float))
