@@ -182,10 +182,7 @@ def test_bad_input_is_one_line():
                                   "field --backward 0.5 --direct --wavelength 200 --periods 0",
                                   "field --backward 0.5 --direct --wavelength 200 --periods 0.5"])
 def test_the_command_line_answers_bad_input_with_one_line_and_exit_2(line, monkeypatch, capsys):
-    from sawdrift.cli import app, main
-
-    if line.startswith("field") and "field" not in {c.name for c in app.registered_commands}:
-        pytest.skip("the field command is not registered in this tree")
+    from sawdrift.cli import main
     monkeypatch.setattr(sys, "argv", ["sawdrift", *line.split()])
     with pytest.raises(SystemExit) as exc:
         main()

@@ -77,7 +77,6 @@ def test_phase_diagram_marks_creep_cells_and_both_contact_resonances(tmp_path, f
     # 1.5 / (theta m*) (tangential) equal to (2 pi)^2, theta = (2 - nu) / (2 (1 - nu))
     theta = (2 - 0.3) / (2 * (1 - 0.3))
     normal, tangential = 1.5 / (4 * math.pi**2), 1.5 / (4 * math.pi**2 * theta)
-    assert normal == pytest.approx(0.0380, abs=1e-4) and tangential == pytest.approx(0.0313, abs=1e-4)
     np.testing.assert_allclose(sorted(_flat_lines(ax)), sorted([tangential, normal]), rtol=1e-12)
     texts = _legend_texts(fig)
     assert "creep: drift with no gross slip" in texts

@@ -19,9 +19,10 @@ from .cli_call import run_main
 MOTOR = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
 
 def _before_loads() -> dict[str, tuple[dict[str, Any], str]]:
-    """The drift velocities (float.hex) of a few scenes by the code before loads existed (commit
-    1fb3e4f, "Drives as parts"), kept once, in the validation case g11a: with load 0 the loops
-    must run exactly the same arithmetic."""
+    """The pinned drift velocities (float.hex) of a few scenes, kept once, in the validation case
+    g11a: taken by the code before loads existed (commit 1fb3e4f, "Drives as parts") and retaken
+    only where a documented change of a law or a scheme moved them; with load 0 the loops must
+    run exactly that arithmetic."""
     import importlib.util
 
     path = Path(__file__).resolve().parents[1] / "validation" / "g11a_load_zero_bit_for_bit.py"
@@ -35,7 +36,7 @@ BEFORE_LOADS = _before_loads()
 
 
 @pytest.mark.parametrize("name", list(BEFORE_LOADS))
-def test_load_zero_gives_the_results_of_before_bit_for_bit(name):
+def test_load_zero_gives_the_pinned_results_bit_for_bit(name):
     data, before = BEFORE_LOADS[name]
     particle = {**data.get("particle", {}), "load": 0.0}
     # the fixed 60-period run the hexes were taken from (the default now runs on to a periodic
