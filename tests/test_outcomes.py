@@ -153,6 +153,9 @@ def test_a_point_thrown_into_long_flights_bounces_and_is_not_ejected():
     assert res.regime == "bouncing" and res.settled is False
     assert math.isfinite(res.drift_ratio_se) and res.drift_ratio_se > 0.0
     assert abs(res.drift_ratio - brute.drift_ratio) <= 3.0 * res.drift_ratio_se
+    # an error that tells the sign (brute force drifts at 0.35): below a third of the drift, not
+    # any error wide enough to cover it (0.061 over its 3400 periods)
+    assert res.drift_ratio_se < brute.drift_ratio / 3.0
 
 
 def test_the_event_log_of_a_long_run_is_bounded():
@@ -231,6 +234,10 @@ def test_a_bouncer_last_seen_in_one_flight_reports_its_long_time_mean():
     assert math.isfinite(ref.drift_ratio_se)
     assert abs(res.drift_ratio - ref.drift_ratio) <= 3.0 * math.hypot(res.drift_ratio_se,
                                                                       ref.drift_ratio_se)
+    # the error of a mean over its periods, as the reference's over its own: within twice the
+    # reference's error scaled by sqrt(their lengths' ratio) (not any error that covers it)
+    scaled = ref.drift_ratio_se * math.sqrt(ref.periods / res.periods)
+    assert res.drift_ratio_se <= 2.0 * scaled, (res.drift_ratio_se, scaled)
 
 
 def test_a_run_that_does_not_settle_says_why():
