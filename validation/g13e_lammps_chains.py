@@ -11,12 +11,12 @@ within 1 %) and their slowdown, speed in the chain minus free speed (within 20 %
 resolves it, above 2e-3 of the surface speed; the two engines' free speeds agree to about 4e-4).
 
 Value: the worst of (speed error / 1 %, slowdown error / 20 %) over the chains that hold in LAMMPS;
-at most 1 would meet both bounds. Expected deviation (the documented limit, docs/lammps.md): at
-e = 0.9 the first impact knocks a small bead behind a large one into a second steady state
-(drift ratio -0.96) and no chain forms; in the chain of 10 small + 1 large the model's large
-bead is 1.9 % slower than LAMMPS's; contacts in LAMMPS carry force in a few % of each period
-(impacts, not the steady push the model assumes). The message gives every number and both wall
-times. Skipped without the optional extra.
+at most 1 meets both bounds. Not judged (the documented limit, docs/lammps.md), each named in the
+message: at e = 0.9 the first impact knocks a small bead behind a large one into a second steady
+state (drift ratio -0.96) and no chain forms; in the chain of 10 small + 1 large the model's
+large bead is 1.9 % slower than LAMMPS's and the mixed chain's slowdown is 25 % off: contacts in
+LAMMPS carry force in a few % of each period (impacts, not the steady push the model assumes).
+The message gives every number and both wall times. Skipped without the optional extra.
 """
 
 from __future__ import annotations
@@ -36,13 +36,13 @@ CASE = Case(
     "ratio to its bound",
     tolerance=1.0,
     quick=False,
-    expected_deviation=True,
-    deviation_reason=(
-        "the documented limit (docs/lammps.md): at e = 0.9 the first impact knocks a small bead "
-        "behind a large one into a second steady state and no chain forms in LAMMPS; LAMMPS "
-        "contacts carry force in impacts, not the steady push the slow model assumes"
-    ),
 )
+
+#: the documented limit (docs/lammps.md), reported and not judged: at e = 0.9 LAMMPS's contacts
+#: carry force in impacts, not the steady push the slow model assumes (the large bead of 10 small
+#: + 1 large 1.9 % slower in the model, the mixed chain's slowdown 25 % off). The whole case was
+#: once marked an expected deviation, so that no chain could fail it; every other chain is judged.
+IMPACT_LIMITED = {(0.9, "10 small + 1 large"), (0.9, "mixed 20")}
 
 # a copy of examples/mixture.toml that ships with the cases (tests/test_validation.py holds
 # the two equal): an installed wheel has no examples/
@@ -92,6 +92,9 @@ def run() -> CaseResult:
                 text += f", slowdown {lam:+.5f} vs {mod:+.5f} ({c.slowdown_error:.0%})"
             else:
                 text += f", slowdown {lam:+.5f} vs {mod:+.5f} (below resolution)"
+            if (e, c.name) in IMPACT_LIMITED:
+                parts.append(text + " - not judged: the documented impact limit")
+                continue
             worst = max(worst, ratio)
             parts.append(text + f"; {c.lammps_s:.3g} s vs {c.model_s:.2g} s")
     return CASE.result(worst, message="; ".join(parts), details={"chains": rows})
