@@ -143,18 +143,25 @@ def test_an_irregular_cell_without_a_positive_exponent_reports_an_honest_long_ti
     assert abs(res.drift_ratio - ref.drift_ratio) < 3.0 * res.drift_ratio_se * 2**0.5
 
 
+#: brute force of mmd m* = 100, A* = 10, mu = 0.1 (settle false): 0.7860563 over periods
+#: 100000-200000 of a 200000-period run, 0.7860582 over 200000-400000 of a 400000-period run
+#: (2e-6 apart; 0.63 over 22000-42000 and 0.775 over 42000-84000 were still on the approach)
+HEAVY_BOUNCER_BRUTE = 0.7860572
+
+
 def test_a_heavy_bouncing_cell_that_does_not_settle_reports_its_long_time_mean():
     """mmd, m* = 100, A* = 10 (out of contact 92 % of the time, no positive exponent): the
-    settling windows end unsettled; the drift reported is a long-time mean with a finite error,
-    near the 0.78 that a brute-force run approaches (0.63 over periods 22000-42000, 0.775 over
-    42000-84000, still rising). The error falls with the budget: below 0.01 at 2000 periods."""
+    settling windows end unsettled; the drift reported is a long-time mean with a finite error
+    that covers converged brute force (:data:`HEAVY_BOUNCER_BRUTE`) within 3 errors, at the
+    default budget and at 2000 periods, where the error is below 0.01 and smaller (it was judged
+    by a band 0.76-0.80 around the code's own value, the brute force not converged)."""
     res = sd.run(scene("mmd", 100.0, 10.0, 0.1, mean_periods=2000))
     assert res.settled is False and res.chaotic is False
     assert 0.0 < res.drift_ratio_se < 0.01
-    assert 0.76 < res.drift_ratio < 0.80
+    assert abs(res.drift_ratio - HEAVY_BOUNCER_BRUTE) < 3.0 * res.drift_ratio_se
     default = sd.run(scene("mmd", 100.0, 10.0, 0.1))  # 500 periods: a larger, finite error
     assert res.drift_ratio_se < default.drift_ratio_se < 0.03
-    assert abs(default.drift_ratio - res.drift_ratio) < 3.0 * default.drift_ratio_se
+    assert abs(default.drift_ratio - HEAVY_BOUNCER_BRUTE) < 3.0 * default.drift_ratio_se
 
 
 @pytest.mark.slow
