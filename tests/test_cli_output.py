@@ -492,3 +492,23 @@ def test_command_help_paragraphs_are_reflowed_not_broken_at_the_source_lines():
             if len(lines) > 1 and not any(line.startswith(("-", "*", " ")) for line in lines):
                 ragged.append((command.name, lines[0][:40]))
     assert not ragged
+
+
+def test_ctrl_c_says_so_in_every_command(monkeypatch, capsys, tmp_path):
+    """Typer turns Ctrl-C into exit status 130 with no word: run, field, threshold, load-curve
+    and bifurcation stopped in silence (bifurcation keeping its journals without saying so)."""
+    import sawdrift.study.bifurcation as bif
+
+    def stop(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(sd, "run", stop)
+    code, _, err = call(monkeypatch, capsys, "run", "--periods", "10")
+    assert code == 130 and err.strip().splitlines()[-1].startswith("interrupted (Ctrl-C)")
+    monkeypatch.setattr(bif, "bifurcation", stop)
+    code, _, err = call(monkeypatch, capsys, "bifurcation", "--axis",
+                        "drive.amplitude=lin:0.1:0.2:3", "--periods", "10", "-o",
+                        str(tmp_path / "bif"))
+    (line,) = err.strip().splitlines()[-1:]
+    assert code == 130 and line.startswith("interrupted: the values done are kept in ")
+    assert "run the same command again to resume" in line

@@ -256,7 +256,29 @@ def _empty_output(argv: list[str]) -> str | None:
     return None
 
 
+#: whether a command already said what its Ctrl-C kept (:func:`interrupted`)
+_INTERRUPT_SAID: list[bool] = [False]
+
+
+def interrupted(message: str) -> None:
+    """End a command stopped by Ctrl-C with ``message`` (what it kept, how to resume) on stderr
+    and exit status 130."""
+    typer.echo(message, err=True)
+    _INTERRUPT_SAID[0] = True
+    raise typer.Exit(130)
+
+
+def _say_interrupted(code: object) -> None:
+    """Ctrl-C, which typer turns into exit status 130 with no word: one line, unless the command
+    said what it kept (:func:`interrupted`). run, field, threshold, load-curve and bifurcation
+    exited in silence."""
+    if code == 130 and not _INTERRUPT_SAID[0]:
+        typer.echo("interrupted (Ctrl-C): the command stopped before writing its results",
+                   err=True)
+
+
 def _main() -> None:
+    _INTERRUPT_SAID[0] = False  # one command line (tests call main several times in a process)
     try:
         empty = _empty_output(sys.argv[1:])
         if empty is not None:
@@ -264,8 +286,10 @@ def _main() -> None:
         load_commands(_command_of(sys.argv[1:]))
         # standalone_mode=False makes click return a typer.Exit's code instead of raising it
         code = app(standalone_mode=False)
+        _say_interrupted(code)
         sys.exit(code if isinstance(code, int) else 0)
     except typer.Exit as exc:
+        _say_interrupted(exc.exit_code)
         sys.exit(exc.exit_code)
     except sd.SawdriftError as exc:
         typer.echo(f"error: {exc}", err=True)
@@ -280,7 +304,7 @@ def _main() -> None:
         if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):
             typer.echo(f"error: {exc.format_message()}", err=True)
             sys.exit(exc.exit_code)
-        if type(exc).__name__ == "Abort":  # Ctrl-C: a word, not a silent exit status
+        if type(exc).__name__ == "Abort":  # end of input at a prompt
             typer.echo("interrupted", err=True)
             sys.exit(130)
         text = str(exc).splitlines()[0] if str(exc) else "no details"

@@ -26,6 +26,7 @@ from .app import (
     _split_axis,
     _writable,
     app,
+    interrupted,
     out_kind,
 )
 from .scene_options import scene_from_options, with_scene_options
@@ -153,9 +154,8 @@ def _resume_hint(out: Path) -> Iterator[None]:
         # a first sweep interrupted has only its journal: the table it named did not exist
         where = (f"in {out}" + (" and its journal" if journal.exists() else "") if out.exists()
                  else f"in {journal} ({out} is written when the sweep completes)")
-        typer.echo(f"interrupted: {kept} {where}; run the same command again to resume (only "
-                   "the missing cells are computed)", err=True)
-        raise typer.Exit(130) from None
+        interrupted(f"interrupted: {kept} {where}; run the same command again to resume (only "
+                    "the missing cells are computed)")
 
 
 def _adaptive(model: str, base: Any, m_star: str | None, amplitude: str | None, out: Path, *,
@@ -356,10 +356,15 @@ def bifurcation_cmd(
     _bifurcation_size(base, field, spec, len(named) or 1, direction, samples, workers, engine,
                       yes, progress)
 
-    res = bifurcation(base, field, spec, models=named or None, samples=samples,
-                      direction=direction, locate=locate, tolerance=tolerance, out=out,
-                      workers=workers, scheduler=scheduler, progress=progress, force=force,
-                      engine=engine)
+    try:
+        res = bifurcation(base, field, spec, models=named or None, samples=samples,
+                          direction=direction, locate=locate, tolerance=tolerance, out=out,
+                          workers=workers, scheduler=scheduler, progress=progress, force=force,
+                          engine=engine)
+    except KeyboardInterrupt:
+        # the branches' journals keep every value done (it exited with no word of them)
+        interrupted(f"interrupted: the values done are kept in {out}/journal; run the same "
+                    "command again to resume (only the missing values are computed)")
     plot_bifurcation(res, out / FIGURE)
     if as_json:
         typer.echo(json.dumps(res.summary))
