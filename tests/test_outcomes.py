@@ -383,3 +383,24 @@ def test_a_run_recording_its_trajectory_reports_what_a_plain_one_does():
     assert plain.regime == traced.regime == "stick"
     assert traced.drift_ratio == plain.drift_ratio and traced.periods == plain.periods
     assert traced.trajectory is not None and len(traced.trajectory) > 0
+
+
+def test_a_recorded_trajectory_is_bounded_and_thinned_evenly(monkeypatch):
+    """A 2e5-period run with -o asked one buffer of 2.1 GiB (every step of the advance) and lost
+    the run. A recorded advance goes in segments, and past the most rows a run keeps its record
+    is thinned to every other row: bounded, evenly spaced, to the end, the run itself unchanged
+    (here with the bound at 4096 rows: 60 periods of 128 steps record 7680)."""
+    import sawdrift.dynamics.records as records
+    import sawdrift.dynamics.stepper as stepper_module
+
+    monkeypatch.setattr(stepper_module, "MAX_TRAJECTORY_ROWS", 4096)
+    monkeypatch.setattr(stepper_module, "SEGMENT_ROWS", 512)
+    scene = sd.Scene(model="mmd", numerics={"settle": False, "steps_per_period": 128})
+    plain = sd.run(scene)
+    recorded = sd.run(scene, trajectory=True)
+    tr = recorded.trajectory
+    assert len(tr) <= 4096 + 512 and tr["t"].iloc[-1] > 59.9
+    gaps = np.diff(tr["t"].to_numpy())
+    assert np.allclose(gaps, gaps[0], rtol=1e-9) and gaps[0] == pytest.approx(2 / 128)
+    assert recorded.drift_velocity == plain.drift_velocity  # recording changes no arithmetic
+    assert records.MAX_TRAJECTORY_ROWS == 1 << 20  # the bound itself: 92 MB of rows

@@ -128,7 +128,8 @@ def run_cmd(
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: trajectory.parquet, events.parquet, trajectory.png, "
         "scene.toml, result.json; or NAME.csv / NAME.parquet: the trajectory only (t, x, vx, y, "
-        "vy, a, b, N_star, T_star, ...; with several models a 'model' column first)")] = None,
+        "vy, a, b, N_star, T_star, ...; with several models a 'model' column first); at most "
+        "about 1e6 rows, a longer run's thinned evenly")] = None,
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only (text; "
                                                   "not with --json or -o)")] = False,
     yes: Yes = False,

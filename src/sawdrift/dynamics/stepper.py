@@ -28,6 +28,14 @@ from . import evidence as ev
 from . import rigid as rg
 from . import rigid_bind
 from .assembly import assemble
+from .records import (
+    MAX_TRAJECTORY_ROWS,
+    NO_ROWS,
+    RECORDS_PER_PERIOD,
+    SEGMENT_ROWS,
+    strobe_rows,
+    thinned,
+)
 from .rolling import contact_point, integrates_psi, psi_from_rest
 from .snapshot import StepperState, put_back, snapshot
 
@@ -36,8 +44,6 @@ if TYPE_CHECKING:
 
     from .assembly import Assembly
 
-#: Trajectory samples recorded per wave period (at most).
-RECORDS_PER_PERIOD = 200
 
 #: Event rows reserved per period of the measurement window at the start (at most
 #: :data:`INITIAL_EVENT_ROWS`); the log grows (doubling) whenever a loop finds it nearly full, up
@@ -105,6 +111,7 @@ class Stepper:
         self.keep_events = False
         self.rec_every = max(1, self.k_per // RECORDS_PER_PERIOD) if record else 0
         self.rec_chunks: list[np.ndarray] = []
+        self.rec_rows = 0  # rows in rec_chunks (thinned past MAX_TRAJECTORY_ROWS)
         self.compiled = engine == "compiled"
         self.history: ContactHistory | None = None
         if self.rigid:
@@ -200,6 +207,24 @@ class Stepper:
 
     def advance(self, n_steps: int, strobe: tuple[np.ndarray, int] | None = None,
                 rows: list[np.ndarray] | None = None) -> None:
+        """Advance ``n_steps`` steps (:meth:`_advance`); a recorded trajectory in segments of at
+        most :data:`~.records.SEGMENT_ROWS` rows, thinned past
+        :data:`~.records.MAX_TRAJECTORY_ROWS` (:func:`~.records.thinned`): a 2e5-period run
+        with ``-o`` asked 2.1 GiB for one buffer and lost the run, and its rows grew with its
+        length."""
+        if not (self.record and strobe is None and rows is None and self.rec_every > 0):
+            self._advance(n_steps, strobe, rows)
+            return
+        target = self.step + max(0, int(n_steps))
+        while self.step < target:
+            self._advance(min(target - self.step, SEGMENT_ROWS * self.rec_every))
+            if self.rec_rows > MAX_TRAJECTORY_ROWS:
+                self.rec_chunks, self.rec_every = thinned(self.rec_chunks, self.h,
+                                                          self.rec_every)
+                self.rec_rows = self.rec_chunks[0].shape[0]
+
+    def _advance(self, n_steps: int, strobe: tuple[np.ndarray, int] | None = None,
+                 rows: list[np.ndarray] | None = None) -> None:
         """Advance ``n_steps`` steps; raise a one-line error if the scheme cannot go on.
 
         The loops return early when the event log is nearly full; in the measuring window
@@ -216,7 +241,7 @@ class Stepper:
         # one buffer for the whole advance: a loop that returns early (its event log full)
         # goes on writing after the rows it has written
         buffer = (np.empty(((target - self.step) // every + 2, ig.N_REC)) if recording
-                  else _NO_ROWS)
+                  else NO_ROWS)
         used = 0
         while self.step < target:
             n = target - self.step
@@ -233,9 +258,10 @@ class Stepper:
             if rows is not None:
                 rows.append(rec[: self.ctr[2]])
             elif strobe is not None:
-                _strobe_rows(strobe, rec[: self.ctr[2]])
+                strobe_rows(strobe, rec[: self.ctr[2]])
             elif self.record:
                 self.rec_chunks.append(rec[: self.ctr[2]].copy())
+                self.rec_rows += int(self.ctr[2])
             if self.st[ev.S_BAD] > 0.0:
                 self._fail()
             if self.st[ev.S_EVDROP] > 0.0:
@@ -397,6 +423,7 @@ class Stepper:
         new.record = False
         new.rec_every = 0
         new.rec_chunks = []
+        new.rec_rows = 0
         if not self.rigid:
             new.fh = self.fh.copy()
             if self.history is not None:
@@ -452,25 +479,3 @@ class Stepper:
             data = data[:, :9]
             columns = columns[:9]
         return pd.DataFrame(data, columns=columns)
-
-
-#: the loops' row buffer where nothing is recorded (they write rows only with rec_every > 0)
-_NO_ROWS = np.zeros((0, ig.N_REC))
-
-
-def _strobe_rows(strobe: tuple[np.ndarray, int], rows: np.ndarray) -> None:
-    """Put trajectory rows taken at period boundaries into ``samples[j - 1]``, j the periods
-    since ``t0`` (``strobe`` = (samples, t0)); the rows' time is column 0, the state columns 1-4."""
-    samples, t0 = strobe
-    if rows.shape[0] == 0:
-        return
-    first, last = round(rows[0, 0]) - t0, round(rows[-1, 0]) - t0
-    if last - first == rows.shape[0] - 1:
-        # one row a period, in order (the loops record them so): a slice, not an index per row
-        lo, hi = max(first, 1), min(last, samples.shape[0])
-        if lo <= hi:
-            samples[lo - 1:hi] = rows[lo - first:hi - first + 1, 1:5]
-        return
-    j = np.rint(rows[:, 0]).astype(np.int64) - t0
-    inside = (j >= 1) & (j <= samples.shape[0])
-    samples[j[inside] - 1] = rows[inside, 1:5]

@@ -47,11 +47,13 @@ def orbit_window(run: Stepper, twin: Stepper | None, mean: BatchMeans | None, pe
         return None
     p = mean.orbit
     length = p * max(2, math.ceil((p + CHECKED) / p), math.ceil(periods / p))
-    twin.record, twin.rec_every, twin.rec_chunks = run.record, run.rec_every, []
+    twin.record, twin.rec_every, twin.rec_chunks, twin.rec_rows = (run.record, run.rec_every,
+                                                                   [], 0)
     win = measure_window(twin, length, speed, scale)
     if win.orbit_period == 0:
         return None
     run.rec_chunks.extend(twin.rec_chunks)
+    run.rec_rows += twin.rec_rows
     return win
 
 
