@@ -263,3 +263,19 @@ def test_a_bad_model_parameter_names_what_the_model_takes(command, monkeypatch, 
     err = capsys.readouterr().err.strip().splitlines()
     assert exc.value.code == 2 and len(err) == 1
     assert "model_params.strips" in err[0] and "(model 'mdr' takes: strips, z_max)" in err[0]
+
+
+def test_out_of_memory_is_one_line_and_exit_2(monkeypatch, capsys):
+    """numpy's MemoryError ("Unable to allocate 2.10 GiB ...") was an internal failure, exit 3,
+    asking for a bug report."""
+    import sawdrift as sd
+
+    from .cli_call import call
+
+    def too_big(*args, **kwargs):
+        raise MemoryError("Unable to allocate 2.10 GiB for an array with shape (25600000, 11)")
+
+    monkeypatch.setattr(sd, "run", too_big)
+    code, _, err = call(monkeypatch, capsys, "run", "--periods", "10")
+    lines = err.strip().splitlines()
+    assert code == 2 and lines[-1].startswith("error: out of memory") and "internal" not in err

@@ -294,6 +294,11 @@ def _main() -> None:
     except sd.SawdriftError as exc:
         typer.echo(f"error: {exc}", err=True)
         sys.exit(2)
+    except MemoryError:
+        # one line, not "internal failure": the work asked more memory than the machine has
+        typer.echo("error: out of memory: the run asked for more than this machine has; give "
+                   "fewer periods, cells or samples", err=True)
+        sys.exit(2)
     except OSError as exc:
         # a path given on the command line (or a folder it names) cannot be read or written
         name = f" {str(exc.filename)!r}" if exc.filename else ""
