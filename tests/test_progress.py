@@ -148,3 +148,29 @@ def test_a_terminal_bar_is_redrawn_while_no_cell_finishes(monkeypatch):
 def test_a_disabled_counter_prints_nothing(monkeypatch):
     err = _run(lambda: bench(enabled=False), tty=False, monkeypatch=monkeypatch)
     assert err == ""
+
+
+def test_a_terminal_that_reports_no_width_gets_the_plain_lines(monkeypatch):
+    """tqdm's dynamic width drew nothing at all on a pseudo-terminal of 0 columns (some CI and
+    IDE consoles): such a terminal gets the plain lines, a terminal with a width the bar."""
+    import fcntl
+    import os
+    import pty
+    import struct
+    import termios
+
+    from sawdrift.study import progress
+
+    master, slave = pty.openpty()
+    try:
+        for columns, bar in ((0, False), (80, True)):
+            fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, columns, 0, 0))
+            with os.fdopen(os.dup(slave), "w") as stream:
+                monkeypatch.setattr(progress.sys, "stderr", stream)
+                assert progress._terminal() is bar
+                drawn = progress.progress(10, "x", "cells")
+                assert isinstance(drawn.bar, progress._Lines) is not bar
+                drawn.close()
+    finally:
+        os.close(master)
+        os.close(slave)

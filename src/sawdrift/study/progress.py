@@ -192,7 +192,7 @@ def progress(total: int, desc: str, unit: str, initial: int = 0, enabled: bool =
     """
     if not enabled or total <= 0:
         return None
-    if sys.stderr.isatty():
+    if _terminal():
         from tqdm import tqdm
 
         bar: Any = tqdm(total=total, initial=initial, unit=unit, desc=desc, dynamic_ncols=True,
@@ -200,6 +200,20 @@ def progress(total: int, desc: str, unit: str, initial: int = 0, enabled: bool =
     else:
         bar = _Lines(total, initial, unit, desc, expected=expected)
     return _Ticking(bar, expected)
+
+
+def _terminal() -> bool:
+    """Whether stderr is a terminal a bar can be drawn on: one that reports no width (a
+    pseudo-terminal of some CI and IDE consoles) drew nothing at all with tqdm's dynamic width,
+    and gets the plain lines."""
+    import os
+
+    if not sys.stderr.isatty():
+        return False
+    try:
+        return os.get_terminal_size(sys.stderr.fileno()).columns > 0
+    except (OSError, ValueError):
+        return False
 
 
 def counter(total: int, desc: str, unit: str, enabled: bool = True, leave: bool = True) -> Any:
