@@ -223,8 +223,8 @@ def validate(
     _write_figures(report)
     write_json(report, out / "results.json")
     write_html(report, out / "index.html")
-    if progress:
-        print(report.summary(), file=sys.stderr, flush=True)
+    # the summary is the caller's to print (sawdrift validate prints it on stdout: on a terminal
+    # it came twice, once here on stderr)
     return report
 
 
