@@ -168,7 +168,9 @@ def test_every_shipped_expected_deviation_declares_its_reason():
             if case.deviation_expected(model):
                 declared += 1
                 assert len(case.reason_for(model)) > 20, (case.name, model)
-    assert declared >= 7
+    # six: lammps_chains no longer declares its whole case (it judges every chain but the two
+    # impact-limited ones it names)
+    assert declared >= 6
 
 
 def test_steady_message_states_the_judged_quantity_first():

@@ -115,11 +115,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     """
     num = scene.numerics
     n_periods = scene.measure_periods()
-    built = time.perf_counter()
-    stepper = Stepper(scene, model, plan, trajectory, event_periods=n_periods)
-    # compilation or disk-cache load, reported apart: the stepper's construction binds the
-    # contact history's loops too (a cold cache spent 17 s there and reported 4.3)
-    compile_s = (time.perf_counter() - built) + stepper.warm_up()
+    stepper, compile_s = _built(scene, model, plan, trajectory, n_periods)
     t0 = time.perf_counter()
     if trajectory and record_every is not None:
         stepper.rec_every = max(1, int(record_every))
@@ -188,6 +184,16 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                    wall_time_s=wall, trajectory=path,
                    last_liftoff=float(stepper.st[S_LASTLIFT]), long_mean=chaos,
                    steps=max(stepper.step, 0 if twin is None else twin.step))
+
+
+def _built(scene: Scene, model: ContactModel, plan: Assembly, trajectory: bool,
+           n_periods: int) -> tuple[Stepper, float]:
+    """The run's stepper and the seconds its construction and warm-up took: compilation or
+    disk-cache load, reported apart (the construction binds the contact history's loops: a cold
+    cache spent 17 s there and reported 4.3 s when only the warm-up was timed)."""
+    built = time.perf_counter()
+    stepper = Stepper(scene, model, plan, trajectory, event_periods=n_periods)
+    return stepper, (time.perf_counter() - built) + stepper.warm_up()
 
 
 def _long_mean(stepper: Stepper, win: Window, budget: int, target: float,
