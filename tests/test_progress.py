@@ -174,3 +174,23 @@ def test_a_terminal_that_reports_no_width_gets_the_plain_lines(monkeypatch):
     finally:
         os.close(master)
         os.close(slave)
+
+
+def test_a_slow_calibration_says_why_before_the_estimate(monkeypatch, capsys):
+    """With a cold cache the calibration run compiles the loops: a first sweep printed nothing
+    for 28 s, then an estimate of 'under 1 s'. A calibration longer than a second says why."""
+    import time
+
+    import sawdrift as sd
+    from sawdrift.study import estimate as est
+
+    real = est._rates
+
+    def slow(*args, **kwargs):
+        time.sleep(1.4)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(est, "_rates", slow)
+    est.estimate("sweep", [sd.Scene(numerics={"periods": 5})], 1)
+    err = capsys.readouterr().err
+    assert "sweep: calibrating the size estimate (the first use after installing compiles" in err

@@ -39,6 +39,7 @@ from ..errors import NonFiniteStateError, SawdriftError, SceneError
 from ..result.runner import run
 from ..scene.schema import Scene, Wave
 from .executor import resolve_workers
+from .progress import notice
 
 #: estimated wall time (s) above which a command asks for --yes before it starts
 MAX_SECONDS = 3600.0
@@ -210,7 +211,11 @@ def estimate(what: str, scenes: list[Scene], cells: int, workers: int = 1,
     # the rate differs between cells (contact loss and events cost more than a steady slide):
     # calibrate on up to three sampled cells, spread over the sample
     picked = [scenes[i] for i in sorted({0, len(scenes) // 2, len(scenes) - 1})]
-    rates = _rates(picked, scenes, engine)
+    # a cold cache compiles the loops here, in silence for up to half a minute before any
+    # estimate: a line once it takes more than a second
+    with notice(f"{what}: calibrating the size estimate (the first use after installing "
+                "compiles the contact loops: up to half a minute)"):
+        rates = _rates(picked, scenes, engine)
     rate = len(rates) / sum(1.0 / r for r, _ in rates)  # the mean time per step
     overhead = sum(o for _, o in rates) / len(rates)
     n = cells * runs_per_cell
