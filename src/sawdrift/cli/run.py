@@ -171,8 +171,8 @@ def run_cmd(
         _writable(out, folder=kind == "folder")
     results = []
     for sc in scenes:
-        with notice(f"run: {sc.model}: working (a model's first run compiles its loop, seconds; "
-                    "settling a heavy particle takes longer)"):
+        with notice(f"run: {sc.model}: working (a model's first run after installing compiles "
+                    "its loops: up to half a minute; settling a heavy particle takes longer)"):
             results.append(_run_one(sc, engine, out is not None))
     summaries = [r.summary() for r in results]
     if out is not None:
