@@ -194,3 +194,25 @@ def test_a_slow_calibration_says_why_before_the_estimate(monkeypatch, capsys):
     est.estimate("sweep", [sd.Scene(numerics={"periods": 5})], 1)
     err = capsys.readouterr().err
     assert "sweep: calibrating the size estimate (the first use after installing compiles" in err
+
+
+def test_a_long_run_shows_its_steps_as_it_goes(monkeypatch, capsys):
+    """A run of 1e6 periods went minutes with one 'working' line: the integration reports its
+    steps, and past a few seconds (here 0) a line every few seconds (here 0) counts them, the
+    run itself unchanged; nothing is reported once the run is over."""
+    import sawdrift as sd
+    from sawdrift.dynamics import stepper as stepper_module
+    from sawdrift.study import progress
+
+    monkeypatch.setattr(progress, "EVERY", 0.0)
+    monkeypatch.setattr(stepper_module, "REPORT_STEPS", 1000)
+    scene = sd.Scene(numerics={"settle": False, "periods": 40})
+    plain = sd.run(scene)
+    with progress.run_progress("run: mmd", after=0.0):
+        shown = sd.run(scene)
+    lines = [line for line in capsys.readouterr().err.splitlines() if line.startswith("run: mmd")]
+    counts = [float(line.split(": ")[2].split(" steps")[0]) for line in lines]
+    assert len(counts) >= 3 and counts == sorted(counts)
+    assert counts[-1] >= shown.steps  # every step counted (a twin's too)
+    assert shown.drift_velocity == plain.drift_velocity
+    assert stepper_module.PROGRESS[0] is None

@@ -13,7 +13,7 @@ import sawdrift as sd
 
 from .._startup import fast_start, stored_models
 from .._texts import says_heating
-from ..study.progress import notice
+from ..study.progress import notice, run_progress
 from .app import Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
 from .run_text import grouped, shared_warnings, side_by_side, unsettled_text
 from .scene_options import scene_from_options, with_scene_options
@@ -172,7 +172,8 @@ def run_cmd(
     results = []
     for sc in scenes:
         with notice(f"run: {sc.model}: working (a model's first run after installing compiles "
-                    "its loops: up to half a minute; settling a heavy particle takes longer)"):
+                    "its loops: up to half a minute; settling a heavy particle takes longer)"), \
+                run_progress(f"run: {sc.model}"):
             results.append(_run_one(sc, engine, out is not None))
     summaries = [r.summary() for r in results]
     if out is not None:

@@ -10,7 +10,6 @@ estimate of the regime evidence.
 from __future__ import annotations
 
 import copy
-import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -21,13 +20,13 @@ from ..contact.binding import model_for
 from ..contact.history import ContactHistory
 from ..contact.scene_damping import damped_law
 from ..errors import NonFiniteStateError
-from ..scene.parts import FINEST_STEPS
 from ..scene.schema import Scene
 from . import adams_bashforth as ig
 from . import evidence as ev
 from . import rigid as rg
 from . import rigid_bind
 from .assembly import assemble
+from .failure import failure
 from .records import (
     MAX_TRAJECTORY_ROWS,
     NO_ROWS,
@@ -57,6 +56,14 @@ INITIAL_EVENT_ROWS = 1 << 16
 #: its oldest half is shed (counted in the window's ``events_shed``), so the memory of a run does
 #: not grow with its length (a fixed run's window is half of it)
 KEPT_EVENT_ROWS = 1 << 20
+
+
+#: what a long run tells of its progress: a callable taking the steps just taken, set by the
+#: command line for the time of a run (:func:`sawdrift.study.progress.run_progress`); None: nothing
+PROGRESS: list = [None]
+
+#: steps an advance takes between two reports to :data:`PROGRESS`
+REPORT_STEPS = 1 << 20
 
 
 class Stepper:
@@ -207,6 +214,23 @@ class Stepper:
 
     def advance(self, n_steps: int, strobe: tuple[np.ndarray, int] | None = None,
                 rows: list[np.ndarray] | None = None) -> None:
+        """Advance ``n_steps`` steps (:meth:`_recorded`), telling :data:`PROGRESS` the steps
+        taken, in segments of at most :data:`REPORT_STEPS` where one is set (a long run was
+        silent for minutes: the command line shows the steps as they go)."""
+        report = PROGRESS[0]
+        if report is None:
+            self._recorded(n_steps, strobe, rows)
+            return
+        target = self.step + max(0, int(n_steps))
+        while self.step < target:
+            before = self.step
+            segment = target - self.step if strobe is not None or rows is not None else min(
+                target - self.step, REPORT_STEPS)
+            self._recorded(segment, strobe, rows)
+            report(self.step - before)
+
+    def _recorded(self, n_steps: int, strobe: tuple[np.ndarray, int] | None = None,
+                  rows: list[np.ndarray] | None = None) -> None:
         """Advance ``n_steps`` steps (:meth:`_advance`); a recorded trajectory in segments of at
         most :data:`~.records.SEGMENT_ROWS` rows, thinned past
         :data:`~.records.MAX_TRAJECTORY_ROWS` (:func:`~.records.thinned`): a 2e5-period run
@@ -280,34 +304,8 @@ class Stepper:
                     self.st = ev.grown(self.st, 2 * self.ev_margin, KEPT_EVENT_ROWS)
 
     def _fail(self) -> None:
-        """One line on why the state became non-finite (or the rigid scheme fell behind)."""
-        k = int(self.st[ev.S_BADSTEP])
-        m = self.scene.particle.m_star
-        state = (f"x* = {self.y[0]:.6g}, x*' = {self.y[1]:.6g}, y* = {self.y[2]:.6g}, "
-                 f"y*' = {self.y[3]:.6g}")
-        if self.st[ev.S_BAD] == ev.BAD_EVENTS:
-            raise NonFiniteStateError(
-                f"the rigid scheme met more than {rg._MAX_EVENTS} events (impacts, lift-offs, "
-                f"stick-slip changes) in the step at t* = {k * self.h:.6g} ({state}) and would "
-                "fall behind in time (an inelastic collapse of bounces); try a larger "
-                "--steps-per-period" + ("" if float(self.prm[rg.P_RESTITUTION]) < 1.0
-                                        else " or a restitution below 1")
-            )
-        amp = float(getattr(self.scene.drive, "amplitude", math.nan))
-        model = self.scene.model
-        check = f"the contact model returned a non-finite force: sawdrift check-model {model}"
-        # at the finest step allowed, the scene itself is beyond what the scheme resolves
-        hint = (f"at the finest step allowed, 1/{self.k_per}: particle.m_star = {m:g} with "
-                f"drive.amplitude = {amp:g} is beyond what the scheme resolves; give values "
-                "nearer m* 1e-6..1e8, A* below 1e6" if self.k_per >= FINEST_STEPS else
-                f"the step 1/{self.k_per} is likely too coarse for m* = {m:g}; try a larger "
-                f"--steps-per-period or a lower Adams-Bashforth order, or {check}")
-        if k == 0:
-            # the first step from rest on its static compression: its state is finite, so the
-            # force was not (a plugin's NaN force was blamed on the step size)
-            hint = f"at the first step from rest, {check}"
-        raise NonFiniteStateError(f"non-finite state at t* = {k * self.h:.6g} (step {k}; "
-                                  f"{state}): {hint}")
+        """One line on why the state became non-finite (:func:`~.failure.failure`)."""
+        raise failure(self)
 
     def continued(self, scene: Scene, model: ContactModel | None = None) -> Stepper:
         """A stepper for ``scene`` that starts from this one's state (warm start, continuation).

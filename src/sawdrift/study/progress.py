@@ -247,3 +247,43 @@ def notice(line: str, after: float | None = None, enabled: bool = True) -> Itera
         yield
     finally:
         timer.cancel()
+
+
+@contextmanager
+def run_progress(desc: str, after: float = 2.0) -> Iterator[None]:
+    """Show the steps a run takes once it has taken ``after`` seconds: a tqdm counter on a
+    terminal, a line every :data:`EVERY` s otherwise (a run of 1e6 periods went minutes with one
+    line). The integration reports its steps through
+    :data:`sawdrift.dynamics.stepper.PROGRESS`, twins and long-time means included."""
+    from ..dynamics import stepper as stepper_module
+
+    t0 = time.perf_counter()
+    state: dict[str, Any] = {"steps": 0, "bar": None, "said": t0}
+
+    def report(steps: int) -> None:
+        state["steps"] += steps
+        now = time.perf_counter()
+        if now - t0 < after:
+            return
+        if _terminal():
+            if state["bar"] is None:
+                from tqdm import tqdm
+
+                # the steps before the bar appeared as its start, not in its rate
+                state["bar"] = tqdm(desc=desc, unit=" steps", unit_scale=True, leave=False,
+                                    mininterval=0.5, initial=state["steps"] - steps)
+            state["bar"].update(steps)
+        elif now - state["said"] >= EVERY:
+            state["said"] = now
+            sys.stderr.write(f"{desc}: {state['steps']:.3g} steps, "
+                             f"{state['steps'] / (now - t0):.3g} steps/s\n")
+            sys.stderr.flush()
+
+    stepper_module.PROGRESS[0] = report
+    try:
+        yield
+    finally:
+        stepper_module.PROGRESS[0] = None
+        if state["bar"] is not None:
+            state["bar"].close()
+
