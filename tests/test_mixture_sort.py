@@ -314,3 +314,25 @@ def test_sort_names_the_setting_it_cannot_run(setting, needle, monkeypatch, caps
         main()
     err = capsys.readouterr().err.strip().splitlines()
     assert exc.value.code == 2 and len(err) == 1 and needle in err[0], err
+
+
+def test_each_placement_is_told_as_it_ends(monkeypatch):
+    """The placements' lines came after the last of them ended (the command 15 to 30 s silent,
+    then every line at once): each is told as it ends."""
+    import sawdrift.mixture.plane as plane
+
+    scene, particles = plate()
+    ran = []
+    real = plane.PlaneModel.run
+
+    def counted(self, *args, **kwargs):
+        ran.append(1)
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(plane.PlaneModel, "run", counted)
+    told = []
+    sort_mixture(scene, {**particles, "count": 40}, seeds=3, periods=1e5, workers=1,
+                 progress=lambda line: told.append((line, len(ran))))
+    placements = [(line, n) for line, n in told if line.startswith("seed ")]
+    assert [n for _, n in placements] == [1, 2, 3]
+    assert placements[0][0].startswith("seed 0 of 0-2: ")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -43,8 +44,9 @@ def sort_cmd(
     check: Annotated[int, typer.Option("--check", min=0, help="also run the first placement in "
                                        "LAMMPS for N periods and print both (the slow model "
                                        "in lanes along the wave)")] = 0,
-    progress: Annotated[bool, typer.Option("--progress/--no-progress",
-                                           help="a line per curve and placement on stderr")] = False,
+    progress: Annotated[bool | None, typer.Option(
+        "--progress/--no-progress", help="a line per curve and placement on stderr (default: "
+        "on a terminal)")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option("-o", "--out", help="write sort.json, sort.png and "
                                              "the scene here")] = None,
@@ -78,7 +80,9 @@ def sort_cmd(
         _fail(why)
     if out is not None:
         _writable(out)
-    note = (lambda line: typer.echo(line, err=True)) if progress else None
+    # a terminal sees each placement end (the default was off: 15 to 30 s in silence)
+    shown = sys.stderr.isatty() if progress is None else progress
+    note = (lambda line: typer.echo(line, err=True)) if shown else None
     result = sort_mixture(scene, particles, seeds=seeds, periods=until, target=purity,
                           source=curves, geometry=geometry, perp=transverse,
                           jitter_radii=jitter, progress=note)  # type: ignore[arg-type]

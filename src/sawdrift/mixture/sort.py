@@ -235,11 +235,18 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     def one(seed: int) -> tuple[np.ndarray, SlowRun | PlaneRun]:
         xy, kinds, _, _ = placement(spec.model_copy(update={"seed": seed}), species)
         if geometry == "line":
-            return kinds, SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u,
-                                    cache=cache).run(grid / real.frequency)
-        y = jitter(xy[:, 1], jitter_radii * r_min, seed)
-        return kinds, PlaneModel(xy[:, 0], y, kinds, beads, curves, u,
-                                 perp=perp).run(grid / real.frequency)
+            run: SlowRun | PlaneRun = SlowModel(xy[:, 0], xy[:, 1], kinds, beads, curves, u,
+                                                cache=cache).run(grid / real.frequency)
+        else:
+            y = jitter(xy[:, 1], jitter_radii * r_min, seed)
+            run = PlaneModel(xy[:, 0], y, kinds, beads, curves, u,
+                             perp=perp).run(grid / real.frequency)
+        if progress is not None:  # as each placement ends (they were told after the last)
+            what = (f"{run.merges} merges, {run.splits} splits" if isinstance(run, SlowRun)
+                    else f"{run.steps} steps")
+            progress(f"seed {seed} of {seed_list[0]}-{seed_list[-1]}: {what}, "
+                     f"{run.wall_time_s:.2g} s")
+        return kinds, run
 
     if geometry == "plane" and workers > 1 and len(seed_list) > 1:
         with ThreadPoolExecutor(max_workers=workers) as pool:
@@ -247,15 +254,11 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     else:
         done = [one(seed) for seed in seed_list]
     runs, values = [], {k: [] for k in MEASURES}
-    for seed, (kinds, run) in zip(seed_list, done, strict=True):
+    for kinds, run in done:
         runs.append(run)
         for key, fn in (("purity", purity), ("purity_index", purity_index),
                         ("lacey", lacey_segregation)):
             values[key].append([fn(row, kinds) for row in run.x])
-        if progress is not None:
-            what = (f"{run.merges} merges, {run.splits} splits" if isinstance(run, SlowRun)
-                    else f"{run.steps} steps")
-            progress(f"seed {seed}: {what}, {run.wall_time_s:.2g} s")
     rows = []
     for k, (sp, cv) in enumerate(zip(species, curves, strict=True)):
         final = np.concatenate([r.speeds[r.kinds == k] for r in runs])
