@@ -73,7 +73,8 @@ def test_a_heavy_slow_impact_runs_until_its_rebound():
 
 def test_an_impact_held_by_gravity_says_so_and_stops():
     """A slow damped impact (m* = 1, v = 1, e = 0.5) never leaves the contact: no rebound ratio,
-    and a warning saying why (there was none), after a few contact times, not the whole run."""
+    and a warning saying why (there was none), after numerics.periods or four contact times,
+    the longer (a periods of 60 given on purpose was taken for the default and ignored)."""
     scene = sd.Scene(model="mmd", particle={"m_star": 1.0}, material={"restitution": 0.5},
                      drive={"kind": "impact", "velocity": 1.0})
     r = sd.run(scene)
@@ -81,7 +82,30 @@ def test_an_impact_held_by_gravity_says_so_and_stops():
     (warning,) = r.warnings
     assert "contact not lost" in warning and "no rebound ratio" in warning
     # one contact oscillation about the static compression lasts 2 pi sqrt(m* / 1.5) = 5.1
-    assert r.periods <= 4.0 * 2.0 * math.pi * math.sqrt(1.0 / 1.5) + 1.0
+    assert r.periods == pytest.approx(max(60.0, 4.0 * 2.0 * math.pi * math.sqrt(1.0 / 1.5)),
+                                      abs=0.1)
+    longer = sd.run(scene.with_updates(**{"numerics.periods": 100.0}))
+    assert longer.periods == pytest.approx(100.0, abs=0.1)
+
+
+def test_a_long_impact_counts_its_time_in_the_rows_own_times():
+    """At 1e6 steps a period (m* 0.1, v 1: 1.5e6 steps in contact) the recorded rows were
+    thinned past 2**20 while the contact time was read as row index x step: 0.758 periods
+    instead of 1.515, with no warning. An impact keeps every step, at most 2**20 of them: the
+    same time at any resolution, or none with a warning that says why."""
+    from sawdrift.dynamics.impact import MAX_IMPACT_STEPS
+    from sawdrift.dynamics.records import MAX_TRAJECTORY_ROWS
+
+    assert MAX_IMPACT_STEPS <= MAX_TRAJECTORY_ROWS
+    scene = sd.Scene(model="mmd", drive={"kind": "impact", "velocity": 1.0})
+    coarse = sd.run(scene.with_updates(**{"numerics.steps_per_period": 200_000}))
+    fine = sd.run(scene.with_updates(**{"numerics.steps_per_period": 600_000}))
+    duration = coarse.extra["contact_duration"]
+    assert fine.extra["contact_duration"] == pytest.approx(duration, rel=1e-5)
+    finest = sd.run(scene.with_updates(**{"numerics.steps_per_period": 1_000_000}))
+    got = finest.extra["contact_duration"]
+    assert (math.isnan(got) and "at most" in finest.warnings[0]) or got == pytest.approx(
+        duration, rel=1e-5)
 
 
 @pytest.mark.parametrize("shape", ["cone", "flat"])

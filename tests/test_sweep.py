@@ -370,3 +370,14 @@ def test_an_interrupted_first_sweep_names_its_journal_not_a_missing_table(tmp_pa
     assert code == 130 and not out.exists() and journal_path(out).exists()
     assert (f"interrupted: 2 finished cells are kept in {journal_path(out)} ({out} is written "
             "when the sweep completes)") in err
+
+
+def test_a_period_cap_below_the_size_probe_does_not_refuse_the_sweep():
+    """The size estimate probes each sampled cell with a fixed run of about 20000 steps (156
+    periods at 128 a period) but kept the scene's cap: --max-periods 100 made every sweep fail
+    with "max_periods = 100 is below periods = 156.25". A fixed run reads no cap."""
+    base = sd.Scene(model="mmd", numerics={"settle": True, "max_periods": 100})
+    frame = sd.sweep("mmd", "1,2", "0.1,0.2", base=base, progress=False, size=True)
+    assert len(frame) == 4 and frame["error"].isna().all()
+    fixed = sd.Scene(numerics={"settle": False, "periods": 200, "max_periods": 100})
+    assert fixed.numerics.max_periods == 100  # the cap of a fixed run is not refused

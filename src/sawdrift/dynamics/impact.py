@@ -11,14 +11,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..contact.base import ContactModel
-from ..scene.schema import Impact, Numerics, Scene
+from ..scene.schema import Impact, Scene
 from .assembly import Assembly, impact_duration
+from .records import MAX_TRAJECTORY_ROWS
 from .stepper import Stepper
 
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["IMPACT_DURATIONS", "MAX_IMPACT_STEPS", "ImpactRun", "given_periods", "impact_steps",
+__all__ = ["IMPACT_DURATIONS", "MAX_IMPACT_STEPS", "ImpactRun", "impact_steps",
            "integrate_impact"]
 
 
@@ -54,24 +55,19 @@ class ImpactRun:
 #: contact that outlasts them holds the particle (damped, it came to rest under gravity)
 IMPACT_DURATIONS = 4.0
 
-#: most steps of an impact run, whose trajectory keeps every step (11 floats: 176 MB)
-MAX_IMPACT_STEPS = 2_000_000
-
-
-def given_periods(scene: Scene) -> bool:
-    """Whether ``numerics.periods`` was given other than its default (a scene read from a file
-    and completed by the command line holds every field as set)."""
-    return scene.numerics.periods != Numerics.model_fields["periods"].default
+#: most steps of an impact run, whose trajectory keeps every step: the most rows a trajectory
+#: keeps before it is thinned (2e6 let 1.6e6-step impacts be thinned, halving their contact
+#: time as rows counted in steps; 92 MB)
+MAX_IMPACT_STEPS = MAX_TRAJECTORY_ROWS
 
 
 def impact_steps(scene: Scene, k_per: int) -> int:
-    """Steps an impact run may take before contact is lost: ``numerics.periods`` where given
-    (other than its default, :func:`given_periods`), else :data:`IMPACT_DURATIONS` estimated
-    contact times (the default 60 periods cut off a heavy particle's contact of 83: m* = 1e4,
-    v = 10 ended with no rebound ratio and no word why), both within :data:`MAX_IMPACT_STEPS`."""
-    periods = scene.numerics.periods
-    if not given_periods(scene):
-        periods = IMPACT_DURATIONS * impact_duration(scene)
+    """Steps an impact run may take before contact is lost: ``numerics.periods``, or
+    :data:`IMPACT_DURATIONS` estimated contact times where that is longer (the default 60
+    periods cut off a heavy particle's contact of 83: m* = 1e4, v = 10 ended with no rebound
+    ratio and no word why; a length told apart from the default by its value ignored a 60 given
+    on purpose), within :data:`MAX_IMPACT_STEPS`."""
+    periods = max(scene.numerics.periods, IMPACT_DURATIONS * impact_duration(scene))
     return max(1, min(MAX_IMPACT_STEPS, int(math.ceil(periods * k_per))))
 
 
@@ -101,7 +97,8 @@ def integrate_impact(scene: Scene, model: ContactModel, plan: Assembly) -> Impac
         w = a[k] / (a[k] - a[k + 1])
         v_out = (1 - w) * tr["vy"].iloc[k] + w * tr["vy"].iloc[k + 1]
         rebound = float(abs(v_out) / drive.velocity)
-        duration = float((k + w) * stepper.h)
+        t = tr["t"].to_numpy()  # the rows' own times, whatever the recording interval
+        duration = float(t[k] + w * (t[k + 1] - t[k]))
     return ImpactRun(stepper=stepper, separated=separated, rebound_ratio=rebound,
                      contact_duration=duration, trajectory=tr,
                      wall_time_s=time.perf_counter() - t0)

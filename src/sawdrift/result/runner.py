@@ -22,7 +22,6 @@ from ..dynamics.impact import (
     IMPACT_DURATIONS,
     MAX_IMPACT_STEPS,
     ImpactRun,
-    given_periods,
     integrate_impact,
 )
 from ..dynamics.integrate import FLIGHTS_PER_MEAN, MOST_FLIGHT_BUDGETS, WaveRun, integrate_wave
@@ -352,10 +351,8 @@ def _impact_result(scene: Scene, engine: str, out: ImpactRun, trajectory: bool) 
 
 def _held_impact(scene: Scene, stepper: Any) -> str:
     """Why an impact has no rebound ratio: its contact outlasted the run."""
-    given = given_periods(scene)
-    limit = ("numerics.periods (--periods)" if given else
-             f"{IMPACT_DURATIONS:g} estimated contact times; numerics.periods (--periods) runs "
-             "it longer")
+    limit = (f"numerics.periods or {IMPACT_DURATIONS:g} estimated contact times, the longer; "
+             "numerics.periods (--periods) runs it longer")
     return (f"contact not lost after {stepper.step / stepper.k_per:.4g} periods: no rebound "
             f"ratio; the contact held the particle (damped to rest under gravity) or outlasted "
             f"the run ({limit}; at most {MAX_IMPACT_STEPS:.0e} steps)")

@@ -392,7 +392,8 @@ class Numerics(BaseModel):
                 f"measure_periods = {self.measure_periods} is longer than periods = "
                 f"{self.periods:g}: the drift is measured over the run's last periods; allowed: "
                 f"1 to {int(self.periods)} (or a longer run)")
-        if self.max_periods is not None and self.max_periods < self.periods:
+        if (self.max_periods is not None and self.max_periods < self.periods
+                and self.settle is not False):  # a fixed run reads no cap
             # the run takes its periods first: a smaller cap was passed over without a word
             raise ValueError(
                 f"max_periods = {self.max_periods:g} is below periods = {self.periods:g}: a run "
