@@ -242,7 +242,11 @@ def test_run_several_models_gives_each_model_its_own_parameters(monkeypatch, cap
     assert mdr["gross_slip_fraction"] == pytest.approx(mmd["gross_slip_fraction"], abs=0.01)
     code, out, _ = call(monkeypatch, capsys, *args, "--param", "mdr.z_max=4")
     assert code == 0 and json.loads(out)[1]["scene"]["model_params"]["z_max"] == 4
-    for bad, says in (("foo=1", "no model of --model mmd,mdr takes it"),
+    # MODEL.NAME with the one model named too (it was refused: model_params.mdr.strips)
+    code, out, err = call(monkeypatch, capsys, "run", "--model", "mdr", "--periods", "4",
+                          "--json", "--param", "mdr.strips=64")
+    assert code == 0 and json.loads(out)["scene"]["model_params"]["strips"] == 64, err
+    for bad, says in (("foo=1", "--param foo is not a known parameter of --model mmd,mdr"),
                       ("jaeger.x=1", "'jaeger' is not one of --model"),
                       ("mdr.foo=1", "model 'mdr' takes no parameter 'foo'")):
         code, _, err = call(monkeypatch, capsys, *args, "--param", bad)
@@ -489,7 +493,7 @@ def test_command_help_paragraphs_are_reflowed_not_broken_at_the_source_lines():
         assert text, command.name
         for paragraph in text.split("\n\n"):
             lines = paragraph.splitlines()
-            if len(lines) > 1 and not any(line.startswith(("-", "*", " ")) for line in lines):
+            if len(lines) > 1 and not any(line.startswith(("- ", "* ", " ")) for line in lines):
                 ragged.append((command.name, lines[0][:40]))
     assert not ragged
 

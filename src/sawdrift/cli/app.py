@@ -31,7 +31,7 @@ def reflow(text: str | None) -> str | None:
     if not text:
         return text
     paragraphs = inspect.cleandoc(text).split("\n\n")
-    kept = ("-", "*", " ", "\b")
+    kept = ("- ", "* ", " ", "\b")  # list items and indented blocks (not a line on --an-option)
     return "\n\n".join(p if any(line.startswith(kept) for line in p.splitlines())
                        else " ".join(line.strip() for line in p.splitlines())
                        for p in paragraphs)

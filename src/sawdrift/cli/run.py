@@ -200,8 +200,8 @@ def _model_params(names: list[str], params: dict[str, Any]) -> dict[str | None, 
     several, ``NAME`` goes to every model that takes it and ``MODEL.NAME`` to that model (every
     parameter went to every model: mmd refused mdr's strips, so mdr could not be compared with
     a parameter of its own). A name no model takes is a one-line error."""
-    if len(names) <= 1:
-        return {names[0] if names else None: params}
+    if not names:  # the scene file's model: its parameters as given
+        return {None: params}
     from ..contact.registry import get_model
 
     known: dict[str, set[str]] = {}
@@ -223,8 +223,13 @@ def _model_params(names: list[str], params: dict[str, Any]) -> dict[str | None, 
             _fail(f"--param {key}: {model!r} is not one of --model {','.join(names)}")
         takers = [name for name in names if key in known[name]]
         if not takers:
-            _fail(f"--param {key}: no model of --model {','.join(names)} takes it; allowed: "
-                  + "; ".join(f"{n}: {', '.join(sorted(known[n])) or 'none'}" for n in names))
+            from ..scene.overrides import nearest
+
+            every = sorted(set().union(*known.values()))
+            _fail(f"--param {key} is not a known parameter of --model {','.join(names)}"
+                  f"{nearest(key, every, False)} (allowed: "
+                  + "; ".join(f"{n}: {', '.join(sorted(known[n])) or 'none'}" for n in names)
+                  + ")")
         for name in takers:
             out[name][key] = value
     return out
