@@ -211,3 +211,19 @@ def test_gross_slip_at_the_default_strips_is_mmds() -> None:
     assert exact.gross_slip_fraction > 0.15
     assert strips.gross_slip_fraction == pytest.approx(exact.gross_slip_fraction, abs=0.005)
     assert strips.drift_ratio == pytest.approx(exact.drift_ratio, rel=2e-4)
+
+
+def test_entering_contact_is_not_stiffer_than_the_unscaled_strips() -> None:
+    """The scale N*(a*) / Q grows without bound as a* passes the first strip's centroid (Q ->
+    0): just after entry the tangential stiffness was 67 times N*'(a*) at a* = 1.01 c_0. It is
+    capped at 5 % above the strips' own: at most 1.05 m_0 there."""
+    from sawdrift_builtin.mdr import SCALE_CAP
+
+    c, m = strip_grid(256, 2.0 / 256, 1.5)
+    for a in (1.01 * c[0], 1.1 * c[0], 1.5 * c[0], 0.1, 1.0):
+        ref = MdrReference(1.5, 256)
+        ref.step(0.0, 0.0, a, 0.0)
+        db = 1e-9
+        stiffness = ref.step(a, 0.0, a, db) / db
+        unscaled = float(np.sum(m * (c < a)))
+        assert stiffness <= SCALE_CAP * unscaled * (1.0 + 1e-6), (a, stiffness, unscaled)

@@ -26,8 +26,9 @@ pointwise, so its value v_j equals the exact v(c_j) of the continuous model:
 * a strip entering along the straight path (a0 <= c_j < a1) gets db (a1 - c_j) / (a1 - a0);
 * then v_j is clipped to [-(a1 - c_j), a1 - c_j].
 
-Forces: T* = (N*(a*) / Q) sum_j m_j v_j, Q = sum_j m_j (a* - c_j)^+ the strips' quadrature of
-N*(a*), which falls short of it by O(dz^2) through the partial cell at z = a*: on that scale
+Forces: T* = min(N*(a*) / Q, 1.05) sum_j m_j v_j, Q = sum_j m_j (a* - c_j)^+ the strips'
+quadrature of N*(a*), which falls short of it by O(dz^2) through the partial cell at z = a*
+(the cap only within the first cell, where Q -> 0): on that scale
 full sliding gives T* = N*(a*) to rounding (the gross-slip test |T*| >= (1 - 1e-6) N* sees it
 as for an exact law) and |T*| <= N* holds. The normal force is the profile's N*(a*) of the
 normal slot (:mod:`sawdrift.contact.slots`, which also handles contact entry and loss).
@@ -57,6 +58,8 @@ from __future__ import annotations
 from numba import njit
 
 from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
+
+from .mdr import SCALE_CAP
 
 HEADER = 1
 """Number of scalar slots at the start of ``ts`` (the current dz)."""
@@ -206,6 +209,8 @@ def mdr_step(ts, is_, law, tp, a0, b0, a, b):  # noqa: ARG001 - the slot signatu
     if q > 0.0:
         # the quadrature falls short of N*(a*) by O(dz^2) (the partial cell at z = a*): T* on
         # the scale of N*, so that full sliding gives |T*| = N* to rounding (256 strips stopped
-        # 1e-4 short, and gross slip was seen a third as often as by mmd)
-        t *= law_normal(a, law, 0) / q
+        # 1e-4 short, and gross slip was seen a third as often as by mmd); at most SCALE_CAP,
+        # as N*/Q grows without bound just after the first strip enters (Q -> 0: an entry 67
+        # times stiffer than the step is sized for, at a* = 1.01 c_0)
+        t *= min(law_normal(a, law, 0) / q, SCALE_CAP)
     return t
