@@ -516,3 +516,24 @@ def test_ctrl_c_says_so_in_every_command(monkeypatch, capsys, tmp_path):
     (line,) = err.strip().splitlines()[-1:]
     assert code == 130 and line.startswith("interrupted: the values done are kept in ")
     assert "run the same command again to resume" in line
+
+
+def test_a_lightly_refined_adaptive_table_is_drawn_as_regions_too(tmp_path, figures):
+    """An adaptive map refined once (39 computed points on the 7 x 7 grid of their coordinates)
+    filled more than half of that grid and was drawn as it, with 10 white cells; every table that
+    fills less than 90 % of its grid is drawn as each point's region."""
+    rows = []
+    values = np.logspace(-2, 1, 7)
+    missing = {(i, j) for i in (1, 3, 5) for j in (1, 3, 5)} | {(6, 1)}
+    for i, a in enumerate(values):
+        for j, m in enumerate(values):
+            if (i, j) not in missing:
+                rows.append({"model": "mmd", "amplitude": a, "m_star": m, "mu": 0.1, "nu": 0.3,
+                             "regime": "stick" if i <= j else "hopping", "settled": True,
+                             "drift_ratio": 0.0})
+    assert len(rows) == 39
+    sd.plot_phase_diagram(pd.DataFrame(rows), tmp_path / "pd.png", "mmd")
+    ax = figures[-1].axes[0]
+    (mesh,) = [c for c in ax.collections if hasattr(c, "get_array") and c.get_array() is not None
+               and np.size(c.get_array()) > 1000]
+    assert (np.asarray(mesh.get_array()) > 0).all()
