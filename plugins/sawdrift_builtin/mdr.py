@@ -20,11 +20,8 @@ from sawdrift.contact.slots import LazyFunction, TangentialLaw
 from sawdrift.hookspecs import hookimpl
 from sawdrift.scene.profiles import normal_force, normal_stiffness
 
+from .mdr_quadrature import SCALE_CAP
 from .mmd_reference import StraightPathReference
-
-#: most a step's T* is scaled by N*(a*) over the strips' quadrature (mdr_kernel.mdr_step):
-#: 1.0002 at a* = 0.08 on 256 strips, 1.02 at 0.01, beyond it only within the first cell
-SCALE_CAP = 1.05
 
 
 class MdrParams(BaseModel):

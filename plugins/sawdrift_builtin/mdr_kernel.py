@@ -59,7 +59,7 @@ from numba import njit
 
 from sawdrift.contact.normal import JIT_OPTIONS, law_normal, law_slope
 
-from .mdr import SCALE_CAP
+from .mdr_quadrature import SCALE_CAP
 
 HEADER = 1
 """Number of scalar slots at the start of ``ts`` (the current dz)."""
