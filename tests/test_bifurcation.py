@@ -296,3 +296,18 @@ def test_a_device_axis_list_takes_quantities_as_its_range_does():
     assert _values("5 nm,10 nm", "device.amplitude") == pytest.approx([5e-9, 1e-8])
     with pytest.raises(sd.SceneError, match="is not a length"):
         _values("5 s,10 nm", "device.amplitude")
+
+
+def test_the_size_line_says_what_locate_adds(monkeypatch, capsys):
+    """--locate bisects at each bifurcation found, runs no estimate can count beforehand: the
+    size line said 1.3 s for a run of 9 to 14 s as if it were the whole."""
+    import importlib
+
+    study = importlib.import_module("sawdrift.cli.study")
+    base = sd.Scene(model="mmd", numerics={"periods": 10})
+    study._bifurcation_size(base, "drive.amplitude", "lin:0.1:0.3:3", 1, "up", 8, 1, "compiled",
+                            False, True, locate=True)
+    assert "not counted: --locate's bisections" in capsys.readouterr().err
+    study._bifurcation_size(base, "drive.amplitude", "lin:0.1:0.3:3", 1, "up", 8, 1, "compiled",
+                            False, True, locate=False)
+    assert "not counted" not in capsys.readouterr().err
