@@ -27,9 +27,9 @@ import numpy as np
 from numba import njit
 
 from ..codegen import Generated, generate
-from . import adams_bashforth as ig
 from . import evidence as ev
 from .lyapunov import LYAPUNOV_PERIODS, verdict_clear
+from .records import NO_ROWS
 
 #: what :func:`stretch_body` ended with (``status[0]``; ``status[1]`` the period it ended at)
 DONE, ERASED, FALLBACK = 0, 1, 2
@@ -162,7 +162,6 @@ def stretch_rigid_body(base, twin, drive, span, displace, out):
 
 
 _LOOPS: dict[Any, Any] = {}
-_NO_ROWS = np.zeros((0, ig.N_REC))
 
 
 def stretch_loop(stepper: Any) -> Any | None:
@@ -225,11 +224,11 @@ def compiled_stretchings(stepper: Any, scale: np.ndarray, periods: int, align: i
     status = np.zeros(2, dtype=np.int64)
     if stepper.rigid:
         b, t = (base.y, base.ctr, base.st), (twin.y, twin.ctr, twin.st)
-        drive = (stepper.prm, _NO_ROWS)
+        drive = (stepper.prm, NO_ROWS)
     else:
         b = (base.y, base.fh, base.ctr, (base.fs, base.is_, base.pp), base.st)
         t = (twin.y, twin.fh, twin.ctr, (twin.fs, twin.is_, twin.pp), twin.st)
-        drive = (stepper.prm, stepper.dp, _NO_ROWS)
+        drive = (stepper.prm, stepper.dp, NO_ROWS)
     stops = sorted({align + n for n in early if 0 < n < periods} | {align + periods})
     j0 = 0
     for j1 in stops:
