@@ -130,6 +130,12 @@ def base_differences(stored: dict[str, Any], current: dict[str, Any]) -> list[st
     return out
 
 
+#: the base scene :func:`~sawdrift.study.table.stored_base` gives for a journal whose header
+#: (its first line) cannot be read: its rows cannot be checked against a sweep (tested by
+#: identity, in :func:`check_resume`)
+UNREADABLE_BASE: dict[str, Any] = {"unreadable": True}
+
+
 def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[str, Any] | None,
                  base: dict[str, Any], force: bool, engine: str | None = None) -> None:
     """Refuse to add to ``table`` when its rows come from other code or another base scene.
@@ -165,7 +171,7 @@ def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[
             f"({'; '.join(theirs[:3])}; this is sawdrift {__version__} code "
             f"{code_hash(sorted({str(r.get('model')) for r in other}))}): write a new table, or "
             "force=True (--force) to add rows of this code to it")
-    if stored_base is not None and stored_base.get("unreadable") is True:
+    if stored_base is UNREADABLE_BASE:
         raise TableProvenanceError(
             f"table {str(table)!r}: the first line of its journal (the base scene its rows were "
             "swept from) cannot be read, so its rows cannot be checked against this sweep: "

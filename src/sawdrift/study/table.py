@@ -26,7 +26,7 @@ from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, set_dotted
 from .axes import column_unit
 from .journal import records
-from .provenance import code_hash
+from .provenance import UNREADABLE_BASE, code_hash
 
 #: Columns of a sweep table, in order: ``events_dropped`` counts the events the run could not log
 #: (its evidence is then incomplete), ``code_hash`` names the code that computed the row
@@ -193,14 +193,9 @@ def base_json(base: Scene | None, overrides: dict[str, Any] | None) -> dict[str,
     return out
 
 
-#: what :func:`stored_base` returns for a journal whose header (its first line, the base scene)
-#: cannot be read: its rows cannot be checked against a sweep (tested by identity)
-UNREADABLE_BASE: dict[str, Any] = {"unreadable": True}
-
-
 def stored_base(table: Path) -> dict[str, Any] | None:
     """The base scene a table was swept from: its metadata's, else its journal's header
-    (:data:`UNREADABLE_BASE` where that line is damaged: it was taken as no base at all, and a
+    (:data:`~.provenance.UNREADABLE_BASE` where that line is damaged: it was taken as no base at all, and a
     sweep of another base scene mixed its rows in)."""
     if table.exists():
         return table_metadata(table)["base_scene"]
