@@ -58,7 +58,7 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
         a_ref = impact_compression(scene)
         # the contact's start and end (N* ~ a*^p, the damping ~ a*^((p-1)/2) a*') converge
         # slowly: the rebound ratio needs STEPS_PER_IMPACT steps in contact to 1e-4
-        impact = math.ceil(STEPS_PER_IMPACT / impact_duration(scene))
+        impact = math.ceil(STEPS_PER_IMPACT / impact_duration(scene, a_ref))
     # a rolling contact point is lighter by c = 1 + 1/kappa: its tangential frequency is
     # sqrt(c) higher
     c = 1.0 + 1.0 / scene.particle.gyration if scene.effects.rotation else 1.0
@@ -123,16 +123,18 @@ def impact_compression(scene: Scene) -> float:
     return a_ref
 
 
-def impact_duration(scene: Scene) -> float:
+def impact_duration(scene: Scene, a_max: float | None = None) -> float:
     """An estimate of a free impact's contact time in t*: 3 a*_max / v (a Hertz contact, p = 3/2,
     lasts 2.94 a_max / v; a linear spring pi a_max / v), at most one period 2 pi sqrt(m* / p) of
     the contact's oscillation about the static compression a* = 1 (a slow impact, where gravity
-    sets the depth: the particle falls into the contact and comes back out)."""
+    sets the depth: the particle falls into the contact and comes back out). ``a_max``: the
+    :func:`impact_compression` where the caller has it."""
     drive = scene.drive
     assert isinstance(drive, Impact)
     p = scene.particle.profile.p
     slow = 2.0 * math.pi * math.sqrt(scene.particle.m_star / p)
-    return min(3.0 * impact_compression(scene) / drive.velocity, slow)
+    a_max = impact_compression(scene) if a_max is None else a_max
+    return min(3.0 * a_max / drive.velocity, slow)
 
 
 def _vertical_amplitude(scene: Scene) -> float:

@@ -32,7 +32,7 @@ class ImpactRun:
     stepper
         The integration, one step after the separation (or at the step limit).
     separated
-        Whether contact was lost within ``numerics.periods``.
+        Whether contact was lost within :func:`impact_steps`.
     rebound_ratio
         |v_out / v_in| of the normal velocity (NaN if not separated).
     contact_duration
@@ -55,10 +55,10 @@ class ImpactRun:
 #: contact that outlasts them holds the particle (damped, it came to rest under gravity)
 IMPACT_DURATIONS = 4.0
 
-#: most steps of an impact run, whose trajectory keeps every step: the most rows a trajectory
-#: keeps before it is thinned (2e6 let 1.6e6-step impacts be thinned, halving their contact
-#: time as rows counted in steps; 92 MB)
-MAX_IMPACT_STEPS = MAX_TRAJECTORY_ROWS
+#: most steps of an impact run, whose trajectory keeps every step: with the row after the
+#: separation, the most rows a trajectory keeps before it is thinned (2e6 let 1.6e6-step
+#: impacts be thinned, halving their contact time as rows counted in steps; 92 MB)
+MAX_IMPACT_STEPS = MAX_TRAJECTORY_ROWS - 1
 
 
 def impact_steps(scene: Scene, k_per: int) -> int:
