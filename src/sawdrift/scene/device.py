@@ -72,10 +72,10 @@ _FROZEN = ConfigDict(frozen=True, extra="forbid")
 def _incline(value: Any) -> float:
     out = to_si(value, "angle")
     if not -0.5 * math.pi < out < 0.5 * math.pi:
-        # the allowed range, as in_range words it for 86 deg (this said (-90, 90) deg)
-        raise ValueError("is outside the allowed range -85 deg to 85 deg (the substrate's slope, "
-                         "positive where the surface rises towards +x, e.g. '5 deg'; a bare "
-                         "number is in radians)")
+        # the allowed range of RANGES, as in_range words it for 86 deg (this said (-90, 90) deg)
+        raise ValueError(f"is outside the allowed range {RANGES['incline'][2]} (the substrate's "
+                         "slope, positive where the surface rises towards +x, e.g. '5 deg'; a "
+                         "bare number is in radians)")
     return in_range("incline", out, "rad", value)
 
 
