@@ -242,8 +242,11 @@ class Biharmonic(BaseModel):
         u_y = R(t*) (Y1 cos(2 pi t*) + Y2 cos(4 pi t* + phi_y))
 
     in units of a0, t* in periods of the fundamental, y* into the substrate, R(t*) the start-up
-    ramp. Each harmonic alone is symmetric under t* -> t* + 1/2 combined with a mirror; their sum
-    is not, which is what transports (I. I. Blekhman, Vibrational Mechanics, 2000, ch. 5).
+    ramp. A horizontal harmonic alone transports nothing: t* -> t* + 1/2 with the mirror x -> -x
+    maps its motion onto itself. An inclined fundamental (X1 and Y1 both non-zero) transports,
+    gravity making the vertical axis one-sided (the vibratory conveyor); a second harmonic breaks
+    the symmetry in time and transports on a horizontal vibration alone (I. I. Blekhman,
+    Vibrational Mechanics, 2000, ch. 5).
     """
 
     model_config = FROZEN

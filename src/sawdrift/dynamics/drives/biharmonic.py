@@ -7,10 +7,12 @@ axis (scene type :class:`sawdrift.scene.parts.Biharmonic`)::
     u_x = R(t*) (X1 cos(2 pi t*) + X2 cos(4 pi t* + phi_x))
     u_y = R(t*) (Y1 cos(2 pi t*) + Y2 cos(4 pi t* + phi_y))
 
-A single harmonic is symmetric (t* -> t* + 1/2 with x -> -x maps the motion onto itself), so a
-linear vibration alone transports only through the coupling of the two axes; the second harmonic
-breaks the symmetry in time and transports along either axis alone (I. I. Blekhman, Vibrational
-Mechanics, World Scientific 2000, ch. 5; "vibrational transport" with bi-harmonic excitation).
+A horizontal harmonic alone is symmetric (t* -> t* + 1/2 with x -> -x maps the motion onto
+itself) and transports nothing; an inclined one (X1 and Y1 both non-zero: gravity makes the
+vertical axis one-sided) transports through the coupling of the two axes, as a vibratory
+conveyor does; the second harmonic breaks the symmetry in time and transports along either axis
+alone (I. I. Blekhman, Vibrational Mechanics, World Scientific 2000, ch. 5; "vibrational
+transport" with bi-harmonic excitation).
 With X2 = Y2 = 0 and X1 = r A*, Y1 = A* this is the travelling wave's linear orbit
 (``drive.phase = 0``), term for term: the same floating-point operations, so the same run bit
 for bit. The contact of a rigid point is lost when m* max(u_y'') > 1 (N* = 1 - m* u_y'').
