@@ -204,3 +204,18 @@ def test_a_map_over_an_axis_holding_zero_is_refused(table, tmp_path):
     out = run_main("phase-diagram", str(table), "--model", "mmd", "--x", "particle.load",
                    "--where", "amplitude=1", "-o", str(tmp_path / "m.png"))
     assert "holds values <= 0" in _one_error_line(out)
+
+
+def test_a_swept_field_is_named_before_the_step_it_changes(tmp_path):
+    """A table swept over effects.rotation also holds two steps per period (rotation sets the
+    step): the refusal names the swept field, whose values draw whole maps, not the step."""
+    base = two_load_table()
+    base = base[base["particle.load"] == 0.0].drop(columns="particle.load")
+    table = pd.concat([base.assign(**{"effects.rotation": False, "steps_per_period": 128}),
+                       base.assign(**{"effects.rotation": True,
+                                      "steps_per_period": 130 + np.arange(len(base))})])
+    path = tmp_path / "rot.parquet"
+    table.to_parquet(path)
+    line = _one_error_line(run_main("phase-diagram", path, "--model", "mmd", "-o",
+                                    tmp_path / "x.png"))
+    assert "several values of effects.rotation" in line and "--where effects.rotation=" in line

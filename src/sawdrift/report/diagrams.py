@@ -195,7 +195,9 @@ def one_map(rows: pd.DataFrame, keys: list[str], by: bool = False) -> None:
     if not mixed:
         raise SceneError(f"the table holds several rows at one cell of {', '.join(keys)}; one map "
                          "would mix them: pick one with --where FIELD=VALUE")
-    column = mixed[0]
+    # a swept field before the scene columns it changes (effects.rotation sets the step: the
+    # table's steps_per_period was named, and picking one of its values drew part of a map)
+    column = next((c for c in mixed if "." in c), mixed[0])
     also = f", or draw a panel per value with --by {column}" if by else ""
     raise SceneError(f"the table holds several values of {column} ({_values_text(rows[column])}) "
                      f"and one map would mix them: pick one with --where {column}=VALUE{also}")
