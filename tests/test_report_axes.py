@@ -211,9 +211,10 @@ def test_a_swept_field_is_named_before_the_step_it_changes(tmp_path):
     step): the refusal names the swept field, whose values draw whole maps, not the step."""
     base = two_load_table()
     base = base[base["particle.load"] == 0.0].drop(columns="particle.load")
-    table = pd.concat([base.assign(**{"effects.rotation": False, "steps_per_period": 128}),
-                       base.assign(**{"effects.rotation": True,
-                                      "steps_per_period": 130 + np.arange(len(base))})])
+    # as a sweep writes it: the scene's columns (the step among them) before the swept field
+    table = pd.concat([base.assign(**{"steps_per_period": 128, "effects.rotation": False}),
+                       base.assign(**{"steps_per_period": 130 + np.arange(len(base)),
+                                      "effects.rotation": True})])
     path = tmp_path / "rot.parquet"
     table.to_parquet(path)
     line = _one_error_line(run_main("phase-diagram", path, "--model", "mmd", "-o",
