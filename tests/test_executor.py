@@ -2,12 +2,19 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
 
 import pytest
 
 from sawdrift.errors import SceneError
-from sawdrift.study.executor import Executor
+from sawdrift.study.executor import PARENT_CHECK_S, Executor
 
 
 def _square(x: float) -> float:
@@ -94,3 +101,50 @@ def test_worker_processes_load_cached_code_without_numba_lowering_registries(mon
 def test_workers_below_one_is_one_line_error():
     with pytest.raises(SceneError, match="workers = 0"):
         Executor(0)
+
+
+_ORPHANS = """
+import os, sys, time
+from sawdrift.study.executor import Executor
+
+def pid(_):
+    time.sleep(0.2)  # both workers take one
+    return os.getpid()
+
+ex = Executor(workers=2)
+print(*sorted(set(ex.map(pid, range(4)))), flush=True)
+ex.map(time.sleep, [60.0] * 4)
+"""
+
+
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` exists and is not a zombie (an orphan's exit that nobody reaped)."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+    return state != "Z"
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc")
+def test_workers_end_when_their_study_is_killed_outright(tmp_path):
+    """kill -9 of a study runs no shutdown: its workers, busy with 60 s cells, leave within a
+    few of the executor's parent checks instead of running on for nobody."""
+    script = tmp_path / "orphans.py"
+    script.write_text(_ORPHANS)
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True)
+    try:
+        workers = [int(p) for p in proc.stdout.readline().split()]
+        assert len(workers) == 2 and all(_running(p) for p in workers)
+        time.sleep(0.5)  # the sleeping cells have started
+        proc.send_signal(signal.SIGKILL)
+        proc.wait(10)
+        deadline = time.monotonic() + 10 * PARENT_CHECK_S + 5.0
+        while any(_running(p) for p in workers) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert not any(_running(p) for p in workers)
+    finally:
+        proc.kill()
+        for p in workers if "workers" in locals() else []:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(p, signal.SIGKILL)

@@ -20,6 +20,8 @@ exception or Ctrl-C in the consumer the batch's pending work is cancelled (the `
 from __future__ import annotations
 
 import os
+import threading
+import time
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from typing import Any
@@ -49,12 +51,32 @@ def resolve_workers(workers: int | None) -> int:
     return int(workers)
 
 
-def _start_worker() -> None:
-    """What a worker process does first: load the compiled code cached on disk without numba's
-    lowering registries (:mod:`sawdrift.codegen.loading`; 0.4 s less per worker before its first
-    cell, measured on the benchmarks' 2-core machine). The worker is a process of ours, running
-    sawdrift's cells only."""
+#: seconds between a worker's checks that the process that started it is still there
+PARENT_CHECK_S = 0.5
+
+
+def _start_worker(parent: int) -> None:
+    """What a worker process does first: watch its parent (:func:`_leave_with`), and load the
+    compiled code cached on disk without numba's lowering registries
+    (:mod:`sawdrift.codegen.loading`; 0.4 s less per worker before its first cell, measured on
+    the benchmarks' 2-core machine). The worker is a process of ours, running sawdrift's cells
+    only."""
+    _leave_with(parent)
     load_cached_code_lightly()
+
+
+def _leave_with(parent: int) -> None:
+    """End this worker once the process ``parent`` is gone: a study killed outright (``kill
+    -9``, an out-of-memory kill) runs no shutdown, and its workers were left running their
+    cells for nobody (two of them still busy two minutes after the kill). A daemon thread reads
+    the parent's id every :data:`PARENT_CHECK_S` seconds; an orphan has another."""
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(PARENT_CHECK_S)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="sawdrift-parent-watch", daemon=True).start()
 
 
 class Executor:
@@ -134,7 +156,8 @@ class Executor:
             self._pool.shutdown()
             self._pool = None
         if self._pool is None:
-            self._pool = ProcessPoolExecutor(max_workers=size, initializer=_start_worker)
+            self._pool = ProcessPoolExecutor(max_workers=size, initializer=_start_worker,
+                                             initargs=(os.getpid(),))
             self._pool_size = size
         # a bounded number of tasks in flight: waiting on every pending future at each
         # completion cost O(items) per result (3 s of this process's CPU for 1681 cells,
