@@ -249,7 +249,8 @@ def test_material_adhesion_on_a_device_scene_names_device_adhesion(args, sawdrif
     assert out.returncode == 2, out.stderr
     err = out.stderr.strip().splitlines()
     assert len(err) == 1 and "derives material.adhesion" in err[0]
-    assert 'device.adhesion="0.05 J/m^2"' in err[0]
+    # the work of adhesion that gives the pull-off asked for (tested below), not the file's own
+    assert '--set device.adhesion="1.439e-06 J/m^2"' in err[0]
 
 
 def test_adhesion_without_a_work_of_adhesion_on_a_device_names_device_adhesion(sawdrift_main):
@@ -453,7 +454,8 @@ def test_the_value_a_device_error_shows_may_be_given_back(sawdrift_main):
 @pytest.mark.parametrize("option, value, field", [
     ("--mu", "0.3", "material.mu"), ("--nu", "0.3", "material.nu"),
     ("--horizontal-ratio", "0.7", "drive.horizontal_ratio"), ("--load", "0.1", "particle.load"),
-    ("--amplitude", "2", "drive.amplitude")])
+    ("--amplitude", "2", "drive.amplitude"), ("--m-star", "82.5", "particle.m_star"),
+    ("--m-star", "5", "particle.m_star")])
 def test_the_device_setting_named_instead_gives_the_value_asked_for(option, value, field,
                                                                      sawdrift_main):
     # the hint named a fixed example ('--mu 0.3' -> 'device.friction=0.2', the current value;
@@ -465,8 +467,20 @@ def test_the_device_setting_named_instead_gives_the_value_asked_for(option, valu
     scene = sd.Scene.from_toml(MOTOR).with_updates(**{key: given.strip('"')})
     got = {"material.mu": scene.material.mu, "material.nu": scene.material.nu,
            "drive.horizontal_ratio": scene.horizontal_ratio,
-           "particle.load": scene.particle.load, "drive.amplitude": scene.drive.amplitude}[field]
+           "particle.load": scene.particle.load, "drive.amplitude": scene.drive.amplitude,
+           "particle.m_star": scene.particle.m_star}[field]
     assert got == pytest.approx(float(value), rel=1e-3), hint
+
+
+def test_the_work_of_adhesion_named_instead_gives_the_pulloff_asked_for(sawdrift_main):
+    # '--pulloff 3' named the file's own 0.05 J/m^2 (a pull-off of 104254 M g)
+    silica = EXAMPLES / "micro_silica_on_linbo3.toml"
+    out = sawdrift_main("run", str(silica), "--pulloff", "3", "--json")
+    assert out.returncode == 2
+    hint = out.stderr.split("--set ", 1)[1].strip()
+    key, _, given = hint.partition("=")
+    scene = sd.Scene.from_toml(silica).with_updates(**{key: given.strip('"')})
+    assert scene.material.adhesion == pytest.approx(3.0, rel=1e-3), hint
 
 
 def test_a_long_time_means_error_in_m_s_is_the_same_in_run_json_and_the_sweep_table():

@@ -136,17 +136,20 @@ def derived_error(field: str, value: Any, derived: Any, a0_m: float = math.nan,
                   device: Device | None = None) -> DerivedFieldError:
     """The one-line error for a derived ``field`` given as ``value`` on a device scene."""
     given = value.model_dump(exclude_none=True) if isinstance(value, BaseModel) else value
-    instead = instead_for(field, given, device) if device is not None else None
+    instead = instead_for(field, given, device, derived) if device is not None else None
     return DerivedFieldError(f"{field} = {_shown(given)}: a device scene derives {field} from its "
                              f"[device] table (here {_shown(derived)}); set {DERIVED[field]} "
                              "instead", field, given, derived, a0_m, instead)
 
 
-def instead_for(field: str, value: Any, device: Device) -> str | None:
+def instead_for(field: str, value: Any, device: Device, derived: Any = None) -> str | None:
     """The device setting (``--set`` form) that gives the derived ``field`` the ``value`` asked
-    for, where one device field sets it alone: the friction for mu, A* a0 for the amplitude, the
-    load L M g (plus the slope's pull) for the load; None for the others (m*, theta: several
-    device fields enter)."""
+    for: the friction for mu, A* a0 for the amplitude, the load L M g (plus the slope's pull)
+    for the load, the work of adhesion w F*_pull / F*_pull(w) for the pull-off (linear in w;
+    ``derived``: the device's own F*_pull), the particle's radius for m* (:func:`_radius_for`);
+    None for the others (theta: several device fields enter; m* of a cone, whose mass and angle
+    set it). The examples that a device field sets m* or the pull-off gave the file's own value,
+    which is not the one asked for."""
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
         return None
     simple = {"material.mu": "device.friction", "material.nu": "device.substrate.poisson",
@@ -163,7 +166,37 @@ def instead_for(field: str, value: Any, device: Device) -> str | None:
         # L = (F - m g sin(alpha)) / (m g cos(alpha) + F_ext): F = L (M g) + the slope's pull
         force = value * norm["weight_n"] + (device.load - norm["load_n"])
         return f'device.load="{force * 1e3:.4g} mN"'
+    if field == "material.adhesion" and isinstance(derived, float) and derived > 0.0 and value > 0:
+        return f'device.adhesion="{device.adhesion * value / derived:.4g} J/m^2"'
+    if field == "particle.m_star" and value > 0:
+        radius = _radius_for(value, device)
+        if radius is not None:
+            return (f'device.particle.radius="{radius * 1e3:.4g} mm"' if radius >= 1e-3 else
+                    f'device.particle.radius="{radius * 1e6:.4g} um"')
     return None
+
+
+def _radius_for(m_star: float, device: Device) -> float | None:
+    """The particle radius (m) at which ``device`` has the mass ratio ``m_star``, the rest of it
+    as it is (its density or its mass, the preload, the frequency), within the radii a device
+    allows (1 nm to 10 cm); None for a cone or where no radius there gives it."""
+    from scipy.optimize import brentq
+
+    if device.particle.radius is None:
+        return None
+
+    def gap(log_r: float) -> float:
+        particle = device.particle.model_copy(update={"radius": math.exp(log_r)})
+        return math.log(normalized(device.model_copy(update={"particle": particle}))["m_star"]
+                        / m_star)
+
+    lo, hi = math.log(1e-9), math.log(0.1)
+    try:
+        if gap(lo) * gap(hi) > 0.0:
+            return None
+        return math.exp(brentq(gap, lo, hi, xtol=1e-12))
+    except (ValueError, ZeroDivisionError, OverflowError):
+        return None
 
 
 def plain_section(value: Any) -> Any:
