@@ -498,6 +498,40 @@ def test_command_help_paragraphs_are_reflowed_not_broken_at_the_source_lines():
     assert not ragged
 
 
+@pytest.mark.parametrize("command", ["run", "sweep", "field", "bench"])
+def test_help_at_80_columns_cuts_no_option_or_field_name(command):
+    """At 80 columns (a pipe, a standard terminal) the option tables cut every word longer than
+    their column: 28 names of ``run --help`` ended in an ellipsis (``--rolling-resista…``,
+    ``material.restitut…``). Folded, every option of the command appears whole."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "COLUMNS": "80", "TERM": "dumb"}
+    out = subprocess.run([sys.executable, "-m", "sawdrift", command, "--help"], env=env,
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert "…" not in out.stdout
+    assert max(len(line) for line in out.stdout.splitlines()) <= 80
+    if command == "run":
+        lines = out.stdout.splitlines()
+        for name in ("--rolling-resistance", "--no-vertical-inertia", "material.restitution"):
+            assert _in_a_column(lines, name), name
+
+
+def _in_a_column(lines: list[str], name: str) -> bool:
+    """Whether ``name`` is in the text whole, or folded: a head ending a line's cell and the rest
+    starting the next line at the same column."""
+    for line, below in zip(lines, [*lines[1:], ""], strict=True):
+        if name in line:
+            return True
+        for k in range(4, len(name)):
+            col = line.find(name[:k] + " ")
+            if col >= 0 and below[col:].startswith(name[k:]):
+                return True
+    return False
+
+
 def test_ctrl_c_says_so_in_every_command(monkeypatch, capsys, tmp_path):
     """Typer turns Ctrl-C into exit status 130 with no word: run, field, threshold, load-curve
     and bifurcation stopped in silence (bifurcation keeping its journals without saying so)."""

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
+import typer.core
 
 import sawdrift as sd
 
@@ -37,14 +38,57 @@ def reflow(text: str | None) -> str | None:
                        for p in paragraphs)
 
 
+def _fold_help_tables() -> None:
+    """Make the help's option tables fold what does not fit instead of cutting it: at 80 columns
+    (a pipe, a standard terminal) 28 option and field names of ``run --help`` ended in an
+    ellipsis (``--rolling-resista…``, ``material.restitut…``), the very names the help is read
+    for. Rich's table columns cut a word longer than the column, and so do the grids a help
+    cell's texts are laid out in (``Columns``); a folded word goes on below."""
+    import rich.columns
+    import rich.table
+    import rich.text
+    import typer.rich_utils as rich_utils
+
+    if getattr(rich_utils.Table, "folds", False):
+        return
+
+    def fold(cell: Any) -> None:
+        parts = cell.renderables if isinstance(cell, rich.columns.Columns) else [cell]
+        for part in parts:
+            if isinstance(part, rich.text.Text) and part.overflow in (None, "ellipsis"):
+                part.overflow = "fold"
+
+    class FoldingTable(rich.table.Table):
+        folds = True
+
+        def add_row(self, *renderables: Any, **kwargs: Any) -> None:
+            for cell in renderables:
+                fold(cell)
+            super().add_row(*renderables, **kwargs)
+            for column in self.columns:
+                column.overflow = "fold"
+
+    rich_utils.Table = FoldingTable
+
+
+class _Command(typer.core.TyperCommand):
+    """A command whose help folds long names (:func:`_fold_help_tables`)."""
+
+    def format_help(self, ctx: Any, formatter: Any) -> None:
+        _fold_help_tables()
+        super().format_help(ctx, formatter)
+
+
 class _Typer(typer.Typer):
-    """A Typer app whose commands' help is their docstring reflowed (:func:`reflow`)."""
+    """A Typer app whose commands' help is their docstring reflowed (:func:`reflow`), with
+    option tables that fold long names (:class:`_Command`)."""
 
     def command(self, name: str | None = None, **kwargs: Any) -> Any:  # type: ignore[override]
         """:meth:`typer.Typer.command`, the help taken from the docstring through :func:`reflow`."""
         def decorator(f: Any) -> Any:
             if kwargs.get("help") is None:
                 kwargs["help"] = reflow(f.__doc__)
+            kwargs.setdefault("cls", _Command)
             return typer.Typer.command(self, name, **kwargs)(f)
         return decorator
 
