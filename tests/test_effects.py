@@ -7,10 +7,12 @@ import math
 import numpy as np
 import pytest
 from numba import njit
+from pydantic import ValidationError
 
 import sawdrift as sd
 from sawdrift.contact import KernelPair
 from sawdrift.errors import NonFiniteStateError, SceneError
+from sawdrift.scene.parts import FINEST_STEPS
 
 MMD = sd.get_model("mmd")
 
@@ -229,16 +231,23 @@ def test_a_dashpot_beyond_the_finest_step_is_refused_in_one_line():
         sd.run(sd.Scene(model="hertz_tsuji", model_params={"damping": 1e9}))
 
 
-def test_a_scene_beyond_the_finest_step_names_its_fields_not_the_step():
-    # m* 1e-300 failed at steps_per_period 1e7 with the advice to take a larger steps_per_period,
-    # which is refused above 1e7
-    from sawdrift.scene.parts import FINEST_STEPS
+@pytest.mark.parametrize("section, field, value", [
+    ("particle", "m_star", 1e-300), ("particle", "m_star", 5e-324), ("particle", "m_star", 1e308),
+    ("drive", "amplitude", 1e308), ("material", "mu", 5e-324), ("material", "theta", 5e-324)])
+def test_a_scene_beyond_what_a_run_computes_names_its_field_and_range(section, field, value):
+    # m* 1e-300 failed at steps_per_period 1e7 with the advice to take a larger steps_per_period
+    # (refused above 1e7); m* 5e-324 or 1e308, A* 1e308, mu or theta 5e-324 ended in an internal
+    # failure (an infinite step count or window)
+    with pytest.raises(ValidationError, match=rf"{section}.{field}[^\n]*\n[^\n]*outside the "
+                       r"allowed range \["):
+        sd.Scene.model_validate({section: {field: value}})
 
-    with pytest.raises(NonFiniteStateError) as info:
-        sd.run(sd.Scene(particle={"m_star": 1e-300}))
-    msg = str(info.value)
-    assert f"finest step allowed, 1/{FINEST_STEPS}" in msg and "particle.m_star = 1e-300" in msg
-    assert "larger --steps-per-period" not in msg and "\n" not in msg
+
+def test_the_edges_of_the_mass_range_run():
+    """m* 1e-12, the lightest allowed, still gives a result: its contact is resolved at the
+    finest step."""
+    light = sd.run(sd.Scene(particle={"m_star": 1e-12}, numerics={"periods": 2}))
+    assert light.regime == "stick" and light.steps_per_period == FINEST_STEPS
 
 
 @pytest.mark.parametrize("amplitude", [0.2, 1.5])

@@ -77,6 +77,10 @@ def _finite_load(value: float) -> float:
 
 
 Positive = Annotated[float, bounded(0.0, None, lo_open=True)]
+
+#: m* a run computes (the finest step resolves sqrt(1.5/m*) at 1e-12; a window of three free
+#: vertical periods lasts 1.5e7 periods at 1e12); the largest A* (1 cm on a0 = 10 pm)
+M_STAR_RANGE, AMPLITUDE_MAX = (1e-12, 1e12), 1e9
 NonNegative = Annotated[float, bounded(0.0, None)]
 
 FROZEN = ConfigDict(frozen=True, extra="forbid")
@@ -90,16 +94,16 @@ class Material(BaseModel):
 
     model_config = FROZEN
 
-    mu: Annotated[float, bounded(0.0, 10.0, lo_open=True)] = Field(
-        0.1, description="Coulomb friction coefficient mu, in (0, 10]"
+    mu: Annotated[float, bounded(1e-6, 10.0)] = Field(
+        0.1, description="Coulomb friction coefficient mu, in [1e-6, 10]"
     )
     nu: Annotated[float, bounded(-1.0, 0.5, lo_open=True, hi_open=True)] = Field(
         0.3, description="Poisson's ratio nu, in (-1, 0.5) (the substrate's, for r(nu))"
     )
-    theta: Annotated[float, bounded(0.0, 10.0, lo_open=True)] | None = Field(
+    theta: Annotated[float, bounded(0.01, 10.0)] | None = Field(
         None,
         description=(
-            "theta = E*/(4 G*) of the contact, in (0, 10]; default (2 - nu)/(2 (1 - nu)) for "
+            "theta = E*/(4 G*) of the contact, in [0.01, 10]; default (2 - nu)/(2 (1 - nu)) for "
             "identical materials"
         ),
     )
@@ -127,9 +131,8 @@ class Particle(BaseModel):
 
     model_config = FROZEN
 
-    m_star: Positive = Field(
-        0.1, description="m* = a0 m f^2 / (M g) (paper eq. 4), > 0"
-    )
+    m_star: Annotated[float, bounded(*M_STAR_RANGE)] = Field(
+        0.1, description="m* = a0 m f^2 / (M g) (paper eq. 4), in [1e-12, 1e12]")
     profile: Profile = Field(default_factory=Profile)
     gyration: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = Field(
         0.4,
@@ -161,7 +164,8 @@ class Wave(BaseModel):
     model_config = FROZEN
 
     kind: Literal["wave"] = "wave"
-    amplitude: NonNegative = Field(0.316, description="A* = A_y / a0, >= 0")
+    amplitude: Annotated[float, bounded(0.0, AMPLITUDE_MAX)] = Field(
+        0.316, description="A* = A_y / a0, in [0, 1e9]")
     horizontal_ratio: Annotated[float, bounded(0.0, 100.0)] | None = Field(
         None,
         description="r = horizontal / vertical surface amplitude; default r(nu) (Rayleigh eq.)",
@@ -252,7 +256,8 @@ class Biharmonic(BaseModel):
     model_config = FROZEN
 
     kind: Literal["biharmonic"] = "biharmonic"
-    amplitude: NonNegative = Field(0.316, description="Y1: vertical fundamental amplitude / a0")
+    amplitude: Annotated[float, bounded(0.0, 1e6)] = Field(
+        0.316, description="Y1: vertical fundamental amplitude / a0, in [0, 1e6]")
     horizontal: Annotated[float, bounded(-1e6, 1e6)] = Field(
         0.0, description="X1: horizontal fundamental amplitude / a0 (in phase with Y1)")
     second: Annotated[float, bounded(-1e6, 1e6)] = Field(
