@@ -220,3 +220,33 @@ def test_a_swept_field_is_named_before_the_step_it_changes(tmp_path):
     line = _one_error_line(run_main("phase-diagram", path, "--model", "mmd", "-o",
                                     tmp_path / "x.png"))
     assert "several values of effects.rotation" in line and "--where effects.rotation=" in line
+
+
+def test_compare_refuses_an_empty_table_and_by_model_in_one_line(table, tmp_path):
+    """An empty table and --by model ended in an internal failure (exit 3: 'single positional
+    indexer is out-of-bounds')."""
+    empty = tmp_path / "empty.parquet"
+    two_load_table().iloc[:0].to_parquet(empty)
+    line = _one_error_line(run_main("compare", empty, "--models", "mmd,material_point", "-o",
+                                    tmp_path / "c.png"))
+    assert "holds no cells" in line
+    line = _one_error_line(run_main("compare", table, "--models", "mmd,material_point", "--by",
+                                    "model", "-o", tmp_path / "c.png"))
+    assert "--by 'model' is not a swept field" in line
+
+
+@pytest.mark.parametrize("command", [["compare", "--models", "mmd,material_point"],
+                                     ["phase-diagram", "--model", "mmd"], ["export"],
+                                     ["explore"]])
+def test_a_regime_no_run_gives_is_refused_in_one_line(command, tmp_path):
+    """A table whose regime column holds a word no run gives drew it as a missing cell, and
+    compare agreed on 'nan%' with exit 0."""
+    bad = two_load_table()
+    bad = bad[bad["particle.load"] == 0.0].drop(columns="particle.load")
+    bad["regime"] = "bogus_regime"
+    path = tmp_path / "bad.parquet"
+    bad.to_parquet(path)
+    suffix = {"export": ".nc", "explore": ".html"}.get(command[0], ".png")
+    line = _one_error_line(run_main(command[0], path, *command[1:], "-o",
+                                    tmp_path / f"out{suffix}"))
+    assert "holds regime 'bogus_regime', which no run gives" in line

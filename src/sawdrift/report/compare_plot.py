@@ -24,6 +24,8 @@ from ..errors import SceneError  # noqa: E402
 from ..study.axes import column_label  # noqa: E402
 from .diagrams import (  # noqa: E402
     ERROR_CODE,
+    NO_CELLS,
+    SCENE_COLUMNS,
     _draw,
     _edges,
     _legend,
@@ -115,6 +117,13 @@ def _panels(table: pd.DataFrame, models: list[str], by: str | None, x: str,
             y: str) -> list[tuple[str, str, dict]]:
     """:func:`variants`, checked: two panels or more, and none that mixes the values of a swept
     column other than ``by`` (a one-line SceneError naming it and how to pick a value)."""
+    if table.empty:
+        raise SceneError(NO_CELLS)
+    if by is not None and (by == "model" or (by not in SCENE_COLUMNS and "." not in by)):
+        # --by model ended in an internal failure; an output column would split the panels by
+        # the runs' own results
+        raise SceneError(f"--by {by!r} is not a swept field: compare draws a panel per model "
+                         "already; --by takes a field swept with --axis (e.g. effects.rotation)")
     panels = variants(table, models, by)
     if len(panels) < 2:
         raise SceneError("compare needs at least two panels: two models, or a --by column")

@@ -53,6 +53,18 @@ from __future__ import annotations
 REGIMES = ("stick", "oscillating_slip", "drift_with", "drift_against", "hopping", "bouncing",
            "runaway", "ejected")
 
+#: what a table's ``regime`` column may hold: a regime, or "error" for a run that failed
+TABLE_REGIMES = (*REGIMES, "error")
+
+
+def odd_regime(values) -> str | None:
+    """The first value of a table's ``regime`` column that is neither a regime nor "error" (a
+    table written by hand or by another program: such a cell was drawn as missing and compare
+    agreed on "nan%"), or None."""
+    odd = sorted({str(r) for r in values if isinstance(r, str) or r == r} - set(TABLE_REGIMES))
+    return odd[0] if odd else None
+
+
 #: Outcomes without a steady drift: the mean speed keeps growing (``runaway``), or the particle
 #: is out of contact through the whole measuring window (``ejected``). Neither has a drift speed
 #: to report; see :func:`outcome`.
