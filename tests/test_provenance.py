@@ -164,7 +164,7 @@ def test_a_journal_whose_header_is_damaged_is_not_mixed_with_another_base(tmp_pa
     lines = journal.read_text().splitlines()
     journal.write_text("\n".join(["{garbage", *lines[1:]]) + "\n")
     other = sd.Scene(material={"mu": 0.3}, numerics={"periods": 20})
-    with pytest.raises(sd.SawdriftError, match=r"first line of its journal .* cannot be read"):
+    with pytest.raises(sd.SawdriftError, match=r"first line of its journal\) cannot be read"):
         sd.sweep(["mmd"], "0.1", "0.1,0.2", base=other, table=table, workers=1, progress=False)
     assert not table.exists() and journal.read_text().splitlines()[1:] == lines[1:]
     mixed = sd.sweep(["mmd"], "0.1", "0.1,0.2", base=other, table=table, workers=1,
@@ -185,3 +185,74 @@ def test_a_table_of_one_engine_is_not_resumed_with_the_other(tmp_path):
     assert set(pd.read_parquet(table)["engine"]) == {"compiled"}
     sd.sweep(["material_point"], "0.01,1", "0.1,1", base=base, **kw)  # the same engine: resumed
     assert len(pd.read_parquet(table)) == 4
+
+
+@pytest.mark.parametrize("damage", ["not utf-8", "no header"])
+def test_a_journal_damaged_in_its_bytes_or_without_its_header_is_refused(tmp_path, damage):
+    """A journal that was not UTF-8 ended in an internal failure (exit 3); one whose header line
+    was lost was read as having no base scene, so its rows were taken in unchecked."""
+    table = tmp_path / "t.parquet"
+    _interrupted(table)
+    journal = sw.journal_path(table)
+    lines = journal.read_bytes().splitlines()
+    journal.write_bytes(b"\n".join([b"\xff\xfe\x00", *lines[1:]] if damage == "not utf-8"
+                                   else lines[1:]) + b"\n")
+    other = sd.Scene(material={"mu": 0.3}, numerics={"periods": 20})
+    with pytest.raises(sd.SawdriftError, match=r"first line of its journal\) cannot be read"):
+        sd.sweep(["mmd"], "0.1", "0.1,0.2", base=other, table=table, workers=1, progress=False)
+
+
+def test_a_journal_row_no_run_writes_is_computed_again(tmp_path):
+    """A journal row whose regime no run gives went into the table as it was (and compare then
+    left its cell out without a word): it is run again, as a row cut by a kill is."""
+    table = tmp_path / "t.parquet"
+    base = _interrupted(table)
+    journal = sw.journal_path(table)
+    head, row = journal.read_text().splitlines()[:2]
+    bad = {**json.loads(row), "regime": "bogus", "drift_ratio": None}
+    journal.write_text("\n".join([head, json.dumps(bad)]) + "\n")
+    computed = []
+    out = sd.sweep(["mmd"], "0.1", "0.1,0.2", base=base, table=table, workers=1, progress=False,
+                   on_row=computed.append)
+    assert len(computed) == 2 and "bogus" not in set(out["regime"])
+
+
+def _damaged_table(tmp_path, damage: str) -> Path:
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    table = tmp_path / "t.parquet"
+    sd.sweep(["mmd"], "0.1", "0.1,0.2", base=sd.Scene(numerics={"periods": 20}), table=table,
+             workers=1, progress=False)
+    arrow = pq.read_table(table)
+    meta = dict(arrow.schema.metadata)
+    if damage == "metadata":
+        meta[b"base_scene"] = b"{not json"
+        arrow = arrow.replace_schema_metadata(meta)
+    elif damage in ("regime", "m_star"):
+        arrow = arrow.drop([damage])
+    else:
+        frame = arrow.to_pandas()
+        frame.loc[0, "m_star"] = float("nan")
+        arrow = pa.Table.from_pandas(frame, preserve_index=False).replace_schema_metadata(meta)
+    pq.write_table(arrow, table)
+    return table
+
+
+@pytest.mark.parametrize("damage, words", [
+    ("metadata", r"in its metadata, or the first line of its journal\) cannot be read"),
+    ("regime", "has no regime column"), ("m_star", "has no m_star column"),
+    ("nan m_star", "holds m_star = nan, which no sweep writes")])
+def test_a_damaged_table_is_not_resumed_or_rewritten(tmp_path, damage, words):
+    """A table without its regime or m_star column, or with a NaN m*, was resumed and written
+    again with every regime (or m*) missing; one whose stored base scene was not JSON ended in
+    an internal failure of sweep and export (exit 3)."""
+    table = _damaged_table(tmp_path, damage)
+    before = table.read_bytes()
+    with pytest.raises(sd.SawdriftError, match=words):
+        sd.sweep(["mmd"], "0.1", "0.1,0.2", base=sd.Scene(numerics={"periods": 20}),
+                 table=table, workers=1, progress=False)
+    assert table.read_bytes() == before
+    if damage == "metadata":
+        with pytest.raises(sd.SawdriftError, match="base scene in its metadata cannot be read"):
+            sd.write_grid(table, tmp_path / "g.nc")

@@ -75,7 +75,7 @@ def read_journal(path: Path | None, task: dict[str, Any], force: bool) -> dict[s
     out: dict[str, Any] = {"points": {}, "refined": {}}
     if path is None or not path.exists():
         return out
-    with path.open() as fh:
+    with path.open(encoding="utf-8", errors="replace") as fh:  # a damaged byte: no JSON
         lines = fh.read().splitlines()
     try:
         head = json.loads(lines[0]) if lines else None

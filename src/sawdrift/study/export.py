@@ -35,6 +35,7 @@ import pandas as pd
 from ..errors import SceneError
 from ..result.regimes import REGIMES
 from .axes import column_unit, long_name
+from .provenance import UNREADABLE_BASE
 from .table import table_metadata
 
 #: per-cell variables exported when present
@@ -221,7 +222,12 @@ def _versions(table: pd.DataFrame) -> str:
 def write_grid(table_path: str | Path, out: str | Path):
     """Export a sweep table (Parquet) to ``out`` (``.nc``, or ``.zarr`` where zarr is installed)."""
     table_path, out = Path(table_path), Path(out)
-    ds = to_dataset(pd.read_parquet(table_path), table_metadata(table_path))
+    meta = table_metadata(table_path)
+    if meta["base_scene"] is UNREADABLE_BASE:
+        raise SceneError(f"table {str(table_path)!r}: the base scene in its metadata cannot be "
+                         "read (not JSON), and the export carries it as provenance: sweep the "
+                         "table again")
+    ds = to_dataset(pd.read_parquet(table_path), meta)
     if out.suffix == ".zarr":
         try:
             import zarr  # noqa: F401

@@ -15,7 +15,8 @@ def records(path: Path) -> Iterator[dict[str, Any]]:
     """
     if not path.exists():
         return
-    with path.open() as fh:
+    # a damaged byte makes its line no JSON (skipped), not the whole journal unreadable
+    with path.open(encoding="utf-8", errors="replace") as fh:
         for line in fh:
             try:
                 rec = json.loads(line)

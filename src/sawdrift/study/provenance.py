@@ -173,9 +173,9 @@ def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[
             "force=True (--force) to add rows of this code to it")
     if stored_base is UNREADABLE_BASE:
         raise TableProvenanceError(
-            f"table {str(table)!r}: the first line of its journal (the base scene its rows were "
-            "swept from) cannot be read, so its rows cannot be checked against this sweep: "
-            "write a new table, or force=True (--force) to keep them")
+            f"table {str(table)!r}: the base scene its rows were swept from (in its metadata, or "
+            "the first line of its journal) cannot be read, so its rows cannot be checked "
+            "against this sweep: write a new table, or force=True (--force) to keep them")
     if stored_base is not None:
         diffs = base_differences(stored_base, base)
         if diffs:

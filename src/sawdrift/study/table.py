@@ -22,6 +22,7 @@ import pandas as pd
 from .._version import __version__
 from ..contact.binding import bind
 from ..errors import SceneError
+from ..result.regimes import TABLE_REGIMES, odd_regime
 from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, set_dotted
 from .axes import column_unit
@@ -61,13 +62,43 @@ def read_rows(table: Path) -> dict[str, dict[str, Any]]:
             ) from None
         if "cell_id" not in frame.columns:
             raise SceneError(f"table {str(table)!r} is not a sawdrift sweep table (no cell_id column)")
+        _check_resumable(table, frame)
         for rec in _records(frame):
             rec.setdefault("scene_id", None)
             rows[rec["cell_id"]] = rec
     for rec in records(journal_path(table)):  # a cell cut short by a kill is recomputed
-        if "cell_id" in rec:
+        # and so is a row no run writes (a regime of none), whatever damaged it
+        if "cell_id" in rec and rec.get("regime") in TABLE_REGIMES:
             rows[rec["cell_id"]] = rec
     return rows
+
+
+#: the columns a table must hold whole for a sweep to go on in it
+RESUMED_COLUMNS = ("model", "m_star", "amplitude", "regime")
+
+
+def _check_resumable(table: Path, frame: pd.DataFrame) -> None:
+    """A one-line SceneError where the table's cells are not what a sweep wrote: a column of
+    :data:`RESUMED_COLUMNS` missing, an m* or A* that is not a finite number (m* > 0, A* >= 0),
+    a regime no run gives. Such a table was resumed and written again with every regime, or
+    every m*, missing, which the reports then failed on."""
+    name = str(table)
+    missing = [c for c in RESUMED_COLUMNS if c not in frame.columns]
+    if missing:
+        raise SceneError(f"table {name!r} has no {', '.join(missing)} column: it is not a whole "
+                         "sweep table; write a new table")
+    for column, least in (("m_star", 0.0), ("amplitude", 0.0)):
+        values = pd.to_numeric(frame[column], errors="coerce").to_numpy(float)
+        bad = ~np.isfinite(values) | (values < least) | ((values == least) & (column == "m_star"))
+        if bad.any():
+            value = frame[column][bad].iloc[0]
+            shown = f"{value:g}" if isinstance(value, (int, float, np.number)) else repr(value)
+            raise SceneError(f"table {name!r} holds {column} = {shown}, which no sweep writes: "
+                             "write a new table")
+    odd = odd_regime(frame["regime"].dropna().unique())
+    if odd is not None:
+        raise SceneError(f"table {name!r} holds regime {odd!r}, which no run gives: write a new "
+                         "table")
 
 
 def _records(frame: pd.DataFrame) -> list[dict[str, Any]]:
@@ -171,7 +202,13 @@ def table_metadata(table: str | Path) -> dict[str, Any]:
     if META_CODE in meta:
         out["code_hash"] = meta[META_CODE].decode()
     if META_BASE_SCENE in meta:
-        out["base_scene"] = json.loads(meta[META_BASE_SCENE].decode())
+        # a damaged entry is no base at all to check a resumed sweep against, and ended in an
+        # internal failure of sweep and export
+        try:
+            base = json.loads(meta[META_BASE_SCENE].decode())
+        except (json.JSONDecodeError, UnicodeDecodeError):
+            base = UNREADABLE_BASE
+        out["base_scene"] = base if isinstance(base, dict) else UNREADABLE_BASE
     return out
 
 
@@ -201,7 +238,7 @@ def stored_base(table: Path) -> dict[str, Any] | None:
         return table_metadata(table)["base_scene"]
     journal = journal_path(table)
     if journal.exists():
-        with journal.open() as fh:
+        with journal.open(encoding="utf-8", errors="replace") as fh:  # a damaged byte: no JSON
             line = fh.readline()
         if not line.strip():
             return None
@@ -211,7 +248,8 @@ def stored_base(table: Path) -> dict[str, Any] | None:
             return UNREADABLE_BASE
         if not isinstance(first, dict):
             return UNREADABLE_BASE
-        return first.get("base_scene") if "cell_id" not in first else None
+        # a sweep writes its header first: a journal that starts with a row lost it
+        return first.get("base_scene") if "cell_id" not in first else UNREADABLE_BASE
     return None
 
 
