@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import pytest
+from pydantic import ValidationError
 
 import sawdrift as sd
 from sawdrift.contact.binding import bind, check_model_params, describe_body, model_for
@@ -196,3 +197,27 @@ def test_a_phase_given_alone_survives_updates_dumps_and_sweeps(tmp_path):
 
     with pytest.raises(ValidationError, match="disagree"):
         sd.Scene.model_validate({"drive": {"phase": 0.0, "orbit": "prograde"}})
+
+
+@pytest.mark.parametrize("data", [
+    {"particle": {"m_star": True}}, {"drive": {"amplitude": True}}, {"numerics": {"order": True}},
+    {"numerics": {"periods": False}}, {"particle": {"load": True}},
+    {"model": "material_point", "model_params": {"restitution": True}}])
+def test_a_boolean_given_for_a_number_is_refused_naming_the_field(data):
+    """pydantic reads true as 1: '--set drive.amplitude=true' ran at A* = 1, a TOML
+    'm_star = true' at m* = 1, '--param restitution=true' at e = 1."""
+    with pytest.raises((ValidationError, SceneError), match="is a boolean") as info:
+        sd.run(sd.Scene.model_validate(data))
+    section, field = next(iter((k, v) for k, v in data.items() if isinstance(v, dict)))
+    assert f"{section}.{next(iter(field))}" in str(info.value)
+
+
+def test_a_boolean_in_a_scene_file_is_one_line_exit_2(tmp_path):
+    from tests.cli_call import run_main
+
+    path = tmp_path / "s.toml"
+    path.write_text('model = "mmd"\n[particle]\nm_star = true\n')
+    out = run_main("run", path, "--json")
+    assert out.returncode == 2
+    assert out.stderr.strip().splitlines() == [
+        f"error: {path}: particle.m_star = True is a boolean (true/false), not a number"]

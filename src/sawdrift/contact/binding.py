@@ -22,6 +22,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from ..errors import SawdriftError, SceneError
+from ..scene.bounds import NOT_A_NUMBER
 from ..scene.overrides import nearest
 from ..scene.parts import Impact, Prescribed, format_validation_error
 from ..scene.schema import Scene
@@ -33,12 +34,20 @@ __all__ = ["bind", "check_model_params", "describe_body", "model_for"]
 
 
 def _params(cls: type[ContactModel], scene: Scene, where: str) -> BaseModel:
-    """The model's validated parameters, or one line naming the parameter and what it takes."""
+    """The model's validated parameters, or one line naming the parameter and what it takes.
+
+    A boolean given for a number is refused, as in the scene (:mod:`sawdrift.scene.bounds`):
+    pydantic read ``--param restitution=true`` as e = 1."""
+    known = ", ".join(cls.Params.model_fields) or "no parameters"
+    for name, value in scene.model_params.items():
+        field = cls.Params.model_fields.get(name)
+        if isinstance(value, bool) and field is not None and field.annotation in (int, float):
+            raise SceneError(f"{where}model_params.{name} = {value} {NOT_A_NUMBER} (model "
+                             f"{scene.model!r} takes: {known})")
     try:
         return cls.Params.model_validate(scene.model_params)
     except ValidationError as exc:
         line = format_validation_error(exc)
-        known = ", ".join(cls.Params.model_fields) or "no parameters"
         raise SceneError(f"{where}model_params.{line} (model {scene.model!r} takes: {known})") from None
 
 

@@ -13,50 +13,17 @@ from typing import Annotated, Any, Literal
 
 import numpy as np
 from pydantic import (
-    AfterValidator,
     BaseModel,
     ConfigDict,
     Field,
     ValidationError,
+    WrapValidator,
     model_serializer,
     model_validator,
 )
 
+from .bounds import NOT_A_NUMBER, bounded, count
 from .profiles import Profile
-
-
-def _interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
-    left = ("(" if lo_open else "[") + ("-inf" if lo is None else f"{lo:g}")
-    right = "inf)" if hi is None else f"{hi:g}" + (")" if hi_open else "]")
-    return f"{left}, {right}"
-
-
-def bounded(
-    lo: float | None = None,
-    hi: float | None = None,
-    *,
-    lo_open: bool = False,
-    hi_open: bool = False,
-) -> AfterValidator:
-    """A validator that rejects NaN, infinities and values outside an interval, naming it."""
-    text = _interval(lo, hi, lo_open, hi_open)
-    # a field bounded by another field: its finite check says so, not "outside [-inf, inf)"
-    what = "outside the allowed range " + text if lo is not None or hi is not None else "not finite"
-
-    def check(value: float) -> float:
-        ok = math.isfinite(value)
-        if ok and lo is not None:
-            ok = value > lo if lo_open else value >= lo
-        if ok and hi is not None:
-            ok = value < hi if hi_open else value <= hi
-        if not ok:
-            raise ValueError(f"is {what}")
-        return value
-
-    # read by sawdrift.scene.options (a field bounded by another field says so in its description)
-    check.interval = text if lo is not None or hi is not None else ""  # type: ignore[attr-defined]
-    return AfterValidator(check)
-
 
 #: The largest tangential load |L| over what friction can hold at mu = 1, M g + 2 F_pull (M g
 #: without adhesion): beyond it friction holds nothing and the particle is simply pushed. The
@@ -69,8 +36,12 @@ LOAD_RANGE = (f"[-{MAX_LOAD_RATIO:g}, {MAX_LOAD_RATIO:g}], with adhesion {MAX_LO
               "(1 + 2 material.adhesion)")
 
 
-def _finite_load(value: float) -> float:
-    """particle.load is finite; its range depends on material.adhesion (checked by the scene)."""
+def _finite_load(value: Any, handler: Any) -> float:
+    """particle.load is a finite number; its range depends on material.adhesion (checked by the
+    scene)."""
+    if isinstance(value, bool):
+        raise ValueError(NOT_A_NUMBER)
+    value = handler(value)
     if not math.isfinite(value):
         raise ValueError(f"is not finite: give a load in {LOAD_RANGE} (in M g)")
     return value
@@ -148,7 +119,7 @@ class Particle(BaseModel):
             "m*; kept for conversion from dimensional inputs"
         ),
     )
-    load: Annotated[float, AfterValidator(_finite_load)] = Field(
+    load: Annotated[float, WrapValidator(_finite_load)] = Field(
         0.0,
         description=(
             "constant external tangential force on the particle, in units of its static normal "
@@ -293,8 +264,8 @@ class Prescribed(BaseModel):
     a_max: Positive = 1.0
     b_amplitude: NonNegative = 0.5
     slope: Annotated[float, bounded(-10.0, 10.0)] = 0.5
-    cycles: Annotated[int, Field(ge=1, le=100000)] = 2
-    samples_per_segment: Annotated[int, Field(ge=1, le=1_000_000)] = 200
+    cycles: count(1, 100000) = 2
+    samples_per_segment: count(1, 1_000_000) = 200
     seed: int = 0
 
     @model_validator(mode="after")
@@ -342,7 +313,7 @@ class Numerics(BaseModel):
 
     model_config = FROZEN
 
-    order: Annotated[int, Field(ge=1, le=4)] = Field(
+    order: count(1, 4) = Field(
         4,
         description=(
             "Adams-Bashforth order 1-4 (default 4: on the undamped normal oscillation its "
@@ -352,13 +323,13 @@ class Numerics(BaseModel):
             "history is exact)"
         ),
     )
-    steps_per_period: Annotated[int, Field(ge=8, le=FINEST_STEPS)] | None = Field(
+    steps_per_period: count(8, FINEST_STEPS) | None = Field(
         None, description="steps per wave period; default resolves sqrt(1.5/m*) and the wave"
     )
     periods: Annotated[float, bounded(0.0, 1e7, lo_open=True)] = Field(
         60.0, description="simulated periods (with settle: the minimum)"
     )
-    measure_periods: Annotated[int, Field(ge=1, le=10_000_000)] | None = Field(
+    measure_periods: count(1, 10_000_000) | None = Field(
         None, description="whole periods at the end over which the drift is measured"
     )
     drift_tolerance: Annotated[float, bounded(0.0, 1.0)] = Field(
@@ -379,7 +350,7 @@ class Numerics(BaseModel):
         None, description="settle: stop after this many periods even if not settled; default "
         "max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method"
     )
-    mean_periods: Annotated[int, Field(ge=100, le=10_000_000)] = Field(
+    mean_periods: count(100, 10_000_000) = Field(
         500, description="irregular motions (chaotic, quasi-periodic, irregular heavy "
         "bouncing): periods of the long-time mean drift and its batch-means standard error "
         "(a chaotic light bouncer: about +-0.1 in drift ratio at 500, +-0.07 at 2000; an "
