@@ -571,3 +571,14 @@ def test_a_lightly_refined_adaptive_table_is_drawn_as_regions_too(tmp_path, figu
     (mesh,) = [c for c in ax.collections if hasattr(c, "get_array") and c.get_array() is not None
                and np.size(c.get_array()) > 1000]
     assert (np.asarray(mesh.get_array()) > 0).all()
+
+
+def test_no_arguments_print_the_help_and_no_empty_error_line():
+    """``sawdrift`` alone printed its help, then a line reading just 'error: '."""
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-m", "sawdrift"], capture_output=True, text=True,
+                         timeout=60)
+    assert "Usage:" in out.stdout and "run" in out.stdout
+    assert "error" not in out.stderr

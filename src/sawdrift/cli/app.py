@@ -358,7 +358,9 @@ def _main() -> None:
     except Exception as exc:  # noqa: BLE001 - usage errors and anything unexpected
         # typer vendors click: its usage errors carry format_message() and an exit code
         if hasattr(exc, "format_message") and hasattr(exc, "exit_code"):
-            typer.echo(f"error: {exc.format_message()}", err=True)
+            message = exc.format_message()
+            if message:  # no arguments: the help was the answer (an 'error: ' line followed it)
+                typer.echo(f"error: {message}", err=True)
             sys.exit(exc.exit_code)
         if type(exc).__name__ == "Abort":  # end of input at a prompt
             typer.echo("interrupted", err=True)
