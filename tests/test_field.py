@@ -339,3 +339,19 @@ def test_a_field_stuck_everywhere_has_no_direction(monkeypatch, capsys):
     data = json.loads(out)
     assert code == 0 and data["regimes"] == ["stick"] * 4, err
     assert data["summary"] == "stuck at every position: no drift" and data["zeros"] == []
+
+
+def test_a_warning_every_position_shares_is_listed_once():
+    """A row holds its run's warnings joined by '; ': the device's a0 warning (which itself
+    holds '; ') came back inside every position's text, printed three times for one bead."""
+    from sawdrift.study.table import distinct_warnings
+
+    a0 = ("a0 < 1 nm (a0 = 1.12e-10 m): adhesion and roughness, not gravity and preload, then "
+          "set the contact; the model's assumptions do not hold")
+    heat = ["long-time mean: the bounces heat up (1.67e+03 to 2.81e+03)",
+            "long-time mean: the bounces heat up (9.66e+03 to 1.32e+04)"]
+    rows = [a0, f"{a0}; {heat[0]}", f"{a0}; {heat[1]}", a0]
+    assert distinct_warnings(rows) == [a0, *heat]
+    backwards = distinct_warnings(reversed(rows))
+    assert len(backwards) == 3 and set(backwards) == {a0, *heat}
+    assert distinct_warnings([]) == []

@@ -36,6 +36,7 @@ from ..result.runner import run
 from ..scene.device import device_wavelength, normalized, rayleigh_wavelength
 from ..scene.schema import Scene, Wave, build_scene, set_dotted
 from .executor import Executor
+from .table import distinct_warnings
 
 __all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_field", "field_shift",
            "find_zeros", "nearest_zero", "predict_path", "rayleigh_wavelength", "wavelength_star"]
@@ -304,9 +305,7 @@ def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
                              "positions computed")
         v = rows["drift_velocity"].to_numpy(dtype=float)
         errors = [str(e) for e in rows["error"].dropna().unique()]
-        # each position's warnings as its row holds them (one text), each text once
-        warnings = (list(dict.fromkeys(str(w) for w in rows["warnings"].dropna()))
-                    if "warnings" in rows else [])
+        warnings = distinct_warnings(rows["warnings"].dropna()) if "warnings" in rows else []
         fields.append(Field(label=label, positions=positions.copy(), drift_velocity=v,
                             regimes=[str(r) for r in rows["regime"]],
                             settled=[None if s is None or s != s else bool(s)

@@ -253,3 +253,18 @@ def stored_base(table: Path) -> dict[str, Any] | None:
     return None
 
 
+def distinct_warnings(texts: Iterable[str]) -> list[str]:
+    """The warnings of several rows, each once. A row holds its run's warnings joined by "; "
+    (:func:`~.sweep.run_cell`), so a warning every row shares (a device's "a0 < 1 nm") came
+    back inside each row's text, three times for three positions of a field; a warning is
+    itself free to hold "; ", so the rows' texts are not split but matched: the shorter ones
+    first, each later text without the ones already kept."""
+    kept: list[str] = []
+    for text in sorted(dict.fromkeys(str(t) for t in texts), key=len):
+        rest = text
+        for known in sorted(kept, key=len, reverse=True):
+            rest = rest.replace(known + "; ", "").replace("; " + known, "")
+        if rest and rest not in kept and not any(rest in k for k in kept):
+            kept.append(rest)
+    return kept
+
