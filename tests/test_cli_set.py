@@ -83,3 +83,15 @@ def test_integer_options_take_a_float_written_whole_number(monkeypatch, capsys):
     assert json.loads(out)["steps_per_period"] == 100
     code, _, err = call(monkeypatch, capsys, "run", "--steps-per-period", "64.5")
     assert code == 2 and "whole number" in err
+
+
+def test_set_model_beside_model_is_refused_not_dropped(monkeypatch, capsys):
+    """'--model mmd --set model=mdr' ran mmd and dropped the --set without a word (a field set
+    by an option and --set is refused)."""
+    code, _, err = call(monkeypatch, capsys, "run", "--periods", "4", "--model", "mmd", "--set",
+                        "model=mdr", "--json")
+    assert code == 2
+    assert err.strip() == "error: --set model=mdr: --model mmd already sets model; give it once"
+    code, out, err = call(monkeypatch, capsys, "run", "--periods", "4", "--set", "model=mdr",
+                          "--json")
+    assert code == 0 and json.loads(out)["model"] == "mdr", err

@@ -170,6 +170,9 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
     data = base.model_dump(exclude_none=True) if base is not None else {}
     values = dict(overrides or {})
     if model is not None:
+        if "model" in values:  # --model won, and the --set was dropped without a word
+            typed = getattr(overrides, "given", {}).get("model", f"--set model={values['model']}")
+            raise sd.SceneError(f"{typed}: --model {model} already sets model; give it once")
         values["model"] = model
     if params:
         from ..contact.binding import check_model_params
