@@ -250,3 +250,16 @@ def test_a_regime_no_run_gives_is_refused_in_one_line(command, tmp_path):
     line = _one_error_line(run_main(command[0], path, *command[1:], "-o",
                                     tmp_path / f"out{suffix}"))
     assert "holds regime 'bogus_regime', which no run gives" in line
+
+
+def test_a_nan_on_an_axis_is_named_as_such(tmp_path):
+    """A NaN m* was reported as "axis 'm_star' holds values <= 0 (0.01)", the smallest of the
+    other values."""
+    bad = two_load_table()
+    bad = bad[bad["particle.load"] == 0.0].drop(columns="particle.load")
+    bad.loc[bad.index[0], "m_star"] = float("nan")
+    path = tmp_path / "nan.parquet"
+    bad.to_parquet(path)
+    line = _one_error_line(run_main("compare", path, "--models", "mmd,material_point", "-o",
+                                    tmp_path / "c.png"))
+    assert "axis 'm_star' holds nan for some cells" in line and "<= 0" not in line

@@ -173,7 +173,13 @@ def check_axis(table: pd.DataFrame, column: str) -> None:
     if pd.api.types.is_bool_dtype(values) or not pd.api.types.is_numeric_dtype(values):
         raise SceneError(f"axis {column!r} holds no numbers: a map's axes are numeric swept fields; "
                          f"pick one of its values with --where {column}=VALUE")
-    if not (values.to_numpy(float) > 0.0).all():
+    numbers = values.to_numpy(float)
+    if not np.isfinite(numbers).all():
+        # a NaN was reported as 'values <= 0 (0.1)', the smallest of the others
+        raise SceneError(f"axis {column!r} holds {_value_text(numbers[~np.isfinite(numbers)][0])}"
+                         " for some cells: a map's axes are numbers; the table is damaged (sweep "
+                         "it again)")
+    if not (numbers > 0.0).all():
         # the maps are drawn on log axes (a load of 0 ended in an internal failure of the plot)
         raise SceneError(f"axis {column!r} holds values <= 0 ({_value_text(values.min())}): a "
                          "map's axes are logarithmic; pick one of its values with --where "
