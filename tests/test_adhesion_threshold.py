@@ -184,3 +184,12 @@ def test_the_grid_ends_at_the_largest_amplitude_the_wave_may_have():
 def test_a_scan_that_cannot_say_anything_is_refused(args, needle, monkeypatch, capsys):
     code, _, err = _cli(monkeypatch, capsys, "--axis", "device.particle.radius=1 um", *args)
     assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err, err
+
+
+def test_an_output_with_a_file_suffix_is_refused_before_any_work(monkeypatch, capsys, tmp_path):
+    """-o t.txt made a folder named t.txt, where run, field and load-curve refuse the suffix."""
+    out = tmp_path / "t.txt"
+    code, _, err = _cli(monkeypatch, capsys, "--axis", "device.particle.radius=1 um:2 um:2",
+                        "-o", str(out))
+    assert code == 2 and ".txt files are not written here; give a folder" in err
+    assert not out.exists()

@@ -105,6 +105,8 @@ def test_chains_carry_small_beads_against_their_drift(monkeypatch):
     # 1e9 ran for minutes and did not stop on Ctrl-C (which waits for the placement)
     (["--transverse", "1e9"], "--transverse = 1000000000.0: give a factor in (0, 100]"),
     (["--jitter", "-1"], "--jitter = -1.0"),
+    # a folder named s.txt was made, where run, field and load-curve refuse the suffix
+    (["-o", "s.txt"], "-o 's.txt': .txt files are not written here; give a folder"),
 ])
 def test_bad_sort_options_are_one_line(args, needle, monkeypatch, capsys):
     monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"), *args])

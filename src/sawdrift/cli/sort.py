@@ -13,7 +13,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import _fail, _writable, app
+from .app import _fail, _writable, app, out_kind
 from .lammps import _scene_and_particles, with_particle_sets
 from .scene_options import with_scene_options
 
@@ -79,6 +79,7 @@ def sort_cmd(
     if why is not None:
         _fail(why)
     if out is not None:
+        out_kind(out, (), "")  # a folder: -o s.txt made a folder named s.txt
         _writable(out)
     # a terminal sees each placement end (the default was off: 15 to 30 s in silence)
     shown = sys.stderr.isatty() if progress is None else progress

@@ -17,6 +17,7 @@ from .app import (
     app,
     check_engine,
     json_nulls,
+    out_kind,
     write_outputs,
 )
 from .scene_options import scene_from_options, with_scene_options
@@ -71,6 +72,7 @@ def threshold_cmd(
     if not stop_m > 0.0:
         _fail(f"--stop = {stop!r} must be a positive amplitude, e.g. '10 nm' (the scan's top)")
     if out is not None:
+        out_kind(out, (), "")  # a folder: -o t.txt made a folder named t.txt
         _writable(out, folder=True)
     scene = scene_from_options(scene_arg, None, {}, scene_overrides)
     name, values = parse_device_axis(axis)
