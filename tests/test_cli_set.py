@@ -95,3 +95,12 @@ def test_set_model_beside_model_is_refused_not_dropped(monkeypatch, capsys):
     code, out, err = call(monkeypatch, capsys, "run", "--periods", "4", "--set", "model=mdr",
                           "--json")
     assert code == 0 and json.loads(out)["model"] == "mdr", err
+
+
+def test_a_device_field_on_a_scene_without_a_device_says_so(monkeypatch, capsys):
+    """--set device.amplitude on the default (normalized) scene answered only 'device.frequency
+    is required', as if the scene had a device table that lacked it."""
+    code, _, err = call(monkeypatch, capsys, "run", "--periods", "4", "--set",
+                        'device.amplitude="10 nm"')
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert "device.frequency is required" in err and "the scene has no [device] table" in err

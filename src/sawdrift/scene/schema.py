@@ -367,7 +367,8 @@ def apply_overrides(data: Mapping[str, Any] | BaseModel,
         out: dict[str, Any] = data.model_dump(exclude_none=True)
     else:
         out = {key: plain_section(value) for key, value in data.items()}
-    if out.get("device") is not None:
+    had_device = out.get("device") is not None
+    if had_device:
         # check the given scene against its own device, then drop what the device derives: the
         # overrides may change the device
         out = strip_derived(apply_device(out))
@@ -383,5 +384,14 @@ def apply_overrides(data: Mapping[str, Any] | BaseModel,
     for key in overrides:
         check_dotted(key)  # a misspelled field is named with the nearest one
     if out.get("device") is not None:
-        out = strip_derived(apply_device(out))  # an overridden derived field must agree
+        try:
+            out = strip_derived(apply_device(out))  # an overridden derived field must agree
+        except SceneError as exc:
+            if had_device or "is required" not in str(exc):
+                raise
+            # a device field set on a normalized scene builds a device from nothing: it said
+            # only "device.frequency is required"
+            raise SceneError(f"{exc}; the scene has no [device] table, so the device fields "
+                             "set here are all it has (give a scene file with a whole [device] "
+                             "table)") from None
     return out
