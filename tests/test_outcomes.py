@@ -128,6 +128,9 @@ def test_a_thrown_off_micro_particle_is_ejected_without_a_speed():
     assert math.isnan(res.drift_velocity) and math.isnan(res.drift_ratio)
     assert res.drift_speed_m_s != res.drift_speed_m_s  # NaN: no speed in m/s either
     assert res.out_of_contact_fraction == 1.0
+    # a free flight is neither chaotic nor periodic (it reported a Lyapunov exponent and a
+    # periodicity of its parabola)
+    assert math.isnan(res.lyapunov) and math.isnan(res.periodicity)
     # detached during the 5-period ramp, at a phase in [0, 1)
     assert 0.0 < res.detach_time < res.ramp_periods and 0.0 <= res.detach_phase < 1.0
     assert any("a0 < 1 nm" in w for w in res.warnings)

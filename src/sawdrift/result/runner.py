@@ -151,9 +151,11 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         hop_period=hop_period,
         liftoff_phase=sync.phase,
         liftoff_phase_spread=sync.spread,
-        lyapunov=out.lyapunov,
+        # a free flight's window has no motion to be chaotic or periodic in: an ejected 'silica
+        # bead on quartz' reported a Lyapunov exponent 0.0137 and periodicity 0.47
+        lyapunov=math.nan if ending == "ejected" else out.lyapunov,
         spin_rate=win.spin_rate,
-        periodicity=win.periodicity,
+        periodicity=math.nan if ending == "ejected" else win.periodicity,
         scene=scene.model_dump(mode="json"),
         trajectory=out.trajectory,
         event_rows=win.events,
