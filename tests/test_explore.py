@@ -144,6 +144,8 @@ def test_bad_input_gives_one_line(tmp_path, table):
     with pytest.raises(SawdriftError) as err:
         write_explorer(path, tmp_path / "x.html", traces=plain)
     assert "not a sawdrift traces file" in str(err.value) and "\n" not in str(err.value)
+    with pytest.raises(SawdriftError, match="is a folder, not a traces file"):  # 'does not exist'
+        write_explorer(path, tmp_path / "x.html", traces=tmp_path)
     with pytest.raises(SceneError, match="axis 'nope' is not a column"):
         write_explorer(path, tmp_path / "x.html", x="nope")
     assert not (tmp_path / "x.html").exists()

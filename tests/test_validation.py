@@ -294,3 +294,11 @@ def test_an_empty_cases_folder_is_one_line_exit_2(tmp_path, sawdrift_main):
     out = sawdrift_main("validate", "--cases", str(empty), "-o", str(tmp_path / "out"))
     err = out.stderr.strip().splitlines()
     assert out.returncode == 2 and len(err) == 1 and "holds no case files" in err[0], err
+
+
+def test_a_cases_file_given_for_the_folder_is_named_a_file(tmp_path):
+    """validate --cases FILE said the folder 'does not exist'."""
+    afile = tmp_path / "cases.py"
+    afile.write_text("")
+    with pytest.raises(sd.SawdriftError, match="is a file, not a folder"):
+        validate(tmp_path / "out", cases_dir=afile, progress=False)

@@ -187,7 +187,8 @@ def read_traces_file(path: str | Path) -> dict[str, Trace]:
     """The traces of one traces file (no journal), by cell id; a one-line error if unreadable."""
     path = Path(path)
     if not path.is_file():
-        raise SawdriftError(f"traces {str(path)!r} does not exist")
+        what = "is a folder, not a traces file" if path.is_dir() else "does not exist"
+        raise SawdriftError(f"traces {str(path)!r} {what}")
     return _read_parquet(path)
 
 

@@ -66,7 +66,9 @@ def load_cases(cases_dir: Path | None = None) -> list[LoadedCase]:
     """
     cases_dir = Path(cases_dir) if cases_dir is not None else default_cases_dir()
     if not cases_dir.is_dir():
-        raise SawdriftError(f"validation cases folder {str(cases_dir)!r} does not exist")
+        # a file was said not to exist
+        what = "is a file, not a folder" if cases_dir.exists() else "does not exist"
+        raise SawdriftError(f"validation cases folder {str(cases_dir)!r} {what}")
     loaded: list[LoadedCase] = []
     for path in sorted(cases_dir.glob("*.py")):
         if path.name.startswith("_"):
