@@ -336,3 +336,23 @@ def test_device_tables_give_a_long_time_means_error_and_a_detach_time_in_si(tmp_
     assert cell["drift_speed_se_m_s"] == pytest.approx(
         0.01 * 2 * math.pi * 0.6 * 2.0 * norm["a0_m"] * norm["frequency_hz"], rel=1e-12)
     assert cell["detach_time_s"] is None and "_frequency" not in cell
+
+
+_DEVICE_FIELDS = ["device.frequency", "device.amplitude", "device.particle.radius",
+                  "device.particle.youngs_modulus", "device.particle.density",
+                  "device.particle.mass", "device.gravity", "device.preload",
+                  "device.particle.half_angle", "device.load", "device.incline",
+                  "device.wavelength", "device.adhesion"]
+
+
+@pytest.mark.parametrize("name", _DEVICE_FIELDS)
+def test_a_malformed_device_range_shows_an_example_with_units_that_parses(name):
+    """'device.amplitude=5 nm:15' was answered with the example 1e-3:1e2:11, a bare number a
+    device field reads in SI units (1e-3 m)."""
+    from sawdrift.study.axes import parse_range
+
+    with pytest.raises(SceneError, match="with units on both ends, e.g. ") as info:
+        parse_range("5:15", name)
+    example = str(info.value).rsplit("e.g. ", 1)[1]
+    values = parse_range(example, name)
+    assert values is not None and len(values) >= 3

@@ -40,6 +40,14 @@ def _end(text: str, spec: str, name: str, kind: str | None) -> tuple[float, bool
         raise SceneError(f"{name} = {spec!r}: {text.strip()!r} {exc}") from None
 
 
+#: an example range of each kind of device field, with its units
+RANGE_EXAMPLES = {"length": "10 nm:100 nm:10", "frequency": "2 MHz:30 MHz:15",
+                  "force": "1 mN:10 mN:5", "pressure": "70 GPa:210 GPa:5",
+                  "density": "1000 kg/m^3:8000 kg/m^3:5", "mass": "1 mg:10 mg:5",
+                  "acceleration": "1 m/s^2:9.81 m/s^2:5", "angle": "lin:10 deg:30 deg:3",
+                  "surface energy": "0.01 J/m^2:0.1 J/m^2:5"}
+
+
 def parse_range(spec: str, name: str = "axis", tidy: bool = True) -> list[float] | None:
     """The values of a range ``[lin:|log:]START:STOP:N``, or None if ``spec`` is not a range.
 
@@ -56,10 +64,13 @@ def parse_range(spec: str, name: str = "axis", tidy: bool = True) -> list[float]
     way = head.strip().lower() if head.strip().lower() in ("lin", "log") else "log"
     parts = (rest if head.strip().lower() in ("lin", "log") else spec).split(":")
     form = f"{'lin:' if way == 'lin' else ''}START:STOP:N"
-    if len(parts) != 3:
-        raise SceneError(f"{name} = {spec!r} must be {form} ({'evenly' if way == 'lin' else 'log'}"
-                         "-spaced values), e.g. 1e-3:1e2:11 or lin:0.1:1.5:15")
     kind = field_kind(name)
+    if len(parts) != 3:
+        # a device field's example carries its units (it showed 1e-3:1e2:11 for '5 nm:15')
+        example = ("e.g. 1e-3:1e2:11 or lin:0.1:1.5:15" if kind is None else
+                   f"with units on both ends, e.g. {RANGE_EXAMPLES[kind]}")
+        raise SceneError(f"{name} = {spec!r} must be {form} ({'evenly' if way == 'lin' else 'log'}"
+                         f"-spaced values), {example}")
     (start, unit_a), (stop, unit_b) = (_end(p, spec, name, kind) for p in parts[:2])
     if unit_a != unit_b:
         raise SceneError(f"{name} = {spec!r}: give units on both ends or on neither (a bare "
