@@ -235,3 +235,12 @@ def test_check_model_help_is_clean_paragraphs(monkeypatch, capsys):
     assert status == 0
     assert "- passivity: loop work of N* da* + T* db* >= 0 on closed cycles, both ways" in out
     assert "- split_invariance, contact_loss_reset, replay, normal_slot" in out
+
+
+def test_work_precision_with_an_empty_model_list_is_refused(tmp_path):
+    """--models '' ran every model (minutes), where run --model '' is refused."""
+    from tests.cli_call import run_main
+
+    out = run_main("bench", "work-precision", "--models", "", "-o", tmp_path / "wp")
+    assert out.returncode == 2 and "--models '' names no model" in out.stderr
+    assert not (tmp_path / "wp").exists()

@@ -194,7 +194,10 @@ def bench_work_precision_cmd(
     quick: Annotated[bool, typer.Option("--quick", help="a short ladder (seconds)")] = False,
 ) -> None:
     """Error against wall time for every model, order and step (figures, CSV, observed order)."""
-    names = [m.strip() for m in models.split(",")] if models else None
+    names = [m.strip() for m in models.split(",")] if models is not None else None
+    if names is not None and not any(names):  # --models '' ran every model
+        _fail(f"--models {models!r} names no model: give model names (sawdrift models lists "
+              "them), or leave --models out for every model")
     for name in names or []:
         sd.get_model(name)
     _writable(out)
