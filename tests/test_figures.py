@@ -110,6 +110,10 @@ def test_turning_sphere_moves_the_tangential_resonance_by_one_plus_one_over_kapp
     assert min(_flat_lines(off)) == pytest.approx(tangential, rel=1e-12)
     # a solid sphere (kappa = 2/5): the contact point is 1 + 1/kappa = 3.5 times lighter
     assert max(_flat_lines(on)) == pytest.approx(3.5 * tangential, rel=1e-12)
+    # the legend tells the two dotted lines apart (two identical entries said only their m*)
+    texts = [t for t in _legend_texts(figures[-1]) if "tangential" in t]
+    assert any("(rolling sphere)" in t for t in texts)
+    assert any("(rolling sphere)" not in t for t in texts)
 
 
 # -- item 7: the drift map, the comparisons --------------------------------------------------
