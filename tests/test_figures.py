@@ -345,3 +345,11 @@ def test_fig2_names_a_long_time_mean_and_its_error():
                           numerics={"settle": True}))
     assert res.settled is False and res.drift_ratio_se > 0.0
     assert f"long-time mean +- {res.drift_ratio_se:.3f}" in verdict(res)
+
+
+def test_a_sticking_drift_in_a_title_is_not_a_negative_zero():
+    """The demo's stick panel read 'V = -0.000' for a drift ratio of -3e-7."""
+    from sawdrift.report.fig2 import signed
+
+    assert signed(-3.1e-7) == "-3.1e-07" and signed(0.709) == "+0.709"
+    assert signed(-0.2553) == "-0.255" and "-0.000" not in signed(-4e-4)

@@ -57,6 +57,12 @@ def verdict(res: Result) -> str:
     return unsettled_mark(res)
 
 
+def signed(v: float) -> str:
+    """A drift ratio for a title: three decimals, or two significant digits below 5e-4 (a
+    sticking particle's -3e-7 read "-0.000")."""
+    return f"{v:+.3f}" if abs(v) >= 5e-4 or v != v else f"{v:+.1e}"
+
+
 def _panel(sub, label: str, m: float, a: float, periods: float) -> None:
     """One regime: x*(t*) over the run (left) and its last period beside u_x (right)."""
     scene = fig2_scene(m, a, periods)
@@ -79,7 +85,7 @@ def _panel(sub, label: str, m: float, a: float, periods: float) -> None:
     last_ax.grid(alpha=0.3)
     last_ax.legend(fontsize=7, frameon=False, loc="best")
     sub.suptitle(f"{label}: m* = {m:g}, A* = {a:g}\nsawdrift: {res.regime}, "
-                 f"V = {res.drift_ratio:+.3f}{verdict(res)}", fontsize=9)
+                 f"V = {signed(res.drift_ratio)}{verdict(res)}", fontsize=9)
 
 
 def plot_fig2(path: str | Path, periods: float = 60.0,
