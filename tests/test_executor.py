@@ -104,16 +104,18 @@ def test_workers_below_one_is_one_line_error():
 
 
 _ORPHANS = """
-import os, sys, time
+import multiprocessing, os, sys, time
 from sawdrift.study.executor import Executor
 
 def pid(_):
     time.sleep(0.2)  # both workers take one
     return os.getpid()
 
-ex = Executor(workers=2)
-print(*sorted(set(ex.map(pid, range(4)))), flush=True)
-ex.map(time.sleep, [60.0] * 4)
+if __name__ == "__main__":
+    multiprocessing.set_start_method(sys.argv[1])
+    ex = Executor(workers=2)
+    print(*sorted(set(ex.map(pid, range(4)))), flush=True)
+    ex.map(time.sleep, [60.0] * 4)
 """
 
 
@@ -127,12 +129,16 @@ def _running(pid: int) -> bool:
 
 
 @pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc")
-def test_workers_end_when_their_study_is_killed_outright(tmp_path):
+@pytest.mark.parametrize("method", ["fork", "forkserver"])
+def test_workers_end_when_their_study_is_killed_outright(tmp_path, method):
     """kill -9 of a study runs no shutdown: its workers, busy with 60 s cells, leave within a
-    few of the executor's parent checks instead of running on for nobody."""
+    few of the executor's parent checks instead of running on for nobody; a worker a fork
+    server started (its parent the server, Python 3.14's default) works until then (reading
+    its parent's id ended it at once: every batch failed)."""
     script = tmp_path / "orphans.py"
     script.write_text(_ORPHANS)
-    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True)
+    proc = subprocess.Popen([sys.executable, str(script), method], stdout=subprocess.PIPE,
+                            text=True)
     try:
         workers = [int(p) for p in proc.stdout.readline().split()]
         assert len(workers) == 2 and all(_running(p) for p in workers)

@@ -24,6 +24,7 @@ import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from pathlib import Path
 from typing import Any
 
 from ..codegen.loading import load_cached_code_lightly
@@ -66,17 +67,35 @@ def _start_worker(parent: int) -> None:
 
 
 def _leave_with(parent: int) -> None:
-    """End this worker once the process ``parent`` is gone: a study killed outright (``kill
-    -9``, an out-of-memory kill) runs no shutdown, and its workers were left running their
-    cells for nobody (two of them still busy two minutes after the kill). A daemon thread reads
-    the parent's id every :data:`PARENT_CHECK_S` seconds; an orphan has another."""
+    """End this worker once the study process ``parent`` is gone: a study killed outright
+    (``kill -9``, an out-of-memory kill) runs no shutdown, and its workers were left running
+    their cells for nobody (two of them still busy two minutes after the kill). A daemon thread
+    checks every :data:`PARENT_CHECK_S` seconds (:func:`_alive`)."""
 
     def watch() -> None:
-        while os.getppid() == parent:
+        while _alive(parent):
             time.sleep(PARENT_CHECK_S)
         os._exit(1)
 
     threading.Thread(target=watch, name="sawdrift-parent-watch", daemon=True).start()
+
+
+def _alive(parent: int) -> bool:
+    """Whether the study process ``parent`` still runs: this worker's parent (a forked worker),
+    or a process of that id that is not a zombie (a worker started by a fork server has the
+    server for its parent: reading the parent's id alone ended every such worker at once)."""
+    if os.getppid() == parent:
+        return True
+    try:
+        os.kill(parent, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        return True  # not ours to signal: some process has the id
+    try:  # a study killed but not yet reaped by its shell
+        return Path(f"/proc/{parent}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except (OSError, IndexError):
+        return True
 
 
 class Executor:
