@@ -256,3 +256,14 @@ def test_a_damaged_table_is_not_resumed_or_rewritten(tmp_path, damage, words):
     if damage == "metadata":
         with pytest.raises(sd.SawdriftError, match="base scene in its metadata cannot be read"):
             sd.write_grid(table, tmp_path / "g.nc")
+
+
+@pytest.mark.parametrize("kind", ["impact", "prescribed"])
+def test_a_table_of_impacts_or_prescribed_paths_is_resumed(tmp_path, kind):
+    """Runs of these drives name no regime of a drift ('impact', 'prescribed') and a prescribed
+    path has no amplitude: the check of a resumed table refused the tables sweeps write."""
+    table = tmp_path / "t.parquet"
+    base = sd.Scene(drive={"kind": kind})
+    sd.sweep(["mmd"], "0.1,0.2", base=base, table=table, workers=1, progress=False)
+    again = sd.sweep(["mmd"], "0.1,0.2,0.3", base=base, table=table, workers=1, progress=False)
+    assert len(again) == 3 and set(again["regime"]) == {kind}

@@ -53,15 +53,16 @@ from __future__ import annotations
 REGIMES = ("stick", "oscillating_slip", "drift_with", "drift_against", "hopping", "bouncing",
            "runaway", "ejected")
 
-#: what a table's ``regime`` column may hold: a regime, or "error" for a run that failed
-TABLE_REGIMES = (*REGIMES, "error")
+#: what a table's ``regime`` column may hold: a regime; "impact" or "prescribed" for a run of
+#: those drives (no drift to name, sawdrift.result.runner); "error" for a run that failed
+TABLE_REGIMES = (*REGIMES, "impact", "prescribed", "error")
 
 
 def odd_regime(values) -> str | None:
     """The first value of a table's ``regime`` column that is neither a regime nor "error" (a
     table written by hand or by another program: such a cell was drawn as missing and compare
     agreed on "nan%"), or None."""
-    odd = sorted({str(r) for r in values if isinstance(r, str) or r == r} - set(TABLE_REGIMES))
+    odd = sorted({str(r) for r in values if isinstance(r, str)} - set(TABLE_REGIMES))
     return odd[0] if odd else None
 
 

@@ -73,7 +73,7 @@ def read_rows(table: Path) -> dict[str, dict[str, Any]]:
     return rows
 
 
-#: the columns a table must hold whole for a sweep to go on in it
+#: the columns a table must hold for a sweep to go on in it
 RESUMED_COLUMNS = ("model", "m_star", "amplitude", "regime")
 
 
@@ -87,9 +87,11 @@ def _check_resumable(table: Path, frame: pd.DataFrame) -> None:
     if missing:
         raise SceneError(f"table {name!r} has no {', '.join(missing)} column: it is not a whole "
                          "sweep table; write a new table")
-    for column, least in (("m_star", 0.0), ("amplitude", 0.0)):
+    for column in ("m_star", "amplitude"):
         values = pd.to_numeric(frame[column], errors="coerce").to_numpy(float)
-        bad = ~np.isfinite(values) | (values < least) | ((values == least) & (column == "m_star"))
+        # a prescribed drive's row has no amplitude (None): only a number there must be one
+        bad = (~(values > 0.0) if column == "m_star" else
+               (frame[column].notna().to_numpy() & ~(np.isfinite(values) & (values >= 0.0))))
         if bad.any():
             value = frame[column][bad].iloc[0]
             shown = f"{value:g}" if isinstance(value, (int, float, np.number)) else repr(value)
