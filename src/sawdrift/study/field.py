@@ -36,7 +36,6 @@ from ..result.runner import run
 from ..scene.device import device_wavelength, normalized, rayleigh_wavelength
 from ..scene.schema import Scene, Wave, build_scene, set_dotted
 from .executor import Executor
-from .table import distinct_warnings
 
 __all__ = ["Field", "FieldStudy", "device_wavelength", "direct_run", "drift_field", "field_shift",
            "find_zeros", "nearest_zero", "predict_path", "rayleigh_wavelength", "wavelength_star"]
@@ -288,7 +287,7 @@ def drift_field(
 def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
             positions: np.ndarray) -> list[Field]:
     """The fields of every species from the sweep's rows, with their zeros (not yet refined)."""
-    from .table import drift_errors  # pandas, as the sweep that made the rows
+    from .table import distinct_warnings, drift_errors  # pandas, as the sweep's rows
 
     species = species_scenes(base, axis)
     fields = []
