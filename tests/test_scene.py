@@ -48,7 +48,7 @@ def test_scene_is_frozen():
     ("data", "pattern"),
     [
         ({"particle": {"m_star": -1}},
-         r"particle\.m_star = -1 is outside the allowed range \[1e-12, 1e\+12\]"),
+         r"particle\.m_star = -1 is outside the allowed range \[1e-12, 1e\+10\]"),
         ({"particle": {"m_star": 0}}, r"particle\.m_star"),
         ({"material": {"mu": 0}}, r"material\.mu = 0 is outside the allowed range \[1e-06, 10\]"),
         ({"material": {"nu": 0.5}}, r"material\.nu = 0.5 is outside the allowed range \(-1, 0.5\)"),

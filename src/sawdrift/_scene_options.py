@@ -5,18 +5,18 @@ One row per scene field: (option name, dotted field, kind, choices, help).
 """
 
 OPTIONS = (
-    ('mu', 'material.mu', 'float', (), 'material.mu: Coulomb friction coefficient mu, in [1e-6, 10]; in [1e-06, 10]; scene default 0.1'),
+    ('mu', 'material.mu', 'float', (), 'material.mu: Coulomb friction coefficient mu, in [1e-06, 10]; scene default 0.1'),
     ('nu', 'material.nu', 'float', (), "material.nu: Poisson's ratio nu, in (-1, 0.5) (the substrate's, for r(nu)); scene default 0.3"),
     ('theta', 'material.theta', 'float', (), 'material.theta: theta = E*/(4 G*) of the contact, in [0.01, 10]; default (2 - nu)/(2 (1 - nu)) for identical materials'),
     ('restitution', 'material.restitution', 'float', (), 'material.restitution: coefficient of restitution e of a free normal impact, in [0, 1]: a normal damping that gives the rebound speed ratio e independent of impact speed (compliant models); default none, the undamped contact'),
     ('pulloff', 'material.adhesion', 'float', (), "material.adhesion: adhesion as the pull-off force of the law in effects.adhesion over the static normal load M g (JKR 1.5 pi R w, DMT 2 pi R w, w the work of adhesion), >= 0; needs effects.adhesion = 'dmt' or 'jkr'; on a device scene derived from device.adhesion; in [0, 1e+12]; scene default 0.0"),
-    ('m-star', 'particle.m_star', 'float', (), 'particle.m_star: m* = a0 m f^2 / (M g) (paper eq. 4), in [1e-12, 1e12]; in [1e-12, 1e+12]; scene default 0.1'),
+    ('m-star', 'particle.m_star', 'float', (), 'particle.m_star: m* = a0 m f^2 / (M g) (paper eq. 4), in [1e-12, 1e+10]; scene default 0.1'),
     ('gyration', 'particle.gyration', 'float', (), 'particle.gyration: kappa = I / (m R^2), in (0, 1]: 2/5 solid sphere, 2/3 thin shell; only with effects.rotation = true (another value without rotation is an error); scene default 0.4'),
     ('preload', 'particle.preload', 'float', (), 'particle.preload: F_ext / (m g). It enters the normalized equations only through M = m + F_ext/g in m*; kept for conversion from dimensional inputs; in [0, inf); scene default 0.0'),
     ('load', 'particle.load', 'float', (), "particle.load: constant external tangential force on the particle, in units of its static normal load M g, positive along +x (a motor's thrust, gravity along an incline); in [-100, 100], with adhesion 100 (1 + 2 material.adhesion); scene default 0.0"),
     ('profile', 'particle.profile.shape', 'choice', ('sphere', 'cone', 'flat', 'power', 'table'), 'particle.profile.shape: one of sphere, cone, flat, power, table; scene default sphere'),
     ('profile-exponent', 'particle.profile.exponent', 'float', (), "particle.profile.exponent: p of N* = a*^p for shape 'power'; in [1, 10]"),
-    ('amplitude', 'drive.amplitude', 'float', (), 'drive.amplitude: A* = A_y / a0, in [0, 1e9]; in [0, 1e+09]; scene default 0.316'),
+    ('amplitude', 'drive.amplitude', 'float', (), 'drive.amplitude: A* = A_y / a0, in [0, 1e+09]; scene default 0.316'),
     ('horizontal-ratio', 'drive.horizontal_ratio', 'float', (), 'drive.horizontal_ratio: r = horizontal / vertical surface amplitude; default r(nu) (Rayleigh eq.); in [0, 100]'),
     ('ramp-periods', 'drive.ramp_periods', 'float', (), 'drive.ramp_periods: length of the smooth ramp R(t*) = sin^2(pi t* / (2 T_ramp)), periods; in [0, 1e+06]; scene default 5.0'),
     ('orbit', 'drive.orbit', 'choice', ('prograde', 'retrograde'), "drive.orbit: prograde: eq. 1 as printed with y* into the substrate (the crest moves with the wave, the paper's figures); retrograde: a Rayleigh wave on an isotropic half-space (the mirror x -> -x: every drift changes sign); one of prograde, retrograde; scene default prograde"),

@@ -13,7 +13,18 @@ from typing import Annotated, Any
 
 from pydantic import Field, WrapValidator
 
-__all__ = ["bounded", "count", "interval"]
+__all__ = ["AMPLITUDE_MAX", "M_STAR_RANGE", "bounded", "count", "interval"]
+
+#: The range of m* = a0 m f^2 / (M g) a scene may have (a device's derived one too). m* is
+#: 1.5 / (2 pi)^2 times the squared ratio of the wave's frequency to the contact's normal natural
+#: frequency. Above 1e10 one window of a heavy particle's settle alone spans 3 periods of the
+#: contact's oscillation, over a million wave periods; below 1e-12 the contact oscillates more
+#: than 1e5 times a period, beyond the 1e7 steps a period a compliant model takes at most.
+#: Beyond both the arithmetic overflowed (m* = 5e-324 or 1e308 ended in an internal failure).
+M_STAR_RANGE = (1e-12, 1e10)
+
+#: the largest A* a scene may have (a device's 1 cm on a static compression of 10 pm)
+AMPLITUDE_MAX = 1e9
 
 #: the message of a boolean given for a number
 NOT_A_NUMBER = "is a boolean (true/false), not a number"

@@ -53,6 +53,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from ..errors import SceneError
+from .bounds import M_STAR_RANGE
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio
 from .units import (
     FIELD_KIND,
@@ -296,12 +297,6 @@ def wave_implausibility(device: Device) -> str | None:
     return None
 
 
-#: The range of m* = a0 m f^2 / (M g) a device may give. m* is 1.5 / (2 pi)^2 times the squared
-#: ratio of the wave's frequency to the contact's normal natural frequency. Above 1e10 one
-#: window of a heavy particle's settle alone spans 3 periods of the contact's oscillation, over a
-#: million wave periods; below 1e-12 the contact oscillates more than 1e5 times a period, beyond
-#: the 1e7 steps a period a compliant model takes at most.
-M_STAR_RANGE = (1e-12, 1e10)
 
 def derived_out_of_range(device: Device) -> str | None:
     """Why the device's normalized quantities are outside what the model can integrate, or None.

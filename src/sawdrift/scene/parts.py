@@ -22,7 +22,7 @@ from pydantic import (
     model_validator,
 )
 
-from .bounds import NOT_A_NUMBER, bounded, count
+from .bounds import AMPLITUDE_MAX, M_STAR_RANGE, NOT_A_NUMBER, bounded, count
 from .profiles import Profile
 
 #: The largest tangential load |L| over what friction can hold at mu = 1, M g + 2 F_pull (M g
@@ -49,9 +49,6 @@ def _finite_load(value: Any, handler: Any) -> float:
 
 Positive = Annotated[float, bounded(0.0, None, lo_open=True)]
 
-#: m* a run computes (the finest step resolves sqrt(1.5/m*) at 1e-12; a window of three free
-#: vertical periods lasts 1.5e7 periods at 1e12); the largest A* (1 cm on a0 = 10 pm)
-M_STAR_RANGE, AMPLITUDE_MAX = (1e-12, 1e12), 1e9
 NonNegative = Annotated[float, bounded(0.0, None)]
 
 FROZEN = ConfigDict(frozen=True, extra="forbid")
@@ -66,7 +63,7 @@ class Material(BaseModel):
     model_config = FROZEN
 
     mu: Annotated[float, bounded(1e-6, 10.0)] = Field(
-        0.1, description="Coulomb friction coefficient mu, in [1e-6, 10]"
+        0.1, description="Coulomb friction coefficient mu, in [1e-06, 10]"
     )
     nu: Annotated[float, bounded(-1.0, 0.5, lo_open=True, hi_open=True)] = Field(
         0.3, description="Poisson's ratio nu, in (-1, 0.5) (the substrate's, for r(nu))"
@@ -103,7 +100,7 @@ class Particle(BaseModel):
     model_config = FROZEN
 
     m_star: Annotated[float, bounded(*M_STAR_RANGE)] = Field(
-        0.1, description="m* = a0 m f^2 / (M g) (paper eq. 4), in [1e-12, 1e12]")
+        0.1, description="m* = a0 m f^2 / (M g) (paper eq. 4), in [1e-12, 1e+10]")
     profile: Profile = Field(default_factory=Profile)
     gyration: Annotated[float, bounded(0.0, 1.0, lo_open=True)] = Field(
         0.4,
@@ -136,7 +133,7 @@ class Wave(BaseModel):
 
     kind: Literal["wave"] = "wave"
     amplitude: Annotated[float, bounded(0.0, AMPLITUDE_MAX)] = Field(
-        0.316, description="A* = A_y / a0, in [0, 1e9]")
+        0.316, description="A* = A_y / a0, in [0, 1e+09]")
     horizontal_ratio: Annotated[float, bounded(0.0, 100.0)] | None = Field(
         None,
         description="r = horizontal / vertical surface amplitude; default r(nu) (Rayleigh eq.)",
@@ -228,7 +225,7 @@ class Biharmonic(BaseModel):
 
     kind: Literal["biharmonic"] = "biharmonic"
     amplitude: Annotated[float, bounded(0.0, 1e6)] = Field(
-        0.316, description="Y1: vertical fundamental amplitude / a0, in [0, 1e6]")
+        0.316, description="Y1: vertical fundamental amplitude / a0, in [0, 1e+06]")
     horizontal: Annotated[float, bounded(-1e6, 1e6)] = Field(
         0.0, description="X1: horizontal fundamental amplitude / a0 (in phase with Y1)")
     second: Annotated[float, bounded(-1e6, 1e6)] = Field(
