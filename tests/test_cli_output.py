@@ -582,3 +582,14 @@ def test_no_arguments_print_the_help_and_no_empty_error_line():
                          timeout=60)
     assert "Usage:" in out.stdout and "run" in out.stdout
     assert "error" not in out.stderr
+
+
+def test_no_option_help_states_its_interval_twice():
+    """A field whose description wrote its interval in another format ('in [1e-6, 10]') got the
+    validator's ('in [1e-06, 10]') added after it: --mu, --m-star and --amplitude said it twice."""
+    import re
+
+    from sawdrift._scene_options import OPTIONS
+
+    twice = [o[0] for o in OPTIONS if len(re.findall(r"in [\[(][^\])]*[\])]", o[-1])) > 1]
+    assert twice == []
