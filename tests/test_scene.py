@@ -202,14 +202,17 @@ def test_a_phase_given_alone_survives_updates_dumps_and_sweeps(tmp_path):
 @pytest.mark.parametrize("data", [
     {"particle": {"m_star": True}}, {"drive": {"amplitude": True}}, {"numerics": {"order": True}},
     {"numerics": {"periods": False}}, {"particle": {"load": True}},
-    {"model": "material_point", "model_params": {"restitution": True}}])
+    {"model": "material_point", "model_params": {"restitution": True}},
+    {"particle": {"profile": {"shape": "power", "exponent": True}}},
+    {"drive": {"kind": "prescribed", "waveform": "random", "seed": True}}])
 def test_a_boolean_given_for_a_number_is_refused_naming_the_field(data):
     """pydantic reads true as 1: '--set drive.amplitude=true' ran at A* = 1, a TOML
     'm_star = true' at m* = 1, '--param restitution=true' at e = 1."""
     with pytest.raises((ValidationError, SceneError), match="is a boolean") as info:
         sd.run(sd.Scene.model_validate(data))
-    section, field = next(iter((k, v) for k, v in data.items() if isinstance(v, dict)))
-    assert f"{section}.{next(iter(field))}" in str(info.value)
+    section, fields = next(iter((k, v) for k, v in data.items() if isinstance(v, dict)))
+    name = next(k for k, v in fields.items() if v is True or v is False or isinstance(v, dict))
+    assert f"{section}.{name}" in str(info.value)
 
 
 def test_a_boolean_in_a_scene_file_is_one_line_exit_2(tmp_path):
@@ -221,3 +224,12 @@ def test_a_boolean_in_a_scene_file_is_one_line_exit_2(tmp_path):
     assert out.returncode == 2
     assert out.stderr.strip().splitlines() == [
         f"error: {path}: particle.m_star = True is a boolean (true/false), not a number"]
+
+
+def test_a_boolean_for_a_device_number_is_refused():
+    """device.horizontal_ratio = true gave r = 1."""
+    from pathlib import Path
+
+    motor = sd.Scene.from_toml(Path(__file__).parents[1] / "examples" / "saw_linear_motor.toml")
+    with pytest.raises((ValidationError, SceneError), match="is a boolean"):
+        motor.with_updates(**{"device.horizontal_ratio": True})

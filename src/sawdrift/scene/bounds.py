@@ -2,8 +2,9 @@
 
 Pydantic reads ``true`` as 1 for a number (``--set drive.amplitude=true`` ran at A* = 1, a TOML
 ``m_star = true`` at m* = 1, ``--param restitution=true`` at e = 1): a boolean given for a
-number is a mistake to name, not a value to convert. Every numeric field of a scene is declared
-through :func:`bounded` (floats) or :func:`count` (integers), which refuse it in one line.
+number is a mistake to name, not a value to convert. The numeric fields of a scene, its device
+and its profile are declared through :func:`bounded` (floats) or :func:`count` (integers), which
+refuse it in one line; the sample lists of a prescribed path are plain lists of numbers.
 """
 
 from __future__ import annotations

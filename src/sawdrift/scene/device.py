@@ -53,7 +53,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from ..errors import SceneError
-from .bounds import M_STAR_RANGE
+from .bounds import M_STAR_RANGE, bounded
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio
 from .units import (
     FIELD_KIND,
@@ -94,7 +94,7 @@ def _quantity(kind: str, field: str, positive: bool = True, allow_zero: bool = F
 
 
 Pressure = Annotated[float, _quantity("pressure", "particle.youngs_modulus")]
-Poisson = Annotated[float, Field(gt=-1.0, lt=0.5)]
+Poisson = Annotated[float, bounded(-1.0, 0.5, lo_open=True, hi_open=True)]
 
 
 class DeviceParticle(BaseModel):
@@ -176,7 +176,7 @@ class Device(BaseModel):
         description="vertical surface displacement amplitude A_y, 0 to 1 cm")
     orbit: Literal["prograde", "retrograde"] = Field(
         "retrograde", description="retrograde: a Rayleigh wave on an isotropic half-space")
-    horizontal_ratio: Annotated[float, Field(ge=0.0, le=100.0)] | None = Field(
+    horizontal_ratio: Annotated[float, bounded(0.0, 100.0)] | None = Field(
         None, description="r; default r(substrate poisson)")
     gravity: Annotated[float, _quantity("acceleration", "gravity", allow_zero=True)] = Field(
         9.81, description="g, 0 to 1e4 m/s^2; 0 allowed with a preload")

@@ -263,7 +263,7 @@ class Prescribed(BaseModel):
     slope: Annotated[float, bounded(-10.0, 10.0)] = 0.5
     cycles: count(1, 100000) = 2
     samples_per_segment: count(1, 1_000_000) = 200
-    seed: int = 0
+    seed: count(0, 2**32 - 1) = 0
 
     @model_validator(mode="after")
     def _samples_given(self) -> Prescribed:

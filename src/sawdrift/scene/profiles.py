@@ -15,6 +15,7 @@ from typing import Annotated, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
+from .bounds import bounded
 from .normal_law import law_normal, law_slope, read_table, table_descriptor
 
 _NAMED_EXPONENTS = {"sphere": 1.5, "cone": 2.0, "flat": 1.0}
@@ -46,7 +47,7 @@ class Profile(BaseModel):
     model_config = ConfigDict(frozen=True, extra="forbid")
 
     shape: Literal["sphere", "cone", "flat", "power", "table"] = "sphere"
-    exponent: Annotated[float, Field(ge=1.0, le=10.0)] | None = Field(
+    exponent: Annotated[float, bounded(1.0, 10.0)] | None = Field(
         None, description="p of N* = a*^p for shape 'power'"
     )
     file: str | None = None
