@@ -256,17 +256,21 @@ def stored_base(table: Path) -> dict[str, Any] | None:
 
 
 def distinct_warnings(texts: Iterable[str]) -> list[str]:
-    """The warnings of several rows, each once. A row holds its run's warnings joined by "; "
-    (:func:`~.sweep.run_cell`), so a warning every row shares (a device's "a0 < 1 nm") came
-    back inside each row's text, three times for three positions of a field; a warning is
-    itself free to hold "; ", so the rows' texts are not split but matched: the shorter ones
-    first, each later text without the ones already kept."""
-    kept: list[str] = []
-    for text in sorted(dict.fromkeys(str(t) for t in texts), key=len):
-        rest = text
-        for known in sorted(kept, key=len, reverse=True):
-            rest = rest.replace(known + "; ", "").replace("; " + known, "")
-        if rest and rest not in kept and not any(rest in k for k in kept):
-            kept.append(rest)
-    return kept
-
+    """The warnings of several rows, each text once, a warning they all begin with once. A row
+    holds its run's warnings joined by "; " (:func:`~.sweep.run_cell`), so a warning every row
+    shares (a device's "a0 < 1 nm", first among them) came back inside each row's text, three
+    times for three positions of a field. A warning may itself hold "; ", so the texts are not
+    split: the longest head every text begins with, ending where a "; " does or with the text,
+    is listed once, then what each text adds to it, in the order first seen."""
+    texts = list(dict.fromkeys(str(t) for t in texts))
+    if len(texts) < 2:
+        return texts
+    first, common = texts[0], ""
+    for cut in [i for i in range(len(first)) if first.startswith("; ", i)] + [len(first)]:
+        head = first[:cut]
+        if not all(t == head or t.startswith(head + "; ") for t in texts):
+            break
+        common = head
+    if not common:
+        return texts
+    return [common, *dict.fromkeys(t[len(common) + 2:] for t in texts if t != common)]
