@@ -526,3 +526,48 @@ def test_a_runaway_device_gives_its_acceleration_in_m_per_s2():
     expected = (5e-3 - 0.3 * mass * 9.81) / mass
     assert abs(r.extra["mean_acceleration_m_s2"]) == pytest.approx(expected, rel=2e-3)
     assert r.summary()["mean_acceleration_m_s2"] == r.extra["mean_acceleration_m_s2"]
+
+
+_CONE = """[device]
+frequency = "20 kHz"
+amplitude = "0.5 nm"
+friction = 0.3
+
+[device.particle]
+shape = "cone"
+half_angle = "60 deg"
+mass = "4 mg"
+youngs_modulus = "210 GPa"
+poisson = 0.3
+
+[device.substrate]
+youngs_modulus = "210 GPa"
+poisson = 0.3
+"""
+
+
+@pytest.mark.parametrize("scene, option", [("cone", ["--m-star", "0.5"]),
+                                           ("bead", ["--set", "material.adhesion=0.5"])])
+def test_without_a_computed_setting_the_error_names_fields_not_a_fixed_value(scene, option,
+                                                                           sawdrift_main,
+                                                                           tmp_path):
+    """A cone has no radius, and a device without adhesion no work of adhesion to scale: the
+    line named the fixed examples radius "0.2 mm" (which a cone refuses) and "0.05 J/m^2", read
+    as the answer."""
+    path = EXAMPLES / "silica_bead_on_quartz.toml"
+    if scene == "cone":
+        path = tmp_path / "cone.toml"
+        path.write_text(_CONE)
+    out = sawdrift_main("run", str(path), *option, "--json")
+    assert out.returncode == 2 and "--set device." not in out.stderr
+    assert ("device.particle (radius, density or mass), device.frequency" in out.stderr
+            if scene == "cone" else "set device.adhesion (the work of adhesion" in out.stderr)
+
+
+def test_a_radius_below_a_micrometre_is_named_in_nanometres(sawdrift_main):
+    out = sawdrift_main("run", str(MOTOR), "--m-star", "1e-6", "--json")
+    hint = out.stderr.split("--set ", 1)[1].strip()
+    assert hint.endswith(' nm"'), hint
+    key, _, given = hint.partition("=")
+    scene = sd.Scene.from_toml(MOTOR).with_updates(**{key: given.strip('"')})
+    assert scene.particle.m_star == pytest.approx(1e-6, rel=1e-3)

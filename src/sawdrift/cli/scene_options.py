@@ -196,7 +196,7 @@ def apply_options(data: dict[str, Any], values: dict[str, Any],
     A derived field set on a device scene (``run --amplitude 20`` on the SAW motor) names the
     option as typed and the ``--set device.FIELD=...`` to give instead, one line (exit 2).
     """
-    from ..scene.overrides import SET_INSTEAD, DerivedFieldError
+    from ..scene.overrides import DERIVED, DerivedFieldError
 
     try:
         return sd.scene.apply_overrides(data, values)
@@ -205,9 +205,12 @@ def apply_options(data: dict[str, Any], values: dict[str, Any],
         if typed is None:
             raise
         shown = f"{exc.derived:.6g}" if isinstance(exc.derived, float) else repr(exc.derived)
+        # without a setting computed for the value asked for, the fields that set it (a fixed
+        # example such as radius "0.2 mm" read as the answer, and a cone has no radius)
+        how = (f"set the device field with its unit instead: --set {exc.instead}" if exc.instead
+               else f"set {DERIVED.get(exc.field, 'its device field')} instead")
         line = (f"{typed}: a device scene derives {exc.field} from its [device] table (here "
-                f"{shown}); set the device field with its unit instead: --set "
-                f"{exc.instead or SET_INSTEAD.get(exc.field, 'device.FIELD=VALUE')}")
+                f"{shown}); {how}")
         if exc.field == "drive.amplitude" and isinstance(exc.value, (int, float)):
             line += f" (A* = {exc.value:g} is {exc.value * exc.a0_m * 1e9:.4g} nm on this device)"
         raise sd.SceneError(line) from None

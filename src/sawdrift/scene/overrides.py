@@ -52,22 +52,6 @@ DERIVED: dict[str, str] = {
                          "effects.adhesion",
 }
 
-#: For each derived field, the device field to set instead, as a command-line example.
-SET_INSTEAD: dict[str, str] = {
-    "particle.m_star": 'device.particle.radius="0.2 mm" (or device.frequency, device.preload, '
-                       "device.particle.density)",
-    "particle.profile": "device.particle.shape=cone",
-    "particle.preload": 'device.preload="5 mN"',
-    "particle.load": 'device.load="-1 mN" (or device.incline="2 deg")',
-    "drive.amplitude": 'device.amplitude="20 nm"',
-    "drive.horizontal_ratio": "device.horizontal_ratio=0.68",
-    "drive.orbit": "device.orbit=prograde",
-    "material.mu": "device.friction=0.2",
-    "material.nu": "device.substrate.poisson=0.25",
-    "material.theta": 'device.particle.youngs_modulus="210 GPa" (or a poisson ratio)',
-    "material.adhesion": 'device.adhesion="0.05 J/m^2"',
-}
-
 
 class DerivedFieldError(SceneError):
     """A derived field given another value than its device derives (one line, see the module).
@@ -171,8 +155,10 @@ def instead_for(field: str, value: Any, device: Device, derived: Any = None) -> 
     if field == "particle.m_star" and value > 0:
         radius = _radius_for(value, device)
         if radius is not None:
-            return (f'device.particle.radius="{radius * 1e3:.4g} mm"' if radius >= 1e-3 else
-                    f'device.particle.radius="{radius * 1e6:.4g} um"')
+            scale, unit = next((s, u) for s, u in ((1e-3, "mm"), (1e-6, "um"), (1e-9, "nm"))
+                               if radius >= s or u == "nm")
+            return f'device.particle.radius="{radius / scale:.4g} {unit}"'
+
     return None
 
 
