@@ -571,3 +571,25 @@ def test_a_radius_below_a_micrometre_is_named_in_nanometres(sawdrift_main):
     key, _, given = hint.partition("=")
     scene = sd.Scene.from_toml(MOTOR).with_updates(**{key: given.strip('"')})
     assert scene.particle.m_star == pytest.approx(1e-6, rel=1e-3)
+
+
+@pytest.mark.parametrize("written, plain, kind", [
+    ("7850 kg/m³", "7850 kg/m^3", "density"), ("0.05 J/m²", "0.05 J/m^2", "surface energy"),
+    ("9.81 m/s²", "9.81 m/s^2", "acceleration"), ("100 s⁻¹", "100 s^-1", "frequency")])
+def test_a_written_exponent_reads_as_its_caret(written, plain, kind):
+    """'kg/m³' was refused as not a quantity, while 'µm' was taken."""
+    from sawdrift.scene.units import to_si
+
+    assert to_si(written, kind) == to_si(plain, kind)
+    with pytest.raises(ValueError, match="is not a quantity"):
+        to_si("2³ m", "length")  # a power of the number is no unit: refused, not 8 m
+
+
+def test_a_scene_file_with_a_byte_order_mark_is_read(tmp_path, sawdrift_main):
+    """A file saved as 'UTF-8 with BOM' (some Windows editors) was 'malformed TOML ... line 1,
+    column 1'."""
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + MOTOR.read_bytes())
+    assert sd.Scene.from_toml(path) == sd.Scene.from_toml(MOTOR)
+    out = sawdrift_main("run", str(path), "--periods", "4", "--no-settle", "--json")
+    assert out.returncode == 0, out.stderr

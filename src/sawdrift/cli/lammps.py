@@ -105,7 +105,7 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
     source = str(scene_file) if scene_file is not None else None
     if scene_file is not None:
         try:
-            data = tomllib.loads(scene_file.read_text(encoding="utf-8"))
+            data = tomllib.loads(scene_file.read_text(encoding="utf-8-sig"))
         except FileNotFoundError:
             raise sd.SceneError(f"scene file {source!r} does not exist") from None
         except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:

@@ -228,7 +228,7 @@ def _check_keys(scene_file: Path, model: str | None) -> None:
     from ..scene.schema import check_known_fields
 
     try:
-        data = tomllib.loads(Path(scene_file).read_text(encoding="utf-8"))
+        data = tomllib.loads(Path(scene_file).read_text(encoding="utf-8-sig"))
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
         return
     check_known_fields(data, str(scene_file))

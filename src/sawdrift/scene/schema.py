@@ -178,7 +178,7 @@ class Scene(BaseModel):
         """Load a scene from a TOML file; a malformed file raises a one-line SceneError."""
         path = Path(path)
         try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
+            data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
         except FileNotFoundError:
             raise SceneError(f"scene file {str(path)!r} does not exist") from None
         except IsADirectoryError:

@@ -58,10 +58,18 @@ _NUMBER = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*
 _EXPONENT = re.compile(r"(?:\^|\*\*)\s*\(?\s*[+-]?\d+(?:\.\d+)?\s*\)?")
 
 
+#: superscript digits and minus, and their plain characters
+_SUPERSCRIPT = re.compile("[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+")
+_PLAIN = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
+
+
 def _split(text: str) -> tuple[float, str] | None:
     """(number, unit expression) of a device value written as a string, or None where it is not
     one number followed by units: pint would evaluate the string as an expression ("9,6 MHz" as
     96 MHz, "10 nm 5" as 50 nm), so anything else is refused before it gets there."""
+    # a written exponent ("kg/m³", "m/s²", "s⁻¹") as pint reads one: ^3, ^2, ^-1 (they were
+    # refused as not a quantity, while "µm" was taken)
+    text = _SUPERSCRIPT.sub(lambda e: "^" + e.group(0).translate(_PLAIN), text)
     m = _NUMBER.fullmatch(text)
     if m is None:
         return None
