@@ -104,3 +104,10 @@ def test_a_device_field_on_a_scene_without_a_device_says_so(monkeypatch, capsys)
                         'device.amplitude="10 nm"')
     assert code == 2 and len(err.strip().splitlines()) == 1
     assert "device.frequency is required" in err and "the scene has no [device] table" in err
+
+
+def test_a_model_named_twice_is_refused(monkeypatch, capsys):
+    """--model mmd,mmd ran the same scene twice side by side (compare refuses it)."""
+    code, _, err = call(monkeypatch, capsys, "run", "--periods", "4", "--model", "mmd,mmd")
+    assert code == 2 and err.strip() == ("error: --model 'mmd,mmd' names mmd twice: give each "
+                                         "model once")

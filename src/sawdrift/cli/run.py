@@ -147,6 +147,9 @@ def run_cmd(
     names = [m.strip() for m in model.split(",") if m.strip()] if model else []
     if model is not None and not names:
         _fail(f"--model {model!r} names no model")
+    twice = sorted({m for m in names if names.count(m) > 1})
+    if twice:  # the same run twice, side by side (compare refuses it as well)
+        _fail(f"--model {model!r} names {', '.join(twice)} twice: give each model once")
     if explain and (as_json or out is not None):
         # the explanation is text (equations, derived quantities), not a result to store
         _fail(f"--explain prints the assembled system as text and runs nothing; drop "
