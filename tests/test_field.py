@@ -358,3 +358,13 @@ def test_a_warning_every_position_shares_is_listed_once():
     # a warning inside another's words is not cut out of them
     assert distinct_warnings(["slow", "very slow; other"]) == ["slow", "very slow; other"]
     assert distinct_warnings([]) == []
+
+
+def test_a_start_without_a_direct_run_is_refused():
+    """--start without --direct was ignored without a word."""
+    from tests.cli_call import run_main
+
+    out = run_main("field", "--start", "0.3", "--wavelength", "100")
+    assert out.returncode == 2
+    assert out.stderr.strip() == ("error: --start 0.3 is the start of the direct run: add "
+                                  "--direct (or drop --start)")

@@ -44,8 +44,8 @@ def field_cmd(
     direct: Annotated[bool, typer.Option(
         "--direct", help="also integrate the particle with the drive at its own position "
         "(needs --wavelength or a device wavelength); --periods is then its length")] = False,
-    start: Annotated[float, typer.Option("--start", help="direct run: start position xi = X / "
-                                         "wavelength")] = 0.0,
+    start: Annotated[float | None, typer.Option("--start", help="direct run: start position "
+                                                "xi = X / wavelength (default 0)")] = None,
     workers: Workers = None,
     engine: Engine = "compiled",
     progress: Progress = True,
@@ -78,6 +78,9 @@ def field_cmd(
         from ..study.axes import parse_values
 
         species = (name, parse_values(spec, name))
+    if start is not None and not direct:  # it was ignored without a word
+        _fail(f"--start {start:g} is the start of the direct run: add --direct (or drop --start)")
+    start = 0.0 if start is None else start
     direct_periods = scene_overrides.pop("numerics.periods", None) if direct else None
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
     if direct:
