@@ -64,6 +64,9 @@ def test_scene_is_frozen():
          r"profile\.exponent = 2 is used only with profile\.shape = 'power'; shape 'sphere' "
          r"has p = 1\.5"),
         ({"particle": {"profile": {"shape": "flat", "exponent": 1}}}, r"shape 'flat' has p = 1"),
+        # and so was a table's file beside another shape
+        ({"particle": {"profile": {"file": "law.csv"}}},
+         r"profile\.file = 'law\.csv' is used only with profile\.shape = 'table'"),
         # a window longer than the run it ends lengthened a fixed run to the window, unasked
         ({"numerics": {"periods": 10, "measure_periods": 30}},
          r"measure_periods = 30 is longer than periods = 10.*allowed: 1 to 10"),

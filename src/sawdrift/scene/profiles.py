@@ -62,6 +62,11 @@ class Profile(BaseModel):
             raise ValueError(f"profile.exponent = {self.exponent:g} is used only with "
                              f"profile.shape = 'power'; shape {self.shape!r} has {own} (set "
                              "profile.shape = 'power', --profile power, or drop the exponent)")
+        if self.file is not None and self.shape != "table":
+            # as the exponent: a table stored with the scene but not used (it was ignored)
+            raise ValueError(f"profile.file = {self.file!r} is used only with profile.shape = "
+                             f"'table'; shape {self.shape!r} has its own law (set profile.shape "
+                             "= 'table', --profile table, or drop the file)")
         if self.shape == "table":
             if not self.file:
                 raise ValueError("profile.file is required when profile.shape = 'table'")
