@@ -105,6 +105,8 @@ def test_chains_carry_small_beads_against_their_drift(monkeypatch):
     # 1e9 ran for minutes and did not stop on Ctrl-C (which waits for the placement)
     (["--transverse", "1e9"], "--transverse = 1000000000.0: give a factor in (0, 100]"),
     (["--jitter", "-1"], "--jitter = -1.0"),
+    # 1e308 ran, with the beads thrown 1e305 m apart
+    (["--jitter", "1e308"], "--jitter = 1e+308: give a number of small radii in [0, 1]"),
     # a folder named s.txt was made, where run, field and load-curve refuse the suffix
     (["-o", "s.txt"], "-o 's.txt': .txt files are not written here; give a folder"),
 ])

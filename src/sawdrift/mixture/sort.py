@@ -69,6 +69,11 @@ LINE = ("1-D: beads in lanes along the wave cannot pass each other; the y part o
 MEASURES = ("purity", "purity_index", "lacey")
 
 
+#: the largest --jitter, in small radii: a nudge that breaks exactly head-on rows, not a new
+#: placement (1e308 ran, with beads thrown 1e305 m apart)
+MAX_JITTER = 1.0
+
+
 def time_to(times: np.ndarray, values: np.ndarray, target: float) -> float:
     """First time at which ``values`` reaches ``target`` (linear between samples); NaN if never."""
     hit = np.flatnonzero(values >= target)
@@ -217,8 +222,9 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
         raise SceneError(f"--geometry = {geometry!r}: use 'plane' or 'line'")
     if not (perp > 0.0 and math.isfinite(perp)):
         raise SceneError(f"--transverse = {perp!r}: give a positive factor")
-    if not (jitter_radii >= 0.0 and math.isfinite(jitter_radii)):
-        raise SceneError(f"--jitter = {jitter_radii!r}: give a number of radii >= 0")
+    if not 0.0 <= jitter_radii <= MAX_JITTER:
+        raise SceneError(f"--jitter = {jitter_radii!r}: give a number of small radii in [0, "
+                         f"{MAX_JITTER:g}] (a nudge that breaks exactly head-on rows)")
     real = realize(scene)
     species = species_of(scene, spec, real)
     g = scene.device.gravity
