@@ -207,14 +207,17 @@ def test_a_phase_given_alone_survives_updates_dumps_and_sweeps(tmp_path):
     {"numerics": {"periods": False}}, {"particle": {"load": True}},
     {"model": "material_point", "model_params": {"restitution": True}},
     {"particle": {"profile": {"shape": "power", "exponent": True}}},
-    {"drive": {"kind": "prescribed", "waveform": "random", "seed": True}}])
+    {"drive": {"kind": "prescribed", "waveform": "random", "seed": True}},
+    {"drive": {"kind": "prescribed", "waveform": "samples", "a": [True, 0.5], "b": [0.0, 0.1]}}])
 def test_a_boolean_given_for_a_number_is_refused_naming_the_field(data):
     """pydantic reads true as 1: '--set drive.amplitude=true' ran at A* = 1, a TOML
     'm_star = true' at m* = 1, '--param restitution=true' at e = 1."""
     with pytest.raises((ValidationError, SceneError), match="is a boolean") as info:
         sd.run(sd.Scene.model_validate(data))
     section, fields = next(iter((k, v) for k, v in data.items() if isinstance(v, dict)))
-    name = next(k for k, v in fields.items() if v is True or v is False or isinstance(v, dict))
+    name = next(k for k, v in fields.items()
+                if v is True or v is False or isinstance(v, dict) or (isinstance(v, list)
+                                                                       and True in v))
     assert f"{section}.{name}" in str(info.value)
 
 

@@ -4,7 +4,7 @@ Pydantic reads ``true`` as 1 for a number (``--set drive.amplitude=true`` ran at
 ``m_star = true`` at m* = 1, ``--param restitution=true`` at e = 1): a boolean given for a
 number is a mistake to name, not a value to convert. The numeric fields of a scene, its device
 and its profile are declared through :func:`bounded` (floats) or :func:`count` (integers), which
-refuse it in one line; the sample lists of a prescribed path are plain lists of numbers.
+refuse it in one line (the sample lists of a prescribed path: :data:`Number`).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from typing import Annotated, Any
 
 from pydantic import Field, WrapValidator
 
-__all__ = ["AMPLITUDE_MAX", "M_STAR_RANGE", "bounded", "count", "interval"]
+__all__ = ["AMPLITUDE_MAX", "M_STAR_RANGE", "Number", "bounded", "count", "interval"]
 
 #: The range of m* = a0 m f^2 / (M g) a scene may have (a device's derived one too). m* is
 #: 1.5 / (2 pi)^2 times the squared ratio of the wave's frequency to the contact's normal natural
@@ -73,6 +73,16 @@ def _whole(value: Any, handler: Any) -> int:
     if isinstance(value, bool):
         raise ValueError(NOT_A_NUMBER)
     return handler(value)
+
+
+def _number(value: Any, handler: Any) -> float:
+    if isinstance(value, bool):
+        raise ValueError(NOT_A_NUMBER)
+    return handler(value)
+
+
+#: a float that refuses a boolean, with no range (the samples of a prescribed path)
+Number = Annotated[float, WrapValidator(_number)]
 
 
 def count(lo: int, hi: int) -> Any:

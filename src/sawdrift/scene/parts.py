@@ -22,7 +22,7 @@ from pydantic import (
     model_validator,
 )
 
-from .bounds import AMPLITUDE_MAX, M_STAR_RANGE, NOT_A_NUMBER, bounded, count
+from .bounds import AMPLITUDE_MAX, M_STAR_RANGE, NOT_A_NUMBER, Number, bounded, count
 from .profiles import Profile
 
 #: The largest tangential load |L| over what friction can hold at mu = 1, M g + 2 F_pull (M g
@@ -256,8 +256,8 @@ class Prescribed(BaseModel):
 
     kind: Literal["prescribed"] = "prescribed"
     waveform: Literal["samples", "mindlin_loop", "proportional", "random"] = "mindlin_loop"
-    a: list[float] | None = None
-    b: list[float] | None = None
+    a: list[Number] | None = None
+    b: list[Number] | None = None
     a_max: Positive = 1.0
     b_amplitude: NonNegative = 0.5
     slope: Annotated[float, bounded(-10.0, 10.0)] = 0.5
