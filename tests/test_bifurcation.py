@@ -311,3 +311,22 @@ def test_the_size_line_says_what_locate_adds(monkeypatch, capsys):
     study._bifurcation_size(base, "drive.amplitude", "lin:0.1:0.3:3", 1, "up", 8, 1, "compiled",
                             False, True, locate=False)
     assert "not counted" not in capsys.readouterr().err
+
+
+def test_a_journal_row_that_is_not_its_axis_value_is_computed_again(tmp_path):
+    """A journal row whose value is NaN (or another axis's) went into the table as it was."""
+    out = tmp_path / "j"
+    first = bifurcation(ball(), "drive.amplitude", "3.5,3.6", samples=4, out=out, workers=1,
+                        progress=False)
+    journal = out / "journal" / "material_point-up.jsonl"
+    lines = journal.read_text().splitlines()
+    row = json.loads(lines[1])
+    row["value"] = float("nan")
+    journal.write_text("\n".join([lines[0], json.dumps(row), *lines[2:]]) + "\n")
+    (out / TABLE).unlink()
+    again = bifurcation(ball(), "drive.amplitude", "3.5,3.6", samples=4, out=out, workers=1,
+                        progress=False)
+    assert again.computed == 1
+    assert again.table["value"].notna().all()
+    pd.testing.assert_frame_equal(again.table.reset_index(drop=True),
+                                  first.table.reset_index(drop=True))

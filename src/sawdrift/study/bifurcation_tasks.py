@@ -103,7 +103,13 @@ def read_journal(path: Path | None, task: dict[str, Any], force: bool) -> dict[s
         except json.JSONDecodeError:
             continue  # a line cut by a kill: that value is computed again
         if "i" in rec:
-            out["points"][int(rec["i"])] = rec
+            # a row is the value its index names on this axis, or it is computed again (a row
+            # with value NaN went into the table as it was)
+            i, values = rec["i"], task["values"]
+            value = rec.get("value")
+            if (isinstance(i, int) and 0 <= i < len(values) and isinstance(value, (int, float))
+                    and float(value) == float(values[i])):
+                out["points"][i] = rec
         elif "refined" in rec:
             out["refined"][rec["refined"]] = rec
     return out
