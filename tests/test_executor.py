@@ -154,3 +154,46 @@ def test_workers_end_when_their_study_is_killed_outright(tmp_path, method):
         for p in workers if "workers" in locals() else []:
             with contextlib.suppress(ProcessLookupError):
                 os.kill(p, signal.SIGKILL)
+
+
+_INTERRUPTED = """
+import os, sys, time
+from sawdrift.study.executor import Executor
+
+def pid(_):
+    time.sleep(0.2)
+    return os.getpid()
+
+if __name__ == "__main__":
+    try:
+        with Executor(workers=2) as ex:
+            print(*sorted(set(ex.map(pid, range(4)))), flush=True)
+            ex.map(time.sleep, [60.0] * 2)
+    except KeyboardInterrupt:
+        print("interrupted", flush=True)
+"""
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc")
+def test_a_study_interrupted_ends_its_workers_instead_of_waiting_for_them(tmp_path):
+    """A SIGINT to the study alone (timeout -s INT, kill -INT) printed 'interrupted' and then
+    waited for the workers' running tasks: a bifurcation branch runs for minutes."""
+    script = tmp_path / "interrupted.py"
+    script.write_text(_INTERRUPTED)
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True)
+    try:
+        workers = [int(p) for p in proc.stdout.readline().split()]
+        time.sleep(1.0)  # the 60 s tasks have started
+        proc.send_signal(signal.SIGINT)
+        start = time.monotonic()
+        out, _ = proc.communicate(timeout=20)
+        assert "interrupted" in out and time.monotonic() - start < 15
+        deadline = time.monotonic() + 5
+        while any(_running(p) for p in workers) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert not any(_running(p) for p in workers)
+    finally:
+        proc.kill()
+        for p in workers if "workers" in locals() else []:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(p, signal.SIGKILL)

@@ -80,6 +80,17 @@ def _leave_with(parent: int) -> None:
     threading.Thread(target=watch, name="sawdrift-parent-watch", daemon=True).start()
 
 
+def _end_workers(pool: ProcessPoolExecutor) -> None:
+    """Terminate the pool's worker processes (Python 3.14's ``terminate_workers``, else each
+    process of the pool)."""
+    terminate = getattr(pool, "terminate_workers", None)
+    if terminate is not None:
+        terminate()
+        return
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        proc.terminate()
+
+
 def _alive(parent: int) -> bool:
     """Whether the study process ``parent`` still runs: this worker's parent (a forked worker),
     or a process of that id that is not a zombie (a worker started by a fork server has the
@@ -116,6 +127,8 @@ class Executor:
         self._pool: ProcessPoolExecutor | None = None
         self._pool_size = 0
         self._client: Any = None
+        #: a Ctrl-C came through a process batch: closing ends the workers instead of waiting
+        self._interrupted = False
 
     def __enter__(self) -> Executor:
         return self
@@ -158,9 +171,17 @@ class Executor:
         return out
 
     def close(self) -> None:
-        """Shut the process pool down and close a dask client made here (a given one stays)."""
+        """Shut the process pool down and close a dask client made here (a given one stays).
+
+        After a Ctrl-C the workers are ended rather than waited for: a study's finished cells
+        and values are in its journals already, and a bifurcation branch is one task of minutes
+        (a SIGINT to the study alone, as `timeout -s INT` sends it, printed "interrupted" and
+        then waited for both branches to end)."""
         if self._pool is not None:
-            self._pool.shutdown(cancel_futures=True)  # after Ctrl-C: nothing more is started
+            if self._interrupted:
+                _end_workers(self._pool)
+            # after Ctrl-C nothing more is started
+            self._pool.shutdown(wait=not self._interrupted, cancel_futures=True)
             self._pool, self._pool_size = None, 0
         if self._client is not None and self._client is not self.scheduler:
             self._client.close()
@@ -210,6 +231,9 @@ class Executor:
                     yield from zip(idx, fut.result(), strict=True)
                 if tick is not None:
                     yield None, None
+        except KeyboardInterrupt:
+            self._interrupted = True
+            raise
         finally:
             for fut in futures:
                 fut.cancel()
