@@ -330,3 +330,19 @@ def test_a_journal_row_that_is_not_its_axis_value_is_computed_again(tmp_path):
     assert again.table["value"].notna().all()
     pd.testing.assert_frame_equal(again.table.reset_index(drop=True),
                                   first.table.reset_index(drop=True))
+
+
+def test_a_finite_exponent_between_superstable_ones_is_marked():
+    """The Lyapunov panel drew finite exponents as a line only: a value between two -inf ones
+    (or a branch's only finite one) had no mark at all."""
+    from sawdrift.report.bifurcation_plot import plot_bifurcation
+
+    res = bifurcation(ball(), "drive.amplitude", "3.4,3.5,3.6", samples=4, workers=1,
+                      progress=False)
+    table = res.table.copy()
+    table["lyapunov"] = table["index"].map({0: -math.inf, 1: -0.61, 2: -math.inf})
+    fig = plot_bifurcation(table, summary=res.summary)
+    lyap_ax = next(ax for ax in fig.axes if "Lyapunov" in ax.get_ylabel())
+    marked = [ln for ln in lyap_ax.get_lines() if ln.get_marker() not in ("None", "", None)
+              and np.any(np.isclose(np.asarray(ln.get_ydata(), float), -0.61))]
+    assert marked

@@ -122,7 +122,10 @@ def _draw_branch(panel: dict[str, Any], part: pd.DataFrame, direction: str) -> N
     finite = lyap[np.isfinite(lyap)]
     floor = _floor(finite)
     ax = panel["lyap"]
-    ax.plot(per["value"], np.where(np.isfinite(lyap), lyap, np.nan), "-", color=colour, lw=0.8)
+    # a marker at every finite exponent: a line alone left a value between two -inf ones (or a
+    # branch's only finite one) without a mark
+    ax.plot(per["value"], np.where(np.isfinite(lyap), lyap, np.nan), "-", color=colour, lw=0.8,
+            marker="o", ms=2.5)
     low = np.isneginf(lyap)  # a superstable orbit: the perturbation was erased
     ax.plot(per["value"][low], np.full(int(low.sum()), floor), "v", color=colour, ms=3)
     ax.axhline(0.0, color="0.5", lw=0.6)
