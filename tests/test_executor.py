@@ -128,6 +128,22 @@ def _running(pid: int) -> bool:
     return state != "Z"
 
 
+def _gone(workers: list[int], seconds: float) -> bool:
+    """Whether every worker process has ended within ``seconds``."""
+    deadline = time.monotonic() + seconds
+    while any(_running(p) for p in workers) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    return not any(_running(p) for p in workers)
+
+
+def _clean_up(proc: subprocess.Popen, workers: list[int]) -> None:
+    """Kill the study and any worker a failed test left behind."""
+    proc.kill()
+    for p in workers:
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(p, signal.SIGKILL)
+
+
 @pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc")
 @pytest.mark.parametrize("method", ["fork", "forkserver"])
 def test_workers_end_when_their_study_is_killed_outright(tmp_path, method):
@@ -145,15 +161,9 @@ def test_workers_end_when_their_study_is_killed_outright(tmp_path, method):
         time.sleep(0.5)  # the sleeping cells have started
         proc.send_signal(signal.SIGKILL)
         proc.wait(10)
-        deadline = time.monotonic() + 10 * PARENT_CHECK_S + 5.0
-        while any(_running(p) for p in workers) and time.monotonic() < deadline:
-            time.sleep(0.1)
-        assert not any(_running(p) for p in workers)
+        assert _gone(workers, 10 * PARENT_CHECK_S + 5.0)
     finally:
-        proc.kill()
-        for p in workers if "workers" in locals() else []:
-            with contextlib.suppress(ProcessLookupError):
-                os.kill(p, signal.SIGKILL)
+        _clean_up(proc, locals().get("workers", []))
 
 
 _INTERRUPTED = """
@@ -188,12 +198,6 @@ def test_a_study_interrupted_ends_its_workers_instead_of_waiting_for_them(tmp_pa
         start = time.monotonic()
         out, _ = proc.communicate(timeout=20)
         assert "interrupted" in out and time.monotonic() - start < 15
-        deadline = time.monotonic() + 5
-        while any(_running(p) for p in workers) and time.monotonic() < deadline:
-            time.sleep(0.1)
-        assert not any(_running(p) for p in workers)
+        assert _gone(workers, 5.0)
     finally:
-        proc.kill()
-        for p in workers if "workers" in locals() else []:
-            with contextlib.suppress(ProcessLookupError):
-                os.kill(p, signal.SIGKILL)
+        _clean_up(proc, locals().get("workers", []))
