@@ -346,3 +346,20 @@ def test_a_finite_exponent_between_superstable_ones_is_marked():
     marked = [ln for ln in lyap_ax.get_lines() if ln.get_marker() not in ("None", "", None)
               and np.any(np.isclose(np.asarray(ln.get_ydata(), float), -0.61))]
     assert marked
+
+
+def test_the_figure_lists_only_what_it_draws_and_a_log_sweep_on_a_log_axis():
+    """Without --locate the legend listed bifurcation lines no panel drew; an axis swept
+    log-spaced (m* 0.01:1:5) was drawn on a linear axis, its low values crammed together."""
+    from sawdrift.report.bifurcation_plot import plot_bifurcation
+
+    res = bifurcation(ball(), "drive.amplitude", "3.5,3.6,3.7,3.8", samples=4, workers=1,
+                      progress=False)
+    assert res.summary.get("bifurcations")  # found between values, not located
+    fig = plot_bifurcation(res)
+    texts = [t.get_text() for leg in fig.legends for t in leg.get_texts()]
+    assert texts == ["sweep up"], texts
+    assert fig.axes[-1].get_xscale() == "linear"  # evenly spaced values
+    logs = bifurcation(sd.Scene(model="material_point", drive={"amplitude": 0.5}),
+                       "particle.m_star", "0.01:1:3", samples=4, workers=1, progress=False)
+    assert plot_bifurcation(logs).axes[-1].get_xscale() == "log"

@@ -78,6 +78,8 @@ def plot_bifurcation(result: Any, path: str | Path | None = None,
         _marks(panel, summary, name)
         panel["a"].set_title(name, fontsize=10)
         axes[-1, col].set_xlabel(column_label(field))  # with its unit: device.frequency (Hz)
+        if _log_spaced(sub["value"]):  # an axis swept START:STOP:N (m* 0.01:1:5 was crammed)
+            axes[-1, col].set_xscale("log")
         format_device_axes(axes[-1, col], field, "")
     axes[0, 0].set_ylabel("a* at integer t*")
     if lifts:
@@ -87,7 +89,10 @@ def plot_bifurcation(result: Any, path: str | Path | None = None,
     axes[rows.index("lyap"), 0].set_ylabel("Lyapunov\nper period")
     handles = [plt.Line2D([], [], color=COLOURS[d], marker="o", ls="", ms=4, label=f"sweep {d}")
                for d in ("up", "down") if (table["direction"].astype(str) == d).any()]
-    kinds = sorted({b["kind"] for b in summary.get("bifurcations", [])})
+    # the kinds drawn (:func:`_marks`: located ones at a finite value); without --locate the
+    # legend listed lines that no panel drew
+    kinds = sorted({b["kind"] for b in summary.get("bifurcations", [])
+                    if b.get("located") and math.isfinite(b.get("value", math.nan))})
     handles += [plt.Line2D([], [], color=KINDS.get(k, "k"), ls=":", label=k.replace("_", " "))
                 for k in kinds]
     if summary.get("hysteresis"):
@@ -129,6 +134,17 @@ def _draw_branch(panel: dict[str, Any], part: pd.DataFrame, direction: str) -> N
     low = np.isneginf(lyap)  # a superstable orbit: the perturbation was erased
     ax.plot(per["value"][low], np.full(int(low.sum()), floor), "v", color=colour, ms=3)
     ax.axhline(0.0, color="0.5", lw=0.6)
+
+
+def _log_spaced(values: pd.Series) -> bool:
+    """Whether an axis's values (three or more, all > 0) are evenly spaced in their logarithm
+    but not in themselves: a log-spaced sweep, drawn on a log axis."""
+    v = np.unique(pd.to_numeric(values, errors="coerce").dropna().to_numpy(float))
+    if v.size < 3 or not (v > 0.0).all():
+        return False
+    steps, logs = np.diff(v), np.diff(np.log(v))
+    return bool(np.allclose(logs, logs[0], rtol=1e-6) and not np.allclose(steps, steps[0],
+                                                                           rtol=1e-6))
 
 
 def _floor(finite: np.ndarray) -> float:
