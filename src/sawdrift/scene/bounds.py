@@ -14,7 +14,8 @@ from typing import Annotated, Any
 
 from pydantic import Field, WrapValidator
 
-__all__ = ["AMPLITUDE_MAX", "M_STAR_RANGE", "Number", "bounded", "count", "interval"]
+__all__ = ["AMPLITUDE_MAX", "M_STAR_RANGE", "Number", "bounded", "count", "interval",
+           "not_bool"]
 
 #: The range of m* = a0 m f^2 / (M g) a scene may have (a device's derived one too). m* is
 #: 1.5 / (2 pi)^2 times the squared ratio of the wave's frequency to the contact's normal natural
@@ -29,6 +30,14 @@ AMPLITUDE_MAX = 1e9
 
 #: the message of a boolean given for a number
 NOT_A_NUMBER = "is a boolean (true/false), not a number"
+
+
+def not_bool(value: Any, handler: Any) -> Any:
+    """A wrap validator's first step: refuse a boolean (module text), else validate ``value``
+    as the field's type does."""
+    if isinstance(value, bool):
+        raise ValueError(NOT_A_NUMBER)
+    return handler(value)
 
 
 def interval(lo: float | None, hi: float | None, lo_open: bool, hi_open: bool) -> str:
@@ -52,9 +61,7 @@ def bounded(
     what = "outside the allowed range " + text if lo is not None or hi is not None else "not finite"
 
     def check(value: Any, handler: Any) -> float:
-        if isinstance(value, bool):
-            raise ValueError(NOT_A_NUMBER)
-        value = handler(value)
+        value = not_bool(value, handler)
         ok = math.isfinite(value)
         if ok and lo is not None:
             ok = value > lo if lo_open else value >= lo
@@ -69,22 +76,10 @@ def bounded(
     return WrapValidator(check)
 
 
-def _whole(value: Any, handler: Any) -> int:
-    if isinstance(value, bool):
-        raise ValueError(NOT_A_NUMBER)
-    return handler(value)
-
-
-def _number(value: Any, handler: Any) -> float:
-    if isinstance(value, bool):
-        raise ValueError(NOT_A_NUMBER)
-    return handler(value)
-
-
 #: a float that refuses a boolean, with no range (the samples of a prescribed path)
-Number = Annotated[float, WrapValidator(_number)]
+Number = Annotated[float, WrapValidator(not_bool)]
 
 
 def count(lo: int, hi: int) -> Any:
     """An integer field in [lo, hi] that refuses a boolean (module text)."""
-    return Annotated[int, WrapValidator(_whole), Field(ge=lo, le=hi)]
+    return Annotated[int, WrapValidator(not_bool), Field(ge=lo, le=hi)]

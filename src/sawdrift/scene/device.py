@@ -297,7 +297,6 @@ def wave_implausibility(device: Device) -> str | None:
     return None
 
 
-
 def derived_out_of_range(device: Device) -> str | None:
     """Why the device's normalized quantities are outside what the model can integrate, or None.
 

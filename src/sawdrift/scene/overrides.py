@@ -158,7 +158,6 @@ def instead_for(field: str, value: Any, device: Device, derived: Any = None) -> 
             scale, unit = next((s, u) for s, u in ((1e-3, "mm"), (1e-6, "um"), (1e-9, "nm"))
                                if radius >= s or u == "nm")
             return f'device.particle.radius="{radius / scale:.4g} {unit}"'
-
     return None
 
 

@@ -22,7 +22,7 @@ from pydantic import (
     model_validator,
 )
 
-from .bounds import AMPLITUDE_MAX, M_STAR_RANGE, NOT_A_NUMBER, Number, bounded, count
+from .bounds import AMPLITUDE_MAX, M_STAR_RANGE, Number, bounded, count, not_bool
 from .profiles import Profile
 
 #: The largest tangential load |L| over what friction can hold at mu = 1, M g + 2 F_pull (M g
@@ -39,16 +39,13 @@ LOAD_RANGE = (f"[-{MAX_LOAD_RATIO:g}, {MAX_LOAD_RATIO:g}], with adhesion {MAX_LO
 def _finite_load(value: Any, handler: Any) -> float:
     """particle.load is a finite number; its range depends on material.adhesion (checked by the
     scene)."""
-    if isinstance(value, bool):
-        raise ValueError(NOT_A_NUMBER)
-    value = handler(value)
+    value = not_bool(value, handler)
     if not math.isfinite(value):
         raise ValueError(f"is not finite: give a load in {LOAD_RANGE} (in M g)")
     return value
 
 
 Positive = Annotated[float, bounded(0.0, None, lo_open=True)]
-
 NonNegative = Annotated[float, bounded(0.0, None)]
 
 FROZEN = ConfigDict(frozen=True, extra="forbid")
