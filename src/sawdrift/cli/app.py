@@ -233,12 +233,9 @@ def _load_table(path: Path, needs: tuple[str, ...] = ("model", "regime")):
         _fail(f"table {str(path)!r} is not a sweep table (no {', '.join(missing)} column): give "
               "the table `sawdrift sweep -o` writes")
     if "regime" in frame.columns:
-        from ..result.regimes import TABLE_REGIMES, odd_regime
+        from ..result.regimes import check_table_regimes
 
-        odd = odd_regime(frame["regime"].dropna().unique())
-        if odd is not None:
-            _fail(f"table {str(path)!r} holds regime {odd!r}, which no run gives (allowed: "
-                  f"{', '.join(TABLE_REGIMES)}): give the table `sawdrift sweep -o` writes")
+        check_table_regimes(frame["regime"], str(path), "give the table `sawdrift sweep -o` writes")
     return frame
 
 

@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import SawdriftError, SceneError
-from ..result.regimes import CONTACT_LOST, DRIFTING, TABLE_REGIMES, odd_regime
+from ..result.regimes import CONTACT_LOST, DRIFTING, check_table_regimes
 from ..scene.device import Device, normalized
 from ..scene.schema import set_dotted
 from ..study.axes import column_unit
@@ -110,10 +110,7 @@ def load_table(table: str | Path | pd.DataFrame) -> tuple[pd.DataFrame, dict[str
                          "column); make one with `sawdrift sweep`")
     if frame.empty:
         raise SceneError(f"table {name!r} holds no cells")
-    odd = odd_regime(frame["regime"].dropna().unique()) if "regime" in frame.columns else None
-    if odd is not None:
-        raise SceneError(f"table {name!r} holds regime {odd!r}, which no run gives (allowed: "
-                         f"{', '.join(TABLE_REGIMES)}); make one with `sawdrift sweep`")
+    check_table_regimes(frame["regime"], name, "make one with `sawdrift sweep`")
     return frame, meta, name
 
 

@@ -50,6 +50,8 @@ motion has no hop period). This module only names the regime from those measurem
 
 from __future__ import annotations
 
+from ..errors import SceneError
+
 REGIMES = ("stick", "oscillating_slip", "drift_with", "drift_against", "hopping", "bouncing",
            "runaway", "ejected")
 
@@ -58,12 +60,16 @@ REGIMES = ("stick", "oscillating_slip", "drift_with", "drift_against", "hopping"
 TABLE_REGIMES = (*REGIMES, "impact", "prescribed", "error")
 
 
-def odd_regime(values) -> str | None:
-    """The first value of a table's ``regime`` column that is neither a regime nor "error" (a
-    table written by hand or by another program: such a cell was drawn as missing and compare
-    agreed on "nan%"), or None."""
+def check_table_regimes(values, table: str, advice: str) -> None:
+    """A one-line SceneError naming the first value of a table's ``regime`` column (``values``;
+    missing values are skipped) that :data:`TABLE_REGIMES` does not hold, then ``advice``: a
+    table written by hand or by another program, whose cell was drawn as missing (compare
+    agreed on "nan%"), or resumed and written again. The one check of the reports and of a
+    resumed sweep."""
     odd = sorted({str(r) for r in values if isinstance(r, str)} - set(TABLE_REGIMES))
-    return odd[0] if odd else None
+    if odd:
+        raise SceneError(f"table {table!r} holds regime {odd[0]!r}, which no run gives (allowed: "
+                         f"{', '.join(TABLE_REGIMES)}): {advice}")
 
 
 #: Outcomes without a steady drift: the mean speed keeps growing (``runaway``), or the particle

@@ -22,7 +22,7 @@ import pandas as pd
 from .._version import __version__
 from ..contact.binding import bind
 from ..errors import SceneError
-from ..result.regimes import TABLE_REGIMES, odd_regime
+from ..result.regimes import TABLE_REGIMES, check_table_regimes
 from ..result.result import SUMMARY_FIELDS
 from ..scene.schema import Scene, build_scene, set_dotted
 from .axes import column_unit
@@ -97,10 +97,7 @@ def _check_resumable(table: Path, frame: pd.DataFrame) -> None:
             shown = f"{value:g}" if isinstance(value, (int, float, np.number)) else repr(value)
             raise SceneError(f"table {name!r} holds {column} = {shown}, which no sweep writes: "
                              "write a new table")
-    odd = odd_regime(frame["regime"].dropna().unique())
-    if odd is not None:
-        raise SceneError(f"table {name!r} holds regime {odd!r}, which no run gives: write a new "
-                         "table")
+    check_table_regimes(frame["regime"], name, "write a new table")
 
 
 def _records(frame: pd.DataFrame) -> list[dict[str, Any]]:
