@@ -25,7 +25,6 @@ from ..study.axes import column_label  # noqa: E402
 from .diagrams import (  # noqa: E402
     ERROR_CODE,
     NO_CELLS,
-    SCENE_COLUMNS,
     _draw,
     _edges,
     _legend,
@@ -35,6 +34,7 @@ from .diagrams import (  # noqa: E402
     one_map,
     pick_rows,
     regime_grid,
+    scene_column,
     select,
     unsettled_grid,
     where_label,
@@ -119,7 +119,7 @@ def _panels(table: pd.DataFrame, models: list[str], by: str | None, x: str,
     column other than ``by`` (a one-line SceneError naming it and how to pick a value)."""
     if table.empty:
         raise SceneError(NO_CELLS)
-    if by is not None and (by == "model" or (by not in SCENE_COLUMNS and "." not in by)):
+    if by is not None and not scene_column(by):
         # --by model ended in an internal failure; an output column would split the panels by
         # the runs' own results
         raise SceneError(f"--by {by!r} is not a swept field: compare draws a panel per model "

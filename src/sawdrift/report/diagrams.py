@@ -148,7 +148,7 @@ def mixed_columns(rows: pd.DataFrame, keys: list[str]) -> list[str]:
     if repeated.empty:
         return []
     groups = repeated.groupby(keys, dropna=False, sort=False)
-    return [c for c in rows.columns if ("." in c or c in SCENE_COLUMNS) and c not in keys
+    return [c for c in rows.columns if scene_column(c) and c not in keys
             and bool((groups[c].nunique(dropna=False) > 1).any())]
 
 
@@ -158,6 +158,12 @@ SCENE_COLUMNS = ("m_star", "amplitude", "mu", "nu", "horizontal_ratio", "steps_p
                  "periods", "ramp_periods", "measure_periods")
 
 
+def scene_column(column: str) -> bool:
+    """Whether a table's ``column`` is an input of its cells (a swept dotted field or one of
+    :data:`SCENE_COLUMNS`), not an output of the runs (``drift_ratio``, ``lyapunov``)."""
+    return "." in column or column in SCENE_COLUMNS
+
+
 def check_axis(table: pd.DataFrame, column: str) -> None:
     """One line where ``column`` cannot be a map's axis: not in the table, an output of the runs
     (``drift_ratio``, ``lyapunov``: the table holds one cell per point of its swept fields, not
@@ -165,7 +171,7 @@ def check_axis(table: pd.DataFrame, column: str) -> None:
     ended in an internal failure of the plot)."""
     if column not in table.columns:
         raise SceneError(f"axis {column!r} is not a column of the table")
-    if column not in SCENE_COLUMNS and "." not in column:
+    if not scene_column(column):
         raise SceneError(f"axis {column!r} is an output of the runs, not a swept field: a map's "
                          "axes are two swept fields (amplitude, m_star, or an --axis field such "
                          "as material.mu)")
