@@ -279,3 +279,27 @@ def test_out_of_memory_is_one_line_and_exit_2(monkeypatch, capsys):
     code, _, err = call(monkeypatch, capsys, "run", "--periods", "10")
     lines = err.strip().splitlines()
     assert code == 2 and lines[-1].startswith("error: out of memory") and "internal" not in err
+
+
+@pytest.mark.parametrize(("line", "said"), [
+    ("run --mu 0.2 --mu=0.3", "--mu is given twice"),
+    ("run --settle --periods 10 --no-settle", "--settle and --no-settle are both given"),
+    ("sweep --model mmd -o {d}/a.parquet -o {d}/b.parquet", "-o is given twice"),
+])
+def test_an_option_given_twice_is_refused(line, said, files, monkeypatch, capsys):
+    """The parser kept the last of two values: ``--mu 0.2 --mu 0.3`` ran at 0.3 in silence."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *line.format(d=files).split()])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1 and err[0].startswith(f"error: {said}"), err
+
+
+def test_collecting_options_a_repeated_flag_and_negative_values_still_parse(monkeypatch, capsys):
+    """What may repeat still does: a flag twice, and a value that starts with '-' is a value."""
+    line = "run --json --json --no-settle --periods 4 --load -0.01 --param max_memory_points=64"
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *line.split()])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    assert exc.value.code == 0, capsys.readouterr().err
+    assert '"load": -0.01' in capsys.readouterr().out

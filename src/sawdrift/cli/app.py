@@ -72,11 +72,43 @@ def _fold_help_tables() -> None:
 
 
 class _Command(typer.core.TyperCommand):
-    """A command whose help folds long names (:func:`_fold_help_tables`)."""
+    """A command whose help folds long names (:func:`_fold_help_tables`) and that refuses an
+    option given twice (:func:`_refuse_repeated`)."""
 
     def format_help(self, ctx: Any, formatter: Any) -> None:
         _fold_help_tables()
         super().format_help(ctx, formatter)
+
+    def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
+        _refuse_repeated(self.params, args)
+        return super().parse_args(ctx, args)
+
+
+def _refuse_repeated(params: list[Any], args: list[str]) -> None:
+    """One line, exit 2, for an option that takes one value given twice: ``--mu 0.2 --mu 0.3``
+    ran at 0.3 without a word (the parser keeps the last), ``--settle ... --no-settle`` the
+    same. Options that collect (``--param``, ``--set``) may repeat, and so may a flag (``--json
+    --json`` asks nothing new); anything after ``--`` is not looked at."""
+    names: dict[str, Any] = {}
+    for param in params:
+        if getattr(param, "param_type_name", "") == "option" and not (
+                param.multiple or param.count):
+            for opt in (*param.opts, *param.secondary_opts):
+                names[opt] = param
+    seen: dict[str, str] = {}
+    i = 0
+    while i < len(args) and args[i] != "--":
+        name = args[i].split("=", 1)[0] if args[i].startswith("--") else args[i]
+        param = names.get(name)
+        if param is not None:
+            first = seen.get(param.name)
+            if first is not None and not (param.is_flag and first == name):
+                _fail(f"{name} is given twice; give it once" if first == name else
+                      f"{first} and {name} are both given; give one of them")
+            seen[param.name] = name
+            if not param.is_flag and "=" not in args[i]:
+                i += param.nargs  # its value, even one that starts with '-' (--load -0.2)
+        i += 1
 
 
 class _Typer(typer.Typer):
