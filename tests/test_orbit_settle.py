@@ -244,3 +244,16 @@ def test_near_orbit_needs_one_period_clearly_nearer_than_every_other():
     quasi = np.stack([np.sin(2 * np.pi * k * 0.3819), np.cos(2 * np.pi * k * 0.3819),
                       np.sin(2 * np.pi * k * 0.7234)], axis=1)
     assert near_orbit(samples(quasi), scale) == 0
+
+
+def test_a_settled_orbit_s_exponent_is_measured_on_that_orbit():
+    """material_point m* = 1, A* = 0.5 settles on an orbit of 10 periods in which the point
+    sticks after its landings: a perturbation is erased, the exponent is -inf, as a 300-period
+    fixed run measures on the orbit. The default run reported -0.061, the exponent of a window of
+    its transient (at period 87), before going on to settle at period 195."""
+    settled = _run("material_point", 1.0, 0.5)
+    fixed = sd.run(sd.Scene(model="material_point", particle={"m_star": 1.0},
+                            drive={"amplitude": 0.5}, numerics={"settle": False, "periods": 300}))
+    assert settled.settled and settled.orbit_period == 10 and fixed.orbit_period == 10
+    assert fixed.lyapunov == -math.inf
+    assert settled.lyapunov == -math.inf
