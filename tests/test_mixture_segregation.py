@@ -58,3 +58,21 @@ def test_partly_sorted_lies_between():
     idx = rng.choice(100, 40, replace=False)  # shuffle 40 of the 100 places
     half[idx] = rng.permutation(half[idx])
     assert 0.2 < purity_index(x, half) < 0.95 and 0.2 < lacey_segregation(x, half) < 0.95
+
+
+def test_lacey_takes_every_particle_and_refuses_a_species_smaller_than_a_bin():
+    """A sorted 10 + 1 gave -0.227 (its lone bead fell outside bins of 3 and counted only in p):
+    a species smaller than a bin cannot fill one, no value. Bins of n or n + 1 take every
+    particle: a sorted 15 + 5 (bins 5, 5, 5, 5... of 20 in 4) is 1 either way round, and random
+    orders of 20 + 10 average 0 within their standard error (4000 orders, seeded)."""
+    x = np.arange(11.0)
+    assert np.isnan(lacey_segregation(x, np.array([0] * 10 + [1])))
+    x = np.arange(20.0)
+    sorted_line = np.array([0] * 15 + [1] * 5)
+    assert lacey_segregation(x, sorted_line) == pytest.approx(1.0, abs=1e-12)
+    assert lacey_segregation(x, sorted_line[::-1]) == pytest.approx(1.0, abs=1e-12)
+    rng = np.random.default_rng(7)
+    seq = np.repeat([0, 1], [20, 10])
+    vals = np.array([lacey_segregation(np.arange(30.0), rng.permutation(seq))
+                     for _ in range(4000)])
+    assert abs(vals.mean()) < 3.0 * vals.std(ddof=1) / np.sqrt(vals.size)

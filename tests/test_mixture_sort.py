@@ -36,10 +36,26 @@ def plate() -> tuple[sd.Scene, dict]:
     return sd.bind(sd.scene.build_scene(data)), particles
 
 
-def test_time_to_interpolates_the_first_crossing():
+def test_time_to_is_the_crossing_from_which_the_purity_stays_above():
+    """A purity reached and lost again is no sorted bed: the time is that of the last crossing
+    (linear between samples), NaN where the run ends below the target."""
     t = np.array([0.0, 10.0, 20.0, 30.0])
-    assert time_to(t, np.array([0.5, 0.7, 0.95, 0.8]), 0.9) == pytest.approx(18.0)
+    assert time_to(t, np.array([0.5, 0.7, 0.95, 0.96]), 0.9) == pytest.approx(18.0)
+    assert time_to(t, np.array([0.5, 0.95, 0.8, 0.95]), 0.9) == pytest.approx(26.6666667)
+    assert np.isnan(time_to(t, np.array([0.5, 0.7, 0.95, 0.8]), 0.9))
     assert np.isnan(time_to(t, np.array([0.5, 0.6, 0.7, 0.8]), 0.9))
+    assert time_to(t, np.array([0.92, 0.95, 0.97, 1.0]), 0.9) == 0.0
+
+
+def test_purity_is_oriented_by_the_drift():
+    """A line sorted the wrong way round (the species driven to +x all on the left) must still
+    pass through itself: its oriented purity is 1/2, that of no interface at all (a cut at either
+    end); the unoriented best interface says 1."""
+    x = np.arange(10.0)
+    kinds = np.array([1] * 5 + [0] * 5)  # species 1 left, species 0 right
+    assert purity(x, kinds) == 1.0
+    assert purity(x, kinds, right=0) == 1.0
+    assert purity(x, kinds, right=1) == 0.5
 
 
 def test_dilute_sorting_time_equals_brute_force_of_free_drifts(monkeypatch):
@@ -73,6 +89,42 @@ def test_dilute_sorting_time_equals_brute_force_of_free_drifts(monkeypatch):
         times = np.sort(cross[np.isfinite(cross) & (cross > 0.0)])
         brute = next(t for t in times if purity(xy[:, 0] + v * t * (1 + 1e-9), kinds) >= 0.9)
         assert got == pytest.approx(brute, rel=2.5e-2)
+
+
+def test_a_bed_sorted_the_wrong_way_round_must_cross_before_it_is_sorted(monkeypatch):
+    """Ten fast beads (species 0, driven to +x) behind ten slow ones (driven to -x), each in its
+    own lane: every fast bead must pass every slow one. The best interface in either orientation
+    called the bed sorted at t = 0 (purity 1, "time to 0.9: 0"); the purity oriented by the drift
+    starts at 1/2 and reaches 0.9 when the lines have crossed, at the time the straight lines
+    give (within the sampling, 2.3 % apart)."""
+    scene, particles = plate()
+    free = (0.38, -0.35)
+    monkeypatch.setattr(sort_module, "curves_for", lambda scene, radii, **kw: [
+        linear(free[0], 0.2, radii[0]), linear(free[1], 0.5, radii[1])])
+    positions = ([[1e-3 * i, 3e-3 * i, 0] for i in range(10)]
+                 + [[0.02 + 1e-3 * i, 0.03 + 3e-3 * i, 1] for i in range(10)])
+    table = {"radius": particles["radius"], "positions": positions}
+    result = sort_mixture(scene, table, seeds=1, periods=1e10, samples=100, target=0.9)
+    assert result.measures["purity"][0, 0] == 0.5
+    from sawdrift.lammps.realize import realize
+
+    real = realize(scene)
+    speed = 2 * np.pi * real.frequency * real.ratio * real.amplitude * real.horizontal
+    x0 = np.array([q[0] for q in positions])
+    kinds = np.array([q[2] for q in positions])
+    v = np.where(kinds == 0, free[0], free[1]) * speed / real.frequency  # m per period
+    times = np.sort((x0[kinds == 1][None, :] - x0[kinds == 0][:, None]).ravel()
+                    / (v[0] - v[-1]))
+    brute = next(t for t in times if purity(x0 + v * t * (1 + 1e-9), kinds, 0) >= 0.9)
+    assert result.times_to_target()[0] == pytest.approx(brute, rel=2.5e-2)
+
+
+def test_a_bed_of_one_species_is_refused(monkeypatch):
+    """Positions that name one species only: nothing to sort (it printed NaN, exit 0)."""
+    scene, particles = plate()
+    table = {"radius": particles["radius"], "positions": [[0.0, 0.0, 0], [0.01, 0.0, 0]]}
+    with pytest.raises(sd.SceneError, match="species 0 only"):
+        sort_mixture(scene, table, seeds=1, periods=1e3)
 
 
 def test_chains_carry_small_beads_against_their_drift(monkeypatch):

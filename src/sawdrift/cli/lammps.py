@@ -309,7 +309,8 @@ def _many_lines(result: Any, data: dict[str, Any]) -> list[str]:
         # one sphere of a species has no index or Lacey value (None: '-', not an internal failure)
         lines.append(f"  positions: purity {_num(data['purity'], '.4g')}, purity index "
                      f"{_num(data['purity_index'], '.4g')}, Lacey {_num(data['lacey'], '.4g')} (0 "
-                     f"random, 1 sorted); velocities: segregation index S = "
+                     f"random, 1 sorted; Lacey 1 only where the interface falls between its "
+                     f"bins); velocities: segregation index S = "
                      f"{_num(data['segregation_index'], '.4g')}")
     dilute = data.get("dilute_single_particle", [])
     for row in dilute:

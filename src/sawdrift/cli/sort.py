@@ -13,7 +13,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import _fail, _writable, app, out_kind
+from .app import _fail, _writable, app, json_nulls, out_kind
 from .lammps import _scene_and_particles, with_particle_sets
 from .scene_options import with_scene_options
 
@@ -28,8 +28,9 @@ def sort_cmd(
                                        "seed+1, ...); at least 20 for a spread")] = 20,
     until: Annotated[float, typer.Option("--until", help="length of each run in wave periods "
                                          "(beads that touch nothing cost nothing)")] = 1e9,
-    purity: Annotated[float, typer.Option("--purity", help="report the time to this purity of "
-                                          "the best interface, in (0.5, 1]")] = 0.9,
+    purity: Annotated[float, typer.Option("--purity", help="report the time from which the "
+                                          "purity (each species on its driven side) stays at or "
+                                          "above this, in (0.5, 1]")] = 0.9,
     curves: Annotated[str, typer.Option("--curves", help="force-velocity curves: 'native' (the "
                                         "engine) or 'lammps_rule' (LAMMPS's Coulomb rule)")] = "native",
     geometry: Annotated[str, typer.Option("--geometry", help="'plane': beads in 2-D on the plate, "
@@ -63,8 +64,9 @@ def sort_cmd(
     is an assumption, stated in the output). --geometry line: beads in lanes along the wave
     move as chains at a common speed, merge on contact and split where the front runs ahead,
     event by event in slow time (1-D). Reports the segregation of the positions (purity of the
-    best interface, its index, Lacey) against time with its spread over the placements, the
-    time to --purity, the final state, and the accuracy the checks against LAMMPS showed
+    best interface with each species on the side the wave drives it to, its index, Lacey)
+    against time with its spread over the placements, the time from which the purity stays at
+    --purity or above, the final state, and the accuracy the checks against LAMMPS showed
     (docs/mixtures.md).
     """
     fast_start()
@@ -94,11 +96,11 @@ def sort_cmd(
         from ..report.sort_plot import plot_sort
 
         out.mkdir(parents=True, exist_ok=True)
-        (out / "sort.json").write_text(json.dumps(data, indent=1) + "\n")
+        (out / "sort.json").write_text(json.dumps(json_nulls(data), indent=1) + "\n")
         plot_sort(result, out / "sort.png")
         _write_scene(scene, particles, out / "scene.toml")
     if as_json:
-        typer.echo(json.dumps(data))
+        typer.echo(json.dumps(json_nulls(data)))
         return
     for line in _lines(data):
         typer.echo(line)
@@ -189,7 +191,8 @@ def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int
         rows.append({"radius_m": row["radius_m"], "lammps_drift_ratio": row["drift_ratio"],
                      "model_drift_ratio": model["drift_ratio"][k]})
     return {"periods": periods, "species": rows, "lammps_wall_time_s": lmp.wall_time_s,
-            "lammps_purity": position_purity(lmp.final_x, lmp.kinds), "model_purity": model["purity"],
+            "lammps_purity": position_purity(lmp.final_x, lmp.kinds, result.right),
+            "model_purity": model["purity"],
             "model_wall_time_s": model["wall_time_s"], "model_geometry": "line",
             "lammps_touching_pairs": lmp.window_pairs, "model_chains": model["chains"]}
 
@@ -233,8 +236,9 @@ def _lines(data: dict[str, Any]) -> list[str]:
                      f"{row['free_drift_ratio']:+.4f} ({row['free_speed_m_s'] * 1e6:+.3g} um/s); "
                      f"at the end {row['final_mean_drift_ratio']:+.4f} on average, "
                      f"{row['carried_against_own_drift']:.0%} carried against their own drift")
-    lines.append("  segregation of positions, mean +- spread over the placements "
-                 "(0 random, 1 sorted):")
+    lines.append("  segregation of positions, mean +- spread over the placements (0 random, 1 "
+                 "sorted with each species on the side the wave drives it to; Lacey 1 only where "
+                 "the interface falls between its bins):")
     lines.append(f"  {'periods':>10} {'seconds':>10} {'purity':>16} {'purity index':>16} "
                  f"{'Lacey':>16}")
     over = data["over_time"]

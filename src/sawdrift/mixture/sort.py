@@ -7,8 +7,9 @@ along the wave from contact to contact, :mod:`.events`), and the segregation of 
 (:mod:`.segregation`: the purity of the best interface, its index against random orders, the
 Lacey index) is measured at sample times spaced logarithmically from one period to the end.
 Over the ensemble: the mean and the spread (standard deviation) of each measure against time,
-in wave periods and in seconds of device time, the time at which the purity first reaches a
-target in each placement (linear between samples), and the final state (chains or clusters of
+in wave periods and in seconds of device time, the time from which the purity, oriented with the
+species the wave drives to +x on the right, stays at or above a target in each placement (linear
+between samples), and the final state (chains or clusters of
 touching beads, their sizes, each species' mean speed).
 """
 
@@ -75,11 +76,13 @@ MAX_JITTER = 1.0
 
 
 def time_to(times: np.ndarray, values: np.ndarray, target: float) -> float:
-    """First time at which ``values`` reaches ``target`` (linear between samples); NaN if never."""
-    hit = np.flatnonzero(values >= target)
-    if hit.size == 0:
+    """The time from which ``values`` stays at or above ``target`` to the end (linear between
+    samples); NaN where the last value is below it. A bed that reaches the purity and loses it
+    again is not sorted at that time (nor at all, if it ends below)."""
+    below = np.flatnonzero(~(values >= target))
+    if below.size and below[-1] == values.size - 1:
         return math.nan
-    k = int(hit[0])
+    k = int(below[-1]) + 1 if below.size else 0
     if k == 0:
         return float(times[0])
     v0, v1 = values[k - 1], values[k]
@@ -105,13 +108,16 @@ class SortResult:
     perp: float = 1.0
     #: where the scene leaves the model's checked range (:data:`UNDAMPED`)
     warnings: tuple[str, ...] = ()
+    #: the species the wave drives to +x (the larger free drift): the purity's orientation
+    right: int | None = None
 
     @property
     def seconds(self) -> np.ndarray:
         return self.periods / self.frequency
 
     def times_to_target(self) -> np.ndarray:
-        """Periods to reach the target purity, per seed (NaN: not within the run)."""
+        """Periods from which the purity stays at or above the target, per seed (NaN: not within
+        the run, :func:`time_to`)."""
         return np.array([time_to(self.periods, p, self.target) for p in self.measures["purity"]])
 
     def summary(self) -> dict[str, Any]:
@@ -188,7 +194,7 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     samples
         Sample times per decade of periods after t = 0, from one period.
     target
-        Purity whose first time is reported, in (0.5, 1].
+        Purity from which on the time is reported (:func:`time_to`), in (0.5, 1].
     source
         ``"native"`` (the engine's force-velocity curves) or ``"lammps_rule"`` (LAMMPS's Coulomb
         rule for the stored spring, :mod:`sawdrift.lammps.damped`).
@@ -233,7 +239,9 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     curves = curves_for(scene, [s.radius for s in species], source=source, progress=progress)
     curve_wall = time.perf_counter() - t0
     u = 2.0 * math.pi * real.frequency * real.ratio * real.amplitude * real.horizontal
+    right = 1 if curves[1].free > curves[0].free else 0  # driven to +x: the purity's orientation
     grid = _sample_periods(periods, samples)
+    _both_species(spec, species)
     seed_list = [spec.seed] if spec.positions is not None else list(range(spec.seed, spec.seed + seeds))
     cache: dict[tuple, Any] = {}
     r_min = min(sp.radius for sp in species)
@@ -262,9 +270,9 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     runs, values = [], {k: [] for k in MEASURES}
     for kinds, run in done:
         runs.append(run)
-        for key, fn in (("purity", purity), ("purity_index", purity_index),
-                        ("lacey", lacey_segregation)):
-            values[key].append([fn(row, kinds) for row in run.x])
+        values["purity"].append([purity(row, kinds, right) for row in run.x])
+        values["purity_index"].append([purity_index(row, kinds, right) for row in run.x])
+        values["lacey"].append([lacey_segregation(row, kinds) for row in run.x])
     rows = []
     for k, (sp, cv) in enumerate(zip(species, curves, strict=True)):
         final = np.concatenate([r.speeds[r.kinds == k] for r in runs])
@@ -277,7 +285,18 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
                       runs=runs, species=rows, wall_time_s=time.perf_counter() - t0,
                       curve_source=source, curve_wall_s=curve_wall, geometry=geometry,
                       jitter=jitter_radii if geometry == "plane" else 0.0, perp=perp,
-                      warnings=_warnings(scene))
+                      warnings=_warnings(scene), right=right)
+
+
+def _both_species(spec: Particles, species: list[Any]) -> None:
+    """One line where the placement has beads of one species only (explicit positions that name
+    one, or a fraction that leaves the other empty): nothing to sort (it printed NaN)."""
+    _, kinds, _, _ = placement(spec, species)
+    present = set(np.unique(kinds).tolist())
+    if present != {0, 1}:
+        only = ", ".join(str(k) for k in sorted(present)) or "none"
+        raise SceneError(f"particles: the placement has beads of species {only} only; sorting "
+                         "needs beads of both species (0 and 1)")
 
 
 def _warnings(scene: Scene) -> tuple[str, ...]:
@@ -307,5 +326,5 @@ def slow_window(scene: Scene, spec: Particles, result: SortResult, periods: int)
         np.array([periods - half, periods], dtype=float) / real.frequency)
     disp = (run.x[1] - run.x[0]) * real.frequency / half / u
     return {"drift_ratio": [float(disp[kinds == k].mean()) for k in range(len(species))],
-            "purity": purity(run.x[1], kinds), "chains": len(run.chains),
+            "purity": purity(run.x[1], kinds, result.right), "chains": len(run.chains),
             "wall_time_s": time.perf_counter() - t0}
