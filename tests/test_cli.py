@@ -58,7 +58,7 @@ def test_an_unsettled_run_says_so_on_stderr():
     note is printed."""
     args = ("run", "--model", "mmd", "--m-star", "100", "--amplitude", "0.3")
     short = cli(*args, "--no-settle", check=True)
-    assert re.search(r"settled\s+NO, still changing", short.stdout)
+    assert re.search(r"settled\s+NO, not confirmed by its fixed window", short.stdout)
     notes = short.stderr.strip().splitlines()
     assert len(notes) == 1 and "m*/mu = 1000" in notes[0] and "--settle" in notes[0]
     for flag in (("--settle",), ()):

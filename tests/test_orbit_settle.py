@@ -257,3 +257,16 @@ def test_a_settled_orbit_s_exponent_is_measured_on_that_orbit():
     assert settled.settled and settled.orbit_period == 10 and fixed.orbit_period == 10
     assert fixed.lyapunov == -math.inf
     assert settled.lyapunov == -math.inf
+
+
+def test_a_fixed_run_off_any_orbit_is_not_called_settled():
+    """hertz_mindlin_dem m* = 0.05, A* = 0.4: irregular bouncing, no periodic orbit. Its fixed
+    run of 2000 periods said settled (the thirds of its window agreed), which means a fixed point
+    or a periodic orbit; the default run says irregular, a long-time mean."""
+    res = sd.run(sd.Scene(model="hertz_mindlin_dem", particle={"m_star": 0.05},
+                          drive={"amplitude": 0.4},
+                          numerics={"settle": False, "periods": 2000, "measure_periods": 1000}))
+    assert res.contact_lost and res.orbit_period == 0
+    assert res.settled is False
+    default = _run("hertz_mindlin_dem", 0.05, 0.4)
+    assert default.settled is False and math.isfinite(default.drift_ratio_se)

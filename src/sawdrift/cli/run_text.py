@@ -126,7 +126,13 @@ def _line(key: str, value: Any, summary: dict[str, Any], width: int) -> str:
         text += f"  <- {unsettled_text(summary)}"
     if key == "settled" and value is False:
         no_state = summary.get("regime") in ("runaway", "ejected")
-        text = unsettled_text(summary, "NO" if no_state else "NO, still changing")
+        # a fixed run's one window cannot confirm a creep or a motion off any orbit: it may be
+        # converged (hertz_mindlin_dem m* 50, A* 0.05 creeps at 0.00626318 after 22000 and 44000
+        # periods alike), so "not confirmed", not "still changing"
+        fixed = summary.get("settle_method") == "fixed"
+        text = unsettled_text(summary, "NO" if no_state else
+                              "NO, not confirmed by its fixed window" if fixed else
+                              "NO, still changing")
     return f"  {key:<{width}}  {text}"
 
 

@@ -24,7 +24,15 @@ from ..scene.schema import Numerics, Scene
 from .assembly import Assembly
 from .batch_means import BatchMeans, long_time_mean, period_rows
 from .evidence import S_LASTLIFT
-from .full_inertia import Watch, accuracy, held, longest_flight, settle_full, tapered_drift_ratio
+from .full_inertia import (
+    Watch,
+    accuracy,
+    held,
+    longest_flight,
+    on_orbit,
+    settle_full,
+    tapered_drift_ratio,
+)
 from .orbit_search import orbit_search
 from .steady import (
     Settling,
@@ -146,8 +154,9 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                                 periods_run, chaotic,
                                 before=None if before is None else tapered_drift_ratio(before,
                                                                                        speed))
-        if num.settle is False:
-            settling = replace(settling, drift=None)  # a fixed run reports its window's mean
+        if num.settle is False:  # a fixed run reports its window's mean, settled on an orbit
+            settling = replace(settling, drift=None, settled=settling.settled and (
+                on_orbit(win) or not win.contact_lost))  # or in contact (no fixed point else)
         elif stepper.step > fixed_end:  # it went on in windows to its periodic orbit
             settling = replace(settling, method="fixed_then_windows")
         if leaving and num.settle is not False:
