@@ -59,6 +59,13 @@ def test_touching_row_has_zero_overlap_at_rest():
     ({"radius": ["1 mm"], "count": 3, "positions": [[0.0, 0.0, 0]]}, "count = 3 but 1 positions"),
     ({"radius": ["1 mm"], "positions": [[0.0, 0.0]]}, "give [x, y, species]"),
     ({"radius": ["1 mm"], "positions": [[0.0, 0.0, 0]], "box": [1.0]}, "give [lx, ly]"),
+    # booleans read as 1 placed 100 spheres of radius 1 m, a sphere at x = 1 m, rows of 1
+    ({"radius": [True, "1 mm"]}, "radius[0] = true is a boolean"),
+    ({"radius": ["1 mm"], "positions": [[True, 0.0, 0]]}, "positions[0][0] = true is a boolean"),
+    ({"radius": ["0.2 mm", "1 mm"], "row": True}, "row = true is a boolean"),
+    ({"radius": ["0.2 mm", "1 mm"], "seed": False}, "seed = false is a boolean"),
+    # the device range of a radius, which lammps did not check (it ran spheres of 0.5 m)
+    ({"radius": ["0.2 mm", 0.5]}, "[1] = 0.5 is outside the allowed range 1 nm to 10 cm"),
 ])
 def test_bad_positions_are_one_line(table, needle):
     with pytest.raises(SceneError) as err:

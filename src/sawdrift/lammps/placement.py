@@ -35,9 +35,11 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from ..errors import SceneError
+from ..scene.bounds import NOT_A_NUMBER
 from ..scene.device import to_si
 from ..scene.parts import format_validation_error
 from ..scene.schema import Scene
+from ..scene.units import in_range
 from .realize import Realization, realize
 
 
@@ -73,6 +75,7 @@ class Particles(BaseModel):
     @model_validator(mode="before")
     @classmethod
     def _count_of_positions(cls, data: Any) -> Any:
+        _no_booleans(data)
         if isinstance(data, dict) and isinstance(data.get("positions"), list):
             n = len(data["positions"])
             if "count" in data and data["count"] != n:
@@ -109,10 +112,14 @@ class Particles(BaseModel):
     def _lengths(cls, value: list[float | str]) -> list[float | str]:
         if len(value) not in (1, 2):
             raise ValueError(f"has {len(value)} values: give one or two radii (one or two species)")
-        for item in value:
+        for i, item in enumerate(value):
             size = to_si(item, "length")
             if not size > 0.0:
                 raise ValueError(f"{item!r} is not a positive length, e.g. '0.5 mm'")
+            try:  # a device particle's range: lammps ran spheres of 0.5 m that sort refused
+                in_range("particle.radius", size, "m", item)
+            except ValueError as exc:
+                raise ValueError(f"[{i}] = {item!r} {exc}") from None
         return value
 
     @model_validator(mode="after")
@@ -148,6 +155,19 @@ class Particles(BaseModel):
             return [self.count]
         first = min(max(1, round(self.fraction * self.count)), self.count - 1)
         return [first, self.count - first]
+
+
+def _no_booleans(data: Any, where: str = "") -> None:
+    """Refuse a boolean anywhere in the table: every field is a number, a length or a list of
+    them, and ``true`` read as 1 placed 100 spheres of radius 1 m (``radius = [true, "1 mm"]``),
+    a sphere at x = 1 m or a row of 1."""
+    if isinstance(data, bool):
+        raise ValueError(f"{where or 'particles'} = {str(data).lower()} {NOT_A_NUMBER}")
+    items = (data.items() if isinstance(data, dict) else
+             ((f"[{i}]", v) for i, v in enumerate(data)) if isinstance(data, list) else ())
+    for key, value in items:
+        _no_booleans(value, f"{where}.{key}" if where and not key.startswith("[") else
+                     f"{where}{key}")
 
 
 def parse_particles(data: Any) -> Particles:
