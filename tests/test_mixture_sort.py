@@ -392,3 +392,33 @@ def test_each_placement_is_told_as_it_ends(monkeypatch):
     placements = [(line, n) for line, n in told if line.startswith("seed ")]
     assert [n for _, n in placements] == [1, 2, 3]
     assert placements[0][0].startswith("seed 0 of 0-2: ")
+
+
+def test_ctrl_c_keeps_the_placements_that_ended(monkeypatch, capsys, tmp_path):
+    """A sort stopped after 3 of 20 placements threw all of them away ("stopped before writing
+    its results"). Now the ensemble of those that ended is written and printed, marked
+    interrupted, and the exit status is 130 (a Ctrl-C in the third placement here: the first
+    two, started before it, end)."""
+    import json
+
+    from sawdrift.mixture.plane import PlaneModel
+
+    calls = {"n": 0}
+    real_run = PlaneModel.run
+
+    def third_interrupts(self, times):
+        calls["n"] += 1
+        if calls["n"] == 3:
+            raise KeyboardInterrupt
+        return real_run(self, times)
+
+    monkeypatch.setattr(PlaneModel, "run", third_interrupts)
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
+                                      "--seeds", "5", "--until", "1e6", "--no-progress",
+                                      "-o", str(tmp_path / "kept")])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    assert exc.value.code == 130
+    data = json.loads((tmp_path / "kept" / "sort.json").read_text())
+    assert data["interrupted"] is True and data["seeds"] == [0, 1]
+    assert "after 2 of 5 placements" in capsys.readouterr().err

@@ -13,7 +13,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import _fail, _writable, app, json_nulls, out_kind
+from .app import _fail, _writable, app, interrupted, json_nulls, out_kind
 from .lammps import _scene_and_particles, with_particle_sets
 from .scene_options import with_scene_options
 
@@ -90,7 +90,7 @@ def sort_cmd(
                           source=curves, geometry=geometry, perp=transverse,
                           jitter_radii=jitter, progress=note)  # type: ignore[arg-type]
     data = result.summary()
-    if check:
+    if check and not result.interrupted:
         data["check"] = _check(scene, particles, result, check)
     if out is not None:
         from ..report.sort_plot import plot_sort
@@ -101,11 +101,15 @@ def sort_cmd(
         _write_scene(scene, particles, out / "scene.toml")
     if as_json:
         typer.echo(json.dumps(json_nulls(data)))
-        return
-    for line in _lines(data):
-        typer.echo(line)
-    if out is not None:
-        typer.echo(f"wrote {out}/sort.json, sort.png, scene.toml")
+    else:
+        for line in _lines(data):
+            typer.echo(line)
+        if out is not None:
+            typer.echo(f"wrote {out}/sort.json, sort.png, scene.toml")
+    if result.interrupted:
+        kept = f"; written to {out}" if out is not None else ""
+        interrupted(f"interrupted (Ctrl-C) after {len(result.seeds)} of {seeds} placements: "
+                    f"the numbers above are of those{kept}")
 
 
 def _write_scene(scene: sd.Scene, particles: dict[str, Any], path: Path) -> None:
