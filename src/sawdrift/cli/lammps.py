@@ -15,7 +15,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import Param, _fail, _parse_param, _writable, app, json_nulls
+from .app import Param, _fail, _parse_param, _writable, app, interrupted, json_nulls
 from .run_text import grouped
 from .scene_options import _SET, apply_options, with_scene_options
 
@@ -337,12 +337,22 @@ def _ensemble(scene: sd.Scene, spec: Any, seeds: int, processes: int | None, pro
         (out / "ensemble.json").write_text(json.dumps(json_nulls(data), indent=1) + "\n")
     if as_json:
         typer.echo(json.dumps(json_nulls(data)))
-        return
-    typer.echo(f"{seeds} placements (seeds {data['seeds'][0]}-{data['seeds'][-1]}), "
+    else:
+        _ensemble_lines(data)
+    if data["interrupted"]:
+        kept = f"; written to {out}/ensemble.json" if out is not None else ""
+        interrupted(f"interrupted (Ctrl-C) after {len(data['seeds'])} of {seeds} placements: "
+                    f"the numbers are of those{kept}")
+
+
+def _ensemble_lines(data: dict[str, Any]) -> None:
+    """The text of an ensemble summary (:func:`_ensemble`)."""
+    typer.echo(f"{len(data['seeds'])} placements (seeds {data['seeds'][0]}-{data['seeds'][-1]}), "
                f"{data['wall_time_s']:.3g} s of LAMMPS; mean +- spread (standard deviation):")
     for key, row in data.items():
         if isinstance(row, dict) and row.get("mean") is not None:
-            typer.echo(f"  {key:>18}: {row['mean']:.4g} +- {row['std']:.2g}")
+            typer.echo(f"  {key:>18}: {row['mean']:.4g} +- {_num(row['std'], '.2g')}")
     for k, row in enumerate(data["drift_ratio"]):
         if row["mean"] is not None:
-            typer.echo(f"  drift ratio species {k}: {row['mean']:.4g} +- {row['std']:.2g}")
+            typer.echo(f"  drift ratio species {k}: {row['mean']:.4g} +- "
+                       f"{_num(row['std'], '.2g')}")

@@ -231,13 +231,22 @@ def run_ensemble(scene: Scene, particles: Particles | dict[str, Any], seeds: lis
     """:func:`run_particles` once per placement seed; the runs and their ensemble summary.
 
     The summary holds, for each of :data:`ENSEMBLE_KEYS` and each species' drift ratio, the mean
-    over the seeds, the standard deviation (the spread of one placement) and the values.
+    over the seeds, the standard deviation (the spread of one placement) and the values. Stopped
+    by Ctrl-C after at least one run, it is that of the runs that ended, ``interrupted`` true.
     """
     spec = particles if isinstance(particles, Particles) else parse_particles(particles)
     if spec.positions is not None and len(seeds) > 1:
         raise SceneError("particles.positions: explicit positions have no seed; run one placement")
-    runs = [run_particles(scene, spec.model_copy(update={"seed": s}), processes=processes,
-                          progress=progress) for s in seeds]
+    runs: list[ManyResult] = []
+    try:
+        for s in seeds:
+            runs.append(run_particles(scene, spec.model_copy(update={"seed": s}),
+                                      processes=processes, progress=progress))
+    except KeyboardInterrupt:
+        # Ctrl-C: the runs that ended are the ensemble (marked interrupted); none, it goes on up
+        # (an ensemble stopped in its fourth run threw three LAMMPS runs away)
+        if not runs:
+            raise
     summaries = [r.summary() for r in runs]
 
     def stats(values: list[float | None]) -> dict[str, Any]:
@@ -245,7 +254,8 @@ def run_ensemble(scene: Scene, particles: Particles | dict[str, Any], seeds: lis
         return {"mean": float(v.mean()) if v.size else None,
                 "std": float(v.std(ddof=1)) if v.size > 1 else None, "values": values}
 
-    out: dict[str, Any] = {"seeds": list(seeds), "wall_time_s": sum(r.wall_time_s for r in runs)}
+    out: dict[str, Any] = {"seeds": list(seeds[:len(runs)]), "interrupted": len(runs) < len(seeds),
+                           "wall_time_s": sum(r.wall_time_s for r in runs)}
     for key in ENSEMBLE_KEYS:
         out[key] = stats([s[key] for s in summaries])
     out["drift_ratio"] = [stats([s["species"][k]["drift_ratio"] for s in summaries])
