@@ -93,9 +93,10 @@ def test_a_threshold_above_the_scan_is_named_not_printed_as_nan(monkeypatch, cap
     assert row["removal_amplitude_m"] is None and row["slide_amplitude_m"] is None
 
 
-@pytest.mark.parametrize("stop", ["-1 nm", "0 nm"])
+@pytest.mark.parametrize("stop", ["-1 nm", "0 nm", "10", "2 cm"])
 def test_a_stop_that_is_not_a_positive_amplitude_is_refused(stop, monkeypatch, capsys):
-    # it ran and printed '> -1 nm' for every row
+    # it ran and printed '> -1 nm' for every row; 10 (read as 10 m) and 2 cm, outside a device
+    # amplitude's range of 0 to 1 cm, ran too
     from .cli_call import call
 
     example = str(Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml")
@@ -193,3 +194,10 @@ def test_an_output_with_a_file_suffix_is_refused_before_any_work(monkeypatch, ca
                         "-o", str(out))
     assert code == 2 and ".txt files are not written here; give a folder" in err
     assert not out.exists()
+
+
+def test_the_scanned_amplitude_is_no_set_field(monkeypatch, capsys):
+    # --set device.amplitude=5 nm ran, ignored: the scan sets the amplitude itself
+    code, _, err = _cli(monkeypatch, capsys, "--axis", "device.particle.radius=2 um", "--set",
+                        "device.amplitude=5 nm")
+    assert code == 2 and "--set device.amplitude" in err and len(err.strip().splitlines()) == 1

@@ -60,6 +60,7 @@ def threshold_cmd(
     """
     from ..report.threshold_plot import plot_thresholds
     from ..scene.device import to_si
+    from ..scene.units import in_range
     from ..study.threshold import parse_device_axis, thresholds
 
     fast_start()
@@ -67,10 +68,15 @@ def threshold_cmd(
     _check_scan(start, per_decade, bisections, periods)
     try:
         stop_m = to_si(stop, "length")
+        if stop_m > 0.0:  # a device amplitude's range, and the hint for a bare number in m
+            in_range("amplitude", stop_m, "m", _bare_number(stop))
     except ValueError as exc:
         _fail(f"--stop = {stop!r} {exc}")
     if not stop_m > 0.0:
         _fail(f"--stop = {stop!r} must be a positive amplitude, e.g. '10 nm' (the scan's top)")
+    if "device.amplitude" in scene_overrides:  # the scan's own variable: it was ignored
+        _fail("--set device.amplitude: threshold scans the amplitude itself (--start, --stop); "
+              "leave it out")
     if out is not None:
         out_kind(out, (), "")  # a folder: -o t.txt made a folder named t.txt
         _writable(out, folder=True)
@@ -90,6 +96,15 @@ def threshold_cmd(
         typer.echo(json.dumps(data, indent=1))
         return
     _print_rows(study, name, stop.strip(), data)
+
+
+def _bare_number(text: str) -> Any:
+    """``text`` as a float where it is a bare number (in m, which the range's message then
+    says), else as given: --stop 10 was read as 10 m and run."""
+    try:
+        return float(text)
+    except ValueError:
+        return text
 
 
 #: the text of a threshold not located (ThresholdRow.*_found), and the note explaining it
