@@ -276,7 +276,7 @@ def wave_implausibility(device: Device) -> str | None:
         device.substrate.poisson)
     speed = 2.0 * math.pi * f * amp * math.sqrt(1.0 + r * r)
     given = f"device.amplitude = {amp:.4g} m at device.frequency = {f:.4g} Hz"
-    hint = "(a bare number is in m: write the unit, e.g. amplitude = '10 nm')"
+    hint = "(a bare number would be metres: write the unit, e.g. amplitude = '10 nm')"
     if lam is None:
         if speed >= MAX_WAVE_SPEED:
             return (f"{given} moves the surface at {speed:.3g} m/s, faster than any elastic wave "
