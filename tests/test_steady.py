@@ -6,8 +6,6 @@ horizontal velocity relaxes over of order m*/mu periods), never a number from th
 
 from __future__ import annotations
 
-import pytest
-
 import sawdrift as sd
 
 
@@ -179,20 +177,3 @@ def test_a_vanishing_friction_stays_fixed_even_where_the_drift_could_be_solved()
     assert settles(scene, 2.0, rigid=False) is False
     assert settles(scene.model_copy(update={"material": scene.material.model_copy(
         update={"mu": 0.1})}), 2.0, rigid=False) is True  # solvable, bounded: solved
-
-
-def test_a_cap_in_periods_the_user_gives_is_the_one_that_holds():
-    """jaeger m* = 50, A* = 1.5, mu = 0.1, e = 0.5: its drift climbs for 1e5 periods (the
-    restitution caps friction far below mu M g). The full-inertia stage stopped after 60 windows
-    (6573 periods) at 0.277 whatever --max-periods said. Given 3e5 periods it now runs past them
-    and reaches the drift of a 3e5-period brute-force run (0.87775, the same to 1e-6 at 6e5)
-    within 0.5 %: the learned relaxation rate is bounded at a quarter of mu / m*, slower than
-    this mode, so its last windows settle 2.7e-3 short of it (not within the 1e-3 a default run
-    holds elsewhere: stated, not hidden)."""
-    base = dict(model="jaeger", particle={"m_star": 50.0}, drive={"amplitude": 1.5},
-                material={"mu": 0.1, "restitution": 0.5})
-    capped = sd.run(sd.Scene(**base, numerics={"max_periods": 3e5}))
-    brute = sd.run(sd.Scene(**base, numerics={"settle": False, "periods": 3e5,
-                                              "measure_periods": 20000}))
-    assert capped.settle_periods > 6573.0
-    assert capped.drift_ratio == pytest.approx(brute.drift_ratio, rel=5e-3)

@@ -77,9 +77,7 @@ ACCURACY = 0.5
 #: a drift ratio below which the tolerance is absolute (tol * ABS_FLOOR)
 ABS_FLOOR = 0.02
 
-#: windows the full-inertia stage may take at most, where ``numerics.max_periods`` is not given
-#: (a cap in periods the user gave is the one that holds: this one stopped jaeger m* 50, A* 1.5,
-#: e = 0.5 after 6573 periods whatever the cap, its drift climbing from 0.277 then to 0.88)
+#: windows the full-inertia stage may take at most
 MAX_WINDOWS = 60
 
 #: consecutive window changes within the accuracy that a settled drift needs (a hopping particle
@@ -457,8 +455,7 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     slips = SlipReturn(vertical_beat(scene.particle.m_star, stepper.rigid), last)
     slips.see(win)
     settled = held(win, values[-1], state.tol) and not slips.waits(win)
-    most = MAX_WINDOWS if scene.numerics.max_periods is None else math.inf  # the user's cap
-    while (not settled and len(values) < most
+    while (not settled and len(values) < MAX_WINDOWS
            and stepper.step + state.w * stepper.k_per <= max_steps):
         win = measure_window(stepper, state.w, speed, scale)
         log.append(period_rows(win, stepper))
