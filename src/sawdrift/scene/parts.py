@@ -341,8 +341,10 @@ class Numerics(BaseModel):
         "curve is found to a hundredth of it"
     )
     max_periods: Annotated[float, bounded(1.0, 1e7)] | None = Field(
-        None, description="settle: stop after this many periods even if not settled; default "
-        "max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of the settle method"
+        None, description="settle: stop after this many periods even if not settled (the "
+        "full-inertia stage stops after 60 windows in any case; a motion still approaching then "
+        "says so); default max(5000, 50 m*_x/mu + 20 windows), m*_x the horizontal inertia of "
+        "the settle method"
     )
     mean_periods: count(100, 10_000_000) = Field(
         500, description="irregular motions (chaotic, quasi-periodic, irregular heavy "
