@@ -231,3 +231,36 @@ def test_restitution_one_is_the_undamped_contact_adhesion_takes():
     assert one.drift_ratio == plain.drift_ratio
     with pytest.raises(SceneError, match="undamped"):
         build_scene({**base, "material": {"adhesion": 1.0, "restitution": 0.9}})
+
+
+def _silica(radius: str, law: str = "jkr", **moduli: str) -> sd.Scene:
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml"
+    updates = {"device.particle.radius": radius, "effects.adhesion": law}
+    updates.update({f"device.{k.replace('__', '.')}": v for k, v in moduli.items()})
+    return sd.Scene.from_toml(path).with_updates(**updates)
+
+
+def test_tabor_s_parameter_names_a_law_outside_its_range():
+    """mu_T = (R w^2 / (E*^2 z0^3))^(1/3), z0 = 0.3-0.4 nm, computed here from the moduli: silica
+    (73 GPa, 0.17) on 200 GPa (0.3), w = 0.05 J/m^2. R = 20 nm gives 0.063-0.084, below 0.1:
+    JKR there ran without a word, and now warns (DMT does not); R = 5 um (0.40-0.53) is in the
+    transition: no warning for either law."""
+    from sawdrift.scene.adhesion import tabor
+
+    e_star = 1.0 / ((1 - 0.17**2) / 73e9 + (1 - 0.3**2) / 200e9)
+    for radius, r_m in (("20 nm", 20e-9), ("5 um", 5e-6)):
+        want = [(r_m * 0.05**2 / (e_star**2 * z0**3)) ** (1 / 3) for z0 in (0.3e-9, 0.4e-9)]
+        assert tabor(_silica(radius).device) == pytest.approx(want, rel=1e-12)
+    from sawdrift.scene.validity import device_warnings
+
+    small_jkr = _silica("20 nm")
+
+    assert any("DMT's regime" in w for w in device_warnings(small_jkr.device, "jkr"))
+    assert not any("Tabor" in w for w in device_warnings(small_jkr.device, "dmt"))
+    for law in ("jkr", "dmt"):
+        assert not any("Tabor" in w for w in device_warnings(_silica("5 um").device, law))
+    soft = _silica("5 mm", "dmt", particle__youngs_modulus="1 MPa",
+                   substrate__youngs_modulus="1 MPa")
+    assert any("JKR's regime" in w for w in device_warnings(soft.device, "dmt"))

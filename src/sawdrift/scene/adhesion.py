@@ -136,6 +136,43 @@ def adhesive_rest(device: Device, law: str) -> dict[str, float]:
             "natural_hz": math.sqrt(stiffness / n["mass_kg"]) / (2.0 * math.pi)}
 
 
+#: the range of the surface forces behind Tabor's parameter, m (:func:`tabor`)
+SURFACE_FORCE_RANGE = (0.3e-9, 0.4e-9)
+
+#: Tabor's parameter below which DMT holds, above which JKR does (between: Maugis-Dugdale)
+DMT_BELOW, JKR_ABOVE = 0.1, 5.0
+
+
+def tabor(device: Device) -> tuple[float, float]:
+    """Tabor's parameter mu_T = (R w^2 / (E*^2 z0^3))^(1/3) of an adhesive sphere (Tabor 1977,
+    J. Colloid Interface Sci. 58, 2), at the two ends of :data:`SURFACE_FORCE_RANGE` z0: the
+    elastic neck the adhesion pulls up over the range of the surface forces. Large at the short
+    range (the first number), small at the long one."""
+    e_star, radius, w = normalized(device)["e_star_pa"], float(device.particle.radius), \
+        device.adhesion
+    return tuple((radius * w * w / (e_star * e_star * z0**3)) ** (1.0 / 3.0)
+                 for z0 in SURFACE_FORCE_RANGE)  # type: ignore[return-value]
+
+
+def tabor_warning(device: Device, law: str) -> str | None:
+    """Where the scene's adhesive law is outside its range by Tabor's parameter: JKR on a sphere
+    whose mu_T is below 0.1 even at the shortest range of the surface forces (DMT's regime: a
+    stiff, small sphere), DMT where it is above 5 even at the longest (JKR's: soft, large,
+    sticky). A 20 nm silica sphere on lithium niobate (mu_T 0.06-0.08) ran JKR without a word.
+    None inside, in the transition between them, or without an adhesive sphere."""
+    if device.adhesion == 0.0 or law not in PULLOFF_FACTOR or device.particle.shape != "sphere":
+        return None
+    high, low = tabor(device)
+    span = f"Tabor's parameter mu_T = {low:.3g}-{high:.3g} (z0 = 0.3-0.4 nm)"
+    if law == "jkr" and high < DMT_BELOW:
+        return (f"{span}, below {DMT_BELOW:g}: DMT's regime (a stiff, small sphere), not JKR's; "
+                "effects.adhesion = 'dmt' describes it")
+    if law == "dmt" and low > JKR_ABOVE:
+        return (f"{span}, above {JKR_ABOVE:g}: JKR's regime (a soft, large, sticky sphere), not "
+                "DMT's; effects.adhesion = 'jkr' describes it")
+    return None
+
+
 def explain_adhesion(device: Device, law: str, mu: float) -> list[str]:
     """The ``--explain`` lines of an adhesive device (:func:`adhesive_rest`): none without."""
     if device.adhesion == 0.0 or law not in PULLOFF_FACTOR:
@@ -152,6 +189,16 @@ def explain_adhesion(device: Device, law: str, mu: float) -> list[str]:
         f" = {rest['natural_hz'] / f:.4g} f",
         f"  the most friction can hold: mu (M g + 2 F_pull) = {mu * (weight + 2.0 * pull):.4g} N "
         "(friction is capped at mu |N + 2 F_pull|)",
-    ] + ([f"  note: A* > 1: the surface moves {n['amplitude']:.4g} a0, against the adhesive "
+    ] + ([_tabor_line(device)] if device.particle.shape == "sphere" else []) + (
+        [f"  note: A* > 1: the surface moves {n['amplitude']:.4g} a0, against the adhesive "
           f"contact's rest overlap of {rest['overlap_m'] / n['a0_m']:.4g} a0 (Hertz's a0 under "
           "M g is not the contact's scale here)"] if n["amplitude"] > 1.0 else [])
+
+
+def _tabor_line(device: Device) -> str:
+    """The ``--explain`` line of Tabor's parameter (:func:`tabor`) and the law it points to."""
+    high, low = tabor(device)
+    where = ("DMT" if high < DMT_BELOW else "JKR" if low > JKR_ABOVE else
+             "the Maugis-Dugdale transition, which JKR and DMT bracket")
+    return (f"  Tabor's parameter mu_T = {low:.3g}-{high:.3g} (z0 = 0.3-0.4 nm): {where} "
+            f"(DMT below {DMT_BELOW:g}, JKR above {JKR_ABOVE:g})")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from .adhesion import PULLOFF_FACTOR, adhesive_rest, adhesive_sets_contact
+from .adhesion import PULLOFF_FACTOR, adhesive_rest, adhesive_sets_contact, tabor_warning
 from .device import Device, normalized
 
 
@@ -19,7 +19,8 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
     adhesion and roughness then set the contact, not gravity and preload), a sphere's contact
     radius above 0.1 R (beyond small strain; with adhesion the adhesive contact's at rest), a
     cone's half-angle below 60 deg (Sneddon's small-slope solution), a flat punch's
-    compression above 0.01 R (its strain a0/R). ``law``: the scene's
+    compression above 0.01 R (its strain a0/R), an adhesive law outside its range by Tabor's
+    parameter (:func:`~.adhesion.tabor_warning`). ``law``: the scene's
     ``effects.adhesion``."""
     n = normalized(device)
     part = device.particle
@@ -34,6 +35,9 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
         if radius > 0.1 * float(part.radius):
             out.append(f"contact radius {radius:.3g} m above 0.1 R: beyond Hertz's small-strain "
                        "theory")
+    tabor_out = tabor_warning(device, law)
+    if tabor_out is not None:
+        out.append(tabor_out)
     if part.shape == "flat" and n["a0_m"] > 0.01 * float(part.radius):
         # the punch's strain is a0 / R (a sphere's contact radius 0.1 R is a0 = 0.01 R): a
         # compression of 9 R (a soft, heavy punch) ran without a word
