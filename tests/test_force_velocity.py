@@ -183,3 +183,20 @@ def test_adhesion_widens_the_loads_sampled_and_the_load_curve_to_its_friction_bo
                                                                           free)}))
     assert lc.stall_load > 0.3
     assert below.drift_ratio * free > 0.0 and not above.drift_ratio * free > 0.0
+
+
+def test_the_text_prints_each_points_own_warning(monkeypatch, capsys):
+    """jaeger m* = 50, A* = 1.5, e = 0.5: the free point's mean was still moving. The note said
+    "(a lower-bound error, a motion still heating up)" whatever the points carried; it now
+    prints the warning itself, with the number of points carrying it."""
+    from .cli_call import call
+
+    code, _, err = call(monkeypatch, capsys, "force-velocity", "--model", "jaeger", "--m-star",
+                        "50", "--amplitude", "1.5", "--mu", "0.1", "--restitution", "0.5",
+                        "--points", "3", "--workers", "1", "--no-progress")
+    results = sd.run(sd.Scene(model="jaeger", particle={"m_star": 50.0},
+                              drive={"amplitude": 1.5},
+                              material={"mu": 0.1, "restitution": 0.5})).warnings
+    assert code == 0 and results
+    assert f"warning (1 point): {results[0]}" in err
+    assert "heating up" not in err

@@ -23,7 +23,7 @@ from .app import (
     out_kind,
     write_outputs,
 )
-from .run_text import pm_text
+from .run_text import curve_warning_lines, pm_text
 from .scene_options import refuse_given_load, scene_from_options, with_scene_options
 
 
@@ -134,8 +134,5 @@ def _print_curve(curve: Any, data: dict[str, Any]) -> None:
     rows = zip(forces, speeds, errors, data["regimes"], data["settled"], strict=True)
     for f, v, se, regime, settled in rows:
         typer.echo(f"{f:12.5g} {pm_text(v, se, '.5g'):>22}  {regime}" + ("" if settled else " (not settled)"))
-    flagged = sum(1 for w in data["warnings"] if w)
-    if flagged:
-        typer.echo(f"note: {flagged} of {len(data['warnings'])} points carry warnings (a lower-"
-                   "bound error, a motion still heating up); --json and force_velocity.json list "
-                   "them", err=True)
+    for line in curve_warning_lines(data["warnings"], "points", "--json, force_velocity.json"):
+        typer.echo(line, err=True)

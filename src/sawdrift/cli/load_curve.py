@@ -24,7 +24,7 @@ from .app import (
     out_kind,
     write_outputs,
 )
-from .run_text import pm_text
+from .run_text import curve_warning_lines, pm_text
 from .scene_options import refuse_given_load, scene_from_options, with_scene_options
 
 
@@ -178,10 +178,8 @@ def _notes(data: dict[str, Any], scene: Any) -> None:
         hint = ("raise numerics.max_periods" if scene.numerics.settle
                 else "use --settle or raise numerics.max_periods")
         typer.echo(f"note: {sum(early)} loads did not settle; {hint}", err=True)
-    flagged = sum(1 for w in data["warnings"] if w)
-    if flagged:
-        typer.echo(f"note: {flagged} loads carry warnings; --json and load_curve.json list them",
-                   err=True)
+    for line in curve_warning_lines(data["warnings"], "loads", "--json, load_curve.json"):
+        typer.echo(line, err=True)
 
 
 def _wrote(out: Path | None) -> None:

@@ -203,3 +203,28 @@ def shared_warnings(summaries: list[dict[str, Any]]) -> list[str]:
         who = "all models" if len(models) == len(summaries) else ", ".join(models)
         lines.append(f"  {who}: {warning}")
     return lines
+
+
+#: distinct warnings of a curve's points printed in its text (the rest are counted)
+SHOWN_WARNINGS = 3
+
+
+def curve_warning_lines(per_point: list[Any], what: str, json_name: str) -> list[str]:
+    """The stderr lines of a curve's point warnings (force-velocity, load-curve): each distinct
+    text once with the number of points carrying it, at most :data:`SHOWN_WARNINGS`, then how
+    many more. The note said "a lower-bound error, a motion still heating up" whatever the
+    points carried (one said "the mean drift was still moving")."""
+    counts: dict[str, int] = {}
+    for texts in per_point:
+        for text in dict.fromkeys(str(t) for t in (texts or ())):
+            counts[text] = counts.get(text, 0) + 1
+    if not counts:
+        return []
+    flagged = sum(1 for texts in per_point if texts)
+    lines = [f"note: {flagged} of {len(per_point)} {what} carry warnings ({json_name} lists "
+             "them by point):"]
+    for text, n in list(counts.items())[:SHOWN_WARNINGS]:
+        lines.append(f"warning ({n} {what if n > 1 else what.rstrip('s')}): {text}")
+    if len(counts) > SHOWN_WARNINGS:
+        lines.append(f"... and {len(counts) - SHOWN_WARNINGS} other warnings")
+    return lines
