@@ -13,10 +13,10 @@ import pytest
 import sawdrift as sd
 import sawdrift.mixture.sort as sort_module
 from sawdrift.cli import main
+from sawdrift.lammps import available as lammps_available
 from sawdrift.lammps.placement import parse_particles, placement, species_of
 from sawdrift.mixture.curves import SpeciesCurves
 from sawdrift.mixture.segregation import purity
-from sawdrift.lammps import available as lammps_available
 from sawdrift.mixture.sort import sort_mixture, time_to
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
