@@ -565,12 +565,27 @@ def test_without_a_computed_setting_the_error_names_fields_not_a_fixed_value(sce
 
 
 def test_a_radius_below_a_micrometre_is_named_in_nanometres(sawdrift_main):
-    out = sawdrift_main("run", str(MOTOR), "--m-star", "1e-6", "--json")
+    # without the motor's preload (with it, m* = 1e-6 named 217 nm, a sphere whose Hertz contact
+    # under 7.35 mN is 1.05 times wider than itself, which the device now refuses)
+    out = sawdrift_main("run", str(MOTOR), "--set", 'device.preload="0 N"', "--m-star", "0.005",
+                        "--json")
     hint = out.stderr.split("--set ", 1)[1].strip()
     assert hint.endswith(' nm"'), hint
     key, _, given = hint.partition("=")
-    scene = sd.Scene.from_toml(MOTOR).with_updates(**{key: given.strip('"')})
-    assert scene.particle.m_star == pytest.approx(1e-6, rel=1e-3)
+    scene = sd.Scene.from_toml(MOTOR).with_updates(**{key: given.strip('"'),
+                                                      "device.preload": "0 N"})
+    assert scene.particle.m_star == pytest.approx(0.005, rel=1e-3)
+
+
+def test_a_sphere_whose_contact_is_wider_than_itself_is_refused(sawdrift_main):
+    """1 kPa moduli on the motor's 0.5 mm ball give a Hertz contact radius of 1.72 mm, 3.4 R:
+    it ran with a warning (contact radius above 0.1 R). The hint for m* = 1e-6 on the motor
+    (217 nm, a contact 1.05 R under the preload) is not given either."""
+    out = sawdrift_main("run", str(MOTOR), "--set", 'device.particle.youngs_modulus="1 kPa"',
+                        "--set", 'device.substrate.youngs_modulus="1 kPa"')
+    assert out.returncode == 2 and "exceeds its radius" in out.stderr
+    out = sawdrift_main("run", str(MOTOR), "--m-star", "1e-6")
+    assert out.returncode == 2 and "device.particle.radius=" not in out.stderr
 
 
 @pytest.mark.parametrize("written, plain, kind", [

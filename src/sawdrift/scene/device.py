@@ -316,6 +316,15 @@ def derived_out_of_range(device: Device) -> str | None:
                 f"{lo:g} to {hi:g} the model integrates (a0 = {n['a0_m']:.3g} m, m = "
                 f"{n['mass_kg']:.3g} kg, f = {n['frequency_hz']:.4g} Hz, M g = "
                 f"{n['weight_n']:.3g} N): {what}")
+    part = device.particle
+    if part.shape == "sphere" and n["contact_radius_m"] >= float(part.radius):
+        # a contact wider than the sphere: no Hertz contact at all (1 kPa moduli on a 0.5 mm
+        # ball gave a contact radius of 3.4 R and ran with a warning)
+        return (f"the sphere's Hertz contact radius under its load, {n['contact_radius_m']:.3g} "
+                f"m, exceeds its radius {float(part.radius):.3g} m: no Hertz contact (the moduli "
+                "are far too soft for the load, or the radius too small); check "
+                "device.particle.youngs_modulus, device.substrate.youngs_modulus, "
+                "device.preload")
     return None
 
 

@@ -29,7 +29,7 @@ from pydantic import BaseModel, ValidationError
 
 from ..errors import SceneError
 from .adhesion import adhesive_out_of_range, normalized_adhesion
-from .device import FIELD_KIND, UNITS, Device, normalized
+from .device import FIELD_KIND, UNITS, Device, derived_out_of_range, normalized
 from .dotted import get_dotted, set_dotted
 from .parts import format_validation_error
 from .profiles import Profile
@@ -179,9 +179,14 @@ def _radius_for(m_star: float, device: Device) -> float | None:
     try:
         if gap(lo) * gap(hi) > 0.0:
             return None
-        return math.exp(brentq(gap, lo, hi, xtol=1e-12))
+        radius = math.exp(brentq(gap, lo, hi, xtol=1e-12))
     except (ValueError, ZeroDivisionError, OverflowError):
         return None
+    # a radius the device would then refuse is no hint (m* 1e-11 on the motor named 2.9 nm, a
+    # contact 18.7 times wider than the sphere)
+    particle = device.particle.model_copy(update={"radius": radius})
+    return None if derived_out_of_range(device.model_copy(update={"particle": particle})) \
+        else radius
 
 
 def plain_section(value: Any) -> Any:
