@@ -66,6 +66,10 @@ def test_touching_row_has_zero_overlap_at_rest():
     ({"radius": ["0.2 mm", "1 mm"], "seed": False}, "seed = false is a boolean"),
     # the device range of a radius, which lammps did not check (it ran spheres of 0.5 m)
     ({"radius": ["0.2 mm", 0.5]}, "[1] = 0.5 is outside the allowed range 1 nm to 10 cm"),
+    # a species named, not indexed: "could not convert string to float: 'small'"
+    ({"radius": ["1 mm"], "positions": [[0.0, 0.0, "small"]]}, "the species as 0 or 1"),
+    # a typo: "particles.radius is required", the key written not named
+    ({"radii": ["0.2 mm", "1 mm"]}, "particles.radii is not a known field"),
 ])
 def test_bad_positions_are_one_line(table, needle):
     with pytest.raises(SceneError) as err:

@@ -88,8 +88,9 @@ class Particles(BaseModel):
     @classmethod
     def _triples(cls, value: list[list[float | str]] | None) -> list[list[float | str]] | None:
         for i, item in enumerate(value or []):
-            if len(item) != 3 or not float(item[2]).is_integer():
-                raise ValueError(f"entry {i} = {item!r}: give [x, y, species] (lengths and 0 or 1)")
+            if len(item) != 3 or not _is_index(item[2]):
+                raise ValueError(f"entry {i} = {item!r}: give [x, y, species] (lengths, and the "
+                                 "species as 0 or 1, the index into radius)")
             for v in item[:2]:
                 if not math.isfinite(to_si(v, "length")) or to_si(v, "length") < 0.0:
                     raise ValueError(f"entry {i} = {item!r}: x and y are lengths >= 0")
@@ -155,6 +156,15 @@ class Particles(BaseModel):
             return [self.count]
         first = min(max(1, round(self.fraction * self.count)), self.count - 1)
         return [first, self.count - first]
+
+
+def _is_index(value: Any) -> bool:
+    """Whether a position's species is a whole number (a name such as 'small' said "could not
+    convert string to float")."""
+    try:
+        return float(value).is_integer()
+    except (TypeError, ValueError):
+        return False
 
 
 def _no_booleans(data: Any, where: str = "") -> None:

@@ -442,8 +442,10 @@ _DRIVE_KINDS = tuple(cls.model_fields["kind"].default for cls in (Wave, Prescrib
 
 
 def format_validation_error(exc: ValidationError, source: str | None = None) -> str:
-    """One line naming the first offending field, its value and what is allowed."""
-    err = exc.errors()[0]
+    """One line naming the first offending field, its value and what is allowed; a field not
+    known comes first (a typo 'radii' was reported as 'radius is required' alone)."""
+    errors = exc.errors()
+    err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
     parts = [str(p) for p in err["loc"] if not str(p).startswith("function-")]
     if len(parts) > 1 and parts[0] == "drive" and parts[1] in _DRIVE_KINDS:
         del parts[1]  # the union's tag is not a field the user wrote
