@@ -90,6 +90,9 @@ def sort_cmd(
                           source=curves, geometry=geometry, perp=transverse,
                           jitter_radii=jitter, progress=note)  # type: ignore[arg-type]
     data = result.summary()
+    if particles.get("positions") is not None and seeds > 1:  # it ran one, labelled seeds 0-0
+        typer.echo(f"note: explicit positions are one placement; --seeds {seeds} does not apply "
+                   "to them", err=True)
     if check and not result.interrupted:
         data["check"] = _check(scene, particles, result, check)
     if out is not None:
