@@ -439,3 +439,20 @@ def test_a_check_too_short_for_lammps_to_settle_says_so(monkeypatch, capsys):
         main()
     assert exc.value.code == 0
     assert json.loads(capsys.readouterr().out)["check"]["transient"] is True
+
+
+def test_explicit_positions_say_seeds_do_not_apply(monkeypatch, capsys, tmp_path):
+    """Explicit positions are one placement: --seeds 3 ran one, labelled seeds 0-0, silently."""
+    import tomli_w
+
+    data = tomllib.loads((EXAMPLES / "mixture.toml").read_text())
+    data["particles"] = {"radius": ["0.2 mm", "1 mm"],
+                         "positions": [[0.0, 0.0, 0], [0.01, 0.0, 1]]}
+    path = tmp_path / "two.toml"
+    path.write_text(tomli_w.dumps(data))
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(path), "--seeds", "3",
+                                      "--until", "1e3", "--no-progress"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    assert exc.value.code == 0
+    assert "explicit positions are one placement; --seeds 3" in capsys.readouterr().err
