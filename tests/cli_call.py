@@ -51,3 +51,17 @@ def run_main(*args: object, check: bool = False) -> subprocess.CompletedProcess:
     if check and code != 0:
         raise subprocess.CalledProcessError(code, argv, out.getvalue(), err.getvalue())
     return subprocess.CompletedProcess(argv, code, out.getvalue(), err.getvalue())
+
+
+def kept_after_ctrl_c(monkeypatch, capsys, args: list[str], written, done: int,
+                      total: int) -> None:
+    """Run ``sawdrift ARGS`` in which a Ctrl-C comes after ``done`` placements of ``total``:
+    exit 130, the JSON ``written`` (a path) holds those placements marked interrupted, and
+    stderr says how many of how many ended."""
+    import json
+
+    code, _, err = call(monkeypatch, capsys, *args)
+    assert code == 130
+    data = json.loads(written.read_text())
+    assert data["interrupted"] is True and data["seeds"] == list(range(done))
+    assert f"after {done} of {total} placements" in err

@@ -141,11 +141,9 @@ def test_ensemble_over_seeds_reports_mean_and_spread():
 def test_an_ensemble_stopped_by_ctrl_c_keeps_the_runs_that_ended(monkeypatch, capsys, tmp_path):
     """Ctrl-C in the third LAMMPS run of `lammps --seeds 3`: the two that ended are the ensemble
     (written, printed, interrupted), exit 130; three completed runs were lost this way."""
-    import json
-    import sys
-
     import sawdrift.lammps.many as many
-    from sawdrift.cli import main
+
+    from .cli_call import kept_after_ctrl_c
 
     calls = {"n": 0}
     real = many.run_particles
@@ -157,16 +155,10 @@ def test_an_ensemble_stopped_by_ctrl_c_keeps_the_runs_that_ended(monkeypatch, ca
         return real(*args, **kwargs)
 
     monkeypatch.setattr(many, "run_particles", third_interrupts)
-    monkeypatch.setattr(sys, "argv", [
-        "sawdrift", "lammps", str(EXAMPLES / "mixture.toml"), "--seeds", "3",
-        "--set", "numerics.periods=2", "--set", "particles.count=20",
-        "-o", str(tmp_path / "kept")])
-    with pytest.raises(SystemExit) as exc:
-        main()
-    assert exc.value.code == 130
-    data = json.loads((tmp_path / "kept" / "ensemble.json").read_text())
-    assert data["interrupted"] is True and data["seeds"] == [0, 1]
-    assert "after 2 of 3 placements" in capsys.readouterr().err
+    kept_after_ctrl_c(monkeypatch, capsys, [
+        "lammps", str(EXAMPLES / "mixture.toml"), "--seeds", "3", "--set", "numerics.periods=2",
+        "--set", "particles.count=20", "-o", str(tmp_path / "kept")],
+        tmp_path / "kept" / "ensemble.json", 2, 3)
 
 
 def _four(box=None):

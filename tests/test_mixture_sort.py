@@ -400,9 +400,9 @@ def test_ctrl_c_keeps_the_placements_that_ended(monkeypatch, capsys, tmp_path):
     its results"). Now the ensemble of those that ended is written and printed, marked
     interrupted, and the exit status is 130 (a Ctrl-C in the third placement here: the first
     two, started before it, end)."""
-    import json
-
     from sawdrift.mixture.plane import PlaneModel
+
+    from .cli_call import kept_after_ctrl_c
 
     calls = {"n": 0}
     real_run = PlaneModel.run
@@ -414,15 +414,10 @@ def test_ctrl_c_keeps_the_placements_that_ended(monkeypatch, capsys, tmp_path):
         return real_run(self, times)
 
     monkeypatch.setattr(PlaneModel, "run", third_interrupts)
-    monkeypatch.setattr(sys, "argv", ["sawdrift", "sort", str(EXAMPLES / "mixture.toml"),
-                                      "--seeds", "5", "--until", "1e6", "--no-progress",
-                                      "-o", str(tmp_path / "kept")])
-    with pytest.raises(SystemExit) as exc:
-        main()
-    assert exc.value.code == 130
-    data = json.loads((tmp_path / "kept" / "sort.json").read_text())
-    assert data["interrupted"] is True and data["seeds"] == [0, 1]
-    assert "after 2 of 5 placements" in capsys.readouterr().err
+    kept_after_ctrl_c(monkeypatch, capsys, ["sort", str(EXAMPLES / "mixture.toml"), "--seeds",
+                                            "5", "--until", "1e6", "--no-progress", "-o",
+                                            str(tmp_path / "kept")],
+                      tmp_path / "kept" / "sort.json", 2, 5)
 
 
 @pytest.mark.skipif(not lammps_available()[0],
