@@ -87,7 +87,9 @@ def _quantity(kind: str, field: str, positive: bool = True, allow_zero: bool = F
         out = to_si(value, kind)
         if positive and (out < 0.0 or (out == 0.0 and not allow_zero)):
             bound = ">= 0" if allow_zero else "> 0"
-            raise ValueError(f"is not {bound}: a {kind} in {UNITS[kind][1]} must be {bound}")
+            article = "an" if kind[0] in "aeiou" else "a"  # "a acceleration" read wrong
+            raise ValueError(f"is not {bound}: {article} {kind} in {UNITS[kind][1]} must be "
+                             f"{bound}")
         return in_range(field, out, UNITS[kind][1], value)
 
     return BeforeValidator(check)
