@@ -254,3 +254,16 @@ def test_a_non_finite_load_is_refused_with_its_real_range(value):
     with pytest.raises(SceneError, match=r"particle.load = .* is not finite: give a load in "
                                          r"\[-100, 100\]"):
         build_scene({"model": "mmd", "particle": {"load": value}})
+
+
+@pytest.mark.parametrize(("field", "value", "said"), [
+    # inf and nan said "is not > 0"
+    ("device.friction", "inf", "is not finite: the friction coefficient, in 0.001 to 10"),
+    ("device.friction", "nan", "is not finite: the friction coefficient, in 0.001 to 10"),
+    # "Input should be a valid number, unable to parse string as a number", no range
+    ("device.particle.poisson", "0.3 m", "is not a number: give one in (-1, 0.5)"),
+    ("device.horizontal_ratio", "0.68 m", "is not a number: give one in"),
+])
+def test_a_value_that_is_no_number_names_the_range(field, value, said):
+    line = _one_line(run_main("run", MOTOR, "--set", f"{field}={value}", "--periods", "5"))
+    assert f"{field} = " in line and said in line, line

@@ -229,7 +229,7 @@ def test_a_boolean_in_a_scene_file_is_one_line_exit_2(tmp_path):
     out = run_main("run", path, "--json")
     assert out.returncode == 2
     assert out.stderr.strip().splitlines() == [
-        f"error: {path}: particle.m_star = True is a boolean (true/false), not a number"]
+        f"error: {path}: particle.m_star = true is a boolean (true/false), not a number"]
 
 
 def test_a_boolean_for_a_device_number_is_refused():

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any
 
-from pydantic import Field, WrapValidator
+from pydantic import Field, ValidationError, WrapValidator
 
 __all__ = ["AMPLITUDE_MAX", "M_STAR_RANGE", "Number", "bounded", "count", "interval",
            "not_bool"]
@@ -61,7 +61,11 @@ def bounded(
     what = "outside the allowed range " + text if lo is not None or hi is not None else "not finite"
 
     def check(value: Any, handler: Any) -> float:
-        value = not_bool(value, handler)
+        try:
+            value = not_bool(value, handler)
+        except ValidationError:  # "Input should be a valid number" named no range ('0.3 m')
+            raise ValueError(f"is not a number: give one in {text}" if what != "not finite"
+                             else "is not a number") from None
         ok = math.isfinite(value)
         if ok and lo is not None:
             ok = value > lo if lo_open else value >= lo

@@ -459,8 +459,9 @@ def format_validation_error(exc: ValidationError, source: str | None = None) -> 
     if loc:
         value = err.get("input")
         if isinstance(value, (int, float, str, bool)):
-            return f"{where}{loc} = {value!r} {msg}" if msg.startswith("is ") else (
-                f"{where}{loc} = {value!r}: {msg}"
+            shown = str(value).lower() if isinstance(value, bool) else repr(value)  # as in TOML
+            return f"{where}{loc} = {shown} {msg}" if msg.startswith("is ") else (
+                f"{where}{loc} = {shown}: {msg}"
             )
         return f"{where}{loc}: {msg}"
     if msg.startswith("model_params."):

@@ -208,7 +208,9 @@ def friction_value(value: Any) -> float:
             raise ValueError("is not a number: give the friction coefficient, e.g. 0.2") from None
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValueError("is not a number: give the friction coefficient, e.g. 0.2")
-    if not math.isfinite(value) or value <= 0.0:
+    if not math.isfinite(value):  # inf and nan said "is not > 0"
+        raise ValueError(f"is not finite: the friction coefficient, in {RANGES['friction'][2]}")
+    if value <= 0.0:
         raise ValueError("is not > 0: the friction coefficient, e.g. 0.2")
     return in_range("friction", float(value), "", value)
 
