@@ -303,3 +303,12 @@ def test_collecting_options_a_repeated_flag_and_negative_values_still_parse(monk
         main()
     assert exc.value.code == 0, capsys.readouterr().err
     assert '"load": -0.01' in capsys.readouterr().out
+
+
+def test_a_float_option_that_is_no_number_says_what_was_given(monkeypatch, capsys):
+    """--mu abc said "Input should be a valid number, unable to parse string as a number"."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "--mu", "abc"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and err == ["error: Invalid value for '--mu': 'abc' is not a number"]

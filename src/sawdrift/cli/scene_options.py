@@ -44,6 +44,15 @@ def _whole(text: str) -> int:
     return int(value)
 
 
+def _number(text: str) -> float:
+    """A float option: one line naming what was given ('abc' said "Input should be a valid
+    number, unable to parse string as a number")."""
+    try:
+        return float(text)
+    except ValueError:
+        raise typer.BadParameter(f"{text!r} is not a number") from None
+
+
 def _parameter(name: str, kind: str, help_text: str) -> inspect.Parameter:
     ident = name.replace("-", "_")
     if kind == "bool":
@@ -53,6 +62,10 @@ def _parameter(name: str, kind: str, help_text: str) -> inspect.Parameter:
         option = typer.Option(f"--{name}", help=help_text, show_default=False, parser=_whole,
                               metavar="INTEGER")
         annotation = Annotated[int | None, option]
+    elif kind == "float":
+        option = typer.Option(f"--{name}", help=help_text, show_default=False, parser=_number,
+                              metavar="<float>")
+        annotation = Annotated[float | None, option]
     else:
         option = typer.Option(f"--{name}", help=help_text, show_default=False)
         annotation = Annotated[_TYPES[kind] | None, option]
