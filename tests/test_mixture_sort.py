@@ -451,3 +451,17 @@ def test_explicit_positions_say_seeds_do_not_apply(monkeypatch, capsys, tmp_path
         main()
     assert exc.value.code == 0
     assert "explicit positions are one placement; --seeds 3" in capsys.readouterr().err
+
+
+def test_the_strip_chart_shows_the_bed_and_the_beads_far_from_it():
+    """On a linear axis the 20 mm bed, where the beads meet, was a flat band under beads 800 mm
+    away: the x axis is linear within the bed and logarithmic beyond it."""
+    from sawdrift.report.sort_plot import plot_sort
+
+    scene, particles = plate()
+    result = sort_mixture(scene, particles, seeds=1, periods=1e9, geometry="line")
+    strips = [ax for ax in plot_sort(result).axes if "every bead" in ax.get_title()][0]
+    bed = float(np.abs(result.runs[0].x[0]).max()) * 1e3
+    assert np.abs(result.runs[0].x[-1]).max() * 1e3 > 10.0 * bed  # the beads do leave the bed
+    assert strips.get_yscale() == "symlog"
+    assert strips.yaxis.get_transform().linthresh == pytest.approx(bed)
