@@ -33,17 +33,6 @@ _TYPES: dict[str, Any] = {"float": float, "int": int, "choice": str}
 _SET = "set_fields"
 
 
-def _whole(text: str) -> int:
-    """An integer option that also takes ``1e7`` (a whole number written as a float)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise typer.BadParameter(f"{text!r} is not a number") from None
-    if not value.is_integer():
-        raise typer.BadParameter(f"{text!r} is not a whole number")
-    return int(value)
-
-
 def _number(text: str) -> float:
     """A float option: one line naming what was given ('abc' said "Input should be a valid
     number, unable to parse string as a number")."""
@@ -51,6 +40,14 @@ def _number(text: str) -> float:
         return float(text)
     except ValueError:
         raise typer.BadParameter(f"{text!r} is not a number") from None
+
+
+def _whole(text: str) -> int:
+    """An integer option that also takes ``1e7`` (a whole number written as a float)."""
+    value = _number(text)
+    if not value.is_integer():
+        raise typer.BadParameter(f"{text!r} is not a whole number")
+    return int(value)
 
 
 def _parameter(name: str, kind: str, help_text: str) -> inspect.Parameter:

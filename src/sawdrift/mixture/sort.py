@@ -234,6 +234,7 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     if not 0.0 <= jitter_radii <= MAX_JITTER:
         raise SceneError(f"--jitter = {jitter_radii!r}: give a number of small radii in [0, "
                          f"{MAX_JITTER:g}] (a nudge that breaks exactly head-on rows)")
+    _both_species(spec)
     real = realize(scene)
     species = species_of(scene, spec, real)
     g = scene.device.gravity
@@ -244,7 +245,6 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     u = 2.0 * math.pi * real.frequency * real.ratio * real.amplitude * real.horizontal
     right = 1 if curves[1].free > curves[0].free else 0  # driven to +x: the purity's orientation
     grid = _sample_periods(periods, samples)
-    _both_species(spec, species)
     seed_list = [spec.seed] if spec.positions is not None else list(range(spec.seed, spec.seed + seeds))
     cache: dict[tuple, Any] = {}
     r_min = min(sp.radius for sp in species)
@@ -266,8 +266,7 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
         return kinds, run
 
     done = _placements(one, seed_list, workers if geometry == "plane" else 1)
-    interrupted = len(done) < len(seed_list)
-    seed_list = seed_list[:len(done)]
+    ended = seed_list[:len(done)]  # all of them, unless Ctrl-C stopped the rest
     runs, values = [], {k: [] for k in MEASURES}
     for kinds, run in done:
         runs.append(run)
@@ -281,13 +280,13 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
                      "free_speed_m_s": cv.free * u,
                      "final_mean_drift_ratio": float(final.mean()),
                      "carried_against_own_drift": float(np.mean(np.sign(final) != np.sign(cv.free)))})
-    return SortResult(periods=grid, frequency=real.frequency, seeds=seed_list,
+    return SortResult(periods=grid, frequency=real.frequency, seeds=ended,
                       measures={k: np.array(v) for k, v in values.items()}, target=target,
                       runs=runs, species=rows, wall_time_s=time.perf_counter() - t0,
                       curve_source=source, curve_wall_s=curve_wall, geometry=geometry,
                       jitter=jitter_radii if geometry == "plane" else 0.0, perp=perp,
                       warnings=_warnings(scene), right=right,
-                      interrupted=interrupted)
+                      interrupted=len(ended) < len(seed_list))
 
 
 def _placements(one: Callable[[int], Any], seeds: list[int], workers: int) -> list[Any]:
@@ -312,13 +311,13 @@ def _placements(one: Callable[[int], Any], seeds: list[int], workers: int) -> li
     return done
 
 
-def _both_species(spec: Particles, species: list[Any]) -> None:
-    """One line where the placement has beads of one species only (explicit positions that name
-    one, or a fraction that leaves the other empty): nothing to sort (it printed NaN)."""
-    _, kinds, _, _ = placement(spec, species)
-    present = set(np.unique(kinds).tolist())
-    if present != {0, 1}:
-        only = ", ".join(str(k) for k in sorted(present)) or "none"
+def _both_species(spec: Particles) -> None:
+    """One line, before any curve is computed, where the placement has beads of one species only
+    (explicit positions that name one; a random placement has at least one of each): nothing to
+    sort (it printed NaN)."""
+    present = [k for k, n in enumerate(spec.counts()) if n > 0]
+    if len(present) < 2:
+        only = ", ".join(str(k) for k in present) or "none"
         raise SceneError(f"particles: the placement has beads of species {only} only; sorting "
                          "needs beads of both species (0 and 1)")
 

@@ -164,13 +164,21 @@ def tabor_warning(device: Device, law: str) -> str | None:
         return None
     high, low = tabor(device)
     span = f"Tabor's parameter mu_T = {low:.3g}-{high:.3g} (z0 = 0.3-0.4 nm)"
-    if law == "jkr" and high < DMT_BELOW:
+    regime = _tabor_regime(high, low)
+    if law == "jkr" and regime == "dmt":
         return (f"{span}, below {DMT_BELOW:g}: DMT's regime (a stiff, small sphere), not JKR's; "
                 "effects.adhesion = 'dmt' describes it")
-    if law == "dmt" and low > JKR_ABOVE:
+    if law == "dmt" and regime == "jkr":
         return (f"{span}, above {JKR_ABOVE:g}: JKR's regime (a soft, large, sticky sphere), not "
                 "DMT's; effects.adhesion = 'jkr' describes it")
     return None
+
+
+def _tabor_regime(high: float, low: float) -> str | None:
+    """The law Tabor's parameter points to over the whole range of z0 (:func:`tabor`'s two ends):
+    'dmt' below :data:`DMT_BELOW` even at the short range, 'jkr' above :data:`JKR_ABOVE` even at
+    the long one, None in the Maugis-Dugdale transition."""
+    return "dmt" if high < DMT_BELOW else "jkr" if low > JKR_ABOVE else None
 
 
 def explain_adhesion(device: Device, law: str, mu: float) -> list[str]:
@@ -198,7 +206,7 @@ def explain_adhesion(device: Device, law: str, mu: float) -> list[str]:
 def _tabor_line(device: Device) -> str:
     """The ``--explain`` line of Tabor's parameter (:func:`tabor`) and the law it points to."""
     high, low = tabor(device)
-    where = ("DMT" if high < DMT_BELOW else "JKR" if low > JKR_ABOVE else
-             "the Maugis-Dugdale transition, which JKR and DMT bracket")
+    regime = _tabor_regime(high, low)
+    where = regime.upper() if regime else "the Maugis-Dugdale transition, which JKR and DMT bracket"
     return (f"  Tabor's parameter mu_T = {low:.3g}-{high:.3g} (z0 = 0.3-0.4 nm): {where} "
             f"(DMT below {DMT_BELOW:g}, JKR above {JKR_ABOVE:g})")

@@ -18,7 +18,8 @@ longer advances (docs/physics.md, "Loads, inclines and restitution"). :func:`loa
 "Advances" means a drift along the unloaded direction above the scene's
 ``numerics.drift_tolerance`` times the smaller of the horizontal surface speed 2 pi r A* (the
 regime classifier's threshold for "stick") and the unloaded drift itself, but not below the
-accuracy of a run, 2e-5 of the surface speed (:data:`ADVANCE_FLOOR`); the loaded runs are
+accuracy of a run, the settling's absolute floor (2e-5 of the surface speed by default,
+:func:`~sawdrift.dynamics.full_inertia.relative_bound`); the loaded runs are
 classified with that threshold too. Against the surface speed alone a slow drift stalled early:
 a 10 um silica sphere on a 20 MHz lithium niobate line drifting at 3.4e-3 of the surface speed
 was called stalled, and its run "stick", at 29 % of its free speed, 30 % short of the load that
@@ -43,6 +44,7 @@ import numpy as np
 
 from ..contact.binding import bind
 from ..dynamics.drives import drive_of
+from ..dynamics.full_inertia import relative_bound
 from ..dynamics.steady import friction_bound
 from ..errors import SceneError
 from ..result.result import json_value
@@ -237,8 +239,9 @@ class _Runner:
     def loaded(self, applied: float) -> Scene:
         """The scene with the external load ``applied`` (units of M g, signed along +x) and the
         curve's drift tolerance, where set."""
-        key = "device.load" if self.scene.device is not None else "particle.load"
-        updates: dict[str, Any] = {key: applied * (self.newtons if self.scene.device else 1.0)}
+        updates: dict[str, Any] = ({"device.load": applied * self.newtons}
+                                   if self.scene.device is not None else
+                                   {"particle.load": applied})
         if self.tolerance is not None:
             updates["numerics.drift_tolerance"] = self.tolerance
         return self.scene.with_updates(**updates)
@@ -336,30 +339,28 @@ def _free_state(free: dict[str, Any], threshold: float, speed: float) -> tuple[i
     return (1 if v0 > 0.0 else -1), state, se
 
 
-#: the absolute accuracy of a default run's drift ratio (the validation family "steady drift
-#: against full-inertia brute force" holds it to 1e-3 relative or this): below it a load curve
-#: does not judge whether a particle advances (the SAW motor at 5 nm, free drift ratio 4.2e-3,
-#: has settled drifts of +-8.8e-6 about zero from 0.02 to 0.17 mN)
-ADVANCE_FLOOR = 2e-5
-
-
 def _advance_tolerance(scene: Scene, free_drift: float, speed: float) -> float:
     """The drift tolerance of a load curve's loaded runs: the scene's ``drift_tolerance`` times
     the unloaded drift over the surface speed ``speed``, so that "advances" means a drift above
-    that fraction of the free drift, but not below :data:`ADVANCE_FLOOR` (nor above the scene's
-    own tolerance, which also bounds the floor)."""
+    that fraction of the free drift, but not below the absolute accuracy a run settles its drift
+    ratio to (:func:`~sawdrift.dynamics.full_inertia.relative_bound` of a zero drift, 2e-5 by
+    default, as the validation family "steady drift against full-inertia brute force" holds it;
+    the SAW motor at 5 nm, free drift ratio 4.2e-3, has settled drifts of +-8.8e-6 about zero
+    from 0.02 to 0.17 mN), nor above the scene's own tolerance, which also bounds that floor."""
     tol = scene.numerics.drift_tolerance
-    return min(tol, max(tol * abs(free_drift) / speed, ADVANCE_FLOOR))
+    floor = relative_bound(0.0, scene.numerics.settle_tolerance)
+    return min(tol, max(tol * abs(free_drift) / speed, floor))
 
 
 def _curve(scene: Scene, runner: _Runner, speed: float, n: int, tolerance: float,
            note: Callable[[str], None]) -> dict[str, Any]:
     free = runner.run([0.0])[0]
     v0 = _value(free["drift_velocity"])
-    direction, state, se0 = _free_state(free, scene.numerics.drift_tolerance * speed, speed)
+    tol = scene.numerics.drift_tolerance
+    direction, state, se0 = _free_state(free, tol * speed, speed)
     if direction != 0:
-        runner.tolerance = _advance_tolerance(scene, v0, speed)
-    threshold = (runner.tolerance or scene.numerics.drift_tolerance) * speed
+        runner.tolerance = tol = _advance_tolerance(scene, v0, speed)
+    threshold = tol * speed
     note(f"without load: drift velocity {v0:.6g} ({free['regime']})")
     f_max = friction_bound(scene) + direction * runner.background
     common = {"threshold": threshold, "m_star": scene.particle.m_star, "free_drift": v0,
