@@ -350,6 +350,15 @@ def interrupted(message: str) -> None:
     raise typer.Exit(130)
 
 
+def interrupted_placements(done: int, total: int, written: Path | None) -> None:
+    """End an ensemble (sort, lammps --seeds) that Ctrl-C stopped after ``done`` of ``total``
+    placements, whose numbers, printed and ``written`` (a file or folder, or None), are of the
+    placements that ended (:func:`interrupted`)."""
+    kept = f"; written to {written}" if written is not None else ""
+    interrupted(f"interrupted (Ctrl-C) after {done} of {total} placements: the numbers are of "
+                f"those{kept}")
+
+
 def _say_interrupted(code: object) -> None:
     """Ctrl-C, which typer turns into exit status 130 with no word: one line, unless the command
     said what it kept (:func:`interrupted`). run, field, threshold, load-curve and bifurcation

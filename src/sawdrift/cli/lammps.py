@@ -15,7 +15,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import Param, _fail, _parse_param, _writable, app, interrupted, json_nulls
+from .app import Param, _fail, _parse_param, _writable, app, interrupted_placements, json_nulls
 from .run_text import grouped
 from .scene_options import _SET, apply_options, with_scene_options
 
@@ -340,9 +340,8 @@ def _ensemble(scene: sd.Scene, spec: Any, seeds: int, processes: int | None, pro
     else:
         _ensemble_lines(data)
     if data["interrupted"]:
-        kept = f"; written to {out}/ensemble.json" if out is not None else ""
-        interrupted(f"interrupted (Ctrl-C) after {len(data['seeds'])} of {seeds} placements: "
-                    f"the numbers are of those{kept}")
+        interrupted_placements(len(data["seeds"]), seeds,
+                               None if out is None else out / "ensemble.json")
 
 
 def _ensemble_lines(data: dict[str, Any]) -> None:

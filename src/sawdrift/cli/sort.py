@@ -13,7 +13,7 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import _fail, _writable, app, interrupted, json_nulls, out_kind
+from .app import _fail, _writable, app, interrupted_placements, json_nulls, out_kind
 from .lammps import _scene_and_particles, with_particle_sets
 from .scene_options import with_scene_options
 
@@ -110,9 +110,7 @@ def sort_cmd(
         if out is not None:
             typer.echo(f"wrote {out}/sort.json, sort.png, scene.toml")
     if result.interrupted:
-        kept = f"; written to {out}" if out is not None else ""
-        interrupted(f"interrupted (Ctrl-C) after {len(result.seeds)} of {seeds} placements: "
-                    f"the numbers above are of those{kept}")
+        interrupted_placements(len(result.seeds), seeds, out)
 
 
 def _write_scene(scene: sd.Scene, particles: dict[str, Any], path: Path) -> None:
