@@ -287,6 +287,20 @@ def test_the_periods_and_steps_of_a_result_count_its_long_time_mean():
     assert res.settle_periods == res.periods
 
 
+@pytest.mark.parametrize(("m_star", "amplitude", "method"), [
+    (50.0, 1.0, "solved"), (4.216965034285822, 8.413951416451951, "windows_full")])
+def test_a_settling_run_counts_its_periods_from_its_start(m_star, amplitude, method):
+    """A settling run's ``settle_periods`` are its own periods when it settled, the 33 periods it
+    ran before its settling began included, as ``periods`` and a fixed run count them: mmd m* = 50,
+    A* = 1 (solved) said settle_periods 53 with periods 86, and m* = 4.2, A* = 8.4 (windows) 716
+    with periods 749."""
+    res = sd.run(sd.Scene(model="mmd", particle={"m_star": m_star},
+                          drive={"amplitude": amplitude}))
+    assert res.settle_method == method and res.settled is True
+    assert res.settle_periods == res.periods
+    assert res.steps == round(res.periods * res.steps_per_period)
+
+
 def test_a_run_gone_on_to_its_orbit_is_not_called_fixed():
     """mmd m* = 0.3, A* = 1.5 loses contact and its fixed window found no orbit: the run goes on
     in windows until it is on one (114 periods), and said settle_method "fixed"."""

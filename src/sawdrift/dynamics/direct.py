@@ -92,7 +92,7 @@ Direct = tuple[float, float, float, float, int, bool, bool]
 
 
 def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
-                  max_steps: int, start: int) -> tuple[Window, Settling] | str | None:
+                  max_steps: int) -> tuple[Window, Settling] | str | None:
     """The drift of a heavy particle solved directly (module docstring).
 
     Returns the evidence window and the settling where the drift was solved (or an irregular
@@ -102,7 +102,7 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
     """
     direct = direct_start(stepper, scene, speed, scale)
     if direct == IRREGULAR:
-        return irregular_mean(stepper, scene, speed, scale, minimum_window, start)
+        return irregular_mean(stepper, scene, speed, scale, minimum_window)
     if direct is None:
         return None
     if isinstance(direct, Stuck):
@@ -119,23 +119,23 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
     if solved and not scene.numerics.confirm_solved:
         evidence = max(minimum_window, evidence)
         win = measure_window(stepper, evidence, speed, scale)
-        info = Settling(True, "solved", m, evidence, (stepper.step - start) / stepper.k_per,
+        info = Settling(True, "solved", m, evidence, stepper.step / stepper.k_per,
                         t90, (drift / speed, win.drift_ratio), drift=drift)
     else:
         win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
                                 expected=drift / speed)
         info = Settling(full.settled, "orbit_then_full", m, full.window_periods,
-                        (stepper.step - start) / stepper.k_per, t90,
+                        stepper.step / stepper.k_per, t90,
                         (drift / speed, *full.history), drift=full.drift(speed))
     if abs(win.liftoffs_per_period - lifts) <= LIFT_MATCH:
         return win, info
     # the run does not lift off as the averaged orbits do: its fast motion is not a period-one
     # orbit (irregular bouncing): friction at an imposed speed along its record
-    return irregular_mean(stepper, scene, speed, scale, minimum_window, start)
+    return irregular_mean(stepper, scene, speed, scale, minimum_window)
 
 
 def irregular_mean(stepper: Stepper, scene, speed: float, scale: np.ndarray,
-                   minimum_window: int, start: int) -> tuple[Window, Settling] | None:
+                   minimum_window: int) -> tuple[Window, Settling] | None:
     """The long-time mean drift of an irregular heavy bouncer (:func:`~.imposed.imposed_drift`)
     and a window at that speed for the regime's evidence; not settled (a mean with an error)."""
     # long enough to hold several of a bouncer's flights (a window of 60 periods can be one)
@@ -148,7 +148,7 @@ def irregular_mean(stepper: Stepper, scene, speed: float, scale: np.ndarray,
         shift_speed(stepper, mean.mean - stepper.y[1])
         win = measure_window(stepper, evidence, speed, scale)
     info = Settling(False, "imposed_speed", scene.particle.m_star, win.periods,
-                    (stepper.step - start) / stepper.k_per, math.nan, (mean.mean / speed,),
+                    stepper.step / stepper.k_per, math.nan, (mean.mean / speed,),
                     long_mean=mean)
     return win, info
 

@@ -227,9 +227,12 @@ def default_max_periods(m_star: float, tau: float, rigid: bool, minimum_window: 
 
 def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
            max_steps: int) -> tuple[Window, Settling]:
-    """Measure windows until the drift has settled (see the module docstring)."""
-    start = stepper.step
-    got = settle_direct(stepper, scene, speed, scale, minimum_window, max_steps, start)
+    """Measure windows until the drift has settled (see the module docstring).
+
+    The settling's ``periods`` are the run's own periods when it ended, the stretch before the
+    settling began included (the run's ``periods``, as a fixed run counts them; the points of a
+    force-velocity curve run on copies and are not the particle's time)."""
+    got = settle_direct(stepper, scene, speed, scale, minimum_window, max_steps)
     if isinstance(got, tuple):
         return got
     # a sticking or creeping contact (STUCK) returns to its drift within a window from any
@@ -237,7 +240,7 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     # no approach at reduced inertia, windows at full inertia from here
     win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps,
                           reduce=got != STUCK)
-    return win, replace(info, periods=(stepper.step - start) / stepper.k_per)
+    return win, replace(info, periods=stepper.step / stepper.k_per)
 
 
 def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
