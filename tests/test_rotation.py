@@ -105,3 +105,73 @@ def test_rolling_resistance_needs_rotation_and_a_compliant_model():
     with pytest.raises(sd.SceneError, match="rigid"):
         sd.bind(sd.scene.build_scene({"model": "material_point",
                                       "effects": {"rotation": True, "rolling_resistance": 0.1}}))
+
+
+def _rolling(model: str, amplitude: float, load: float, mu_r: float = 0.0, m: float = 0.1,
+             mu: float = 0.1, **drive) -> sd.Scene:
+    return sd.Scene(model=model, particle={"m_star": m, "load": load},
+                    drive={"amplitude": amplitude, **drive}, material={"mu": mu},
+                    effects={"rotation": True, "rolling_resistance": mu_r})
+
+
+def _fitted_acceleration(scene: sd.Scene, periods: int) -> float:
+    """Twice the quadratic coefficient of x*(t*) over the last half of a fixed run of
+    ``periods``: the brute-force mean acceleration the Result's closed form must match."""
+    import numpy as np
+
+    fixed = scene.with_updates(**{"numerics.settle": False, "numerics.periods": periods,
+                                  "numerics.measure_periods": periods // 2})
+    tr = sd.run(fixed, trajectory=True).trajectory
+    late = tr[tr["t"] >= periods / 2]
+    return 2.0 * float(np.polyfit(late["t"], late["x"], 2)[0])
+
+
+@pytest.mark.parametrize(("model", "amplitude", "drive"), [
+    ("material_point", 0.0, {}), ("mmd", 0.2, {"horizontal_ratio": 0.0}), ("mmd", 0.5, {})])
+def test_a_sphere_free_to_turn_rolls_away_under_a_load_below_mu(model, amplitude, drive):
+    """The load acts on the centre, friction alone turns the sphere, so no load is held: with
+    L = 0.05 < mu = 0.1 the sphere rolls away at L / (m* (1 + kappa)) = 0.357 per period^2 (a
+    fit over periods 100-200 of the run agrees to 1e-6). A still substrate said stick, settled,
+    with a drift of 16.6; a vertical vibration, or the wave, said a settled drift."""
+    scene = _rolling(model, amplitude, 0.05, **drive)
+    res = sd.run(scene)
+    assert res.regime == "runaway" and res.settled is False and math.isnan(res.drift_velocity)
+    expected = 0.05 / (0.1 * 1.4)
+    assert res.mean_acceleration == pytest.approx(expected, rel=1e-12)
+    assert _fitted_acceleration(scene, 200) == pytest.approx(expected, rel=1e-5)
+
+
+def test_a_turning_sphere_rolls_without_slip_up_to_mu_times_one_plus_one_over_kappa():
+    """L = 0.15 between mu = 0.1 and mu (1 + 1/kappa) = 0.35: the sphere rolls without gross
+    slip at L / (m* (1 + kappa)) = 1.0714 per period^2, as its own trajectory shows; the Result
+    said (L - mu) / m* = 0.5, the acceleration of a particle that does not turn. Beyond 0.35
+    (L = 0.5) it slides at (L - mu) / m* = 4."""
+    rolls, slides = _rolling("mmd", 0.1, 0.15), _rolling("mmd", 0.5, 0.5)
+    assert sd.run(rolls).mean_acceleration == pytest.approx(0.15 / 0.14, rel=1e-12)
+    assert _fitted_acceleration(rolls, 200) == pytest.approx(0.15 / 0.14, rel=1e-5)
+    assert sd.run(slides).mean_acceleration == pytest.approx(4.0, rel=1e-12)
+    assert _fitted_acceleration(slides, 200) == pytest.approx(4.0, rel=1e-5)
+
+
+@pytest.mark.parametrize("amplitude", [0.0, 0.5])
+def test_rolling_resistance_holds_at_most_mu_r_and_brakes_a_runaway_by_it(amplitude):
+    """EPSD rolling spring, mu_r = 0.01: a load of 2 mu_r rolls the sphere away at
+    (L - mu_r) / (m* (1 + kappa)) = 0.0714 per period^2 over periods 400-800 of its run, on a
+    still substrate and under the wave. The viscous term had acted at full mobilization (a
+    strict comparison with the cap), and uncapped on a vibrating contact: the sphere reached a
+    terminal speed (its fitted acceleration 8e-6 on the still substrate, 8e-5 under the wave)."""
+    scene = _rolling("mmd", amplitude, 0.02, mu_r=0.01)
+    res = sd.run(scene)
+    assert res.regime == "runaway"
+    assert res.mean_acceleration == pytest.approx(0.01 / 0.14, rel=1e-12)
+    assert _fitted_acceleration(scene, 800) == pytest.approx(0.01 / 0.14, rel=1e-4)
+
+
+def test_a_load_curve_of_a_sphere_free_to_turn_is_refused_in_one_line():
+    """No load is held without rolling resistance: the load curve crashed on the runaway of its
+    first loaded run (internal failure, exit 3)."""
+    proc = run_main("load-curve", "--model", "mmd", "--rotation", "--loads", "3",
+                    "--no-progress")
+    assert proc.returncode == 2
+    assert proc.stderr.strip().count("\n") == 0
+    assert "effects.rolling_resistance" in proc.stderr and "Traceback" not in proc.stderr

@@ -334,7 +334,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             k_rec += rec_every
         push_derivatives(fh, y, ax, ay, ncomp, move_x)
         if spin:
-            mr, kr, cap = rolling_torque(y, a, nf, rr, p_exp, kappa_m)
+            mr, kr, cap = rolling_torque(y, a, nf + pull2, rr, p_exp, kappa_m)
             fh[0, 4] = y[5]
             fh[0, 5] = (-mu * tf + mr) / kappa_m
             psi_old = y[4]

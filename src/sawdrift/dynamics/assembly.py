@@ -338,18 +338,21 @@ def _rotation_lines(scene: Scene) -> list[str]:
                 "the load pulls the centre without turning it: kappa m* psi'' = "
                 "-mu T*, psi = R phi / a0, theta mu b* = s* - u_x with s* = x* + psi",
                 "the centre keeps m* x*'' = -mu T* + L; spin R phi' / a0 = psi'"]
+    centre = "m* x*'' = -mu T* + L" if load != 0.0 else "m* x*'' = -mu T*"
+    if eff.rolling_resistance > 0.0:
+        # the rolling torque turns the sphere apart from friction: s = (1 + 1/kappa) x no longer
+        mu_r = eff.rolling_resistance
+        return [f"rotation: I phi'' = -R T + M_r with I = kappa m R^2, kappa = {kappa:.6g}",
+                "rolling resistance (elastic-plastic spring, Ai et al. 2011): "
+                "kappa m* psi'' = -mu T* + m_r, psi = R phi / a0, s* = x* + psi, "
+                "m_r = -2.25 mu_r^2 (dN*/da*) psi_e - C_r psi' (C_r while elastic), "
+                f"capped at mu_r N*, mu_r = {mu_r:g}",
+                f"theta mu b* = s* - u_x; the centre keeps {centre}"]
     lines = [f"rotation: I phi'' = -R T with I = kappa m R^2, kappa = {kappa:.6g}; "
              f"from rest the contact point s = x + R phi = (1 + 1/kappa) x = {c:.6g} x"]
-    if eff.rolling_resistance > 0.0:
-        mu_r = eff.rolling_resistance
-        lines.append("rolling resistance (elastic-plastic spring, Ai et al. 2011): "
-                     "kappa m* psi'' = -mu T* + m_r, psi = R phi / a0, s* = x* + psi, "
-                     f"m_r = -2.25 mu_r^2 (dN*/da*) psi_e capped at mu_r N*, mu_r = {mu_r:g}")
-        lines.append("theta mu b* = s* - u_x; the centre keeps m* x*'' = -mu T*")
-    else:
-        lines.append("theta mu b* = s* - u_x: the contact point moves like a mass "
-                     f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the "
-                     "centre keeps m* x*'' = -mu T*; spin R phi' = x*' / kappa")
+    lines.append("theta mu b* = s* - u_x: the contact point moves like a mass "
+                 f"m* kappa / (1 + kappa) = {scene.particle.m_star / c:.6g}; the "
+                 f"centre keeps {centre}; spin R phi' = x*' / kappa")
     return lines
 
 

@@ -134,10 +134,26 @@ def settles(scene, speed: float, rigid: bool) -> bool:
 
 
 def runs_away(scene) -> bool:
-    """:func:`load_runs_away` of the scene's load, friction bound (:func:`friction_bound`) and
+    """:func:`load_runs_away` of the scene's load, holding bound (:func:`holding_bound`) and
     air drag."""
     eff = scene.effects
-    return load_runs_away(scene.particle.load, friction_bound(scene), eff.friction, eff.air_drag)
+    return load_runs_away(scene.particle.load, holding_bound(scene), eff.friction, eff.air_drag)
+
+
+def holding_bound(scene) -> float:
+    """The largest load |L| (in M g) the particle can hold on average: :func:`friction_bound`,
+    and for a sphere free to turn (``effects.rotation``) at most mu_r, its rolling resistance.
+
+    The load acts on the centre and has no moment about it; friction, the one force at the
+    contact that has, turns the sphere. Held on average, the sphere's mean spin acceleration
+    vanishes, so the mean rolling torque (per R and M g) balances the mean friction, which
+    balances the load: |L| <= mu_r <N*> = mu_r (the rolling spring is capped at mu_r N*, and
+    the mean normal force is the weight). Without rolling resistance no load is held: the
+    sphere rolls away under any load (docs/physics.md, "Loads")."""
+    bound = friction_bound(scene)
+    if scene.effects.rotation:
+        bound = min(bound, scene.effects.rolling_resistance)
+    return bound
 
 
 def friction_bound(scene) -> float:
@@ -154,8 +170,9 @@ def friction_bound(scene) -> float:
 
 def load_runs_away(load: float, mu: float, friction: bool, air_drag: float) -> bool:
     """A tangential load that friction cannot hold on average: |L| > mu (the period-averaged normal
-    force is the weight; ``mu`` is the scene's :func:`friction_bound`, mu (1 + 2 F*_pull) with
-    adhesion), or any load without friction, and no air drag to bound the speed."""
+    force is the weight; ``mu`` is the scene's :func:`holding_bound`, mu (1 + 2 F*_pull) with
+    adhesion, at most mu_r for a sphere free to turn), or any load without friction, and no air
+    drag to bound the speed."""
     if load == 0.0 or air_drag > 0.0:
         return False
     return (not friction) or abs(load) > mu
@@ -166,7 +183,7 @@ NEUTRAL_LOAD = 1e-9
 
 
 def load_is_neutral(load: float, mu: float, friction: bool, air_drag: float) -> bool:
-    """A load equal to the friction bound ``mu`` (:func:`friction_bound`), with friction on and
+    """A load equal to the holding bound ``mu`` (:func:`holding_bound`), with friction on and
     no air drag: once the particle slides on, its mean force vanishes at every speed, so nothing
     restores it (the edge of :func:`load_runs_away`)."""
     return (load != 0.0 and friction and air_drag == 0.0

@@ -15,9 +15,11 @@ every piece of evidence comes from that one window), never the runner's internal
 * no steady state (checked first, :func:`outcome`):
 
   - ``runaway`` - the mean horizontal speed keeps growing: a tangential load above the largest
-    mean friction mu <N*> = mu (the period-averaged normal force is the weight), or, under a
-    load, a window whose mean speed exceeds 1.5 times the largest surface speed and still grows
-    in its own direction (a sphere that rolls away);
+    mean friction mu <N*> = mu (the period-averaged normal force is the weight), or, for a
+    sphere free to turn, above its rolling resistance mu_r (any load without it: the load has
+    no moment about the centre, so only a rolling torque can balance the friction that would
+    hold it), or, under a load, a window whose mean speed exceeds 1.5 times the largest surface
+    speed and still grows in its own direction;
   - ``ejected`` - out of contact through the whole window (no lift-off and no landing in it),
     and in free flight it cannot touch the surface again within as many periods as the run has
     lasted (a default run: or within ``numerics.mean_periods``, the budget of a long-time mean):

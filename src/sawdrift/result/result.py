@@ -157,8 +157,10 @@ class Result:
     #: standard error of ``drift_ratio`` (irregular motion: batch means over decorrelated
     #: windows); NaN where the drift is a fixed point's or a periodic orbit's
     drift_ratio_se: float = math.nan
-    #: ``runaway``: the mean horizontal acceleration, x* per period squared: (L - mu sign L) / m*
-    #: where the load exceeds friction, else the window's (a fit to its positions)
+    #: ``runaway``: the long-time mean horizontal acceleration, x* per period squared:
+    #: (L - mu sign L) / m* where the load exceeds friction, (L - mu_r sign L) / (m* (1 + kappa))
+    #: for a sphere free to turn that rolls away; with adhesion the window's (a fit to its
+    #: positions)
     mean_acceleration: float = math.nan
     #: ``ejected``: t* of the last lift-off (the detachment) and its wave phase t* mod 1
     detach_time: float = math.nan

@@ -26,7 +26,7 @@ from ..dynamics.impact import (
 )
 from ..dynamics.integrate import FLIGHTS_PER_MEAN, MOST_FLIGHT_BUDGETS, WaveRun, integrate_wave
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
-from ..dynamics.steady import friction_bound, load_is_neutral, runs_away
+from ..dynamics.steady import holding_bound, load_is_neutral, runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
 from ..errors import SceneError
 from ..scene.device import device_outputs
@@ -91,7 +91,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     stepper = out.stepper
     ret = ballistic_return(float(stepper.y[2]), float(stepper.y[3]), scene.particle.m_star,
                            drive.vertical_amplitude(scene))
-    ending = outcome(scene.particle.load, friction_bound(scene), scene.effects.friction,
+    ending = outcome(scene.particle.load, holding_bound(scene), scene.effects.friction,
                      scene.effects.air_drag, in_flight(win) and out.long_mean is None, ret,
                      stepper.step / stepper.k_per,
                      win.drift, acceleration, out.speed)
@@ -105,7 +105,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     extra: dict[str, object] = {}
     # a runaway or an ejection has no steady drift: nothing of a long-time mean to warn about
     warnings = _warnings(scene, replace(out, long_mean=None) if ending else out, drift_se)
-    if not ending and load_is_neutral(scene.particle.load, friction_bound(scene),
+    if not ending and load_is_neutral(scene.particle.load, holding_bound(scene),
                                       scene.effects.friction, scene.effects.air_drag):
         # friction at its bound balances the load exactly once the particle slides on: nothing
         # pulls its speed back (mmd m* 1, A* 0.5, mu = L = 0.1 settled at 1.0088, brute force
@@ -270,21 +270,41 @@ def _unsettled_reason(out: WaveRun, settling: bool) -> str:
 
 
 def runaway_acceleration(scene: Scene, fitted: float) -> float:
-    """A runaway's mean acceleration, x* per period squared: (L - mu sign L) / m* where the
-    load exceeds friction (L / m* without friction), else ``fitted``, the window's.
+    """A runaway's mean acceleration, x* per period squared, in closed form where it has one,
+    else ``fitted``, the window's.
 
     Once the particle outruns the surface its relative velocity keeps one sign, the friction is
     mu N* against it and the period-averaged normal force is the weight, so m* <x*''> = L -
-    mu sign(L) exactly; that is the long-time mean acceleration. A window early in the run sees
-    the stick-slip before that (mmd m* = 100, A* = 1, L = 0.2, mu = 0.1: 0.0021 from the fit
-    over periods 33 to 60, 0.0010 over a 2000-period run). An adhesive contact's friction bound
-    is not mu times the weight, and a load below friction that still runs away (a sphere
-    rolling without slip) has no such closed form: those keep the window's fit."""
+    mu sign(L) exactly; that is the long-time mean acceleration (L / m* without friction). A
+    window early in the run sees the stick-slip before that (mmd m* = 100, A* = 1, L = 0.2,
+    mu = 0.1: 0.0021 from the fit over periods 33 to 60, 0.0010 over a 2000-period run).
+
+    A sphere free to turn (:func:`rolling_runaway`) rolls away under smaller loads. An adhesive
+    contact's friction bound is not mu times the weight: it keeps the window's fit."""
     eff, load = scene.effects, scene.particle.load
     if not runs_away(scene) or eff.adhesion != "none":
         return fitted
-    mu = scene.material.mu if eff.friction else 0.0
-    return (load - math.copysign(mu, load)) / scene.particle.m_star
+    if not eff.friction:
+        return load / scene.particle.m_star
+    if eff.rotation:
+        return rolling_runaway(load, scene.material.mu, eff.rolling_resistance,
+                               scene.particle.gyration, scene.particle.m_star)
+    return (load - math.copysign(scene.material.mu, load)) / scene.particle.m_star
+
+
+def rolling_runaway(load: float, mu: float, mu_r: float, kappa: float, m_star: float) -> float:
+    """The long-time mean acceleration of a sphere free to turn under a load it cannot hold.
+
+    Centre and spin obey m* x*'' = L - F and kappa m* psi'' = -F + M_r (F the friction, M_r the
+    rolling torque per R, both per M g). While the contact point's slip stays bounded, psi' =
+    -x*' up to bounded terms, so m* (1 + kappa) <x*''> = L - <M_r>, and the rolling spring, turned
+    one way for ever, sits at its cap: <M_r> = mu_r sign(L) (its cap mu_r N*, the mean normal
+    force the weight). That takes the mean friction (kappa |L| + mu_r) / (1 + kappa), at
+    most mu: beyond |L| = mu (1 + 1/kappa) - mu_r / kappa the contact point slides for ever and
+    the centre accelerates at (L - mu sign L) / m*, as a sphere that does not turn."""
+    if abs(load) > mu * (1.0 + 1.0 / kappa) - mu_r / kappa:
+        return (load - math.copysign(mu, load)) / m_star
+    return (load - math.copysign(mu_r, load)) / (m_star * (1.0 + kappa))
 
 
 def mean_acceleration(positions) -> float:

@@ -45,7 +45,7 @@ import numpy as np
 from ..contact.binding import bind
 from ..dynamics.drives import drive_of
 from ..dynamics.full_inertia import relative_bound
-from ..dynamics.steady import friction_bound
+from ..dynamics.steady import holding_bound
 from ..errors import SceneError
 from ..result.result import json_value
 from ..result.runner import run
@@ -362,7 +362,10 @@ def _curve(scene: Scene, runner: _Runner, speed: float, n: int, tolerance: float
         runner.tolerance = tol = _advance_tolerance(scene, v0, speed)
     threshold = tol * speed
     note(f"without load: drift velocity {v0:.6g} ({free['regime']})")
-    f_max = friction_bound(scene) + direction * runner.background
+    f_max = holding_bound(scene) + direction * runner.background
+    if scene.effects.rotation and holding_bound(scene) <= 0.0:
+        note("a sphere free to turn with no rolling resistance holds no load: the least load "
+             "rolls it away, so the stall load is 0")
     common = {"threshold": threshold, "m_star": scene.particle.m_star, "free_drift": v0,
               "free_drift_se": se0, "free_state": state}
     if direction == 0 or f_max <= 0.0:
@@ -377,7 +380,8 @@ def _curve(scene: Scene, runner: _Runner, speed: float, n: int, tolerance: float
                 "max_load": max(f_max, 0.0), **common}
 
     def advances(f: float) -> bool:
-        return direction * float(runner.table[-direction * f]["drift_velocity"]) > threshold
+        # a load that runs away (no drift velocity) holds the particle back for good
+        return direction * _value(runner.table[-direction * f]["drift_velocity"]) > threshold
 
     lo, hi = 0.0, f_max  # advances at lo; at hi (= F_max) nothing can advance
     k = runner.workers + 1
