@@ -198,7 +198,7 @@ def imposed_drift(stepper: Stepper, scene, speed: float, scale: np.ndarray | Non
     """The long-time mean drift (x* per period) and its error at an imposed speed along the
     run's own recorded vertical motion (module docstring); None without a zero of <T*>(V).
 
-    With ``scale`` and ``evidence`` periods (a run not recording its trajectory), the record's
+    With ``scale`` and ``evidence`` periods, the record's
     first :data:`BRACKET_PERIODS` give the zero the secants start from before the rest is
     recorded, and the rest, at that zero's speed, is measured as a window too
     (:func:`~.window.measure_window`): the regime's evidence at the drift, returned with the
@@ -212,7 +212,7 @@ def imposed_drift(stepper: Stepper, scene, speed: float, scale: np.ndarray | Non
     m = scene.particle.m_star
     periods = max(scene.numerics.mean_periods, 2 * full_window_length(m, scene.theta, 1))
     rest = periods - BRACKET_PERIODS
-    if scale is None or evidence <= 0 or stepper.record or rest < evidence:
+    if scale is None or evidence <= 0 or rest < evidence:
         return _solve(_Pushes(_Record(stepper, record_columns(stepper, periods)), speed)), None
     first = record_columns(stepper, BRACKET_PERIODS)
     head = _Pushes(_Record(stepper, first), speed)

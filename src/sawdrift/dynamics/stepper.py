@@ -236,16 +236,34 @@ class Stepper:
         :data:`~.records.MAX_TRAJECTORY_ROWS` (:func:`~.records.thinned`): a 2e5-period run
         with ``-o`` asked 2.1 GiB for one buffer and lost the run, and its rows grew with its
         length."""
+        if self.record and rows is not None and self.rec_every > 0:
+            # every step's row is collected: the trajectory keeps every rec_every-th of them, as
+            # the loop would have recorded (an irregular heavy bouncer's mean, .imposed, ran a
+            # separate evidence window where it recorded a trajectory: run -o reported 935
+            # periods and another Lyapunov exponent where --json said 535)
+            first, start = len(rows), self.step
+            self._advance(n_steps, strobe, rows)
+            if len(rows) > first:
+                block = np.concatenate(rows[first:])
+                self._keep_rows(block[(-start) % self.rec_every::self.rec_every].copy())
+            return
         if not (self.record and strobe is None and rows is None and self.rec_every > 0):
             self._advance(n_steps, strobe, rows)
             return
         target = self.step + max(0, int(n_steps))
         while self.step < target:
             self._advance(min(target - self.step, SEGMENT_ROWS * self.rec_every))
-            if self.rec_rows > MAX_TRAJECTORY_ROWS:
-                self.rec_chunks, self.rec_every = thinned(self.rec_chunks, self.h,
-                                                          self.rec_every)
-                self.rec_rows = self.rec_chunks[0].shape[0]
+            self._keep_rows(None)
+
+    def _keep_rows(self, block: np.ndarray | None) -> None:
+        """Append ``block`` to the trajectory (None: the loop appended its rows), thinned past
+        :data:`~.records.MAX_TRAJECTORY_ROWS` (:func:`~.records.thinned`)."""
+        if block is not None:
+            self.rec_chunks.append(block)
+            self.rec_rows += block.shape[0]
+        if self.rec_rows > MAX_TRAJECTORY_ROWS:
+            self.rec_chunks, self.rec_every = thinned(self.rec_chunks, self.h, self.rec_every)
+            self.rec_rows = self.rec_chunks[0].shape[0]
 
     def _advance(self, n_steps: int, strobe: tuple[np.ndarray, int] | None = None,
                  rows: list[np.ndarray] | None = None) -> None:
