@@ -312,3 +312,20 @@ def test_a_float_option_that_is_no_number_says_what_was_given(monkeypatch, capsy
         main()
     err = capsys.readouterr().err.strip().splitlines()
     assert exc.value.code == 2 and err == ["error: Invalid value for '--mu': 'abc' is not a number"]
+
+
+def test_a_second_ctrl_c_while_the_first_is_handled_ends_in_one_line(sawdrift_main, monkeypatch):
+    """A KeyboardInterrupt that escapes the command (a second Ctrl-C while the first was being
+    handled: ``timeout -s INT`` signals the command and then its process group) printed a
+    traceback; it ends with one line and exit status 130."""
+    import importlib
+
+    module = importlib.import_module("sawdrift.cli.app")
+
+    def interrupted_twice(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(type(module.app), "__call__", interrupted_twice)
+    proc = sawdrift_main("run", "--model", "mmd")
+    assert proc.returncode == 130
+    assert proc.stderr.strip().startswith("interrupted") and "\n" not in proc.stderr.strip()

@@ -201,3 +201,36 @@ def test_a_study_interrupted_ends_its_workers_instead_of_waiting_for_them(tmp_pa
         assert _gone(workers, 5.0)
     finally:
         _clean_up(proc, locals().get("workers", []))
+
+
+def test_a_cancelled_future_of_an_interrupted_pool_prints_no_traceback(monkeypatch):
+    """After Ctrl-C the study ends its workers; the pool's manager thread then sets an error on
+    every future it holds, and one already cancelled raised ``InvalidStateError`` in that
+    thread (CPython < 3.12): a traceback after the "interrupted" line. The hook swallows that
+    error only; any other still reaches the hook before it."""
+    import threading
+    from concurrent.futures import Future, InvalidStateError
+    from concurrent.futures.process import ProcessPoolExecutor
+
+    from sawdrift.study import executor as ex
+
+    seen = []
+    monkeypatch.setattr(threading, "excepthook", lambda args: seen.append(args.exc_type))
+    pool = ProcessPoolExecutor(max_workers=1)
+    try:
+        ex._end_workers(pool)
+    finally:
+        pool.shutdown(wait=True)
+    assert threading.excepthook is ex._quiet_cancelled
+    cancelled = Future()
+    cancelled.cancel()
+    with pytest.raises(InvalidStateError) as err:
+        cancelled.set_exception(RuntimeError("broken"))
+
+    def hook(exc: BaseException) -> None:
+        threading.excepthook(threading.ExceptHookArgs((type(exc), exc, None, None)))
+
+    hook(err.value)
+    assert seen == []
+    hook(ValueError("other"))
+    assert seen == [ValueError]

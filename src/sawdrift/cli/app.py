@@ -345,9 +345,20 @@ _INTERRUPT_SAID: list[bool] = [False]
 def interrupted(message: str) -> None:
     """End a command stopped by Ctrl-C with ``message`` (what it kept, how to resume) on stderr
     and exit status 130."""
+    _ignore_further_interrupts()
     typer.echo(message, err=True)
     _INTERRUPT_SAID[0] = True
     raise typer.Exit(130)
+
+
+def _ignore_further_interrupts() -> None:
+    """Ignore Ctrl-C from here on: the command is ending and has said what it kept."""
+    import signal
+
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:  # not the main thread: nothing to change there
+        pass
 
 
 def interrupted_placements(done: int, total: int, written: Path | None) -> None:
@@ -382,6 +393,12 @@ def _main() -> None:
     except typer.Exit as exc:
         _say_interrupted(exc.exit_code)
         sys.exit(exc.exit_code)
+    except KeyboardInterrupt:
+        # a second Ctrl-C while the first was being handled (``timeout -s INT`` signals the
+        # command and then its process group, so the command gets two): a traceback after the
+        # "interrupted" line, once in eight sweeps on 2 workers
+        _say_interrupted(130)
+        sys.exit(130)
     except sd.SawdriftError as exc:
         typer.echo(f"error: {exc}", err=True)
         sys.exit(2)
