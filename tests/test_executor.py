@@ -234,3 +234,28 @@ def test_a_cancelled_future_of_an_interrupted_pool_prints_no_traceback(monkeypat
     assert seen == []
     hook(ValueError("other"))
     assert seen == [ValueError]
+
+
+@pytest.mark.parametrize("address", ["notanaddress", "tcp://localhost", "localhost:abc", "",
+                                     "tcp://host:0", "tcp://host:70000", "http://host:8786"])
+def test_a_malformed_scheduler_address_is_one_line_before_any_work(address, sawdrift_main):
+    """A malformed --scheduler reached dask after the study's calibration and ended as an
+    "internal failure ('missing port number in address')", exit 3."""
+    from sawdrift.study.executor import check_scheduler
+
+    with pytest.raises(SceneError, match="host:port"):
+        check_scheduler(address)
+    with pytest.raises(SceneError, match="host:port"):
+        Executor(2, address)
+    proc = sawdrift_main("sweep", "--scheduler", address, "--m-star", "0.1,1",
+                         "--amplitude", "0.3,1", "-o", "never.parquet")
+    assert proc.returncode == 2 and "--scheduler" in proc.stderr
+    assert proc.stderr.strip().count("\n") == 0 and "internal" not in proc.stderr
+
+
+@pytest.mark.parametrize("address", ["tcp://127.0.0.1:8786", "127.0.0.1:8786",
+                                     "tls://[::1]:8786", "inproc://worker-1"])
+def test_well_formed_scheduler_addresses_pass_the_check(address):
+    from sawdrift.study.executor import check_scheduler
+
+    assert check_scheduler(address) == address

@@ -138,7 +138,20 @@ app = _Typer(
 #: options several commands share, declared once
 Param = Annotated[list[str] | None, typer.Option("--param", help="model parameter NAME=VALUE")]
 Workers = Annotated[int | None, typer.Option("--workers", help="local processes")]
-Scheduler = Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address")]
+def _scheduler_option(value: str | None) -> str | None:
+    """``--scheduler``'s value checked before any work (:func:`~sawdrift.study.executor.check_scheduler`)."""
+    if value is None:
+        return None
+    from ..study.executor import check_scheduler
+
+    try:
+        return check_scheduler(value)
+    except sd.SawdriftError as exc:
+        raise typer.BadParameter(str(exc).replace("scheduler = ", "", 1)) from None
+
+
+Scheduler = Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address "
+                                               "([tcp://]host:port)", callback=_scheduler_option)]
 Engine = Annotated[str, typer.Option("--engine", help="compiled or python")]
 Progress = Annotated[bool, typer.Option("--progress/--no-progress")]
 Yes = Annotated[bool, typer.Option("--yes", help="start even when the size estimate (printed "

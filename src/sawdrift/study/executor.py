@@ -30,7 +30,7 @@ from typing import Any
 from ..codegen.loading import load_cached_code_lightly
 from ..errors import SceneError
 
-__all__ = ["Executor", "resolve_workers"]
+__all__ = ["Executor", "check_scheduler", "resolve_workers"]
 
 #: tasks a process batch keeps submitted per worker process
 AHEAD_PER_WORKER = 4
@@ -42,6 +42,28 @@ MAX_PER_TASK = 4
 def _run_task(fn: Callable[[Any], Any], items: list[Any]) -> list[Any]:
     """``fn`` of each item of one task, in a worker process."""
     return [fn(item) for item in items]
+
+
+#: the address schemes dask.distributed's comms know
+SCHEMES = ("tcp", "tls", "inproc", "ucx", "ws", "wss")
+
+
+def check_scheduler(address: str) -> str:
+    """``address`` if it has the form of a dask.distributed scheduler address, [scheme://]host:port
+    with a port in 1..65535 (:data:`SCHEMES`), else a one-line SceneError naming the form: a
+    malformed one reached dask only after the study's calibration and was an "internal
+    failure" there ('missing port number in address')."""
+    text = address.strip()
+    scheme, sep, rest = text.partition("://")
+    if not sep:
+        scheme, rest = "tcp", text
+    host, colon, port = rest.rpartition(":")
+    ok = (scheme in SCHEMES and colon and host.strip("[]") and port.isdigit()
+          and 0 < int(port) < 65536) or (scheme == "inproc" and rest)
+    if not ok:
+        raise SceneError(f"scheduler = {address!r} is not a dask.distributed address: give "
+                         "[tcp://]host:port, e.g. tcp://127.0.0.1:8786 (the port 1-65535)")
+    return text
 
 
 def resolve_workers(workers: int | None) -> int:
@@ -141,7 +163,7 @@ class Executor:
 
     def __init__(self, workers: int | None = None, scheduler: Any = None) -> None:
         self.workers = resolve_workers(workers)
-        self.scheduler = scheduler
+        self.scheduler = check_scheduler(scheduler) if isinstance(scheduler, str) else scheduler
         self._pool: ProcessPoolExecutor | None = None
         self._pool_size = 0
         self._client: Any = None
