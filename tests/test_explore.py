@@ -717,7 +717,8 @@ def test_the_hatched_count_is_of_the_cells_computed(tmp_path):
 
 
 @pytest.mark.parametrize(("spec", "needle"), [
-    ("1,nan", "holds a value that is not a finite number (nan)"),  # said: at least one finite
+    # said: at least one finite; then its sentence stopped at "every value must be"
+    ("1,nan", "holds a value that is not a finite number (nan): every value must be finite"),
     ("1e-3:1e2:0", "N = 0 cannot hold both ends"),  # said N in [1, ...], then refused N = 1
 ])
 def test_axis_messages_say_what_is_wrong(spec, needle):
@@ -740,3 +741,26 @@ def test_an_empty_table_and_a_model_named_twice_are_said_so(tmp_path, monkeypatc
     code, _, err = call(monkeypatch, capsys, "compare", str(full), "--models", "mmd,mmd", "-o",
                         str(tmp_path / "c.png"))
     assert code == 2 and "names mmd twice" in err  # a model against itself agreed 100 %
+
+
+def test_the_explorer_draws_a_panel_per_amplitude_off_its_axes_and_takes_where(tmp_path,
+                                                                              sawdrift_main):
+    """--x material.mu --y m_star on a table swept over m*, A* and mu: A* is on no axis, and one
+    map mixed its values; the error advised a --where explore did not have. Now a panel per A*,
+    and --where keeps one value of a swept column, as phase-diagram and compare do."""
+    from sawdrift.report.explore import choose_axes, explorer_data, make_panels
+
+    table = pd.concat([_grid("mmd", 0.1, ["stick"] * 4), _grid("mmd", 0.2, ["hopping"] * 4)])
+    table = table.rename(columns={"mu": "material.mu"})
+    xa, ya = choose_axes(table, "material.mu", "m_star")
+    panels = make_panels(table, xa, ya)
+    assert [p.label for p in panels] == ["mmd, amplitude = 0.1", "mmd, amplitude = 1.0"]
+    assert all(len(p.rows) == 4 for p in panels)
+    path = tmp_path / "t.parquet"
+    table.to_parquet(path)
+    kept = explorer_data(path, None, where={"material.mu": "0.2"})
+    assert [p.label for p in kept.panels] == ["mmd"]
+    assert set(kept.panels[0].rows["regime"]) == {"hopping"}
+    proc = sawdrift_main("explore", str(path), "--where", "material.mu=0.3",
+                         "-o", str(tmp_path / "x.html"))
+    assert proc.returncode == 2 and "0.1, 0.2" in proc.stderr

@@ -140,13 +140,16 @@ def explore_cmd(
                                           "or a swept device field)")] = None,
     y: Annotated[str | None, typer.Option("--y", help="column on the vertical axis (default: m*, "
                                           "or a swept device field)")] = None,
+    where: Where = None,
 ) -> None:
     """An offline page of a table's phase diagrams: hover a cell for its metrics, click it for its
-    last periods (tables swept with --traces), compare the models' regimes.
+    last periods (tables swept with --traces), compare the models' regimes. Every other swept
+    column gets a panel per value; --where keeps one.
     """
     out = page_path(out)
     _writable(out, folder=False)
-    path = sd.write_explorer(table, out, traces, x=x, y=y)
+    picked = parse_where(where)
+    path = sd.write_explorer(table, out, traces, x=x, y=y, where=picked)
     typer.echo(f"wrote {path} ({path.stat().st_size / 1e6:.1f} MB): open it in a browser")
 
 

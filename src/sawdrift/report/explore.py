@@ -36,7 +36,7 @@ from ..scene.schema import set_dotted
 from ..study.axes import column_unit
 from ..study.table import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
-from .diagrams import COLOURS, one_map
+from .diagrams import COLOURS, one_map, pick_rows
 from .explore_page import (  # noqa: F401 - the tooltip's texts, also read from here
     build_document,
     chaotic_cells,
@@ -221,7 +221,14 @@ def make_panels(frame: pd.DataFrame, xa: Axis, ya: Axis) -> list[Panel]:
     """One panel per model and value of every other swept column, with each cell's shape."""
     # the other swept fields (``--axis`` columns are dotted scene paths, as in study.export)
     skip = {*TABLE_COLUMNS, xa.column, ya.column}
-    extra = [c for c in frame.columns if "." in c and c not in skip and frame[c].nunique(dropna=True) > 1]
+    # m* and A* too where neither axis shows them and they vary at one point of the map (--x
+    # material.mu --y m_star: a panel per A*, where one map mixed them and the error pointed at
+    # a --where explore did not have); a device table's m* and A* follow from its axes
+    plane = [c for c in ("m_star", "amplitude")
+             if c in frame.columns and c not in (xa.column, ya.column)
+             and frame.groupby([xa.column, ya.column])[c].nunique().max() > 1]
+    extra = [c for c in [*plane, *(c for c in frame.columns if "." in c and c not in skip)]
+             if frame[c].nunique(dropna=True) > 1]
     finite = np.isfinite(frame[xa.column].to_numpy(float)) & np.isfinite(frame[ya.column].to_numpy(float))
     frame = frame[finite]
     if xa.log:
@@ -392,9 +399,12 @@ class ExplorerData:
 
 def explorer_data(table: str | Path | pd.DataFrame,
                   traces: str | Path | Mapping[str, Trace] | None = None, *,
-                  x: str | None = None, y: str | None = None, samples: int = 400) -> ExplorerData:
+                  x: str | None = None, y: str | None = None, samples: int = 400,
+                  where: dict | None = None) -> ExplorerData:
     """The page's data (see :func:`write_explorer` for the arguments)."""
     frame, meta, name = load_table(table)
+    if where:
+        frame = pick_rows(frame, where)
     stored = _traces_for(traces, table)
     xa, ya = choose_axes(frame, x, y)
     panels = make_panels(frame, xa, ya)
@@ -435,7 +445,8 @@ def explorer_data(table: str | Path | pd.DataFrame,
 
 def write_explorer(table: str | Path | pd.DataFrame, out: str | Path,
                    traces: str | Path | Mapping[str, Trace] | None = None, *,
-                   x: str | None = None, y: str | None = None, samples: int = 400) -> Path:
+                   x: str | None = None, y: str | None = None, samples: int = 400,
+                   where: dict | None = None) -> Path:
     """Write the explorer page of a sweep table to ``out`` (one self-contained HTML file).
 
     Parameters
@@ -453,6 +464,9 @@ def write_explorer(table: str | Path | pd.DataFrame, out: str | Path,
     samples
         Most samples per stored trace carried by the page (8-bit, see
         :func:`sawdrift.study.traces.pack_traces`).
+    where
+        ``{column: value}``: only the cells with those values (``--where FIELD=VALUE``), as
+        phase-diagram and compare take them.
 
     Raises
     ------
@@ -462,7 +476,7 @@ def write_explorer(table: str | Path | pd.DataFrame, out: str | Path,
     from bokeh.embed import file_html
     from bokeh.resources import INLINE
 
-    data = explorer_data(table, traces, x=x, y=y, samples=samples)
+    data = explorer_data(table, traces, x=x, y=y, samples=samples, where=where)
     doc = build_document(data)
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)

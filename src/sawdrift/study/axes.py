@@ -198,7 +198,7 @@ def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
     if not np.all(np.isfinite(values)):
         # '1,nan' was told it must hold at least one finite value
         raise SceneError(f"{name} = {spec!r} holds a value that is not a finite number "
-                         f"({_value_list(values[~np.isfinite(values)])}): every value must be")
+                         f"({_value_list(values[~np.isfinite(values)])}): every value must be finite")
     return values
 
 
