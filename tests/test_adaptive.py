@@ -347,3 +347,18 @@ def test_adaptive_counts_say_they_cover_the_inferred_points(tmp_path):
     assert computed == held and points == computed + inferred
     counts = [int(m) for m in re.findall(r"^\s+material_point\s+\w+: (\d+)", done.stdout, re.M)]
     assert sum(counts) == points
+
+
+@pytest.mark.parametrize(("args", "needle"), [
+    (["--adaptive", "--m-star", "0.1,0.5,1", "--amplitude", "0.3:1:3"], "not a list of values"),
+    (["--levels", "2", "--m-star", "0.1,1", "--amplitude", "0.3,1"], "--levels belongs to --adaptive"),
+    (["--budget", "50", "--m-star", "0.1,1", "--amplitude", "0.3,1"], "--budget belongs to --adaptive"),
+])
+def test_adaptive_options_given_where_they_would_be_ignored_are_one_line(args, needle, sawdrift_main,
+                                                                          tmp_path):
+    """sweep --adaptive took a comma list's two ends and never ran its middle values (0.5 of
+    0.1,0.5,1), and --levels or --budget without --adaptive were ignored without a word."""
+    proc = sawdrift_main("sweep", "--model", "mmd", *args, "-o", str(tmp_path / "t.parquet"))
+    assert proc.returncode == 2 and needle in proc.stderr
+    assert proc.stderr.strip().count("\n") == 0
+    assert not (tmp_path / "t.parquet").exists()

@@ -58,8 +58,10 @@ def sweep_cmd(
         bool, typer.Option("--adaptive", help="refine only where neighbouring cells disagree in regime "
                            "(m*, A* ranges from --m-star/--amplitude START:STOP:BASE)")
     ] = False,
-    budget: Annotated[int, typer.Option("--budget", help="adaptive: most cells computed")] = 2000,
-    levels: Annotated[int, typer.Option("--levels", help="adaptive: halvings of a boundary cell")] = 3,
+    budget: Annotated[int | None, typer.Option("--budget", help="adaptive: most cells computed "
+                                               "[default: 2000]")] = None,
+    levels: Annotated[int | None, typer.Option("--levels", help="adaptive: halvings of a boundary "
+                                               "cell [default: 3]")] = None,
     scene_file: Annotated[Path | None, typer.Option("--scene", help="base scene TOML")] = None,
     param: Param = None,
     workers: Workers = None,
@@ -106,6 +108,9 @@ def sweep_cmd(
             _fail(f"--axis {field}={spec} and --{'m-star' if 'm_star' in field else 'amplitude'} "
                   f"{given} both sweep {field}; give one of them")
         axes[field] = spec
+    if not adaptive and (budget is not None or levels is not None):
+        _fail(f"{'--budget' if budget is not None else '--levels'} belongs to --adaptive (a grid "
+              "sweep computes every cell of its axes); add --adaptive or leave it out")
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
     if len(set(named)) != len(named):
         _fail(f"--model {model}: a model is named twice")
@@ -120,7 +125,9 @@ def sweep_cmd(
         if adaptive:
             if axes or len(models) != 1:
                 _fail("--adaptive works on the (m*, A*) plane of one model: no --axis, one --model")
-            frame = _adaptive(models[0], base, m_star, amplitude, out, budget=budget, levels=levels,
+            frame = _adaptive(models[0], base, m_star, amplitude, out,
+                              budget=2000 if budget is None else budget,
+                              levels=3 if levels is None else levels,
                               workers=workers, scheduler=scheduler, progress=progress,
                               engine=engine, force=force, traces=traces, yes=yes)
         else:
@@ -166,6 +173,11 @@ def _adaptive(model: str, base: Any, m_star: str | None, amplitude: str | None, 
     if any((spec or "").strip().lower().startswith("lin:") for spec in (m_star, amplitude)):
         _fail("--adaptive spaces its base grid logarithmically: give --m-star and --amplitude "
               "as START:STOP:N (or log:START:STOP:N), not lin:")
+    for flag, spec in (("--m-star", m_star), ("--amplitude", amplitude)):
+        if spec is not None and ":" not in spec:
+            # a list's ends alone were used: 0.1,0.5,1 never ran 0.5
+            _fail(f"{flag} = {spec!r}: --adaptive takes a range, START:STOP:N (log-spaced base "
+                  "grid, refined where the regime changes), not a list of values")
     m_axis = sd.parse_axis(m_star or "1e-3:1e2:21", "m_star")
     a_axis = sd.parse_axis(amplitude or "1e-2:10:21", "amplitude")
     if m_axis.size != a_axis.size or m_axis.size < 2:
