@@ -4,6 +4,7 @@ classes becomes a one-line warning naming it; the other models keep working."""
 from __future__ import annotations
 
 import json
+import math
 import os
 import subprocess
 import sys
@@ -13,7 +14,7 @@ from types import SimpleNamespace
 import pytest
 
 from sawdrift.contact.registry import PluginWarning, Registry
-from sawdrift.errors import ModelNotFoundError
+from sawdrift.errors import ModelNotFoundError, PluginError
 
 from .cli_call import run_main
 
@@ -119,3 +120,102 @@ def test_plugin_listed_with_parameters_when_installed():
     assert "damping" in rows["hertz_tsuji"]["parameters"]
     for name in ("material_point", "mmd", "mdr", "jaeger", "hertz_mindlin_dem", "hertz_tsuji"):
         assert isinstance(rows[name]["parameters"], dict)
+
+
+def _laws():
+    """Tangential laws broken in the ways plugins were: a kernel that raises, one returning NaN
+    above a small displacement, and classes the registry must refuse."""
+    from numba import njit
+
+    from sawdrift import Capabilities
+    from sawdrift.contact.normal import law_normal, law_slope
+    from sawdrift.contact.slots import TangentialLaw
+
+    @njit
+    def raise_step(ts, is_, law, tp, a0, b0, a, b):
+        if b > 0.05:
+            raise ValueError("boom")
+        return 0.0
+
+    @njit
+    def nan_step(ts, is_, law, tp, a0, b0, a, b):
+        k = law_slope(a, law, 0)
+        t = ts[0] + k * (b - b0)
+        n = law_normal(a, law, 0)
+        ts[0] = t = min(max(t, -n), n)
+        return t if abs(b) < 0.05 else math.nan
+
+    sphere = Capabilities(profiles=("sphere",))
+    laws = {}
+    for name, step, caps in (("raising_law", raise_step, sphere), ("nan_law19", nan_step, sphere),
+                             ("no_profiles19", nan_step, Capabilities(profiles=())),
+                             ("a,b", nan_step, sphere), ("no_step19", None, sphere)):
+        attrs = {"name": name, "summary": name, "capabilities": caps}
+        if step is not None:
+            attrs["step"] = step
+        laws[name] = type(name.replace(",", "_"), (TangentialLaw,), attrs)
+    return laws
+
+
+@pytest.mark.parametrize(("name", "needle"), [
+    ("no_profiles19", "declares no profiles"), ("a,b", "is not usable"),
+    ("no_step19", "without a step function")])
+def test_a_model_class_that_cannot_be_used_is_refused_when_registered(name, needle):
+    """A model with no profiles passed check-model with no check run; one named "a,b" was listed
+    but --model a,b chose 'a'; a tangential law without its step was listed as available and
+    an internal failure when run."""
+    from sawdrift.contact.registry import registry
+
+    cls = _laws()[name]
+    with pytest.raises(PluginError, match=needle):
+        registry.register(cls)
+    assert name not in registry.names()
+    reg = Registry(lambda: [_entry_point("bad19", [cls])])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert name not in reg.names()
+    assert any(needle in str(w.message) for w in caught)
+    with pytest.raises(ModelNotFoundError, match=needle):
+        reg.get(name)
+
+
+def test_a_plugin_kernel_that_raises_is_one_line_naming_it_and_fails_check_model():
+    """A law whose kernel raises: run and check-model ended in "internal failure (boom); please
+    report it", exit 3, blaming sawdrift. The run raises PluginError (exit 2) naming the model
+    and its distribution; check-model fails its checks with what the model raised."""
+    import sawdrift as sd
+    from sawdrift.contact.registry import registry
+
+    cls = _laws()["raising_law"]
+    registry.register(cls, distribution="broken-dist")
+    try:
+        with pytest.raises(PluginError) as err:
+            sd.run(sd.Scene(model="raising_law", numerics={"periods": 10}))
+        text = str(err.value)
+        assert "'raising_law'" in text and "'broken-dist'" in text and "boom" in text
+        assert "\n" not in text
+        result = sd.check_model("raising_law")
+        assert not result.passed
+        assert any("the model raised ValueError: boom" in c.detail for c in result.failures)
+    finally:
+        registry.unregister("raising_law")
+
+
+def test_a_nan_law_fails_only_finite_forces_and_shows_the_values_it_judged():
+    """A law returning NaN beyond b* = 0.05: passivity failed (a NaN compares false with the
+    bound) while showing a finite cycle's value that passed (-5.55e-17, which its detail called a
+    pass), and the Coulomb bound passed with a null value. Each check now judges the finite
+    samples, shows the value it judged, and leaves the NaN to finite_forces."""
+    import sawdrift as sd
+    from sawdrift.contact.registry import registry
+
+    registry.register(_laws()["nan_law19"])
+    try:
+        result = sd.check_model("nan_law19")
+        assert {c.name for c in result.failures} == {"finite_forces"}
+        for name in ("passivity", "coulomb_bound"):
+            check = result.get(name, "sphere")
+            assert math.isfinite(check.value) and check.value <= check.tolerance, name
+            assert "left to finite_forces" in check.detail, name
+    finally:
+        registry.unregister("nan_law19")

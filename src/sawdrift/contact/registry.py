@@ -7,6 +7,7 @@ backend plugins (lazy discovery, a plugin that fails to import becomes a warning
 from __future__ import annotations
 
 import importlib.metadata as im
+import re
 import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -64,6 +65,27 @@ def _named_models(returned: Any) -> tuple[list[type[ContactModel]], str]:
     return good, ", ".join(bad)
 
 
+#: what a model's name may hold: it is chosen on the command line, where "a,b" names two models
+NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*")
+
+
+def model_fault(cls: type[ContactModel]) -> str:
+    """What makes a model class unusable, found when it is registered ('' if nothing): a name
+    the command line cannot choose, no profiles declared (check-model then passed it with no
+    check run, and every run refused its sphere), or a tangential law without its step (listed
+    as available, an internal failure when run)."""
+    from .slots import TangentialLaw
+
+    if not NAME.fullmatch(cls.name):
+        return (f"model name {cls.name!r} is not usable: letters, digits, '_', '.' and '-' only "
+                "(a model is chosen as --model NAME, and a comma separates models)")
+    if not tuple(getattr(cls.capabilities, "profiles", ())):
+        return f"model {cls.name!r} declares no profiles (Capabilities(profiles=...))"
+    if issubclass(cls, TangentialLaw) and getattr(cls, "step", None) is None:
+        return f"model {cls.name!r} is a TangentialLaw without a step function"
+    return ""
+
+
 def _short(obj: Any) -> str:
     """``repr(obj)`` on one line, cut to 60 characters."""
     text = " ".join(repr(obj).split())
@@ -117,6 +139,12 @@ class Registry:
                 warnings.warn(f"sawdrift {msg}; {skipped}", PluginWarning, stacklevel=3)
             for cls in classes:
                 name = cls.name
+                fault = model_fault(cls)
+                if fault:
+                    self.failed[name] = fault
+                    warnings.warn(f"sawdrift plugin {ep.name!r} from distribution {dist!r}: "
+                                  f"{fault}; it is skipped", PluginWarning, stacklevel=3)
+                    continue
                 version = getattr(cls, "kernel_interface", None)
                 if version != KERNEL_INTERFACE:
                     msg = (f"model {name!r} is written for kernel interface {version!r}; this "
@@ -174,6 +202,9 @@ class Registry:
 
     def register(self, cls: type[ContactModel], distribution: str = "<runtime>") -> None:
         """Register a model class at run time (tests, notebooks)."""
+        fault = model_fault(cls)
+        if fault:
+            raise PluginError(fault)
         if cls.name in self.models and self.models[cls.name].cls is not cls:
             raise PluginError(f"model name {cls.name!r} is already registered")
         self.models[cls.name] = ModelEntry(cls, distribution, cls.name)
