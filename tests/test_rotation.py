@@ -175,3 +175,12 @@ def test_a_load_curve_of_a_sphere_free_to_turn_is_refused_in_one_line():
     assert proc.returncode == 2
     assert proc.stderr.strip().count("\n") == 0
     assert "effects.rolling_resistance" in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_a_rolling_resistance_the_step_cannot_resolve_is_named(sawdrift_main):
+    """mu_r = 1e6 makes a rolling spring whose stable step needs 1.7e8 steps a period: the run
+    failed on a non-finite state that blamed particle.m_star and drive.amplitude."""
+    proc = sawdrift_main("run", "--model", "mmd", "--rotation", "--rolling-resistance", "1e6",
+                         "--periods", "10")
+    assert proc.returncode == 2 and "effects.rolling_resistance = 1e+06" in proc.stderr
+    assert "m_star = 0.1 with" not in proc.stderr and proc.stderr.strip().count("\n") == 0

@@ -96,6 +96,7 @@ def check_model_cmd(
 
     Checks, on every profile the model declares:
 
+    - finite_forces: N* and T* finite on random histories
     - normalization: N*(1) = 1
     - passivity: loop work of N* da* + T* db* >= 0 on closed cycles, both ways
     - coulomb_bound, kernel_vs_reference, velocity_independence

@@ -69,7 +69,16 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     if scene.effects.rotation and scene.effects.rolling_resistance > 0.0:
         # the rolling spring 2.25 mu_r^2 dN*/da* acts on the rotational inertia kappa m*
         mu_r = scene.effects.rolling_resistance
-        k = max(k, 2.25 * mu_r**2 * p * a_ref ** (p - 1.0) / scene.particle.gyration)
+        k_r = 2.25 * mu_r**2 * p * a_ref ** (p - 1.0) / scene.particle.gyration
+        need = math.sqrt(k_r / scene.particle.m_star) / 0.06
+        if need > FINEST_STEPS and scene.numerics.steps_per_period is None:
+            # named as normal damping is: a non-finite state blamed m* and A*
+            raise SceneError(
+                f"effects.rolling_resistance = {mu_r:g}: its rolling spring on m* = "
+                f"{scene.particle.m_star:g} needs {need:.2g} steps a period for a stable step; "
+                f"allowed: up to {FINEST_STEPS:.0e} (mu_r is about sqrt(a0/R), of order 1e-3 "
+                "for a millimetre ball; or a heavier particle)")
+        k = max(k, k_r)
     omega = math.sqrt(k / scene.particle.m_star)
     # viscous normal damping c: the explicit step is stable for h c / m* below about 0.3
     # (measured: mmd, m* = 0.01, c = 1 goes wrong at 295 steps); h c / m* <= 0.1 is kept

@@ -75,9 +75,10 @@ class Material(BaseModel):
     restitution: Annotated[float, bounded(0.0, 1.0)] | None = Field(
         None,
         description=(
-            "coefficient of restitution e of a free normal impact, in [0, 1]: a normal damping "
-            "that gives the rebound speed ratio e independent of impact speed (compliant "
-            "models); default none, the undamped contact"
+            "coefficient of restitution e of a free normal impact, in [0, 1] (at least 0.05 "
+            "for a compliant model, whose damping the explicit scheme must resolve): a normal "
+            "damping that gives the rebound speed ratio e independent of impact speed "
+            "(compliant models); default none, the undamped contact"
         ),
     )
     adhesion: Annotated[float, bounded(0.0, 1e12)] = Field(

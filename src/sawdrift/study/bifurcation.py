@@ -413,7 +413,7 @@ def _check_branches(folder: Path, field_name: str, axis: list[float], samples: i
         f"out = {str(folder)!r} already holds this diagram's {what} branch"
         f"{'es' if len(dropped) > 1 else ''}, which this run would drop from its table: give "
         f"{' and '.join(wider)} (values already computed are read back), another output folder, "
-        "or force=True (--force) to replace the table")
+        "or force it (--force; force=True in Python) to replace the table")
 
 
 def _write(folder: Path, result: BifurcationResult, scene: Scene) -> None:

@@ -161,7 +161,8 @@ def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[
         # (a cross-check of the two engines compared identical rows)
         raise TableProvenanceError(
             f"table {str(table)!r} holds rows of the {' and '.join(engines)} engine; this sweep "
-            f"runs {engine}: write a new table, or force=True (--force) to keep those rows")
+            f"runs {engine}: write a new table, or force it (--force; force=True in Python) to "
+            "keep those rows")
     other = [r for r in rows if r.get("code_hash") != code_hash([str(r.get("model"))])]
     if other:
         theirs = sorted({f"sawdrift {r.get('version')} code {r.get('code_hash') or 'unrecorded'}"
@@ -170,7 +171,7 @@ def check_resume(table: Path, rows: Iterable[dict[str, Any]], stored_base: dict[
             f"table {str(table)!r} holds {len(other)} rows computed by other code "
             f"({'; '.join(theirs[:3])}; this is sawdrift {__version__} code "
             f"{code_hash(sorted({str(r.get('model')) for r in other}))}): write a new table, or "
-            "force=True (--force) to add rows of this code to it")
+            "force it (--force; force=True in Python) to add rows of this code to it")
     if stored_base is UNREADABLE_BASE:
         raise TableProvenanceError(
             f"table {str(table)!r}: the base scene its rows were swept from (in its metadata, or "
