@@ -368,3 +368,22 @@ def test_a_start_without_a_direct_run_is_refused():
     assert out.returncode == 2
     assert out.stderr.strip() == ("error: --start 0.3 is the start of the direct run: add "
                                   "--direct (or drop --start)")
+
+
+def test_a_direct_run_too_long_is_refused_before_the_field(sawdrift_main, tmp_path):
+    """--periods 9990000 is within numerics.periods' (0, 1e7], but the direct run goes one row
+    interval past its end: the field was computed first, then the run failed naming
+    numerics.periods = 10014975. Now one line names --periods and the most it takes, before any
+    work, and the largest length it names runs."""
+    from sawdrift.study.field import MOST_PERIODS, direct_scenes
+
+    out = tmp_path / "f"
+    proc = sawdrift_main("field", "--backward", "0.5", "--direct", "--wavelength", "200",
+                         "--periods", "9990000", "--points", "4", "-o", str(out))
+    assert proc.returncode == 2 and proc.stderr.startswith("error: --periods = 9.99e+06")
+    assert "give at most" in proc.stderr and not out.exists()
+    most = float(proc.stderr.rsplit("give at most", 1)[1])
+    scene = sd.Scene(drive={"backward": 0.5}).with_updates(
+        **{"drive.wavelength": 200.0})
+    _sc, longer, total, every = direct_scenes(scene, 0.0, most)
+    assert longer.numerics.periods <= MOST_PERIODS and total > 0 and every >= 1

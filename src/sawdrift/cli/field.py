@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import json
+from contextlib import nullcontext
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 
 from .._startup import fast_start
-from ..study.progress import notice
+from ..errors import SawdriftError
+from ..study.progress import notice, run_progress
 from .app import (
     Engine,
     Param,
@@ -98,15 +100,26 @@ def field_cmd(
         drift_field(scene, points, refine=refine, progress=False)
 
     sample = [sp for _, sp in species_scenes(scene, species)]
+    extra = 0.0
+    if direct:
+        from ..study.field import direct_scenes
+
+        # checked before the field, and counted in its size (the estimate left it out)
+        direct_periods = float(2000.0 if direct_periods is None else direct_periods)
+        try:
+            extra = direct_scenes(scene, start, direct_periods)[2] / (points * len(sample))
+        except SawdriftError as exc:
+            _fail(str(exc).replace("periods = ", "--periods = ", 1))
     size_check("field", sample, points * len(sample), workers=workers, engine=engine, yes=yes,
-               show=progress, unit="point", smaller="fewer --points")
+               show=progress, unit="point", smaller="fewer --points", extra_steps=extra)
     if out is not None:  # after every check: a refused command leaves no folder behind
         _writable(out, folder=kind == "folder")
     study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
                         progress=progress, engine=engine)
     if direct:
-        periods = float(2000.0 if direct_periods is None else direct_periods)
-        with notice(f"field: direct run of {periods:g} periods through the field", 2.0, progress):
+        periods = float(direct_periods)
+        with notice(f"field: direct run of {periods:g} periods through the field", 2.0, progress), \
+                (run_progress("field: direct run") if progress else nullcontext()):
             study.direct = direct_run(scene, start, periods, study.fields[0], engine=engine)
     data = study.to_json()
     if kind == ".csv":

@@ -450,6 +450,41 @@ def _row_interval(total: int, samples: int) -> int:
     return 1
 
 
+#: the most periods a scene may run (``numerics.periods``)
+MOST_PERIODS = 1e7
+
+
+def direct_scenes(scene: Scene, start: float, periods: float, wavelength: float | None = None,
+                  samples: int = 400) -> tuple[Scene, Scene, int, int]:
+    """The direct run's scene, the one it runs (one row interval longer: rows are taken before
+    each step, so the run goes on one interval past its end for a row to fall at t* = periods;
+    the last one was up to an interval short of it, 2992.5 of 3000), its steps and its row
+    interval; one-line SceneErrors for what it cannot run, checked before any field is computed
+    (a run too long for ``numerics.periods`` failed after the field, naming a length the user
+    had not given)."""
+    lstar = wavelength if wavelength is not None else wavelength_star(scene)
+    if lstar is None:
+        raise SceneError("a direct run needs the wavelength: drive.wavelength = L* (wavelength / "
+                         "a0, --wavelength), or a device with device.wavelength or "
+                         "device.substrate.density")
+    if not (math.isfinite(periods) and periods >= 1.0):
+        raise SceneError(f"periods = {periods!r}: a direct run needs at least 1 period")
+    window = max(1, min(20, int(periods) // 2))
+    sc = scene.with_updates(**{"drive.wavelength": float(lstar), "drive.position": float(start),
+                               "numerics.settle": False, "numerics.measure_periods": window,
+                               "numerics.periods": min(float(periods), MOST_PERIODS)})
+    k_per = steps_per_period(sc)
+    total = int(round(k_per * periods))
+    every = _row_interval(total, samples)
+    length = (total + every) / k_per
+    if length > MOST_PERIODS:
+        most = math.floor(MOST_PERIODS * total / (total + every))
+        raise SceneError(f"periods = {periods:g}: a direct run goes one row interval past its "
+                         f"end ({length:.8g} periods), and a run takes at most {MOST_PERIODS:g}; "
+                         f"give at most {most:g}")
+    return sc, sc.with_updates(**{"numerics.periods": length}), total, every
+
+
 def direct_run(scene: Scene, start: float, periods: float, fld: Field | None = None, *,
                wavelength: float | None = None, samples: int = 400,
                engine: str = "compiled") -> dict[str, Any]:
@@ -462,23 +497,9 @@ def direct_run(scene: Scene, start: float, periods: float, fld: Field | None = N
     wavelengths) and, given the field ``fld`` of the same scene, ``"predicted"``: the path of
     :func:`predict_path` on the same times, its final position and the trap nearest to it.
     """
-    lstar = wavelength if wavelength is not None else wavelength_star(scene)
-    if lstar is None:
-        raise SceneError("a direct run needs the wavelength: drive.wavelength = L* (wavelength / "
-                         "a0, --wavelength), or a device with device.wavelength or "
-                         "device.substrate.density")
-    if not (math.isfinite(periods) and periods >= 1.0):
-        raise SceneError(f"periods = {periods!r}: a direct run needs at least 1 period")
-    window = max(1, min(20, int(periods) // 2))
-    sc = scene.with_updates(**{"drive.wavelength": float(lstar), "drive.position": float(start),
-                               "numerics.periods": float(periods), "numerics.settle": False,
-                               "numerics.measure_periods": window})
-    # rows are taken before each step: the run goes on one row interval past its end, so that a
-    # row falls at t* = periods (the last one was up to an interval short of it: 2992.5 of 3000)
+    sc, longer, total, every = direct_scenes(scene, start, periods, wavelength, samples)
+    lstar = float(sc.drive.wavelength)
     k_per = steps_per_period(sc)
-    total = int(round(k_per * periods))
-    every = _row_interval(total, samples)
-    longer = sc.with_updates(**{"numerics.periods": (total + every) / k_per})
     res = run(longer, trajectory=True, engine=engine, record_every=every)  # type: ignore[arg-type]
     tr = res.trajectory
     tr = tr[tr["t"] <= total / k_per + 0.5 / k_per]
