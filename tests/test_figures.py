@@ -353,3 +353,20 @@ def test_a_sticking_drift_in_a_title_is_not_a_negative_zero():
 
     assert signed(-3.1e-7) == "-3.1e-07" and signed(0.709) == "+0.709"
     assert signed(-0.2553) == "-0.255" and "-0.000" not in signed(-4e-4)
+
+
+def test_drift_map_titles_wrap_and_a_map_of_runaways_draws_without_warning(tmp_path, figures):
+    """Two --where values made the panel titles run into each other and off the figure; a map
+    whose every drift is NaN (all runaways) printed "All-NaN slice encountered"."""
+    import warnings
+
+    table = _table(n=4, **{"particle.load": 0.05, "effects.rotation": True})
+    table["regime"], table["drift_ratio"] = "runaway", math.nan
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sd.plot_drift_map(table, tmp_path / "d.png", "mmd",
+                          where={"particle.load": "0.05", "effects.rotation": "true"})
+    fig = figures[-1]
+    titles = [ax.get_title() for ax in fig.axes[:2]]
+    assert all("particle.load = 0.05" in t.replace("\n", " ") for t in titles)
+    assert max(len(line) for t in titles for line in t.split("\n")) <= 60

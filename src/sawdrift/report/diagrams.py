@@ -316,7 +316,7 @@ def _draw(ax, amps, masses, codes, title: str, x: str = "amplitude", y: str = "m
     ax.set_yscale("log")
     ax.set_xlabel(column_label(x))
     ax.set_ylabel(column_label(y))
-    ax.set_title(f"{title}\n{note}" if note else title, fontsize=10)
+    ax.set_title(wrapped(f"{title}\n{note}" if note else title), fontsize=10)
     handles = mark_creep(ax, amps, masses, creep) if creep is not None else []
     if rows is not None:
         handles += draw_resonances(ax, rows, x, y)
@@ -441,7 +441,9 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     drift = sub["drift_ratio"].to_numpy(float)[idx].reshape(gy.size, gx.size)
     # the scale stops at the surface speed (|ratio| = 1): a few chaotic cells far beyond it (long
     # flights after a violent launch) would otherwise wash out every other cell; they saturate
-    peak = max(float(np.nanmax(np.abs(drift))), 1e-6)
+    finite = np.abs(drift[np.isfinite(drift)])
+    # no finite drift at all (every cell a runaway): printed "All-NaN slice encountered"
+    peak = max(float(finite.max()) if finite.size else 0.0, 1e-6)
     lim = min(peak, 1.0)
     mesh = ax2.pcolormesh(10**gx, 10**gy, drift, cmap="RdBu_r",
                           norm=TwoSlopeNorm(vcenter=0.0, vmin=-lim, vmax=lim), shading="auto")
@@ -460,6 +462,16 @@ def plot_drift_map(table: pd.DataFrame, path: str | Path, model: str | None = No
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
+
+
+def wrapped(title: str, width: int = 60) -> str:
+    """``title`` broken into lines of at most ``width`` characters (its own line breaks kept):
+    two panels' long titles (a model and two --where values) ran into each other and off the
+    figure."""
+    import textwrap
+
+    return "\n".join(line for part in title.split("\n")
+                     for line in (textwrap.wrap(part, width) or [""]))
 
 
 def _nearest_panel(ax, sub: pd.DataFrame, x: str, y: str, title: str, note: bool = True
@@ -500,6 +512,6 @@ def _nearest_axes(ax, sub: pd.DataFrame, x: str, y: str, gx: np.ndarray, gy: np.
     ax.set_ylim(10 ** gy[0], 10 ** gy[-1])
     ax.set_xlabel(column_label(x))
     ax.set_ylabel(column_label(y))
-    ax.set_title(title, fontsize=10)
+    ax.set_title(wrapped(title), fontsize=10)
     format_device_axes(ax, x, y)
     return draw_resonances(ax, sub, x, y)
