@@ -362,3 +362,16 @@ def test_adaptive_options_given_where_they_would_be_ignored_are_one_line(args, n
     assert proc.returncode == 2 and needle in proc.stderr
     assert proc.stderr.strip().count("\n") == 0
     assert not (tmp_path / "t.parquet").exists()
+
+
+def test_an_adaptive_map_counts_its_cells_on_one_counter_against_its_budget(tmp_path, capsys):
+    """Each round's sweep drew its own counter, which restarted at 0 % and reached 100 % with
+    "ETA 0.0 s" before the next round began; one counter now counts every cell the map runs,
+    out of its budget, never going back."""
+    import re
+
+    base = sd.Scene(model="mmd", numerics={"periods": 20, "settle": False})
+    sd.adaptive_sweep("mmd", (1e-2, 1.0), (0.05, 2.0), budget=30, base=3, levels=1, scene=base,
+                      table=tmp_path / "a.parquet", workers=1, progress=True)
+    counts = [int(m) for m in re.findall(r"(\d+)/30 cell", capsys.readouterr().err)]
+    assert counts and counts == sorted(counts) and counts[-1] <= 30

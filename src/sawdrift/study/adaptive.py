@@ -236,6 +236,7 @@ def adaptive_sweep(
         disagreed); with a table also those of :func:`table_share`: the table keeps rows it
         held before, also of an earlier run with a larger budget or of another map.
     """
+    from .progress import progress as make_progress
     from .sweep import sweep
 
     _check_arguments(model, m_range, a_range, budget=budget, base=base, levels=levels,
@@ -245,9 +246,15 @@ def adaptive_sweep(
     la = np.linspace(math.log10(a_range[0]), math.log10(a_range[1]), fine)
     frames: list[pd.DataFrame] = []
     ran = [0]  # cells run by this call (those already in the table are not)
+    # one counter over the whole map, against its budget (each round's own sweep restarted at
+    # 0 % and reached 100 % with "ETA 0.0 s" before the next round began)
+    bar = (make_progress(budget, "sweep --adaptive (budget)", "cell")
+           if progress and regime_of is None else None)
 
     def counted(row: dict[str, Any]) -> None:
         ran[0] += 1
+        if bar is not None:
+            bar.update(1)
         if on_row is not None:
             on_row(row)
 
@@ -256,7 +263,7 @@ def adaptive_sweep(
         if regime_of is not None:
             ran[0] += len(keys)
             return {k: regime_of(m, a) for k, (m, a) in zip(keys, pts, strict=True)}
-        frame = sweep([model], points=pts, base=scene, table=table, progress=progress,
+        frame = sweep([model], points=pts, base=scene, table=table, progress=False,
                       on_row=counted, engine=engine, force=force, traces=traces,
                       executor=executor)
         lookup = {(round(math.log10(r.m_star), 9), round(math.log10(r.amplitude), 9)): r.regime
@@ -272,6 +279,8 @@ def adaptive_sweep(
         ref.run()
     finally:
         executor.close()
+        if bar is not None:
+            bar.close()
     if regime_of is not None:
         out = pd.DataFrame({"model": model, "m_star": [10.0 ** lm[i] for i, _ in ref.computed],
                             "amplitude": [10.0 ** la[j] for _, j in ref.computed],
