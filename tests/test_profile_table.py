@@ -110,3 +110,21 @@ def test_a_rewritten_law_file_is_another_base_scene_for_a_sweep(tmp_path):
         sd.sweep("mmd", "0.1,1,3", "0.1", base=base, table=out)
     _table(law, a, a**1.5)  # the same law again: the table resumes
     assert len(sd.sweep("mmd", "0.1,1,3", "0.1", base=base, table=out)) == 3
+
+
+def test_a_table_shorter_than_the_compressions_of_its_drive_is_warned(tmp_path, sphere_csv):
+    """A table ending at a* = 1.5 under A* = 1.2 (compressions to about 1 + 2 A* = 3.4): beyond
+    its last point N* follows its last tangent (6.39 at a* = 3.3 where the tabulated law gives
+    8.42), which nothing said. A table reaching a* = 6 gets no warning."""
+    a = np.linspace(0.0, 1.5, 61)
+    short = _table(tmp_path / "short.csv", a, a**1.5)
+
+    def said(path: str) -> list[str]:
+        res = sd.run(sd.Scene(model="mmd", drive={"amplitude": 1.2},
+                              particle={"profile": {"shape": "table", "file": path}},
+                              numerics={"settle": False}))
+        return [w for w in res.warnings if w.startswith("profile table")]
+
+    (warning,) = said(short)
+    assert "ends at a* = 1.5" in warning and "about a* = 3.4" in warning
+    assert said(sphere_csv) == []

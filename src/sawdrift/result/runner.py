@@ -224,12 +224,32 @@ def _reported_drift(out: WaveRun, drift_ratio: float,
     return drift, drift_ratio, math.nan
 
 
+def _table_warning(scene: Scene) -> tuple[str, ...]:
+    """A tabulated normal law that ends below the compression the drive reaches, about 1 + 2 A*
+    (the weight's compression and twice the vertical amplitude): beyond its last
+    point N* follows the table's last tangent, which nothing said (a table ending at a* = 1.5
+    gave N* = 6.39 at a* = 3.3 where the law it tabulated gives 8.42)."""
+    profile = scene.particle.profile
+    amplitude = getattr(scene.drive, "amplitude", None)
+    if profile.shape != "table" or amplitude is None:
+        return ()
+    law = profile.law()
+    end = float(law[1] * law[2])  # cells times the cell width: the table's last a*
+    reach = 1.0 + 2.0 * float(amplitude)
+    if reach <= end:
+        return ()
+    return (f"profile table: it ends at a* = {end:.3g} and the drive compresses to about a* = "
+            f"{reach:.3g}; beyond its last point N* follows the table's last tangent (extend the "
+            "table to cover the compressions)",)
+
+
 def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
     """A device scene's validity warnings, a long-time mean's whose error is a lower bound,
     whose halves differ (the error then half their difference) or whose bounces heat up, and
     a measuring window too long for all its events to be kept."""
     warnings = (tuple(device_warnings(scene.device, scene.effects.adhesion))
                 if scene.device is not None else ())
+    warnings += _table_warning(scene)
     if out.long_mean is not None and out.long_mean.approaching and out.speed > 0.0:
         periods = out.stepper.step / out.stepper.k_per
         warnings += (f"not settled: {STILL_MOVING}: its windows still moved one way when they "
