@@ -184,3 +184,57 @@ def test_a_rolling_resistance_the_step_cannot_resolve_is_named(sawdrift_main):
                          "--periods", "10")
     assert proc.returncode == 2 and "effects.rolling_resistance = 1e+06" in proc.stderr
     assert "m_star = 0.1 with" not in proc.stderr and proc.stderr.strip().count("\n") == 0
+
+
+def test_a_sphere_free_to_turn_under_air_drag_alone_holds_no_drift():
+    """Air drag acts on the centre and has no moment about it, as a load: the contact point no
+    longer stays at (1 + 1/kappa) x*, and psi must be integrated. The from-rest shortcut gave a
+    settled drift ratio of 0.134; without a load the drift is zero (brute force with loads of
+    +-1e-12 gives +-2e-11 a0 f, L/c)."""
+    res = sd.run(sd.Scene(model="mmd", effects={"rotation": True, "air_drag": 0.05}))
+    assert abs(res.drift_ratio) < 2e-5 and res.regime in ("stick", "oscillating_slip")
+
+
+@pytest.mark.parametrize("load", [0.03, -0.035])
+def test_a_load_held_by_rolling_resistance_is_a_steady_drift_not_a_runaway(load):
+    """mu_r = 0.04 holds |L| < 0.04: the sphere rolls steadily at 1.3-1.8 times the surface
+    speed, and a window that fast with a fitted acceleration of 3e-6 per period squared (noise)
+    was called a runaway. The default run agrees with a fixed run of 4000 periods (last 2000)
+    within 1e-4."""
+    scene = _rolling("mmd", 0.316, load, mu_r=0.04)
+    res = sd.run(scene)
+    brute = sd.run(scene.with_updates(**{"numerics.settle": False, "numerics.periods": 4000,
+                                         "numerics.measure_periods": 2000}))
+    assert res.regime == brute.regime == ("drift_with" if load > 0 else "drift_against")
+    assert res.settled and res.drift_ratio == pytest.approx(brute.drift_ratio, rel=1e-4)
+
+
+def test_adhesion_raises_the_load_rolling_resistance_holds_to_mu_r_one_plus_two_f_pull():
+    """The rolling spring is capped at mu_r (N* + 2 F*_pull), as friction is: with F*_pull = 0.5
+    and mu_r = 0.01 it holds 0.02. L = 0.015 was a runaway (acceleration -0.02, of the wrong
+    sign), and L = -0.01 was warned as at the bound mu_r, the load nothing restores."""
+    from sawdrift.dynamics.steady import holding_bound
+
+    def scene(load: float) -> sd.Scene:
+        return _rolling("mmd", 0.316, load, mu_r=0.01).with_updates(
+            **{"effects.adhesion": "jkr", "material.adhesion": 0.5})
+
+    assert holding_bound(scene(0.015)) == pytest.approx(0.02, rel=1e-12)
+    held = sd.run(scene(0.015))
+    assert held.regime != "runaway" and held.drift_ratio > 0.0
+    neutral = sd.run(scene(-0.01))
+    assert not any("nothing restores" in w or "neutral" in w for w in neutral.warnings)
+    assert sd.run(scene(0.025)).regime == "runaway"
+
+
+def test_force_velocity_of_a_turning_sphere_spans_its_rolling_resistance():
+    """A sphere free to turn holds at most mu_r: the curve's loads were spread over (-mu, mu),
+    three of five runaways. Without rolling resistance it holds nothing: one line."""
+    from sawdrift.errors import SceneError
+    from sawdrift.study.force_velocity import force_velocity
+
+    curve = force_velocity(_rolling("mmd", 0.316, 0.0, mu_r=0.04), points=3, workers=1)
+    assert max(abs(curve.forces)) < 0.04 and curve.friction_bound == 0.04
+    assert "runaway" not in curve.regimes
+    with pytest.raises(SceneError, match="effects.rolling_resistance"):
+        force_velocity(_rolling("mmd", 0.316, 0.0), points=3, workers=1)

@@ -34,8 +34,9 @@ def force_velocity_cmd(
                                                      "in mN and m/s)")] = None,
     model: Annotated[str | None, typer.Option("--model", help="contact model name")] = None,
     param: Param = None,
-    points: Annotated[int, typer.Option("--points", help="loads, evenly inside (-mu, mu) M g, "
-                                        "at least 3 (the unloaded run is added)")] = 21,
+    points: Annotated[int, typer.Option("--points", help="loads, evenly inside (-mu, mu) M g (a "
+                                        "sphere free to turn: (-mu_r, mu_r)), at least 3 (the "
+                                        "unloaded run is added)")] = 21,
     workers: Annotated[int | None, typer.Option("--workers", help="local processes (default: all "
                                                 "cores)")] = None,
     engine: Engine = "compiled",

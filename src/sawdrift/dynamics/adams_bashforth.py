@@ -290,7 +290,7 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
     roll = prm[P_ROLL]
     rr = prm[P_RR]
     load = prm[P_LOAD]
-    spin = integrates_psi(roll, rr, load, y)
+    spin = integrates_psi(roll, rr, load, y, prm[P_DRAG])
     kappa_m = rotational_inertia(mx, roll)
     p_exp = prm[P_P]
     rest = prm[P_REST]

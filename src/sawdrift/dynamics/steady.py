@@ -148,11 +148,13 @@ def holding_bound(scene) -> float:
     contact that has, turns the sphere. Held on average, the sphere's mean spin acceleration
     vanishes, so the mean rolling torque (per R and M g) balances the mean friction, which
     balances the load: |L| <= mu_r <N*> = mu_r (the rolling spring is capped at mu_r N*, and
-    the mean normal force is the weight). Without rolling resistance no load is held: the
-    sphere rolls away under any load (docs/physics.md, "Loads")."""
+    the mean normal force is the weight; with adhesion the cap is mu_r (N* + 2 F*_pull), as
+    friction's, and the bound mu_r (1 + 2 F*_pull)). Without rolling resistance no load is held:
+    the sphere rolls away under any load (docs/physics.md, "Loads")."""
     bound = friction_bound(scene)
     if scene.effects.rotation:
-        bound = min(bound, scene.effects.rolling_resistance)
+        pull = scene.material.adhesion if scene.effects.adhesion != "none" else 0.0
+        bound = min(bound, scene.effects.rolling_resistance * (1.0 + 2.0 * pull))
     return bound
 
 

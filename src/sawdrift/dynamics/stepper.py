@@ -167,7 +167,8 @@ class Stepper:
     def _integrates_psi(self, prm: np.ndarray) -> bool:
         """Whether the loops integrate psi from the present state, with the parameters ``prm``
         (the common ones lead both schemes' vectors): :func:`~.rolling.integrates_psi`."""
-        return bool(integrates_psi.py_func(self.roll, prm[ig.P_RR], prm[ig.P_LOAD], self.y))
+        drag = 0.0 if self.rigid else float(prm[ig.P_DRAG])
+        return bool(integrates_psi.py_func(self.roll, prm[ig.P_RR], prm[ig.P_LOAD], self.y, drag))
 
     def _bind_history(self) -> None:
         assert self.history is not None

@@ -98,4 +98,6 @@ def _bound_text(curve) -> str:
     """The friction bound as the title names it: mu M g, or mu (1 + 2 F*_pull) M g."""
     if curve.friction_bound == curve.mu:
         return f"mu M g (mu = {curve.mu:g})"
+    if curve.friction_bound < curve.mu:  # a sphere free to turn: its rolling resistance
+        return f"the rolling resistance's {curve.friction_bound:.4g} M g"
     return f"mu (1 + 2 F*_pull) M g = {curve.friction_bound:.4g} M g (adhesion)"

@@ -172,6 +172,14 @@ def outcome(load: float, mu: float, friction: bool, air_drag: float, flight: boo
     # its fitted acceleration is noise: measured on mmd at m* 0.01-0.1, A* 0.6-10)
     relative = abs(drift) - surface_speed
     if (load != 0.0 and surface_speed > 0.0 and relative > 0.5 * surface_speed
-            and drift * acceleration > 0.0):
+            and drift * acceleration > 0.0
+            and abs(acceleration) * elapsed > GROWTH * surface_speed):
         return "runaway"
     return ""
+
+
+#: share of the surface speed the mean speed must have gained at the window's acceleration over
+#: the run's length for a fast window under a load to be a runaway: a sphere rolling steadily at
+#: 1.7 times the surface speed, held by its rolling resistance, has a fitted acceleration of
+#: 3e-6 per period squared (noise), and was called a runaway (`outcome`)
+GROWTH = 0.1

@@ -28,7 +28,8 @@ from typing import Any
 import numpy as np
 
 from ..contact.binding import bind
-from ..dynamics.steady import friction_bound
+from ..dynamics.steady import holding_bound
+from ..errors import SceneError
 from ..result.result import json_value
 from ..scene.schema import Scene
 from .load_curve import _device_scales, _Runner, _surface_speed
@@ -64,7 +65,7 @@ class ForceVelocity:
     #: standard error of the free drift (a0 f), NaN where it settled
     free_drift_se: float = math.nan
     #: the most friction can hold on average, in M g: mu, or mu (1 + 2 F*_pull) with adhesion
-    #: (:func:`~sawdrift.dynamics.steady.friction_bound`); NaN: mu
+    #: (:func:`~sawdrift.dynamics.steady.holding_bound`); NaN: mu
     bound: float = math.nan
 
     @property
@@ -161,7 +162,14 @@ def force_velocity(
         raise ValueError(f"points = {points}: a force-velocity curve needs at least 3")
     speed = _surface_speed(scene)
     mu = scene.material.mu
-    bound = friction_bound(scene)  # mu, or mu (1 + 2 F*_pull) with adhesion
+    # mu, or mu (1 + 2 F*_pull) with adhesion; a sphere free to turn holds at most mu_r (1 + 2
+    # F*_pull): its loads were spread over (-mu, mu), most of them runaways
+    bound = holding_bound(scene)
+    if bound <= 0.0:
+        raise SceneError("effects.rotation: a sphere free to turn with no rolling resistance "
+                         "holds no load (the least load rolls it away), so it has no "
+                         "force-velocity curve; give effects.rolling_resistance > 0 "
+                         "(--rolling-resistance)")
     t0 = time.perf_counter()
     runner = _Runner(scene, engine, workers or os.cpu_count() or 1)
     try:
