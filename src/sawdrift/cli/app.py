@@ -23,6 +23,7 @@ import sawdrift as sd
 
 from .._paths import write_problem
 from .._startup import stored_help
+from ..study.executor import check_scheduler
 
 
 def reflow(text: str | None) -> str | None:
@@ -142,8 +143,6 @@ def _scheduler_option(value: str | None) -> str | None:
     """``--scheduler``'s value checked before any work (:func:`~sawdrift.study.executor.check_scheduler`)."""
     if value is None:
         return None
-    from ..study.executor import check_scheduler
-
     try:
         return check_scheduler(value)
     except sd.SawdriftError as exc:

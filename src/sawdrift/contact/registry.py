@@ -18,6 +18,7 @@ import pluggy
 from .. import hookspecs
 from ..errors import ModelNotFoundError, PluginError
 from .base import KERNEL_INTERFACE, ContactModel
+from .slots import TangentialLaw
 
 ENTRY_POINT_GROUP = "sawdrift.models"
 
@@ -74,8 +75,6 @@ def model_fault(cls: type[ContactModel]) -> str:
     the command line cannot choose, no profiles declared (check-model then passed it with no
     check run, and every run refused its sphere), or a tangential law without its step (listed
     as available, an internal failure when run)."""
-    from .slots import TangentialLaw
-
     if not NAME.fullmatch(cls.name):
         return (f"model name {cls.name!r} is not usable: letters, digits, '_', '.' and '-' only "
                 "(a model is chosen as --model NAME, and a comma separates models)")

@@ -47,6 +47,7 @@ import pandas as pd
 
 from ..errors import SceneError
 from .executor import Executor, resolve_workers
+from .progress import progress as make_progress
 
 Key = tuple[int, int]
 Cell = tuple[int, int, int]  # lower-left corner (i, j) and size s, in fine-grid spacings
@@ -236,7 +237,6 @@ def adaptive_sweep(
         disagreed); with a table also those of :func:`table_share`: the table keeps rows it
         held before, also of an earlier run with a larger budget or of another map.
     """
-    from .progress import progress as make_progress
     from .sweep import sweep
 
     _check_arguments(model, m_range, a_range, budget=budget, base=base, levels=levels,
