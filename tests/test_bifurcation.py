@@ -363,3 +363,24 @@ def test_the_figure_lists_only_what_it_draws_and_a_log_sweep_on_a_log_axis():
     logs = bifurcation(sd.Scene(model="material_point", drive={"amplitude": 0.5}),
                        "particle.m_star", "0.01:1:3", samples=4, workers=1, progress=False)
     assert plot_bifurcation(logs).axes[-1].get_xscale() == "log"
+
+
+def test_a_rigid_point_sliding_all_period_has_the_finite_exponent_of_heavy_sliding():
+    """material_point m* = 1, Gz = 0.5, Gx = 10 Gz: it slides through the whole period and never
+    lands. A velocity perturbation shifts the two reversals of the slip, where friction jumps
+    by 2 mu N*, and decays by 4 mu (1 - Gz cos phi0) / (m* 2 pi U sin phi0) a period (heavy
+    sliding, 2 phi0 - pi = 2 Gz sin phi0, U the surface speed): -0.0541 at mu = 0.05, -0.1082
+    at mu = 0.1. The twin displaced along y*' alone was held to the surface at once, and the
+    exponent said -inf."""
+    from scipy.optimize import brentq
+
+    amp = 0.5 / (2.0 * math.pi) ** 2
+    scene = sd.Scene(model="material_point", particle={"m_star": 1.0},
+                     drive={"amplitude": amp, "horizontal_ratio": 10.0})
+    res = bifurcation(scene, "material.mu", "0.05,0.1", samples=16, workers=1, progress=False)
+    phi0 = brentq(lambda p: 2.0 * p - math.pi - 2.0 * 0.5 * math.sin(p), 0.01, math.pi - 0.01)
+    speed = 2.0 * math.pi * 10.0 * amp
+    for mu in (0.05, 0.1):
+        rows = res.table[np.isclose(res.table["value"], mu)]
+        expected = -mu * 4.0 * (1.0 - 0.5 * math.cos(phi0)) / (2.0 * math.pi * speed * math.sin(phi0))
+        assert rows["lyapunov"].iloc[0] == pytest.approx(expected, rel=2e-3)

@@ -199,17 +199,19 @@ def stretch_loop(stepper: Any) -> Any | None:
     return fn
 
 
-def twin_pair(stepper: Any, scale: np.ndarray, d0: float) -> tuple[Any, Any, np.ndarray]:
-    """The estimate's start: a copy of ``stepper``, a twin of it displaced by ``d0`` along y*'
-    (scaled by ``scale[2]``), and that displacement dy (0, x*', y*, y*')."""
+def twin_pair(stepper: Any, scale: np.ndarray, d0: float, axis: int = 3
+               ) -> tuple[Any, Any, np.ndarray]:
+    """The estimate's start: a copy of ``stepper``, a twin of it displaced by ``d0`` along state
+    ``axis`` (3: y*', 1: x*'; scaled by ``scale[axis - 1]``), and that displacement dy
+    (0, x*', y*, y*')."""
     base = stepper.twin()
     dy = np.zeros(4)
-    dy[3] = d0 * scale[2]
+    dy[axis] = d0 * scale[axis - 1]
     return base, base.twin(dy), dy
 
 
 def compiled_stretchings(stepper: Any, scale: np.ndarray, periods: int, align: int,
-                         d0: float, early: tuple[int, ...]) -> np.ndarray | None:
+                         d0: float, early: tuple[int, ...], axis: int = 3) -> np.ndarray | None:
     """:func:`~sawdrift.dynamics.window.stretching_logs` by :func:`stretch_body` or
     :func:`stretch_rigid_body`: the same numbers, bit for bit, or None where the Python loop
     must run (:func:`stretch_loop`, or a period that filled an event log or went bad: that loop
@@ -218,7 +220,7 @@ def compiled_stretchings(stepper: Any, scale: np.ndarray, periods: int, align: i
     fn = stretch_loop(stepper)
     if fn is None:
         return None
-    base, twin, dy = twin_pair(stepper, scale, d0)
+    base, twin, dy = twin_pair(stepper, scale, d0, axis)
     logs = np.empty(periods)
     u = np.ascontiguousarray(scale[:3], dtype=np.float64)
     status = np.zeros(2, dtype=np.int64)

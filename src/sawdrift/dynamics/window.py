@@ -402,12 +402,27 @@ def stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int,
     With ``early``, the series stops after any of those numbers of stretchings where they
     already decide the verdict (:func:`~sawdrift.dynamics.lyapunov.verdict_clear`).
     ``stepper`` itself is not advanced.
+
+    A displacement along y*' that the motion erases before the series begins (a rigid contact
+    holds y* to the surface at once) is tried again along x*': only if that one is erased too
+    is the series -inf. A rigid point sliding through the whole period, never landing, was
+    given -inf where its velocity perturbation decays at a finite rate (-0.108 a period at
+    mu = 0.1, m* = 1, Gz = 0.5, Gx = 10 Gz).
     """
+    logs = _stretching_logs(stepper, scale, periods, align, d0, early, 3)
+    if logs.size == 1 and logs[0] == -math.inf:
+        return _stretching_logs(stepper, scale, periods, align, d0, early, 1)
+    return logs
+
+
+def _stretching_logs(stepper: Stepper, scale: np.ndarray, periods: int, align: int, d0: float,
+                     early: tuple[int, ...], axis: int) -> np.ndarray:
+    """:func:`stretching_logs` from a displacement along state ``axis`` (3: y*', 1: x*')."""
     if COMPILED_STRETCHINGS:
-        logs = compiled_stretchings(stepper, scale, periods, align, d0, early)
+        logs = compiled_stretchings(stepper, scale, periods, align, d0, early, axis)
         if logs is not None:
             return logs
-    base, twin, dy = twin_pair(stepper, scale, d0)
+    base, twin, dy = twin_pair(stepper, scale, d0, axis)
     logs = np.empty(periods)
     u = [float(v) for v in scale]  # (x*', y*, y*') in plain floats: three numbers a period
     for j in range(align + periods):
