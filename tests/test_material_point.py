@@ -184,3 +184,18 @@ def test_period_one_bouncing_ball_multiplier_is_the_lyapunov_exponent():
     assert res.hop_period == 1 and not res.chaotic
     assert res.lyapunov == pytest.approx(math.log(abs(1 - math.sqrt(gamma**2 - math.pi**2))),
                                          abs=0.01)
+
+
+@pytest.mark.slow
+def test_an_inelastic_ball_collapses_onto_the_plate_late_in_a_long_run():
+    """e = 0.8, Gamma = 1.01: every period the ball lifts off and its bounces collapse onto the
+    plate. The collapse ended on a floor of the located impact speeds set by the gap function's
+    rounding at t* of order 1; the drive's phase 2 pi t* is known to a few ulps of t*, and by
+    t* = 1e4 that error is a hundred times larger: the ball kept bouncing on rounding until a
+    step held 4096 events (exit 2 at t* = 10437). It hops with period 1 to the end."""
+    scene = sd.Scene(model="material_point", particle={"m_star": 0.025330295910584444},
+                     material={"restitution": 0.8},
+                     drive={"amplitude": 1.01, "horizontal_ratio": 0.0},
+                     numerics={"settle": False, "periods": 11000})
+    res = sd.run(scene)
+    assert res.regime == "hopping" and res.hop_period == 1 and res.orbit_period == 1
