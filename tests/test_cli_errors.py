@@ -329,3 +329,22 @@ def test_a_second_ctrl_c_while_the_first_is_handled_ends_in_one_line(sawdrift_ma
     proc = sawdrift_main("run", "--model", "mmd")
     assert proc.returncode == 130
     assert proc.stderr.strip().startswith("interrupted") and "\n" not in proc.stderr.strip()
+
+
+def test_an_interrupted_command_puts_the_ctrl_c_handler_back(sawdrift_main, monkeypatch):
+    """A command stopped by Ctrl-C ignores further ones while it ends; called in-process (as
+    these tests call it) it left SIGINT ignored for the rest of the process and for every
+    process started after, and a later test's study could not be interrupted."""
+    import importlib
+    import signal
+
+    module = importlib.import_module("sawdrift.cli.app")
+    before = signal.getsignal(signal.SIGINT)
+
+    def stopped(*args, **kwargs):
+        module.interrupted("interrupted: nothing kept")
+
+    monkeypatch.setattr(type(module.app), "__call__", stopped)
+    proc = sawdrift_main("run", "--model", "mmd")
+    assert proc.returncode == 130 and "interrupted" in proc.stderr
+    assert signal.getsignal(signal.SIGINT) is before

@@ -364,13 +364,29 @@ def interrupted(message: str) -> None:
 
 
 def _ignore_further_interrupts() -> None:
-    """Ignore Ctrl-C from here on: the command is ending and has said what it kept."""
+    """Ignore Ctrl-C until the command has ended (:func:`_main` puts the handler back: a
+    process that called the command line in-process, a test, kept ignoring it, and so did every
+    process it started after)."""
     import signal
 
     try:
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     except ValueError:  # not the main thread: nothing to change there
-        pass
+        return
+    if _SIGINT_BEFORE[0] is None:
+        _SIGINT_BEFORE[0] = previous
+
+
+#: the SIGINT handler :func:`_ignore_further_interrupts` replaced, put back when the command ends
+_SIGINT_BEFORE: list[Any] = [None]
+
+
+def _restore_interrupts() -> None:
+    import signal
+
+    if _SIGINT_BEFORE[0] is not None:
+        signal.signal(signal.SIGINT, _SIGINT_BEFORE[0])
+        _SIGINT_BEFORE[0] = None
 
 
 def interrupted_placements(done: int, total: int, written: Path | None) -> None:
@@ -392,6 +408,13 @@ def _say_interrupted(code: object) -> None:
 
 
 def _main() -> None:
+    try:
+        _run_main()
+    finally:
+        _restore_interrupts()
+
+
+def _run_main() -> None:
     _INTERRUPT_SAID[0] = False  # one command line (tests call main several times in a process)
     try:
         empty = _empty_output(sys.argv[1:])
