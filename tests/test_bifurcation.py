@@ -384,3 +384,16 @@ def test_a_rigid_point_sliding_all_period_has_the_finite_exponent_of_heavy_slidi
         rows = res.table[np.isclose(res.table["value"], mu)]
         expected = -mu * 4.0 * (1.0 - 0.5 * math.cos(phi0)) / (2.0 * math.pi * speed * math.sin(phi0))
         assert rows["lyapunov"].iloc[0] == pytest.approx(expected, rel=2e-3)
+
+
+def test_the_json_says_where_a_lyapunov_exponent_of_minus_inf_became_null():
+    """JSON has no -inf: a ball resting on the plate (its perturbation erased by the landing,
+    -inf in the table) and a value not computed both read lyapunov null; ``erased`` tells
+    them apart."""
+    res = bifurcation(ball(), "drive.amplitude", "0.5,3.5", samples=16, workers=1,
+                      progress=False)
+    table = res.table.groupby("value")["lyapunov"].first()
+    points = {p["value"]: p for p in json.loads(json.dumps(res.summary))["points"]
+              ["material_point"]["up"]}
+    assert table[0.5] == -math.inf and points[0.5]["lyapunov"] is None and points[0.5]["erased"]
+    assert math.isfinite(table[3.5]) and points[3.5]["erased"] is False

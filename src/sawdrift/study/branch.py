@@ -108,12 +108,15 @@ class Point:
         return "sticking" if self.contact_fraction > STICK_FRACTION else "impacts"
 
     def summary(self) -> dict[str, Any]:
-        """JSON-ready numbers of this point (non-finite numbers become None)."""
+        """JSON-ready numbers of this point (non-finite numbers become None; ``erased`` says
+        where a Lyapunov exponent of -inf, a perturbation erased, became None: a reader could
+        not tell it from one not computed)."""
         def num(x: float) -> float | None:
             return float(x) if math.isfinite(x) else None
 
         return {"value": self.value, "period": self.period, "exact": self.exact,
                 "multiplier": num(self.multiplier), "lyapunov": num(self.lyapunov),
+                "erased": self.lyapunov == -math.inf,
                 "contact_lost": self.contact_lost,
                 "contact_fraction": num(self.contact_fraction), "contact": self.contact,
                 "periods": self.periods, "error": self.error}
