@@ -25,8 +25,8 @@ from . import rigid_closed_forms as cf
 _FUNCTIONS = (cf._tangential_mass, cf._tangential_load, cf._normal, cf._least_normal_inside,
               cf._contact_lost_at,
               cf._stick_margin, cf._sticks, cf._t_req, cf._slip_state, cf._slip_velocity, cf._gap,
-              rg._log, rg._free_tangential, rg._flight, rg._gap_rounding, rg._impact, rg._land,
-              rg._lift,
+              rg._log, rg._free_tangential, rg._flight, rg._gap_rounding, rg._slip_rounding,
+              rg._impact, rg._land, rg._lift,
               cf._contact_end, rg._stick, rg._slip, rg._contact, rg._end_step, rg.rigid_loop)
 _IMPORTS = (
     "from sawdrift.dynamics.adams_bashforth import *  # noqa: F403\n"
