@@ -397,3 +397,17 @@ def test_the_json_says_where_a_lyapunov_exponent_of_minus_inf_became_null():
               ["material_point"]["up"]}
     assert table[0.5] == -math.inf and points[0.5]["lyapunov"] is None and points[0.5]["erased"]
     assert math.isfinite(table[3.5]) and points[3.5]["erased"] is False
+
+
+def test_a_located_change_takes_the_periods_met_beside_it_not_the_brackets_ends():
+    """The inelastic ball on a coarse grid: the bracket [3.7, 3.9] holds the doubling (3.7242)
+    and the sticking regained on the period-2 orbit (3.8569), and both took the bracket's end
+    periods: "sticking_regained 1 -> 2". The orbits met beside the located value are period 2
+    on both sides."""
+    res = bifurcation(ball(), "drive.amplitude", "lin:3.7:3.9:2", samples=16, locate=True,
+                      tolerance=1e-4, workers=1, progress=False)
+    (regained,) = [b for b in res.bifurcations if b["kind"] == "sticking_regained"]
+    assert regained["value"] == pytest.approx(3.85685, abs=2e-3)
+    assert (regained["from_period"], regained["to_period"]) == (2, 2)
+    (flip,) = [b for b in res.bifurcations if b["kind"] == "period_doubling"]
+    assert (flip["from_period"], flip["to_period"]) == (1, 2)

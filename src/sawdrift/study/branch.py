@@ -373,6 +373,10 @@ def refine(scene_at: Callable[[float], Scene], state: str, prev: Point, nxt: Poi
     q = min(prev.period, nxt.period)
     steps = moved = 0
     ahead = list(ahead)
+    # the orbit periods met closest to the located value on each side (a coarse bracket can hold
+    # a doubling besides the change located: its ends' periods named a sticking regained on the
+    # period-2 orbit "1 -> 2")
+    sides: dict[bool, int] = {}
 
     def same_at(value: float) -> tuple[bool, Stepper]:
         scene = scene_at(value)
@@ -380,7 +384,10 @@ def refine(scene_at: Callable[[float], Scene], state: str, prev: Point, nxt: Poi
         if kind == "period_doubling":
             side = _flip_side(trial, scene, q, budget)
             return (side == prev.period if side is not None else True), trial
-        return _same_side(kind, prev, attractor(trial, scene, budget, value)), trial
+        point = attractor(trial, scene, budget, value)
+        same = _same_side(kind, prev, point)
+        sides[same] = point.period
+        return same, trial
 
     while True:
         end = hi
@@ -400,7 +407,11 @@ def refine(scene_at: Callable[[float], Scene], state: str, prev: Point, nxt: Poi
         lo, stepper, hi = end, trial, ahead.pop(0)
         moved += 1
     a, b = sorted((lo, hi))
-    return {"value": 0.5 * (lo + hi), "bracket": [a, b], "steps": steps, "moved": moved}
+    out = {"value": 0.5 * (lo + hi), "bracket": [a, b], "steps": steps, "moved": moved}
+    if True in sides and False in sides:
+        near, far = sides[True], sides[False]  # prev's side, then the other
+        out["from_period"], out["to_period"] = (near, far) if lo <= hi else (far, near)
+    return out
 
 
 def _flip_side(stepper: Stepper, scene: Scene, q: int, budget: Budget) -> int | None:
