@@ -400,17 +400,28 @@ def test_ctrl_c_keeps_the_placements_that_ended(monkeypatch, capsys, tmp_path):
     its results"). Now the ensemble of those that ended is written and printed, marked
     interrupted, and the exit status is 130 (a Ctrl-C in the third placement here: the first
     two, started before it, end)."""
+    import threading
+
     from sawdrift.mixture.plane import PlaneModel
 
     from .cli_call import kept_after_ctrl_c
 
     calls = {"n": 0}
+    lock = threading.Lock()
+    # the first two runs (seeds 0 and 1, on the two threads) both start before either ends, so
+    # the third run is seed 2's: without it a quick seed 0 let seed 2 start before seed 1, the
+    # third run was seed 1's, and the sort kept seed 0 alone (once in about ten full runs)
+    both_started = threading.Barrier(2)
     real_run = PlaneModel.run
 
     def third_interrupts(self, times):
-        calls["n"] += 1
-        if calls["n"] == 3:
+        with lock:
+            calls["n"] += 1
+            n = calls["n"]
+        if n == 3:
             raise KeyboardInterrupt
+        if n < 3:
+            both_started.wait(timeout=60)
         return real_run(self, times)
 
     monkeypatch.setattr(PlaneModel, "run", third_interrupts)
