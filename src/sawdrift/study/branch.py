@@ -373,10 +373,12 @@ def refine(scene_at: Callable[[float], Scene], state: str, prev: Point, nxt: Poi
     q = min(prev.period, nxt.period)
     steps = moved = 0
     ahead = list(ahead)
-    # the orbit periods met closest to the located value on each side (a coarse bracket can hold
-    # a doubling besides the change located: its ends' periods named a sticking regained on the
-    # period-2 orbit "1 -> 2")
+    # a change of contact takes the orbit periods met closest to it on each side (a coarse
+    # bracket can hold a doubling besides it: its ends' periods named a sticking regained on the
+    # period-2 orbit "1 -> 2"); a change of period keeps the bracket's ends, whose periods are
+    # the branch's own (those met beside a change into irregular motion differ with the step)
     sides: dict[bool, int] = {}
+    contact_kind = kind not in ("period_doubling", "other")
 
     def same_at(value: float) -> tuple[bool, Stepper]:
         scene = scene_at(value)
@@ -386,7 +388,8 @@ def refine(scene_at: Callable[[float], Scene], state: str, prev: Point, nxt: Poi
             return (side == prev.period if side is not None else True), trial
         point = attractor(trial, scene, budget, value)
         same = _same_side(kind, prev, point)
-        sides[same] = point.period
+        if contact_kind:
+            sides[same] = point.period
         return same, trial
 
     while True:
