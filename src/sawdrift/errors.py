@@ -28,3 +28,10 @@ class NonFiniteStateError(SawdriftError, FloatingPointError):
     The message names t*, the state and the cause (for example more events in one step than the
     rigid scheme resolves), and what to change.
     """
+
+
+def first_line(exc: BaseException, most: int = 200) -> str:
+    """``Type: first line of the message`` (at most ``most`` characters of it): what a one-line
+    error says of an exception raised by code that is not sawdrift's (a plugin's kernel)."""
+    text = (str(exc).strip().splitlines() or [""])[0][:most]
+    return f"{type(exc).__name__}: {text}"

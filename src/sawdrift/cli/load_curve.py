@@ -62,6 +62,7 @@ def load_curve_cmd(
     (particle.load, device.load) is refused; a device's incline stays. Device scenes are
     reported in mN, m/s and mW.
     """
+    from ..dynamics.steady import refuse_free_spin
     from ..report.load_curve_plot import plot_load_curve
     from ..study.load_curve import load_curve
 
@@ -77,7 +78,7 @@ def load_curve_cmd(
         _writable(out, folder=kind == "folder")
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
     refuse_given_load(scene, "load-curve", "runs its own loads, from 0 to the stall load")
-    _refuse_free_spin(scene)
+    refuse_free_spin(scene, "load curve")  # before the estimate's calibration
     species = 1
     if axis is not None:
         from ..study.axes import parse_values
@@ -103,18 +104,6 @@ def load_curve_cmd(
         return
     _print_curve(data, scene)
     _wrote(out)
-
-
-def _refuse_free_spin(scene: Any) -> None:
-    """A sphere free to turn with no rolling resistance holds no load: the load acts on its
-    centre, and only a rolling torque could balance the friction that holds it (its holding
-    bound, :func:`~sawdrift.dynamics.steady.holding_bound`, is 0): no curve to compute."""
-    from ..dynamics.steady import holding_bound
-
-    if scene.effects.rotation and holding_bound(scene) <= 0.0:
-        _fail("effects.rotation: a sphere free to turn with no rolling resistance holds no load "
-              "(the least load rolls it away), so it has no load curve; give "
-              "effects.rolling_resistance > 0 (--rolling-resistance)")
 
 
 def _free_line(data: dict[str, Any]) -> str | None:

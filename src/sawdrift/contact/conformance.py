@@ -69,7 +69,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import SceneError
+from ..errors import SceneError, first_line
 from ..scene.profiles import Profile
 from ..scene.schema import format_validation_error
 from .adhesion import Adhesion, adhesive_model, pulloff, supports_adhesion
@@ -489,6 +489,4 @@ def _guarded(check: Any, model: ContactModel, name: str) -> Check:
     try:
         return check(model)
     except Exception as exc:  # noqa: BLE001 - the model's code, whatever it raises, fails the check
-        text = (str(exc).strip().splitlines() or [""])[0][:200]
-        return Check(name, "fail", math.nan, math.nan,
-                     f"the model raised {type(exc).__name__}: {text}")
+        return Check(name, "fail", math.nan, math.nan, f"the model raised {first_line(exc)}")

@@ -48,6 +48,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..errors import SceneError
 from . import adams_bashforth as ig
 from .direct import settle_direct
 from .evidence import EV_LANDING
@@ -153,9 +154,23 @@ def holding_bound(scene) -> float:
     the sphere rolls away under any load (docs/physics.md, "Loads")."""
     bound = friction_bound(scene)
     if scene.effects.rotation:
-        pull = scene.material.adhesion if scene.effects.adhesion != "none" else 0.0
-        bound = min(bound, scene.effects.rolling_resistance * (1.0 + 2.0 * pull))
+        bound = min(bound, scene.effects.rolling_resistance * (1.0 + 2.0 * _pulloff(scene)))
     return bound
+
+
+def refuse_free_spin(scene, curve: str) -> None:
+    """A one-line SceneError where the scene holds no load at all (:func:`holding_bound` 0: a
+    sphere free to turn with no rolling resistance), so that ``curve`` (a load curve, a
+    force-velocity curve) has nothing to compute."""
+    if scene.effects.rotation and holding_bound(scene) <= 0.0:
+        raise SceneError("effects.rotation: a sphere free to turn with no rolling resistance "
+                         f"holds no load (the least load rolls it away), so it has no {curve}; "
+                         "give effects.rolling_resistance > 0 (--rolling-resistance)")
+
+
+def _pulloff(scene) -> float:
+    """F*_pull of the scene's adhesive law (material.adhesion), 0 without adhesion."""
+    return scene.material.adhesion if scene.effects.adhesion != "none" else 0.0
 
 
 def friction_bound(scene) -> float:
@@ -166,8 +181,7 @@ def friction_bound(scene) -> float:
     all the time can resist mu (1 + 2 F*_pull) on average, one that lifts off less. Adhesion with
     F*_pull = 1 and mu = 0.3 holds a load of 0.89 and slides at 0.91, against mu = 0.3 without it.
     """
-    pull = scene.material.adhesion if scene.effects.adhesion != "none" else 0.0
-    return scene.material.mu * (1.0 + 2.0 * pull)
+    return scene.material.mu * (1.0 + 2.0 * _pulloff(scene))
 
 
 def load_runs_away(load: float, mu: float, friction: bool, air_drag: float) -> bool:

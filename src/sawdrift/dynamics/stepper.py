@@ -245,8 +245,10 @@ class Stepper:
             first, start = len(rows), self.step
             self._advance(n_steps, strobe, rows)
             if len(rows) > first:
-                block = np.concatenate(rows[first:])
-                self._keep_rows(block[(-start) % self.rec_every::self.rec_every].copy())
+                kept = np.concatenate(rows[first:])[(-start) % self.rec_every::self.rec_every]
+                self.rec_chunks.append(kept.copy())
+                self.rec_rows += kept.shape[0]
+                self._thin_trajectory()
             return
         if not (self.record and strobe is None and rows is None and self.rec_every > 0):
             self._advance(n_steps, strobe, rows)
@@ -254,14 +256,11 @@ class Stepper:
         target = self.step + max(0, int(n_steps))
         while self.step < target:
             self._advance(min(target - self.step, SEGMENT_ROWS * self.rec_every))
-            self._keep_rows(None)
+            self._thin_trajectory()
 
-    def _keep_rows(self, block: np.ndarray | None) -> None:
-        """Append ``block`` to the trajectory (None: the loop appended its rows), thinned past
-        :data:`~.records.MAX_TRAJECTORY_ROWS` (:func:`~.records.thinned`)."""
-        if block is not None:
-            self.rec_chunks.append(block)
-            self.rec_rows += block.shape[0]
+    def _thin_trajectory(self) -> None:
+        """Thin the trajectory past :data:`~.records.MAX_TRAJECTORY_ROWS`
+        (:func:`~.records.thinned`)."""
         if self.rec_rows > MAX_TRAJECTORY_ROWS:
             self.rec_chunks, self.rec_every = thinned(self.rec_chunks, self.h, self.rec_every)
             self.rec_rows = self.rec_chunks[0].shape[0]

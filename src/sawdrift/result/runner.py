@@ -31,7 +31,7 @@ from ..dynamics.integrate import FLIGHTS_PER_MEAN, MOST_FLIGHT_BUDGETS, WaveRun,
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
 from ..dynamics.steady import holding_bound, load_is_neutral, runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
-from ..errors import PluginError, SawdriftError, SceneError
+from ..errors import PluginError, SawdriftError, SceneError, first_line
 from ..scene.device import device_outputs
 from ..scene.schema import Scene
 from ..scene.validity import device_warnings
@@ -96,10 +96,8 @@ def plugin_failures(name: str) -> Iterator[None]:
         entry = registry.models.get(name)
         if entry is None or entry.distribution == BUILTIN_DISTRIBUTION:
             raise
-        text = (str(exc).strip().splitlines() or [""])[0][:200]
         raise PluginError(f"model {name!r} from {entry.distribution!r} failed: "
-                          f"{type(exc).__name__}: {text}; `sawdrift check-model {name}` tests "
-                          "it") from None
+                          f"{first_line(exc)}; `sawdrift check-model {name}` tests it") from None
 
 
 def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Result:

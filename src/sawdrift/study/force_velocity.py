@@ -28,8 +28,7 @@ from typing import Any
 import numpy as np
 
 from ..contact.binding import bind
-from ..dynamics.steady import holding_bound
-from ..errors import SceneError
+from ..dynamics.steady import holding_bound, refuse_free_spin
 from ..result.result import json_value
 from ..scene.schema import Scene
 from .load_curve import _device_scales, _Runner, _surface_speed
@@ -164,12 +163,8 @@ def force_velocity(
     mu = scene.material.mu
     # mu, or mu (1 + 2 F*_pull) with adhesion; a sphere free to turn holds at most mu_r (1 + 2
     # F*_pull): its loads were spread over (-mu, mu), most of them runaways
+    refuse_free_spin(scene, "force-velocity curve")
     bound = holding_bound(scene)
-    if bound <= 0.0:
-        raise SceneError("effects.rotation: a sphere free to turn with no rolling resistance "
-                         "holds no load (the least load rolls it away), so it has no "
-                         "force-velocity curve; give effects.rolling_resistance > 0 "
-                         "(--rolling-resistance)")
     t0 = time.perf_counter()
     runner = _Runner(scene, engine, workers or os.cpu_count() or 1)
     try:
