@@ -195,3 +195,38 @@ def test_explicit_touching_positions_run_in_2d(monkeypatch):
     result = sort_mixture(scene, table, periods=1e7, samples=2)
     run = result.runs[0]
     assert run.x[-1, 1] > run.x[-1, 0]  # the small bead (index 1) ahead of the large one
+
+
+def test_a_jitter_that_presses_rows_together_is_refused_before_the_curves(monkeypatch):
+    """Rows 1.05 diameters apart moved across the wave by 0.3 small radii press neighbouring
+    beads together by up to about half a small radius, five times what the 2-D model pushes
+    apart (0.1): one line naming --jitter and particles.spacing, before any curve is computed
+    (it ended in an internal failure, 'beads 20 and 40 overlap'); 0.01 small radii runs."""
+    scene, particles = plate()
+    computed = []
+
+    def fake_curves(scene, radii, **kw):
+        computed.append(radii)
+        return plate_curves()
+
+    monkeypatch.setattr(sort_module, "curves_for", fake_curves)
+    with pytest.raises(sd.errors.SceneError, match=r"--jitter = 0.3: .*particles\.spacing"):
+        sort_mixture(scene, {**particles, "spacing": 1.05}, seeds=2, periods=1e3, samples=2,
+                     jitter_radii=0.3)
+    assert computed == []
+    table = {**particles, "count": 24, "row": 6, "spacing": 1.05}
+    result = sort_mixture(scene, table, seeds=1, periods=1e3, samples=2, jitter_radii=0.01)
+    assert result.runs[0].max_overlap < 10.0
+
+
+@pytest.mark.parametrize("n", [1.0, 1.3, 2.0, 3.2, 9.0, 16.0])
+def test_speed_is_the_inverse_of_load_between_the_sampled_normal_loads(n):
+    """speed(l, n) reads back the drift ratio that load(v, n) was asked at, on a sampled normal
+    load and between two (there it interpolated the two curves' speeds at a fixed load, where
+    load interpolates their loads at a fixed speed: the small bead's curves here differ in
+    slope and offset, and it read back speeds 0.02 to 0.1 off). Within 1e-5: load() reads the
+    curves off a regular table of 2001 speeds."""
+    small = plate_curves()[0]
+    for v in (-0.3, -0.05, 0.0, 0.05, 0.2):
+        ell = float(small.load(v, n)) / n
+        assert small.speed(ell, n) == pytest.approx(v, abs=1e-5)

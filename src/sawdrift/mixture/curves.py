@@ -166,11 +166,31 @@ class SpeciesCurves:
         return out if np.ndim(n) else out[0]
 
     def speed(self, ell: float, n: float) -> float:
-        """The drift ratio under l = L / N = ``ell`` and N / W = ``n`` (read along the load)."""
-        rows = np.array([np.interp(ell, self.loads[i], self.speeds[i])
-                         for i in range(self.normal.size)])
+        """The drift ratio under l = L / N = ``ell`` and N / W = ``n``: the inverse of
+        :meth:`load` at that n.
+
+        On a sampled normal load it is that curve read along the load. Between two, the load at
+        a fixed speed is interpolated in log n (as :meth:`load` does, so that a chain steady in
+        one model is steady in the other), and that blended curve is read along the load, not
+        the two speeds at a fixed load interpolated (which read -0.2321 back for a load that
+        :meth:`load` gave at -0.2707, at n = 3.2).
+        """
+        logn_grid = np.log(self.normal)
         logn = math.log(min(max(n, self.normal[0]), self.normal[-1]))
-        return float(np.interp(logn, np.log(self.normal), rows))
+        k = int(np.clip(np.searchsorted(logn_grid, logn, side="right") - 1, 0,
+                        max(self.normal.size - 2, 0)))
+        t = 0.0 if self.normal.size == 1 else (logn - logn_grid[k]) / (logn_grid[k + 1]
+                                                                       - logn_grid[k])
+        if t <= 0.0 or t >= 1.0:
+            i = k if t <= 0.0 else k + 1
+            return float(np.interp(ell, self.loads[i], self.speeds[i]))
+        # the blend is linear between the union of both curves' samples (strictly increasing
+        # speeds, as in :meth:`_table`)
+        strict = self.speeds[k:k + 2] + 1e-12 * np.arange(self.speeds.shape[1])
+        knots = np.union1d(strict[0], strict[1])
+        blend = ((1.0 - t) * np.interp(knots, strict[0], self.loads[k])
+                 + t * np.interp(knots, strict[1], self.loads[k + 1]))
+        return float(np.interp(ell, blend, knots))
 
     def to_json(self) -> dict[str, Any]:
         return {"radius": self.radius, "weight": self.weight, "normal": self.normal.tolist(),

@@ -54,7 +54,16 @@ from . import plane_kernel as kernel
 from .chains import Bead
 from .curves import SpeciesCurves
 
-__all__ = ["PlaneModel", "PlaneRun", "clusters", "curve_arrays", "free_speeds", "jitter"]
+__all__ = ["PUSHED_APART", "TOLERANCE", "PlaneModel", "PlaneRun", "clusters", "curve_arrays", "free_speeds",
+           "jitter", "worst_overlap"]
+
+#: delta_tol over the smallest radius (:class:`PlaneModel`'s default ``tolerance``)
+TOLERANCE = 1e-2
+
+#: overlaps up to this many tolerances (delta_tol) are pushed apart in the first steps (a jitter
+#: may press touching beads together); a larger one is refused
+PUSHED_APART = 10.0
+
 
 #: pair force (in weights of the lighter bead) at which the overlap is the tolerance
 PRESS = 4.0
@@ -145,7 +154,7 @@ class PlaneModel:
     """
 
     def __init__(self, x: np.ndarray, y: np.ndarray, kinds: np.ndarray, beads: list[Bead],
-                 curves: list[SpeciesCurves], surface_speed: float, *, tolerance: float = 1e-2,
+                 curves: list[SpeciesCurves], surface_speed: float, *, tolerance: float = TOLERANCE,
                  perp: float = 1.0, slide: float = 0.1, skin: float = 6.0) -> None:
         self.x = np.array(x, dtype=float)
         self.y = np.array(y, dtype=float)
@@ -163,11 +172,9 @@ class PlaneModel:
         self._check_overlap()
 
     def _check_overlap(self) -> None:
-        pi, pj = kernel.build_pairs(self.x, self.y, self.kinds, self.rad, self.hgt, 0.0)
-        for i, j in zip(pi, pj, strict=True):
-            ov = kernel.pair_state(self.x, self.y, self.kinds, self.rad, self.hgt, i, j)[0]
-            if ov > 10.0 * self.tol:  # a jitter may press touching beads together (pushed apart)
-                raise ValueError(f"beads {min(i, j)} and {max(i, j)} overlap by {ov:.3g} m")
+        ov, i, j = worst_overlap(self.x, self.y, self.kinds, self.rad, self.hgt)
+        if ov > PUSHED_APART * self.tol:  # a jitter may press touching beads together
+            raise ValueError(f"beads {i} and {j} overlap by {ov:.3g} m")
 
     def run(self, times: np.ndarray, max_steps: int = 20_000_000) -> PlaneRun:
         """Move the beads to every time of ``times`` (s, non-decreasing, from 0)."""
@@ -194,6 +201,20 @@ class PlaneModel:
                         builds=int(stats[2]), solves=int(stats[3]), max_overlap=float(stats[4]),
                         wall_time_s=time.perf_counter() - t0,
                         chains=clusters(self.x, self.y, self.kinds, self.beads))
+
+
+def worst_overlap(x: np.ndarray, y: np.ndarray, kinds: np.ndarray, rad: np.ndarray,
+                  hgt: np.ndarray) -> tuple[float, int, int]:
+    """(largest overlap in m, bead i, bead j > i) over the touching pairs of a placement ((0, -1,
+    -1) when none touch); ``rad`` and ``hgt`` per species, as :class:`PlaneModel` keeps them."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    pi, pj = kernel.build_pairs(x, y, kinds, rad, hgt, 0.0)
+    worst = (0.0, -1, -1)
+    for i, j in zip(pi, pj, strict=True):
+        ov = float(kernel.pair_state(x, y, kinds, rad, hgt, i, j)[0])
+        if ov > worst[0]:
+            worst = (ov, int(min(i, j)), int(max(i, j)))
+    return worst
 
 
 def jitter(y: np.ndarray, size: float, seed: int) -> np.ndarray:

@@ -31,7 +31,7 @@ from ..scene.schema import Scene
 from .chains import Bead
 from .curves import Source, curves_for
 from .events import SlowModel, SlowRun
-from .plane import PlaneModel, PlaneRun, jitter
+from .plane import PUSHED_APART, TOLERANCE, PlaneModel, PlaneRun, jitter, worst_overlap
 from .segregation import lacey_segregation, purity, purity_index
 
 __all__ = ["PLANE", "VALIDATED", "SortResult", "slow_window", "sort_mixture", "time_to"]
@@ -176,6 +176,28 @@ def _sample_periods(periods: float, per_decade: int) -> np.ndarray:
     return np.concatenate(([0.0], grid, [periods] if grid[-1] < periods * (1 - 1e-12) else []))
 
 
+def _check_jitter(spec: Particles, species: list, beads: list[Bead], seeds: list[int],
+                  jitter_radii: float) -> None:
+    """Refuse, before any curve is computed, a ``--jitter`` that presses the beads of a 2-D
+    placement together by more than the model pushes apart (:data:`~.plane.PUSHED_APART`
+    tolerances, 0.1 small radius): close rows (a small ``particles.spacing``) moved across the
+    wave by a large jitter (spacing 1.05 with a jitter of 0.3 ended in an internal failure)."""
+    r_min = min(sp.radius for sp in species)
+    rad = np.array([b.radius for b in beads])
+    hgt = np.array([b.height for b in beads])
+    allowed = PUSHED_APART * TOLERANCE * r_min
+    for seed in seeds:
+        xy, kinds, _, _ = placement(spec.model_copy(update={"seed": seed}), species)
+        y = jitter(xy[:, 1], jitter_radii * r_min, seed)
+        ov, i, j = worst_overlap(xy[:, 0], y, np.asarray(kinds, dtype=np.int64), rad, hgt)
+        if ov > allowed:
+            raise SceneError(
+                f"--jitter = {jitter_radii:g}: it presses beads {i} and {j} of placement {seed} "
+                f"together by {ov / r_min:.2g} small radii, more than the "
+                f"{PUSHED_APART * TOLERANCE:g} the 2-D model pushes apart; give a smaller "
+                "--jitter or a larger particles.spacing")
+
+
 def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: int = 20,
                  periods: float = 1e9, samples: int = 12, target: float = 0.9,
                  source: Source = "native", geometry: str = "plane", perp: float = 1.0,
@@ -239,15 +261,17 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
     species = species_of(scene, spec, real)
     g = scene.device.gravity
     beads = [Bead(s.radius, s.a0, s.mass * g) for s in species]
+    seed_list = [spec.seed] if spec.positions is not None else list(range(spec.seed, spec.seed + seeds))
+    r_min = min(sp.radius for sp in species)
+    if geometry == "plane":
+        _check_jitter(spec, species, beads, seed_list, jitter_radii)
     t0 = time.perf_counter()
     curves = curves_for(scene, [s.radius for s in species], source=source, progress=progress)
     curve_wall = time.perf_counter() - t0
     u = 2.0 * math.pi * real.frequency * real.ratio * real.amplitude * real.horizontal
     right = 1 if curves[1].free > curves[0].free else 0  # driven to +x: the purity's orientation
     grid = _sample_periods(periods, samples)
-    seed_list = [spec.seed] if spec.positions is not None else list(range(spec.seed, spec.seed + seeds))
     cache: dict[tuple, Any] = {}
-    r_min = min(sp.radius for sp in species)
 
     def one(seed: int) -> tuple[np.ndarray, SlowRun | PlaneRun]:
         xy, kinds, _, _ = placement(spec.model_copy(update={"seed": seed}), species)
