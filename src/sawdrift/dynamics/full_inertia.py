@@ -28,9 +28,12 @@ Two kinds of approach remain, told apart by the window's gross slip:
   tolerance the particle's velocity is moved by it (projective integration: only the mean speed
   jumps; the vertical motion and the contact memory are kept, and re-adapt within a few
   periods, far less than W).
-* **A partly stuck contact** (creep). The mean velocity is held by the tangential contact
-  stiffness; the relaxation is the damped contact oscillation, a few of its periods, so the
-  windows converge by themselves. No jump is made.
+* **A partly stuck contact** (creep). The mean velocity is mostly held by the tangential
+  contact stiffness; the relaxation is then the damped contact oscillation, a few of its
+  periods, and the windows converge by themselves. Where the mean speed is predicted to relax
+  over a window or more and three window changes of one sign fall geometrically
+  (:func:`creep_ratio`), it still relaxes as a slow variable: the distance to go and the jump
+  use the measured ratio.
 
 The run stops when :data:`STEADY_CHANGES` consecutive changes of the window mean and the
 estimated remaining distance are all within half the tolerance (relative to the drift, with an
@@ -225,6 +228,35 @@ def remaining_distance(c1: float | None, c2: float, q_pred: float) -> float:
     return c2 * q / (1.0 - q)
 
 
+#: a partly stuck contact's windows are extrapolated (:func:`creep_ratio`) only where the mean
+#: speed is predicted to relax over a window or more: q = exp(-lambda W) at least this
+CREEP_Q = 0.5
+
+#: the largest factor between the 1 - q of two consecutive window ratios that still make one
+#: geometric approach (:func:`creep_ratio`)
+GEOMETRIC_SPREAD = 1.5
+
+
+def creep_ratio(c0: float | None, c1: float | None, c2: float) -> float | None:
+    """The window ratio q of a partly stuck contact whose mean speed still relaxes: three
+    consecutive window changes of one sign falling geometrically, c1 / c0 and c2 / c1 in (0, 1)
+    with their 1 - q within :data:`GEOMETRIC_SPREAD` of each other; None otherwise.
+
+    Its tangential stiffness does not always tie the mean speed to the surface within a window:
+    mmd m* = 3300, A* = 0.16, mu = 0.1, gross slip in 1.6 % of its periods, crept up by 9.4e-6,
+    8.7e-6, ... a window of 885 periods (ratio 0.927 throughout), changes within the accuracy
+    whose sum still to go was 1.0e-4: it stopped at 8.43e-4, where brute force reaches 9.447e-4
+    after 8e4 periods (Aitken's extrapolation with the measured ratio gives 9.45e-4).
+    """
+    if c0 is None or c1 is None or c0 == 0.0 or c1 == 0.0:
+        return None
+    r1, r2 = c1 / c0, c2 / c1
+    if not (0.0 < r1 < 1.0 and 0.0 < r2 < 1.0):
+        return None
+    g1, g2 = 1.0 - r1, 1.0 - r2
+    return r2 if max(g1, g2) <= GEOMETRIC_SPREAD * min(g1, g2) else None
+
+
 def learned_ratio(before: tuple[float, float], after: tuple[float, float], q: float) -> float:
     """The window ratio q measured across a jump: a secant of the change per window against the
     window mean, c = -(1 - q) (D - v*), through the pair before and the pair after the jump.
@@ -342,6 +374,7 @@ class _Approach:
     w0: int = 0
     prev: float | None = None
     last_change: float | None = None
+    older_change: float | None = None  # the change before last_change
     before: tuple[float, float] | None = None  # (window mean, change) where the last jump began
     steady_run: int = 0  # consecutive window changes within the accuracy
     flips: int = 0  # consecutive changes of alternating sign
@@ -356,7 +389,7 @@ class _Approach:
         if longer:
             # the ratio per window of a mode relaxing as exp(-lambda t) squares as it doubles
             self.w, self.q, self.flips = 2 * self.w, self.q * self.q, 0
-        self.prev, self.last_change, self.steady_run = None, None, 0
+        self.prev, self.last_change, self.older_change, self.steady_run = None, None, None, 0
 
     def judge(self, d: float, win: Window, noise: Callable[[], float] = lambda: 0.0
               ) -> tuple[str, float]:
@@ -378,7 +411,8 @@ class _Approach:
             self.before = None
         slow = win.contact_lost or win.gross_slip_fraction >= SLIDING_FRACTION
         last = self.last_change
-        remaining = remaining_distance(last, change, self.q if slow else 0.0)
+        creep = None if slow or self.q < CREEP_Q else creep_ratio(self.older_change, last, change)
+        remaining = remaining_distance(last, change, self.q if slow else (creep or 0.0))
         eps = accuracy(d, self.tol)
         self.steady_run = self.steady_run + 1 if abs(change) <= eps else 0
         if self.steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
@@ -390,8 +424,9 @@ class _Approach:
             return "settled", 0.0
         # no jump where nothing relaxes slowly (q = 0: the speed of a light particle settles
         # within a window, and changes of one sign are a beat of its contact, not an approach)
-        if (slow and self.q > 0.0 and last is not None and change * last > 0.0
-                and abs(remaining) > eps and not chases_noise(change, last, self.q, noise(), eps)):
+        q_jump = self.q if slow else (creep or 0.0)
+        if (q_jump > 0.0 and last is not None and change * last > 0.0 and abs(remaining) > eps
+                and not chases_noise(change, last, q_jump, noise(), eps)):
             self.jumps += 1
             self.before = (d, change)
             return "jump", remaining  # the next window re-adapts; compare the two after it
@@ -402,7 +437,7 @@ class _Approach:
             # the accuracy the alternation is the windows' noise (a sticking contact's drift of
             # 1e-8 changing sign), which the steady count above settles without longer windows
             return "longer", 0.0
-        self.prev, self.last_change = d, change
+        self.prev, self.last_change, self.older_change = d, change, last
         return "next", 0.0
 
 
