@@ -568,3 +568,80 @@ def test_a_heavy_creep_near_the_stick_boundary_is_not_stopped_on_its_slow_rise()
     assert res.settled is True
     assert agrees(res.drift_ratio, ref.drift_ratio), (res.drift_ratio, ref.drift_ratio)
     assert res.regime == ref.regime == "oscillating_slip"
+
+
+def test_changes_that_beat_on_a_slow_approach_do_not_settle_it():
+    """A heavy hop under a load near its holding limit creeps on by 4e-5 to 9e-5 a window, its
+    changes alternating large and small with a beat of about two windows (mmd m* = 75, A* = 1.3,
+    mu = 0.2, L = -0.18): the ratio of the last two, 0.015, said nothing was left, and it
+    settled 0.8 % short. The mean of the last changes, extrapolated, keeps the windows going;
+    the same changes scattered about a steady drift (mean near zero) still settle."""
+    from types import SimpleNamespace
+
+    from sawdrift.dynamics.approach import _Approach, trend_remaining
+
+    win = SimpleNamespace(out_of_contact_fraction=0.31, liftoffs_per_period=1.0,
+                          contact_lost=True, gross_slip_fraction=0.46)
+    beat = [-7.9e-5, -1.1e-5, -8.6e-5, -1.3e-6, -8.8e-5, -2.0e-6, -8.0e-5, -1.5e-6]
+
+    def actions(changes: list[float]) -> list[str]:
+        state = _Approach(w=134, q=0.956, tol=1e-3, w0=134, rate=0.0027)
+        d = state.prev = -0.2
+        out = []
+        for c in changes:
+            d += c
+            # the beat's noise refuses the jumps its small changes would ask (chases_noise)
+            out.append(state.judge(d, win, lambda: 1e-4)[0])
+        return out
+
+    assert "settled" not in actions(beat) and "jump" not in actions(beat)
+    scattered = [8e-5, -8e-5, 8.5e-5, -8.5e-5, 8e-5, -8e-5, 8.5e-5, -8.5e-5]
+    assert "settled" in actions(scattered)
+    # the mean change of the last four, 4.4e-5, times q / (1 - q) at most 20 (LONGEST_JUMP)
+    assert trend_remaining(beat[:4], 0.956) == pytest.approx(20 * 4.4325e-5, rel=1e-9)
+    assert trend_remaining(beat[:2], 0.956) == 0.0  # fewer than three changes: nothing to say
+
+
+def test_a_small_turn_back_does_not_hide_a_monotone_approach():
+    """Window means that move one way by more than the accuracy, one change turned back by a
+    beat (+2e-6 among -8e-5 changes), still approach; a wandering sequence does not."""
+    from sawdrift.dynamics.window_noise import approaches
+
+    rising = np.cumsum([0.0, -8e-5, -1e-5, -8.5e-5, 2e-6, -8.8e-5, -3e-5])
+    assert approaches(rising, 1e-4)
+    wandering = np.cumsum([0.0, -8e-5, 7e-5, -8.5e-5, 9e-5, -8.8e-5, 6e-5])
+    assert not approaches(wandering, 1e-4)
+
+
+@pytest.mark.slow
+def test_a_load_near_the_holding_limit_is_followed_to_its_slow_end():
+    """mmd m* = 47, A* = 0.71, mu = 0.15 under L = -0.1495 (the limit is 0.15): the speed relaxes
+    with a ratio of about 0.98 a window where 0.96 was predicted, and jumps of at most 20
+    changes left it settled 1.35e-3 short (-0.985942); the secant across a jump, standing out
+    of the noise on a contact that keeps touching, carries it on. Brute force over 60000
+    periods, measured over the last 15000."""
+    load = {"particle": {"m_star": 47.0, "load": -0.1495}, "drive": {"amplitude": 0.71},
+            "material": {"mu": 0.15}}
+    ref = sd.run(sd.Scene(model="mmd", **load, numerics={
+        "settle": False, "periods": 60000, "measure_periods": 15000, "max_periods": 60000}))
+    res = sd.run(sd.Scene(model="mmd", **load))
+    assert -1.0 < ref.drift_ratio < -0.98
+    assert res.settled is True
+    assert agrees(res.drift_ratio, ref.drift_ratio), (res.drift_ratio, ref.drift_ratio)
+
+
+@pytest.mark.slow
+def test_a_beating_hop_near_its_holding_limit_is_settled_right_or_says_it_is_still_moving():
+    """mmd m* = 75, A* = 1.3, mu = 0.2 under L = -0.18: brute force needs more than 4e4
+    periods (-0.20319 at 72000, measured over the last 16000); the default run settled at
+    -0.20027, 1.4 % short, with no warning. Now it agrees or it says it is still moving."""
+    load = {"particle": {"m_star": 75.0, "load": -0.18}, "drive": {"amplitude": 1.3},
+            "material": {"mu": 0.2}}
+    ref = sd.run(sd.Scene(model="mmd", **load, numerics={
+        "settle": False, "periods": 72000, "measure_periods": 16000, "max_periods": 72000}))
+    res = sd.run(sd.Scene(model="mmd", **load))
+    assert -0.21 < ref.drift_ratio < -0.2
+    if res.settled:
+        assert agrees(res.drift_ratio, ref.drift_ratio), (res.drift_ratio, ref.drift_ratio)
+    else:
+        assert any("still moving" in w for w in res.warnings), res.warnings

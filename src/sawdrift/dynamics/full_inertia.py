@@ -36,7 +36,9 @@ Two kinds of approach remain, told apart by the window's gross slip:
   use the measured ratio.
 
 The run stops when :data:`STEADY_CHANGES` consecutive changes of the window mean and the
-estimated remaining distance are all within half the tolerance (relative to the drift, with an
+estimated remaining distance (for a heavy particle also that of the mean of its last four
+changes, :func:`~.approach.trend_remaining`: a beat of two windows alternates its changes
+between large and small) are all within half the tolerance (relative to the drift, with an
 absolute floor of 2 % of the tolerance in drift-ratio units) and the tapered mean over the last
 two windows agrees with the last one's (a beat as long as a window makes every window agree on
 a biased mean, :func:`beats`; the windows then double), or at the first window whose
@@ -57,47 +59,39 @@ from functools import partial
 import numpy as np
 
 from .adams_bashforth import P_FRICTION, P_LOAD, P_M, P_ROLL
+from .approach import (  # noqa: F401 (the approach's names, as callers know them here)
+    ABS_FLOOR,
+    ACCURACY,
+    LONGEST_JUMP,
+    LONGEST_WINDOW,
+    SLIDING_FRACTION,
+    SLOW_Q,
+    STEADY_CHANGES,
+    _Approach,
+    accuracy,
+    creep_ratio,
+    learned_ratio,
+    relative_bound,
+    remaining_distance,
+    secant_ratio,
+)
 from .batch_means import period_rows
 from .evidence import EV_LANDING, EV_LIFT_OFF
 from .rolling import contact_point, integrates_psi
 from .slip_return import NORMAL_STIFFNESS, SlipReturn, free_vertical_period, vertical_beat
 from .stepper import Stepper
 from .window import Window, in_flight, measure_window
-from .window_noise import beats, change_noise, chases_noise, hann_mean
+from .window_noise import beats, change_noise, hann_mean
 
 #: free vertical periods per window
 VERTICALS = 3.0
 
-#: fraction of a window in gross slip from which its mean speed is a slow variable (a contact
-#: that is partly stuck most of the time relaxes with its tangential oscillation instead)
-SLIDING_FRACTION = 0.05
-
-#: the stage aims at this fraction of ``settle_tolerance`` (relative to the drift): a slow second
-#: mode (the undamped free vertical oscillation trading energy with the horizontal motion) can
-#: hide under window changes of this size, so the aim is well inside the tolerance
-ACCURACY = 0.5
-
-#: a drift ratio below which the tolerance is absolute (tol * ABS_FLOOR)
-ABS_FLOOR = 0.02
-
 #: windows the full-inertia stage may take at most
 MAX_WINDOWS = 60
-
-#: consecutive window changes within the accuracy that a settled drift needs (a hopping particle
-#: can drift on a slow mode whose changes grow before they decay)
-STEADY_CHANGES = 3
-
-#: the largest jump, in window changes: q / (1 - q) at most this, so a ratio q measured near one
-#: (a secant across a jump on a noisy, hopping window) cannot throw the speed far past its fixed
-#: point; a slower approach takes several jumps
-LONGEST_JUMP = 20.0
 
 #: decay times of the free vertical oscillation's amplitude a hop under air drag waits before
 #: its windows may settle (:func:`drag_settle_periods`)
 DRAG_DECAYS = 2.0
-
-#: windows may grow to this many times their first length (changes that alternate in sign)
-LONGEST_WINDOW = 16
 
 #: windows the full-inertia stage may always take, even past the settle cap
 MIN_WINDOWS = 12
@@ -132,6 +126,8 @@ class FullInertia:
     #: the beat (periods) of the free vertical oscillation after which a contact that had held
     #: slid again (:mod:`.slip_return`), 0 where none did
     slip_beat: float = 0.0
+    #: the distance still to go after the last window (:attr:`~.approach._Approach.to_go`)
+    to_go: float = 0.0
 
     def drift(self, speed: float) -> float | None:
         """The settled drift (x* per period) to report: the last window's tapered mean
@@ -151,17 +147,6 @@ def full_window_length(m_star: float, theta: float, minimum: int, rigid: bool = 
     vertical = free_vertical_period(m_star)
     tangential = 2.0 * math.pi * math.sqrt(theta * m_star / NORMAL_STIFFNESS)
     return max(int(minimum), int(math.ceil(VERTICALS * vertical)), int(math.ceil(2.0 * tangential)))
-
-
-def relative_bound(drift_ratio: float, tol: float) -> float:
-    """The tolerance relative to the drift ratio, with the floor :data:`ABS_FLOOR` (below it the
-    bound is absolute)."""
-    return tol * max(abs(drift_ratio), ABS_FLOOR)
-
-
-def accuracy(drift_ratio: float, tol: float) -> float:
-    """:data:`ACCURACY` times :func:`relative_bound`: what successive windows must agree to."""
-    return ACCURACY * relative_bound(drift_ratio, tol)
 
 
 def held(win: Window, d: float, tol: float) -> bool:
@@ -204,72 +189,6 @@ def relaxation_rate(history: tuple[float, ...], window: int, m_x: float, m_star:
         if d1 != 0.0 and 0.0 < d2 / d1 < 1.0:
             lam = -math.log(d2 / d1) / window * m_x / m_star
     return lam
-
-
-def remaining_distance(c1: float | None, c2: float, q_pred: float) -> float:
-    """Distance still to go after two consecutive window changes ``c1``, ``c2`` (Aitken).
-
-    Changes of one sign are a monotone approach, extrapolated as a geometric series with the
-    ratio q = min(c2/c1, q_pred): the measured ratio, but never slower than the predicted
-    relaxation ``q_pred`` = exp(-lambda W), so window noise near a ratio of one cannot make a jump
-    of many times the change; a ratio of one or more (noise on a slow approach) takes ``q_pred``.
-    A single change (``c1`` None) is extrapolated with ``q_pred`` too. Alternating signs (the
-    windows are at their noise): the last change itself. ``q_pred`` = 0 turns extrapolation off
-    (a partly stuck contact, whose mean speed is not a slow variable).
-    """
-    if q_pred <= 0.0 or c2 == 0.0:
-        return c2
-    q_pred = min(q_pred, LONGEST_JUMP / (1.0 + LONGEST_JUMP))
-    if c1 is None:
-        return c2 * q_pred / (1.0 - q_pred)
-    if c1 == 0.0 or c2 / c1 <= 0.0:
-        return c2
-    q = min(c2 / c1, q_pred)
-    return c2 * q / (1.0 - q)
-
-
-#: a partly stuck contact's windows are extrapolated (:func:`creep_ratio`) only where the mean
-#: speed is predicted to relax over a window or more: q = exp(-lambda W) at least this
-CREEP_Q = 0.5
-
-#: the largest factor between the 1 - q of two consecutive window ratios that still make one
-#: geometric approach (:func:`creep_ratio`)
-GEOMETRIC_SPREAD = 1.5
-
-
-def creep_ratio(c0: float | None, c1: float | None, c2: float) -> float | None:
-    """The window ratio q of a partly stuck contact whose mean speed still relaxes: three
-    consecutive window changes of one sign falling geometrically, c1 / c0 and c2 / c1 in (0, 1)
-    with their 1 - q within :data:`GEOMETRIC_SPREAD` of each other; None otherwise.
-
-    Its tangential stiffness does not always tie the mean speed to the surface within a window:
-    mmd m* = 3300, A* = 0.16, mu = 0.1, gross slip in 1.6 % of its periods, crept up by 9.4e-6,
-    8.7e-6, ... a window of 885 periods (ratio 0.927 throughout), changes within the accuracy
-    whose sum still to go was 1.0e-4: it stopped at 8.43e-4, where brute force reaches 9.447e-4
-    after 8e4 periods (Aitken's extrapolation with the measured ratio gives 9.45e-4).
-    """
-    if c0 is None or c1 is None or c0 == 0.0 or c1 == 0.0:
-        return None
-    r1, r2 = c1 / c0, c2 / c1
-    if not (0.0 < r1 < 1.0 and 0.0 < r2 < 1.0):
-        return None
-    g1, g2 = 1.0 - r1, 1.0 - r2
-    return r2 if max(g1, g2) <= GEOMETRIC_SPREAD * min(g1, g2) else None
-
-
-def learned_ratio(before: tuple[float, float], after: tuple[float, float], q: float) -> float:
-    """The window ratio q measured across a jump: a secant of the change per window against the
-    window mean, c = -(1 - q) (D - v*), through the pair before and the pair after the jump.
-
-    The first stage's relaxation rate, scaled to full inertia, is only an estimate (a jump on it
-    overshot by a factor of two on jaeger, m* = 3000); the secant replaces it when it gives a
-    ratio in (0, 1), else ``q`` stays.
-    """
-    (d0, c0), (d1, c1) = before, after
-    if d1 == d0:
-        return q
-    k = (c1 - c0) / (d1 - d0)
-    return 1.0 + k if -1.0 < k < 0.0 else q
 
 
 def tapered_drift_ratio(win: Window, speed: float) -> float:
@@ -364,83 +283,6 @@ def longest_flight(win: Window) -> float:
     return float(longest)
 
 
-@dataclass
-class _Approach:
-    """The window-to-window bookkeeping of :func:`settle_full`: what to do after each window."""
-
-    w: int
-    q: float
-    tol: float
-    w0: int = 0
-    prev: float | None = None
-    last_change: float | None = None
-    older_change: float | None = None  # the change before last_change
-    before: tuple[float, float] | None = None  # (window mean, change) where the last jump began
-    steady_run: int = 0  # consecutive window changes within the accuracy
-    flips: int = 0  # consecutive changes of alternating sign
-    jumps: int = 0
-    #: the drift ratio solved directly that the windows confirm (None: windows alone decide)
-    expected: float | None = None
-    #: the relaxation rate predicted before any jump (per period)
-    rate: float = 0.0
-
-    def restart(self, longer: bool) -> None:
-        """Compare afresh from the next window (after a jump, or in windows twice as long)."""
-        if longer:
-            # the ratio per window of a mode relaxing as exp(-lambda t) squares as it doubles
-            self.w, self.q, self.flips = 2 * self.w, self.q * self.q, 0
-        self.prev, self.last_change, self.older_change, self.steady_run = None, None, None, 0
-
-    def judge(self, d: float, win: Window, noise: Callable[[], float] = lambda: 0.0
-              ) -> tuple[str, float]:
-        """("settled" | "jump" | "longer" | "next", the jump in drift ratio) after a window;
-        ``noise``: the standard error of a change between two window means
-        (:func:`change_noise`, :func:`chases_noise`), asked for only where a jump is in view."""
-        if in_flight(win):
-            return "longer", 0.0  # one flight spans the window: its constant drift says nothing
-        if self.prev is None:
-            self.prev, self.last_change = d, None
-            return "next", 0.0
-        change = d - self.prev
-        if self.before is not None:
-            # the secant across a jump corrects the predicted rate by up to a factor of four
-            # either way (a noisy secant of an irregular bouncer's windows is no rate)
-            q0 = math.exp(-self.rate * self.w)
-            self.q = min(max(learned_ratio(self.before, (d, change), self.q), q0 ** 4.0),
-                         q0 ** 0.25)
-            self.before = None
-        slow = win.contact_lost or win.gross_slip_fraction >= SLIDING_FRACTION
-        last = self.last_change
-        creep = None if slow or self.q < CREEP_Q else creep_ratio(self.older_change, last, change)
-        remaining = remaining_distance(last, change, self.q if slow else (creep or 0.0))
-        eps = accuracy(d, self.tol)
-        self.steady_run = self.steady_run + 1 if abs(change) <= eps else 0
-        if self.steady_run >= STEADY_CHANGES and abs(remaining) <= eps:
-            return "settled", 0.0
-        if (self.expected is not None and self.steady_run >= 1 and abs(remaining) <= eps
-                and abs(d - self.expected) <= eps and abs(self.prev - self.expected) <= eps):
-            # two windows in a row on the drift solved directly, their change within the
-            # accuracy: an independent estimate agrees, so one change suffices
-            return "settled", 0.0
-        # no jump where nothing relaxes slowly (q = 0: the speed of a light particle settles
-        # within a window, and changes of one sign are a beat of its contact, not an approach)
-        q_jump = self.q if slow else (creep or 0.0)
-        if (q_jump > 0.0 and last is not None and change * last > 0.0 and abs(remaining) > eps
-                and not chases_noise(change, last, q_jump, noise(), eps)):
-            self.jumps += 1
-            self.before = (d, change)
-            return "jump", remaining  # the next window re-adapts; compare the two after it
-        self.flips = self.flips + 1 if (last is not None and change * last < 0.0) else 0
-        if self.flips >= 2 and abs(change) > eps and self.w < LONGEST_WINDOW * self.w0:
-            # changes that alternate in sign are a slow oscillation beating against the window
-            # (a quasi-periodic motion), not an approach: longer windows average it out; below
-            # the accuracy the alternation is the windows' noise (a sticking contact's drift of
-            # 1e-8 changing sign), which the steady count above settles without longer windows
-            return "longer", 0.0
-        self.prev, self.last_change, self.older_change = d, change, last
-        return "next", 0.0
-
-
 def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_window: int,
                 max_steps: int, lam: float, last: Window | None = None,
                 expected: float | None = None, watch: Watch | None = None
@@ -518,5 +360,5 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
             state.restart(longer=action == "longer")
     info = FullInertia(settled, state.w, len(values), state.jumps,
                        (stepper.step - start) / stepper.k_per, tuple(values), state.q,
-                       slips.beat if slips.came_back else 0.0)
+                       slips.beat if slips.came_back else 0.0, 0.0 if settled else state.to_go)
     return win, info

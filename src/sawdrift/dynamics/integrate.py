@@ -399,7 +399,8 @@ def _irregular_mean(stepper: Stepper, win: Window, settling: Settling, num: Nume
     mean, twin = _long_mean(stepper, win, _mean_budget(num, win), target, series)
     history = settling.history
     if (win.sync.hop_period > 0 and len(history) > 0
-            and approaches(history, accuracy(history[-1], num.settle_tolerance))):
+            and (approaches(history, accuracy(history[-1], num.settle_tolerance))
+                 or settling.to_go > accuracy(history[-1], num.settle_tolerance))):
         mean = replace(mean, moving=True, approaching=True)
     return mean, twin
 

@@ -45,3 +45,7 @@ class Settling:
     #: the motion still moved away from repeating when the search for its periodic orbit ended
     #: (a period doubling unfolding): no steady motion yet, why such a run is not settled
     leaving: bool = False
+    #: the distance (drift ratio) the full-inertia windows still estimated to go when they
+    #: stopped (:attr:`~.approach._Approach.to_go`): an approach cut off by the windows' cap,
+    #: whose long-time mean is that of a stretch still moving
+    to_go: float = 0.0

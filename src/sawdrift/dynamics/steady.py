@@ -304,7 +304,7 @@ def _approach(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_
     method = "reduced_then_full" if m_x < m else "windows_full"
     info = Settling(full.settled, method, m_x, full.window_periods,
                     (stepper.step - start) / stepper.k_per, t90, tuple(values) + full.history,
-                    drift=full.drift(speed), slip_beat=full.slip_beat)
+                    drift=full.drift(speed), slip_beat=full.slip_beat, to_go=full.to_go)
     return win, info
 
 
