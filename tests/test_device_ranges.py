@@ -115,6 +115,33 @@ def test_a_heavy_combination_in_range_is_refused_naming_m_star():
     assert "device.frequency" in line
 
 
+def test_an_amplitude_beyond_the_largest_a_star_names_the_device_fields():
+    """A 10 nm silica sphere (2200 kg/m^3, E* = 56 GPa) on a 10 nm wave: the wave's strain and
+    speed bounds hold, but a0 = (9 (M g)^2 / (16 R E*^2))^(1/3) = 5.3e-18 m under its weight
+    makes A* = 1.9e9, above the 1e9 the model integrates. The line named the derived
+    drive.amplitude, a field a device scene cannot set; it names device.amplitude and the most
+    it may be."""
+    from sawdrift.scene.bounds import AMPLITUDE_MAX
+
+    line = _one_line(run_main("run", SILICA, "--set", "device.particle.radius=10 nm", "--set",
+                              "device.amplitude=10 nm"))
+    e_star = 1.0 / ((1 - 0.17**2) / 73e9 + (1 - 0.3**2) / 200e9)
+    weight = 2200.0 * 4.0 / 3.0 * math.pi * 1e-8**3 * 9.81
+    a0 = (9.0 * weight**2 / (16.0 * 1e-8 * e_star**2)) ** (1.0 / 3.0)
+    assert 1e-8 / a0 > AMPLITUDE_MAX
+    assert f"A* = A_y / a0 = {1e-8 / a0:.3g}" in line
+    assert f"device.amplitude must be below {AMPLITUDE_MAX * a0:.3g} m" in line
+    assert "drive.amplitude" not in line
+
+
+def test_the_threshold_scan_names_the_bound_that_refuses_its_start(tmp_path):
+    """A 20 nm sphere's scan starts at 4e-8 m, 25 times below its wave's strain bound but above
+    the largest A*: the line gives that reason, not the strain bound's."""
+    line = _one_line(run_main("threshold", SILICA, "--axis", "device.particle.radius=20 nm,30 nm",
+                              "--stop", "1 um", "-o", tmp_path / "t"))
+    assert "above the 1e+09 the model integrates" in line and "strain" not in line
+
+
 def test_a_load_beyond_a_hundred_normal_loads_names_the_device_load():
     # the motor holds M g = 7.39 mN: 1 N is 135 M g (today's line named particle.load instead)
     line = _one_line(run_main("run", MOTOR, "--set", "device.load=1 N", "--periods", "5"))

@@ -56,7 +56,8 @@ def threshold_cmd(
     each first crossing is then located by bisection. Fixed runs of --periods periods. The table
     is in SI; the figure is log-log with the fitted slopes. A threshold not located is shown as
     '< A' (crossed already at the scan's first amplitude A), '> STOP' (not up to --stop) or
-    '> bound' (not up to the largest amplitude the device's wave may have).
+    '> bound' (not up to the largest amplitude the device may have: its wave's strain or speed
+    bound, or the largest A* the model integrates).
     """
     from ..report.threshold_plot import plot_thresholds
     from ..scene.device import to_si
@@ -111,8 +112,9 @@ def _bare_number(text: str) -> Any:
 _UNFOUND = {
     "below_start": "'< A': crossed already at the scan's first amplitude A (lower --start)",
     "above_stop": "'> STOP': no crossing up to --stop (raise --stop to find it)",
-    "above_bound": ("'> bound': no crossing up to the largest amplitude the device's wave may "
-                    "have (its surface strain or speed bound)"),
+    "above_bound": ("'> bound': no crossing up to the largest amplitude the device may have "
+                    "(its wave's surface strain or speed bound, or the largest A* = A / a0, "
+                    "1e9, the model integrates)"),
 }
 
 

@@ -53,7 +53,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, model_validator
 
 from ..errors import SceneError
-from .bounds import M_STAR_RANGE, bounded
+from .bounds import AMPLITUDE_MAX, M_STAR_RANGE, bounded
 from .rayleigh import rayleigh_ratio, rayleigh_speed_ratio
 from .units import (
     FIELD_KIND,
@@ -303,9 +303,10 @@ def derived_out_of_range(device: Device) -> str | None:
     """Why the device's normalized quantities are outside what the model can integrate, or None.
 
     Each field may be inside its own range (:data:`RANGES`) while the combination gives an m*
-    outside :data:`M_STAR_RANGE` (a 10 cm ball on a 100 GHz wave). The line names the device
-    fields that set it. The load and the pull-off, whose bounds depend on the adhesive law, are
-    checked with the scene's law (:func:`~sawdrift.scene.adhesion.adhesive_out_of_range`).
+    outside :data:`M_STAR_RANGE` (a 10 cm ball on a 100 GHz wave), or an A* above
+    :data:`~.bounds.AMPLITUDE_MAX`. The line names the device fields that set it. The load
+    and the pull-off, whose bounds depend on the adhesive law, are checked with the scene's law
+    (:func:`~sawdrift.scene.adhesion.adhesive_out_of_range`).
     """
     n = normalized(device)
     m_star, (lo, hi) = n["m_star"], M_STAR_RANGE
@@ -318,6 +319,15 @@ def derived_out_of_range(device: Device) -> str | None:
                 f"{lo:g} to {hi:g} the model integrates (a0 = {n['a0_m']:.3g} m, m = "
                 f"{n['mass_kg']:.3g} kg, f = {n['frequency_hz']:.4g} Hz, M g = "
                 f"{n['weight_n']:.3g} N): {what}")
+    if n["amplitude"] > AMPLITUDE_MAX:
+        # the wave itself may be fine (its strain and speed bounds hold) while its amplitude is
+        # more than 1e9 static compressions under the weight (a 10 nm silica sphere, a0 = 5e-18
+        # m, on a 10 nm wave): named by the device's fields, not by the derived drive.amplitude
+        return (f"the device gives A* = A_y / a0 = {n['amplitude']:.3g}, above the "
+                f"{AMPLITUDE_MAX:g} the model integrates (a0 = {n['a0_m']:.3g} m, the static "
+                f"compression under M g = {n['weight_n']:.3g} N): device.amplitude must be below "
+                f"{AMPLITUDE_MAX * n['a0_m']:.3g} m, or raise device.preload or use a larger "
+                "particle")
     part = device.particle
     if part.shape == "sphere" and n["contact_radius_m"] >= float(part.radius):
         # a contact wider than the sphere: no Hertz contact at all (1 kPa moduli on a 0.5 mm

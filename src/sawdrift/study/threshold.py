@@ -43,7 +43,8 @@ from .progress import counter
 #: how a threshold was found (``ThresholdRow.slide_found``, ``removal_found``): located by
 #: bisection; already crossed at the scan's first amplitude (the threshold lies below
 #: ``start`` times the rigid removal amplitude); not crossed up to ``stop``; not crossed up to the
-#: largest amplitude the device's wave may have (its surface strain or speed bound)
+#: largest amplitude the device may have (its wave's surface strain or speed bound, or the
+#: largest A* the model integrates)
 FOUND, BELOW_START, ABOVE_STOP, ABOVE_BOUND = "found", "below_start", "above_stop", "above_bound"
 
 
@@ -217,13 +218,18 @@ def first_crossing(crosses: Callable[[float], bool], start: float, factor: float
 
 
 def _refused(base: Scene, amp: float) -> bool:
-    """Whether the device of ``base`` refuses the wave amplitude ``amp`` (its surface strain or
-    speed bound, its range)."""
+    """Whether the device of ``base`` refuses the wave amplitude ``amp`` (:func:`_refusal`)."""
+    return _refusal(base, amp) is not None
+
+
+def _refusal(base: Scene, amp: float) -> str | None:
+    """Why the device of ``base`` refuses the wave amplitude ``amp`` (its surface strain or
+    speed bound, its range, or an A* beyond what the model integrates), or None."""
     try:
         base.with_updates(**{"device.amplitude": amp})
-    except SceneError:
-        return True
-    return False
+    except SceneError as exc:
+        return str(exc).splitlines()[0]
+    return None
 
 
 def _check_start(base: Scene, name: str, value: float, start: float, stop: float) -> None:
@@ -235,10 +241,13 @@ def _check_start(base: Scene, name: str, value: float, start: float, stop: float
     if first > stop:
         raise SceneError(f"--start {start:g} times the rigid removal amplitude is {first:.4g} m "
                          f"{where}, above --stop {stop:.4g} m: lower --start or raise --stop")
-    if _refused(base, first):
+    why = _refusal(base, first)
+    if why is not None:
+        # the device's own reason (a strain or speed bound, or an A* above what the model
+        # integrates: it blamed the strain bound for a 20 nm sphere 25 times below it)
         raise SceneError(f"--start {start:g} times the rigid removal amplitude is {first:.4g} m "
-                         f"{where}, beyond the largest amplitude its wave may have (its surface "
-                         "strain or speed bound): lower --start")
+                         f"{where}, beyond the largest amplitude the device may have: "
+                         f"{why.removeprefix('scene: ')}; lower --start")
 
 
 def thresholds(scene: Scene, name: str, values: Sequence[float], *, start: float = 0.01,
