@@ -116,6 +116,21 @@ def test_synchrony_finds_period_two_and_rejects_scattered_phases():
     assert synchrony(scattered, 100.0, 40).hop_period == 0
 
 
+def test_a_wandering_period_one_hop_is_no_hop_of_two_or_four():
+    """One lift-off a period, its phase wandering 0.53 to 0.76 over a 9-period cycle (mmd m* =
+    1.15, A* = 4.7, mu = 0.3: resultant 0.89 as a hop of 1): cut into blocks of 2 or 4 periods
+    the same scatter counted 2 or 4 times less, and it passed as a hop of 2 with two equal phases.
+    Judged in periods, it is no hop; a hop of 2 with a jitter of 0.02 of a period still is."""
+    k = np.arange(27)
+    wandering = 249.0 + k + 0.645 + 0.115 * np.sin(2 * np.pi * k / 9.0)
+    assert synchrony(wandering, 249.0, 27).hop_period == 0
+    rng = np.random.default_rng(2)
+    jittered = 100.0 + np.arange(0, 40, 2) + 0.4 + rng.normal(0, 0.02, 20)
+    s = synchrony(jittered, 100.0, 40)
+    assert (s.hop_period, s.liftoffs_per_hop) == (2, 1)
+    assert s.spread == pytest.approx(0.02, rel=0.5)  # in periods, not in blocks
+
+
 def test_lyapunov_statistics_tell_exponential_from_linear_growth():
     rng = np.random.default_rng(3)
     j = np.arange(ALIGN_PERIODS, ALIGN_PERIODS + LYAPUNOV_PERIODS)

@@ -1,9 +1,9 @@
 """Lift-off synchrony: does a window's pattern of lift-offs repeat every k wave periods?
 
 A motion that loses contact is *hopping* when its lift-offs repeat every k whole periods (the same
-number n >= 1 of lift-offs in every block of k periods, each of them at a phase that repeats:
-circular resultant length of its phases mod k at least :data:`PHASE_COHERENCE`) and it is not
-chaotic (:mod:`sawdrift.dynamics.lyapunov`); anything else that loses contact is *bouncing*
+number n >= 1 of lift-offs in every block of k periods, each of them at a time in the block that
+repeats within a circular standard deviation of 0.073 of a period: :data:`PHASE_COHERENCE`) and
+it is not chaotic (:mod:`sawdrift.dynamics.lyapunov`); anything else that loses contact is *bouncing*
 (:func:`sawdrift.result.regimes.classify` reads the hop period measured here).
 """
 
@@ -14,8 +14,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: Minimum circular resultant length of the lift-off phases of a synchronous (hopping) motion.
-#: 0.9 is a circular standard deviation sqrt(-2 ln 0.9) = 0.46 rad = 0.073 of the period.
+#: Minimum circular resultant length of the lift-off phases of a synchronous (hopping) motion
+#: of period 1: 0.9 is a circular standard deviation sqrt(-2 ln 0.9) = 0.46 rad = 0.073 of the
+#: period. In blocks of k periods the same spread in periods is 1/k of the block: the
+#: resultant of the phases in the block must reach 0.9^(1/k^2).
 PHASE_COHERENCE = 0.9
 
 #: Rebounds shorter than this (in wave periods) that leave the surface within this time of a
@@ -44,7 +46,7 @@ class Synchrony:
         Wave phase t* mod 1 of the block's first lift-off (circular mean over the blocks, in
         [0, 1)); NaN if none.
     spread
-        Circular standard deviation sqrt(-2 ln R) of those phases, in fractions of the block.
+        Circular standard deviation sqrt(-2 ln R) of those phases, in fractions of a period.
     coherence
         The smallest circular resultant length R over the n lift-off slots.
     phases
@@ -145,8 +147,12 @@ def synchrony(liftoff_times: np.ndarray, t_start: float, periods: int,
         slots = phases.reshape(blocks, n)
         stats = [_circular(slots[:, j]) for j in range(n)]
         coherence = min(s[1] for s in stats)
-        if coherence >= PHASE_COHERENCE:
+        # the slots' spread is judged in periods, not in fractions of the block: in blocks of k
+        # periods a jitter counts k times less, and a period-1 hop whose take-offs wandered
+        # between phases 0.53 and 0.76 (resultant 0.890) passed as a hop of 2 with two equal
+        # phases (mmd m* = 1.15, A* = 4.7, mu = 0.3): the resultant must reach 0.9^(1/k^2)
+        if coherence >= PHASE_COHERENCE ** (1.0 / (k * k)):
             wave = t[inside].reshape(blocks, n) % 1.0
             phases = tuple(_circular(wave[:, j])[0] for j in range(n))
-            return Synchrony(k, n, phases[0], stats[0][2], coherence, phases)
+            return Synchrony(k, n, phases[0], k * stats[0][2], coherence, phases)
     return none
