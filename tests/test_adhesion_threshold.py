@@ -201,3 +201,24 @@ def test_the_scanned_amplitude_is_no_set_field(monkeypatch, capsys):
     code, _, err = _cli(monkeypatch, capsys, "--axis", "device.particle.radius=2 um", "--set",
                         "device.amplitude=5 nm")
     assert code == 2 and "--set device.amplitude" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_slope_needs_values_that_differ_by_more_than_rounding():
+    """Radii written 1 um, 1000 nm and 1e-6 m differ only by rounding: no slope to fit (polyfit
+    warned it was poorly conditioned and gave 0.733 for the rigid removal amplitude, an R^-2
+    law); two radii a factor 2 apart give the law's -2."""
+    import warnings
+
+    from sawdrift.study.threshold import ThresholdRow, ThresholdStudy
+
+    def row(r: float) -> ThresholdRow:
+        a = 1e-10 * (r / 1e-6) ** -2.0
+        return ThresholdRow(r, a, a, a, 1e-6, 1e-11, 1)
+
+    same = ThresholdStudy("device.particle.radius",
+                          [row(1e-6), row(1e-6 * (1 + 2e-16)), row(1.0000000000000002e-06)])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert math.isnan(same.slope("rigid_removal_m"))
+    apart = ThresholdStudy("device.particle.radius", [row(1e-6), row(2e-6)])
+    assert apart.slope("rigid_removal_m") == pytest.approx(-2.0, abs=1e-9)

@@ -89,7 +89,9 @@ class ThresholdStudy:
         x = np.log([r.value for r in rows])
         y = np.array([getattr(r, column) for r in rows], dtype=float)
         ok = np.isfinite(y) & (y > 0.0)
-        if ok.sum() < 2:
+        # values that differ only by rounding ("1 um", "1000 nm", "1e-6 m") span nothing to fit
+        # a slope over (polyfit warned it was poorly conditioned and gave 0.75 for an R^-2 law)
+        if ok.sum() < 2 or np.ptp(x[ok]) <= SAME_VALUE:
             return math.nan
         return float(np.polyfit(x[ok], np.log(y[ok]), 1)[0])
 
@@ -165,6 +167,9 @@ def stiff_removal_lost(law: str, ratio: float, m_star: float = 1e-5,
                   numerics={"periods": 104, "settle": False, "steps_per_period": 12000})
     return bool(run(scene).contact_lost)
 
+
+#: log-values of the field closer than this are one value for a slope (:meth:`ThresholdStudy.slope`)
+SAME_VALUE = 1e-9
 
 #: halvings (in log) that locate the largest amplitude the device's wave may have
 BOUND_HALVINGS = 40
