@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import tomllib
 from pathlib import Path
 
@@ -608,3 +609,26 @@ def test_a_scene_file_with_a_byte_order_mark_is_read(tmp_path, sawdrift_main):
     assert sd.Scene.from_toml(path) == sd.Scene.from_toml(MOTOR)
     out = sawdrift_main("run", str(path), "--periods", "4", "--no-settle", "--json")
     assert out.returncode == 0, out.stderr
+
+
+@pytest.mark.parametrize(("value", "kind", "said"), [
+    # per radian is no angular rate: "9.6 MHz/rad" was divided by 2 pi (1.528 MHz)
+    ("9.6 MHz/rad", "frequency", "wrong dimension"),
+    # a radioactive activity is per second like a frequency: "9.6e6 Bq" ran as 9.6 MHz
+    ("9.6e6 Bq", "frequency", "radioactive activity"),
+    # a grade in percent is no angle: "2 %" was read as 0.02 rad, "50 %" as 28.6 deg (not 26.6)
+    ("50 %", "angle", "atan(g / 100)"),
+])
+def test_units_that_only_look_right_are_refused(value, kind, said):
+    from sawdrift.scene.units import to_si
+
+    with pytest.raises(ValueError, match=re.escape(said)):
+        to_si(value, kind)
+
+
+def test_angular_rates_and_angles_still_convert():
+    from sawdrift.scene.units import to_si
+
+    assert to_si("9.6 MHz*rad", "frequency") == pytest.approx(9.6e6 / (2 * math.pi))
+    assert to_si("6000 rpm", "frequency") == pytest.approx(100.0)
+    assert to_si("2 deg", "angle") == pytest.approx(math.radians(2.0))

@@ -63,6 +63,14 @@ _SUPERSCRIPT = re.compile("[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+")
 _PLAIN = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
 
 
+#: units of radioactive activity, per second like a frequency but no wave's ("9.6e6 Bq" ran
+#: as 9.6 MHz)
+_ACTIVITIES = {"becquerel", "curie", "rutherford"}
+
+#: dimensionless units that are no angle (pint would take them for radians)
+_NOT_ANGLES = {"percent", "permille", "ppm", "dimensionless"}
+
+
 def _split(text: str) -> tuple[float, str] | None:
     """(number, unit expression) of a device value written as a string, or None where it is not
     one number followed by units: pint would evaluate the string as an expression ("9,6 MHz" as
@@ -132,17 +140,24 @@ def _string_si(text: str, kind: str) -> float:
     except Exception:  # noqa: BLE001 - pint raises several kinds for a bad unit
         raise ValueError(f"has no unit '{units}' that this knows: give {_article(kind)} {kind} "
                          f"in {unit}, e.g. {example}") from None
-    angular = any(name == "radian" for name, _ in q.to_base_units().unit_items())
+    radians = dict(q.to_base_units().unit_items()).get("radian", 0)
+    angular = radians != 0
     wrong = f"is not {_article(kind)} {kind} (wrong dimension): give one in {unit}, e.g. {example}"
     if kind == "angle":
-        if not q.dimensionless:
-            raise ValueError(f"is not an angle (wrong dimension): give one in deg or rad, "
-                             f"e.g. {example}")
+        if not q.dimensionless or any(name in _NOT_ANGLES for name, _ in q.unit_items()):
+            # a grade in percent is no angle: "2 %" was read as 0.02 rad (a 50 % grade is
+            # 26.6 deg, not 28.6)
+            raise ValueError(f"is not an angle: give one in deg or rad, e.g. {example} (a grade "
+                             "g in % is the angle atan(g / 100))")
         return float(q.to("radian").magnitude)
     if q.dimensionality != ureg.Quantity(1, unit).dimensionality or q.dimensionless:
         raise ValueError(wrong)
+    if kind == "frequency" and any(name in _ACTIVITIES for name, _ in q.unit_items()):
+        raise ValueError(f"is a radioactive activity, not a frequency: give one in {unit}, "
+                         f"e.g. {example}")
     if angular:
-        if kind != "frequency":
+        if kind != "frequency" or radians < 0:
+            # per radian ("9.6 MHz/rad") is no angular rate: it was divided by 2 pi
             raise ValueError(wrong)
         return float(q.to("turn / second").magnitude)  # cycles per second: omega / 2 pi
     return float(q.to(unit).magnitude)
