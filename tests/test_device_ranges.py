@@ -294,3 +294,13 @@ def test_a_non_finite_load_is_refused_with_its_real_range(value):
 def test_a_value_that_is_no_number_names_the_range(field, value, said):
     line = _one_line(run_main("run", MOTOR, "--set", f"{field}={value}", "--periods", "5"))
     assert f"{field} = " in line and said in line, line
+
+
+def test_no_gravity_and_no_preload_says_why_with_and_without_adhesion():
+    """g = 0 with no preload leaves no unit of force (M g + preload); an adhesive particle is
+    still held (by 1.2 uN here), so the line must not say that nothing holds it."""
+    adhesive = _one_line(run_main("run", SILICA, "--set", "device.gravity=0"))
+    assert "adhesion holds the particle" in adhesive and "preload" in adhesive
+    assert "nothing would hold" not in adhesive
+    plain = _one_line(run_main("run", MOTOR, "--set", "device.gravity=0"))
+    assert "nothing would hold the particle" in plain

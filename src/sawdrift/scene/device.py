@@ -211,6 +211,13 @@ class Device(BaseModel):
     @model_validator(mode="after")
     def _held_down(self) -> Device:
         if self.gravity == 0.0 and self.preload == 0.0:
+            if self.adhesion > 0.0:
+                # adhesion holds it, but the model's unit of force is the normal load M g +
+                # preload, and the static compression a0 its unit of length
+                raise ValueError("gravity = 0 needs a preload > 0: adhesion holds the particle, "
+                                 "but the model measures forces in the normal load M g + "
+                                 "preload and lengths in its compression; give a small preload, "
+                                 "e.g. preload = '1 nN'")
             raise ValueError("gravity = 0 needs a preload > 0: nothing would hold the particle")
         return self
 
