@@ -302,5 +302,6 @@ def test_no_gravity_and_no_preload_says_why_with_and_without_adhesion():
     adhesive = _one_line(run_main("run", SILICA, "--set", "device.gravity=0"))
     assert "adhesion holds the particle" in adhesive and "preload" in adhesive
     assert "nothing would hold" not in adhesive
-    plain = _one_line(run_main("run", MOTOR, "--set", "device.gravity=0"))
+    plain = _one_line(run_main("run", MOTOR, "--set", "device.gravity=0", "--set",
+                               "device.preload=0 N"))
     assert "nothing would hold the particle" in plain
