@@ -45,7 +45,7 @@ def test_a_derived_option_on_a_device_scene_points_at_set(monkeypatch, capsys):
     assert lines[0].startswith("error: --amplitude 20: ")
     # A* = 20 on the motor (a0 = 18.13 nm) is 20 a0: the --set named gives that amplitude (it
     # named a fixed '20 nm', A* = 1.1)
-    assert f'--set device.amplitude="{20 * _hertz(0.5e-3)[0] * 1e9:.4g} nm"' in lines[0]
+    assert f'--set device.amplitude="{20 * _hertz(0.5e-3)[0] * 1e9:.6g} nm"' in lines[0]
 
 
 @pytest.mark.parametrize(("item", "words"), [
@@ -111,3 +111,21 @@ def test_a_model_named_twice_is_refused(monkeypatch, capsys):
     code, _, err = call(monkeypatch, capsys, "run", "--periods", "4", "--model", "mmd,mmd")
     assert code == 2 and err.strip() == ("error: --model 'mmd,mmd' names mmd twice: give each "
                                          "model once")
+
+
+def test_a_repeated_derived_value_must_match_its_six_figures(monkeypatch, capsys):
+    """The motor's m* is shown as 929.267: that is accepted as the device's own; 929.27 is
+    another value (a relative 5e-6 took it), refused with a hint of six figures that gives it."""
+    code, _, err = call(monkeypatch, capsys, "run", str(MOTOR), "--m-star", "929.267",
+                        "--periods", "4")
+    assert code == 0, err
+    code, _, err = call(monkeypatch, capsys, "run", str(MOTOR), "--m-star", "929.27")
+    assert code == 2 and 'device.particle.radius="500.001 um"' in err
+
+
+def test_no_hint_names_a_load_the_device_would_refuse(monkeypatch, capsys):
+    """L = 3e7 is beyond 100 times any normal load friction holds: the hint named a device.load
+    (0.339 mN) that was itself refused; now the line names the fields without a value."""
+    silica = MOTOR.parent / "micro_silica_on_linbo3.toml"
+    code, _, err = call(monkeypatch, capsys, "run", str(silica), "--load", "3e7")
+    assert code == 2 and "device.load" in err and 'device.load="' not in err

@@ -251,7 +251,7 @@ def test_material_adhesion_on_a_device_scene_names_device_adhesion(args, sawdrif
     err = out.stderr.strip().splitlines()
     assert len(err) == 1 and "derives material.adhesion" in err[0]
     # the work of adhesion that gives the pull-off asked for (tested below), not the file's own
-    assert '--set device.adhesion="1.439e-06 J/m^2"' in err[0]
+    assert '--set device.adhesion="1.4388e-06 J/m^2"' in err[0]
 
 
 def test_adhesion_without_a_work_of_adhesion_on_a_device_names_device_adhesion(sawdrift_main):

@@ -222,7 +222,7 @@ def apply_options(data: dict[str, Any], values: dict[str, Any],
         line = (f"{typed}: a device scene derives {exc.field} from its [device] table (here "
                 f"{shown}); {how}")
         if exc.field == "drive.amplitude" and isinstance(exc.value, (int, float)):
-            line += f" (A* = {exc.value:g} is {exc.value * exc.a0_m * 1e9:.4g} nm on this device)"
+            line += f" (A* = {exc.value:g} is {exc.value * exc.a0_m * 1e9:.6g} nm on this device)"
         raise sd.SceneError(line) from None
 
 

@@ -28,7 +28,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from ..errors import SceneError
-from .adhesion import adhesive_out_of_range, normalized_adhesion
+from .adhesion import adhesive_out_of_range, load_bound, normalized_adhesion
 from .device import FIELD_KIND, UNITS, Device, derived_out_of_range, normalized
 from .dotted import get_dotted, set_dotted
 from .parts import format_validation_error
@@ -91,11 +91,6 @@ def derived_values(device: Device, adhesion: str = "none") -> dict[str, Any]:
     }
 
 
-#: a derived value given to within this (relative) repeats the device's: half a unit in the
-#: sixth figure, as :func:`_shown` writes it
-SHOWN_REL = 5e-6
-
-
 def _same(given: Any, derived: Any, field: str) -> bool:
     if field == "particle.profile":
         try:
@@ -106,8 +101,20 @@ def _same(given: Any, derived: Any, field: str) -> bool:
         # the value as shown (:func:`_shown`, six figures: in an error line, in a saved scene's
         # comment) repeats the device's own
         return (isinstance(given, (int, float)) and not isinstance(given, bool)
-                and math.isclose(float(given), derived, rel_tol=SHOWN_REL, abs_tol=0.0))
+                and _as_shown(float(given), derived))
     return given == derived
+
+
+def _as_shown(given: float, derived: float) -> bool:
+    """Whether ``given`` is ``derived`` to the six figures it is shown with (:func:`_shown`):
+    within half a unit of its sixth figure. 929.27 is not 929.267, nor 6.7708 6.77078 (a
+    relative 5e-6 took both)."""
+    if given == derived:
+        return True
+    if derived == 0.0 or not math.isfinite(derived):
+        return False
+    half_unit = 0.5 * 10.0 ** (math.floor(math.log10(abs(derived))) - 5)
+    return abs(given - derived) <= half_unit * (1.0 + 1e-9)
 
 
 def _shown(value: Any) -> str:
@@ -144,20 +151,27 @@ def instead_for(field: str, value: Any, device: Device, derived: Any = None) -> 
     if isinstance(value, str):
         return None
     norm = normalized(device)
+    # six figures, as a derived value is shown and repeated (:func:`_as_shown`): four gave
+    # device.amplitude="10 nm", the file's own value, for an A* of 0.5516 against its 0.551578
     if field == "drive.amplitude":
-        return f'device.amplitude="{value * norm["a0_m"] * 1e9:.4g} nm"'
+        return f'device.amplitude="{value * norm["a0_m"] * 1e9:.6g} nm"'
     if field == "particle.load":
+        # a load beyond the most any adhesive law lets the device take is no hint (L = 3e7 named
+        # a device.load that was itself refused)
+        most = load_bound(normalized_adhesion(device, "dmt") if device.adhesion > 0.0 else 0.0)
+        if abs(value) > most:
+            return None
         # L = (F - m g sin(alpha)) / (m g cos(alpha) + F_ext): F = L (M g) + the slope's pull
         force = value * norm["weight_n"] + (device.load - norm["load_n"])
-        return f'device.load="{force * 1e3:.4g} mN"'
+        return f'device.load="{force * 1e3:.6g} mN"'
     if field == "material.adhesion" and isinstance(derived, float) and derived > 0.0 and value > 0:
-        return f'device.adhesion="{device.adhesion * value / derived:.4g} J/m^2"'
+        return f'device.adhesion="{device.adhesion * value / derived:.6g} J/m^2"'
     if field == "particle.m_star" and value > 0:
         radius = _radius_for(value, device)
         if radius is not None:
             scale, unit = next((s, u) for s, u in ((1e-3, "mm"), (1e-6, "um"), (1e-9, "nm"))
                                if radius >= s or u == "nm")
-            return f'device.particle.radius="{radius / scale:.4g} {unit}"'
+            return f'device.particle.radius="{radius / scale:.6g} {unit}"'
     return None
 
 
