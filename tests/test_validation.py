@@ -131,6 +131,43 @@ def test_expected_deviation_is_reported_not_failed(tmp_path):
     assert report.count("expected deviation") == 1 and not report.passed
 
 
+def test_an_expected_deviation_must_be_its_own_closed_form(tmp_path):
+    """A model flagged as deviating by design fails where the case finds it off its documented
+    deviation's closed form (deviation_matches False): any value passed as 'expected' before."""
+    cases = tmp_path / "cases"
+    cases.mkdir()
+    (cases / "dev.py").write_text(
+        "from sawdrift.validation import Case\n"
+        "CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9,\n"
+        "            models=('jaeger', 'mdr'), expected_deviation=('jaeger', 'mdr'))\n"
+        "def run(model):\n"
+        "    return CASE.result(0.25, model=model, deviation_matches=model == 'jaeger')\n"
+    )
+    report = validate(tmp_path / "out", cases_dir=cases, progress=False)
+    assert {r.name: r.status for r in report.results} == {"dev[jaeger]": "expected deviation",
+                                                          "dev[mdr]": "fail"}
+    assert "not even the deviation expected by design" in report.get("dev[mdr]").message
+
+
+def test_the_dem_spring_and_jaeger_follow_their_documented_deviations():
+    """hertz_mindlin_dem in the Mindlin cases and jaeger under proportional loading are checked
+    against their own closed forms (the DEM spring's straight line to its cap, its loop
+    4 N* (B - N*/k); jaeger's N*(a*) - N*((1 - lambda) a*)), to 1e-9 (loop 1e-4)."""
+    import importlib.util
+
+    from sawdrift.validation import default_cases_dir
+
+    for name, model in (("g2a_cm_monotonic", "hertz_mindlin_dem"),
+                        ("g2b_cm_masing", "hertz_mindlin_dem"),
+                        ("g2c_cm_loop_area", "hertz_mindlin_dem"),
+                        ("g2d_cm_proportional", "jaeger")):
+        spec = importlib.util.spec_from_file_location(name, default_cases_dir() / f"{name}.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        result = module.run(model)
+        assert not result.passed and result.deviation_matches is True, (name, result.message)
+
+
 def test_expected_deviation_states_its_declared_reason(tmp_path):
     """Each expected deviation carries the case's one-line reason into the page and results.json."""
     cases = _cases(tmp_path, dev=(

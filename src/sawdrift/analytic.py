@@ -55,6 +55,20 @@ def cattaneo_mindlin(a: float, b: np.ndarray | float, p: float = 1.5) -> np.ndar
     return a**p - np.clip(a - b, 0.0, None) ** p
 
 
+#: how closely a model that deviates by design must follow its own deviation's closed form
+DEVIATION_TOL = 1e-9
+
+
+def dem_spring(a: float, b_from: float, t_from: float, b: np.ndarray, p: float = 1.5
+               ) -> np.ndarray:
+    """T* of the DEM spring at fixed a* (hertz_mindlin_dem's documented deviation): from
+    (``b_from``, ``t_from``) along Mindlin's initial stiffness k = p a*^(p-1) (the slope of
+    a*^p - (a* - b*)^p at b* = 0), capped at the Coulomb bound +-a*^p (N*; T* in units of mu);
+    ``b`` runs one way from ``b_from``."""
+    k, cap = p * a ** (p - 1.0), a**p
+    return np.clip(t_from + k * (np.asarray(b, dtype=float) - b_from), -cap, cap)
+
+
 def masing_unloading(a: float, b1: float, b: np.ndarray | float, p: float = 1.5) -> np.ndarray:
     """Unloading from the turning point (b1, T1) of virgin loading, fixed a* (Masing's rule).
 

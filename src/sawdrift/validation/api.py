@@ -108,6 +108,10 @@ class CaseResult:
     skip_reason
         Why the case could not run here (set by :meth:`Case.skip`): the harness reports it as
         ``skipped``, neither a pass nor a failure.
+    deviation_matches
+        For a model that deviates by design: whether it follows the closed form of its own
+        documented deviation (the DEM spring's straight line to its cap, say). False fails the
+        case: an expected deviation is that deviation, not any value at all. None: not checked.
     """
 
     value: float
@@ -127,6 +131,7 @@ class CaseResult:
     seconds: float = 0.0
     figure_file: str | None = None
     skip_reason: str | None = None
+    deviation_matches: bool | None = None
 
     @property
     def name(self) -> str:
@@ -249,6 +254,7 @@ class Case:
         figure: Any = None,
         require: bool = True,
         details: Mapping[str, Any] | None = None,
+        deviation_matches: bool | None = None,
     ) -> CaseResult:
         """Build the :class:`CaseResult`: passed = value within tolerance and ``require``.
 
@@ -266,6 +272,9 @@ class Case:
             Side conditions of the fact (all must hold), e.g. "contact is kept at Gz = 0.98".
         details
             Extra numbers for ``results.json``.
+        deviation_matches
+            For a model that deviates by design: whether it follows its documented deviation's
+            closed form (:attr:`CaseResult.deviation_matches`).
         """
         value = float(value)
         return CaseResult(
@@ -277,6 +286,7 @@ class Case:
             compare=self.compare,
             details=dict(details or {}),
             deviation_reason=self.reason_for(model),
+            deviation_matches=deviation_matches,
         )
 
 

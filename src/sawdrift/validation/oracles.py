@@ -40,8 +40,10 @@ def clear_shared() -> None:
 
 # -- closed forms live in sawdrift.analytic (re-exported here for the case files) -----------
 from ..analytic import (  # noqa: E402, F401
+    DEVIATION_TOL,
     amplitude_for_force_ratio,
     cattaneo_mindlin,
+    dem_spring,
     heavy_sliding_v,
     loop_area,
     masing_unloading,
