@@ -632,3 +632,16 @@ def test_angular_rates_and_angles_still_convert():
     assert to_si("9.6 MHz*rad", "frequency") == pytest.approx(9.6e6 / (2 * math.pi))
     assert to_si("6000 rpm", "frequency") == pytest.approx(100.0)
     assert to_si("2 deg", "angle") == pytest.approx(math.radians(2.0))
+
+
+def test_a_quantity_is_the_same_number_however_it_is_written():
+    """'5 um' was 4.9999999999999996e-06 m while '5e-6 m' and '5000 nm' were 5e-06: an irregular
+    mean then depended on the spelling (-6.06e-5 against -6.14e-5 m/s) and a sweep showed two
+    rows labelled 5 um. Conversions are kept to 15 significant figures."""
+    from sawdrift.scene.units import to_si
+
+    for same in (("5 um", "5000 nm", "0.005 mm", "5e-6 m"), ("30 nm", "3e-8 m", "0.03 um"),
+                 ("1 um", "1000 nm", "1e-6 m"), ("20 MHz", "2e7 Hz", "20000 kHz")):
+        kind = "frequency" if "Hz" in same[0] else "length"
+        assert len({to_si(v, kind) for v in same}) == 1, same
+    assert to_si("5 um", "length") == 5e-6

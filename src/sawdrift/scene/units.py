@@ -149,7 +149,7 @@ def _string_si(text: str, kind: str) -> float:
             # 26.6 deg, not 28.6)
             raise ValueError(f"is not an angle: give one in deg or rad, e.g. {example} (a grade "
                              "g in % is the angle atan(g / 100))")
-        return float(q.to("radian").magnitude)
+        return _canonical(float(q.to("radian").magnitude))
     if q.dimensionality != ureg.Quantity(1, unit).dimensionality or q.dimensionless:
         raise ValueError(wrong)
     if kind == "frequency" and any(name in _ACTIVITIES for name, _ in q.unit_items()):
@@ -159,8 +159,15 @@ def _string_si(text: str, kind: str) -> float:
         if kind != "frequency" or radians < 0:
             # per radian ("9.6 MHz/rad") is no angular rate: it was divided by 2 pi
             raise ValueError(wrong)
-        return float(q.to("turn / second").magnitude)  # cycles per second: omega / 2 pi
-    return float(q.to(unit).magnitude)
+        return _canonical(float(q.to("turn / second").magnitude))  # omega / 2 pi
+    return _canonical(float(q.to(unit).magnitude))
+
+
+def _canonical(value: float) -> float:
+    """``value`` to 15 significant figures: a unit's conversion factor leaves a last-bit
+    remainder ("5 um" gave 4.9999999999999996e-06 where "5e-6 m" gives 5e-06), and an irregular
+    motion's mean then depended on how its radius was written (-6.06e-5 against -6.14e-5 m/s)."""
+    return float(f"{value:.15g}")
 
 
 #: The allowed range of each device quantity, in SI units (an angle in radians): the lowest and
