@@ -616,6 +616,8 @@ def test_a_scene_file_with_a_byte_order_mark_is_read(tmp_path, sawdrift_main):
     ("9.6 MHz/rad", "frequency", "wrong dimension"),
     # a radioactive activity is per second like a frequency: "9.6e6 Bq" ran as 9.6 MHz
     ("9.6e6 Bq", "frequency", "radioactive activity"),
+    ("9.6 MBq", "frequency", "radioactive activity"),  # prefixed: ran as 9.6 MHz
+    ("1 mCi", "frequency", "radioactive activity"),
     # a grade in percent is no angle: "2 %" was read as 0.02 rad, "50 %" as 28.6 deg (not 26.6)
     ("50 %", "angle", "atan(g / 100)"),
 ])

@@ -144,7 +144,7 @@ def _string_si(text: str, kind: str) -> float:
     angular = radians != 0
     wrong = f"is not {_article(kind)} {kind} (wrong dimension): give one in {unit}, e.g. {example}"
     if kind == "angle":
-        if not q.dimensionless or any(name in _NOT_ANGLES for name, _ in q.unit_items()):
+        if not q.dimensionless or _roots(ureg, q) & _NOT_ANGLES:
             # a grade in percent is no angle: "2 %" was read as 0.02 rad (a 50 % grade is
             # 26.6 deg, not 28.6)
             raise ValueError(f"is not an angle: give one in deg or rad, e.g. {example} (a grade "
@@ -152,7 +152,7 @@ def _string_si(text: str, kind: str) -> float:
         return _canonical(float(q.to("radian").magnitude))
     if q.dimensionality != ureg.Quantity(1, unit).dimensionality or q.dimensionless:
         raise ValueError(wrong)
-    if kind == "frequency" and any(name in _ACTIVITIES for name, _ in q.unit_items()):
+    if kind == "frequency" and _roots(ureg, q) & _ACTIVITIES:
         raise ValueError(f"is a radioactive activity, not a frequency: give one in {unit}, "
                          f"e.g. {example}")
     if angular:
@@ -161,6 +161,12 @@ def _string_si(text: str, kind: str) -> float:
             raise ValueError(wrong)
         return _canonical(float(q.to("turn / second").magnitude))  # omega / 2 pi
     return _canonical(float(q.to(unit).magnitude))
+
+
+def _roots(ureg, q) -> set[str]:
+    """The unit names of quantity ``q`` without their prefixes ("9.6 MBq": becquerel; the
+    prefixed name megabecquerel passed a check of names)."""
+    return {root for name, _ in q.unit_items() for _, root, _ in ureg.parse_unit_name(name)}
 
 
 def _canonical(value: float) -> float:
