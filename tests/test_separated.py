@@ -463,12 +463,12 @@ def test_a_damped_contact_s_drift_is_its_orbit_s_not_a_slow_cycle_s(m_star, ampl
 
 
 @pytest.mark.slow
-def test_a_creep_of_partial_slip_whose_memory_repeats_is_not_solved_but_windowed():
+def test_a_creep_of_partial_slip_whose_memory_repeats_is_confirmed_by_windows():
     """jaeger (the exact Mindlin law) at the stick boundary, m* = 1400, A* = 0.465, mu = 0.5: its
     memory repeats at the zero with no gross slip anywhere in the period, a creep of partial
     slip that the particle's ringing on its tangential stiffness sets. The orbit said -0.003865,
     29 % off brute force (from rest, 40 m*/mu + 2000 periods, measured over the last quarter);
-    full-inertia windows started at it agree within 2e-5."""
+    full-inertia windows started at it, which must confirm it, agree within 2e-5."""
     base = sd.Scene(model="jaeger", particle={"m_star": 1400.0}, drive={"amplitude": 0.465},
                     material={"mu": 0.5})
     n = int(40 * 1400 / 0.5) + 2000
@@ -477,6 +477,6 @@ def test_a_creep_of_partial_slip_whose_memory_repeats_is_not_solved_but_windowed
                                       "numerics.max_periods": n}))
     res = sd.run(base)
     assert -0.0035 < ref.drift_ratio < -0.0025 and ref.gross_slip_fraction == 0.0
-    assert res.settle_method == "windows_full" and res.settled is True
+    assert res.settle_method == "orbit_then_full" and res.settled is True
     assert abs(res.drift_ratio - ref.drift_ratio) <= 2e-5, (res.drift_ratio, ref.drift_ratio)
     assert res.regime == ref.regime == "drift_against" and res.creep is True

@@ -178,7 +178,8 @@ class _Approach:
     #: the window ratio of the last secant across a jump that stood out of the noise (None:
     #: none yet; :meth:`_learn`)
     seen: float | None = None
-    #: the distance still to go estimated after the last window (drift ratio)
+    #: the distance still to go estimated after the last window (drift ratio); after a jump,
+    #: until the next change is measured, the jump's own distance
     to_go: float = 0.0
 
     def restart(self, longer: bool) -> None:
@@ -213,14 +214,6 @@ class _Approach:
                 and min(abs(before[1]), abs(change)) > JUMP_Z * noise()):
             self.seen = secant
 
-    def _trend_stands_out(self, change: float, noise: Callable[[], float]) -> bool:
-        """Whether the mean of the last :data:`TREND_CHANGES` window changes stands out of their
-        noise (:data:`~.window_noise.JUMP_Z` times the noise of a change over the square root
-        of their number): a trend, not the scatter of a steady drift."""
-        recent = [*self.changes, change][-TREND_CHANGES:]
-        mean = abs(sum(recent)) / len(recent)
-        return mean > JUMP_Z * noise() / math.sqrt(len(recent))
-
     def judge(self, d: float, win: Window, noise: Callable[[], float] = lambda: 0.0
               ) -> tuple[str, float]:
         """("settled" | "jump" | "longer" | "next", the jump in drift ratio) after a window;
@@ -245,7 +238,11 @@ class _Approach:
                                           / (1.0 - self.seen)), change)
         eps = accuracy(d, self.tol)
         self.steady_run = self.steady_run + 1 if abs(change) <= eps else 0
-        trend = (trend_remaining([*self.changes, change], max(self.q, self.seen or 0.0))
+        # the trend's ratio: the secant's where one was measured (faster or slower than the
+        # bounded prediction: the larger of the two overshot a ratio of 0.88 by a factor 2.4,
+        # and its jumps alternated in sign), else the prediction
+        q_trend = self.q if self.seen is None else self.seen
+        trend = (trend_remaining([*self.changes, change], q_trend)
                  if slow and self.q >= SLOW_Q else 0.0)
         self.to_go = max(abs(remaining), trend)
         if self.steady_run >= STEADY_CHANGES and max(abs(remaining), trend) <= eps:
@@ -265,12 +262,6 @@ class _Approach:
             # the next window re-adapts; compare the two after it
             longest = LONGEST_JUMP if self.seen is None else TRUSTED_JUMP
             return "jump", math.copysign(min(abs(remaining), longest * abs(change)), change)
-        if trend > eps and not win.contact_lost and self._trend_stands_out(change, noise):
-            # a slow approach whose changes beat: the jump by the mean change's distance to go
-            # (not a bouncer's, whose changes are no geometric series: see _learn)
-            self.jumps += 1
-            self.before = None
-            return "jump", math.copysign(trend, sum([*self.changes, change][-TREND_CHANGES:]))
         self.flips = self.flips + 1 if (last is not None and change * last < 0.0) else 0
         if self.flips >= 2 and abs(change) > eps and self.w < LONGEST_WINDOW * self.w0:
             # changes that alternate in sign are a slow oscillation beating against the window

@@ -34,9 +34,10 @@ Where it does not apply, :func:`separated_orbit` returns None and the run settle
   contact comes near sliding as a whole (:data:`NEAR_SLIP`), the curve is first sampled again
   with evaluations of 6, then :data:`LONGEST_PERIODS` periods: a contact slipping over part of
   its period can take more than three to wash its memory in. A memory that repeats with no
-  gross slip anywhere in the period (the exact Mindlin law of jaeger at the stick boundary) is
-  a creep of partial slip too: the windows start at the orbit's drift (jaeger m* = 1400,
-  A* = 0.465, mu = 0.5: the orbit's -0.003865 against -0.002999 from brute force);
+  gross slip anywhere in the period (the exact Mindlin law of jaeger) is a creep of partial
+  slip too, whose drift the ringing may set: the orbit is marked (``partial_slip``) and only
+  starts windows that must confirm it (jaeger m* = 1400, A* = 0.465, mu = 0.5: the orbit's
+  -0.003865 against -0.002999 from brute force; at 0.47 and beyond it is right);
 * an orbit that loses contact. A run started from rest keeps the free vertical oscillation its
   start-up left (the normal contact is undamped), and where contact is lost that oscillation
   changes the drift: measured on mmd, the drift of runs from rest differs from the orbit's by
@@ -154,6 +155,9 @@ class SeparatedOrbit:
     loses_contact: bool  # a* <= 0 somewhere on the orbit
     curve: tuple[tuple[float, float], ...]  # (drift ratio, -<T*>) sampled on the way to the zero
     problem: _Problem = field(repr=False, compare=False)  # the imposed motion, for .torus
+    #: no gross slip anywhere in the period, contact kept: a creep of partial slip, which the
+    #: particle's ringing on its tangential stiffness may set instead (module docstring)
+    partial_slip: bool = False
 
 
 def solvable(scene, rigid: bool) -> bool:
@@ -393,11 +397,10 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
         # held, it returns to its drift from rest by itself; sliding over a share of the
         # period, its mean speed is a slow variable and the zero is where windows should start
         return Stuck(d_star * speed) if sliding >= SLIDING_FRACTION else STUCK
-    if not loses and not _slides(got[4], got[5]):
-        return Stuck(d_star * speed)  # a creep of partial slip (module docstring)
     return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
                           p.evaluations, _slope(pushes, d_star, speed), loses,
-                          tuple(sorted(pushes.items())), p)
+                          tuple(sorted(pushes.items())), p,
+                          partial_slip=not loses and not _slides(got[4], got[5]))
 
 
 def _slides(normal: np.ndarray, tangential: np.ndarray) -> bool:
