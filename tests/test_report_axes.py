@@ -144,6 +144,16 @@ def test_compare_by_the_column_still_draws_a_panel_per_value(table, tmp_path):
         compare_plot.compare_figure(third, ["material_point", "mmd"], by="particle.load")
 
 
+def test_compare_by_a_value_one_model_lacks_is_one_line():
+    """One model swept at both loads, the other at one: --by particle.load had a panel with no
+    cells, an internal failure (exit 3); it names the model and the values it lacks."""
+    both = two_load_table()
+    lacking = both[~((both["model"] == "mmd") & (both["particle.load"] == 0.2))]
+    with pytest.raises(SceneError, match=r"model mmd has no cells at particle.load = 0.2 "
+                                         r"\(its table holds particle.load = 0\)"):
+        compare_plot.compare_figure(lacking, ["material_point", "mmd"], by="particle.load")
+
+
 def test_explore_refuses_a_suffix_that_is_not_a_page(table, tmp_path):
     out = tmp_path / "ex.txt"
     line = _one_error_line(run_main("explore", table, "-o", out))

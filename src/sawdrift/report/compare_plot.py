@@ -54,7 +54,21 @@ def variants(table: pd.DataFrame, models: list[str], by: str | None) -> list[tup
     if by not in table.columns:
         raise SceneError(f"--by {by!r} is not a column of the table (sweep it with --axis)")
     values = sorted(table[by].dropna().unique().tolist())
+    for m in models:
+        # a model swept at fewer values of by than another has no cells for some panels (an
+        # internal failure, exit 3: "single positional indexer is out-of-bounds")
+        held = table.loc[table["model"] == m, by].dropna().unique().tolist()
+        missing = [v for v in values if v not in held]
+        if missing:
+            raise SceneError(f"--by {by}: model {m} has no cells at {by} = {_listed(missing)} "
+                             f"(its table holds {by} = {_listed(sorted(held))}); compare the "
+                             f"values all models have with --where {by}=VALUE")
     return [(f"{m}, {by} = {v}", m, {by: v}) for m in models for v in values]
+
+
+def _listed(values: list) -> str:
+    """Values of a column, comma-separated (numbers as %g)."""
+    return ", ".join(f"{v:g}" if isinstance(v, float) else str(v) for v in values)
 
 
 def _computed(codes: np.ndarray) -> np.ndarray:
