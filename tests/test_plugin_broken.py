@@ -219,3 +219,42 @@ def test_a_nan_law_fails_only_finite_forces_and_shows_the_values_it_judged():
             assert "left to finite_forces" in check.detail, name
     finally:
         registry.unregister("nan_law19")
+
+
+def _raising_damp(dp, law, a, adot, n_elastic):
+    """A plugin's normal damping that raises (a plain Python function, not compiled)."""
+    raise ValueError("kernel exploded")
+
+
+def test_a_plugin_damping_that_raises_where_the_step_is_chosen_names_the_plugin():
+    """The step per period asks a velocity-dependent law for its dashpot before any run (a run's
+    size estimate too): there a plugin's damping that raised was an internal failure, exit 3
+    ("KeyError: '__builtins__'"), on both engines. It is the plugin's one-line PluginError."""
+    from typing import ClassVar
+
+    from pydantic import BaseModel, ConfigDict, Field
+
+    import sawdrift as sd
+    from sawdrift.contact.base import LazyFunction
+    from sawdrift.contact.registry import registry
+    from sawdrift.contact.slots import NormalDamping
+    from sawdrift.dynamics.assembly import steps_per_period
+    from sawdrift_builtin.hertz_mindlin_dem import HertzMindlinDEM
+
+    class DampParams(BaseModel):
+        model_config = ConfigDict(frozen=True, extra="forbid")
+        damping: float = Field(0.1, ge=0.0, description="x")
+
+    class Damp(NormalDamping):
+        name: ClassVar[str] = "raising_damp20"
+        Params: ClassVar[type[BaseModel]] = DampParams
+        damp: ClassVar[LazyFunction] = LazyFunction(__name__, "_raising_damp")
+
+    model = HertzMindlinDEM.with_damping(Damp, name="raising_damp_model20", summary="raises")
+    registry.register(model, distribution="broken-dist")
+    try:
+        scene = sd.Scene(model="raising_damp_model20", numerics={"periods": 5})
+        with pytest.raises(PluginError, match=r"'raising_damp_model20' from 'broken-dist'"):
+            steps_per_period(scene)
+    finally:
+        registry.unregister("raising_damp_model20")

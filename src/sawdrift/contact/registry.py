@@ -9,14 +9,15 @@ from __future__ import annotations
 import importlib.metadata as im
 import re
 import warnings
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
 import pluggy
 
 from .. import hookspecs
-from ..errors import ModelNotFoundError, PluginError
+from ..errors import ModelNotFoundError, PluginError, SawdriftError, first_line
 from .base import KERNEL_INTERFACE, ContactModel
 from .slots import TangentialLaw
 
@@ -226,3 +227,22 @@ registry = Registry()
 def get_model(name: str) -> type[ContactModel]:
     """The registered contact model class called ``name``."""
     return registry.get(name)
+
+
+@contextmanager
+def plugin_failures(name: str) -> Iterator[None]:
+    """Turn an exception out of a plugin model's code into a one-line :class:`PluginError`
+    naming the model and its distribution (the command line's exit status 2): a kernel that
+    raises, one numba cannot compile (a wrong signature, a tuple where T* is due) were an
+    "internal failure, please report it", which blamed sawdrift. sawdrift's own models, and
+    errors sawdrift raises itself, pass through as they are."""
+    try:
+        yield
+    except SawdriftError:
+        raise
+    except Exception as exc:
+        entry = registry.models.get(name)
+        if entry is None or entry.distribution == BUILTIN_DISTRIBUTION:
+            raise
+        raise PluginError(f"model {name!r} from {entry.distribution!r} failed: "
+                          f"{first_line(exc)}; `sawdrift check-model {name}` tests it") from None

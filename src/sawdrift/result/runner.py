@@ -10,14 +10,12 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Iterator
-from contextlib import contextmanager
 from dataclasses import replace
 from typing import Any
 
 from .._texts import HEATING, STILL_MOVING
 from ..contact.binding import bind, model_for
-from ..contact.registry import BUILTIN_DISTRIBUTION, registry
+from ..contact.registry import plugin_failures
 from ..dynamics.assembly import Engine, assemble
 from ..dynamics.batch_means import HALVES_Z, TREND_Z
 from ..dynamics.drives import Drive
@@ -31,7 +29,7 @@ from ..dynamics.integrate import FLIGHTS_PER_MEAN, MOST_FLIGHT_BUDGETS, WaveRun,
 from ..dynamics.prescribed import PrescribedRun, run_prescribed
 from ..dynamics.steady import holding_bound, load_is_neutral, runs_away
 from ..dynamics.window import Window, ballistic_return, in_flight
-from ..errors import PluginError, SawdriftError, SceneError, first_line
+from ..errors import SceneError
 from ..scene.device import device_outputs
 from ..scene.schema import Scene
 from ..scene.validity import device_warnings
@@ -79,25 +77,6 @@ def _run(scene: Scene, trajectory: bool, engine: Engine, record_every: int | Non
         return _impact_result(scene, plan.engine, integrate_impact(scene, model, plan), trajectory)
     return _wave_result(scene, plan.engine, plan.drive,
                         integrate_wave(scene, model, plan, trajectory, record_every))
-
-
-@contextmanager
-def plugin_failures(name: str) -> Iterator[None]:
-    """Turn an exception out of a plugin model's code into a one-line :class:`PluginError`
-    naming the model and its distribution (the command line's exit status 2): a kernel that
-    raises, one numba cannot compile (a wrong signature, a tuple where T* is due) were an
-    "internal failure, please report it", which blamed sawdrift. sawdrift's own models, and
-    errors sawdrift raises itself, pass through as they are."""
-    try:
-        yield
-    except SawdriftError:
-        raise
-    except Exception as exc:
-        entry = registry.models.get(name)
-        if entry is None or entry.distribution == BUILTIN_DISTRIBUTION:
-            raise
-        raise PluginError(f"model {name!r} from {entry.distribution!r} failed: "
-                          f"{first_line(exc)}; `sawdrift check-model {name}` tests it") from None
 
 
 def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Result:
