@@ -403,3 +403,32 @@ def test_a_rigid_point_runs_through_a_two_wave_field_into_its_trap():
     res = sd.run(scene, trajectory=True)
     xi = 0.1 + float(res.trajectory["x"].iloc[-1]) / 200.0
     assert abs(xi - (-0.00054)) < 5e-4, xi
+
+
+def test_refine_is_bounded_and_counted_in_the_size(monkeypatch, capsys):
+    """--refine 99999999 ran for hours with no word, and --refine 20000 was estimated 'under
+    1 s' and took 26 s: it is at most 60 rounds (Illinois converges superlinearly), and each
+    round's runs (two zeros a species) count in the estimate the field prints."""
+    from sawdrift.study import estimate
+
+    from .cli_call import call
+
+    code, _, err = call(monkeypatch, capsys, "field", "--backward", "0.5", "--points", "4",
+                        "--periods", "5", "--refine", "99999999", "--no-progress")
+    assert code == 2 and "refine = 99999999: give 0 to 60" in err
+    seen = []
+    real = estimate.size_check
+
+    def spy(*args, **kw):
+        seen.append(kw.get("extra_steps", 0.0))
+        return real(*args, **kw)
+
+    monkeypatch.setattr(estimate, "size_check", spy)
+    for refine in (0, 60):
+        code, _, err = call(monkeypatch, capsys, "field", "--backward", "0.5", "--points", "4",
+                            "--periods", "5", "--refine", str(refine), "--no-progress",
+                            "--json")
+        assert code == 0, err
+    one = estimate.cell_steps(sd.Scene(drive={"kind": "wave", "backward": 0.5},
+                                       numerics={"periods": 5}))[0]
+    assert seen[0] == 0.0 and seen[1] == pytest.approx(60 * 2 * one / 4, rel=0.2)

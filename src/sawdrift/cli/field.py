@@ -39,7 +39,7 @@ def field_cmd(
     param: Param = None,
     points: Annotated[int, typer.Option("--points", help="positions over one period of the field "
                                         "(1/2 wavelength), at least 4")] = 32,
-    refine: Annotated[int, typer.Option("--refine", help="regula-falsi runs per zero")] = 2,
+    refine: Annotated[int, typer.Option("--refine", help="regula-falsi runs per zero, 0 to 60")] = 2,
     axis: Annotated[str | None, typer.Option(
         "--axis", help="FIELD=a,b: one field per value of a particle field, overlaid (sorting), "
         "e.g. particle.m_star=0.05,0.5 or 'device.particle.radius=5 um,40 um'")] = None,
@@ -93,21 +93,24 @@ def field_cmd(
                   "with device.wavelength or device.substrate.density")
         if direct_periods is not None and not float(direct_periods) >= 1.0:
             _fail(f"--periods = {direct_periods!r}: a direct run needs at least 1 period")
-    from ..study.estimate import size_check
-    from ..study.field import MIN_POINTS, species_scenes
+    from ..study.estimate import cell_steps, size_check
+    from ..study.field import MAX_REFINE, MIN_POINTS, ZEROS_PER_FIELD, species_scenes
 
-    if points < MIN_POINTS or refine < 0:  # the study's own one-line errors, before the estimate
+    if points < MIN_POINTS or not 0 <= refine <= MAX_REFINE:  # the study's own one-line errors
         drift_field(scene, points, refine=refine, progress=False)
 
     sample = [sp for _, sp in species_scenes(scene, species)]
-    extra = 0.0
+    # the refinement's runs, ZEROS_PER_FIELD zeros a species, counted in the size (--refine 20000
+    # was estimated under 1 s and ran 26 s)
+    extra = refine * ZEROS_PER_FIELD * sum(cell_steps(sp)[0] for sp in sample) / (
+        points * len(sample))
     if direct:
         from ..study.field import direct_scenes
 
         # checked before the field, and counted in its size (the estimate left it out)
         direct_periods = float(2000.0 if direct_periods is None else direct_periods)
         try:
-            extra = direct_scenes(scene, start, direct_periods)[2] / (points * len(sample))
+            extra += direct_scenes(scene, start, direct_periods)[2] / (points * len(sample))
         except SawdriftError as exc:
             _fail(str(exc).replace("periods = ", "--periods = ", 1))
     size_check("field", sample, points * len(sample), workers=workers, engine=engine, yes=yes,

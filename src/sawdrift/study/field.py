@@ -45,6 +45,14 @@ PERIOD = 0.5
 #: fewest positions of a field
 MIN_POINTS = 4
 
+#: most regula-falsi rounds per zero (``refine``): Illinois converges superlinearly, and a few
+#: rounds reach the position's rounding; 99999999 ran for hours with no word
+MAX_REFINE = 60
+
+#: zeros per species a field's refinement is counted with in its size (a trap and a repeller per
+#: period of the field, the usual two)
+ZEROS_PER_FIELD = 2
+
 
 def wavelength_star(scene: Scene) -> float | None:
     """L* = wavelength / a0: ``drive.wavelength``, else the device's (None if unknown)."""
@@ -267,8 +275,9 @@ def drift_field(
     if int(points) != points or points < MIN_POINTS:
         raise SceneError(f"points = {points!r}: a field needs at least {MIN_POINTS} positions "
                          "over its period (1/2 wavelength)")
-    if refine < 0:
-        raise SceneError(f"refine = {refine!r} must be >= 0")
+    if not 0 <= refine <= MAX_REFINE:
+        raise SceneError(f"refine = {refine!r}: give 0 to {MAX_REFINE} regula-falsi runs per zero "
+                         "(Illinois converges superlinearly: a few reach the position's rounding)")
     base = _field_base(scene)
     positions = np.arange(int(points)) * (PERIOD / int(points))
     axes: dict[str, Any] = {"drive.position": positions.tolist()}
