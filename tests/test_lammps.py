@@ -554,3 +554,16 @@ def test_packed_example_has_contacts_that_change_the_drift():
     assert large["mixture_drift_ratio"] == pytest.approx(dilute.species[1]["drift_ratio"], rel=0.02)
     assert packed.segregation[-1] < 0.9
     assert abs(packed.positions["purity_index"][-1]) < 0.1
+
+
+@needs_lammps
+def test_more_mpi_processes_than_cores_are_refused_before_mpi_starts(sawdrift_main):
+    """--np 99999 on a 2-core machine sat a minute on '0/5 periods' before MPI failed; it is one
+    line naming the machine's cores, before anything is launched."""
+    import os
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "mixture.toml"
+    cores = os.cpu_count() or 1
+    out = sawdrift_main("lammps", str(example), "--periods", "5", "--np", str(cores + 1))
+    assert out.returncode == 2 and out.stderr.count("\n") == 1
+    assert f"--np = {cores + 1}: give 1 to {cores} MPI processes" in out.stderr

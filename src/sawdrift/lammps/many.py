@@ -178,8 +178,11 @@ def run_particles(scene: Scene, particles: Particles | dict[str, Any], *,
     k_per, n_total, periods = run_steps(scene, species)
     procs = default_processes(spec.count) if processes is None else processes
     launcher = mpirun()
-    if procs < 1:
-        raise SceneError(f"--np = {procs}: give at least 1 MPI process")
+    cores = os.cpu_count() or 1
+    if not 1 <= procs <= cores:
+        # more processes than cores: MPI refused them after a minute of "0/5 periods" (99999 on
+        # 2 cores), or they share the cores for nothing
+        raise SceneError(f"--np = {procs}: give 1 to {cores} MPI processes (the machine's cores)")
     if procs > 1 and launcher is None:
         raise LammpsUnavailableError(f"MPI is missing: {procs} processes need mpirun or mpiexec on "
                                      f"PATH; {INSTALL_HINT}")
