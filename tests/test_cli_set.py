@@ -129,3 +129,29 @@ def test_no_hint_names_a_load_the_device_would_refuse(monkeypatch, capsys):
     silica = MOTOR.parent / "micro_silica_on_linbo3.toml"
     code, _, err = call(monkeypatch, capsys, "run", str(silica), "--load", "3e7")
     assert code == 2 and "device.load" in err and 'device.load="' not in err
+
+
+def test_a_model_parameter_given_twice_is_refused(monkeypatch, capsys):
+    """--param and --set of one parameter, or --param twice: one of them won without a word."""
+    for args, needle in (
+            (("--param", "max_memory_points=16", "--set", "model_params.max_memory_points=32"),
+             "already sets model_params.max_memory_points; give it once"),
+            (("--param", "max_memory_points=16", "--param", "max_memory_points=32"),
+             "--param max_memory_points is given twice; give it once")):
+        code, _, err = call(monkeypatch, capsys, "run", "--periods", "4", *args)
+        assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_another_model_by_set_drops_the_files_parameters_and_keeps_those_given(
+        monkeypatch, capsys, tmp_path):
+    """--set model=mmd on a hertz_mindlin_dem file named the file model's rescale, a parameter
+    the user never gave; and --model with --set model_params.X on a file dropped the X given."""
+    scene = tmp_path / "dem.toml"
+    scene.write_text('model = "hertz_mindlin_dem"\n[model_params]\nrescale = true\n')
+    code, out, err = call(monkeypatch, capsys, "run", str(scene), "--periods", "4",
+                          "--set", "model=mmd", "--json")
+    assert code == 0, err
+    code, out, err = call(monkeypatch, capsys, "run", str(scene), "--periods", "4", "--model",
+                          "mmd", "--set", "model_params.max_memory_points=32", "--json")
+    assert code == 0, err
+    assert json.loads(out)["scene"]["model_params"] == {"max_memory_points": 32}

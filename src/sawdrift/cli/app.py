@@ -257,6 +257,8 @@ def _parse_param(items: list[str] | None) -> dict[str, Any]:
             value: Any = json.loads(raw)
         except json.JSONDecodeError:
             value = raw
+        if key.strip() in params:  # the last one won without a word
+            _fail(f"--param {key.strip()} is given twice; give it once")
         params[key.strip()] = value
     return params
 

@@ -187,12 +187,24 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
     if params:
         from ..contact.binding import check_model_params
 
-        check_model_params(model or (base.model if base is not None else "mmd"), params)
+        check_model_params(values.get("model") or (base.model if base is not None else "mmd"),
+                           params)
+        for key in params:
+            # --param and --set of one parameter: the --param won without a word
+            if f"model_params.{key}" in values:
+                typed = getattr(overrides, "given", {}).get(f"model_params.{key}",
+                                                            f"--set model_params.{key}")
+                raise sd.SceneError(f"--param {key}: {typed} already sets model_params.{key}; "
+                                    "give it once")
+    # a file's parameters belong to the file's model, dropped when another model is named
+    # (--model or --set model=): before the options, so that a --set model_params.X given with
+    # it is kept (--set model=mmd on a hertz_mindlin_dem file named its rescale, a parameter the
+    # user never gave)
+    if base is not None and values.get("model") not in (None, base.model):
+        data["model_params"] = {}
     # one rule for every path: on a device scene a derived (normalized) field is an error
     # naming the device field to set instead (sawdrift.scene.apply_overrides)
     data = apply_options(data, values, overrides)
-    if base is not None and model not in (None, base.model):
-        data["model_params"] = {}
     if params:
         data.setdefault("model_params", {}).update(params)
     source = str(scene_file) if scene_file else None
