@@ -155,3 +155,16 @@ def test_another_model_by_set_drops_the_files_parameters_and_keeps_those_given(
                           "mmd", "--set", "model_params.max_memory_points=32", "--json")
     assert code == 0, err
     assert json.loads(out)["scene"]["model_params"] == {"max_memory_points": 32}
+
+
+@pytest.mark.parametrize("args", [
+    ("sweep", "--mu", "0.5", "--axis", "material.mu=0.1,0.2", "-o", "{tmp}/t.parquet"),
+    ("bifurcation", "--axis", "drive.amplitude=0.1,0.3", "--amplitude", "0.9", "-o", "{tmp}/b"),
+    ("field", "--backward", "0.5", "--points", "4", "--axis", "particle.m_star=0.05,0.5",
+     "--m-star", "0.1"),
+])
+def test_an_option_for_the_field_an_axis_sweeps_is_refused(args, monkeypatch, capsys, tmp_path):
+    """The option's value was dropped without a word (the table held mu 0.1 and 0.2 only)."""
+    code, _, err = call(monkeypatch, capsys, *(a.format(tmp=tmp_path) for a in args))
+    assert code == 2 and "both set" in err and "give one of them" in err
+    assert len(err.strip().splitlines()) == 1

@@ -23,6 +23,7 @@ from .app import (
     _split_axis,
     _writable,
     app,
+    axis_and_option,
     check_engine,
     json_nulls,
     out_kind,
@@ -77,6 +78,7 @@ def field_cmd(
     species = None
     if axis is not None:
         name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
+        axis_and_option(name, spec, scene_overrides)
         from ..study.axes import parse_values
 
         species = (name, parse_values(spec, name))

@@ -26,6 +26,7 @@ from .app import (
     _split_axis,
     _writable,
     app,
+    axis_and_option,
     interrupted,
     out_kind,
 )
@@ -107,6 +108,7 @@ def sweep_cmd(
         if given is not None:
             _fail(f"--axis {field}={spec} and --{'m-star' if 'm_star' in field else 'amplitude'} "
                   f"{given} both sweep {field}; give one of them")
+        axis_and_option(field, spec, scene_overrides)
         axes[field] = spec
     if not adaptive and (budget is not None or levels is not None):
         _fail(f"{'--budget' if budget is not None else '--levels'} belongs to --adaptive (a grid "
@@ -351,6 +353,7 @@ def bifurcation_cmd(
     (--m-star, --mu, --horizontal-ratio, ...) setting the base scene.
     """
     field, spec = _split_axis(axis, "FIELD=SPEC", "drive.amplitude=lin:0.1:1.5:100")
+    axis_and_option(field, spec, scene_overrides)
     out_kind(out, (), "")
     named = [m.strip() for m in model.split(",") if m.strip()] if model else []
     fast_start()
