@@ -168,3 +168,19 @@ def test_an_option_for_the_field_an_axis_sweeps_is_refused(args, monkeypatch, ca
     code, _, err = call(monkeypatch, capsys, *(a.format(tmp=tmp_path) for a in args))
     assert code == 2 and "both set" in err and "give one of them" in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_a_run_does_not_overwrite_a_sweep_table(monkeypatch, capsys, tmp_path):
+    """run -o NAME.parquet on an existing sweep table replaced its cells by a trajectory without
+    a word; a trajectory file of its own is still overwritten."""
+    table = tmp_path / "t.parquet"
+    code, _, err = call(monkeypatch, capsys, "sweep", "--m-star", "0.1,1", "--amplitude", "0.1",
+                        "--periods", "4", "-o", str(table), "--no-progress")
+    assert code == 0, err
+    before = table.read_bytes()
+    code, _, err = call(monkeypatch, capsys, "run", "--periods", "4", "-o", str(table))
+    assert code == 2 and "is a sweep table" in err and table.read_bytes() == before
+    traj = tmp_path / "traj.parquet"
+    for _ in range(2):
+        code, _, err = call(monkeypatch, capsys, "run", "--periods", "4", "-o", str(traj))
+        assert code == 0, err

@@ -173,6 +173,7 @@ def run_cmd(
         _size(scenes, engine, yes)
     if out is not None:
         _writable(out, folder=kind == "folder")
+        _not_a_table(out)
     results = []
     for sc in scenes:
         with notice(f"run: {sc.model}: working (a model's first run after installing compiles "
@@ -237,6 +238,22 @@ def _model_params(names: list[str], params: dict[str, Any]) -> dict[str | None, 
         for name in takers:
             out[name][key] = value
     return out
+
+
+def _not_a_table(out: Path) -> None:
+    """One line where ``-o`` names an existing sweep table: a run's trajectory overwrote it (a
+    12-cell table became a trajectory without a word)."""
+    if out.suffix != ".parquet" or not out.is_file():
+        return
+    try:
+        import pyarrow.parquet as pq
+
+        names = pq.read_schema(out).names
+    except Exception:  # noqa: BLE001 - not a Parquet file we can read: the write decides
+        return
+    if "cell_id" in names:
+        _fail(f"-o {str(out)!r} is a sweep table: a run's trajectory would overwrite it; give "
+              "another file name")
 
 
 def _size(scenes: list[Any], engine: str, yes: bool) -> None:
