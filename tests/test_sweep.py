@@ -381,3 +381,13 @@ def test_a_period_cap_below_the_size_probe_does_not_refuse_the_sweep():
     assert len(frame) == 4 and frame["error"].isna().all()
     fixed = sd.Scene(numerics={"settle": False, "periods": 200, "max_periods": 100})
     assert fixed.numerics.max_periods == 100  # the cap of a fixed run is not refused
+
+
+@pytest.mark.parametrize("spec", ["0.1,0.1", "0.1:0.1:3", "0.2,0.1,0.2"])
+def test_an_axis_that_repeats_a_value_is_refused(spec):
+    """0.1,0.1 and 0.1:0.1:3 collapsed to one cell without a word (bifurcation refuses them)."""
+    from sawdrift.study.sweep import parse_axis
+
+    with pytest.raises(sd.SceneError, match=r"more than once: give each value once"):
+        parse_axis(spec, "m_star")
+    assert list(parse_axis("0.1:0.1:1", "m_star")) == [0.1]
