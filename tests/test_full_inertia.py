@@ -613,6 +613,17 @@ def test_a_small_turn_back_does_not_hide_a_monotone_approach():
     assert not approaches(wandering, 1e-4)
 
 
+def loaded_pair(m: float, a: float, mu: float, load: float, periods: int,
+                window: int) -> tuple[sd.Result, sd.Result]:
+    """(brute force over ``periods``, measured over the last ``window``; the default run) of an
+    mmd cell under a tangential load."""
+    cell = {"particle": {"m_star": m, "load": load}, "drive": {"amplitude": a},
+            "material": {"mu": mu}}
+    ref = sd.run(sd.Scene(model="mmd", **cell, numerics={
+        "settle": False, "periods": periods, "measure_periods": window, "max_periods": periods}))
+    return ref, sd.run(sd.Scene(model="mmd", **cell))
+
+
 @pytest.mark.slow
 def test_a_load_near_the_holding_limit_is_followed_to_its_slow_end():
     """mmd m* = 47, A* = 0.71, mu = 0.15 under L = -0.1495 (the limit is 0.15): the speed relaxes
@@ -620,11 +631,7 @@ def test_a_load_near_the_holding_limit_is_followed_to_its_slow_end():
     changes left it settled 1.35e-3 short (-0.985942); the secant across a jump, standing out
     of the noise on a contact that keeps touching, carries it on. Brute force over 60000
     periods, measured over the last 15000."""
-    load = {"particle": {"m_star": 47.0, "load": -0.1495}, "drive": {"amplitude": 0.71},
-            "material": {"mu": 0.15}}
-    ref = sd.run(sd.Scene(model="mmd", **load, numerics={
-        "settle": False, "periods": 60000, "measure_periods": 15000, "max_periods": 60000}))
-    res = sd.run(sd.Scene(model="mmd", **load))
+    ref, res = loaded_pair(47.0, 0.71, 0.15, -0.1495, 60000, 15000)
     assert -1.0 < ref.drift_ratio < -0.98
     assert res.settled is True
     assert agrees(res.drift_ratio, ref.drift_ratio), (res.drift_ratio, ref.drift_ratio)
@@ -635,11 +642,7 @@ def test_a_beating_hop_near_its_holding_limit_is_settled_right_or_says_it_is_sti
     """mmd m* = 75, A* = 1.3, mu = 0.2 under L = -0.18: brute force needs more than 4e4
     periods (-0.20319 at 72000, measured over the last 16000); the default run settled at
     -0.20027, 1.4 % short, with no warning. Now it agrees or it says it is still moving."""
-    load = {"particle": {"m_star": 75.0, "load": -0.18}, "drive": {"amplitude": 1.3},
-            "material": {"mu": 0.2}}
-    ref = sd.run(sd.Scene(model="mmd", **load, numerics={
-        "settle": False, "periods": 72000, "measure_periods": 16000, "max_periods": 72000}))
-    res = sd.run(sd.Scene(model="mmd", **load))
+    ref, res = loaded_pair(75.0, 1.3, 0.2, -0.18, 72000, 16000)
     assert -0.21 < ref.drift_ratio < -0.2
     if res.settled:
         assert agrees(res.drift_ratio, ref.drift_ratio), (res.drift_ratio, ref.drift_ratio)

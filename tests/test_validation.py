@@ -114,17 +114,24 @@ def test_missing_model_and_broken_case_file_are_errors_not_crashes(tmp_path):
                               "skipped": 0, "total": 4}
 
 
-def test_expected_deviation_is_reported_not_failed(tmp_path):
+def _deviation_case(tmp_path, models: str, flagged: str, result: str):
+    """validate() of one case 'dev' over ``models``, ``flagged`` deviating by design, whose run
+    returns ``result`` (the CASE.result call)."""
     cases = tmp_path / "cases"
     cases.mkdir()
     (cases / "dev.py").write_text(
         "from sawdrift.validation import Case\n"
-        "CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9, models=('mmd', 'jaeger'),\n"
-        "            expected_deviation=('jaeger',))\n"
+        f"CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9, models={models},\n"
+        f"            expected_deviation={flagged})\n"
         "def run(model):\n"
-        "    return CASE.result(0.25, model=model)\n"
+        f"    return {result}\n"
     )
-    report = validate(tmp_path / "out", cases_dir=cases, progress=False)
+    return validate(tmp_path / "out", cases_dir=cases, progress=False)
+
+
+def test_expected_deviation_is_reported_not_failed(tmp_path):
+    report = _deviation_case(tmp_path, "('mmd', 'jaeger')", "('jaeger',)",
+                             "CASE.result(0.25, model=model)")
     assert {r.name: r.status for r in report.results} == {"dev[mmd]": "fail",
                                                           "dev[jaeger]": "expected deviation"}
     assert report.get("dev[jaeger]").value == 0.25
@@ -134,16 +141,8 @@ def test_expected_deviation_is_reported_not_failed(tmp_path):
 def test_an_expected_deviation_must_be_its_own_closed_form(tmp_path):
     """A model flagged as deviating by design fails where the case finds it off its documented
     deviation's closed form (deviation_matches False): any value passed as 'expected' before."""
-    cases = tmp_path / "cases"
-    cases.mkdir()
-    (cases / "dev.py").write_text(
-        "from sawdrift.validation import Case\n"
-        "CASE = Case(name='dev', group='mindlin', title='x', tolerance=1e-9,\n"
-        "            models=('jaeger', 'mdr'), expected_deviation=('jaeger', 'mdr'))\n"
-        "def run(model):\n"
-        "    return CASE.result(0.25, model=model, deviation_matches=model == 'jaeger')\n"
-    )
-    report = validate(tmp_path / "out", cases_dir=cases, progress=False)
+    report = _deviation_case(tmp_path, "('jaeger', 'mdr')", "('jaeger', 'mdr')",
+                             "CASE.result(0.25, model=model, deviation_matches=model == 'jaeger')")
     assert {r.name: r.status for r in report.results} == {"dev[jaeger]": "expected deviation",
                                                           "dev[mdr]": "fail"}
     assert "not even the deviation expected by design" in report.get("dev[mdr]").message
