@@ -184,3 +184,16 @@ def test_a_run_does_not_overwrite_a_sweep_table(monkeypatch, capsys, tmp_path):
     for _ in range(2):
         code, _, err = call(monkeypatch, capsys, "run", "--periods", "4", "-o", str(traj))
         assert code == 0, err
+
+
+@pytest.mark.parametrize("args", [
+    ("sweep", "--model", "mmd,,mdr", "--m-star", "0.1,1", "--amplitude", "0.1", "-o",
+     "{tmp}/t.parquet"),
+    ("run", "--model", "mmd,"),
+    ("run", "--model", ""),
+])
+def test_an_empty_model_name_in_a_list_is_refused(args, monkeypatch, capsys, tmp_path):
+    """'mmd,,mdr' and 'mmd,' ran the names that were there without a word."""
+    code, _, err = call(monkeypatch, capsys, *(a.format(tmp=tmp_path) for a in args),
+                        "--periods", "4")
+    assert code == 2 and "has an empty model name" in err and len(err.strip().splitlines()) == 1

@@ -245,6 +245,18 @@ def _split_axis(item: str, form: str, example: str) -> tuple[str, str]:
     return field.strip(), spec.strip()
 
 
+def model_names(text: str | None, option: str = "--model") -> list[str]:
+    """The names of a comma-separated model list ([] for None); one line for an empty name in
+    it ('mmd,,mdr', 'mmd,' and '' were taken as the names that were there)."""
+    if text is None:
+        return []
+    names = [m.strip() for m in text.split(",")]
+    if not all(names):
+        _fail(f"{option} {text!r} has an empty model name: give names separated by single "
+              "commas (sawdrift models lists them)")
+    return names
+
+
 def axis_and_option(field: str, spec: str, overrides: Any) -> None:
     """One line where an option (or --set) sets the field an --axis sweeps: the option's value
     was dropped without a word (sweep --mu 0.5 --axis material.mu=0.1,0.2)."""

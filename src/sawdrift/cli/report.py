@@ -10,7 +10,16 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import Progress, _fail, _load_table, _writable, app, bench_app, figure_path
+from .app import (
+    Progress,
+    _fail,
+    _load_table,
+    _writable,
+    app,
+    bench_app,
+    figure_path,
+    model_names,
+)
 
 #: the help of a figure's -o
 FIGURE_HELP = "figure: NAME.png (or .pdf, .svg, .jpg, .tif, .webp, .eps, .ps; no suffix: .png)"
@@ -103,7 +112,7 @@ def compare_cmd(
     """
     out = figure_path(out)
     picked = parse_where(where)
-    names = [m.strip() for m in models.split(",") if m.strip()]
+    names = model_names(models, "--models")
     twice = sorted({m for m in names if names.count(m) > 1})
     if twice:  # a model against itself agreed 100 %
         _fail(f"--models {models!r} names {', '.join(twice)} twice: give each model once")

@@ -14,7 +14,17 @@ import sawdrift as sd
 from .._startup import fast_start, stored_models
 from .._texts import says_heating
 from ..study.progress import notice, run_progress
-from .app import Param, Yes, _fail, _parse_param, _writable, app, check_engine, out_kind
+from .app import (
+    Param,
+    Yes,
+    _fail,
+    _parse_param,
+    _writable,
+    app,
+    check_engine,
+    model_names,
+    out_kind,
+)
 from .run_text import grouped, shared_warnings, side_by_side, unsettled_text
 from .scene_options import scene_from_options, with_scene_options
 
@@ -145,9 +155,7 @@ def run_cmd(
     NOT settled beside the number. --model a,b runs the same scene with each model and prints
     them side by side (-o DIR overlays their trajectories).
     """
-    names = [m.strip() for m in model.split(",") if m.strip()] if model else []
-    if model is not None and not names:
-        _fail(f"--model {model!r} names no model")
+    names = model_names(model)
     twice = sorted({m for m in names if names.count(m) > 1})
     if twice:  # the same run twice, side by side (compare refuses it as well)
         _fail(f"--model {model!r} names {', '.join(twice)} twice: give each model once")

@@ -28,6 +28,7 @@ from .app import (
     app,
     axis_and_option,
     interrupted,
+    model_names,
     out_kind,
 )
 from .scene_options import scene_from_options, with_scene_options
@@ -113,7 +114,7 @@ def sweep_cmd(
     if not adaptive and (budget is not None or levels is not None):
         _fail(f"{'--budget' if budget is not None else '--levels'} belongs to --adaptive (a grid "
               "sweep computes every cell of its axes); add --adaptive or leave it out")
-    named = [m.strip() for m in model.split(",") if m.strip()] if model else []
+    named = model_names(model)
     if len(set(named)) != len(named):
         _fail(f"--model {model}: a model is named twice")
 
@@ -355,7 +356,7 @@ def bifurcation_cmd(
     field, spec = _split_axis(axis, "FIELD=SPEC", "drive.amplitude=lin:0.1:1.5:100")
     axis_and_option(field, spec, scene_overrides)
     out_kind(out, (), "")
-    named = [m.strip() for m in model.split(",") if m.strip()] if model else []
+    named = model_names(model)
     fast_start()
     for name in named:
         sd.get_model(name)
