@@ -239,3 +239,14 @@ def test_a_boolean_for_a_device_number_is_refused():
     motor = sd.Scene.from_toml(Path(__file__).parents[1] / "examples" / "saw_linear_motor.toml")
     with pytest.raises((ValidationError, SceneError), match="is a boolean"):
         motor.with_updates(**{"device.horizontal_ratio": True})
+
+
+def test_a_scene_file_that_fails_to_read_names_itself():
+    """/proc/self/mem opens but cannot be read: the line said 'cannot use: Input/output error'
+    and named no file."""
+    import os
+
+    if not os.path.exists("/proc/self/mem"):
+        pytest.skip("no /proc/self/mem here")
+    with pytest.raises(sd.SceneError, match=r"scene file '/proc/self/mem' cannot be read"):
+        sd.Scene.from_toml("/proc/self/mem")

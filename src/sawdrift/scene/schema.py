@@ -191,6 +191,10 @@ class Scene(BaseModel):
             ) from None
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"scene file {str(path)!r} is malformed TOML: {exc}") from None
+        except OSError as exc:
+            # another read error named no file (/proc/self/mem: "cannot use: Input/output error")
+            raise SceneError(f"scene file {str(path)!r} cannot be read "
+                             f"({exc.strerror or exc})") from None
         profile = data.get("particle", {}).get("profile") if isinstance(data.get("particle"), dict) else None
         if isinstance(profile, dict) and isinstance(profile.get("file"), str):
             # a table named in a scene file is found next to it
