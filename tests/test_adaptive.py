@@ -375,3 +375,15 @@ def test_an_adaptive_map_counts_its_cells_on_one_counter_against_its_budget(tmp_
                       table=tmp_path / "a.parquet", workers=1, progress=True)
     counts = [int(m) for m in re.findall(r"(\d+)/30 cell", capsys.readouterr().err)]
     assert counts and counts == sorted(counts) and counts[-1] <= 30
+
+
+@pytest.mark.parametrize(("kw", "said", "not_said"), [
+    ({"levels": -1}, "levels = -1 must be in [0, 10]", "base ="),
+    ({"base": 1}, "base = 1 must be in [2, 401]", "levels ="),
+])
+def test_an_adaptive_bound_names_only_the_value_outside_it(kw, said, not_said):
+    """--levels -1 was told 'base = 21 must be in [2, 401] ... and levels = -1 in [0, 10]',
+    quoting a base that was valid."""
+    with pytest.raises(sd.SceneError) as err:
+        adaptive_sweep("mmd", (1e-3, 1e2), (1e-2, 10.0), budget=2000, **kw)
+    assert said in str(err.value) and not_said not in str(err.value)

@@ -321,9 +321,11 @@ def _check_arguments(model: str, m_range: Any, a_range: Any, *, budget: int, bas
     get_model(model)  # the one-line ModelNotFoundError the rest of the API gives
     _check_range("m_range", m_range)
     _check_range("a_range", a_range)
-    if not 2 <= base <= 401 or not 0 <= levels <= 10:
-        raise SceneError(f"adaptive: base = {base} must be in [2, 401] (points per axis) and "
-                         f"levels = {levels} in [0, 10] (halvings of a cell)")
+    # each bound names its own value (levels = -1 quoted the valid base beside it)
+    if not 2 <= base <= 401:
+        raise SceneError(f"adaptive: base = {base} must be in [2, 401] (points per axis)")
+    if not 0 <= levels <= 10:
+        raise SceneError(f"adaptive: levels = {levels} must be in [0, 10] (halvings of a cell)")
     if budget > 1_000_000:
         raise SceneError(f"adaptive: budget = {budget} is more than 1000000 cells; split the "
                          "study")
