@@ -222,3 +222,9 @@ def test_a_slope_needs_values_that_differ_by_more_than_rounding():
         assert math.isnan(same.slope("rigid_removal_m"))
     apart = ThresholdStudy("device.particle.radius", [row(1e-6), row(2e-6)])
     assert apart.slope("rigid_removal_m") == pytest.approx(-2.0, abs=1e-9)
+
+
+def test_a_range_of_no_numbers_names_its_first_end():
+    """'a:b:c' was told that N = 'c' must be an integer, not that 'a' is no length."""
+    with pytest.raises(SceneError, match=r"--axis device.particle.radius: 'a' "):
+        parse_device_axis("device.particle.radius=a:b:c")

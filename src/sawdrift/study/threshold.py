@@ -127,11 +127,13 @@ def parse_device_axis(spec: str) -> tuple[str, list[float]]:
 
     parts = values.split(":")
     if len(parts) == 3:
+        # the ends first, in the order written ('a:b:c' was told that N = 'c' must be an
+        # integer, not that 'a' is no length)
+        lo, hi = si(parts[0]), si(parts[1])
         try:
             n = int(parts[2])
         except ValueError:
             raise SceneError(f"--axis {name}: N = {parts[2]!r} must be an integer") from None
-        lo, hi = si(parts[0]), si(parts[1])
         if not (lo > 0 and hi > 0 and 1 <= n <= 1000):
             raise SceneError(f"--axis {name}: START, STOP must be > 0 and 1 <= N <= 1000")
         if n == 1 and lo != hi:
