@@ -197,3 +197,26 @@ def test_an_empty_model_name_in_a_list_is_refused(args, monkeypatch, capsys, tmp
     code, _, err = call(monkeypatch, capsys, *(a.format(tmp=tmp_path) for a in args),
                         "--periods", "4")
     assert code == 2 and "has an empty model name" in err and len(err.strip().splitlines()) == 1
+
+
+def test_ctrl_c_on_the_second_model_keeps_the_first_models_run(monkeypatch, capsys, tmp_path):
+    """--model mmd,mdr stopped by Ctrl-C during mdr printed and wrote nothing, though mmd had
+    ended: it shows mmd's result, writes it, and exits 130 saying so."""
+    import sawdrift.cli.run as run_cli
+
+    real = run_cli._run_one
+    calls = []
+
+    def second_interrupted(scene, engine, trajectory):
+        calls.append(scene.model)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return real(scene, engine, trajectory)
+
+    monkeypatch.setattr(run_cli, "_run_one", second_interrupted)
+    out = tmp_path / "runs"
+    code, stdout, err = call(monkeypatch, capsys, "run", "--model", "mmd,mdr", "--periods", "4",
+                             "-o", str(out))
+    assert code == 130 and "after 1 of 2 models" in err
+    assert "drift_with" in stdout or "regime" in stdout
+    assert any(out.iterdir())

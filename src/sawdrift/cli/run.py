@@ -22,6 +22,7 @@ from .app import (
     _writable,
     app,
     check_engine,
+    interrupted,
     model_names,
     out_kind,
 )
@@ -182,12 +183,28 @@ def run_cmd(
     if out is not None:
         _writable(out, folder=kind == "folder")
         _not_a_table(out)
-    results = []
-    for sc in scenes:
-        with notice(f"run: {sc.model}: working (a model's first run after installing compiles "
-                    "its loops: up to half a minute; settling a heavy particle takes longer)"), \
-                run_progress(f"run: {sc.model}"):
-            results.append(_run_one(sc, engine, out is not None))
+    results, total = [], len(scenes)
+    try:
+        for sc in scenes:
+            with notice(f"run: {sc.model}: working (a model's first run after installing "
+                        "compiles its loops: up to half a minute; settling a heavy particle "
+                        "takes longer)"), run_progress(f"run: {sc.model}"):
+                results.append(_run_one(sc, engine, out is not None))
+    except KeyboardInterrupt:
+        if not results:
+            raise
+        # the models that ended are shown (and written): Ctrl-C on the second of --model
+        # mmd,mdr lost the first's finished run
+        scenes = scenes[:len(results)]
+        _report(scenes, results, out, kind, as_json)
+        interrupted(f"interrupted (Ctrl-C) after {len(results)} of {total} models: the "
+                    "results are of those")
+    _report(scenes, results, out, kind, as_json)
+
+
+def _report(scenes: list[Any], results: list[Any], out: Path | None, kind: str,
+            as_json: bool) -> None:
+    """Print the results of ``scenes`` (side by side for several) and write them to ``out``."""
     summaries = [r.summary() for r in results]
     if out is not None:
         written = _write(out, kind, scenes, results, summaries)
