@@ -230,3 +230,11 @@ def test_speed_is_the_inverse_of_load_between_the_sampled_normal_loads(n):
     for v in (-0.3, -0.05, 0.0, 0.05, 0.2):
         ell = float(small.load(v, n)) / n
         assert small.speed(ell, n) == pytest.approx(v, abs=1e-5)
+
+
+@pytest.mark.parametrize(("option", "value"), [("--jitter", "0.5"), ("--transverse", "3")])
+def test_plane_only_options_with_lanes_are_refused(option, value, monkeypatch, capsys):
+    """sort --geometry line took --jitter and --transverse and ignored them without a word."""
+    code, _, err = call(monkeypatch, capsys, "sort", str(EXAMPLES / "mixture.toml"),
+                        "--geometry", "line", option, value, "--seeds", "1", "--until", "1e3")
+    assert code == 2 and f"{option} belongs to --geometry plane" in err

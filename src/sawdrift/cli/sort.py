@@ -72,7 +72,7 @@ def sort_cmd(
     fast_start()
     from ..mixture.sort import sort_mixture
 
-    _check_options(curves, geometry, transverse)
+    _check_options(curves, geometry, transverse, jitter)
     scene, particles = _scene_and_particles(scene_file, None, {}, scene_overrides,
                                             particle_sets)
     if particles is None:
@@ -125,9 +125,9 @@ def _write_scene(scene: sd.Scene, particles: dict[str, Any], path: Path) -> None
 MAX_TRANSVERSE = 100.0
 
 
-def _check_options(curves: str, geometry: str, transverse: float) -> None:
+def _check_options(curves: str, geometry: str, transverse: float, jitter: float = 1e-3) -> None:
     """One line (exit 2) for a bad --curves, --geometry or --transverse (--jitter: the study's
-    own check, before any run)."""
+    own check, before any run), or a plane-only option given with --geometry line."""
     if curves not in ("native", "lammps_rule"):
         _fail(f"--curves = {curves!r}: use 'native' or 'lammps_rule'")
     if geometry not in ("plane", "line"):
@@ -137,6 +137,11 @@ def _check_options(curves: str, geometry: str, transverse: float) -> None:
         # placement, 1e9 did not end (nor stop on Ctrl-C, which waits for the placement)
         _fail(f"--transverse = {transverse!r}: give a factor in (0, {MAX_TRANSVERSE:g}] (the "
               "documented sensitivity runs 0.3 to 3)")
+    if geometry == "line" and (transverse != 1.0 or jitter != 1e-3):
+        # the lanes' beads do not move across the wave: both were ignored without a word
+        given = "--transverse" if transverse != 1.0 else "--jitter"
+        _fail(f"{given} belongs to --geometry plane (beads in lanes do not move across the "
+              "wave); leave it out or use the plane")
 
 
 #: where docs/mixtures.md lists what the slow model leaves out
