@@ -220,3 +220,11 @@ def test_ctrl_c_on_the_second_model_keeps_the_first_models_run(monkeypatch, caps
     assert code == 130 and "after 1 of 2 models" in err
     assert "drift_with" in stdout or "regime" in stdout
     assert any(out.iterdir())
+
+
+def test_a_bifurcation_tolerance_without_locate_is_refused(monkeypatch, capsys, tmp_path):
+    """--tolerance sets --locate's bracket; without --locate it was ignored without a word."""
+    code, _, err = call(monkeypatch, capsys, "bifurcation", "--axis", "drive.amplitude=0.1,0.3",
+                        "--tolerance", "1e-3", "-o", str(tmp_path / "b"))
+    assert code == 2 and "--tolerance 0.001 belongs to --locate" in err
+    assert not (tmp_path / "b").exists()

@@ -355,6 +355,9 @@ def bifurcation_cmd(
     """
     field, spec = _split_axis(axis, "FIELD=SPEC", "drive.amplitude=lin:0.1:1.5:100")
     axis_and_option(field, spec, scene_overrides)
+    if tolerance != 1e-4 and not locate:  # it was ignored without a word
+        _fail(f"--tolerance {tolerance:g} belongs to --locate (the width of its final bracket); "
+              "add --locate or leave it out")
     out_kind(out, (), "")
     named = model_names(model)
     fast_start()
