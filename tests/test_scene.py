@@ -250,3 +250,11 @@ def test_a_scene_file_that_fails_to_read_names_itself():
         pytest.skip("no /proc/self/mem here")
     with pytest.raises(sd.SceneError, match=r"scene file '/proc/self/mem' cannot be read"):
         sd.Scene.from_toml("/proc/self/mem")
+
+
+def test_an_unknown_kind_of_drive_names_the_kinds_not_an_internal_function():
+    """--set drive.kind=foo said "Input tag 'foo' found using _drive_kind() does not match"."""
+    with pytest.raises(SceneError, match=r"drive.kind = 'foo' is not a kind of drive: use one of "
+                                         r"'wave', 'prescribed', 'impact', 'biharmonic'") as err:
+        build_scene({"drive": {"kind": "foo"}})
+    assert "_drive_kind" not in str(err.value)

@@ -457,6 +457,11 @@ def format_validation_error(exc: ValidationError, source: str | None = None) -> 
         return f"{where}{loc} is required"
     if err["type"] == "extra_forbidden":
         return f"{where}{loc} is not a known field"
+    if err["type"] == "union_tag_invalid":
+        # pydantic's text named the discriminator function ("found using _drive_kind()")
+        ctx = err.get("ctx", {})
+        return (f"{where}{loc}.kind = {ctx.get('tag')!r} is not a kind of drive: use one of "
+                f"{ctx.get('expected_tags')}")
     if loc:
         value = err.get("input")
         if isinstance(value, (int, float, str, bool)):
