@@ -567,3 +567,12 @@ def test_more_mpi_processes_than_cores_are_refused_before_mpi_starts(sawdrift_ma
     out = sawdrift_main("lammps", str(example), "--periods", "5", "--np", str(cores + 1))
     assert out.returncode == 2 and out.stderr.count("\n") == 1
     assert f"--np = {cores + 1}: give 1 to {cores} MPI processes" in out.stderr
+
+
+@pytest.mark.parametrize("option", [("--compare",), ("--json",)])
+def test_run_options_with_write_input_are_refused(option, sawdrift_main, tmp_path):
+    """--write-input writes the input and runs nothing: --compare and --json were ignored."""
+    out = sawdrift_main("lammps", "--model", "hertz_mindlin_dem", "--write-input",
+                        str(tmp_path / "w.in"), *option)
+    assert out.returncode == 2 and f"{option[0]} needs a run" in out.stderr
+    assert not (tmp_path / "w.in").exists()

@@ -174,6 +174,11 @@ def lammps_cmd(
     why = refusal(scene)
     if why is not None:
         _fail(why)
+    if write_input is not None and (compare or as_json or out is not None):
+        # --write-input writes the input and runs nothing: these were ignored without a word
+        given = "--compare" if compare else "--json" if as_json else "-o"
+        _fail(f"{given} needs a run; --write-input writes the LAMMPS input and runs nothing: "
+              "give one of them")
     if out is not None:
         _writable(out)
     if particles is not None:
