@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import sawdrift as sd
-from sawdrift.dynamics.full_inertia import full_window_length, remaining_distance
+from sawdrift.dynamics.approach import remaining_distance
+from sawdrift.dynamics.full_inertia import full_window_length
 
 #: periods a default settling run runs before its settling begins (its periods less its
 #: measuring window); ``settle_periods`` counts them, as ``periods`` does
@@ -301,7 +302,7 @@ def test_doubled_windows_take_the_window_ratio_of_their_own_length():
     and by q^2 over one of 2 W: windows that double (a beat against the window) must square the
     ratio the remaining distance is extrapolated with, or they overestimate it by a factor
     (1 + q) and jump on it."""
-    from sawdrift.dynamics.full_inertia import _Approach
+    from sawdrift.dynamics.approach import _Approach
 
     lam, w = 0.01, 27
     state = _Approach(w=w, q=np.exp(-lam * w), tol=1e-3, w0=w, rate=lam)
@@ -320,7 +321,7 @@ def test_windows_with_nothing_to_extrapolate_do_not_move_the_speed():
     same changes under a slow mode (q > 0) still jump."""
     from types import SimpleNamespace
 
-    from sawdrift.dynamics.full_inertia import _Approach
+    from sawdrift.dynamics.approach import _Approach
 
     win = SimpleNamespace(out_of_contact_fraction=0.0, liftoffs_per_period=0.0,
                           contact_lost=False, gross_slip_fraction=0.5)
@@ -532,7 +533,7 @@ def test_a_partly_stuck_contact_whose_mean_speed_still_relaxes_is_extrapolated()
     mean speed predicted to relax within a window (q < 0.5), are left to the windows as before."""
     from types import SimpleNamespace
 
-    from sawdrift.dynamics.full_inertia import _Approach, creep_ratio
+    from sawdrift.dynamics.approach import _Approach, creep_ratio
 
     win = SimpleNamespace(out_of_contact_fraction=0.0, liftoffs_per_period=0.0,
                           contact_lost=False, gross_slip_fraction=0.016)

@@ -38,6 +38,9 @@ STEADY_CHANGES = 3
 #: point; a slower approach takes several jumps
 LONGEST_JUMP = 20.0
 
+#: the window ratio at which an extrapolation reaches :data:`LONGEST_JUMP` changes
+LONGEST_Q = LONGEST_JUMP / (1.0 + LONGEST_JUMP)
+
 #: windows may grow to this many times their first length (changes that alternate in sign)
 LONGEST_WINDOW = 16
 
@@ -66,13 +69,14 @@ def remaining_distance(c1: float | None, c2: float, q_pred: float) -> float:
     """
     if q_pred <= 0.0 or c2 == 0.0:
         return c2
-    q_pred = min(q_pred, LONGEST_JUMP / (1.0 + LONGEST_JUMP))
+    q_pred = min(q_pred, LONGEST_Q)
     if c1 is None:
         return c2 * q_pred / (1.0 - q_pred)
     if c1 == 0.0 or c2 / c1 <= 0.0:
         return c2
     q = min(c2 / c1, q_pred)
     return c2 * q / (1.0 - q)
+
 
 #: the largest jump, in window changes, along a secant that stood out of the noise
 #: (:meth:`_Approach._learn`): near the holding limit a load's force-velocity curve is flat and
@@ -130,29 +134,24 @@ def trend_remaining(changes: list[float], q: float) -> float:
     recent = changes[-TREND_CHANGES:]
     if len(recent) < STEADY_CHANGES:
         return 0.0
-    q = min(q, LONGEST_JUMP / (1.0 + LONGEST_JUMP))
+    q = min(q, LONGEST_Q)
     return abs(sum(recent) / len(recent)) * q / (1.0 - q)
 
 
 def secant_ratio(before: tuple[float, float], after: tuple[float, float]) -> float | None:
-    """The window ratio of :func:`learned_ratio`'s secant, None where it gives none in (0, 1)."""
+    """The window ratio q measured across a jump: a secant of the change per window against the
+    window mean, c = -(1 - q) (D - v*), through the (mean, change) pair before and the pair
+    after the jump; None where it gives no ratio in (0, 1).
+
+    The first stage's relaxation rate, scaled to full inertia, is only an estimate (a jump on it
+    overshot by a factor of two on jaeger, m* = 3000); the secant corrects it
+    (:meth:`_Approach._learn`).
+    """
     (d0, c0), (d1, c1) = before, after
     if d1 == d0:
         return None
     k = (c1 - c0) / (d1 - d0)
     return 1.0 + k if -1.0 < k < 0.0 else None
-
-
-def learned_ratio(before: tuple[float, float], after: tuple[float, float], q: float) -> float:
-    """The window ratio q measured across a jump: a secant of the change per window against the
-    window mean, c = -(1 - q) (D - v*), through the pair before and the pair after the jump.
-
-    The first stage's relaxation rate, scaled to full inertia, is only an estimate (a jump on it
-    overshot by a factor of two on jaeger, m* = 3000); the secant replaces it when it gives a
-    ratio in (0, 1), else ``q`` stays.
-    """
-    secant = secant_ratio(before, after)
-    return q if secant is None else secant
 
 
 @dataclass
@@ -164,9 +163,9 @@ class _Approach:
     tol: float
     w0: int = 0
     prev: float | None = None
-    last_change: float | None = None
-    older_change: float | None = None  # the change before last_change
-    changes: list[float] = field(default_factory=list)  # the changes since the last restart
+    #: the window changes since the last restart (the last two are what Aitken's extrapolation
+    #: and :func:`creep_ratio` read; the last four, :func:`trend_remaining`)
+    changes: list[float] = field(default_factory=list)
     before: tuple[float, float] | None = None  # (window mean, change) where the last jump began
     steady_run: int = 0  # consecutive window changes within the accuracy
     flips: int = 0  # consecutive changes of alternating sign
@@ -188,8 +187,7 @@ class _Approach:
             # the ratio per window of a mode relaxing as exp(-lambda t) squares as it doubles
             self.w, self.q, self.flips = 2 * self.w, self.q * self.q, 0
             self.seen = None if self.seen is None else self.seen * self.seen
-        self.prev, self.last_change, self.older_change, self.steady_run = None, None, None, 0
-        self.changes = []
+        self.prev, self.changes, self.steady_run = None, [], 0
 
     def _learn(self, d: float, change: float, noise: Callable[[], float], lost: bool) -> None:
         """After a jump: the secant across it (:func:`secant_ratio`) corrects the predicted
@@ -222,14 +220,15 @@ class _Approach:
         if in_flight(win):
             return "longer", 0.0  # one flight spans the window: its constant drift says nothing
         if self.prev is None:
-            self.prev, self.last_change = d, None
+            self.prev = d
             return "next", 0.0
         change = d - self.prev
         if self.before is not None:
             self._learn(d, change, noise, win.contact_lost)
         slow = win.contact_lost or win.gross_slip_fraction >= SLIDING_FRACTION
-        last = self.last_change
-        creep = None if slow or self.q < SLOW_Q else creep_ratio(self.older_change, last, change)
+        last = self.changes[-1] if self.changes else None
+        older = self.changes[-2] if len(self.changes) > 1 else None
+        creep = None if slow or self.q < SLOW_Q else creep_ratio(older, last, change)
         remaining = remaining_distance(last, change, self.q if slow else (creep or 0.0))
         if slow and self.seen is not None and last is not None and change * last > 0.0:
             # an approach slower than the jumps may go (the secant's ratio past LONGEST_JUMP):
@@ -245,7 +244,7 @@ class _Approach:
         trend = (trend_remaining([*self.changes, change], q_trend)
                  if slow and self.q >= SLOW_Q else 0.0)
         self.to_go = max(abs(remaining), trend)
-        if self.steady_run >= STEADY_CHANGES and max(abs(remaining), trend) <= eps:
+        if self.steady_run >= STEADY_CHANGES and self.to_go <= eps:
             return "settled", 0.0
         if (self.expected is not None and self.steady_run >= 1 and abs(remaining) <= eps
                 and abs(d - self.expected) <= eps and abs(self.prev - self.expected) <= eps):
@@ -269,6 +268,6 @@ class _Approach:
             # the accuracy the alternation is the windows' noise (a sticking contact's drift of
             # 1e-8 changing sign), which the steady count above settles without longer windows
             return "longer", 0.0
-        self.prev, self.last_change, self.older_change = d, change, last
+        self.prev = d
         self.changes.append(change)
         return "next", 0.0

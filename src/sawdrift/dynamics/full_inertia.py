@@ -20,7 +20,7 @@ Two kinds of approach remain, told apart by the window's gross slip:
   mean velocity is a slow variable: it relaxes as v* + c exp(-lambda t) with lambda = mu F'/m*
   (F' the slope of the force-velocity curve at its zero). lambda is known from the first stage
   (its relaxation rate there, times m*_x / m*), and corrected after each jump by the secant of
-  the change per window against the window mean (:func:`learned_ratio`), within a factor of
+  the change per window against the window mean (:func:`~.approach.secant_ratio`), within a factor of
   four of the predicted rate either way (the secant of an irregular bouncer's scattered window
   means is noise: a ratio near one from it threw mmd m* = 1, A* = 10 by 0.65 in drift ratio).
   From two consecutive window means D1, D2 the distance still to go is (D2 - D1) q / (1 - q)
@@ -32,10 +32,10 @@ Two kinds of approach remain, told apart by the window's gross slip:
   contact stiffness; the relaxation is then the damped contact oscillation, a few of its
   periods, and the windows converge by themselves. Where the mean speed is predicted to relax
   over a window or more and three window changes of one sign fall geometrically
-  (:func:`creep_ratio`), it still relaxes as a slow variable: the distance to go and the jump
+  (:func:`~.approach.creep_ratio`), it still relaxes as a slow variable: the distance to go and the jump
   use the measured ratio.
 
-The run stops when :data:`STEADY_CHANGES` consecutive changes of the window mean and the
+The run stops when :data:`~.approach.STEADY_CHANGES` consecutive changes of the window mean and the
 estimated remaining distance (for a heavy particle also that of the mean of its last four
 changes, :func:`~.approach.trend_remaining`: a beat of two windows alternates its changes
 between large and small) are all within half the tolerance (relative to the drift, with an
@@ -59,22 +59,7 @@ from functools import partial
 import numpy as np
 
 from .adams_bashforth import P_FRICTION, P_LOAD, P_M, P_ROLL
-from .approach import (  # noqa: F401 (the approach's names, as callers know them here)
-    ABS_FLOOR,
-    ACCURACY,
-    LONGEST_JUMP,
-    LONGEST_WINDOW,
-    SLIDING_FRACTION,
-    SLOW_Q,
-    STEADY_CHANGES,
-    _Approach,
-    accuracy,
-    creep_ratio,
-    learned_ratio,
-    relative_bound,
-    remaining_distance,
-    secant_ratio,
-)
+from .approach import LONGEST_WINDOW, _Approach, accuracy
 from .batch_means import period_rows
 from .evidence import EV_LANDING, EV_LIFT_OFF
 from .rolling import contact_point, integrates_psi
@@ -305,7 +290,7 @@ def settle_full(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimu
     expected
         A drift ratio solved directly (:mod:`.separated`, :mod:`.torus`): two consecutive windows
         within the accuracy of it and of each other settle the drift (else the usual
-        :data:`STEADY_CHANGES` consecutive changes do).
+        :data:`~.approach.STEADY_CHANGES` consecutive changes do).
     watch
         What the caller follows window by window (:class:`Watch`).
     """

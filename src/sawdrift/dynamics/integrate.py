@@ -21,12 +21,12 @@ import numpy as np
 
 from ..contact.base import ContactModel
 from ..scene.schema import Numerics, Scene
+from .approach import accuracy
 from .assembly import Assembly
 from .batch_means import BatchMeans, long_time_mean, period_rows
 from .evidence import S_LASTLIFT
 from .full_inertia import (
     Watch,
-    accuracy,
     held,
     longest_flight,
     on_orbit,

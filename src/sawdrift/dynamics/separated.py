@@ -64,9 +64,9 @@ import numpy as np
 from ..codegen import Generated, generate, rebind
 from . import adams_bashforth as ig
 from . import fast_parts as fp
+from .approach import SLIDING_FRACTION
 from .drives.travelling import TravellingWave
 from .drives.two_wave import needs_two_waves
-from .full_inertia import SLIDING_FRACTION
 from .roots import brentq, first_passed
 from .stepper import Stepper
 

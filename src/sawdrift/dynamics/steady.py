@@ -50,12 +50,12 @@ import numpy as np
 
 from ..errors import SceneError
 from . import adams_bashforth as ig
+from .approach import relative_bound
 from .direct import settle_direct
 from .evidence import EV_LANDING
 from .full_inertia import (
     held,
     on_orbit,
-    relative_bound,
     relaxation_rate,
     settle_full,
     tapered_drift_ratio,
@@ -398,7 +398,7 @@ def assess_fixed(win: Window, speed: float, tol: float, tau: float, periods_run:
        if the motion is periodic) of the window,
        and the distance still to go, estimated as |d| max(1, tau / n) with the relaxation time
        ``tau`` (:func:`relaxation_periods`), is at most ``tol`` relative to the drift ratio
-       (:func:`~.full_inertia.relative_bound`, the windows' floor), and the run lasted at least
+       (:func:`~.approach.relative_bound`, the windows' floor), and the run lasted at least
        :data:`APPROACH_TIMES` tau. The horizontal velocity changes by at most of order mu / m*
        per period (the period-averaged normal force is the weight, so the averaged friction is
        at most mu times it, in contact or in impacts alike); a heavy particle on its slow

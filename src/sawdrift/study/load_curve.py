@@ -19,7 +19,7 @@ longer advances (docs/physics.md, "Loads, inclines and restitution"). :func:`loa
 ``numerics.drift_tolerance`` times the smaller of the horizontal surface speed 2 pi r A* (the
 regime classifier's threshold for "stick") and the unloaded drift itself, but not below the
 accuracy of a run, the settling's absolute floor (2e-5 of the surface speed by default,
-:func:`~sawdrift.dynamics.full_inertia.relative_bound`); the loaded runs are
+:func:`~sawdrift.dynamics.approach.relative_bound`); the loaded runs are
 classified with that threshold too. Against the surface speed alone a slow drift stalled early:
 a 10 um silica sphere on a 20 MHz lithium niobate line drifting at 3.4e-3 of the surface speed
 was called stalled, and its run "stick", at 29 % of its free speed, 30 % short of the load that
@@ -43,8 +43,8 @@ from typing import Any
 import numpy as np
 
 from ..contact.binding import bind
+from ..dynamics.approach import relative_bound
 from ..dynamics.drives import drive_of
-from ..dynamics.full_inertia import relative_bound
 from ..dynamics.steady import holding_bound
 from ..errors import SceneError
 from ..result.result import json_value
@@ -343,7 +343,7 @@ def _advance_tolerance(scene: Scene, free_drift: float, speed: float) -> float:
     """The drift tolerance of a load curve's loaded runs: the scene's ``drift_tolerance`` times
     the unloaded drift over the surface speed ``speed``, so that "advances" means a drift above
     that fraction of the free drift, but not below the absolute accuracy a run settles its drift
-    ratio to (:func:`~sawdrift.dynamics.full_inertia.relative_bound` of a zero drift, 2e-5 by
+    ratio to (:func:`~sawdrift.dynamics.approach.relative_bound` of a zero drift, 2e-5 by
     default, as the validation family "steady drift against full-inertia brute force" holds it;
     the SAW motor at 5 nm, free drift ratio 4.2e-3, has settled drifts of +-8.8e-6 about zero
     from 0.02 to 0.17 mN), nor above the scene's own tolerance, which also bounds that floor."""
