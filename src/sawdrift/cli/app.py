@@ -257,14 +257,6 @@ def model_names(text: str | None, option: str = "--model") -> list[str]:
     return names
 
 
-def axis_and_option(field: str, spec: str, overrides: Any) -> None:
-    """One line where an option (or --set) sets the field an --axis sweeps: the option's value
-    was dropped without a word (sweep --mu 0.5 --axis material.mu=0.1,0.2)."""
-    if field in overrides:
-        typed = getattr(overrides, "given", {}).get(field, f"--set {field}")
-        _fail(f"--axis {field}={spec} and {typed} both set {field}; give one of them")
-
-
 def _parse_param(items: list[str] | None) -> dict[str, Any]:
     params: dict[str, Any] = {}
     for item in items or []:

@@ -23,13 +23,12 @@ from .app import (
     _split_axis,
     _writable,
     app,
-    axis_and_option,
     check_engine,
     json_nulls,
     out_kind,
     write_outputs,
 )
-from .scene_options import scene_from_options, with_scene_options
+from .scene_options import axis_and_option, scene_from_options, with_scene_options
 
 
 @app.command("field")

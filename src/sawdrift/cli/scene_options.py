@@ -88,6 +88,21 @@ class Overrides(dict):
         self.given = given
 
 
+def typed_as(overrides: Any, field: str, default: str | None = None) -> str | None:
+    """How the option that set ``field`` was typed (``--mu 0.5``, ``--set material.mu=0.5``),
+    ``default`` where ``overrides`` does not say (a plain dict from the Python API)."""
+    return getattr(overrides, "given", {}).get(field, default)
+
+
+def axis_and_option(field: str, spec: str, overrides: Any) -> None:
+    """One line where an option (or --set) sets the field an --axis sweeps: the option's value
+    was dropped without a word (sweep --mu 0.5 --axis material.mu=0.1,0.2)."""
+    if field in overrides:
+        typed = typed_as(overrides, field, f"--set {field}")
+        raise sd.SceneError(f"--axis {field}={spec} and {typed} both set {field}; give one of "
+                            "them")
+
+
 def parse_set(item: str) -> tuple[str, Any]:
     """``(dotted field, value)`` of one ``--set FIELD=VALUE``; one line (exit 2) if malformed.
 
@@ -181,7 +196,7 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
     values = dict(overrides or {})
     if model is not None:
         if "model" in values:  # --model won, and the --set was dropped without a word
-            typed = getattr(overrides, "given", {}).get("model", f"--set model={values['model']}")
+            typed = typed_as(overrides, "model", f"--set model={values['model']}")
             raise sd.SceneError(f"{typed}: --model {model} already sets model; give it once")
         values["model"] = model
     if params:
@@ -192,8 +207,7 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
         for key in params:
             # --param and --set of one parameter: the --param won without a word
             if f"model_params.{key}" in values:
-                typed = getattr(overrides, "given", {}).get(f"model_params.{key}",
-                                                            f"--set model_params.{key}")
+                typed = typed_as(overrides, f"model_params.{key}", f"--set model_params.{key}")
                 raise sd.SceneError(f"--param {key}: {typed} already sets model_params.{key}; "
                                     "give it once")
     # a file's parameters belong to the file's model, dropped when another model is named
@@ -223,7 +237,7 @@ def apply_options(data: dict[str, Any], values: dict[str, Any],
     try:
         return sd.scene.apply_overrides(data, values)
     except DerivedFieldError as exc:
-        typed = getattr(overrides, "given", {}).get(exc.field)
+        typed = typed_as(overrides, exc.field)
         if typed is None:
             raise
         shown = f"{exc.derived:.6g}" if isinstance(exc.derived, float) else repr(exc.derived)

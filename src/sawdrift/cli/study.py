@@ -26,12 +26,11 @@ from .app import (
     _split_axis,
     _writable,
     app,
-    axis_and_option,
     interrupted,
     model_names,
     out_kind,
 )
-from .scene_options import scene_from_options, with_scene_options
+from .scene_options import axis_and_option, scene_from_options, with_scene_options
 
 #: the help of --m-star and --amplitude
 AXIS_HELP = "START:STOP:N (N >= 2 log-spaced values, both ends included) or a,b,c; shorthand for an axis"

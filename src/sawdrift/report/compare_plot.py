@@ -29,6 +29,8 @@ from .diagrams import (  # noqa: E402
     _edges,
     _legend,
     _material_label,
+    _value_text,
+    _values_text,
     check_axis,
     creep_grid,
     one_map,
@@ -57,18 +59,14 @@ def variants(table: pd.DataFrame, models: list[str], by: str | None) -> list[tup
     for m in models:
         # a model swept at fewer values of by than another has no cells for some panels (an
         # internal failure, exit 3: "single positional indexer is out-of-bounds")
-        held = table.loc[table["model"] == m, by].dropna().unique().tolist()
-        missing = [v for v in values if v not in held]
+        held = table.loc[table["model"] == m, by]
+        missing = [v for v in values if v not in held.dropna().unique().tolist()]
         if missing:
-            raise SceneError(f"--by {by}: model {m} has no cells at {by} = {_listed(missing)} "
-                             f"(its table holds {by} = {_listed(sorted(held))}); compare the "
-                             f"values all models have with --where {by}=VALUE")
+            raise SceneError(f"--by {by}: model {m} has no cells at {by} = "
+                             f"{', '.join(map(_value_text, missing))} (its table holds {by} = "
+                             f"{_values_text(held)}); compare the values all models have with "
+                             f"--where {by}=VALUE")
     return [(f"{m}, {by} = {v}", m, {by: v}) for m in models for v in values]
-
-
-def _listed(values: list) -> str:
-    """Values of a column, comma-separated (numbers as %g)."""
-    return ", ".join(f"{v:g}" if isinstance(v, float) else str(v) for v in values)
 
 
 def _computed(codes: np.ndarray) -> np.ndarray:
