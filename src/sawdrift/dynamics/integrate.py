@@ -398,10 +398,10 @@ def _irregular_mean(stepper: Stepper, win: Window, settling: Settling, num: Nume
     (mmd m* 30, A* 2, mu 0.2, e = 0.6 reported 0.793 +- 0.005, brute force reaches 0.878)."""
     mean, twin = _long_mean(stepper, win, _mean_budget(num, win), target, series)
     history = settling.history
-    if (win.sync.hop_period > 0 and len(history) > 0
-            and (approaches(history, accuracy(history[-1], num.settle_tolerance))
-                 or settling.to_go > accuracy(history[-1], num.settle_tolerance))):
-        mean = replace(mean, moving=True, approaching=True)
+    if win.sync.hop_period > 0 and len(history) > 0:
+        eps = accuracy(history[-1], num.settle_tolerance)
+        if approaches(history, eps) or settling.to_go > eps:
+            mean = replace(mean, moving=True, approaching=True)
     return mean, twin
 
 

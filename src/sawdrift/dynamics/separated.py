@@ -393,20 +393,20 @@ def separated_orbit(stepper: Stepper, scene, speed: float, tol: float,
             # (a contact far from sliding as a whole all through its period only creeps)
             p.periods = 2 * p.periods
             continue
-        sliding = float(np.mean((n_f > 0.0) & (np.abs(t_f) >= (1.0 - ig.SLIP_RTOL) * n_f)))
+        sliding = _sliding_share(n_f, t_f)
         # held, it returns to its drift from rest by itself; sliding over a share of the
         # period, its mean speed is a slow variable and the zero is where windows should start
         return Stuck(d_star * speed) if sliding >= SLIDING_FRACTION else STUCK
     return SeparatedOrbit(d_star * speed, y_mean, got[0], got[1], got[3], got[4], got[5],
                           p.evaluations, _slope(pushes, d_star, speed), loses,
                           tuple(sorted(pushes.items())), p,
-                          partial_slip=not loses and not _slides(got[4], got[5]))
+                          partial_slip=not loses and _sliding_share(got[4], got[5]) == 0.0)
 
 
-def _slides(normal: np.ndarray, tangential: np.ndarray) -> bool:
-    """Whether a contact slides as a whole (|T*| at its Coulomb bound N*) somewhere in the
-    period of samples ``normal``, ``tangential``."""
-    return bool(np.any((normal > 0.0) & (np.abs(tangential) >= (1.0 - ig.SLIP_RTOL) * normal)))
+def _sliding_share(normal: np.ndarray, tangential: np.ndarray) -> float:
+    """The share of the period's samples ``normal``, ``tangential`` in which the contact slides
+    as a whole (|T*| at its Coulomb bound N*)."""
+    return float(np.mean((normal > 0.0) & (np.abs(tangential) >= (1.0 - ig.SLIP_RTOL) * normal)))
 
 
 def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: float
