@@ -199,16 +199,11 @@ def parse_axis(spec: str | Sequence[float], name: str = "axis") -> np.ndarray:
         # '1,nan' was told it must hold at least one finite value
         raise SceneError(f"{name} = {spec!r} holds a value that is not a finite number "
                          f"({_value_list(values[~np.isfinite(values)])}): every value must be finite")
-    if isinstance(spec, str) and np.unique(values).size < values.size:
+    distinct, counts = np.unique(values, return_counts=True)
+    if isinstance(spec, str) and (counts > 1).any():
         # 0.1,0.1 or 0.1:0.1:3 collapsed to one cell without a word (bifurcation refuses them)
-        seen, twice = set(), None
-        for v in values:
-            if v in seen:
-                twice = v
-                break
-            seen.add(v)
-        raise SceneError(f"{name} = {spec!r} gives {twice:g} more than once: give each value "
-                         "once (a range from START to STOP = START: N = 1)")
+        raise SceneError(f"{name} = {spec!r} gives {distinct[counts > 1][0]:g} more than once: "
+                         "give each value once (a range from START to STOP = START: N = 1)")
     return values
 
 
