@@ -15,12 +15,11 @@ from sawdrift.dynamics.drives.two_wave import local_orbit
 from sawdrift.study.field import (
     PERIOD,
     device_wavelength,
-    direct_run,
     drift_field,
     find_zeros,
-    nearest_zero,
     rayleigh_wavelength,
 )
+from sawdrift.study.field_direct import direct_run, nearest_zero
 
 SETTLED = dict(model="mmd", particle={"m_star": 0.1}, numerics={"settle": True})
 
@@ -375,7 +374,7 @@ def test_a_direct_run_too_long_is_refused_before_the_field(sawdrift_main, tmp_pa
     interval past its end: the field was computed first, then the run failed naming
     numerics.periods = 10014975. Now one line names --periods and the most it takes, before any
     work, and the largest length it names runs."""
-    from sawdrift.study.field import MOST_PERIODS, direct_scenes
+    from sawdrift.study.field_direct import MOST_PERIODS, direct_scenes
 
     out = tmp_path / "f"
     proc = sawdrift_main("field", "--backward", "0.5", "--direct", "--wavelength", "200",

@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 import sawdrift as sd
-from sawdrift.study.field import direct_run, drift_field, nearest_zero
+from sawdrift.study.field import drift_field
+from sawdrift.study.field_direct import direct_run, nearest_zero
 
 
 def test_a_rigid_rolling_sphere_runs_into_the_trap_the_field_predicts():

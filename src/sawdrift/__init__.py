@@ -75,7 +75,7 @@ _LAZY: dict[str, str] = {
     "bifurcation": "study.bifurcation",
     "plot_bifurcation": "report.bifurcation_plot",
     "drift_field": "study.field",
-    "direct_run": "study.field",
+    "direct_run": "study.field_direct",
     "rayleigh_wavelength": "scene.device",
     "plot_field": "report.field_plot",
     "load_curve": "study.load_curve",

@@ -68,7 +68,8 @@ def field_cmd(
     --start for --periods periods (a phase ramp with --backward-phase-rate moves the traps) and
     reports it beside the field's prediction.
     """
-    from ..study.field import direct_run, drift_field
+    from ..study.field import drift_field
+    from ..study.field_direct import direct_run
 
     fast_start()
     check_engine(engine)
@@ -106,7 +107,7 @@ def field_cmd(
     extra = refine * ZEROS_PER_FIELD * sum(cell_steps(sp)[0] for sp in sample) / (
         points * len(sample))
     if direct:
-        from ..study.field import direct_scenes
+        from ..study.field_direct import direct_scenes
 
         # checked before the field, and counted in its size (the estimate left it out)
         direct_periods = float(2000.0 if direct_periods is None else direct_periods)
