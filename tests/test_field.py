@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import json
 import math
 import sys
 from types import SimpleNamespace
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import sawdrift as sd
@@ -431,3 +433,63 @@ def test_refine_is_bounded_and_counted_in_the_size(monkeypatch, capsys):
     one = estimate.cell_steps(sd.Scene(drive={"kind": "wave", "backward": 0.5},
                                        numerics={"periods": 5}))[0]
     assert seen[0] == 0.0 and seen[1] == pytest.approx(60 * 2 * one / 4, rel=0.2)
+
+
+def test_ctrl_c_in_a_field_keeps_the_positions_that_ended(monkeypatch, capsys, tmp_path):
+    """A field stopped by Ctrl-C printed and wrote nothing, though positions had ended: it
+    shows and writes those (no zeros: a sign change between them may hide others) and exits
+    130 saying how many of how many ran."""
+    import sawdrift.study.sweep as sweep_mod
+
+    from .cli_call import call
+
+    real = sweep_mod.run_cell
+    ran = []
+
+    def third_interrupted(scene_json, **kwargs):
+        if len(ran) == 3:
+            raise KeyboardInterrupt
+        ran.append(scene_json)
+        return real(scene_json, **kwargs)
+
+    monkeypatch.setattr(sweep_mod, "run_cell", third_interrupted)
+    out = tmp_path / "f.csv"
+    code, stdout, err = call(monkeypatch, capsys, "field", "--model", "material_point",
+                             "--backward", "0.5", "--points", "8", "--workers", "1",
+                             "--periods", "20", "-o", str(out))
+    assert code == 130 and "after 3 of 8 positions" in err, err
+    assert "interrupted: 3 of 8 positions run" in stdout
+    table = pd.read_csv(out)
+    assert len(table) == 3 and table["drift_velocity"].notna().all()
+    # the JSON form says so too, beside the three positions
+    ran.clear()
+    code, stdout, _ = call(monkeypatch, capsys, "field", "--model", "material_point",
+                           "--backward", "0.5", "--points", "8", "--workers", "1",
+                           "--periods", "20", "--json")
+    data = json.loads(stdout)
+    assert code == 130 and data["interrupted"] == {"positions_run": 3, "positions": 8}
+    assert len(data["positions"]) == 3 and data["zeros"] == []
+
+
+def test_ctrl_c_while_refining_keeps_the_whole_field_and_its_unrefined_zeros(monkeypatch, capsys):
+    """Every position had ended when Ctrl-C came during the refinement: the field keeps them all
+    and the zeros of its sign changes (the first stop said 'no zeros located' of 128 of 128)."""
+    import sawdrift.study.field as field_mod
+
+    from .cli_call import call
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(field_mod, "_refine", interrupted)
+    code, stdout, err = call(monkeypatch, capsys, "field", "--model", "mmd", "--m-star", "0.1",
+                             "--backward", "0.5", "--points", "8", "--workers", "1", "--settle",
+                             "--json")
+    data = json.loads(stdout)
+    assert code == 130 and "while refining the zeros" in err, err
+    assert data["interrupted"] == {"positions_run": 8, "positions": 8}
+    kinds = sorted(z["kind"] for z in data["zeros"])
+    assert kinds == ["repeller", "trap"] and "not refined" in data["summary"]
+    for z in data["zeros"]:  # each between two samples of opposite sign
+        lo, hi = z["bracket"]
+        assert lo < z["position"] < hi

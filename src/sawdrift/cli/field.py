@@ -24,6 +24,7 @@ from .app import (
     _writable,
     app,
     check_engine,
+    interrupted,
     json_nulls,
     out_kind,
     write_outputs,
@@ -121,7 +122,7 @@ def field_cmd(
         _writable(out, folder=kind == "folder")
     study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
                         progress=progress, engine=engine)
-    if direct:
+    if direct and study.interrupted is None:
         periods = float(direct_periods)
         with notice(f"field: direct run of {periods:g} periods through the field", 2.0, progress), \
                 (run_progress("field: direct run") if progress else nullcontext()):
@@ -135,6 +136,7 @@ def field_cmd(
         write_outputs(out, "field", data, lambda path: plot_field(study, path), scene)
     if as_json:
         typer.echo(json.dumps(json_nulls(data)))  # a failed or ejected position's V: null
+        _say_interrupted(study, out, direct)
         return
     for fld in study.fields:
         head = f"{fld.label}: " if fld.label else ""
@@ -167,6 +169,22 @@ def field_cmd(
         typer.echo(f"wrote {out}")
     elif out is not None:
         typer.echo(f"wrote {out}/field.json, field.png, scene.toml")
+    _say_interrupted(study, out, direct)
+
+
+def _say_interrupted(study: Any, out: Path | None, direct: bool) -> None:
+    """End a field Ctrl-C stopped (its fields of the positions that ended, printed and written)
+    with one line and exit status 130; nothing for a field that ran to its end."""
+    if study.interrupted is None:
+        return
+    done, total = study.interrupted
+    kept = f"; written to {out}" if out is not None else ""
+    left = " and no direct run" if direct else ""
+    if done == total:
+        interrupted(f"interrupted (Ctrl-C) while refining the zeros: the field printed has all "
+                    f"{total} positions, its zeros as the sign changes place them{left}{kept}")
+    interrupted(f"interrupted (Ctrl-C) after {done} of {total} positions: the field printed is "
+                f"of those, no zeros located{left}{kept}")
 
 
 def _field_csv(study: Any, out: Path) -> None:

@@ -131,6 +131,9 @@ class FieldStudy:
     fields: list[Field]
     axis: str | None = None
     direct: dict[str, Any] | None = None
+    #: (positions run, positions asked for) of a study Ctrl-C stopped: its fields hold the
+    #: positions that ended, with no zeros located (None: the study ran to its end)
+    interrupted: tuple[int, int] | None = None
 
     def to_json(self) -> dict[str, Any]:
         """The first species' field at the top level (the one-species form), all under "species"."""
@@ -140,6 +143,9 @@ class FieldStudy:
             out["species"] = [f.to_json() for f in self.fields]
         if self.direct is not None:
             out["direct"] = self.direct
+        if self.interrupted is not None:
+            out["interrupted"] = {"positions_run": self.interrupted[0],
+                                  "positions": self.interrupted[1]}
         return out
 
 
@@ -279,19 +285,51 @@ def drift_field(
     axes: dict[str, Any] = {"drive.position": positions.tolist()}
     if axis is not None:
         axes[axis[0]] = axis[1]
-    with Executor(workers, scheduler) as executor:
-        frame = sweep([base.model], axes=axes, base=base, progress=progress, engine=engine,
-                      label=("field", "point"), executor=executor)
-        fields = _fields(frame, base, axis, positions)
-        _refine(fields, refine, executor, engine)
+    ended: list[dict[str, Any]] = []
+    try:
+        with Executor(workers, scheduler) as executor:
+            frame = sweep([base.model], axes=axes, base=base, progress=progress, engine=engine,
+                          label=("field", "point"), executor=executor, on_row=ended.append)
+            fields = _fields(frame, base, axis, positions)
+            _refine(fields, refine, executor, engine)
+    except KeyboardInterrupt:
+        if not ended:
+            raise
+        return _interrupted(ended, base, axis, positions)
     for f in fields:
         f.summary = _summarize(f)
     return FieldStudy(fields, axis[0] if axis is not None else None)
 
 
+def _interrupted(rows: list[dict[str, Any]], base: Scene, axis: tuple[str, list[Any]] | None,
+                 positions: np.ndarray) -> FieldStudy:
+    """The study Ctrl-C stopped, marked :attr:`FieldStudy.interrupted`: each species' field at
+    the positions that ended (a field may have none), with no zeros located (a sign change
+    between positions that ran may hide others between them); where every position had ended
+    (stopped while refining), the zeros of the sign changes, not refined."""
+    from .table import to_frame
+
+    species = len(species_scenes(base, axis))
+    complete = len(rows) == len(positions) * species
+    fields = _fields(to_frame(rows), base, axis, positions, complete=complete)
+    for f in fields:
+        if complete:
+            for z in f.zeros:
+                for key in ("values", "side"):
+                    z.pop(key, None)
+            f.summary = _summarize(f) + " (zeros not refined: interrupted)"
+        else:
+            f.zeros = []
+            f.summary = (f"interrupted: {len(f.positions)} of {len(positions)} positions run, "
+                         "no zeros located")
+    return FieldStudy(fields, axis[0] if axis is not None else None,
+                      interrupted=(len(rows), len(positions) * species))
+
+
 def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
-            positions: np.ndarray) -> list[Field]:
-    """The fields of every species from the sweep's rows, with their zeros (not yet refined)."""
+            positions: np.ndarray, complete: bool = True) -> list[Field]:
+    """The fields of every species from the sweep's rows, with their zeros (not yet refined);
+    not ``complete``: at the positions that have a row (a study Ctrl-C stopped)."""
     from .table import distinct_warnings, drift_errors  # pandas, as the sweep's rows
 
     species = species_scenes(base, axis)
@@ -304,13 +342,16 @@ def _fields(frame: Any, base: Scene, axis: tuple[str, list[Any]] | None,
             want = get_dotted(sp.model_dump(), axis[0])
             rows = frame[np.isclose(frame[axis[0]].astype(float), float(want), rtol=1e-12)]
         rows = rows.sort_values("drive.position")
-        if len(rows) != len(positions):
+        at = positions
+        if not complete:
+            at = rows["drive.position"].to_numpy(dtype=float) if len(rows) else positions[:0]
+        elif len(rows) != len(positions):
             raise SceneError(f"field of {label or 'the scene'}: {len(rows)} of {len(positions)} "
                              "positions computed")
         v = rows["drift_velocity"].to_numpy(dtype=float)
         errors = [str(e) for e in rows["error"].dropna().unique()]
         warnings = distinct_warnings(rows["warnings"].dropna()) if "warnings" in rows else []
-        fields.append(Field(label=label, positions=positions.copy(), drift_velocity=v,
+        fields.append(Field(label=label, positions=at.copy(), drift_velocity=v,
                             regimes=[str(r) for r in rows["regime"]],
                             settled=[None if s is None or s != s else bool(s)
                                      for s in rows["settled"]],
