@@ -391,3 +391,16 @@ def test_an_axis_that_repeats_a_value_is_refused(spec):
     with pytest.raises(sd.SceneError, match=r"more than once: give each value once"):
         parse_axis(spec, "m_star")
     assert list(parse_axis("0.1:0.1:1", "m_star")) == [0.1]
+
+
+def test_a_model_axis_keeps_the_files_parameters_for_their_model_only():
+    """--axis model=mdr,mmd on a scene of mdr with strips = 64 stopped before any cell:
+    'model_params.strips is not a known field (model mmd ...)'. A model axis is a list of
+    models, as --model mdr,mmd is: the parameters stay with their model."""
+    from sawdrift.study.sweep import grid
+
+    base = sd.Scene(model="mdr", model_params={"strips": 64})
+    scenes = grid(["mdr"], base=base, axes={"model": ["mdr", "mmd"]})
+    by_model = {s.model: s for s in scenes}
+    assert by_model["mdr"].model_params["strips"] == 64
+    assert "strips" not in by_model["mmd"].model_params

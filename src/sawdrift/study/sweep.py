@@ -141,6 +141,10 @@ def grid(
             cell = json.loads(json.dumps(per_model))
             for field, value in zip(all_axes, combo, strict=True):
                 set_dotted(cell, field, value)
+            if base is not None and cell.get("model") != base.model:
+                # a model axis (--axis model=a,b) is a list of models: the base's parameters are
+                # its model's (mdr's strips named to mmd were "not a known field")
+                cell["model_params"] = {}
             scenes.append(bind(build_scene(cell)))
             if tick is not None:
                 tick()
