@@ -13,7 +13,8 @@ run within 1e-3 of the trap and the conveyed one carried more than 1.5 wavelengt
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.study.field import direct_run, drift_field, nearest_zero
+from sawdrift.study.field import drift_field
+from sawdrift.study.field_direct import direct_run, nearest_zero
 from sawdrift.validation import Case, CaseResult
 
 CASE = Case(

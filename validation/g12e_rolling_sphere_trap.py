@@ -11,7 +11,8 @@ it 0.083 wavelengths away); required: the trap lies more than 0.05 wavelengths f
 from __future__ import annotations
 
 import sawdrift as sd
-from sawdrift.study.field import direct_run, drift_field, nearest_zero
+from sawdrift.study.field import drift_field
+from sawdrift.study.field_direct import direct_run, nearest_zero
 from sawdrift.validation import Case, CaseResult
 
 CASE = Case(
