@@ -67,6 +67,9 @@ class _Record:
         prm = stepper.prm
         self.mu = float(prm[ig.P_MU])
         self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)
+        #: a constant tangential load L as a mean friction: the drift is the zero of
+        #: -<T*>(V) + L / mu (m* x*'' = -mu T* + L)
+        self.offset = float(prm[ig.P_LOAD]) / self.mu
         self.k = k
         self.a, self._vy = a, vy
         # the drive, periodic after the ramp: u_y = y* - a*, u_x = x* - b*/scale (no rotation),
@@ -251,7 +254,7 @@ class _Pushes:
 
     def __call__(self, d: float, span: int | None = None) -> float:
         if (d, span) not in self.known:
-            self.known[(d, span)] = -self.rec.mean_friction(d * self.speed, span)
+            self.known[(d, span)] = -self.rec.mean_friction(d * self.speed, span) + self.rec.offset
         return self.known[(d, span)]
 
 

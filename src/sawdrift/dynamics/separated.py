@@ -11,7 +11,9 @@ contact forces, of amplitude O(1/m*):
 (eq. 5 of the paper with the period means taken out; <.> is the mean over one period). The
 steady drift is the periodic orbit on which the means balance too:
 
-    <N*>(Y) = 1   (the weight)                 <T*>(V) = 0   (no mean friction force)
+    <N*>(Y) = 1   (the weight)                 mu <T*>(V) = L   (the mean friction balances
+                                                                    the tangential load L, 0
+                                                                    without one)
 
 Both conditions are solved here at a fixed, small cost: for a given (Y, V) the fast parts are
 the periodic solutions of their equations (integrated twice in Fourier space), iterated with the
@@ -43,8 +45,9 @@ Where it does not apply, :func:`separated_orbit` returns None and the run settle
   changes the drift: measured on mmd, the drift of runs from rest differs from the orbit's by
   1e-4 to 5e-3 (relative) for hopping at A* 1 to 3 and by 1 to 8 % for bouncing at A* 6 to 10
   (m* 300 to 1e4), too far to start the windows at;
-* forces this module does not carry (a load, normal damping in the loop, rotation, adhesion,
-  air drag) and a drive that depends on x*.
+* forces this module does not carry (normal damping in the loop, rotation, adhesion, air drag)
+  and a drive that depends on x*. A constant tangential load L it carries: it adds L / mu to the
+  mean force, -<T*>(V) + L / mu, and leaves the fast parts (about the mean) as they are.
 
 Where contact is kept, the orbit is the start of the full-inertia windows (only the speed is set
 to it; the run's vertical state stays), which then confirm it instead of relaxing from rest:
@@ -163,13 +166,14 @@ class SeparatedOrbit:
 def solvable(scene, rigid: bool) -> bool:
     """Whether a scene's drift may be solved directly (module docstring), read off the scene:
     heavy, compliant, friction on, one travelling wave, and none of the forces the solution
-    leaves out (load, normal damping or restitution, rotation and rolling resistance, air drag,
-    adhesion). :func:`applies` adds what only the built run knows; the size estimate uses this."""
+    leaves out (normal damping or restitution, rotation and rolling resistance, air drag,
+    adhesion). A constant tangential load is in it (:attr:`_Problem.offset`). :func:`applies`
+    adds what only the built run knows; the size estimate uses this."""
     eff = scene.effects
     drive = scene.drive
     return (not rigid and scene.particle.m_star >= SEPARATED_MIN_MASS
             and getattr(drive, "kind", None) == "wave" and not needs_two_waves(drive)
-            and eff.friction and scene.particle.load == 0.0 and eff.normal_damping == 0.0
+            and eff.friction and eff.normal_damping == 0.0
             and scene.material.restitution is None and not eff.rotation
             and eff.rolling_resistance == 0.0 and eff.air_drag == 0.0
             and (eff.adhesion == "none" or scene.material.adhesion == 0.0))
@@ -240,6 +244,9 @@ class _Problem:
         self.m = float(prm[ig.P_M])
         self.mu = float(prm[ig.P_MU])
         self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)
+        #: a constant tangential load L in the mean force's units: m* x*'' = -mu T* + L, so the
+        #: drift is the zero of -<T*>(V) + L / mu; the fast parts, about the mean, do not see it
+        self.offset = float(prm[ig.P_LOAD]) / self.mu
         surface = stepper.drive.functions()[0]
         t = t0 + np.arange(self.k) / self.k
         u = np.array([surface(float(ti), 0.0, stepper.dp) for ti in t])
@@ -309,7 +316,7 @@ class _Problem:
         horizontal fast part stepped ``sweeps`` times on from where ``nodes[j]`` holds it (one
         compiled call, :func:`~.fast_parts.node_push_body`)."""
         return float(self.loops["node_push_body"](self.contact, heights, weights, v, self.prm,
-                                                  self.tables, nodes, sweeps))
+                                                  self.tables, nodes, sweeps)) + self.offset
 
 
 def _mean_compression(p: _Problem) -> tuple[float, np.ndarray]:
@@ -431,7 +438,7 @@ def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: 
         got = p.fast(y_mean, d * speed, eta, xi)
         xi = got[2]
         last_d, last_got = d, got
-        pushes[d] = -float(np.mean(got[5]))
+        pushes[d] = -float(np.mean(got[5])) + p.offset
         return pushes[d]
 
     eps = 1e-7
