@@ -43,3 +43,18 @@ def test_a_point_that_is_not_an_m_star_amplitude_pair_is_named(points):
     # ValueError: not enough values to unpack (expected 2, got 1), from inside the sweep
     with pytest.raises(sd.SceneError, match=r"is not an \(m\*, A\*\) pair"):
         sd.sweep("mmd", points=points)
+
+
+def test_a_run_within_the_ramp_reports_its_own_window_and_is_not_settled():
+    """A run that ends within the drive's start-up ramp measured its window there, but took its
+    evidence from the ramp's end on: none. A particle in the air for its last periods (A* 1000,
+    4 periods of a 10-period ramp) was reported in contact, drift_with, with an empty minimum
+    compression. The window is its own evidence now, the trajectory agrees with it, and the run
+    says it is not settled and why."""
+    res = sd.run(sd.Scene(drive={"amplitude": 1000.0, "ramp_periods": 10.0},
+                          numerics={"periods": 4, "settle": False}), trajectory=True)
+    tr = res.trajectory
+    airborne = float((tr[tr["t"] >= 3.0]["a"] <= 0.0).mean())
+    assert airborne == 1.0  # the trajectory: out of contact all through the last period
+    assert res.contact_lost and res.out_of_contact_fraction > 0.5
+    assert res.settled is False and "within the drive's start-up ramp" in res.warnings[0]

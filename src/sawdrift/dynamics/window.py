@@ -16,6 +16,7 @@ import numpy as np
 
 from ..errors import NonFiniteStateError
 from . import evidence as ev
+from .adams_bashforth import P_KRAMP
 from .lyapunov import (
     ALIGN_PERIODS,
     EARLY_CHECKS,
@@ -341,6 +342,11 @@ def measure_window(stepper: Stepper, periods: int, speed: float, scale: np.ndarr
     """
     ev.open_window(stepper.st)
     stepper.keep_events = True
+    if stepper.step + periods * stepper.k_per <= stepper.prm[P_KRAMP]:
+        # a window within the drive's start-up ramp (a run shorter than it): the evidence,
+        # taken from the ramp's end on, would be empty, and a particle thrown off in it was
+        # reported in contact; it is the window's own steps
+        stepper.prm[P_KRAMP] = stepper.step
     t_start = stepper.step * stepper.h
     snapshot = stepper.twin()
     x0, psi0 = stepper.y[0], stepper.y[4]

@@ -120,6 +120,13 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         warnings += ("not settled: the load equals the most friction can hold, mu (1 + 2 F*_pull)"
                      ": nothing restores the mean speed, which drifts on (neutral), no steady "
                      "drift",)
+    elif stepper.step <= math.ceil(wave.ramp_periods * stepper.k_per - 1e-9):
+        # the whole run within the drive's start-up ramp: the wave was still growing
+        settled = False
+        warnings += (f"not settled: the run ended within the drive's start-up ramp "
+                     f"(numerics.periods = {stepper.step / stepper.k_per:g}, drive.ramp_periods = "
+                     f"{wave.ramp_periods:g}): its window saw the wave still growing, no steady "
+                     "motion; give more periods or a shorter ramp (--ramp-periods)",)
     elif not settled and not ending and out.long_mean is None and scene.numerics.settle is not False:
         warnings += (_unsettled_reason(out, scene.numerics.settle is True),)
     if not settled:
