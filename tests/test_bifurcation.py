@@ -191,7 +191,7 @@ def test_a_run_with_fewer_branches_is_refused_in_one_line_on_the_command_line(tm
     ({"values": "a,b"}, "not a number"),
     ({"values": "1.5"}, "at least two different values"),
     ({"values": [2.0, 2.0]}, "at least two different values"),
-    ({"samples": 0}, "samples = 0 must be an integer >= 1"),
+    ({"samples": 0}, "samples = 0 must be an integer from 1 to 1e\\+07"),
     ({"field": "drive.amplitud"}, "drive.amplitud is not a known field"),
     ({"field": "drive.orbit"}, "not a numeric scene field"),
     ({"direction": "sideways"}, "direction = 'sideways'"),

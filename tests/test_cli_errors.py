@@ -28,6 +28,9 @@ def files(tmp_path):
                    "settled": True, "mu": 0.1, "nu": 0.3, "drift_ratio": 0.0}
                   for model in ("mmd", "jaeger") for a in (0.1, 1.0) for m in (0.1, 1.0)]
                  ).to_parquet(tmp_path / "sweep.parquet")
+    sweep = pd.read_parquet(tmp_path / "sweep.parquet")
+    sweep.drop(columns=["drift_ratio"]).to_parquet(tmp_path / "nodrift.parquet")
+    sweep.drop(columns=["mu"]).to_parquet(tmp_path / "nomu.parquet")
     return tmp_path
 
 
@@ -117,6 +120,17 @@ CORPUS = [
     "sweep -o {d}/t.parquet --m-star 0.1:1:1 --amplitude 0.5 --periods 5 --workers 1",
     "sweep -o {d}/t.parquet --m-star 0.5 --axis material.mu=lin:0.1:0.2:1 --periods 5 --workers 1",
     "sweep -o {d}/t.parquet --m-star 0.5 --axis material.mu=0.1,,0.2 --periods 5 --workers 1",
+    # a table without a column the figure reads: exit 3, "internal failure ('drift_ratio')"
+    "phase-diagram {d}/nodrift.parquet --model mmd --drift -o {d}/x.png",
+    "phase-diagram {d}/nomu.parquet --model jaeger -o {d}/x.png",
+    "compare {d}/nomu.parquet --models mmd,jaeger -o {d}/x.png",
+    "phase-diagram {d}/sweep.parquet --model mmd --x particle.load -o {d}/x.png",
+    # numpy's allocation of 1e26 samples: exit 3, and a journal left behind
+    "bifurcation --axis drive.amplitude=0.2,0.3 --samples 99999999999999999999999999 --yes "
+    "-o {d}/bife",
+    # a value given twice on any axis ran its cell twice (m* and A* axes refused it)
+    "sweep -o {d}/t.parquet --m-star 0.5 --amplitude 0.5 --axis material.mu=0.1,0.1 --workers 1",
+    "sweep -o {d}/t.parquet --m-star 0.5 --amplitude 0.5 --axis effects.rotation=true,false,true",
 ]
 
 

@@ -141,3 +141,18 @@ def test_a_table_extended_with_an_axis_exports_each_cell_at_its_own_point(tmp_pa
         assert float(point) == pytest.approx(row["drift_ratio"], abs=1e-15)
     # m* = 1 at mu = 0.5 was never run: no cell there
     assert np.isnan(ds["drift_ratio"].sel({"material.mu": 0.5, "m_star": 1.0})).all()
+
+
+def test_export_says_how_many_grid_points_hold_no_cell(table, tmp_path):
+    """A table whose cells do not fill its grid (an adaptive map, two grids in one table) gave
+    NaN at the empty points with nothing said but the file's regime comment."""
+    import pandas as pd
+
+    holes = tmp_path / "holes.parquet"
+    rows = pd.read_parquet(table)
+    rows.drop(index=rows.index[:2]).to_parquet(holes)
+    run = run_main("export", holes, "-o", tmp_path / "holes.nc")
+    assert run.returncode == 0, run.stderr
+    assert "2 of 9 grid points hold no cell of the table" in run.stdout
+    full = run_main("export", table, "-o", tmp_path / "full.nc")
+    assert "hold no cell" not in full.stdout

@@ -82,7 +82,9 @@ def phase_diagram_cmd(
     """
     out = figure_path(out)
     picked = parse_where(where)
-    frame = _load_table(table)
+    # the columns the figure reads (a table without one failed as an internal error)
+    frame = _load_table(table, ("model", "regime", x, y, "mu", "nu")
+                        + (("drift_ratio",) if drift else ()))
     _writable(out, folder=False)
     if drift:
         path = sd.plot_drift_map(frame, out, model, x, y, where=picked)
@@ -116,7 +118,7 @@ def compare_cmd(
     twice = sorted({m for m in names if names.count(m) > 1})
     if twice:  # a model against itself agreed 100 %
         _fail(f"--models {models!r} names {', '.join(twice)} twice: give each model once")
-    frame = _load_table(table)
+    frame = _load_table(table, ("model", "regime", x, y, "mu", "nu"))
     _writable(out, folder=False)
     path, md = sd.plot_compare(frame, names, out, by, x, y, where=picked)
     typer.echo(md)
@@ -134,6 +136,14 @@ def export_cmd(
     ds = sd.write_grid(table, out)
     dims = ", ".join(f"{d} ({n})" for d, n in ds.sizes.items())
     typer.echo(f"wrote {out}: dimensions {dims}; variables {', '.join(ds.data_vars)}")
+    if "regime" in ds.data_vars:
+        # a point of the grid no cell of the table is at: NaN in every variable (an adaptive map,
+        # or tables of two grids), said in the file's attributes only
+        empty = int((ds["regime"].values == -1).sum())
+        if empty:
+            typer.echo(f"  {empty} of {ds['regime'].size} grid points hold no cell of the table "
+                       "(regime -1, NaN values): an adaptive map's unrefined points, or cells of "
+                       "another grid")
 
 
 @app.command("explore")

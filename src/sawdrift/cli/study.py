@@ -320,7 +320,7 @@ def bifurcation_cmd(
                                  "on the same axis")
     ] = None,
     param: Param = None,
-    samples: Annotated[int, typer.Option("--samples", help="Poincare samples per value (K >= 1)")] = 64,
+    samples: Annotated[int, typer.Option("--samples", help="Poincare samples per value (1 to 1e7)")] = 64,
     direction: Annotated[
         str, typer.Option("--direction", help="up, down or both (both marks hysteresis: where the "
                           "two sweeps end on different attractors)")

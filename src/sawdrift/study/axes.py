@@ -138,7 +138,7 @@ def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
         return list(spec)
     values = parse_range(spec, name)
     if values is not None:
-        return values
+        return _once_each(values, name, spec)
     out: list[Any] = []
     for item in _items(spec, name):
         if item.lower() in ("true", "false"):
@@ -150,7 +150,21 @@ def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
             out.append(item)
     if not out:
         raise SceneError(f"{name} = {spec!r} must hold at least one value")
-    return out
+    return _once_each(out, name, spec)
+
+
+def _once_each(values: list[Any], name: str, spec: str) -> list[Any]:
+    """``values``, or one line where one is given twice: a number or a boolean equal to another,
+    or a quantity written the same (spaces and case aside). The repeated cell ran twice (a
+    field's species printed twice, a threshold's slopes n/a); m* and A* axes refuse it too."""
+    seen: list[Any] = []
+    for v in values:
+        key = "".join(v.split()).lower() if isinstance(v, str) else v
+        if any(type(key) is type(k) and key == k for k in seen):
+            shown = f"{v:g}" if isinstance(v, float) else str(v)
+            raise SceneError(f"{name} = {spec!r} gives {shown} more than once: give each value once")
+        seen.append(key)
+    return values
 
 
 #: the forms :func:`parse_axis` accepts, said by its errors

@@ -47,6 +47,9 @@ TABLE, SUMMARY, FIGURE, JOURNALS = "bifurcation.parquet", "bifurcation.json", "b
 #: Scaled distance between two periodic attractors' states above which they are different.
 HYSTERESIS_TOL = 1e-3
 
+#: the most Poincare samples per value (a period of the run each; the scene's period cap)
+MOST_SAMPLES = 10_000_000
+
 #: Parquet metadata key holding the diagram's spec (field, values, models, samples, direction).
 META_SPEC = b"bifurcation"
 
@@ -120,8 +123,11 @@ def check_request(scene: Scene | None, field: str, values: str | Sequence[float]
     if not isinstance(scene.drive, Wave):
         raise SceneError(f"a bifurcation diagram needs a wave drive; the scene has a "
                          f"{scene.drive.kind} drive")
-    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1:
-        raise SceneError(f"samples = {samples!r} must be an integer >= 1")
+    if (isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 1
+            or samples > MOST_SAMPLES):
+        # 1e26 reached numpy's allocation as an internal failure, and left a journal behind
+        raise SceneError(f"samples = {samples!r} must be an integer from 1 to {MOST_SAMPLES:.0e}"
+                         " (Poincare samples per value, a period each)")
     if direction not in ("up", "down", "both"):
         raise SceneError(f"direction = {direction!r} is not allowed; use up, down or both")
     if not 0.0 < float(tolerance) < 1.0:
