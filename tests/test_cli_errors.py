@@ -131,6 +131,11 @@ CORPUS = [
     # a value given twice on any axis ran its cell twice (m* and A* axes refused it)
     "sweep -o {d}/t.parquet --m-star 0.5 --amplitude 0.5 --axis material.mu=0.1,0.1 --workers 1",
     "sweep -o {d}/t.parquet --m-star 0.5 --amplitude 0.5 --axis effects.rotation=true,false,true",
+    # a value the scene does not use, accepted and ignored (the same drift to the last bit)
+    "run --periods 8 --no-friction --mu 0.5",
+    "run --periods 8 --no-horizontal-wave --horizontal-ratio 0.5",
+    "run --periods 8 --backward-phase 30",
+    "run --periods 8 --backward-phase-rate 3",
 ]
 
 
@@ -362,3 +367,14 @@ def test_an_interrupted_command_puts_the_ctrl_c_handler_back(sawdrift_main, monk
     proc = sawdrift_main("run", "--model", "mmd")
     assert proc.returncode == 130 and "interrupted" in proc.stderr
     assert signal.getsignal(signal.SIGINT) is before
+
+
+def test_an_option_an_axis_makes_used_is_accepted(files, monkeypatch, capsys):
+    """--backward-phase is used where an axis gives a second wave, in the cells that have one."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "sweep", "--m-star", "0.5", "--amplitude", "0.5",
+                                      "--axis", "drive.backward=0,0.5", "--backward-phase", "30",
+                                      "--periods", "8", "--workers", "1", "--no-progress",
+                                      "-o", str(files / "bw.parquet")])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    assert exc.value.code == 0, capsys.readouterr().err

@@ -179,14 +179,17 @@ def with_scene_options(exclude: Iterable[str] = ()) -> Callable[[Callable[..., A
 
 def scene_from_options(scene_file: Path | None, model: str | None = None,
                        params: dict[str, Any] | None = None,
-                       overrides: dict[str, Any] | None = None) -> sd.Scene:
+                       overrides: dict[str, Any] | None = None,
+                       swept: tuple[str, ...] = ()) -> sd.Scene:
     """Load a scene file (or the defaults), apply the command-line values, bind it to its model.
 
     ``overrides`` maps dotted scene fields to values; ``model`` and ``params`` set the model
     and its parameters (a file's parameters belong to the file's model and are dropped when
     another model is named). The scene is returned bound
     (:func:`sawdrift.contact.binding.bind`): a parameter the model does not take, a value out
-    of its range or something the model cannot do is one line (exit 2) before any work.
+    of its range or something the model cannot do is one line (exit 2) before any work, and
+    so is an option the scene does not use (:func:`_unused_options`; ``swept``: the fields an
+    axis sets cell by cell, which may make it used).
     """
     if scene_file is not None:
         _check_keys(scene_file, model)
@@ -222,7 +225,39 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
     if params:
         data.setdefault("model_params", {}).update(params)
     source = str(scene_file) if scene_file else None
-    return sd.bind(sd.scene.build_scene(data, source=source), source)
+    scene = sd.bind(sd.scene.build_scene(data, source=source), source)
+    _unused_options(scene, values, overrides, swept)
+    return scene
+
+
+#: (option's field, the field that makes it used, what that must be, the option that gives it)
+NEEDS: tuple[tuple[str, str, str, str], ...] = (
+    ("material.mu", "effects.friction", "effects.friction = true", "drop --no-friction"),
+    ("drive.horizontal_ratio", "effects.horizontal_wave", "effects.horizontal_wave = true",
+     "drop --no-horizontal-wave"),
+    ("drive.backward_phase", "drive.backward", "a second wave, drive.backward > 0",
+     "add --backward S"),
+    ("drive.backward_phase_rate", "drive.backward", "a second wave, drive.backward > 0",
+     "add --backward S"),
+)
+
+
+def _unused_options(scene: sd.Scene, values: dict[str, Any], overrides: Any,
+                    swept: tuple[str, ...] = ()) -> None:
+    """One line where a value given on the command line is one the scene does not use: --mu
+    with --no-friction, --horizontal-ratio with --no-horizontal-wave, --backward-phase(-rate)
+    without a second wave. They were accepted and ignored (the same drift to the last bit), as
+    --gyration without rotation is not."""
+    used = {
+        "material.mu": scene.effects.friction,
+        "drive.horizontal_ratio": scene.effects.horizontal_wave,
+        "drive.backward_phase": float(getattr(scene.drive, "backward", 0.0) or 0.0) > 0.0,
+        "drive.backward_phase_rate": float(getattr(scene.drive, "backward", 0.0) or 0.0) > 0.0,
+    }
+    for field, enabling, needs, how in NEEDS:
+        if field in values and not used[field] and enabling not in swept:
+            typed = typed_as(overrides, field, f"--set {field}")
+            raise sd.SceneError(f"{typed} is used only with {needs}: {how}, or drop {typed}")
 
 
 def apply_options(data: dict[str, Any], values: dict[str, Any],

@@ -121,7 +121,7 @@ def sweep_cmd(
     for name in named:
         sd.get_model(name)
     base = scene_from_options(scene_file, named[0] if named else None, _parse_param(param),
-                              scene_overrides)
+                              scene_overrides, swept=tuple(axes))
     models = named or [base.model]
     with _resume_hint(out):
         if adaptive:
@@ -363,7 +363,8 @@ def bifurcation_cmd(
     for name in named:
         sd.get_model(name)
     base = scene_from_options(
-        scene_arg, named[0] if named else None, _parse_param(param), scene_overrides)
+        scene_arg, named[0] if named else None, _parse_param(param), scene_overrides,
+        swept=(field,))
     from sawdrift.report.bifurcation_plot import plot_bifurcation
     from sawdrift.study.bifurcation import FIGURE, bifurcation, check_request
 
