@@ -28,6 +28,9 @@ def files(tmp_path):
                    "settled": True, "mu": 0.1, "nu": 0.3, "drift_ratio": 0.0}
                   for model in ("mmd", "jaeger") for a in (0.1, 1.0) for m in (0.1, 1.0)]
                  ).to_parquet(tmp_path / "sweep.parquet")
+    (tmp_path / "amax.toml").write_text('[drive]\nkind = "prescribed"\na_max = 1e308\n')
+    (tmp_path / "asamples.toml").write_text('[drive]\nkind = "prescribed"\nwaveform = "samples"\n'
+                                            "a = [1e308, 1.0]\nb = [0.0, 0.0]\n")
     sweep = pd.read_parquet(tmp_path / "sweep.parquet")
     sweep.drop(columns=["drift_ratio"]).to_parquet(tmp_path / "nodrift.parquet")
     sweep.drop(columns=["mu"]).to_parquet(tmp_path / "nomu.parquet")
@@ -136,6 +139,9 @@ CORPUS = [
     "run --periods 8 --no-horizontal-wave --horizontal-ratio 0.5",
     "run --periods 8 --backward-phase 30",
     "run --periods 8 --backward-phase-rate 3",
+    # a prescribed history past any force: two overflow warnings, then the model blamed
+    "run {d}/amax.toml",
+    "run {d}/asamples.toml",
 ]
 
 
@@ -378,3 +384,24 @@ def test_an_option_an_axis_makes_used_is_accepted(files, monkeypatch, capsys):
     with pytest.raises(SystemExit) as exc:
         main()
     assert exc.value.code == 0, capsys.readouterr().err
+
+
+def test_an_air_drag_the_step_cannot_resolve_is_named(monkeypatch, capsys):
+    """--air-drag 1e308 (in [0, inf)) blew the state up and the error blamed the step size and
+    the contact model: it names the drag and the damping per step it asks of the scheme."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "--periods", "5", "--air-drag", "1e308"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(err) == 1
+    assert "effects.air_drag = 1e+308" in err[0] and "c h / m*" in err[0], err[0]
+
+
+def test_a_prescribed_sample_past_any_force_is_the_scenes_error(files, monkeypatch, capsys):
+    """a* = 1e308 in a prescribed history was blamed on the contact model ('returned a
+    non-finite force'): the scene bounds |a*|, |b*| and says so."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "run", str(files / "asamples.toml")])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err
+    assert exc.value.code == 2 and "within +-1e+06" in err and "model" not in err, err

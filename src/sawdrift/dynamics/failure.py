@@ -43,7 +43,15 @@ def failure(stepper: Stepper) -> NonFiniteStateError:
             "nearer m* 1e-6..1e8, A* below 1e6" if stepper.k_per >= FINEST_STEPS else
             f"the step 1/{stepper.k_per} is likely too coarse for m* = {m:g}; try a larger "
             f"--steps-per-period or a lower Adams-Bashforth order, or {check}")
-    if k == 0:
+    drag = float(stepper.scene.effects.air_drag)
+    if drag * stepper.h / m > 1.0:
+        # the explicit step multiplies the velocity by about 1 - c h / m* a step: past 1 it
+        # grows without bound whatever the contact (--air-drag 1e308 blamed the step size)
+        hint = (f"effects.air_drag = {drag:g} damps m* = {m:g} by c h / m* = "
+                f"{drag * stepper.h / m:.3g} a step of 1/{stepper.k_per}, above the 1 the "
+                "explicit step resolves: give a smaller air drag (c a0 f / (M g) of a real "
+                "particle is far below 1) or more steps per period")
+    elif k == 0:
         # the first step from rest on its static compression: its state is finite, so the
         # force was not (a plugin's NaN force was blamed on the step size)
         hint = f"at the first step from rest, {check}"

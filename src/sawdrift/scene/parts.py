@@ -239,6 +239,10 @@ class Biharmonic(BaseModel):
     )
 
 
+#: the largest |a*|, |b*| of a prescribed history (units of the static compression a0)
+PRESCRIBED_MAX = 1e6
+
+
 class Prescribed(BaseModel):
     """A prescribed contact history a*(t*), b*(t*): the contact law alone, no dynamics.
 
@@ -256,8 +260,10 @@ class Prescribed(BaseModel):
     waveform: Literal["samples", "mindlin_loop", "proportional", "random"] = "mindlin_loop"
     a: list[Number] | None = None
     b: list[Number] | None = None
-    a_max: Positive = 1.0
-    b_amplitude: NonNegative = 0.5
+    # a* and b* in units of the static compression: 1e308 overflowed the force and was blamed
+    # on the contact model
+    a_max: Annotated[float, bounded(0.0, PRESCRIBED_MAX, lo_open=True)] = 1.0
+    b_amplitude: Annotated[float, bounded(0.0, PRESCRIBED_MAX)] = 0.5
     slope: Annotated[float, bounded(-10.0, 10.0)] = 0.5
     cycles: count(1, 100000) = 2
     samples_per_segment: count(1, 1_000_000) = 200
@@ -270,8 +276,9 @@ class Prescribed(BaseModel):
                 raise ValueError("waveform 'samples' needs both 'a' and 'b' arrays")
             if len(self.a) != len(self.b) or len(self.a) < 1:
                 raise ValueError("'a' and 'b' must be non-empty and of equal length")
-            if not all(math.isfinite(v) for v in [*self.a, *self.b]):
-                raise ValueError("'a' and 'b' must be finite")
+            if not all(math.isfinite(v) and abs(v) <= PRESCRIBED_MAX for v in [*self.a, *self.b]):
+                raise ValueError(f"'a' and 'b' must be finite, within +-{PRESCRIBED_MAX:g} "
+                                 "(a* and b* in units of the static compression)")
         return self
 
 
