@@ -31,6 +31,8 @@ def files(tmp_path):
     (tmp_path / "amax.toml").write_text('[drive]\nkind = "prescribed"\na_max = 1e308\n')
     (tmp_path / "asamples.toml").write_text('[drive]\nkind = "prescribed"\nwaveform = "samples"\n'
                                             "a = [1e308, 1.0]\nb = [0.0, 0.0]\n")
+    (tmp_path / "huge.csv").write_text("a,N\n0,0\n1,1\n2,2\n1e308,1e308\n")
+    (tmp_path / "huge.toml").write_text('[particle.profile]\nshape = "table"\nfile = "huge.csv"\n')
     sweep = pd.read_parquet(tmp_path / "sweep.parquet")
     sweep.drop(columns=["drift_ratio"]).to_parquet(tmp_path / "nodrift.parquet")
     sweep.drop(columns=["mu"]).to_parquet(tmp_path / "nomu.parquet")
@@ -142,6 +144,8 @@ CORPUS = [
     # a prescribed history past any force: two overflow warnings, then the model blamed
     "run {d}/amax.toml",
     "run {d}/asamples.toml",
+    # a tabulated law past any float: two overflow warnings, then scipy's own message
+    "run --periods 5 {d}/huge.toml",
 ]
 
 

@@ -144,6 +144,10 @@ def table_descriptor(a: np.ndarray, n: np.ndarray, cells: int = TABLE_CELLS) -> 
     return np.concatenate([[-1.0, float(cells), a[-1] / cells], values, slopes])
 
 
+#: the largest a*, N* of a tabulated law (a* in static compressions, N* in weights)
+TABLE_MAX = 1e12
+
+
 def check_table(a: np.ndarray, n: np.ndarray, source: str) -> None:
     """Raise ValueError (one line naming ``source``) unless (a, N) is a usable normal law.
 
@@ -153,6 +157,10 @@ def check_table(a: np.ndarray, n: np.ndarray, source: str) -> None:
     """
     if a.size < 4 or not (np.all(np.isfinite(a)) and np.all(np.isfinite(n))):
         raise ValueError(f"{source}: needs at least 4 finite rows of columns a, N")
+    if np.max(a) > TABLE_MAX or np.max(n) > TABLE_MAX:
+        # 1e308 overflowed the interpolation's slopes: two numpy warnings and scipy's own error
+        raise ValueError(f"{source}: a and N must be at most {TABLE_MAX:g} (units of the static "
+                         "compression a0 and of the weight M g)")
     if a[0] < 0.0 or np.any(np.diff(a) <= 0.0):
         raise ValueError(f"{source}: column a must start at >= 0 and strictly increase")
     if np.any(n < 0.0) or np.any(np.diff(n) < 0.0):
