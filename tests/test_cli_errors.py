@@ -31,6 +31,10 @@ def files(tmp_path):
     (tmp_path / "amax.toml").write_text('[drive]\nkind = "prescribed"\na_max = 1e308\n')
     (tmp_path / "asamples.toml").write_text('[drive]\nkind = "prescribed"\nwaveform = "samples"\n'
                                             "a = [1e308, 1.0]\nb = [0.0, 0.0]\n")
+    from pathlib import Path
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    (tmp_path / "mixture.toml").write_text((examples / "mixture.toml").read_text())
     (tmp_path / "huge.csv").write_text("a,N\n0,0\n1,1\n2,2\n1e308,1e308\n")
     (tmp_path / "huge.toml").write_text('[particle.profile]\nshape = "table"\nfile = "huge.csv"\n')
     sweep = pd.read_parquet(tmp_path / "sweep.parquet")
@@ -146,6 +150,8 @@ CORPUS = [
     "run {d}/asamples.toml",
     # a tabulated law past any float: two overflow warnings, then scipy's own message
     "run --periods 5 {d}/huge.toml",
+    # 1e14 placements: "out of memory ... give fewer periods, cells or samples"
+    "sort {d}/mixture.toml --seeds 99999999999999 --until 100 --no-progress",
 ]
 
 

@@ -179,6 +179,10 @@ def lammps_cmd(
         given = "--compare" if compare else "--json" if as_json else "-o"
         _fail(f"{given} needs a run; --write-input writes the LAMMPS input and runs nothing: "
               "give one of them")
+    from ..mixture.sort import MAX_SEEDS
+
+    if seeds > MAX_SEEDS:
+        _fail(f"--seeds = {seeds}: give 1 to {MAX_SEEDS} placements (each a LAMMPS run)")
     if out is not None:
         _writable(out)
     if particles is not None:

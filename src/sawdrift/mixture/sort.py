@@ -198,6 +198,10 @@ def _check_jitter(spec: Particles, species: list, beads: list[Bead], seeds: list
                 "--jitter or a larger particles.spacing")
 
 
+#: the most random placements of one sort (or LAMMPS ensemble): each is a run of its own
+MAX_SEEDS = 10_000
+
+
 def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: int = 20,
                  periods: float = 1e9, samples: int = 12, target: float = 0.9,
                  source: Source = "native", geometry: str = "plane", perp: float = 1.0,
@@ -247,8 +251,9 @@ def sort_mixture(scene: Scene, particles: Particles | dict[str, Any], *, seeds: 
         raise SceneError(f"--purity = {target!r}: give a purity in (0.5, 1]")
     if not periods >= 1.0 or not math.isfinite(periods):
         raise SceneError(f"--until = {periods!r}: give at least 1 wave period")
-    if seeds < 1:
-        raise SceneError(f"--seeds = {seeds}: give at least 1 placement")
+    if not 1 <= seeds <= MAX_SEEDS:
+        # 1e14 reached the placements' arrays as "out of memory ... fewer periods, cells"
+        raise SceneError(f"--seeds = {seeds}: give 1 to {MAX_SEEDS} placements")
     if geometry not in GEOMETRIES:
         raise SceneError(f"--geometry = {geometry!r}: use 'plane' or 'line'")
     if not (perp > 0.0 and math.isfinite(perp)):
