@@ -35,6 +35,7 @@ def files(tmp_path):
 
     examples = Path(__file__).resolve().parents[1] / "examples"
     (tmp_path / "mixture.toml").write_text((examples / "mixture.toml").read_text())
+    (tmp_path / "plate.toml").write_text((examples / "grain_on_vibrating_plate.toml").read_text())
     (tmp_path / "huge.csv").write_text("a,N\n0,0\n1,1\n2,2\n1e308,1e308\n")
     (tmp_path / "huge.toml").write_text('[particle.profile]\nshape = "table"\nfile = "huge.csv"\n')
     sweep = pd.read_parquet(tmp_path / "sweep.parquet")
@@ -152,6 +153,10 @@ CORPUS = [
     "run --periods 5 {d}/huge.toml",
     # 1e14 placements: "out of memory ... give fewer periods, cells or samples"
     "sort {d}/mixture.toml --seeds 99999999999999 --until 100 --no-progress",
+    # its help says a device scene needs its axes: a one-cell table was written
+    "sweep {d}/plate.toml -o {d}/y.parquet --no-progress",
+    # a folder of results: -o x.json made a folder named x.json
+    "lammps --model hertz_mindlin_dem --m-star 0.1 --amplitude 0.3 -o {d}/lmo.json",
 ]
 
 

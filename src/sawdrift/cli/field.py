@@ -55,8 +55,8 @@ def field_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: field.json, field.png, scene.toml; or NAME.csv: the field "
-        "only (species, position, drift_velocity, drift_velocity_se, with a device also "
-        "drift_velocity_m_s and drift_velocity_se_m_s, regime, settled)")] = None,
+        "only (species with --axis, position, drift_velocity, drift_velocity_se, with a device "
+        "also drift_velocity_m_s and drift_velocity_se_m_s, regime, settled)")] = None,
     yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],

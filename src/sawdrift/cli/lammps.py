@@ -15,7 +15,16 @@ import typer
 import sawdrift as sd
 
 from .._startup import fast_start
-from .app import Param, _fail, _parse_param, _writable, app, interrupted_placements, json_nulls
+from .app import (
+    Param,
+    _fail,
+    _parse_param,
+    _writable,
+    app,
+    interrupted_placements,
+    json_nulls,
+    out_kind,
+)
 from .run_text import grouped
 from .scene_options import _SET, apply_options, with_scene_options
 
@@ -147,8 +156,8 @@ def lammps_cmd(
                                        "placements (seeds seed, seed+1, ...) and report each "
                                        "measure's mean and spread")] = 1,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
-    out: Annotated[Path | None, typer.Option("-o", "--out", help="write result.json (and the "
-                                             "figure of a mixture) here")] = None,
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="a folder: result.json (and "
+                                             "the figure of a mixture)")] = None,
     *,
     scene_overrides: dict[str, Any],
     particle_sets: dict[str, Any],
@@ -184,6 +193,7 @@ def lammps_cmd(
     if seeds > MAX_SEEDS:
         _fail(f"--seeds = {seeds}: give 1 to {MAX_SEEDS} placements (each a LAMMPS run)")
     if out is not None:
+        out_kind(out, (), "")  # a folder: -o x.json made a folder named x.json
         _writable(out)
     if particles is not None:
         _many(scene, particles, processes, progress, as_json, out, write_input, compare, seeds)

@@ -44,7 +44,7 @@ def load_curve_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
     out: Annotated[Path | None, typer.Option(
         "-o", "--out", help="a folder: load_curve.json, load_curve.png, scene.toml; or NAME.csv: "
-        "the curve only (species, load, drift_velocity, drift_velocity_se, power, regime, "
+        "the curve only (species with --axis, load, drift_velocity, drift_velocity_se, power, regime, "
         "settled; a device's in load_mN, speed_m_s, speed_se_m_s, power_mW)")] = None,
     axis: Annotated[str | None, typer.Option(
         "--axis", help="FIELD=a,b: one curve per value of a particle field, overlaid (sorting), "

@@ -133,6 +133,10 @@ def sweep_cmd(
                               workers=workers, scheduler=scheduler, progress=progress,
                               engine=engine, force=force, traces=traces, yes=yes)
         else:
+            if base.device is not None and not axes and len(models) == 1:
+                # its help says so; a one-cell table was written without a word
+                _fail("a device scene has no default plane to sweep: give its axes, e.g. "
+                      "--axis \"device.amplitude=5 nm,10 nm\" (or run it: sawdrift run)")
             if base.device is None:
                 # the (m*, A*) plane unless an axis replaces it: --axis effects.rotation=false,true
                 # alone sweeps rotation over the whole default plane, not over one cell

@@ -33,12 +33,13 @@ def threshold_cmd(
     start: Annotated[float, typer.Option("--start", help="first amplitude of the scan, in units "
                                          "of the rigid removal amplitude")] = 0.01,
     stop: Annotated[str, typer.Option("--stop", help="last amplitude of the scan (a threshold "
-                                      "above it is NaN)")] = "10 nm",
+                                      "above it: '> STOP', above_stop, empty in the CSV)")] = "10 nm",
     per_decade: Annotated[int, typer.Option("--per-decade", help="scan points per decade, "
                                              "1 to 100")] = 4,
     bisections: Annotated[int, typer.Option("--bisections", help="halvings of each bracket")] = 8,
-    periods: Annotated[float, typer.Option("--periods", help="wave periods of each run: removed "
-                                           "means thrown off and not back by its end")] = 200.0,
+    periods: Annotated[float, typer.Option("--periods", help="wave periods of each run, at "
+                                           "least 10: removed means thrown off and not back by "
+                                           "its end")] = 200.0,
     engine: Engine = "compiled",
     progress: Progress = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
