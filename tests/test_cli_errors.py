@@ -420,3 +420,39 @@ def test_a_prescribed_sample_past_any_force_is_the_scenes_error(files, monkeypat
         main()
     err = capsys.readouterr().err
     assert exc.value.code == 2 and "within +-1e+06" in err and "model" not in err, err
+
+
+def test_after_ctrl_c_a_pool_shutting_down_prints_no_traceback(monkeypatch, capsys):
+    """A resumed sweep stopped by Ctrl-C printed, 3 times in 20, "Exception ignored in: <module
+    'threading'>" and an OSError's traceback from concurrent.futures after its "interrupted"
+    line: the pool's manager thread met its killed workers during the interpreter's shutdown.
+    After an interrupt that is dropped; any other unraisable error is still printed."""
+    import importlib
+
+    import typer
+
+    cli_app = importlib.import_module("sawdrift.cli.app")  # the module, not the Typer app
+
+    monkeypatch.setattr(sys, "unraisablehook", sys.__unraisablehook__)
+    said = cli_app._INTERRUPT_SAID[0]
+    try:
+        with pytest.raises(typer.Exit):
+            cli_app.interrupted("interrupted (Ctrl-C): test")
+    finally:
+        cli_app._restore_interrupts()  # interrupted() ignores a second Ctrl-C until then
+        cli_app._INTERRUPT_SAID[0] = said
+
+    def unraisable(filename: str, exc: BaseException) -> None:
+        """An error raised in a finalizer of code from ``filename``: Python hands it to
+        sys.unraisablehook (as it does the pool thread's at shutdown)."""
+        space: dict = {}
+        exec(compile("class Doomed:\n    def __del__(self):\n        raise exc\n", filename,
+                     "exec"), {"exc": exc}, space)
+        doomed = space["Doomed"]()
+        del doomed
+
+    capsys.readouterr()
+    unraisable("/usr/lib/python3/concurrent/futures/process.py", OSError(9, "Bad file descriptor"))
+    assert capsys.readouterr().err == ""
+    unraisable("/somewhere/else.py", OSError(9, "Bad file descriptor"))
+    assert "Bad file descriptor" in capsys.readouterr().err
