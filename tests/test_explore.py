@@ -764,3 +764,16 @@ def test_the_explorer_draws_a_panel_per_amplitude_off_its_axes_and_takes_where(t
     proc = sawdrift_main("explore", str(path), "--where", "material.mu=0.3",
                          "-o", str(tmp_path / "x.html"))
     assert proc.returncode == 2 and "0.1, 0.2" in proc.stderr
+
+
+def test_traces_of_another_table_are_refused(table, tmp_path):
+    """explore T --traces OTHER.traces.parquet, none of whose cells are T's, was accepted and
+    every click said no trace was stored."""
+    from sawdrift.study.traces import traces_path
+
+    path, _, _ = table
+    other = tmp_path / "other.parquet"
+    sd.sweep(["mmd"], "0.5", "0.3", base=sd.Scene(numerics={"periods": 10, "settle": False}),
+             table=other, workers=1, progress=False)
+    with pytest.raises(SceneError, match="hold none of table"):
+        write_explorer(other, tmp_path / "x.html", traces=traces_path(path))

@@ -427,6 +427,10 @@ def explorer_data(table: str | Path | pd.DataFrame,
             cols[f"c{q}"] = code[q]
         sources.append(cols)
         marks.append(disagreement(code, [q for q in everyone if groups[q] == groups[p]]))
+    if traces is not None and not isinstance(traces, Mapping) and stored and not order:
+        # a traces file of another table: every click said "no trace stored" without a word
+        raise SceneError(f"traces {str(traces)!r} hold none of table {name!r}'s cells: give the "
+                         "traces file swept with this table (TABLE.traces.parquet beside it)")
     blob, m = pack_traces([stored[c] for c in order], samples) if order else (b"", 0)
     versions = sorted(frame["version"].dropna().astype(str).unique()) if "version" in frame else []
     info = {
