@@ -83,8 +83,7 @@ def phase_diagram_cmd(
     out = figure_path(out)
     picked = parse_where(where)
     # the columns the figure reads (a table without one failed as an internal error)
-    frame = _load_table(table, ("model", "regime", x, y, "mu", "nu")
-                        + (("drift_ratio",) if drift else ()))
+    frame = _load_table(table, ("model", "regime", x, y) + (("drift_ratio",) if drift else ()))
     _writable(out, folder=False)
     if drift:
         path = sd.plot_drift_map(frame, out, model, x, y, where=picked)
@@ -118,7 +117,7 @@ def compare_cmd(
     twice = sorted({m for m in names if names.count(m) > 1})
     if twice:  # a model against itself agreed 100 %
         _fail(f"--models {models!r} names {', '.join(twice)} twice: give each model once")
-    frame = _load_table(table, ("model", "regime", x, y, "mu", "nu"))
+    frame = _load_table(table, ("model", "regime", x, y))
     _writable(out, folder=False)
     path, md = sd.plot_compare(frame, names, out, by, x, y, where=picked)
     typer.echo(md)

@@ -354,9 +354,11 @@ def _legend(fig, codes_list, unsettled: bool = False, marks: list | None = None)
 
 
 def _material_label(table: pd.DataFrame) -> str:
-    mu = ", ".join(f"{v:g}" for v in sorted(table["mu"].dropna().unique()))
-    nu = ", ".join(f"{v:g}" for v in sorted(table["nu"].dropna().unique()))
-    return f"mu = {mu}, nu = {nu}"
+    """"mu = ..., nu = ..." of the table's cells, of the columns it has (a table without one
+    failed as an internal error)."""
+    parts = [f"{name} = " + ", ".join(f"{v:g}" for v in sorted(table[name].dropna().unique()))
+             for name in ("mu", "nu") if name in table.columns]
+    return ", ".join(parts)
 
 
 def _one_model(table: pd.DataFrame, model: str | None, x: str, y: str) -> str:
