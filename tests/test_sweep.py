@@ -404,3 +404,12 @@ def test_a_model_axis_keeps_the_files_parameters_for_their_model_only():
     by_model = {s.model: s for s in scenes}
     assert by_model["mdr"].model_params["strips"] == 64
     assert "strips" not in by_model["mmd"].model_params
+
+
+def test_a_parameter_axis_of_a_model_named_apart_from_the_base_is_swept():
+    """sweep('mdr', axes={'model_params.strips': '16,64'}) on a default (mmd) base: the model
+    axis rule emptied the parameters after the axes were set, and every cell ran 256 strips."""
+    from sawdrift.study.sweep import grid
+
+    scenes = grid(["mdr"], [1.0], [0.5], base=sd.Scene(), axes={"model_params.strips": [16, 64]})
+    assert sorted(s.model_params["strips"] for s in scenes) == [16, 64]

@@ -139,12 +139,15 @@ def grid(
             per_model["model_params"] = {}
         for combo in itertools.product(*all_axes.values()):
             cell = json.loads(json.dumps(per_model))
-            for field, value in zip(all_axes, combo, strict=True):
-                set_dotted(cell, field, value)
-            if base is not None and cell.get("model") != base.model:
-                # a model axis (--axis model=a,b) is a list of models: the base's parameters are
-                # its model's (mdr's strips named to mmd were "not a known field")
+            values = dict(zip(all_axes, combo, strict=True))
+            if "model" in values and values["model"] != cell.get("model"):
+                # a model axis (--axis model=a,b) is a list of models, set first: the parameters
+                # so far are another model's (mdr's strips named to mmd were "not a known
+                # field"); a model_params axis applies after it
+                cell["model"] = values.pop("model")
                 cell["model_params"] = {}
+            for field, value in values.items():
+                set_dotted(cell, field, value)
             scenes.append(bind(build_scene(cell)))
             if tick is not None:
                 tick()
