@@ -493,3 +493,36 @@ def test_ctrl_c_while_refining_keeps_the_whole_field_and_its_unrefined_zeros(mon
     for z in data["zeros"]:  # each between two samples of opposite sign
         lo, hi = z["bracket"]
         assert lo < z["position"] < hi
+
+
+def test_ctrl_c_with_a_species_axis_draws_the_species_that_ran(monkeypatch, capsys, tmp_path):
+    """Cells run heaviest first: a stop can leave a species with no position, and the figure
+    indexed its first position (exit 3, 'internal failure', only field.json written). The API
+    still raises a KeyboardInterrupt, carrying the positions that ended."""
+    import sawdrift.study.sweep as sweep_mod
+    from sawdrift.study.field import FieldInterrupted
+
+    from .cli_call import call
+
+    real = sweep_mod.run_cell
+    ran = []
+
+    def fourth_interrupted(scene_json, **kwargs):
+        if len(ran) == 3:
+            raise KeyboardInterrupt
+        ran.append(scene_json)
+        return real(scene_json, **kwargs)
+
+    monkeypatch.setattr(sweep_mod, "run_cell", fourth_interrupted)
+    out = tmp_path / "fo"
+    code, _, err = call(monkeypatch, capsys, "field", "--model", "material_point", "--backward",
+                        "0.5", "--points", "8", "--axis", "particle.m_star=0.05,0.5",
+                        "--workers", "1", "--periods", "20", "-o", str(out))
+    assert code == 130 and "after 3 of 16 positions" in err, err
+    assert (out / "field.png").stat().st_size > 0 and (out / "field.json").exists()
+    ran.clear()
+    scene = sd.Scene(model="material_point", drive={"backward": 0.5}, numerics={"periods": 20})
+    with pytest.raises(FieldInterrupted) as stopped:
+        drift_field(scene, 8, workers=1)
+    assert isinstance(stopped.value, KeyboardInterrupt)
+    assert stopped.value.study.interrupted == (3, 8)

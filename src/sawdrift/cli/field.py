@@ -69,7 +69,7 @@ def field_cmd(
     --start for --periods periods (a phase ramp with --backward-phase-rate moves the traps) and
     reports it beside the field's prediction.
     """
-    from ..study.field import drift_field
+    from ..study.field import FieldInterrupted, drift_field
     from ..study.field_direct import direct_run
 
     fast_start()
@@ -120,8 +120,11 @@ def field_cmd(
                show=progress, unit="point", smaller="fewer --points", extra_steps=extra)
     if out is not None:  # after every check: a refused command leaves no folder behind
         _writable(out, folder=kind == "folder")
-    study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
-                        progress=progress, engine=engine)
+    try:
+        study = drift_field(scene, points, axis=species, refine=refine, workers=workers,
+                            progress=progress, engine=engine)
+    except FieldInterrupted as stopped:
+        study = stopped.study  # what ended, shown and written, then exit 130
     if direct and study.interrupted is None:
         periods = float(direct_periods)
         with notice(f"field: direct run of {periods:g} periods through the field", 2.0, progress), \

@@ -48,6 +48,8 @@ def field_units(fld: Field) -> tuple[float, str, float, str]:
 
 
 def _draw_field(ax: Any, fld: Field, colour: str, label: str) -> None:
+    if fld.positions.size == 0:
+        return  # a species Ctrl-C stopped before any of its positions ended: nothing to draw
     xs, xu, vs, vu = field_units(fld)
     x = np.concatenate([fld.positions, fld.positions + PERIOD, [fld.positions[0] + 2 * PERIOD]])
     v = np.concatenate([fld.drift_velocity, fld.drift_velocity, fld.drift_velocity[:1]])

@@ -33,8 +33,8 @@ from ..scene.device import device_wavelength, normalized, rayleigh_wavelength
 from ..scene.schema import Scene, Wave, build_scene, set_dotted
 from .executor import Executor
 
-__all__ = ["Field", "FieldStudy", "device_wavelength", "drift_field", "field_shift", "find_zeros",
-           "rayleigh_wavelength", "wavelength_star"]
+__all__ = ["Field", "FieldInterrupted", "FieldStudy", "device_wavelength", "drift_field",
+           "field_shift", "find_zeros", "rayleigh_wavelength", "wavelength_star"]
 
 #: period of the field in wavelengths
 PERIOD = 0.5
@@ -271,6 +271,12 @@ def drift_field(
         Regula-falsi rounds per zero (each one more run per zero, all zeros at once).
     workers, scheduler, progress, engine
         As for :func:`sawdrift.study.sweep.sweep`, which runs the positions.
+
+    Raises
+    ------
+    FieldInterrupted
+        Ctrl-C after some positions had ended: a KeyboardInterrupt holding the study of those
+        (``.study``, no zeros located unless every position had ended).
     """
     from .sweep import sweep
 
@@ -295,10 +301,21 @@ def drift_field(
     except KeyboardInterrupt:
         if not ended:
             raise
-        return _interrupted(ended, base, axis, positions)
+        # still an interrupt (a script's loop stops), carrying what ended (the command line
+        # shows and writes it)
+        raise FieldInterrupted(_interrupted(ended, base, axis, positions)) from None
     for f in fields:
         f.summary = _summarize(f)
     return FieldStudy(fields, axis[0] if axis is not None else None)
+
+
+class FieldInterrupted(KeyboardInterrupt):
+    """Ctrl-C stopped :func:`drift_field` after some positions had ended: a KeyboardInterrupt
+    whose ``study`` holds them (:attr:`FieldStudy.interrupted`)."""
+
+    def __init__(self, study: FieldStudy):
+        super().__init__("drift field interrupted")
+        self.study = study
 
 
 def _interrupted(rows: list[dict[str, Any]], base: Scene, axis: tuple[str, list[Any]] | None,
@@ -447,3 +464,15 @@ def _summarize(f: Field) -> str:
             return f"goes to -x everywhere (mean V = {mean:.4g})"
         return "no drift"
     return "no trap: " + ", ".join(f"{z['kind']} at {z['position']:.4f}" for z in f.zeros)
+
+
+#: the direct run's names, moved to :mod:`.field_direct`, still read from here
+_MOVED = ("MOST_PERIODS", "direct_run", "direct_scenes", "nearest_zero", "predict_path")
+
+
+def __getattr__(name: str) -> Any:
+    if name in _MOVED:
+        from . import field_direct
+
+        return getattr(field_direct, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
