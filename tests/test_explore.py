@@ -777,3 +777,19 @@ def test_traces_of_another_table_are_refused(table, tmp_path):
              table=other, workers=1, progress=False)
     with pytest.raises(SceneError, match="hold none of table"):
         write_explorer(other, tmp_path / "x.html", traces=traces_path(path))
+
+
+def test_the_tables_own_traces_are_taken_under_where(tmp_path):
+    """A table extended to mu = 0.2 without traces: --where material.mu=0.2 picks cells none of
+    whose traces are stored, and its own traces file was refused as another table's."""
+    from sawdrift.study.traces import traces_path
+
+    path = tmp_path / "t.parquet"
+    base = sd.Scene(numerics={"periods": 10, "settle": False})
+    sd.sweep(["mmd"], "0.5", "0.3,1", axes={"material.mu": "0.1"}, base=base, table=path,
+             workers=1, progress=False, traces=True)
+    sd.sweep(["mmd"], "0.5", "0.3,1", axes={"material.mu": "0.1,0.2"}, base=base, table=path,
+             workers=1, progress=False)
+    page = write_explorer(path, tmp_path / "x.html", traces=traces_path(path),
+                          where={"material.mu": "0.2"})
+    assert page.exists()

@@ -403,6 +403,7 @@ def explorer_data(table: str | Path | pd.DataFrame,
                   where: dict | None = None) -> ExplorerData:
     """The page's data (see :func:`write_explorer` for the arguments)."""
     frame, meta, name = load_table(table)
+    cells = set(frame["cell_id"].astype(str))  # the whole table's, before --where picks
     if where:
         frame = pick_rows(frame, where)
     stored = _traces_for(traces, table)
@@ -427,7 +428,8 @@ def explorer_data(table: str | Path | pd.DataFrame,
             cols[f"c{q}"] = code[q]
         sources.append(cols)
         marks.append(disagreement(code, [q for q in everyone if groups[q] == groups[p]]))
-    if traces is not None and not isinstance(traces, Mapping) and stored and not order:
+    if (traces is not None and not isinstance(traces, Mapping) and stored
+            and cells.isdisjoint(stored)):
         # a traces file of another table: every click said "no trace stored" without a word
         raise SceneError(f"traces {str(traces)!r} hold none of table {name!r}'s cells: give the "
                          "traces file swept with this table (TABLE.traces.parquet beside it)")
