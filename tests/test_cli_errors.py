@@ -397,6 +397,27 @@ def test_an_option_an_axis_makes_used_is_accepted(files, monkeypatch, capsys):
     with pytest.raises(SystemExit) as exc:
         main()
     assert exc.value.code == 0, capsys.readouterr().err
+    import pandas as pd
+
+    orbits = sorted(pd.read_parquet(files / "bw.parquet")["orbit"])
+    assert orbits[0] == "prograde" and "psi 30" in orbits[1], orbits  # the phase where it is used
+
+
+def test_an_unused_option_says_what_makes_it_used(files, monkeypatch, capsys):
+    """A scene file that turns friction off: the line said 'drop --no-friction', an option
+    never given; it says what to add. A field's species axis may give the second wave."""
+    (files / "nofric.toml").write_text("[effects]\nfriction = false\n")
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "run", str(files / "nofric.toml"), "--mu", "0.2"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    err = capsys.readouterr().err
+    assert exc.value.code == 2 and "add --friction, or drop --mu 0.2" in err, err
+    monkeypatch.setattr(sys, "argv", ["sawdrift", "field", "--axis", "drive.backward=0.5,1",
+                                      "--backward-phase", "90", "--points", "4", "--periods", "8",
+                                      "--refine", "0", "--workers", "1", "--no-progress"])
+    with pytest.raises(SystemExit) as exc:
+        main()
+    assert exc.value.code in (0, None), capsys.readouterr().err
 
 
 def test_an_air_drag_the_step_cannot_resolve_is_named(monkeypatch, capsys):
@@ -467,3 +488,5 @@ def test_a_table_without_mu_is_drawn(line, files, monkeypatch, capsys):
     with pytest.raises(SystemExit) as exc:
         main()
     assert exc.value.code in (0, None), capsys.readouterr().err
+    figure = files / ("p.png" if line.startswith("phase") else "c.png")
+    assert figure.stat().st_size > 1000

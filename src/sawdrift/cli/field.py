@@ -87,7 +87,8 @@ def field_cmd(
         _fail(f"--start {start:g} is the start of the direct run: add --direct (or drop --start)")
     start = 0.0 if start is None else start
     direct_periods = scene_overrides.pop("numerics.periods", None) if direct else None
-    scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides)
+    scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides,
+                               swept=(species[0],) if species is not None else ())
     if direct:
         from ..study.field import wavelength_star
 

@@ -232,13 +232,13 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
 
 #: (option's field, the field that makes it used, what that must be, the option that gives it)
 NEEDS: tuple[tuple[str, str, str, str], ...] = (
-    ("material.mu", "effects.friction", "effects.friction = true", "drop --no-friction"),
+    ("material.mu", "effects.friction", "effects.friction = true", "--friction"),
     ("drive.horizontal_ratio", "effects.horizontal_wave", "effects.horizontal_wave = true",
-     "drop --no-horizontal-wave"),
+     "--horizontal-wave"),
     ("drive.backward_phase", "drive.backward", "a second wave, drive.backward > 0",
-     "add --backward S"),
+     "--backward S"),
     ("drive.backward_phase_rate", "drive.backward", "a second wave, drive.backward > 0",
-     "add --backward S"),
+     "--backward S"),
 )
 
 
@@ -254,9 +254,17 @@ def _unused_options(scene: sd.Scene, values: dict[str, Any], overrides: Any,
         "drive.backward_phase": float(getattr(scene.drive, "backward", 0.0) or 0.0) > 0.0,
         "drive.backward_phase_rate": float(getattr(scene.drive, "backward", 0.0) or 0.0) > 0.0,
     }
-    for field, enabling, needs, how in NEEDS:
+    for field, enabling, needs, option in NEEDS:
         if field in values and not used[field] and enabling not in swept:
             typed = typed_as(overrides, field, f"--set {field}")
+            # the option that turned it off, as typed (--no-friction), or the scene file's
+            given = typed_as(overrides, enabling, f"--set {enabling}")
+            if enabling not in values:
+                how = f"add {option}"
+            elif isinstance(values[enabling], bool) and not given.startswith("--set"):
+                how = f"drop --no-{option[2:]}"  # the flag that turned it off
+            else:
+                how = f"drop {given}"
             raise sd.SceneError(f"{typed} is used only with {needs}: {how}, or drop {typed}")
 
 
