@@ -422,13 +422,21 @@ def test_an_unused_option_says_what_makes_it_used(files, monkeypatch, capsys):
 
 def test_an_air_drag_the_step_cannot_resolve_is_named(monkeypatch, capsys):
     """--air-drag 1e308 (in [0, inf)) blew the state up and the error blamed the step size and
-    the contact model: it names the drag and the damping per step it asks of the scheme."""
-    monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "--periods", "5", "--air-drag", "1e308"])
-    with pytest.raises(SystemExit) as exc:
-        main()
-    err = capsys.readouterr().err.strip().splitlines()
-    assert exc.value.code == 2 and len(err) == 1
-    assert "effects.air_drag = 1e+308" in err[0] and "c h / m*" in err[0], err[0]
+    the contact model: it names the drag and the steps it would need. A drag the default step
+    could not resolve (c h / m* = 0.94 at 128 steps: 12 on m* = 0.1) takes more steps and runs;
+    at steps given explicitly the failure names the drag and the order's stability limit."""
+    def run(*args: str) -> tuple[int, list[str]]:
+        monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "--periods", "5", *args])
+        with pytest.raises(SystemExit) as exc:
+            main()
+        return exc.value.code, capsys.readouterr().err.strip().splitlines()
+
+    code, err = run("--air-drag", "1e308")
+    assert code == 2 and len(err) == 1
+    assert "effects.air_drag = 1e+308" in err[0] and "steps a period" in err[0], err[0]
+    assert run("--air-drag", "12", "--m-star", "0.1")[0] in (0, None)
+    code, err = run("--air-drag", "12", "--m-star", "0.1", "--steps-per-period", "128")
+    assert code == 2 and "effects.air_drag = 12" in err[0] and "order-4" in err[0], err
 
 
 def test_a_prescribed_sample_past_any_force_is_the_scenes_error(files, monkeypatch, capsys):

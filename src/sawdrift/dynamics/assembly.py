@@ -41,7 +41,8 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     k = p a_ref^(p-1) max(1, c/theta) bounds the normal and tangential stiffness at the largest
     expected compression a_ref = 1 + 2 A* (c = 1 + 1/kappa with rotation, else 1), keeps
     h c / m* <= 0.1 for a viscous normal damping c (the scene's and the model's own,
-    :func:`model_dashpot`), and never goes below 128 per period.
+    :func:`model_dashpot`) and for the air drag c on the smaller of m* and the horizontal inertia
+    a settling run may integrate (:func:`drag_inertia`), and never goes below 128 per period.
     ``rigid`` is the model's capability (looked up when not given).
     """
     if scene.numerics.steps_per_period is not None:
@@ -92,7 +93,23 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
             f"model's own) on m* = {scene.particle.m_star:g} needs {damping:.2g} steps a period "
             f"for a stable step (h c / m* <= 0.1); allowed: up to {FINEST_STEPS:.0e} (a smaller "
             f"damping or a heavier particle)")
-    return int(min(FINEST_STEPS, max(128, math.ceil(omega / 0.06), math.ceil(damping), impact)))
+    drag = 10.0 * scene.effects.air_drag / drag_inertia(scene)
+    if drag > FINEST_STEPS and scene.numerics.steps_per_period is None:
+        # as a dashpot: --air-drag 1e308 blew the state up, blamed on the step and the model
+        raise SceneError(
+            f"effects.air_drag = {scene.effects.air_drag:g} on m* = {scene.particle.m_star:g} "
+            f"needs {drag:.2g} steps a period for a stable step (h c / m* <= 0.1); allowed: up "
+            f"to {FINEST_STEPS:.0e} (c a0 f / (M g) of a real particle is far below 1)")
+    return int(min(FINEST_STEPS, max(128, math.ceil(omega / 0.06), math.ceil(damping),
+                                     math.ceil(drag), impact)))
+
+
+def drag_inertia(scene: Scene) -> float:
+    """The smallest inertia the air drag acts on: m*, or the horizontal inertia min(m*, 100)
+    that ``numerics.settle`` may integrate (:data:`~sawdrift.dynamics.steady.HEAVY_MASS`)."""
+    from .steady import HEAVY_MASS  # the settle stages import this module
+
+    return min(scene.particle.m_star, HEAVY_MASS)
 
 
 def model_dashpot(scene: Scene, a: float) -> float:

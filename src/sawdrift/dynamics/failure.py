@@ -11,11 +11,17 @@ from ..errors import NonFiniteStateError
 from ..scene.parts import FINEST_STEPS
 from . import evidence as ev
 from . import rigid as rg
+from .adams_bashforth import P_MX, P_ORDER
 
 if TYPE_CHECKING:
     from .stepper import Stepper
 
 __all__ = ["failure"]
+
+#: the end of the real stability interval of the Adams-Bashforth step of each order: a decay
+#: rate lambda is stable for h lambda up to this (Hairer, Norsett and Wanner, Solving ODE I,
+#: section III.3)
+STABLE_DAMPING = {1: 2.0, 2: 1.0, 3: 6.0 / 11.0, 4: 0.3}
 
 
 def failure(stepper: Stepper) -> NonFiniteStateError:
@@ -44,13 +50,18 @@ def failure(stepper: Stepper) -> NonFiniteStateError:
             f"the step 1/{stepper.k_per} is likely too coarse for m* = {m:g}; try a larger "
             f"--steps-per-period or a lower Adams-Bashforth order, or {check}")
     drag = float(stepper.scene.effects.air_drag)
-    if drag * stepper.h / m > 1.0:
-        # the explicit step multiplies the velocity by about 1 - c h / m* a step: past 1 it
+    m_drag = min(m, float(stepper.prm[P_MX])) if not stepper.rigid else m
+    order = int(stepper.prm[P_ORDER])
+    limit = STABLE_DAMPING.get(order, STABLE_DAMPING[4])
+    if drag * stepper.h / m_drag > limit:
+        # the Adams-Bashforth step of a decay rate c / m* is stable only for h c / m* within
+        # its real stability interval (Euler 2, AB2 1, AB3 6/11, AB4 0.3): past it the velocity
         # grows without bound whatever the contact (--air-drag 1e308 blamed the step size)
-        hint = (f"effects.air_drag = {drag:g} damps m* = {m:g} by c h / m* = "
-                f"{drag * stepper.h / m:.3g} a step of 1/{stepper.k_per}, above the 1 the "
-                "explicit step resolves: give a smaller air drag (c a0 f / (M g) of a real "
-                "particle is far below 1) or more steps per period")
+        hint = (f"effects.air_drag = {drag:g} damps m* = {m_drag:g} by c h / m* = "
+                f"{drag * stepper.h / m_drag:.3g} a step of 1/{stepper.k_per}, beyond the "
+                f"{limit:.3g} an order-{order} Adams-Bashforth step is stable to: give a smaller "
+                "air drag (c a0 f / (M g) of a real particle is far below 1) or more steps per "
+                "period")
     elif k == 0:
         # the first step from rest on its static compression: its state is finite, so the
         # force was not (a plugin's NaN force was blamed on the step size)
