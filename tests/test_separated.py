@@ -19,12 +19,8 @@ import sawdrift as sd
 from sawdrift.contact.binding import model_for
 from sawdrift.dynamics.assembly import assemble
 from sawdrift.dynamics.full_inertia import full_window_length
-from sawdrift.dynamics.separated import (
-    Stuck,
-    approach_periods,
-    place_on_orbit,
-    separated_orbit,
-)
+from sawdrift.dynamics.orbit_use import approach_periods, place_on_orbit
+from sawdrift.dynamics.separated import Stuck, separated_orbit
 from sawdrift.dynamics.stepper import Stepper
 from sawdrift.dynamics.torus import slow_cycle
 from sawdrift.dynamics.window import measure_window
@@ -503,3 +499,28 @@ def test_a_loaded_heavy_hop_is_solved_at_its_brute_force_drift(model, m, a, mu, 
     assert res.regime == brute.regime == "hopping"
     assert abs(res.drift_ratio - brute.drift_ratio) <= 1e-3 * abs(brute.drift_ratio), (
         res.drift_ratio, brute.drift_ratio)
+
+
+def test_a_loaded_orbit_is_a_periodic_solution_of_the_run():
+    """Under a tangential load the orbit is the zero of -<T*>(V) + L/mu, and placed on it the
+    integrator repeats it (as unloaded: per-period displacement constant to 1e-9 of itself,
+    at the orbit's drift to 1e-6). Its acceleration history must carry the load as the
+    integrator does, (-mu T* + L)/m*: without it the first steps pulled the speed off."""
+    sc = sd.Scene(model="mmd", particle={"m_star": 1000.0, "load": 0.02},
+                  material={"mu": 0.1}, drive={"amplitude": 0.3})
+    st, speed, scale = stepper_after_ramp(sc)
+    orbit = separated_orbit(st, sc, speed, 1e-4)
+    free = separated_orbit(stepper_after_ramp(scene(1000.0, 0.3, 0.1))[0], scene(1000.0, 0.3, 0.1),
+                           speed, 1e-4)
+    assert orbit is not None and orbit.drift > free.drift  # the load pushes along +x
+    place_on_orbit(st, orbit)
+    assert st.fh[0, 1] == pytest.approx((-0.1 * orbit.tangential[-1] + 0.02) / 1000.0, rel=1e-12)
+    measure_window(st, 2, speed, scale)
+    x0, steps = st.y[0], []
+    for _ in range(20):
+        st.advance(st.k_per)
+        steps.append(st.y[0] - x0)
+        x0 = st.y[0]
+    steps = np.array(steps)
+    assert np.ptp(steps) <= 1e-9 * abs(steps.mean())
+    assert steps.mean() == pytest.approx(orbit.drift, rel=1e-6)

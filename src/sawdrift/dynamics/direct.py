@@ -60,6 +60,7 @@ import numpy as np
 
 from .full_inertia import settle_full, shift_speed
 from .imposed import imposed_drift
+from .orbit_use import approach_periods, orbit_relaxation, place_on_orbit
 from .separated import (
     IRREGULAR,
     ORBIT_ALONE_MASS,
@@ -68,10 +69,7 @@ from .separated import (
     SeparatedOrbit,
     Stuck,
     applies,
-    approach_periods,
     damped_normal,
-    orbit_relaxation,
-    place_on_orbit,
     separated_orbit,
 )
 from .settling import SLOPE, Settling
@@ -161,7 +159,7 @@ def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
     solved directly for a heavy particle, or None where that does
     not apply: the period-one orbit (:func:`~.separated.separated_orbit`) averaged over the
     run's slow vertical oscillation (:func:`~.torus.torus_drift`), the time from rest by
-    :func:`~.separated.approach_periods`. An orbit that keeps contact is its own start if the average
+    :func:`~.orbit_use.approach_periods`. An orbit that keeps contact is its own start if the average
     fails; one that loses contact is not (its drift can be 8 % from the run's). A
     :class:`~.separated.Stuck` for a contact that sticks, creeps or slips over part of its period
     without a repeating memory.

@@ -460,6 +460,7 @@ def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: 
         return None  # a NaN force inside the bracket (its ends, the search's, change sign)
     # Brent's last evaluation is usually at its answer: the fast parts there are not computed again
     got = last_got if last_d == d_star else p.fast(y_mean, d_star * speed, eta, xi)
+    residual = p.residual  # the memory's repetition at the zero, which the caller judges
     for share in APPROACH_SHARES:
         # the curve on the approach from rest, where the search left gaps: the time to 90 % of
         # the drift (approach_periods) integrates 1 / <T*>(V), which the chord across a gap
@@ -467,6 +468,7 @@ def _curve_zero(p: _Problem, y_mean: float, eta: np.ndarray, speed: float, tol: 
         d = share * d_star
         if min(abs(d - s) for s in pushes) > APPROACH_GAP * abs(d_star):
             push(d)
+    p.residual = residual
     return d_star, got, pushes
 
 
@@ -479,51 +481,3 @@ def _slope(pushes: dict[float, float], d_star: float, speed: float) -> float:
         return math.nan
     d0, d1 = max(below), min(above)
     return -(pushes[d1] - pushes[d0]) / ((d1 - d0) * speed)
-
-
-def place_on_orbit(stepper: Stepper, orbit: SeparatedOrbit) -> None:
-    """Put the run's velocity, height and derivative history on the orbit at the present step
-    (a whole period: sample 0); x* stays, the contact memory re-adapts within a period."""
-    k = orbit.eta.size
-    m = float(stepper.prm[ig.P_M])
-    mu = float(stepper.prm[ig.P_MU])
-    stepper.y[1] = orbit.drift + orbit.xi_rate[0]
-    stepper.y[2] = orbit.mean_compression + orbit.eta[0]
-    stepper.y[3] = orbit.eta_rate[0]
-    for j in range(4):
-        i = (-1 - j) % k
-        stepper.fh[j, 0] = orbit.drift + orbit.xi_rate[i]
-        stepper.fh[j, 1] = -mu * orbit.tangential[i] / m
-        stepper.fh[j, 2] = orbit.eta_rate[i]
-        stepper.fh[j, 3] = (1.0 - orbit.normal[i]) / m
-    stepper.moved()  # a flight in closed form would go on from its old anchor
-
-
-def orbit_relaxation(orbit: SeparatedOrbit, mu: float, m_star: float, slope: float) -> float:
-    """lambda = mu T' / m* (per period) of the mean speed near the orbit, T' = d<T*>/dV its
-    force-velocity slope, kept within a factor of ten of the rate mu ``slope`` / m* assumed
-    without one (a slope across a kink of the curve is no rate)."""
-    assumed = slope * mu / m_star
-    if not math.isfinite(orbit.slope) or orbit.slope <= 0.0:
-        return assumed
-    return min(max(mu * orbit.slope / m_star, 0.1 * assumed), 10.0 * assumed)
-
-
-def approach_periods(orbit: SeparatedOrbit, drift: float, speed: float, mu: float,
-                     m_star: float, share: float = 0.9) -> float:
-    """Periods a particle starting from rest takes to reach ``share`` of ``drift``, from the
-    force-velocity curve sampled on the way to the orbit: m* dV/dt = -mu <T*>(V) (separation of
-    motions), so t = integral from 0 to share V of m* dV / (-mu <T*>(V)), the curve interpolated
-    linearly between its samples. NaN where the curve does not push towards ``drift`` all the way.
-    """
-    target = share * drift / speed
-    d = np.array([c[0] for c in orbit.curve])
-    f = np.array([c[1] for c in orbit.curve])
-    if target == 0.0:
-        return 0.0
-    grid = np.linspace(0.0, target, 201)
-    push = np.interp(grid, d, f) * np.sign(target)
-    if np.any(push <= 0.0):
-        return math.nan
-    rate = m_star * speed / (mu * push)  # dt / d(drift ratio)
-    return float(abs(np.sum(0.5 * (rate[1:] + rate[:-1]) * np.diff(grid))))
