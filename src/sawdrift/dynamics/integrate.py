@@ -380,8 +380,8 @@ def _irregular(win: Window, settling: Settling) -> bool:
     monotone approach cut off by its cap stays unsettled: its mean would not be the steady one
     (in contact; one that lost contact gets its mean, marked still moving where it was
     approaching, :func:`_irregular_mean`)."""
-    if settling.settled or in_flight(win):
-        return False
+    if settling.settled or settling.uncertain > 0.0 or in_flight(win):
+        return False  # (a loaded drift solved directly, its average uncertain, is no mean)
     if win.contact_lost:
         return True
     return wanders(settling.history)

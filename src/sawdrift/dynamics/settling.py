@@ -49,3 +49,6 @@ class Settling:
     #: stopped (:attr:`~.approach._Approach.to_go`): an approach cut off by the windows' cap,
     #: whose long-time mean is that of a stretch still moving
     to_go: float = 0.0
+    #: a drift solved directly under a load whose slow-cycle average may be off by this (drift
+    #: ratio) beyond the tolerance (:func:`~.direct.averaging_error`): not settled
+    uncertain: float = 0.0

@@ -284,6 +284,12 @@ def _unsettled_reason(out: WaveRun, settling: bool) -> str:
     longer = ("numerics.max_periods (--max-periods)" if settling else
               "numerics.settle = true (--settle) with numerics.max_periods (--max-periods)")
     beat = out.settling.slip_beat
+    if out.settling.uncertain > 0.0:
+        return (f"not settled: the drift solved directly under the load averages the undamped "
+                f"free vertical oscillation's slow cycle, and near the load's holding limit "
+                f"that average may be off by about {out.settling.uncertain:.1g} in drift ratio, "
+                f"beyond the tolerance; brute force (--no-settle, some 40 m*/mu periods) "
+                f"decides")
     if out.settling.leaving:
         return (f"not settled: its take-offs still moved away from repeating when the run "
                 f"stopped after {periods:.0f} periods (an orbit losing its stability, as at a "
