@@ -24,6 +24,13 @@ import sawdrift as sd
 from .._paths import write_problem
 from .._startup import stored_help
 from ..study.executor import check_scheduler
+from .interrupts import (  # noqa: F401 - the commands import them from here
+    _INTERRUPT_SAID,
+    _restore_interrupts,
+    _say_interrupted,
+    interrupted,
+    interrupted_placements,
+)
 
 
 def reflow(text: str | None) -> str | None:
@@ -362,88 +369,6 @@ def _empty_output(argv: list[str]) -> str | None:
         if arg.startswith("--out=") and arg[len("--out="):].strip() == "":
             return "--out"
     return None
-
-
-#: whether a command already said what its Ctrl-C kept (:func:`interrupted`)
-_INTERRUPT_SAID: list[bool] = [False]
-
-
-def interrupted(message: str) -> None:
-    """End a command stopped by Ctrl-C with ``message`` (what it kept, how to resume) on stderr
-    and exit status 130."""
-    _ignore_further_interrupts()
-    _quiet_pool_shutdown()
-    typer.echo(message, err=True)
-    _INTERRUPT_SAID[0] = True
-    raise typer.Exit(130)
-
-
-def _quiet_pool_shutdown() -> None:
-    """After a Ctrl-C, drop what a process pool's manager thread raises while the interpreter
-    shuts down around its killed workers (an ``OSError: [Errno 9] Bad file descriptor`` from
-    ``concurrent.futures.process``, printed as "Exception ignored in: <module 'threading'>" with
-    its traceback after the "interrupted" line, 3 times in 20 resumed sweeps); anything else
-    goes to the hook as before."""
-    import sys
-
-    previous = sys.unraisablehook
-
-    def hook(unraisable: Any) -> None:
-        exc = unraisable.exc_value
-        tb = unraisable.exc_traceback
-        frames = []
-        while tb is not None:
-            frames.append(tb.tb_frame.f_code.co_filename)
-            tb = tb.tb_next
-        if isinstance(exc, OSError) and any("concurrent" in f for f in frames):
-            return
-        previous(unraisable)
-
-    sys.unraisablehook = hook
-
-
-def _ignore_further_interrupts() -> None:
-    """Ignore Ctrl-C until the command has ended (:func:`_main` puts the handler back: a
-    process that called the command line in-process, a test, kept ignoring it, and so did every
-    process it started after)."""
-    import signal
-
-    try:
-        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    except ValueError:  # not the main thread: nothing to change there
-        return
-    if _SIGINT_BEFORE[0] is None:
-        _SIGINT_BEFORE[0] = previous
-
-
-#: the SIGINT handler :func:`_ignore_further_interrupts` replaced, put back when the command ends
-_SIGINT_BEFORE: list[Any] = [None]
-
-
-def _restore_interrupts() -> None:
-    import signal
-
-    if _SIGINT_BEFORE[0] is not None:
-        signal.signal(signal.SIGINT, _SIGINT_BEFORE[0])
-        _SIGINT_BEFORE[0] = None
-
-
-def interrupted_placements(done: int, total: int, written: Path | None) -> None:
-    """End an ensemble (sort, lammps --seeds) that Ctrl-C stopped after ``done`` of ``total``
-    placements, whose numbers, printed and ``written`` (a file or folder, or None), are of the
-    placements that ended (:func:`interrupted`)."""
-    kept = f"; written to {written}" if written is not None else ""
-    interrupted(f"interrupted (Ctrl-C) after {done} of {total} placements: the numbers are of "
-                f"those{kept}")
-
-
-def _say_interrupted(code: object) -> None:
-    """Ctrl-C, which typer turns into exit status 130 with no word: one line, unless the command
-    said what it kept (:func:`interrupted`). run, field, threshold, load-curve and bifurcation
-    exited in silence."""
-    if code == 130 and not _INTERRUPT_SAID[0]:
-        typer.echo("interrupted (Ctrl-C): the command stopped before writing its results",
-                   err=True)
 
 
 def _main() -> None:

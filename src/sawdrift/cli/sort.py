@@ -24,7 +24,8 @@ from .scene_options import with_scene_options
 def sort_cmd(
     scene_file: Annotated[Path, typer.Argument(help="device scene TOML with a \\[particles] "
                                                "table of two radii")],
-    seeds: Annotated[int, typer.Option("--seeds", min=1, help="random placements (seeds seed, "
+    # max: sawdrift.mixture.sort.MAX_SEEDS (not imported here: --help stays fast)
+    seeds: Annotated[int, typer.Option("--seeds", min=1, max=10_000, help="random placements (seeds seed, "
                                        "seed+1, ...); at least 20 for a spread")] = 20,
     until: Annotated[float, typer.Option("--until", help="length of each run in wave periods "
                                          "(beads that touch nothing cost nothing)")] = 1e9,

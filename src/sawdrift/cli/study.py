@@ -133,7 +133,8 @@ def sweep_cmd(
                               workers=workers, scheduler=scheduler, progress=progress,
                               engine=engine, force=force, traces=traces, yes=yes)
         else:
-            if base.device is not None and not axes and len(models) == 1:
+            if (base.device is not None and not axes and len(models) == 1 and m_star is None
+                    and amplitude is None):  # (those get the derived field's own line)
                 # its help says so; a one-cell table was written without a word
                 _fail("a device scene has no default plane to sweep: give its axes, e.g. "
                       "--axis \"device.amplitude=5 nm,10 nm\" (or run it: sawdrift run)")

@@ -112,6 +112,12 @@ def drag_inertia(scene: Scene) -> float:
     return min(scene.particle.m_star, HEAVY_MASS)
 
 
+def ramp_end_step(ramp: float, k_per: int) -> int:
+    """The first step after the drive's start-up ramp of ``ramp`` periods (evidence is taken
+    from there; a window within the ramp takes its own, :func:`~.window.measure_window`)."""
+    return math.ceil(ramp * k_per - 1e-9)
+
+
 def model_dashpot(scene: Scene, a: float) -> float:
     """dN*/da*' of the model's own normal law at the compression ``a`` (0 for a model whose
     forces do not depend on the velocity): its dashpot coefficient, from the law itself (its
@@ -402,7 +408,7 @@ def _params(scene: Scene, k_per: int, ramp: float, rest_c: float) -> dict[str, f
         "m": m, "mu": scene.material.mu, "theta": scene.theta, "h": 1.0 / k_per,
         "order": scene.numerics.order, "friction": 1.0 if eff.friction else 0.0,
         "damping": eff.normal_damping, "p": scene.particle.profile.p,
-        "k_ramp": math.ceil(ramp * k_per - 1e-9),
+        "k_ramp": ramp_end_step(ramp, k_per),
         "roll": 1.0 + 1.0 / scene.particle.gyration if eff.rotation else 0.0,
         "rolling_resistance": eff.rolling_resistance if eff.rotation else 0.0,
         "m_x": m, "load": scene.particle.load, "restitution_damping": rest_c,

@@ -29,7 +29,7 @@ from .batch_means import BatchMeans, blocked_error
 from .fast_parts import _periodic_rate
 from .full_inertia import full_window_length, shift_speed
 from .roots import brentq, first_passed
-from .separated import GRID, history_loop
+from .separated import GRID, history_loop, load_offset
 from .stepper import Stepper
 from .window import Window, measure_window
 
@@ -67,9 +67,8 @@ class _Record:
         prm = stepper.prm
         self.mu = float(prm[ig.P_MU])
         self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)
-        #: a constant tangential load L as a mean friction: the drift is the zero of
-        #: -<T*>(V) + L / mu (m* x*'' = -mu T* + L)
-        self.offset = float(prm[ig.P_LOAD]) / self.mu
+        #: the tangential load as a mean friction (:func:`~.separated.load_offset`)
+        self.offset = load_offset(prm)
         self.k = k
         self.a, self._vy = a, vy
         # the drive, periodic after the ramp: u_y = y* - a*, u_x = x* - b*/scale (no rotation),

@@ -163,6 +163,13 @@ class SeparatedOrbit:
     partial_slip: bool = False
 
 
+def load_offset(prm: np.ndarray) -> float:
+    """A constant tangential load L in the units of the mean friction <T*>: m* x*'' = -mu T* + L
+    (the integrator's), so the drift is the zero of -<T*>(V) + L / mu; the fast parts, about
+    the mean, do not see it."""
+    return float(prm[ig.P_LOAD]) / float(prm[ig.P_MU])
+
+
 def solvable(scene, rigid: bool) -> bool:
     """Whether a scene's drift may be solved directly (module docstring), read off the scene:
     heavy, compliant, friction on, one travelling wave, and none of the forces the solution
@@ -244,9 +251,8 @@ class _Problem:
         self.m = float(prm[ig.P_M])
         self.mu = float(prm[ig.P_MU])
         self.scale_b = 1.0 / (float(prm[ig.P_THETA]) * self.mu)
-        #: a constant tangential load L in the mean force's units: m* x*'' = -mu T* + L, so the
-        #: drift is the zero of -<T*>(V) + L / mu; the fast parts, about the mean, do not see it
-        self.offset = float(prm[ig.P_LOAD]) / self.mu
+        #: the tangential load in the mean force's units (:func:`load_offset`)
+        self.offset = load_offset(prm)
         surface = stepper.drive.functions()[0]
         t = t0 + np.arange(self.k) / self.k
         u = np.array([surface(float(ti), 0.0, stepper.dp) for ti in t])

@@ -16,7 +16,7 @@ from typing import Any
 from .._texts import HEATING, STILL_MOVING
 from ..contact.binding import bind, model_for
 from ..contact.registry import plugin_failures
-from ..dynamics.assembly import Engine, assemble
+from ..dynamics.assembly import Engine, assemble, ramp_end_step
 from ..dynamics.batch_means import HALVES_Z, TREND_Z
 from ..dynamics.drives import Drive
 from ..dynamics.impact import (
@@ -120,7 +120,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         warnings += ("not settled: the load equals the most friction can hold, mu (1 + 2 F*_pull)"
                      ": nothing restores the mean speed, which drifts on (neutral), no steady "
                      "drift",)
-    elif stepper.step <= math.ceil(wave.ramp_periods * stepper.k_per - 1e-9):
+    elif not ending and stepper.step <= ramp_end_step(wave.ramp_periods, stepper.k_per):
         # the whole run within the drive's start-up ramp: the wave was still growing
         settled = False
         warnings += (f"not settled: the run ended within the drive's start-up ramp "

@@ -155,11 +155,12 @@ def parse_values(spec: str | Sequence[Any], name: str = "axis") -> list[Any]:
 
 def _once_each(values: list[Any], name: str, spec: str) -> list[Any]:
     """``values``, or one line where one is given twice: a number or a boolean equal to another,
-    or a quantity written the same (spaces and case aside). The repeated cell ran twice (a
-    field's species printed twice, a threshold's slopes n/a); m* and A* axes refuse it too."""
+    or a quantity written the same but for spaces (case counts: 1 mHz is not 1 MHz). The
+    repeated cell ran twice (a field's species printed twice, a threshold's slopes n/a); m* and
+    A* axes refuse it too."""
     seen: list[Any] = []
     for v in values:
-        key = "".join(v.split()).lower() if isinstance(v, str) else v
+        key = "".join(v.split()) if isinstance(v, str) else v
         if any(type(key) is type(k) and key == k for k in seen):
             shown = f"{v:g}" if isinstance(v, float) else str(v)
             raise SceneError(f"{name} = {spec!r} gives {shown} more than once: give each value once")
