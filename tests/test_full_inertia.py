@@ -642,13 +642,15 @@ def test_a_load_near_the_holding_limit_is_followed_to_its_slow_end():
 def test_a_beating_hop_near_its_holding_limit_is_settled_right_or_says_it_is_still_moving():
     """mmd m* = 75, A* = 1.3, mu = 0.2 under L = -0.18: brute force needs more than 4e4
     periods (-0.20319 at 72000, measured over the last 16000); the default run settled at
-    -0.20027, 1.4 % short, with no warning. Now it agrees or it says it is still moving."""
+    -0.20027, 1.4 % short, with no warning. Now it agrees or it says why it is not settled:
+    still moving (windows), or an average near the holding limit (the drift solved directly
+    under a load, -0.203096)."""
     ref, res = loaded_pair(75.0, 1.3, 0.2, -0.18, 72000, 16000)
     assert -0.21 < ref.drift_ratio < -0.2
     if res.settled:
         assert agrees(res.drift_ratio, ref.drift_ratio), (res.drift_ratio, ref.drift_ratio)
     else:
-        assert any("still moving" in w for w in res.warnings), res.warnings
+        assert any("still moving" in w or "holding limit" in w for w in res.warnings), res.warnings
 
 
 def test_a_heavy_hop_does_not_settle_while_its_windows_still_speed_up():

@@ -87,6 +87,10 @@ PRM_NAMES = (
  P_MX, P_LOAD, P_REST, P_DRAG, P_PULL) = range(len(PRM_NAMES))
 N_PRM = len(PRM_NAMES)
 
+#: the horizontal inertia m*_x (P_MX) that ``numerics.settle`` integrates a heavier particle
+#: with (:mod:`.steady`); the step's air-drag bound reads it too (:func:`~.assembly.drag_inertia`)
+HEAVY_MASS = 100.0
+
 
 def pack(values: dict[str, float], names: tuple[str, ...] = PRM_NAMES) -> np.ndarray:
     """The parameter vector of ``names`` (all required) from a dict of named values."""

@@ -24,7 +24,7 @@ from ..scene.parts import FINEST_STEPS
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from ..scene.validity import device_warnings
 from . import air_drag
-from .adams_bashforth import MIN_RESTITUTION, damping_ratio, restitution_damping
+from .adams_bashforth import HEAVY_MASS, MIN_RESTITUTION, damping_ratio, restitution_damping
 from .drives import DRIVES, Drive, drive_of
 
 Engine = Literal["compiled", "python"]
@@ -106,9 +106,7 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
 
 def drag_inertia(scene: Scene) -> float:
     """The smallest inertia the air drag acts on: m*, or the horizontal inertia min(m*, 100)
-    that ``numerics.settle`` may integrate (:data:`~sawdrift.dynamics.steady.HEAVY_MASS`)."""
-    from .steady import HEAVY_MASS  # the settle stages import this module
-
+    that ``numerics.settle`` may integrate (:data:`~sawdrift.dynamics.adams_bashforth.HEAVY_MASS`)."""
     return min(scene.particle.m_star, HEAVY_MASS)
 
 

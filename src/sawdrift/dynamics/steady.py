@@ -50,6 +50,7 @@ import numpy as np
 
 from ..errors import SceneError
 from . import adams_bashforth as ig
+from .adams_bashforth import HEAVY_MASS
 from .approach import relative_bound
 from .direct import settle_direct
 from .evidence import EV_LANDING
@@ -68,8 +69,6 @@ from .window import Window, in_flight, measure_window
 
 __all__ = ["SLOPE", "Settling", "settle", "settles", "assess_fixed"]
 
-#: the horizontal inertia used for heavier particles (see the module docstring)
-HEAVY_MASS = 100.0
 
 #: Longest relaxation time (periods, at the integrated inertia) that ``numerics.settle`` left
 #: unset settles by default (:func:`settles`): its cap, 50 of them, is then at most 5e5 periods.

@@ -464,15 +464,3 @@ def _summarize(f: Field) -> str:
             return f"goes to -x everywhere (mean V = {mean:.4g})"
         return "no drift"
     return "no trap: " + ", ".join(f"{z['kind']} at {z['position']:.4f}" for z in f.zeros)
-
-
-#: the direct run's names, moved to :mod:`.field_direct`, still read from here
-_MOVED = ("MOST_PERIODS", "direct_run", "direct_scenes", "nearest_zero", "predict_path")
-
-
-def __getattr__(name: str) -> Any:
-    if name in _MOVED:
-        from . import field_direct
-
-        return getattr(field_direct, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
