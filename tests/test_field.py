@@ -435,24 +435,31 @@ def test_refine_is_bounded_and_counted_in_the_size(monkeypatch, capsys):
     assert seen[0] == 0.0 and seen[1] == pytest.approx(60 * 2 * one / 4, rel=0.2)
 
 
-def test_ctrl_c_in_a_field_keeps_the_positions_that_ended(monkeypatch, capsys, tmp_path):
-    """A field stopped by Ctrl-C printed and wrote nothing, though positions had ended: it
-    shows and writes those (no zeros: a sign change between them may hide others) and exits
-    130 saying how many of how many ran."""
+def interrupt_after(monkeypatch, cells: int) -> list[str]:
+    """A Ctrl-C in the sweep's cell runner once ``cells`` cells have run (the list of those it
+    returns; clear it to count again)."""
     import sawdrift.study.sweep as sweep_mod
 
-    from .cli_call import call
-
     real = sweep_mod.run_cell
-    ran = []
+    ran: list[str] = []
 
-    def third_interrupted(scene_json, **kwargs):
-        if len(ran) == 3:
+    def interrupted(scene_json, **kwargs):
+        if len(ran) == cells:
             raise KeyboardInterrupt
         ran.append(scene_json)
         return real(scene_json, **kwargs)
 
-    monkeypatch.setattr(sweep_mod, "run_cell", third_interrupted)
+    monkeypatch.setattr(sweep_mod, "run_cell", interrupted)
+    return ran
+
+
+def test_ctrl_c_in_a_field_keeps_the_positions_that_ended(monkeypatch, capsys, tmp_path):
+    """A field stopped by Ctrl-C printed and wrote nothing, though positions had ended: it
+    shows and writes those (no zeros: a sign change between them may hide others) and exits
+    130 saying how many of how many ran."""
+    from .cli_call import call
+
+    ran = interrupt_after(monkeypatch, 3)
     out = tmp_path / "f.csv"
     code, stdout, err = call(monkeypatch, capsys, "field", "--model", "material_point",
                              "--backward", "0.5", "--points", "8", "--workers", "1",
@@ -499,21 +506,11 @@ def test_ctrl_c_with_a_species_axis_draws_the_species_that_ran(monkeypatch, caps
     """Cells run heaviest first: a stop can leave a species with no position, and the figure
     indexed its first position (exit 3, 'internal failure', only field.json written). The API
     still raises a KeyboardInterrupt, carrying the positions that ended."""
-    import sawdrift.study.sweep as sweep_mod
     from sawdrift.study.field import FieldInterrupted
 
     from .cli_call import call
 
-    real = sweep_mod.run_cell
-    ran = []
-
-    def fourth_interrupted(scene_json, **kwargs):
-        if len(ran) == 3:
-            raise KeyboardInterrupt
-        ran.append(scene_json)
-        return real(scene_json, **kwargs)
-
-    monkeypatch.setattr(sweep_mod, "run_cell", fourth_interrupted)
+    ran = interrupt_after(monkeypatch, 3)
     out = tmp_path / "fo"
     code, _, err = call(monkeypatch, capsys, "field", "--model", "material_point", "--backward",
                         "0.5", "--points", "8", "--axis", "particle.m_star=0.05,0.5",

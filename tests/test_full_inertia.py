@@ -15,6 +15,8 @@ import sawdrift as sd
 from sawdrift.dynamics.approach import remaining_distance
 from sawdrift.dynamics.full_inertia import full_window_length
 
+from .brute_force import default_and_brute
+
 #: periods a default settling run runs before its settling begins (its periods less its
 #: measuring window); ``settle_periods`` counts them, as ``periods`` does
 BEFORE = sd.Scene().numerics.periods - sd.Scene().measure_periods()
@@ -659,12 +661,9 @@ def test_a_heavy_hop_does_not_settle_while_its_windows_still_speed_up():
     speed held still for a window, then moved on, slowly at first (9.5e-6, then 2.3e-5 a
     window), and it settled there at 0.321082, 3.3e-3 from brute force from rest (N = 40 m*/mu
     + 2000 periods, its last quarter: 0.322141; 2N: 0.322146). Within 1e-3 of it now."""
-    kw = dict(model="hertz_mindlin_dem", particle={"m_star": 100.0, "load": -0.05},
-              drive={"amplitude": 1.2}, material={"mu": 0.2}, effects={"normal_damping": 0.1})
-    res = sd.run(sd.Scene(**kw))
-    n = 22000
-    brute = sd.run(sd.Scene(**kw, numerics={"settle": False, "periods": n,
-                                            "measure_periods": n // 4}))
+    res, brute = default_and_brute(
+        model="hertz_mindlin_dem", particle={"m_star": 100.0, "load": -0.05},
+        drive={"amplitude": 1.2}, material={"mu": 0.2}, effects={"normal_damping": 0.1})
     assert res.settled and res.settle_method == "windows_full"
     assert res.regime == brute.regime == "hopping"
     assert abs(res.drift_ratio - brute.drift_ratio) <= 1e-3 * abs(brute.drift_ratio), (

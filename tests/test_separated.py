@@ -25,6 +25,8 @@ from sawdrift.dynamics.stepper import Stepper
 from sawdrift.dynamics.torus import slow_cycle
 from sawdrift.dynamics.window import measure_window
 
+from .brute_force import default_and_brute
+
 #: periods a default settling run runs before its settling begins (its periods less its
 #: measuring window); ``settle_periods`` counts them, as ``periods`` does
 BEFORE = sd.Scene().numerics.periods - sd.Scene().measure_periods()
@@ -489,12 +491,8 @@ def test_a_loaded_heavy_hop_is_solved_at_its_brute_force_drift(model, m, a, mu, 
     off), mmd m* 150, A* 1.2, mu 0.4, L 0.15 at 0.655856 (1.3e-3). Against brute force from rest
     at full inertia, N = 40 m*/mu + 2000 periods (its last quarter measured), which agrees with
     2N to 1e-5 on both (0.1722239 and 0.6567300 at 2N): within 1e-3, the same regime."""
-    kw = dict(model=model, particle={"m_star": m, "load": load}, drive={"amplitude": a},
-              material={"mu": mu})
-    res = sd.run(sd.Scene(**kw))
-    n = round(40.0 * m / mu + 2000.0)
-    brute = sd.run(sd.Scene(**kw, numerics={"settle": False, "periods": n,
-                                            "measure_periods": n // 4}))
+    res, brute = default_and_brute(model=model, particle={"m_star": m, "load": load},
+                                   drive={"amplitude": a}, material={"mu": mu})
     assert res.settled and res.settle_method == "solved"
     assert res.regime == brute.regime == "hopping"
     assert abs(res.drift_ratio - brute.drift_ratio) <= 1e-3 * abs(brute.drift_ratio), (
