@@ -173,7 +173,11 @@ class Executor:
     def __enter__(self) -> Executor:
         return self
 
-    def __exit__(self, *exc: object) -> None:
+    def __exit__(self, exc_type: object, *exc: object) -> None:
+        if isinstance(exc_type, type) and issubclass(exc_type, KeyboardInterrupt):
+            # a Ctrl-C anywhere in the block, also where the caller held the results between
+            # two of them (outside the batch's own frame, which marks it): end the workers
+            self._interrupted = True
         self.close()
 
     def backend(self, n_items: int) -> str:
