@@ -593,3 +593,14 @@ def test_no_option_help_states_its_interval_twice():
 
     twice = [o[0] for o in OPTIONS if len(re.findall(r"in [\[(][^\])]*[\])]", o[-1])) > 1]
     assert twice == []
+
+
+def test_an_uncertain_solved_drift_says_so_not_still_changing(monkeypatch, capsys):
+    """A loaded drift solved directly whose slow-cycle average is uncertain was printed as
+    'NO, still changing after 119 periods' with the advice to raise numerics.max_periods, which
+    changes nothing there."""
+    code, out, err = call(monkeypatch, capsys, "run", "--model", "mmd", "--m-star", "100",
+                          "--amplitude", "3", "--mu", "0.2", "--load", "-0.15")
+    text = out + err
+    assert code == 0 and "NO: solved directly, its average uncertain" in text, text
+    assert "still changing" not in text and "raise numerics.max_periods" not in text

@@ -365,6 +365,11 @@ def _unsettled_note(summary: dict[str, Any], tau: float) -> str:
     if summary.get("chaotic"):
         return (f"note: the motion is chaotic (lyapunov > 0): the drift is an average over the "
                 f"window, not a steady value; {fix} for a longer average")
+    if summary.get("settle_method") == "solved":
+        # the drift solved directly with an uncertain average: more periods change nothing
+        return ("note: the drift was solved directly, but under this load its slow-cycle "
+                "average is uncertain (the warning says by how much); brute force decides: "
+                "--no-settle --periods of some 40 m*/mu")
     if 3.0 * tau > periods:
         return (f"note: the drift has not settled after {periods:g} periods (a heavy particle "
                 f"needs of order m*/mu = {tau:g} periods); {fix}")

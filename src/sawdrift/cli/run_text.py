@@ -84,6 +84,10 @@ def unsettled_text(summary: dict[str, Any], mark: str = "NOT settled") -> str:
         return f"{mark}: {kind}, a long-time mean with its standard error"
     if summary.get("chaotic"):
         return f"{mark}: chaotic, an average over the window"
+    if summary.get("settle_method") == "solved":
+        # solved directly, its slow-cycle average uncertain under a load (the warning says how
+        # much): it was said to be "still changing after 119 periods"
+        return f"{mark}: solved directly, its average uncertain (see warnings)"
     return f"{mark} after {value_text(summary.get('periods'))} periods"
 
 
@@ -130,7 +134,8 @@ def _line(key: str, value: Any, summary: dict[str, Any], width: int) -> str:
         # converged (hertz_mindlin_dem m* 50, A* 0.05 creeps at 0.00626318 after 22000 and 44000
         # periods alike), so "not confirmed", not "still changing"
         fixed = summary.get("settle_method") == "fixed"
-        text = unsettled_text(summary, "NO" if no_state else
+        solved = summary.get("settle_method") == "solved"
+        text = unsettled_text(summary, "NO" if no_state or solved else
                               "NO, not confirmed by its fixed window" if fixed else
                               "NO, still changing")
     return f"  {key:<{width}}  {text}"
