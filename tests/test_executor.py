@@ -167,8 +167,13 @@ def test_workers_end_when_their_study_is_killed_outright(tmp_path, method):
 
 
 _INTERRUPTED = """
-import os, sys, time
+import os, signal, sys, time
 from sawdrift.study.executor import Executor
+
+# a test run started in the background of a non-interactive shell (bash -c '... &') ignores
+# SIGINT, and its children inherit that: the study could not be interrupted at all (the test
+# then timed out, "SIGINT handler SIG_IGN"); a terminal's Ctrl-C finds the default handler
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 def pid(_):
     time.sleep(0.2)
