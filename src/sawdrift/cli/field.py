@@ -140,7 +140,7 @@ def field_cmd(
         write_outputs(out, "field", data, lambda path: plot_field(study, path), scene)
     if as_json:
         typer.echo(json.dumps(json_nulls(data)))  # a failed or ejected position's V: null
-        _say_interrupted(study, out, direct)
+        _end_if_interrupted(study, out, direct)
         return
     for fld in study.fields:
         head = f"{fld.label}: " if fld.label else ""
@@ -173,10 +173,10 @@ def field_cmd(
         typer.echo(f"wrote {out}")
     elif out is not None:
         typer.echo(f"wrote {out}/field.json, field.png, scene.toml")
-    _say_interrupted(study, out, direct)
+    _end_if_interrupted(study, out, direct)
 
 
-def _say_interrupted(study: Any, out: Path | None, direct: bool) -> None:
+def _end_if_interrupted(study: Any, out: Path | None, direct: bool) -> None:
     """End a field Ctrl-C stopped (its fields of the positions that ended, printed and written)
     with one line and exit status 130; nothing for a field that ran to its end."""
     if study.interrupted is None:

@@ -248,14 +248,13 @@ def _unused_options(scene: sd.Scene, values: dict[str, Any], overrides: Any,
     with --no-friction, --horizontal-ratio with --no-horizontal-wave, --backward-phase(-rate)
     without a second wave. They were accepted and ignored (the same drift to the last bit), as
     --gyration without rotation is not."""
-    used = {
-        "material.mu": scene.effects.friction,
-        "drive.horizontal_ratio": scene.effects.horizontal_wave,
-        "drive.backward_phase": float(getattr(scene.drive, "backward", 0.0) or 0.0) > 0.0,
-        "drive.backward_phase_rate": float(getattr(scene.drive, "backward", 0.0) or 0.0) > 0.0,
+    enabled = {  # what each enabling field of NEEDS is on the scene built
+        "effects.friction": scene.effects.friction,
+        "effects.horizontal_wave": scene.effects.horizontal_wave,
+        "drive.backward": float(getattr(scene.drive, "backward", 0.0) or 0.0) > 0.0,
     }
     for field, enabling, needs, option in NEEDS:
-        if field in values and not used[field] and enabling not in swept:
+        if field in values and not enabled[enabling] and enabling not in swept:
             typed = typed_as(overrides, field, f"--set {field}")
             # the option that turned it off, as typed (--no-friction), or the scene file's
             given = typed_as(overrides, enabling, f"--set {enabling}")

@@ -92,6 +92,15 @@ N_PRM = len(PRM_NAMES)
 HEAVY_MASS = 100.0
 
 
+def horizontal_inertia(m_star: float, rigid: bool) -> float:
+    """m*_x of the reduced-inertia method: min(m*, HEAVY_MASS) for compliant models.
+
+    A rigid point keeps m*: its stick condition |m* u_x''| <= mu N* contains the horizontal
+    inertia itself, so reducing it would change where the point sticks.
+    """
+    return m_star if rigid else min(m_star, HEAVY_MASS)
+
+
 def pack(values: dict[str, float], names: tuple[str, ...] = PRM_NAMES) -> np.ndarray:
     """The parameter vector of ``names`` (all required) from a dict of named values."""
     missing = [n for n in names if n not in values]

@@ -24,7 +24,12 @@ from ..scene.parts import FINEST_STEPS
 from ..scene.schema import Impact, Prescribed, Scene, Wave
 from ..scene.validity import device_warnings
 from . import air_drag
-from .adams_bashforth import HEAVY_MASS, MIN_RESTITUTION, damping_ratio, restitution_damping
+from .adams_bashforth import (
+    MIN_RESTITUTION,
+    damping_ratio,
+    horizontal_inertia,
+    restitution_damping,
+)
 from .drives import DRIVES, Drive, drive_of
 
 Engine = Literal["compiled", "python"]
@@ -42,7 +47,8 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
     expected compression a_ref = 1 + 2 A* (c = 1 + 1/kappa with rotation, else 1), keeps
     h c / m* <= 0.1 for a viscous normal damping c (the scene's and the model's own,
     :func:`model_dashpot`) and for the air drag c on the smaller of m* and the horizontal inertia
-    a settling run may integrate (:func:`drag_inertia`), and never goes below 128 per period.
+    a settling run may integrate (:func:`~.adams_bashforth.horizontal_inertia`), and never goes
+    below 128 per period.
     ``rigid`` is the model's capability (looked up when not given).
     """
     if scene.numerics.steps_per_period is not None:
@@ -93,7 +99,8 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
             f"model's own) on m* = {scene.particle.m_star:g} needs {damping:.2g} steps a period "
             f"for a stable step (h c / m* <= 0.1); allowed: up to {FINEST_STEPS:.0e} (a smaller "
             f"damping or a heavier particle)")
-    drag = 10.0 * scene.effects.air_drag / drag_inertia(scene)
+    # on the smaller of m* and the horizontal inertia a settling run may integrate
+    drag = 10.0 * scene.effects.air_drag / horizontal_inertia(scene.particle.m_star, False)
     if drag > FINEST_STEPS and scene.numerics.steps_per_period is None:
         # as a dashpot: --air-drag 1e308 blew the state up, blamed on the step and the model
         raise SceneError(
@@ -102,12 +109,6 @@ def steps_per_period(scene: Scene, rigid: bool | None = None) -> int:
             f"to {FINEST_STEPS:.0e} (c a0 f / (M g) of a real particle is far below 1)")
     return int(min(FINEST_STEPS, max(128, math.ceil(omega / 0.06), math.ceil(damping),
                                      math.ceil(drag), impact)))
-
-
-def drag_inertia(scene: Scene) -> float:
-    """The smallest inertia the air drag acts on: m*, or the horizontal inertia min(m*, 100)
-    that ``numerics.settle`` may integrate (:data:`~sawdrift.dynamics.adams_bashforth.HEAVY_MASS`)."""
-    return min(scene.particle.m_star, HEAVY_MASS)
 
 
 def ramp_end_step(ramp: float, k_per: int) -> int:

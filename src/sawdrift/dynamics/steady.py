@@ -22,10 +22,11 @@ First stage:
    the velocity v at which the period-averaged friction force <T*>(v) vanishes. That condition
    does not contain the horizontal inertia: m*_x only sets how fast x*' relaxes towards v. The
    normal equation m* y*'' = 1 - N*(a*) does not depend on x* at all. So the run integrates
-   ``m*_x x*'' = -mu T*`` with m*_x = min(m*, :data:`HEAVY_MASS`) and the full m* in the normal
-   equation: the fixed point is the same, the approach is m* / m*_x times shorter. With m*_x =
-   100 the fast motion is still heavy, but not the particle's: its horizontal oscillation about
-   the mean speed is m*/m*_x times too large, which is why the second stage exists.
+   ``m*_x x*'' = -mu T*`` with m*_x = min(m*, :data:`~.adams_bashforth.HEAVY_MASS`) and the
+   full m* in the normal equation: the fixed point is the same, the approach is m* / m*_x times
+   shorter. With m*_x = 100 the fast motion is still heavy, but not the particle's: its
+   horizontal oscillation about the mean speed is m*/m*_x times too large, which is why the
+   second stage exists.
 2. **A criterion that follows the approach.** The drift is measured in windows of W periods, W
    growing with m*_x / mu. Successive window means v1, v2, v3 of a relaxation approach
    v_inf + c q^k; the remaining distance is estimated by Aitken's extrapolation,
@@ -50,7 +51,7 @@ import numpy as np
 
 from ..errors import SceneError
 from . import adams_bashforth as ig
-from .adams_bashforth import HEAVY_MASS
+from .adams_bashforth import horizontal_inertia
 from .approach import relative_bound
 from .direct import settle_direct
 from .evidence import EV_LANDING
@@ -73,15 +74,6 @@ __all__ = ["SLOPE", "Settling", "settle", "settles", "assess_fixed"]
 #: Longest relaxation time (periods, at the integrated inertia) that ``numerics.settle`` left
 #: unset settles by default (:func:`settles`): its cap, 50 of them, is then at most 5e5 periods.
 AUTO_SETTLE_PERIODS = 1e4
-
-
-def horizontal_inertia(m_star: float, rigid: bool) -> float:
-    """m*_x of the reduced-inertia method: min(m*, HEAVY_MASS) for compliant models.
-
-    A rigid point keeps m*: its stick condition |m* u_x''| <= mu N* contains the horizontal
-    inertia itself, so reducing it would change where the point sticks.
-    """
-    return m_star if rigid else min(m_star, HEAVY_MASS)
 
 
 def relaxation_periods(scene, m_x: float, speed: float) -> float:

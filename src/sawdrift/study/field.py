@@ -329,11 +329,10 @@ def _interrupted(rows: list[dict[str, Any]], base: Scene, axis: tuple[str, list[
     species = len(species_scenes(base, axis))
     complete = len(rows) == len(positions) * species
     fields = _fields(to_frame(rows), base, axis, positions, complete=complete)
+    if complete:
+        _place_zeros(fields)  # as a field of no refinement rounds places them
     for f in fields:
         if complete:
-            for z in f.zeros:
-                for key in ("values", "side"):
-                    z.pop(key, None)
             f.summary = _summarize(f) + " (zeros not refined: interrupted)"
         else:
             f.zeros = []
@@ -433,6 +432,12 @@ def _refine(fields: list[Field], rounds: int, executor: Executor, engine: str) -
                 z["bracket"], z["values"] = [x0, xm], [v0 * (0.5 if z.get("side") == 1 else 1.0), vm]
                 z["side"] = 1
         jobs = [(f, z) for f, z in jobs if z["bracket"][0] != z["bracket"][1]]
+    _place_zeros(fields)
+
+
+def _place_zeros(fields: list[Field]) -> None:
+    """Each bracketed zero at the secant through its bracket's ends (as far as the refinement
+    took them), wrapped into the field's period; the zeros in order."""
     for f in fields:
         for z in f.zeros:
             if "values" in z:
