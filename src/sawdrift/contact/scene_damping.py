@@ -49,7 +49,7 @@ _DAMPED: dict[type, type[TangentialLaw]] = {}
 
 
 def damped_law(model: ContactModel, viscous: float, restitution: float,
-               exponent: float) -> TangentialLaw | None:
+               exponent: float, always: bool = False) -> TangentialLaw | None:
     """``model`` with the scene's normal damping in its slot, or None if the loop keeps it.
 
     Parameters
@@ -59,6 +59,10 @@ def damped_law(model: ContactModel, viscous: float, restitution: float,
     viscous, restitution, exponent
         c of ``effects.normal_damping``, C and q = (p - 1)/2 of ``material.restitution``'s
         damping (both c and C zero: no damping).
+    always
+        Also for a law whose step does not take N*: the same (N*, T*) as the loop's damping and
+        Coulomb cap after the contact force, in one call (the fast parts of a heavy particle's
+        orbit drive the contact law alone, :mod:`sawdrift.dynamics.separated`).
 
     Returns
     -------
@@ -69,7 +73,8 @@ def damped_law(model: ContactModel, viscous: float, restitution: float,
     """
     cls = type(model)
     if (not isinstance(model, TangentialLaw) or cls.damping is not None
-            or not (viscous > 0.0 or restitution > 0.0) or not _takes_normal(cls._functions()[0])):
+            or not (viscous > 0.0 or restitution > 0.0)
+            or not (always or _takes_normal(cls._functions()[0]))):
         return None
     law = _DAMPED.get(cls)
     if law is None:

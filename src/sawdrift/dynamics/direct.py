@@ -61,6 +61,7 @@ import numpy as np
 from .approach import relative_bound
 from .full_inertia import settle_full, shift_speed
 from .imposed import imposed_drift
+from .orbit_law import damped_normal
 from .orbit_use import approach_periods, orbit_relaxation, place_on_orbit
 from .separated import (
     IRREGULAR,
@@ -70,7 +71,6 @@ from .separated import (
     SeparatedOrbit,
     Stuck,
     applies,
-    damped_normal,
     separated_orbit,
 )
 from .settling import SLOPE, Settling
@@ -179,7 +179,7 @@ def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
                  ) -> Direct | Stuck | str | None:
     """(drift, relaxation rate, lift-offs per period, periods to 90 % of the drift from rest,
     periods of evidence it needs, whether it is the reported drift or only the windows' start,
-    whether the run was put on the orbit: a damped contact's, :func:`~.separated.damped_normal`)
+    whether the run was put on the orbit: a damped contact's, :func:`~.orbit_law.damped_normal`)
     solved directly for a heavy particle, or None where that does
     not apply: the period-one orbit (:func:`~.separated.separated_orbit`) averaged over the
     run's slow vertical oscillation (:func:`~.torus.torus_drift`), the time from rest by

@@ -45,7 +45,8 @@ Where it does not apply, :func:`separated_orbit` returns None and the run settle
   changes the drift: measured on mmd, the drift of runs from rest differs from the orbit's by
   1e-4 to 5e-3 (relative) for hopping at A* 1 to 3 and by 1 to 8 % for bouncing at A* 6 to 10
   (m* 300 to 1e4), too far to start the windows at;
-* forces this module does not carry (normal damping in the loop, rotation, adhesion, air drag)
+* forces this module does not carry (rotation, adhesion, air drag; the scene's normal damping
+  it does, in the law it drives: :mod:`.orbit_law`)
   and a drive that depends on x*. A constant tangential load L it carries: it adds L / mu to the
   mean force, -<T*>(V) + L / mu, and leaves the fast parts (about the mean) as they are.
 
@@ -70,6 +71,7 @@ from . import fast_parts as fp
 from .approach import SLIDING_FRACTION
 from .drives.travelling import TravellingWave
 from .drives.two_wave import needs_two_waves
+from .orbit_law import solver_history
 from .roots import brentq, first_passed
 from .stepper import Stepper
 
@@ -173,15 +175,16 @@ def load_offset(prm: np.ndarray) -> float:
 def solvable(scene, rigid: bool) -> bool:
     """Whether a scene's drift may be solved directly (module docstring), read off the scene:
     heavy, compliant, friction on, one travelling wave, and none of the forces the solution
-    leaves out (normal damping or restitution, rotation and rolling resistance, air drag,
-    adhesion). A constant tangential load is in it (:attr:`_Problem.offset`). :func:`applies`
+    leaves out (rotation and rolling resistance, air drag, adhesion). A constant tangential
+    load is in it (:attr:`_Problem.offset`), and the scene's normal damping
+    (``effects.normal_damping``, ``material.restitution``) in the contact law it drives
+    (:func:`solver_history`). :func:`applies`
     adds what only the built run knows; the size estimate uses this."""
     eff = scene.effects
     drive = scene.drive
     return (not rigid and scene.particle.m_star >= SEPARATED_MIN_MASS
             and getattr(drive, "kind", None) == "wave" and not needs_two_waves(drive)
-            and eff.friction and eff.normal_damping == 0.0
-            and scene.material.restitution is None and not eff.rotation
+            and eff.friction and not eff.rotation
             and eff.rolling_resistance == 0.0 and eff.air_drag == 0.0
             and (eff.adhesion == "none" or scene.material.adhesion == 0.0))
 
@@ -191,14 +194,6 @@ def applies(stepper: Stepper, scene) -> bool:
     and the run has a contact memory to drive and the single travelling wave as its drive."""
     return (stepper.history is not None and isinstance(stepper.drive, TravellingWave)
             and solvable(scene, stepper.rigid))
-
-
-def damped_normal(stepper: Stepper) -> bool:
-    """Whether the built run's contact model damps its normal force itself (a normal-damping
-    slot, as hertz_tsuji's): the free vertical oscillation then decays, and the steady state is
-    the period-one orbit (:mod:`.direct`), not an average over a slow cycle (:mod:`.torus`)."""
-    model = getattr(stepper.history, "model", None)
-    return getattr(model, "damping", None) is not None
 
 
 _LOOPS: dict[object, object] = {}
@@ -262,7 +257,7 @@ class _Problem:
         #: the imposed motion, the spectral tables and scratch rows (:mod:`.fast_parts`)
         self.tables = (motion, fp.spectral_tables(self.k), np.zeros((fp.WORK_ROWS, self.k)))
         #: the contact memory the loops drive (reset at the start of every evaluation)
-        self.scratch = stepper.history.copy()
+        self.scratch = solver_history(stepper)
         force, fs, is_, pp = self.scratch.kernel_call()
         normal, npp, alone = fp.normal_alone(self.scratch, stepper.compiled)
         self.contact = (fs, is_, pp, npp)
