@@ -656,15 +656,16 @@ def test_a_beating_hop_near_its_holding_limit_is_settled_right_or_says_it_is_sti
 
 
 def test_a_heavy_hop_does_not_settle_while_its_windows_still_speed_up():
-    """hertz_mindlin_dem m* = 100, A* = 1.2, mu = 0.2, normal damping 0.1, L = -0.05 (windows:
-    the drift solved directly leaves out the scene's normal damping): after each jump its mean
-    speed held still for a window, then moved on, slowly at first (9.5e-6, then 2.3e-5 a
-    window), and it settled there at 0.321082, 3.3e-3 from brute force from rest (N = 40 m*/mu
-    + 2000 periods, its last quarter: 0.322141; 2N: 0.322146). Within 1e-3 of it now."""
+    """hertz_mindlin_dem m* = 100, A* = 1.2, mu = 0.2, normal damping 0.1, L = -0.05: after
+    each jump of its windows the mean speed held still for a window, then moved on, slowly at
+    first (9.5e-6, then 2.3e-5 a window), and it settled there at 0.321082, 3.3e-3 from brute
+    force from rest (N = 40 m*/mu + 2000 periods, its last quarter: 0.322141; 2N: 0.322146).
+    The windows' rule brought it within 1e-3 (4.3e-4); the drift solved with the scene's
+    damping in the contact law (:mod:`sawdrift.dynamics.orbit_law`) is within 1e-7."""
     res, brute = default_and_brute(
         model="hertz_mindlin_dem", particle={"m_star": 100.0, "load": -0.05},
         drive={"amplitude": 1.2}, material={"mu": 0.2}, effects={"normal_damping": 0.1})
-    assert res.settled and res.settle_method == "windows_full"
+    assert res.settled
     assert res.regime == brute.regime == "hopping"
     assert abs(res.drift_ratio - brute.drift_ratio) <= 1e-3 * abs(brute.drift_ratio), (
         res.drift_ratio, brute.drift_ratio)
