@@ -691,7 +691,7 @@ def test_compare_counts_only_cells_both_models_computed():
 
 def test_a_map_needs_two_values_on_each_axis():
     """A one-cell table was drawn as a map on invented A* and m* ranges (export refused it)."""
-    from sawdrift.report.diagrams import check_axis
+    from sawdrift.report.selection import check_axis
 
     one = _grid("mmd", 0.1, ["stick"] * 4).iloc[:1]
     with pytest.raises(SceneError, match="holds one value"):

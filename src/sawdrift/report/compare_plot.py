@@ -24,24 +24,26 @@ from ..errors import SceneError  # noqa: E402
 from ..study.axes import column_label  # noqa: E402
 from .diagrams import (  # noqa: E402
     ERROR_CODE,
-    NO_CELLS,
     _draw,
     _edges,
     _legend,
     _material_label,
+    creep_grid,
+    regime_grid,
+    unsettled_grid,
+)
+from .marks import format_device_axes  # noqa: E402
+from .selection import (  # noqa: E402
+    NO_CELLS,
     _value_text,
     _values_text,
     check_axis,
-    creep_grid,
     one_map,
     pick_rows,
-    regime_grid,
     scene_column,
     select,
-    unsettled_grid,
     where_label,
 )
-from .marks import format_device_axes  # noqa: E402
 
 #: panel size (inches) and the widest figure (inches; at 110 dpi, 1485 pixels)
 PANEL_W, PANEL_H, MAX_WIDTH = 4.2, 3.9, 13.5
@@ -151,7 +153,7 @@ def compare_figure(table: pd.DataFrame, models: list[str], by: str | None = None
     """The comparison figure (see the module docstring) and its markdown agreement table.
 
     ``where`` (``{column: value}``) keeps the cells with those values of other swept columns
-    (:func:`sawdrift.report.diagrams.pick_rows`); a table with several values of a swept column
+    (:func:`sawdrift.report.selection.pick_rows`); a table with several values of a swept column
     other than ``by`` needs it: a panel never mixes them.
     """
     table = pick_rows(table, where)

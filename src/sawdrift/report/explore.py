@@ -36,7 +36,7 @@ from ..scene.schema import set_dotted
 from ..study.axes import column_unit
 from ..study.table import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
-from .diagrams import COLOURS, one_map, pick_rows
+from .diagrams import COLOURS
 from .explore_page import (  # noqa: F401 - the tooltip's texts, also read from here
     build_document,
     chaotic_cells,
@@ -46,6 +46,7 @@ from .explore_page import (  # noqa: F401 - the tooltip's texts, also read from 
     warning_texts,
 )
 from .marks import creep_cells
+from .selection import one_map, pick_rows
 
 #: Columns a sweep table must have for the page.
 REQUIRED = ("cell_id", "model", "regime", "m_star", "amplitude", "drift_ratio")
