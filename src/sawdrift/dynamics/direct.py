@@ -76,7 +76,7 @@ from .separated import (
 from .settling import SLOPE, Settling
 from .stepper import Stepper
 from .torus import torus_drift
-from .window import Window, measure_window
+from .window import Window, lyapunov_estimate, measure_window
 
 #: periods of the probe that checks the fast motion before the drift is solved directly
 PROBE_PERIODS = 12
@@ -108,6 +108,29 @@ AVERAGE_ERROR = 1.0
 #: mu = 0.2, c = 0.1, L = -0.1 by 6.1e-5, 3.1e-3 off. The damped hops within 2e-4 of brute force
 #: spread by 1.4e-7 to 1.2e-5
 DAMPED_REPEAT = 3e-5
+
+
+#: the Lyapunov exponent (per period) of the evidence window of a run put on a damped orbit of
+#: hops above which, at :data:`UNSTABLE_SIGMAS` of its uncertainty, the orbit is unstable and
+#: not its motion (:func:`_left`): hertz_mindlin_dem m* = 1758, A* = 4.1, mu = 0.27, c = 0.53,
+#: L = -0.149 stretched by +0.0325 +- 0.0088 a period and ends on a hop at -0.790 against the
+#: orbit's -1.062; m* = 3000, A* = 0.5, mu = 0.5, c = 1 by +0.0326 +- 0.009 (2.4e-3 off); m* =
+#: 388, A* = 1.01, mu = 0.32, e = 0.42 by +0.247 +- 0.046 (called bouncing, a hop). The solved
+#: hops within 1e-3 of brute force stretched by at most +0.0161 +- 0.0018 (hertz_tsuji
+#: m* = 7.08, A* = 1.24)
+UNSTABLE_EXPONENT = 0.025
+UNSTABLE_SIGMAS = 3.0
+
+
+def _left(win: Window, scale: np.ndarray) -> bool:
+    """Whether a run put on a damped orbit of hops is not on it over its evidence window ``win``:
+    its period starts spread by more than :data:`DAMPED_REPEAT`, or it stretches perturbations
+    faster than :data:`UNSTABLE_EXPONENT` (beyond :data:`UNSTABLE_SIGMAS` of the estimate's
+    uncertainty)."""
+    if win.periodicity > DAMPED_REPEAT:
+        return True
+    lam, err = lyapunov_estimate(win, scale)
+    return lam > UNSTABLE_EXPONENT and lam > UNSTABLE_SIGMAS * err
 
 
 def averaging_error(scene, orbit_drift: float, drift: float, speed: float) -> float:
@@ -156,10 +179,9 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
         # the best estimate, not settled where its average may be off by more than the bound
         info = Settling(uncertain == 0.0, "solved", m, evidence, stepper.step / stepper.k_per,
                         t90, (drift / speed, win.drift_ratio), drift=drift, uncertain=uncertain)
-        if (placed and before is not None and win.contact_lost
-                and win.periodicity > DAMPED_REPEAT):
-            # a run put on a damped orbit of hops that does not repeat there moves on another
-            # motion (a longer orbit), which windows started on the orbit can mistake (mmd
+        if placed and before is not None and win.contact_lost and _left(win, scale):
+            # a run put on a damped orbit of hops that does not repeat there, or that leaves
+            # it, moves on another motion, which windows started on the orbit can mistake (mmd
             # m* = 22.3, A* = 0.758, mu = 0.1, c = 0.5 settled 1.7e-3 off): windows from the
             # run's own state, as it was before it was put there
             stepper.restore(before)

@@ -463,12 +463,18 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
     judged by :func:`~sawdrift.dynamics.lyapunov.lyapunov_statistics` and
     :func:`~sawdrift.dynamics.lyapunov.is_chaotic`.
     """
+    lam, err = lyapunov_estimate(window, scale)
+    return lam, is_chaotic(lam, err)
+
+
+def lyapunov_estimate(window: Window, scale: np.ndarray) -> tuple[float, float]:
+    """(exponent, its uncertainty) per period from the window's start, as :func:`lyapunov`
+    estimates them; NaN without a snapshot or where the stretchings are not finite."""
     if window.snapshot is None:
-        return math.nan, False
+        return math.nan, math.nan
     try:
         periods = min(max(window.periods, LYAPUNOV_PERIODS), LYAPUNOV_MAX_PERIODS)
         logs = stretching_logs(window.snapshot, scale, periods, early=EARLY_CHECKS)
     except NonFiniteStateError:
-        return math.nan, False
-    lam, err = lyapunov_statistics(logs)
-    return lam, is_chaotic(lam, err)
+        return math.nan, math.nan
+    return lyapunov_statistics(logs)
