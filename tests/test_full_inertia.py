@@ -661,11 +661,13 @@ def test_a_heavy_hop_does_not_settle_while_its_windows_still_speed_up():
     first (9.5e-6, then 2.3e-5 a window), and it settled there at 0.321082, 3.3e-3 from brute
     force from rest (N = 40 m*/mu + 2000 periods, its last quarter: 0.322141; 2N: 0.322146).
     The windows' rule brought it within 1e-3 (4.3e-4); the drift solved with the scene's
-    damping in the contact law (:mod:`sawdrift.dynamics.orbit_law`) is within 1e-7."""
+    damping in the contact law (:mod:`sawdrift.dynamics.orbit_law`) is within 3e-8 of brute force
+    over 2N and 1.4e-5 of it over N, which is still approaching (held to 1e-4: the windows' rule
+    was 4.3e-4 off)."""
     res, brute = default_and_brute(
         model="hertz_mindlin_dem", particle={"m_star": 100.0, "load": -0.05},
         drive={"amplitude": 1.2}, material={"mu": 0.2}, effects={"normal_damping": 0.1})
-    assert res.settled
+    assert res.settled and res.settle_method == "solved"
     assert res.regime == brute.regime == "hopping"
-    assert abs(res.drift_ratio - brute.drift_ratio) <= 1e-3 * abs(brute.drift_ratio), (
+    assert abs(res.drift_ratio - brute.drift_ratio) <= 1e-4 * abs(brute.drift_ratio), (
         res.drift_ratio, brute.drift_ratio)

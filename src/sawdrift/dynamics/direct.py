@@ -45,7 +45,13 @@ over the cycle the run had when it was solved, hertz_tsuji (c = 0.1) came out 0.
 at m* 7 to 90, A* 1.2 and 2.4 (0.52662 against 0.52870 from brute force over 3000 periods), and
 its probe, taken on that decaying cycle, sent hops at A* 4.5 and 8.7 to the irregular bouncers'
 mean, 10 to 15 % low (0.7075 +- 0.0086 against 0.8113 at m* 38.6, A* 4.5); the orbit's drift is
-within 1e-6 of brute force on all of them.
+within 1e-6 of brute force on all of them. The scene's own normal damping
+(``effects.normal_damping``, ``material.restitution``) is such a damping too: the orbit's
+contact law carries it (:mod:`.orbit_law`). A damped orbit need not be where the run ends (a
+longer orbit nearby, or an unstable one the run leaves): the evidence window started on it must
+repeat (:data:`DAMPED_REPEAT`) and must not stretch perturbations (:data:`UNSTABLE_EXPONENT`),
+or the run goes back to its state from before it was put there (:func:`~.snapshot.rewind`) and
+settles by windows from that state. The same holds before confirming windows.
 
 A contact that sticks or creeps has no period-one orbit (its memory does not repeat):
 :data:`~.separated.STUCK`, left to full-inertia windows. A heavy bouncer whose lift-offs are not
@@ -74,6 +80,7 @@ from .separated import (
     separated_orbit,
 )
 from .settling import SLOPE, Settling
+from .snapshot import checkpoint, rewind
 from .stepper import Stepper
 from .torus import torus_drift
 from .window import Window, lyapunov_estimate, measure_window
@@ -155,7 +162,7 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
     direct applies (the window approach from here).
     """
     # a damped contact's run is put on its orbit: kept, to go back to if it does not stay there
-    before = stepper.save() if damped_normal(stepper) else None
+    before = checkpoint(stepper) if damped_normal(stepper) else None
     direct = direct_start(stepper, scene, speed, scale)
     if direct == IRREGULAR:
         return irregular_mean(stepper, scene, speed, scale, minimum_window)
@@ -172,20 +179,22 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
     m = scene.particle.m_star
     if not placed:
         shift_speed(stepper, drift - stepper.y[1])
-    confirm = not solved or scene.numerics.confirm_solved
-    if not confirm:
-        evidence = max(minimum_window, evidence)
-        win = measure_window(stepper, evidence, speed, scale)
-        # the best estimate, not settled where its average may be off by more than the bound
-        info = Settling(uncertain == 0.0, "solved", m, evidence, stepper.step / stepper.k_per,
-                        t90, (drift / speed, win.drift_ratio), drift=drift, uncertain=uncertain)
+    report = solved and not scene.numerics.confirm_solved
+    win = None
+    if report or (placed and before is not None):
+        win = measure_window(stepper, max(minimum_window, evidence), speed, scale)
         if placed and before is not None and win.contact_lost and _left(win, scale):
             # a run put on a damped orbit of hops that does not repeat there, or that leaves
             # it, moves on another motion, which windows started on the orbit can mistake (mmd
             # m* = 22.3, A* = 0.758, mu = 0.1, c = 0.5 settled 1.7e-3 off): windows from the
             # run's own state, as it was before it was put there
-            stepper.restore(before)
+            rewind(stepper, before)
             return None
+    if report:
+        assert win is not None
+        # the best estimate, not settled where its average may be off by more than the bound
+        info = Settling(uncertain == 0.0, "solved", m, win.periods, stepper.step / stepper.k_per,
+                        t90, (drift / speed, win.drift_ratio), drift=drift, uncertain=uncertain)
     else:
         win, full = settle_full(stepper, scene, speed, scale, minimum_window, max_steps, lam,
                                 expected=drift / speed)

@@ -28,6 +28,7 @@ from . import adams_bashforth as ig
 from .batch_means import BatchMeans, blocked_error
 from .fast_parts import _periodic_rate
 from .full_inertia import full_window_length, shift_speed
+from .orbit_law import solver_history
 from .roots import brentq, first_passed
 from .separated import GRID, history_loop, load_offset
 from .stepper import Stepper
@@ -76,7 +77,8 @@ class _Record:
         self._ux1 = x[:k] - b[:k] / self.scale_b
         self._uxd1 = _periodic_rate(self._ux1)
         self._uyd1 = _periodic_rate(y[:k] - a[:k])
-        self.scratch = stepper.history.copy()
+        # the law as the loop has it, the scene's normal damping included (:mod:`.orbit_law`)
+        self.scratch = solver_history(stepper)
         force, self.fs, self.is_, self.pp = self.scratch.kernel_call()
         self.loop = history_loop(force, stepper.compiled)
         self.keep = _contact_steps(a, self.scratch.model)

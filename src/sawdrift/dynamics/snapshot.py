@@ -17,7 +17,7 @@ from . import evidence as ev
 if TYPE_CHECKING:
     from .stepper import Stepper
 
-__all__ = ["StepperState", "put_back", "snapshot"]
+__all__ = ["Checkpoint", "StepperState", "checkpoint", "put_back", "rewind", "snapshot"]
 
 #: Keys of the contact history's snapshot in a :class:`StepperState`
 #: (:meth:`~sawdrift.contact.history.ContactHistory.state`).
@@ -76,3 +76,36 @@ def put_back(stepper: Stepper, state: StepperState) -> None:
     if stepper.history is not None:
         # in place: the loop stays bound to the history (ContactHistory.set_state)
         stepper.history.set_state({k: data[k] for k in _HISTORY_KEYS if k in data})
+
+
+@dataclass(frozen=True)
+class Checkpoint:
+    """A point of a run to go back to within the run (:func:`checkpoint`): its snapshot, its
+    window statistics and event log, and its recorded trajectory as far as it went."""
+
+    state: StepperState
+    stats: np.ndarray
+    chunks: tuple[np.ndarray, ...]
+    rows: int
+    every: int
+    keep_events: bool
+
+
+def checkpoint(stepper: Stepper) -> Checkpoint:
+    """A :class:`Checkpoint` of ``stepper``: what :func:`snapshot` keeps, and also the statistics
+    and event log (``st``: the last lift-off, the contact and slip states the next step compares
+    with) and the trajectory recorded so far, so that :func:`rewind` leaves no trace of the steps
+    taken after it (a solved orbit that did not hold, :func:`~.direct.settle_direct`)."""
+    return Checkpoint(snapshot(stepper), stepper.st.copy(), tuple(stepper.rec_chunks),
+                      stepper.rec_rows, stepper.rec_every, stepper.keep_events)
+
+
+def rewind(stepper: Stepper, point: Checkpoint) -> None:
+    """Put ``stepper`` back at ``point``, in place: its state, statistics and event log, and its
+    trajectory cut back to the rows recorded by then (time increasing along it)."""
+    put_back(stepper, point.state)
+    stepper.st = point.stats.copy()
+    stepper.rec_chunks = list(point.chunks)
+    stepper.rec_rows = point.rows
+    stepper.rec_every = point.every
+    stepper.keep_events = point.keep_events
