@@ -181,9 +181,10 @@ def settle_direct(stepper: Stepper, scene, speed: float, scale: np.ndarray, mini
         shift_speed(stepper, drift - stepper.y[1])
     report = solved and not scene.numerics.confirm_solved
     win = None
-    if report or (placed and before is not None):
+    if report or placed:
         win = measure_window(stepper, max(minimum_window, evidence), speed, scale)
-        if placed and before is not None and win.contact_lost and _left(win, scale):
+        if placed and win.contact_lost and _left(win, scale):
+            assert before is not None  # placed: a damped contact's run (direct_start)
             # a run put on a damped orbit of hops that does not repeat there, or that leaves
             # it, moves on another motion, which windows started on the orbit can mistake (mmd
             # m* = 22.3, A* = 0.758, mu = 0.1, c = 0.5 settled 1.7e-3 off): windows from the

@@ -58,6 +58,11 @@ class Window:
     #: the window's oldest events not kept (its log holds at most Stepper's KEPT_EVENT_ROWS)
     events_shed: int = 0
     _sync: Synchrony | None = field(default=None, repr=False, compare=False)
+    #: the Lyapunov estimate from the window's start and the scale it was taken at, once
+    #: computed (:func:`lyapunov_estimate`: a solved damped orbit's check and the run's exponent
+    #: read the same window)
+    _exponent: tuple[np.ndarray, tuple[float, float]] | None = field(default=None, repr=False,
+                                                                     compare=False)
 
     @property
     def sync(self) -> Synchrony:
@@ -469,7 +474,11 @@ def lyapunov(window: Window, scale: np.ndarray) -> tuple[float, bool]:
 
 def lyapunov_estimate(window: Window, scale: np.ndarray) -> tuple[float, float]:
     """(exponent, its uncertainty) per period from the window's start, as :func:`lyapunov`
-    estimates them; NaN without a snapshot or where the stretchings are not finite."""
+    estimates them; NaN without a snapshot or where the stretchings are not finite. Computed
+    once per window and scale (the stretchings start from the window's own snapshot)."""
+    cached = window._exponent
+    if cached is not None and np.array_equal(cached[0], scale):
+        return cached[1]
     if window.snapshot is None:
         return math.nan, math.nan
     try:
@@ -477,4 +486,6 @@ def lyapunov_estimate(window: Window, scale: np.ndarray) -> tuple[float, float]:
         logs = stretching_logs(window.snapshot, scale, periods, early=EARLY_CHECKS)
     except NonFiniteStateError:
         return math.nan, math.nan
-    return lyapunov_statistics(logs)
+    estimate = lyapunov_statistics(logs)
+    window._exponent = (np.array(scale, copy=True), estimate)
+    return estimate
