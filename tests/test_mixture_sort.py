@@ -398,33 +398,40 @@ def test_each_placement_is_told_as_it_ends(monkeypatch):
 def test_ctrl_c_keeps_the_placements_that_ended(monkeypatch, capsys, tmp_path):
     """A sort stopped after 3 of 20 placements threw all of them away ("stopped before writing
     its results"). Now the ensemble of those that ended is written and printed, marked
-    interrupted, and the exit status is 130 (a Ctrl-C in the third placement here: the first
-    two, started before it, end)."""
+    interrupted, and the exit status is 130 (a Ctrl-C in seed 2's placement here: seeds 0 and
+    1, started before it, end)."""
     import threading
 
+    import sawdrift.mixture.sort as sort_module
     from sawdrift.mixture.plane import PlaneModel
 
     from .cli_call import kept_after_ctrl_c
 
-    calls = {"n": 0}
-    lock = threading.Lock()
-    # the first two runs (seeds 0 and 1, on the two threads) both start before either ends, so
-    # the third run is seed 2's: without it a quick seed 0 let seed 2 start before seed 1, the
-    # third run was seed 1's, and the sort kept seed 0 alone (once in about ten full runs)
+    # the Ctrl-C goes by the placement's seed, which each placement's thread notes as it jitters
+    # its rows just before its run: counting the runs in the order they came (the third one
+    # interrupted) failed once in about four full suites, the third run then not seed 2's
+    placing = threading.local()
+    real_jitter = sort_module.jitter
+
+    def noting_jitter(y, size, seed):
+        placing.seed = seed
+        return real_jitter(y, size, seed)
+
+    # seeds 0 and 1 (on the two threads) both start before either ends, so that seed 2's
+    # placement starts after both and neither is left waiting on it
     both_started = threading.Barrier(2)
     real_run = PlaneModel.run
 
-    def third_interrupts(self, times):
-        with lock:
-            calls["n"] += 1
-            n = calls["n"]
-        if n == 3:
+    def seed_2_interrupts(self, times):
+        seed = getattr(placing, "seed", None)
+        if seed == 2:
             raise KeyboardInterrupt
-        if n < 3:
+        if seed in (0, 1):
             both_started.wait(timeout=60)
         return real_run(self, times)
 
-    monkeypatch.setattr(PlaneModel, "run", third_interrupts)
+    monkeypatch.setattr(sort_module, "jitter", noting_jitter)
+    monkeypatch.setattr(PlaneModel, "run", seed_2_interrupts)
     kept_after_ctrl_c(monkeypatch, capsys, ["sort", str(EXAMPLES / "mixture.toml"), "--seeds",
                                             "5", "--until", "1e6", "--no-progress", "-o",
                                             str(tmp_path / "kept")],
