@@ -138,6 +138,28 @@ def test_a_thrown_off_micro_particle_is_ejected_without_a_speed():
     assert res.extra["detach_time_s"] == pytest.approx(res.detach_time / 20e6, rel=1e-12)
 
 
+def test_an_ejection_says_when_the_particle_can_land_again():
+    """A rigid point at m* = 4.13, A* = 2170 is thrown off in the ramp and ejected; the run said
+    "a longer run would not settle it", but under gravity it lands at t* = 16321 and bounces on.
+    Its warning now gives the earliest landing of its free flight, which a fixed run brackets:
+    still in the air over periods 16200 to 16300, down again within 16300 to 16400."""
+    cell = {"model": "material_point", "particle": {"m_star": 4.13}, "drive": {"amplitude": 2170}}
+    res = sd.run(sd.Scene(**cell))
+    assert res.regime == "ejected"
+    said = [w for w in res.warnings if w.startswith("ejected: ")]
+    assert len(said) == 1
+    land = float(said[0].split("before t* = ")[1].split(" ")[0])
+    assert 16300.0 < land < 16400.0
+
+    def window_to(end: int) -> sd.Result:
+        return sd.run(sd.Scene(**cell, numerics={"settle": False, "periods": end,
+                                                 "measure_periods": 100}))
+
+    # (a rigid point's landing is an impact of no duration: it shows as the lift-off after it)
+    assert window_to(16300).liftoffs_per_period == 0.0
+    assert window_to(16400).liftoffs_per_period > 0.0
+
+
 def test_a_point_thrown_into_long_flights_bounces_and_is_not_ejected():
     """A rigid point at m* = 1.986, A* = 8.7 (a cell of the out-of-sample audit grid, m* 1.3 to
     90 in 11 log steps) is in the air 99.97 % of the time, one landing about every 190 periods.

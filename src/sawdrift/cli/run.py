@@ -342,9 +342,13 @@ def _unsettled_note(summary: dict[str, Any], tau: float) -> str:
            else "raise numerics.max_periods")
     periods = summary["periods"]
     regime = summary.get("regime")
-    if regime in ("runaway", "ejected"):
+    if regime == "runaway":
         # no steady state to wait for: longer runs would not settle anything
         return f"note: {unsettled_text(summary, 'no drift speed')}; a longer run would not settle it"
+    if regime == "ejected":
+        # it lands again in the end (gravity), possibly long after the run: the warning says when
+        return (f"note: {unsettled_text(summary, 'no drift speed')}; the warning says when it can "
+                "land again")
     if any("(neutral)" in w for w in summary.get("warnings") or ()):
         return ("note: the load equals the friction bound: no steady drift for any run length "
                 "(a load below it settles, one above runs away)")
