@@ -38,6 +38,8 @@ def files(tmp_path):
     (tmp_path / "plate.toml").write_text((examples / "grain_on_vibrating_plate.toml").read_text())
     (tmp_path / "huge.csv").write_text("a,N\n0,0\n1,1\n2,2\n1e308,1e308\n")
     (tmp_path / "huge.toml").write_text('[particle.profile]\nshape = "table"\nfile = "huge.csv"\n')
+    (tmp_path / "badcases").mkdir()
+    (tmp_path / "badcases" / "case_bad.py").write_text("def (:\n")
     sweep = pd.read_parquet(tmp_path / "sweep.parquet")
     sweep.drop(columns=["drift_ratio"]).to_parquet(tmp_path / "nodrift.parquet")
     sweep.drop(columns=["mu"]).to_parquet(tmp_path / "nomu.parquet")
@@ -89,6 +91,14 @@ CORPUS = [
     "load-curve --workers 0",
     "run --restitution -0.5",
     "run --load 1000",
+    # a wavelength of 1e-300 a0 ran at 128 steps a period and reported a drift
+    "run --periods 5 --no-settle --wavelength 1e-300",
+    # --position was ignored by a field (it runs its own positions); --start nan was reported
+    # as drive.position
+    "field --backward 1 --points 4 --position 0.2",
+    "field --backward 1 --direct --wavelength 1000 --start nan",
+    # a case file that does not load: exit 1 ("1 errors counted as failed"), the file unnamed
+    "validate --no-progress --cases {d}/badcases -o {d}/vbad",
     "run -o {d}/malformed.toml",
     "sweep -o /proc/sawdrift.parquet --m-star 1 --amplitude 1",
     "sweep -o {d}/adir --m-star 1 --amplitude 1",
@@ -498,3 +508,16 @@ def test_a_table_without_mu_is_drawn(line, files, monkeypatch, capsys):
     assert exc.value.code in (0, None), capsys.readouterr().err
     figure = files / ("p.png" if line.startswith("phase") else "c.png")
     assert figure.stat().st_size > 1000
+
+
+@pytest.mark.parametrize("line, named", [
+    ("field --backward 1 --direct --wavelength 1000 --start nan", "--start = nan"),
+    ("field --backward 1 --points 4 --position 0.2", "--position = 0.2"),
+    ("run --periods 5 --no-settle --wavelength 1e-300", "drive.wavelength = 1e-300"),
+])
+def test_the_line_names_the_option_given(line, named, monkeypatch, capsys):
+    """--start nan was reported as "drive.position = nan", the field's own setting."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *line.split()])
+    with pytest.raises(SystemExit):
+        main()
+    assert named in capsys.readouterr().err

@@ -85,6 +85,11 @@ def field_cmd(
         species = (name, parse_values(spec, name))
     if start is not None and not direct:  # it was ignored without a word
         _fail(f"--start {start:g} is the start of the direct run: add --direct (or drop --start)")
+    if start is not None and not -1e6 <= start <= 1e6:  # it was reported as drive.position
+        _fail(f"--start = {start!r}: the direct run's start, in wavelengths; allowed: -1e6 to 1e6")
+    if "drive.position" in scene_overrides:  # it was ignored without a word
+        _fail(f"--position = {scene_overrides['drive.position']!r}: the field runs every position "
+              "over half a wavelength itself (a direct run starts at --start): drop --position")
     start = 0.0 if start is None else start
     direct_periods = scene_overrides.pop("numerics.periods", None) if direct else None
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Annotated
 
@@ -204,8 +205,25 @@ def validate_cmd(
     report = sd.validate(out, quick=quick, cases_dir=cases, progress=progress)
     typer.echo(report.summary_line() if hasattr(report, "summary_line") else str(report))
     typer.echo(f"wrote {out / 'index.html'} and {out / 'results.json'}")
+    # a case that could not run is named here, not only in the report (the terminal said
+    # "1 errors counted as failed" and nothing of which file or why)
+    broken = False
+    for res in report.results:
+        if res.status == "error":
+            loads = res.group == "?"  # the case file itself did not load (validation.load_cases)
+            what = res.title if loads else f"case {res.case}"
+            why = _EXCEPTION_NAME.sub("", res.message.removeprefix("error: "), count=1)
+            typer.echo(f"error: {what}: {why}", err=True)
+            broken = broken or loads
+    if broken:  # a case file that does not load is bad input, as a malformed scene file is
+        raise typer.Exit(2)
     if not report.passed:
         raise typer.Exit(1)
+
+
+#: a Python exception's class name at the start of a case's error message, left out of the
+#: terminal's line (the report keeps it)
+_EXCEPTION_NAME = re.compile(r"^[A-Z][A-Za-z]*(Error|Exception): ")
 
 
 @bench_app.command("work-precision")

@@ -167,11 +167,12 @@ class Wave(BaseModel):
             "depends on it"
         ),
     )
-    wavelength: Annotated[float, bounded(0.0, 1e15, lo_open=True)] | None = Field(
+    wavelength: Annotated[float, bounded(1.0, 1e15)] | None = Field(
         None,
         description=(
             "L* = wavelength / a0: given, the drive is evaluated at the particle's own "
-            "position (phase 2 pi (t* -+ x*/L*), a direct run); default: at drive.position"
+            "position (phase 2 pi (t* -+ x*/L*), a direct run); default: at drive.position; "
+            "at least 1 (a wave shorter than the static compression a0 is no surface wave)"
         ),
     )
     phase: Annotated[float, bounded(-360.0, 360.0)] | None = Field(
