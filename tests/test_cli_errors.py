@@ -514,10 +514,15 @@ def test_a_table_without_mu_is_drawn(line, files, monkeypatch, capsys):
     ("field --backward 1 --direct --wavelength 1000 --start nan", "--start = nan"),
     ("field --backward 1 --points 4 --position 0.2", "--position = 0.2"),
     ("run --periods 5 --no-settle --wavelength 1e-300", "drive.wavelength = 1e-300"),
+    ("sweep --m-star 0.1 --amplitude 0.3 -o {d}/afile", "-o '{d}/afile'"),
+    ("sweep --m-star 0.1 --amplitude 0.3 -o {d}/t.pq", "-o '{d}/t.pq'"),
+    ("phase-diagram {d}/sweep.parquet --model mmd --x nosuch -o {d}/x.png", "--x = 'nosuch'"),
 ])
-def test_the_line_names_the_option_given(line, named, monkeypatch, capsys):
-    """--start nan was reported as "drive.position = nan", the field's own setting."""
-    monkeypatch.setattr(sys, "argv", ["sawdrift", *line.split()])
+def test_the_line_names_the_option_given(line, named, files, monkeypatch, capsys):
+    """--start nan was reported as "drive.position = nan", the field's own setting; -o afile
+    as "table = 'afile'" (the API's name; -o t.pq passed the command and failed there); --x
+    nosuch as a table that is not a sweep table."""
+    monkeypatch.setattr(sys, "argv", ["sawdrift", *line.format(d=files).split()])
     with pytest.raises(SystemExit):
         main()
-    assert named in capsys.readouterr().err
+    assert named.format(d=files) in capsys.readouterr().err

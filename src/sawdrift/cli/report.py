@@ -84,13 +84,25 @@ def phase_diagram_cmd(
     out = figure_path(out)
     picked = parse_where(where)
     # the columns the figure reads (a table without one failed as an internal error)
-    frame = _load_table(table, ("model", "regime", x, y) + (("drift_ratio",) if drift else ()))
+    frame = _load_table(table, ("model", "regime") + (("drift_ratio",) if drift else ()))
+    _axes_in(frame, table, x, y)
     _writable(out, folder=False)
     if drift:
         path = sd.plot_drift_map(frame, out, model, x, y, where=picked)
     else:
         path = sd.plot_phase_diagram(frame, out, model, x, y, where=picked)
     typer.echo(f"wrote {path}")
+
+
+def _axes_in(frame, table: Path, x: str, y: str) -> None:
+    """One line (exit 2) naming --x or --y where the table has no such column, with the columns
+    it can draw (the table was said not to be a sweep table)."""
+    for option, column in (("--x", x), ("--y", y)):
+        if column not in frame.columns:
+            numeric = [c for c in frame.columns if frame[c].dtype.kind in "fiu"
+                       and frame[c].nunique() > 1]
+            _fail(f"{option} = {column!r}: table {str(table)!r} has no such column; columns that "
+                  f"vary in it: {', '.join(numeric) or 'none'}")
 
 
 @app.command("compare")
@@ -118,7 +130,8 @@ def compare_cmd(
     twice = sorted({m for m in names if names.count(m) > 1})
     if twice:  # a model against itself agreed 100 %
         _fail(f"--models {models!r} names {', '.join(twice)} twice: give each model once")
-    frame = _load_table(table, ("model", "regime", x, y))
+    frame = _load_table(table, ("model", "regime"))
+    _axes_in(frame, table, x, y)
     _writable(out, folder=False)
     path, md = sd.plot_compare(frame, names, out, by, x, y, where=picked)
     typer.echo(md)

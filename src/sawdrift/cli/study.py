@@ -21,7 +21,6 @@ from .app import (
     Workers,
     Yes,
     _fail,
-    _looks_like_file,
     _parse_param,
     _split_axis,
     _writable,
@@ -93,7 +92,7 @@ def sweep_cmd(
     """
     if scene_arg is not None and scene_file is not None:
         _fail("give the base scene either as an argument or with --scene, not both")
-    if _looks_like_file(out) and out.suffix.lower() not in (".parquet", ".pq"):
+    if out.is_dir() or out.suffix.lower() != ".parquet":  # a name without one ('afile', 'x.pq')
         _fail(f"-o {str(out)!r}: a sweep writes a resumable Parquet table; give NAME.parquet "
               "(`sawdrift export` writes netCDF; pandas.read_parquet reads it for CSV)")
     _writable(out, folder=False)
