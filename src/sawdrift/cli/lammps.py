@@ -5,7 +5,6 @@ from __future__ import annotations
 import functools
 import inspect
 import json
-import tomllib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any
@@ -113,12 +112,9 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
     particles = None
     source = str(scene_file) if scene_file is not None else None
     if scene_file is not None:
-        try:
-            data = tomllib.loads(scene_file.read_text(encoding="utf-8-sig"))
-        except FileNotFoundError:
-            raise sd.SceneError(f"scene file {source!r} does not exist") from None
-        except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-            raise sd.SceneError(f"scene file {source!r} is not valid UTF-8 TOML: {exc}") from None
+        from ..scene.schema import read_toml
+
+        data = read_toml(scene_file)
         particles = data.pop("particles", None)
         data = sd.bind(sd.scene.build_scene(data, source=source), source).model_dump(exclude_none=True)
     values = dict(overrides)

@@ -180,6 +180,9 @@ def run_cmd(
         return
     if engine != "lammps":
         _size(scenes, engine, yes)
+    # a folder this command makes is taken away again if no run ends (a failing second model
+    # of --model mmd,other left it behind, empty)
+    made = out is not None and kind == "folder" and not out.exists()
     if out is not None:
         _writable(out, folder=kind == "folder")
         _not_a_table(out)
@@ -190,7 +193,11 @@ def run_cmd(
                         "compiles its loops: up to half a minute; settling a heavy particle "
                         "takes longer)"), run_progress(f"run: {sc.model}"):
                 results.append(_run_one(sc, engine, out is not None))
-    except KeyboardInterrupt:
+    except BaseException as exc:
+        if made and not (isinstance(exc, KeyboardInterrupt) and results):
+            _remove_if_empty(out)
+        if not isinstance(exc, KeyboardInterrupt):
+            raise
         if not results:
             raise
         # the models that ended are shown (and written): Ctrl-C on the second of --model
@@ -200,6 +207,15 @@ def run_cmd(
         interrupted(f"interrupted (Ctrl-C) after {len(results)} of {total} models: the "
                     "results are of those")
     _report(scenes, results, out, kind, as_json)
+
+
+def _remove_if_empty(folder: Path | None) -> None:
+    """Remove ``folder`` (and nothing else) if it exists and holds nothing."""
+    try:
+        if folder is not None and folder.is_dir() and not any(folder.iterdir()):
+            folder.rmdir()
+    except OSError:
+        pass  # not ours to clean up after all
 
 
 def _report(scenes: list[Any], results: list[Any], out: Path | None, kind: str,

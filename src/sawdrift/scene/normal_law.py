@@ -155,8 +155,12 @@ def check_table(a: np.ndarray, n: np.ndarray, source: str) -> None:
     at a = 0 if given, and N(1) = 1 to 1e-6 relative (a0 is the compression under M g, so N*(1) = 1
     by definition of the scaling).
     """
-    if a.size < 4 or not (np.all(np.isfinite(a)) and np.all(np.isfinite(n))):
-        raise ValueError(f"{source}: needs at least 4 finite rows of columns a, N")
+    bad = np.flatnonzero(~(np.isfinite(a) & np.isfinite(n)))
+    if bad.size:  # a table of 5 rows, one NaN, was said to need "at least 4 finite rows"
+        raise ValueError(f"{source}: every row must be finite; data row {int(bad[0]) + 1} is "
+                         f"a = {a[bad[0]]:g}, N = {n[bad[0]]:g}")
+    if a.size < 4:
+        raise ValueError(f"{source}: needs at least 4 rows of columns a, N (it has {a.size})")
     if np.max(a) > TABLE_MAX or np.max(n) > TABLE_MAX:
         # 1e308 overflowed the interpolation's slopes: two numpy warnings and scipy's own error
         raise ValueError(f"{source}: a and N must be at most {TABLE_MAX:g} (units of the static "

@@ -217,6 +217,9 @@ def validate_device(block: Any) -> Device:
     """The validated Device of a ``[device]`` table; bad input is one line naming the field."""
     if isinstance(block, Device):
         return block
+    if not isinstance(block, Mapping):  # it was "scene: Input should be a valid dictionary ..."
+        raise SceneError(f"device = {block!r}: the device is a table of fields ([device], with "
+                         "frequency, amplitude, particle, substrate)")
     try:
         return Device.model_validate(block)
     except ValidationError as exc:

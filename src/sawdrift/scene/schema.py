@@ -177,24 +177,7 @@ class Scene(BaseModel):
     def from_toml(cls, path: str | Path) -> Scene:
         """Load a scene from a TOML file; a malformed file raises a one-line SceneError."""
         path = Path(path)
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
-        except FileNotFoundError:
-            raise SceneError(f"scene file {str(path)!r} does not exist") from None
-        except IsADirectoryError:
-            raise SceneError(f"scene file {str(path)!r} is a directory, not a TOML file") from None
-        except PermissionError:
-            raise SceneError(f"scene file {str(path)!r} cannot be read (permission denied)") from None
-        except UnicodeDecodeError as exc:
-            raise SceneError(
-                f"scene file {str(path)!r} is not UTF-8 text (byte {exc.start}); save it as UTF-8 TOML"
-            ) from None
-        except tomllib.TOMLDecodeError as exc:
-            raise SceneError(f"scene file {str(path)!r} is malformed TOML: {exc}") from None
-        except OSError as exc:
-            # another read error named no file (/proc/self/mem: "cannot use: Input/output error")
-            raise SceneError(f"scene file {str(path)!r} cannot be read "
-                             f"({exc.strerror or exc})") from None
+        data = read_toml(path)
         profile = data.get("particle", {}).get("profile") if isinstance(data.get("particle"), dict) else None
         if isinstance(profile, dict) and isinstance(profile.get("file"), str):
             # a table named in a scene file is found next to it
@@ -399,3 +382,28 @@ def apply_overrides(data: Mapping[str, Any] | BaseModel,
                              "set here are all it has (give a scene file with a whole [device] "
                              "table)") from None
     return out
+
+
+def read_toml(path: Path) -> dict[str, Any]:
+    """The table of a scene file, or a one-line SceneError naming the file and what is wrong:
+    missing, a directory, unreadable, not UTF-8, malformed TOML (every command that reads a
+    scene file says it alike: ``sort`` and ``lammps`` said "not valid UTF-8 TOML" for a syntax
+    error and "cannot use 'scenes': Is a directory")."""
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8-sig"))
+    except FileNotFoundError:
+        raise SceneError(f"scene file {str(path)!r} does not exist") from None
+    except IsADirectoryError:
+        raise SceneError(f"scene file {str(path)!r} is a directory, not a TOML file") from None
+    except PermissionError:
+        raise SceneError(f"scene file {str(path)!r} cannot be read (permission denied)") from None
+    except UnicodeDecodeError as exc:
+        raise SceneError(
+            f"scene file {str(path)!r} is not UTF-8 text (byte {exc.start}); save it as UTF-8 TOML"
+        ) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"scene file {str(path)!r} is malformed TOML: {exc}") from None
+    except OSError as exc:
+        # another read error named no file (/proc/self/mem: "cannot use: Input/output error")
+        raise SceneError(f"scene file {str(path)!r} cannot be read "
+                         f"({exc.strerror or exc})") from None

@@ -68,7 +68,13 @@ _LONG_NAMES = {
     "orbit_period": "periods after which the stroboscopic state repeats (0: no periodic orbit)",
     "mean_acceleration": "a runaway's mean acceleration, x* per period squared (NaN otherwise)",
     "detach_time": "an ejected particle's last lift-off, t* in periods (NaN otherwise)",
+    "drift_velocity": "mean x*' over the measurement window, in static compressions a0 per wave "
+                      "period (times a0 f: m/s, the drift_speed_m_s of a device sweep)",
 }
+
+#: units of normalized variables (CF: "1" for a number of sawdrift's scaling, its long_name
+#: saying which); the SI columns get theirs from sawdrift.study.axes.column_unit
+_NORMALIZED_UNITS = {"drift_velocity": "1", "drift_ratio": "1", "drift_ratio_se": "1"}
 
 #: regime codes: flag_values are 0..n-1 in the order of sawdrift.result.regimes.REGIMES
 REGIME_FLAGS = (*REGIMES, "error")
@@ -196,7 +202,7 @@ def _describe(ds) -> None:
         text = names.get(str(name)) or long_name(str(name))
         if text:
             ds[name].attrs["long_name"] = text
-        unit = column_unit(str(name))
+        unit = column_unit(str(name)) or _NORMALIZED_UNITS.get(str(name))
         if unit:
             ds[name].attrs["units"] = unit
 
