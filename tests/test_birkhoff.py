@@ -42,7 +42,7 @@ def test_a_quasi_periodic_record_is_told_with_an_error_that_bounds_its_own():
     """The record's halves agree with the whole far within its batch-means error (3e-3), and
     their larger difference bounds the whole's true error (0.3 exactly), here at round-off;
     over 25 periods, where the weighted mean is 8e-8 off, the bound is 7.8e-7."""
-    for periods, most in ((500, 1e-12), (25, 1e-4)):
+    for periods, most in ((500, 1e-12), (25, 1e-6)):
         x = _torus_signal(periods)
         error = quasi_periodic_error(x, _per_period_error(x))
         assert error is not None and error < most
@@ -79,15 +79,15 @@ def test_an_irregular_heavy_bouncer_gets_its_drift_from_the_weighted_mean():
                                       "measure_periods": 15000}))
     assert res.regime == "bouncing" and res.settle_method == "imposed_speed"
     assert res.drift_ratio_se < 1e-3
-    assert abs(res.drift_ratio - brute.drift_ratio) < min(1e-4, 3.0 * res.drift_ratio_se)
+    assert abs(res.drift_ratio - brute.drift_ratio) < min(1e-4, res.drift_ratio_se)
 
 
 def test_the_full_inertia_step_takes_the_drift_to_brute_force(monkeypatch):
     """mmd m* = 7.08, A* = 4.539 (an irregular heavy bouncer): brute force gives 0.774222 over
     the last 20000 of 40000 periods (0.7742222 over the last 40000 of 80000). The weighted mean
-    at the imposed speed alone is 1.9e-4 below it, outside the bound of a steady drift (1e-3
-    relative is 7.7e-4, but its error said 1e-6); with the horizontal fast motion at full inertia
-    it is within 2e-5, and its error covers both."""
+    at the imposed speed alone is 1.9e-4 below it while its error says 1e-6 (190 errors off);
+    with the horizontal fast motion at full inertia it is within 2e-5 (9e-6), and its error
+    (1.8e-4) covers both."""
     from sawdrift.dynamics import imposed
 
     cell = {"model": "mmd", "particle": {"m_star": 7.0804851318975786},

@@ -516,7 +516,8 @@ def test_a_table_without_mu_is_drawn(line, files, monkeypatch, capsys):
 
 @pytest.mark.parametrize("line, named", [
     ("field --backward 1 --direct --wavelength 1000 --start nan", "--start = nan"),
-    ("field --backward 1 --points 4 --position 0.2", "--position = 0.2"),
+    ("field --backward 1 --points 4 --position 0.2", "--position 0.2"),
+    ("field --backward 1 --points 4 --set drive.position=0.2", "--set drive.position=0.2"),
     ("run --periods 5 --no-settle --wavelength 1e-300", "drive.wavelength = 1e-300"),
     ("sweep --m-star 0.1 --amplitude 0.3 -o {d}/afile", "-o '{d}/afile'"),
     ("sweep --m-star 0.1 --amplitude 0.3 -o {d}/t.pq", "-o '{d}/t.pq'"),
@@ -524,7 +525,7 @@ def test_a_table_without_mu_is_drawn(line, files, monkeypatch, capsys):
     ("run {d}/device3.toml", "device = 3: the device is a table"),
     ("sort {d}/malformed.toml", "is malformed TOML"),
     ("sort {d}/adir", "is a directory, not a TOML file"),
-    ("run {d}/nanrow.toml", "every row must be finite; data row 3 is a = nan"),
+    ("run {d}/nanrow.toml", "every row must be finite: one has a = nan, N = 0.7"),
 ])
 def test_the_line_names_the_option_given(line, named, files, monkeypatch, capsys):
     """--start nan was reported as "drive.position = nan", the field's own setting; -o afile
@@ -552,13 +553,13 @@ def test_a_run_that_fails_takes_away_the_folder_it_made(tmp_path, monkeypatch, c
         return real(scene, *args, **kwargs)
 
     monkeypatch.setattr(cli_run, "_run_one", second_fails)
-    out = tmp_path / "made"
+    out = tmp_path / "made" / "deeper" / "out"
     monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "--model", "mmd,jaeger", "--periods",
                                       "5", "--no-settle", "-o", str(out)])
     with pytest.raises(SystemExit) as exc:
         main()
     assert exc.value.code == 2 and "jaeger" in capsys.readouterr().err
-    assert not out.exists()
+    assert not (tmp_path / "made").exists()  # nor the parents it made (they were left)
     kept = tmp_path / "kept"
     kept.mkdir()
     monkeypatch.setattr(sys, "argv", ["sawdrift", "run", "--model", "mmd,jaeger", "--periods",

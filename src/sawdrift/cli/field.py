@@ -29,7 +29,7 @@ from .app import (
     out_kind,
     write_outputs,
 )
-from .scene_options import axis_and_option, scene_from_options, with_scene_options
+from .scene_options import axis_and_option, scene_from_options, typed_as, with_scene_options
 
 
 @app.command("field")
@@ -88,8 +88,10 @@ def field_cmd(
     if start is not None and not -1e6 <= start <= 1e6:  # it was reported as drive.position
         _fail(f"--start = {start!r}: the direct run's start, in wavelengths; allowed: -1e6 to 1e6")
     if "drive.position" in scene_overrides:  # it was ignored without a word
-        _fail(f"--position = {scene_overrides['drive.position']!r}: the field runs every position "
-              "over half a wavelength itself (a direct run starts at --start): drop --position")
+        given = typed_as(scene_overrides, "drive.position",
+                         f"--position {scene_overrides['drive.position']!r}")
+        _fail(f"{given}: the field runs every position over half a wavelength itself (a direct "
+              "run starts at --start): drop it")
     start = 0.0 if start is None else start
     direct_periods = scene_overrides.pop("numerics.periods", None) if direct else None
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides,

@@ -182,7 +182,7 @@ def run_cmd(
         _size(scenes, engine, yes)
     # a folder this command makes is taken away again if no run ends (a failing second model
     # of --model mmd,other left it behind, empty)
-    made = out is not None and kind == "folder" and not out.exists()
+    made = _first_missing(out) if out is not None and kind == "folder" else None
     if out is not None:
         _writable(out, folder=kind == "folder")
         _not_a_table(out)
@@ -194,8 +194,8 @@ def run_cmd(
                         "takes longer)"), run_progress(f"run: {sc.model}"):
                 results.append(_run_one(sc, engine, out is not None))
     except BaseException as exc:
-        if made and not (isinstance(exc, KeyboardInterrupt) and results):
-            _remove_if_empty(out)
+        if made is not None and not (isinstance(exc, KeyboardInterrupt) and results):
+            _remove_if_empty(out, made)
         if not isinstance(exc, KeyboardInterrupt):
             raise
         if not results:
@@ -209,11 +209,26 @@ def run_cmd(
     _report(scenes, results, out, kind, as_json)
 
 
-def _remove_if_empty(folder: Path | None) -> None:
-    """Remove ``folder`` (and nothing else) if it exists and holds nothing."""
+def _first_missing(path: Path) -> Path | None:
+    """The outermost of ``path`` and its parents that does not exist yet (None: it exists):
+    what the command makes, and takes away again if nothing is written into it."""
+    missing = None
+    for p in (path, *path.parents):
+        if p.exists():
+            break
+        missing = p
+    return missing
+
+
+def _remove_if_empty(folder: Path | None, made: Path) -> None:
+    """Remove ``folder`` and its empty parents up to ``made`` (the outermost this command
+    made: ``-o new1/new2/out`` left new1/new2), and nothing that holds a file."""
     try:
-        if folder is not None and folder.is_dir() and not any(folder.iterdir()):
+        while folder is not None and folder.is_dir() and not any(folder.iterdir()):
             folder.rmdir()
+            if folder == made:
+                break
+            folder = folder.parent
     except OSError:
         pass  # not ours to clean up after all
 

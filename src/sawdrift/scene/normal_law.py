@@ -157,8 +157,8 @@ def check_table(a: np.ndarray, n: np.ndarray, source: str) -> None:
     """
     bad = np.flatnonzero(~(np.isfinite(a) & np.isfinite(n)))
     if bad.size:  # a table of 5 rows, one NaN, was said to need "at least 4 finite rows"
-        raise ValueError(f"{source}: every row must be finite; data row {int(bad[0]) + 1} is "
-                         f"a = {a[bad[0]]:g}, N = {n[bad[0]]:g}")
+        raise ValueError(f"{source}: every row must be finite: one has a = {a[bad[0]]:g}, "
+                         f"N = {n[bad[0]]:g}")
     if a.size < 4:
         raise ValueError(f"{source}: needs at least 4 rows of columns a, N (it has {a.size})")
     if np.max(a) > TABLE_MAX or np.max(n) > TABLE_MAX:

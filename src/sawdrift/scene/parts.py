@@ -359,7 +359,7 @@ class Numerics(BaseModel):
         500, description="irregular motions (chaotic, quasi-periodic, irregular heavy "
         "bouncing): periods of the long-time mean drift and its batch-means standard error "
         "(a chaotic light bouncer: about +-0.1 in drift ratio at 500, +-0.07 at 2000; an "
-        "irregular heavy bouncer +-0.008 at 500, about +-3e-4 where its record is "
+        "irregular heavy bouncer +-0.008 at 500, +-1e-4 to 5e-4 where its record is "
         "quasi-periodic); a mean known to settle_tolerance stops earlier; "
         "a mean of bounces runs over at least 16 of its longest flights (at most 100 times this)"
     )

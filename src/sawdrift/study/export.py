@@ -68,8 +68,9 @@ _LONG_NAMES = {
     "orbit_period": "periods after which the stroboscopic state repeats (0: no periodic orbit)",
     "mean_acceleration": "a runaway's mean acceleration, x* per period squared (NaN otherwise)",
     "detach_time": "an ejected particle's last lift-off, t* in periods (NaN otherwise)",
-    "drift_velocity": "mean x*' over the measurement window, in static compressions a0 per wave "
-                      "period (times a0 f: m/s, the drift_speed_m_s of a device sweep)",
+    "drift_velocity": "the cell's drift velocity (its steady drift, long-time mean or window "
+                      "mean), in static compressions a0 per wave period (times a0 f: m/s, the "
+                      "drift_speed_m_s of a device sweep)",
 }
 
 #: units of normalized variables (CF: "1" for a number of sawdrift's scaling, its long_name
