@@ -155,7 +155,9 @@ class Result:
     #: orbit has two take-off phases; ``liftoff_phase`` is the first)
     liftoff_phases: tuple[float, ...] = ()
     #: standard error of ``drift_ratio`` (irregular motion: batch means over decorrelated
-    #: windows); NaN where the drift is a fixed point's or a periodic orbit's
+    #: windows; an irregular heavy bouncer whose record is quasi-periodic: its weighted mean's
+    #: error, :mod:`sawdrift.dynamics.imposed_weighted`); NaN where the drift is a fixed
+    #: point's or a periodic orbit's
     drift_ratio_se: float = math.nan
     #: ``runaway``: the long-time mean horizontal acceleration, x* per period squared:
     #: (L - mu sign L) / m* where the load exceeds friction, (L - mu_r sign L) / (m* (1 + kappa))

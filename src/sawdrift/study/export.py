@@ -59,7 +59,8 @@ STRINGS = ("resolved_as", "warnings")
 
 #: descriptions of the exported variables that sawdrift.study.axes does not name
 _LONG_NAMES = {
-    "drift_ratio_se": "standard error of drift_ratio of a long-time mean (batch means); NaN "
+    "drift_ratio_se": "standard error of drift_ratio of a long-time mean (batch means, or a "
+                      "heavy bouncer's weighted mean where its record is quasi-periodic); NaN "
                       "where the drift settled",
     "resolved_as": "how the cell's steady state was resolved: periodic_orbit, fixed_point, "
                    "chaotic_mean, long_time_mean, runaway, ejected or not_settled",
