@@ -136,6 +136,12 @@ def test_a_thrown_off_micro_particle_is_ejected_without_a_speed():
     assert any("a0 < 1 nm" in w for w in res.warnings)
     # and when, in seconds: t* counts wave periods, 1 / (20 MHz) each (it was in periods only)
     assert res.extra["detach_time_s"] == pytest.approx(res.detach_time / 20e6, rel=1e-12)
+    # when it can land again, in periods and seconds (ballistic: the flight is gravity's alone)
+    said = [w for w in res.warnings if w.startswith("ejected: ")]
+    assert len(said) == 1
+    land = float(said[0].split("before t* = ")[1].split(" ")[0])
+    seconds = float(said[0].split("(ballistic, ")[1].split(" s)")[0])
+    assert land > res.periods and seconds == pytest.approx(land / 20e6, rel=2e-3)
 
 
 def test_an_ejection_says_when_the_particle_can_land_again():

@@ -112,7 +112,8 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     # a runaway or an ejection has no steady drift: nothing of a long-time mean to warn about
     warnings = _warnings(scene, replace(out, long_mean=None) if ending else out, drift_se)
     if ending == "ejected":
-        warnings += (ejected_landing(stepper.step / stepper.k_per, ret),)
+        frequency = scene.device.frequency if scene.device is not None else None
+        warnings += (ejected_landing(stepper.step / stepper.k_per, ret, frequency),)
     if not ending and load_is_neutral(scene.particle.load, holding_bound(scene),
                                       scene.effects.friction, scene.effects.air_drag):
         # friction at its bound balances the load exactly once the particle slides on: nothing
@@ -229,17 +230,18 @@ def _table_warning(scene: Scene) -> tuple[str, ...]:
             "table to cover the compressions)",)
 
 
-def ejected_landing(now: float, return_time: float) -> str:
+def ejected_landing(now: float, return_time: float, frequency: float | None = None) -> str:
     """The warning of an ejected particle: when, in free flight under gravity and the preload
     alone, it can touch the surface again (``return_time`` periods after ``now``,
-    :func:`~sawdrift.dynamics.window.ballistic_return`). A rigid point at m* = 4.13, A* = 2170 was
-    ejected after 3489 periods, "a longer run would not settle it", and landed at t* = 16321 and
-    bounced on."""
+    :func:`~sawdrift.dynamics.window.ballistic_return`; in seconds too on a device of wave
+    ``frequency``). A rigid point at m* = 4.13, A* = 2170 was ejected after 3489 periods, "a
+    longer run would not settle it", and landed at t* = 16321 and bounced on."""
     if not math.isfinite(return_time):
         return "ejected: in free flight it never reaches the surface again"
     land = now + return_time
+    seconds = f", {land / frequency:.3g} s" if frequency else ""
     return (f"ejected: in free flight it cannot reach the surface before t* = {land:.6g} "
-            f"(ballistic); a run of more than {math.ceil(land)} periods (--periods, "
+            f"(ballistic{seconds}); a run of more than {math.ceil(land)} periods (--periods, "
             "--max-periods) follows it to its landing and the bounces after it")
 
 
