@@ -176,6 +176,23 @@ def _one_line_warnings(message, category, filename, lineno, file=None, line=None
     sys.stderr.write(f"warning: {message}\n")
 
 
+def new_folders(path: Path) -> list[Path]:
+    """The folders among ``path`` and its parents that do not exist yet, innermost first: what
+    writing to ``path`` makes (:func:`_writable` does), for :func:`remove_new` to take away
+    again where a command ends with nothing written."""
+    return [p for p in (path, *path.parents) if not p.exists()]
+
+
+def remove_new(created: list[Path]) -> None:
+    """Remove the folders :func:`new_folders` listed, innermost first, as long as each is empty
+    (a refused or failed command leaves no folder of its own behind)."""
+    for folder in created:
+        try:
+            folder.rmdir()
+        except OSError:
+            return
+
+
 def _writable(path: Path, option: str = "-o", folder: bool = True) -> Path:
     """Check before any work that ``path`` (a folder, or a file's folder) can be written.
 

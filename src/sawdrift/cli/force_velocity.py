@@ -20,7 +20,9 @@ from .app import (
     _writable,
     app,
     check_engine,
+    new_folders,
     out_kind,
+    remove_new,
     write_outputs,
 )
 from .run_text import curve_warning_lines, pm_text
@@ -76,7 +78,7 @@ def force_velocity_cmd(
         size_check("force-velocity", [scene], points + 1, workers=workers, engine=engine,
                    yes=yes, show=progress, unit="steady run", smaller="fewer --points")
     except BaseException:
-        _remove_new(created)  # a refused command leaves no folder behind
+        remove_new(created)  # a refused command leaves no folder behind
         raise
     curve = force_velocity(scene, points=points, workers=workers, engine=engine)
     data = curve.to_json()
@@ -98,18 +100,9 @@ def _prepare_out(out: Path | None) -> list[Path]:
     if out is None:
         return []
     out_kind(out, (), "")  # NAME.csv, NAME.png, ...: this command writes a folder only
-    created = [p for p in (out, *out.parents) if not p.exists()]
+    created = new_folders(out)
     _writable(out, folder=True)
     return created
-
-
-def _remove_new(created: list[Path]) -> None:
-    """Remove the folders :func:`_prepare_out` created, innermost first, where still empty."""
-    for folder in created:
-        try:
-            folder.rmdir()
-        except OSError:
-            return
 
 
 def _print_curve(curve: Any, data: dict[str, Any]) -> None:

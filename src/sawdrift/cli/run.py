@@ -24,7 +24,9 @@ from .app import (
     check_engine,
     interrupted,
     model_names,
+    new_folders,
     out_kind,
+    remove_new,
 )
 from .run_text import grouped, shared_warnings, side_by_side, unsettled_text
 from .scene_options import scene_from_options, with_scene_options
@@ -180,9 +182,9 @@ def run_cmd(
         return
     if engine != "lammps":
         _size(scenes, engine, yes)
-    # a folder this command makes is taken away again if no run ends (a failing second model
-    # of --model mmd,other left it behind, empty)
-    made = _first_missing(out) if out is not None and kind == "folder" else None
+    # the folders this command makes are taken away again if no run ends (a failing second
+    # model of --model mmd,other left its folder behind, empty)
+    created = new_folders(out) if out is not None and kind == "folder" else []
     if out is not None:
         _writable(out, folder=kind == "folder")
         _not_a_table(out)
@@ -194,11 +196,8 @@ def run_cmd(
                         "takes longer)"), run_progress(f"run: {sc.model}"):
                 results.append(_run_one(sc, engine, out is not None))
     except BaseException as exc:
-        if made is not None and not (isinstance(exc, KeyboardInterrupt) and results):
-            _remove_if_empty(out, made)
-        if not isinstance(exc, KeyboardInterrupt):
-            raise
-        if not results:
+        if not (isinstance(exc, KeyboardInterrupt) and results):
+            remove_new(created)  # nothing ended, nothing is written
             raise
         # the models that ended are shown (and written): Ctrl-C on the second of --model
         # mmd,mdr lost the first's finished run
@@ -207,30 +206,6 @@ def run_cmd(
         interrupted(f"interrupted (Ctrl-C) after {len(results)} of {total} models: the "
                     "results are of those")
     _report(scenes, results, out, kind, as_json)
-
-
-def _first_missing(path: Path) -> Path | None:
-    """The outermost of ``path`` and its parents that does not exist yet (None: it exists):
-    what the command makes, and takes away again if nothing is written into it."""
-    missing = None
-    for p in (path, *path.parents):
-        if p.exists():
-            break
-        missing = p
-    return missing
-
-
-def _remove_if_empty(folder: Path | None, made: Path) -> None:
-    """Remove ``folder`` and its empty parents up to ``made`` (the outermost this command
-    made: ``-o new1/new2/out`` left new1/new2), and nothing that holds a file."""
-    try:
-        while folder is not None and folder.is_dir() and not any(folder.iterdir()):
-            folder.rmdir()
-            if folder == made:
-                break
-            folder = folder.parent
-    except OSError:
-        pass  # not ours to clean up after all
 
 
 def _report(scenes: list[Any], results: list[Any], out: Path | None, kind: str,
