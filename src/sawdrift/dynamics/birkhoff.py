@@ -57,9 +57,15 @@ def quasi_periodic_error(x: np.ndarray, se: float) -> float | None:
     below :data:`QUASI_SHARE` of ``se`` (the batch-means error of the plain mean of ``x``);
     None otherwise (chaotic, or too short to tell). Each half converges more slowly than the
     whole, so the larger difference bounds the whole's error from above."""
+    return weighted_estimate(x, se)[1]
+
+
+def weighted_estimate(x: np.ndarray, se: float) -> tuple[float, float | None]:
+    """(:func:`weighted_mean` of ``x``, :func:`quasi_periodic_error` of it), the whole record's
+    weighted mean computed once for both."""
+    whole = weighted_mean(x)
     half = x.size // 2
     if half < 2 or not se > 0.0:
-        return None
-    whole = weighted_mean(x)
+        return whole, None
     error = max(abs(weighted_mean(x[:half]) - whole), abs(weighted_mean(x[half:]) - whole))
-    return error if error < QUASI_SHARE * se else None
+    return whole, error if error < QUASI_SHARE * se else None

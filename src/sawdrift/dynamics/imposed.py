@@ -111,7 +111,7 @@ class _Record:
         self._a = self.a[steps]
         self._adot = self._vy[steps] - self._uyd1[phase]
         #: the last evaluation (speed, length, fast motion, T* over the kept steps)
-        self.last: tuple[float, int, object, np.ndarray] | None = None
+        self.last: tuple[float, int, int, np.ndarray] | None = None
 
     def _path(self, m: int) -> np.ndarray:
         path = self.paths.get(m)
@@ -153,10 +153,7 @@ class _Record:
         was 2e-4 to 5e-4 (relative) from brute force at m* = 5.5 to 22
         (:func:`~.imposed_weighted.weighted_zero`)."""
         self.clear_fast_motion()
-        n = self.a.size
-        m, t_kept = self._kept_friction(v, n)
-        force = np.zeros(n)
-        force[self._keep[:m]] = t_kept
+        force = self._series(v, self.a.size)
         h = 1.0 / self.k
         accel = -(self.mu / self.m) * (force - weighted_mean(force[WASH_PERIODS * self.k:]))
         rate = np.concatenate(([0.0], np.cumsum(0.5 * h * (accel[1:] + accel[:-1]))))
@@ -166,9 +163,11 @@ class _Record:
         self._fast_version += 1
 
     def clear_fast_motion(self) -> None:
-        """Drive the law along the imposed speed alone again (:meth:`add_fast_motion`)."""
-        self.fast = None
-        self._fast_version += 1
+        """Drive the law along the imposed speed alone again (:meth:`add_fast_motion`); the last
+        evaluation stands where it already was so driven."""
+        if self.fast is not None:
+            self.fast = None
+            self._fast_version += 1
 
     def _length(self, periods: int | None) -> int:
         return self.a.size if periods is None else min(self.a.size, periods * self.k)
@@ -187,11 +186,15 @@ class _Record:
         """T*(t*) along the record (its first ``periods``) at the imposed speed ``v``, past its
         first :data:`WASH_PERIODS`. The law is driven over the kept steps only
         (:func:`_contact_steps`): T* = 0 on the others."""
-        n = self._length(periods)
+        return self._series(v, self._length(periods))[WASH_PERIODS * self.k:]
+
+    def _series(self, v: float, n: int) -> np.ndarray:
+        """T* at each of the record's first ``n`` steps at the imposed speed ``v`` (the kept
+        steps' values, 0 on the others)."""
         m, t_kept = self._kept_friction(v, n)
-        t_out = np.zeros(n)
-        t_out[self._keep[:m]] = t_kept
-        return t_out[WASH_PERIODS * self.k:]
+        out = np.zeros(n)
+        out[self._keep[:m]] = t_kept
+        return out
 
 
 def record_columns(stepper: Stepper, periods: int) -> np.ndarray:

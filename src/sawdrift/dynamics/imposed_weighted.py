@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from .birkhoff import quasi_periodic_error, weighted_mean
+from .birkhoff import weighted_estimate
 
 if TYPE_CHECKING:
     from .imposed import _Pushes
@@ -79,8 +79,8 @@ def _secants(push: _Pushes, root: float, slope: float, se_force: float
     rec, speed = push.rec, push.speed
 
     def force(d: float) -> tuple[float, float | None]:
-        series = rec.friction(d * speed)
-        return -weighted_mean(series) + rec.offset, quasi_periodic_error(series, se_force)
+        mean, error = weighted_estimate(rec.friction(d * speed), se_force)
+        return -mean + rec.offset, error
 
     f0, error = force(root)
     if error is None:
