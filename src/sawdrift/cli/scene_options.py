@@ -267,6 +267,38 @@ def _unused_options(scene: sd.Scene, values: dict[str, Any], overrides: Any,
             raise sd.SceneError(f"{typed} is used only with {needs}: {how}, or drop {typed}")
 
 
+def refuse_unread_cap(scene: sd.Scene, overrides: Any, swept: tuple[str, ...] = ()) -> None:
+    """One line (exit 2) where the command line gives a run's period cap (``--max-periods``,
+    ``--set numerics.max_periods``) to a fixed run (``numerics.settle = false``): the cap bounds
+    the settling run only, so ``run --no-settle --max-periods 100`` ran its periods and ignored
+    it without a word. For the commands whose runs are :func:`sawdrift.run`'s (run, sweep); a
+    study that budgets its own runs by the cap (bifurcation) reads it either way, and the scene
+    (a file, the Python API) keeps accepting the field (a fixed run reads no cap).
+
+    Parameters
+    ----------
+    scene
+        The scene built from the file and the options.
+    overrides
+        The command line's ``{dotted field: value}`` (:class:`Overrides`).
+    swept
+        The fields an axis sets cell by cell: an axis over ``numerics.settle`` settles some cells.
+    """
+    field, enabling = "numerics.max_periods", "numerics.settle"
+    if field not in overrides or enabling in swept or scene.numerics.settle is not False:
+        return
+    typed = typed_as(overrides, field, f"--set {field}")
+    off = typed_as(overrides, enabling)
+    if off is None:  # the scene file's numerics.settle = false
+        how, off = "add --settle", "the scene file's numerics.settle = false"
+    else:
+        off = off if off.startswith("--set ") else "--no-settle"  # (typed '--settle False')
+        how = f"drop {off}"
+    raise sd.SceneError(f"{typed} and {off}: the period cap bounds the settling run only, and a "
+                        "fixed run (numerics.settle = false) runs numerics.periods and reads no "
+                        f"cap; {how}, or drop {typed}")
+
+
 def apply_options(data: dict[str, Any], values: dict[str, Any],
                   overrides: dict[str, Any] | None) -> dict[str, Any]:
     """:func:`sawdrift.scene.apply_overrides` with the command line's words in its errors.

@@ -29,7 +29,12 @@ from .app import (
     model_names,
     out_kind,
 )
-from .scene_options import axis_and_option, scene_from_options, with_scene_options
+from .scene_options import (
+    axis_and_option,
+    refuse_unread_cap,
+    scene_from_options,
+    with_scene_options,
+)
 
 #: the help of --m-star and --amplitude
 AXIS_HELP = "START:STOP:N (N >= 2 log-spaced values, both ends included) or a,b,c; shorthand for an axis"
@@ -121,6 +126,7 @@ def sweep_cmd(
         sd.get_model(name)
     base = scene_from_options(scene_file, named[0] if named else None, _parse_param(param),
                               scene_overrides, swept=tuple(axes))
+    refuse_unread_cap(base, scene_overrides, tuple(axes))  # its cells are sd.run's
     models = named or [base.model]
     with _resume_hint(out):
         if adaptive:
