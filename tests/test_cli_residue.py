@@ -52,3 +52,41 @@ def test_a_period_cap_stays_accepted_where_it_is_read(tmp_path, monkeypatch, cap
     scene.write_text("[numerics]\nmax_periods = 1e6\n")
     code, _, err = call(monkeypatch, capsys, "run", str(scene), "--explain", "--no-settle")
     assert code == 0, err
+
+
+#: an mmd whose memory diagram is too small for A* = 0.1 at m* = 1 (that cell fails, 1 runs)
+_FAILING = ["--model", "mmd", "--param", "max_memory_points=16", "--m-star", "1",
+            "--no-progress", "--workers", "1"]
+
+
+@pytest.mark.parametrize("study", ["sweep", "bifurcation", "bifurcation-json"])
+def test_a_study_with_failed_cells_saves_them_and_exits_1(study, tmp_path, monkeypatch, capsys):
+    """A sweep or bifurcation in which a cell failed (its table's 'error' column) exited 0, as
+    if every cell had run. It saves everything, keeps its summary and exits 1 (the input was
+    valid: not 2), with one line on stderr saying how many failed and where the reasons are."""
+    import pandas as pd
+
+    if study.startswith("sweep"):
+        table = tmp_path / "t.parquet"
+        args = ["sweep", *_FAILING, "--amplitude", "0.1,1", "-o", str(table)]
+        what = "cells"
+    else:
+        table = tmp_path / "b" / "bifurcation.parquet"
+        args = ["bifurcation", *_FAILING, "--axis", "drive.amplitude=0.1,1", "--samples", "4",
+                "-o", str(tmp_path / "b")] + (["--json"] if study.endswith("json") else [])
+        what = "values"
+    code, out, err = call(monkeypatch, capsys, *args)
+    assert code == 1, err
+    lines = [line for line in err.strip().splitlines() if not line.startswith("note:")]
+    assert lines == [f"failed: 1 of 2 {what}; each one's reason is in the 'error' column of "
+                     f"{table} (the results are saved)"], err
+    rows = pd.read_parquet(table)
+    failed = rows[rows["error"].notna()]
+    assert not failed.empty and "memory" in failed["error"].iloc[0]
+    assert rows[rows["error"].isna()]["period" if "bifurcation" in study else "drift_ratio"
+                                      ].notna().all()
+    if study == "sweep":
+        assert "(2 cells, 1 with errors)" in out  # the summary is kept
+    elif study == "bifurcation":
+        assert "failed at drive.amplitude = 0.1: " in out and "wrote " in out
+        assert (tmp_path / "b" / "bifurcation.png").exists()

@@ -94,6 +94,8 @@ def sweep_cmd(
     log-spaced values each, times every --axis; an axis over particle.m_star or drive.amplitude
     replaces that default. A device scene has no default plane: give its axes (device.*).
     Every other scene field is an option (--mu, --periods, --settle, ...) setting the base scene.
+    Exit status 1 if a cell failed (after the table is written: each reason is in its 'error'
+    column).
     """
     if scene_arg is not None and scene_file is not None:
         _fail("give the base scene either as an argument or with --scene, not both")
@@ -155,6 +157,18 @@ def sweep_cmd(
                              engine=engine, force=force, traces=traces, size=True, yes=yes)
         # inside: a Ctrl-C while the summary prints (the table written) exited 130 in silence
         _sweep_text(frame, out, adaptive)
+    failed_cells(int(frame["error"].notna().sum()), len(frame), "cells", str(out))
+
+
+def failed_cells(failed: int, total: int, what: str, table: str) -> None:
+    """Exit status 1 after a study whose results are all saved but ``failed`` of its ``total``
+    cells (or values) failed: one line on stderr saying how many and where their reasons are
+    (the ``error`` column of ``table``). A sweep or bifurcation with failed cells exited 0, as
+    if every cell had run; the input was valid (not 2) and nothing is lost."""
+    if failed:
+        typer.echo(f"failed: {failed} of {total} {what}; each one's reason is in the 'error' "
+                   f"column of {table} (the results are saved)", err=True)
+        raise typer.Exit(1)
 
 
 @contextmanager
@@ -360,7 +374,8 @@ def bifurcation_cmd(
     Records K stroboscopic samples per value (a*, a*', x*' - u_x' at integer t*, lift-off
     phases), the orbit period, its multiplier and the largest Lyapunov exponent; writes the
     table, a JSON summary and the figure to -o DIR. Every other scene field is an option
-    (--m-star, --mu, --horizontal-ratio, ...) setting the base scene.
+    (--m-star, --mu, --horizontal-ratio, ...) setting the base scene. Exit status 1 if a value
+    failed (after everything is written: each reason is in the table's 'error' column).
     """
     field, spec = _split_axis(axis, "FIELD=SPEC", "drive.amplitude=lin:0.1:1.5:100")
     axis_and_option(field, spec, scene_overrides)
@@ -376,7 +391,7 @@ def bifurcation_cmd(
         scene_arg, named[0] if named else None, _parse_param(param), scene_overrides,
         swept=(field,))
     from sawdrift.report.bifurcation_plot import plot_bifurcation
-    from sawdrift.study.bifurcation import FIGURE, bifurcation, check_request
+    from sawdrift.study.bifurcation import FIGURE, TABLE, bifurcation, check_request
 
     # every argument checked before the size line and the output folder
     check_request(base, field, spec, samples=samples, direction=direction, tolerance=tolerance,
@@ -395,9 +410,23 @@ def bifurcation_cmd(
         interrupted(f"interrupted: the values done are kept in {out}/journal; run the same "
                     "command again to resume (only the missing values are computed)")
     plot_bifurcation(res, out / FIGURE)
+    # the table has a row per sample: the values are the summary's points
+    done = [p for branches in res.summary["points"].values() for pts in branches.values()
+            for p in pts]
+    n_failed = sum(1 for p in done if p.get("error"))
     if as_json:
         typer.echo(json.dumps(res.summary))
+        failed_cells(n_failed, len(done), "values", f"{out}/{TABLE}")
         return
+    _bifurcation_text(res, field)
+    typer.echo(f"wrote {out}/bifurcation.parquet, bifurcation.json, bifurcation.png "
+               f"({res.computed} values computed)")
+    failed_cells(n_failed, len(done), "values", f"{out}/{TABLE}")
+
+
+def _bifurcation_text(res: Any, field: str) -> None:
+    """What a bifurcation prints before its 'wrote' line: the periods of each branch, its
+    failed values with their reasons, the bifurcations and the hysteresis."""
     for name, branches in res.summary["points"].items():
         for way, points in branches.items():
             periods: dict[int, int] = {}
@@ -418,8 +447,6 @@ def bifurcation_cmd(
                    f"{b['to_period']} at {field} = {where}")
     for h in res.hysteresis:
         typer.echo(hysteresis_line(h))
-    typer.echo(f"wrote {out}/bifurcation.parquet, bifurcation.json, bifurcation.png "
-               f"({res.computed} values computed)")
 
 
 def hysteresis_line(h: dict[str, Any]) -> str:
