@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import pytest
 
@@ -90,3 +91,39 @@ def test_a_study_with_failed_cells_saves_them_and_exits_1(study, tmp_path, monke
     elif study == "bifurcation":
         assert "failed at drive.amplitude = 0.1: " in out and "wrote " in out
         assert (tmp_path / "b" / "bifurcation.png").exists()
+
+
+@pytest.mark.parametrize(("text", "field", "fix"), [
+    ('[particle]\nm_star = "10"\n', "particle.m_star = '10'", "write m_star = 10 without quotes"),
+    ('[numerics]\nperiods = " 20 "\n', "numerics.periods = ' 20 '", "write periods = 20"),
+    ('[model_params]\nmax_memory_points = "64"\n', "model_params.max_memory_points = '64'",
+     "write max_memory_points = 64"),
+    ('[drive]\nkind = "prescribed"\nwaveform = "samples"\na = [0.1, "1.0"]\nb = [0.0, 0.0]\n',
+     "drive.a[1] = '1.0'", "write 1.0 without quotes"),
+])
+def test_a_number_written_as_text_in_a_scene_file_is_refused(text, field, fix, tmp_path,
+                                                             monkeypatch, capsys):
+    """``m_star = "10"`` in a scene file ran at m* = 10 (pydantic's lax mode reads the text):
+    one line naming the dotted field and that a number is expected, exit 2."""
+    scene = tmp_path / "quoted.toml"
+    scene.write_text(text)
+    code, _, err = call(monkeypatch, capsys, "run", str(scene), "--explain")
+    line = _one_line(code, err)
+    assert f"{field} is a number written as text" in line and "a number is expected" in line
+    assert fix in line and str(scene) in line, line
+    with pytest.raises(sd.SceneError, match="a number is expected"):
+        sd.Scene.from_toml(scene)
+
+
+def test_a_number_written_as_text_on_the_command_line_is_read(tmp_path, monkeypatch, capsys):
+    """--set values arrive as text and are parsed on purpose; a device's quantities are text
+    with units in a file (radius = "0.5 mm"), and so is a bare number there (SI)."""
+    import json
+
+    code, out, err = call(monkeypatch, capsys, "run", "--periods", "2", "--no-settle",
+                          "--steps-per-period", "64", "--set", "particle.m_star=10", "--json")
+    assert code == 0 and json.loads(out)["m_star"] == 10.0, err
+    motor = (Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml")
+    scene = tmp_path / "motor.toml"
+    scene.write_text(motor.read_text().replace('"0.5 mm"', '"0.0005"'))
+    assert sd.Scene.from_toml(scene).device.particle.radius == 0.0005

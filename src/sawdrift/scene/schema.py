@@ -50,6 +50,7 @@ from .parts import (
     bounded,
     format_validation_error,
 )
+from .quoted import refuse_quoted_numbers
 from .rayleigh import rayleigh_ratio, theta
 
 __all__ = [
@@ -388,9 +389,10 @@ def read_toml(path: Path) -> dict[str, Any]:
     """The table of a scene file, or a one-line SceneError naming the file and what is wrong:
     missing, a directory, unreadable, not UTF-8, malformed TOML (every command that reads a
     scene file says it alike: ``sort`` and ``lammps`` said "not valid UTF-8 TOML" for a syntax
-    error and "cannot use 'scenes': Is a directory")."""
+    error and "cannot use 'scenes': Is a directory"), or a number written as text (``m_star =
+    "10"``, :mod:`sawdrift.scene.quoted`)."""
     try:
-        return tomllib.loads(path.read_text(encoding="utf-8-sig"))
+        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
     except FileNotFoundError:
         raise SceneError(f"scene file {str(path)!r} does not exist") from None
     except IsADirectoryError:
@@ -407,3 +409,5 @@ def read_toml(path: Path) -> dict[str, Any]:
         # another read error named no file (/proc/self/mem: "cannot use: Input/output error")
         raise SceneError(f"scene file {str(path)!r} cannot be read "
                          f"({exc.strerror or exc})") from None
+    refuse_quoted_numbers(data, Scene, str(path))  # m_star = "10": lax pydantic ran it as 10
+    return data

@@ -228,7 +228,8 @@ def in_range(field: str, out: float, unit: str, given: Any) -> float:
 
 
 def friction_value(value: Any) -> float:
-    """device.friction: a plain number (or one written as a string), inside its range."""
+    """device.friction: a plain number (or one written as a string: a ``--set`` value; in a
+    scene file that is refused, :mod:`sawdrift.scene.quoted`), inside its range."""
     if isinstance(value, str):  # a number written as a string, as the other plain numbers take
         try:
             value = float(value.strip())
