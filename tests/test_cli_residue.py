@@ -127,3 +127,36 @@ def test_a_number_written_as_text_on_the_command_line_is_read(tmp_path, monkeypa
     scene = tmp_path / "motor.toml"
     scene.write_text(motor.read_text().replace('"0.5 mm"', '"0.0005"'))
     assert sd.Scene.from_toml(scene).device.particle.radius == 0.0005
+
+
+_MOTOR = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
+
+
+def test_a_mass_that_replaces_a_files_density_says_so(monkeypatch, capsys):
+    """--set device.particle.mass on the motor (a steel ball given by its density) replaced the
+    density without a word. The replacement stays (a density-based example is run and swept with
+    a mass: tests/test_device.py), and a note names both fields."""
+    code, _, err = call(monkeypatch, capsys, "run", str(_MOTOR), "--explain", "--set",
+                        "device.particle.mass=8 mg")
+    assert code == 0, err
+    notes = [line for line in err.splitlines() if "replaces" in line]
+    assert notes == ["note: --set device.particle.mass=8 mg replaces the scene file's "
+                     "device.particle.density = 7850 kg/m^3 (a device particle is given by one "
+                     "of them)"], err
+
+
+def test_a_mass_and_a_density_both_given_must_agree(monkeypatch, capsys):
+    """Both given (on the command line or in a file) is over-determined: they were refused even
+    where they agree ('give exactly one'), and the line gave neither value. Within 1e-9 they are
+    accepted; otherwise one line names both and the mass the density gives."""
+    import math
+
+    same = 7850.0 * 4.0 / 3.0 * math.pi * 0.5e-3 ** 3
+    code, _, err = call(monkeypatch, capsys, "run", str(_MOTOR), "--explain", "--set",
+                        f"device.particle.mass={same * (1 + 2e-10)!r}", "--set",
+                        "device.particle.density=7850 kg/m^3")
+    assert code == 0, err
+    code, _, err = call(monkeypatch, capsys, "run", str(_MOTOR), "--explain", "--set",
+                        "device.particle.mass=4 mg", "--set", "device.particle.density=7850 kg/m^3")
+    line = _one_line(code, err)
+    assert "mass = 4e-06 kg and density = 7850 kg/m^3" in line and "4.11025e-06 kg" in line, line

@@ -227,7 +227,29 @@ def scene_from_options(scene_file: Path | None, model: str | None = None,
     source = str(scene_file) if scene_file else None
     scene = sd.bind(sd.scene.build_scene(data, source=source), source)
     _unused_options(scene, values, overrides, swept)
+    if base is not None:
+        _replaced_note(base, values, overrides, swept)
     return scene
+
+
+def _replaced_note(base: sd.Scene, values: dict[str, Any], overrides: Any,
+                   swept: tuple[str, ...]) -> None:
+    """One note on stderr where the command line's mass replaces a device particle's density
+    from the scene file, or its density the file's mass (a particle has one of them; the
+    replacement is the rule of :func:`sawdrift.scene.overrides.drop_replaced`): it was done
+    without a word. Both given on the command line must agree (the scene refuses them else)."""
+    particle = base.device.particle if base.device is not None else None
+    if particle is None:
+        return
+    for leaf, other, unit in (("mass", "density", "kg/m^3"), ("density", "mass", "kg")):
+        field = f"device.particle.{leaf}"
+        kept = getattr(particle, other)
+        if kept is None or f"device.particle.{other}" in values:
+            continue
+        if field in values or field in swept:
+            typed = typed_as(overrides, field, f"--axis {field}")
+            typer.echo(f"note: {typed} replaces the scene file's device.particle.{other} = "
+                       f"{kept:.6g} {unit} (a device particle is given by one of them)", err=True)
 
 
 #: (option's field, the field that makes it used, what that must be, the option that gives it)

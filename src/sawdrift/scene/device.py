@@ -142,8 +142,17 @@ class DeviceParticle(BaseModel):
         if shape != "sphere" and self.density is not None:
             raise ValueError(f"density gives the mass of a sphere (4/3 pi R^3 rho); a {shape} "
                              "particle needs its mass, e.g. mass = '4.1 mg'")
-        if (self.density is None) == (self.mass is None):
+        if self.density is None and self.mass is None:
             raise ValueError("give exactly one of density (kg/m^3) or mass (kg)")
+        if self.density is not None and self.mass is not None:
+            # over-determined: accepted only where the two agree (a scene written out in full)
+            implied = float(self.density) * 4.0 / 3.0 * math.pi * float(self.radius) ** 3
+            if abs(self.mass - implied) > 1e-9 * implied:
+                raise ValueError(
+                    f"mass = {self.mass:.6g} kg and density = {self.density:.6g} kg/m^3 both "
+                    f"given, and they disagree (a sphere of radius {float(self.radius):.6g} m at "
+                    f"that density has {implied:.6g} kg): give exactly one of density (kg/m^3) "
+                    "or mass (kg)")
         return self
 
     @property
