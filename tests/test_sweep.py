@@ -17,7 +17,7 @@ import pytest
 import sawdrift as sd
 from sawdrift.analytic import point_prediction
 from sawdrift.errors import SceneError
-from sawdrift.study.sweep import journal_path, parse_axis
+from sawdrift.study.sweep import journal_path, parse_axis, run_cell
 
 
 def _values(frame: pd.DataFrame) -> pd.DataFrame:
@@ -177,14 +177,34 @@ def test_material_point_diagram_matches_analytic_thresholds():
 
 def test_mmd_diagram_shows_all_four_regimes():
     """The light half of the map (m* 1e-3 to 1, 7 x 11 cells, default numerics: 1.9 s) holds
-    all four among its settled cells (fixed points and periodic orbits; measured 35 stick, 10
+    all four among its settled cells (fixed points, periodic orbits and settled drifts of
+    motions that do not repeat; measured 35 stick, 10
     drift_with, 5 drift_against, 7 lost). The fixed 20-period runs this used were mostly still
     on their approach (settled in 17 of 121 cells)."""
     frame = sd.sweep("mmd", "1e-3:1:7", "1e-2:10:11", base=sd.Scene(model="mmd"),
                      progress=False)
-    steady = frame[frame["resolved_as"].isin(["fixed_point", "periodic_orbit"])]
+    steady = frame[frame["resolved_as"].isin(["fixed_point", "periodic_orbit", "quasi_periodic"])]
     found = {_regime_class(g) for g in steady.regime}
     assert {"stick", "drift_with", "drift_against", "lost"} <= found
+
+
+def test_a_settled_hop_that_does_not_repeat_is_not_called_an_orbit_or_a_fixed_point():
+    """mmd m* 0.178, A* 2.51 hops once a period at a drift its windows agree on, but its
+    stroboscopic state stays about 0.02 (scaled) from repeating: the undamped contact
+    oscillation beats against the hop. Its drift is settled, its motion is neither a fixed point
+    nor a periodic orbit (``resolved_as`` called it a fixed point); the bouncing ball at
+    Gamma = 4 pi^2 m* A* = 3.6, below its period doubling, repeats after one period to 1e-8 and
+    is a periodic orbit."""
+    scenes = [sd.Scene(model="mmd", particle={"m_star": 0.178}, drive={"amplitude": 2.51}),
+              sd.Scene(model="material_point", particle={"m_star": 0.025330295910584444},
+                       drive={"amplitude": 3.6, "horizontal_ratio": 0.0})]
+    rows = [run_cell(s.model_dump_json()) for s in scenes]
+    beat, ball = rows
+    assert beat["settled"] and beat["contact_lost"] and beat["orbit_period"] == 0
+    assert beat["periodicity"] > 1e-3  # far from repeating, not on its way to an orbit
+    assert beat["resolved_as"] == "quasi_periodic"
+    assert ball["settled"] and ball["orbit_period"] == 1 and ball["periodicity"] < 1e-8
+    assert ball["resolved_as"] == "periodic_orbit"
 
 
 def test_sweep_table_says_which_cells_have_settled(tmp_path):

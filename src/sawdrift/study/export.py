@@ -62,8 +62,9 @@ _LONG_NAMES = {
     "drift_ratio_se": "standard error of drift_ratio of a long-time mean (batch means, or a "
                       "heavy bouncer's weighted mean where its record is quasi-periodic); NaN "
                       "where the drift settled",
-    "resolved_as": "how the cell's steady state was resolved: periodic_orbit, fixed_point, "
-                   "chaotic_mean, long_time_mean, runaway, ejected or not_settled",
+    "resolved_as": "how the cell's steady state was resolved: periodic_orbit, "
+                   "quasi_periodic, fixed_point, chaotic_mean, long_time_mean, runaway, ejected "
+                   "or not_settled",
     "warnings": "the cell's warnings, joined with '; ' ('' for none)",
     "chaotic": "1 if the largest Lyapunov exponent shows chaos, 0 if not (NaN: no cell)",
     "orbit_period": "periods after which the stroboscopic state repeats (0: no periodic orbit)",

@@ -54,7 +54,10 @@ def resolved_as(row: dict[str, Any]) -> str:
     """How a cell's steady state was resolved, or why not (the ``resolved_as`` column).
 
     ``periodic_orbit`` (settled, the state repeats after ``orbit_period`` periods),
-    ``fixed_point`` (settled otherwise: a steady drift or sticking), ``chaotic_mean`` (a chaotic
+    ``quasi_periodic`` (settled, having lost contact, but its state does not repeat: its window
+    means agree to the tolerance on a motion that beats, such as a hop against the undamped
+    contact oscillation; no orbit stands behind the drift), ``fixed_point`` (settled in
+    contact: a steady drift or sticking), ``chaotic_mean`` (a chaotic
     window's long-time mean with its standard error), ``long_time_mean`` (the same for a
     motion without a positive Lyapunov exponent that did not settle and is irregular: lift-offs
     that find no orbit, or window means that wander in contact), ``runaway`` or ``ejected`` (no steady
@@ -65,7 +68,9 @@ def resolved_as(row: dict[str, Any]) -> str:
     if regime in ("runaway", "ejected"):
         return str(regime)
     if row.get("settled"):
-        return "periodic_orbit" if (row.get("orbit_period") or 0) > 0 else "fixed_point"
+        if (row.get("orbit_period") or 0) > 0:
+            return "periodic_orbit"
+        return "quasi_periodic" if row.get("contact_lost") else "fixed_point"
     se = row.get("drift_ratio_se")
     if se is not None and se == se:
         return "chaotic_mean" if row.get("chaotic") else "long_time_mean"
