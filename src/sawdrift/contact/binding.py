@@ -25,6 +25,7 @@ from ..errors import SawdriftError, SceneError
 from ..scene.bounds import NOT_A_NUMBER
 from ..scene.overrides import nearest
 from ..scene.parts import Impact, Prescribed, format_validation_error
+from ..scene.quoted import refuse_quoted_params
 from ..scene.schema import Scene
 from .adhesion import adhesion_of, adhesive_model, supports_adhesion
 from .base import ContactModel
@@ -82,6 +83,8 @@ def _checked(scene: Scene, source: str | None) -> tuple[type[ContactModel], Base
     """The model class and its validated parameters, after every check of :func:`bind`."""
     cls = get_model(scene.model)
     where = f"{source}: " if source else ""
+    # a number written as text ("64"), which pydantic's lax mode would read as 64
+    refuse_quoted_params(scene.model_params, cls.Params, source)
     params = _params(cls, scene, where)
     problem = _capability_problem(cls, scene)
     if problem is not None:

@@ -21,7 +21,7 @@ from pydantic import BaseModel, BeforeValidator
 from ..errors import SceneError
 from .units import FIELD_KIND
 
-__all__ = ["refuse_quoted_numbers"]
+__all__ = ["refuse_quoted_numbers", "refuse_quoted_params"]
 
 
 def _parts(annotation: Any) -> tuple[list[Any], list[Any]]:
@@ -125,18 +125,15 @@ def refuse_quoted_numbers(data: Mapping[str, Any], scene: type[BaseModel],
     SceneError
         ``FILE: particle.m_star = '10' is a number written as text (in quotes): a number is
         expected; write m_star = 10 without quotes``. The model's parameters
-        (``[model_params]``) are read against its ``Params`` where the model is registered.
+        (``[model_params]``), which this layer knows nothing of, are read when the scene is
+        bound to its model (:func:`refuse_quoted_params`, from
+        :func:`sawdrift.contact.binding.bind`): from a file or from Python alike.
     """
     _walk(data, [scene], source, "")
-    params = data.get("model_params")
-    if not isinstance(params, Mapping):
-        return
-    try:
-        from ..contact.registry import get_model
 
-        model = get_model(str(data.get("model", "mmd")))
-        schema = model.Params
-    except Exception:  # noqa: BLE001 - an unknown model: the binding names it
-        return
+
+def refuse_quoted_params(params: Mapping[str, Any], schema: Any, source: str | None) -> None:
+    """:func:`refuse_quoted_numbers` for a file's ``[model_params]`` read against the model's
+    ``Params`` class ``schema`` (nothing where it is not a pydantic model)."""
     if isinstance(schema, type) and issubclass(schema, BaseModel):
         _walk(params, [schema], source, "model_params.")
