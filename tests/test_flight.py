@@ -16,12 +16,13 @@ from sawdrift.contact.binding import bind, model_for
 from sawdrift.dynamics import adams_bashforth as ig
 from sawdrift.dynamics import evidence as ev
 from sawdrift.dynamics.assembly import assemble
+from sawdrift.dynamics.flight import flight_skip
 from sawdrift.dynamics.stepper import Stepper
 
 
 def _stepper(m_star: float, amplitude: float, **extra) -> Stepper:
-    scene = bind(sd.Scene(model="mmd", particle={"m_star": m_star},
-                          drive={"amplitude": amplitude}, numerics={"settle": False}, **extra))
+    parts = {"particle": {"m_star": m_star}, "drive": {"amplitude": amplitude}, **extra}
+    scene = bind(sd.Scene(model="mmd", numerics={"settle": False}, **parts))
     model = model_for(scene)
     st = Stepper(scene, model, assemble(scene, "compiled", model), False, event_periods=27)
     st.warm_up()
@@ -153,3 +154,83 @@ def test_an_inertia_changed_in_flight_changes_the_flight_from_then_on():
     st.advance(st.k_per)
     twin.advance(st.k_per + 1)
     np.testing.assert_allclose(st.y[:4], twin.y[:4], rtol=1e-12, atol=1e-12)
+
+
+# -- flights gone over at once (flight.flight_skip) ------------------------------------------------
+
+
+def _without_skips(stepper: Stepper) -> Stepper:
+    """A twin of ``stepper`` whose flights are stepped one step at a time (no surface bound)."""
+    twin = stepper.twin()
+    twin.prm = stepper.prm.copy()
+    twin.prm[ig.P_SURF] = -1.0
+    return twin
+
+
+@pytest.mark.parametrize("m_star, amplitude, extra", [
+    (0.1, 1.0, {}),  # thrown high: 98.5 % of its steps in flight, a* down to -47
+    (0.03, 4.0, {"drive": {"amplitude": 4.0, "orbit": "retrograde"}}),
+    (1.0, 3.0, {"particle": {"m_star": 1.0, "load": 0.2}}),
+])
+def test_high_flights_gone_over_at_once_give_the_same_bits(m_star, amplitude, extra):
+    """A run whose flights skip the steps that can neither land nor deepen a* (the drive's bound
+    of |u_y|) against the same run stepping every flight step: the same state, window counts,
+    deepest a* and events, to the last bit, over 200 periods cut into windows and periods."""
+    skip = _stepper(m_star, amplitude, **extra)
+    step = _without_skips(skip)
+    assert skip.prm[ig.P_SURF] == pytest.approx(abs(amplitude))
+    for stepper in (skip, step):
+        stepper.advance(50 * stepper.k_per)
+        stepper.advance_periods(100)
+        stepper.advance(50 * stepper.k_per + 17)
+    assert skip.y.tobytes() == step.y.tobytes()
+    assert skip.fh.tobytes() == step.fh.tobytes()
+    for index in (ev.S_OUT, ev.S_AMIN, ev.S_COUNT, ev.S_LOST, ev.S_SLIP, ev.S_NEV):
+        assert skip.st[index] == step.st[index], index
+    assert np.array_equal(ev.events(skip.st), ev.events(step.st))
+    assert skip.st[ev.S_OUT] > 50 * skip.k_per  # it did fly
+
+
+def test_a_high_flight_is_gone_over_in_a_few_evaluations():
+    """The skip is the point: mid-flight at m* 0.1, A* 1 (a flight of many periods) the steps
+    ahead that cannot land or deepen a* number in the hundreds."""
+    st = _stepper(0.1, 1.0)
+    st.advance(40 * st.k_per)
+    while not (st.st[ev.S_FLY] > 40 and st.y[3] < 0.0):  # rising, well inside a flight
+        st.advance(1)
+    ka = st.st[ev.S_ANCHOR]
+    parab = (float(st.prm[ig.P_H]), st.st[ev.S_ANCHOR + 3], st.st[ev.S_ANCHOR + 4],
+             1.0 / float(st.prm[ig.P_M]))
+    n = flight_skip(st.step - ka, 10 ** 6, parab, float(st.prm[ig.P_SURF]), st.st[ev.S_AMIN])
+    assert n > 100
+
+
+def test_flight_skip_never_goes_over_a_landing_or_a_deeper_flight():
+    """Random parabolas, bounds and deepest a*: every step the skip goes over is below -U (it
+    cannot land) and every step it counts is not below deepest + U (it cannot deepen a*), checked
+    step by step; and it does skip where a whole flight stays far from the surface."""
+    rng = np.random.default_rng(7)
+    skipped = 0
+    for _ in range(3000):
+        h = 1.0 / rng.choice([64, 128, 512])
+        ay = 10.0 ** rng.uniform(-2, 3)
+        bound = rng.uniform(0.0, 10.0)
+        apex = -bound - 10.0 ** rng.uniform(-6, 3)
+        t_apex = rng.uniform(-5.0, 5.0)
+        vy0 = -ay * t_apex
+        y0 = apex + 0.5 * ay * t_apex * t_apex
+        deepest = apex - bound + rng.uniform(-3.0, 3.0)
+        s = int(rng.integers(-2000, 2000))
+        n_max = int(rng.integers(0, 5000))
+        n = flight_skip(s, n_max, (h, y0, vy0, ay), bound, deepest)
+        assert 0 <= n <= n_max
+        if n == 0:
+            continue
+        skipped += 1
+        t = (s + np.arange(1, n + 1)) * h
+        height = y0 + vy0 * t + 0.5 * ay * t * t
+        assert np.all(height < -bound), "a skipped step could land"
+        assert np.all(height[:-1] - bound >= deepest), "a counted step could deepen a*"
+    assert skipped > 200  # 386 of the 3000 (the others: near the surface, or n_max < 4)
+    # no bound from the drive: every step is stepped
+    assert flight_skip(0, 1000, (0.01, -100.0, 0.0, 1.0), -1.0, -200.0) == 0

@@ -41,7 +41,13 @@ from .evidence import (
     observe_contact,
     observe_step,
 )
-from .flight import count_flight, flight_body, on_parabola, parabola  # noqa: F401 - loop globals
+from .flight import (  # noqa: F401 - loop globals
+    count_flight,
+    flight_body,
+    flight_skip,
+    on_parabola,
+    parabola,
+)
 from .rolling import (  # noqa: F401 - ROLL_DAMPING: the rolling spring's, named here too
     JIT,
     ROLL_DAMPING,
@@ -82,9 +88,10 @@ PRM_NAMES = (
     "restitution_damping",  # C of the restitution damping C a*^((p-1)/2) a*' (0: off)
     "air_drag",  # c of the linear air drag -c v on the centre (0: off), dynamics.air_drag
     "pulloff",  # F*_pull of an adhesive contact: it slides at |T*| = N* + 2 F*_pull (0: none)
+    "surface_bound",  # U >= |u_y| at every t*, x* (the drive's; -1: none), dynamics.flight
 )
 (P_M, P_MU, P_THETA, P_H, P_ORDER, P_FRICTION, P_DAMP, P_P, P_KRAMP, P_ROLL, P_RR,
- P_MX, P_LOAD, P_REST, P_DRAG, P_PULL) = range(len(PRM_NAMES))
+ P_MX, P_LOAD, P_REST, P_DRAG, P_PULL, P_SURF) = range(len(PRM_NAMES))
 N_PRM = len(PRM_NAMES)
 
 #: the horizontal inertia m*_x (P_MX) that ``numerics.settle`` integrates a heavier particle
@@ -361,7 +368,8 @@ def wave_loop_body(y, fh, ctr, contact, prm, dp, n_steps, rec, rec_every, st):
             return  # the stepper grows the event log and goes on from the next step
         if fly and count_flight(st, y, ctr[0], not inside and nf == 0.0 and tf == 0.0):
             flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st,
-                        (h, m, ax, k_ramp, scale_b if friction else 0.0, roll, move_x))
+                        (h, m, ax, k_ramp, scale_b if friction else 0.0, roll, move_x,
+                         prm[P_SURF]))
             k_rec = next_record(ctr[0], rec_every)
 
 

@@ -253,6 +253,7 @@ def assemble(scene: Scene, engine: Engine = "compiled", model: ContactModel | No
         equations.append(f"start at a* = 0 with a*' = {drive.velocity:g}")
     params = _params(scene, k_per, ramp, rest_c)
     params[air_drag.PARAM] = air_drag.parameter(scene, caps.rigid)  # a force: its module decides
+    params["surface_bound"] = part.surface_bound(scene)  # high flights go at once (.flight)
     equations += air_drag.describe(scene)
     if caps.rigid:
         # material.restitution, or the model's own parameter (_restitution checks they agree)

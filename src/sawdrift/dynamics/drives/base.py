@@ -66,6 +66,13 @@ class Drive:
         """Amplitude of u_y (sets the natural size of the vertical state)."""
         return 0.0
 
+    def surface_bound(self, scene: Any) -> float:
+        """A bound U of |u_y| over every t* and x*, ramp included, or -1 where the drive gives
+        none: a free flight whose height stays below -U cannot land, and goes over those steps
+        at once (:func:`~sawdrift.dynamics.flight.flight_skip`). A drive of a plugin that does
+        not give one keeps every flight step."""
+        return -1.0
+
     def state_scale(self, scene: Any) -> np.ndarray:
         """Natural sizes of the stroboscopic state (x*', y*, y*')."""
         amp = self.vertical_amplitude(scene)

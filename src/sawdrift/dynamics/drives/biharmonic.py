@@ -73,6 +73,13 @@ class Biharmonic(Drive):
         d = scene.drive
         return abs(d.amplitude) + 16.0 * abs(d.second)
 
+    def surface_bound(self, scene: Any) -> float:
+        """|Y1| + |Y2|: u_y = R(t*) (Y1 cos(2 pi t*) + Y2 cos(4 pi t* + phi)), R in [0, 1]; 0
+        with the vertical wave off."""
+        if not scene.effects.vertical_wave:
+            return 0.0
+        return abs(scene.drive.amplitude) + abs(scene.drive.second)
+
     def state_scale(self, scene: Any) -> np.ndarray:
         """2 pi (|X1| + 2 |X2|), 1 + |Y1| + |Y2|, 2 pi (1 + |Y1| + |Y2|): sizes of x*', y*, y*'."""
         d = scene.drive

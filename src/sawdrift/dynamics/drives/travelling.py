@@ -83,6 +83,11 @@ class TravellingWave(Drive):
     def vertical_amplitude(self, scene: Any) -> float:
         return scene.drive.amplitude
 
+    def surface_bound(self, scene: Any) -> float:
+        """|A*|: u_y = A* R(t*) cos(2 pi t*) with the ramp R in [0, 1]; 0 with the vertical wave
+        off."""
+        return abs(scene.drive.amplitude) if scene.effects.vertical_wave else 0.0
+
     def state_scale(self, scene: Any) -> np.ndarray:
         """2 pi r A*, 1 + A*, 2 pi (1 + A*): the sizes of x*', y*, y*'."""
         amp, r = scene.drive.amplitude, scene.horizontal_ratio

@@ -145,6 +145,15 @@ class TwoWaves(Drive):
             return scene.drive.amplitude * (1.0 + scene.drive.backward)
         return abs(self.orbit(scene)[1])
 
+    def surface_bound(self, scene: Any) -> float:
+        """|A*| (1 + |s|) for a direct run (the two waves' vertical amplitudes added), else
+        |U_y| of the local orbit; 0 with the vertical wave off. The ramp is in [0, 1]."""
+        if not scene.effects.vertical_wave:
+            return 0.0
+        if self.direct(scene):
+            return abs(scene.drive.amplitude) * (1.0 + abs(scene.drive.backward))
+        return abs(self.orbit(scene)[1])
+
     def state_scale(self, scene: Any) -> np.ndarray:
         """2 pi |U_x|, 1 + |U_y|, 2 pi (1 + |U_y|): the sizes of x*', y*, y*'."""
         amp = self.vertical_amplitude(scene)
