@@ -162,3 +162,37 @@ def test_a_mass_and_a_density_both_given_must_agree(monkeypatch, capsys):
                         "device.particle.mass=4 mg", "--set", "device.particle.density=7850 kg/m^3")
     line = _one_line(code, err)
     assert "mass = 4e-06 kg and density = 7850 kg/m^3" in line and "4.11025e-06 kg" in line, line
+
+
+@pytest.mark.parametrize(("text", "field"), [
+    ('[effects]\nrotation = "true"\n', "effects.rotation = 'true'"),
+    ('[effects]\nrotation = "yes"\n', "effects.rotation = 'yes'"),
+    ('[numerics]\nsettle = "false"\n', "numerics.settle = 'false'"),
+    ('[effects]\nfriction = 1\n', "effects.friction = 1"),
+])
+def test_a_boolean_written_as_text_or_a_number_in_a_scene_file_is_refused(text, field, tmp_path,
+                                                                          monkeypatch, capsys):
+    """rotation = "yes" turned rotation on, settle = "false" made a fixed run, friction = 1 kept
+    friction: pydantic's lax mode reads them as booleans. One line naming the field, exit 2."""
+    scene = tmp_path / "flag.toml"
+    scene.write_text(text)
+    code, _, err = call(monkeypatch, capsys, "run", str(scene), "--explain")
+    line = _one_line(code, err)
+    assert f"{field} is not a boolean" in line and "true or false is expected" in line, line
+
+
+@pytest.mark.parametrize("field, value", [("count", "200"), ("fraction", "0.5"), ("seed", "0")])
+def test_a_number_written_as_text_in_a_particles_table_is_refused(field, value, tmp_path,
+                                                                  monkeypatch, capsys):
+    """sort and lammps read a [particles] table beside the scene: count = "200" placed 200
+    spheres without a word. One line naming particles.FIELD, exit 2, nothing written."""
+    text = Path(sd.__file__).parents[2].joinpath("examples", "mixture.toml").read_text()
+    quoted, n = re.subn(rf"(?m)^{field} = {re.escape(value)}$", f'{field} = "{value}"', text)
+    assert n == 1
+    scene = tmp_path / "mix.toml"
+    scene.write_text(quoted)
+    out = tmp_path / "out"
+    code, _, err = call(monkeypatch, capsys, "sort", str(scene), "-o", str(out))
+    line = _one_line(code, err)
+    assert f"particles.{field} = '{value}' is a number written as text" in line, line
+    assert not out.exists()

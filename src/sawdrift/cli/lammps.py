@@ -116,6 +116,11 @@ def _scene_and_particles(scene_file: Path | None, model: str | None, params: dic
 
         data = read_toml(scene_file)
         particles = data.pop("particles", None)
+        if isinstance(particles, dict):  # count = "200": a number written as text
+            from ..lammps.placement import Particles
+            from ..scene.quoted import refuse_quoted_fields
+
+            refuse_quoted_fields(particles, Particles, source, "particles.")
         data = sd.bind(sd.scene.build_scene(data, source=source), source).model_dump(exclude_none=True)
     values = dict(overrides)
     if model is not None:

@@ -25,7 +25,7 @@ from ..errors import SawdriftError, SceneError
 from ..scene.bounds import NOT_A_NUMBER
 from ..scene.overrides import nearest
 from ..scene.parts import Impact, Prescribed, format_validation_error
-from ..scene.quoted import refuse_quoted_params
+from ..scene.quoted import refuse_quoted_fields
 from ..scene.schema import Scene
 from .adhesion import adhesion_of, adhesive_model, supports_adhesion
 from .base import ContactModel
@@ -84,7 +84,7 @@ def _checked(scene: Scene, source: str | None) -> tuple[type[ContactModel], Base
     cls = get_model(scene.model)
     where = f"{source}: " if source else ""
     # a number written as text ("64"), which pydantic's lax mode would read as 64
-    refuse_quoted_params(scene.model_params, cls.Params, source)
+    refuse_quoted_fields(scene.model_params, cls.Params, source, "model_params.")
     params = _params(cls, scene, where)
     problem = _capability_problem(cls, scene)
     if problem is not None:

@@ -21,7 +21,7 @@ from pydantic import BaseModel, BeforeValidator
 from ..errors import SceneError
 from .units import FIELD_KIND
 
-__all__ = ["refuse_quoted_numbers", "refuse_quoted_params"]
+__all__ = ["refuse_quoted_fields", "refuse_quoted_numbers"]
 
 
 def _parts(annotation: Any) -> tuple[list[Any], list[Any]]:
@@ -82,15 +82,33 @@ def _refuse(path: str, value: str, source: str | None) -> None:
                      f"number is expected; write {shown} without quotes")
 
 
+def _is_bool(annotation: Any) -> bool:
+    """Whether a field holds a boolean (Optional or not)."""
+    kinds, _ = _parts(annotation)
+    return kinds == [bool]
+
+
+def _refuse_bool(path: str, value: Any, source: str | None) -> None:
+    """One line for a boolean field given text or a number (pydantic's lax mode read "yes",
+    "off", "true" and 1 as booleans)."""
+    where = f"{source}: " if source else ""
+    leaf = path.rsplit(".", 1)[-1]
+    raise SceneError(f"{where}{path} = {value!r} is not a boolean: true or false is expected; "
+                     f"write {leaf} = true or {leaf} = false, without quotes")
+
+
 def _walk(data: Mapping[str, Any], models: list[type[BaseModel]], source: str | None,
           prefix: str) -> None:
     """:func:`refuse_quoted_numbers` of one table read against the ``models`` it may be (a
-    drive of any kind): a field is a number where every model that has it says so."""
+    drive of any kind): a field is a number (or a boolean) where every model that has it says
+    so."""
     for key, value in data.items():
         infos = [m.model_fields[key] for m in models if key in m.model_fields]
         if not infos:
             continue  # not a field (check_known_fields names it), or model_params (below)
         path = f"{prefix}{key}"
+        if not isinstance(value, bool) and all(_is_bool(i.annotation) for i in infos):
+            _refuse_bool(path, value, source)
         if isinstance(value, str):
             if all(_is_number(i.annotation, i.metadata, key) for i in infos):
                 _refuse(path, value, source)
@@ -126,14 +144,17 @@ def refuse_quoted_numbers(data: Mapping[str, Any], scene: type[BaseModel],
         ``FILE: particle.m_star = '10' is a number written as text (in quotes): a number is
         expected; write m_star = 10 without quotes``. The model's parameters
         (``[model_params]``), which this layer knows nothing of, are read when the scene is
-        bound to its model (:func:`refuse_quoted_params`, from
+        bound to its model (:func:`refuse_quoted_fields`, from
         :func:`sawdrift.contact.binding.bind`): from a file or from Python alike.
     """
     _walk(data, [scene], source, "")
 
 
-def refuse_quoted_params(params: Mapping[str, Any], schema: Any, source: str | None) -> None:
-    """:func:`refuse_quoted_numbers` for a file's ``[model_params]`` read against the model's
-    ``Params`` class ``schema`` (nothing where it is not a pydantic model)."""
+def refuse_quoted_fields(table: Mapping[str, Any], schema: Any, source: str | None,
+                         prefix: str) -> None:
+    """:func:`refuse_quoted_numbers` for another table read against its own pydantic class
+    ``schema`` (nothing where it is not one), its fields named ``prefix`` + name: a model's
+    ``[model_params]`` (``"model_params."``, :func:`sawdrift.contact.binding.bind`), a
+    mixture's ``[particles]`` (``"particles."``)."""
     if isinstance(schema, type) and issubclass(schema, BaseModel):
-        _walk(params, [schema], source, "model_params.")
+        _walk(table, [schema], source, prefix)
