@@ -43,9 +43,10 @@ def _sweep(echo: Callable[[str], None], table: Path, *args, **kwargs):
 def hatch_note(unsettled: int, total: int) -> str:
     """What the hatching of the regime figures means, as the demo prints it.
 
-    One meaning in every figure: the cell's ``settled`` is false. Its run reached neither a fixed
-    point nor a periodic orbit within its cap: a slow approach, a motion that never repeats
-    (quasi-periodic, or irregular bouncing), so its drift is a long-time mean with its error
+    One meaning in every figure: the cell's ``settled`` is false. Its drift did not settle
+    within its cap on a fixed point, a periodic orbit or a motion that beats without repeating
+    (whose window means agree: settled, ``quasi_periodic`` in a sweep table): a slow approach,
+    or irregular (chaotic, intermittent) motion, so its drift is a long-time mean with its error
     where the motion is irregular, else the mean of its last window. The colour under the
     hatching is still the cell's regime, whatever it is.
     """

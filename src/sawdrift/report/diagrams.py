@@ -115,9 +115,9 @@ def creep_grid(table: pd.DataFrame, model: str, x: str = "amplitude", y: str = "
 
 #: the hatching of cells whose drift has not settled, in every regime figure and the drift map
 HATCH = "////"
-#: what the hatching means, in every legend: ``settled`` is false, i.e. the cell reached neither a
-#: fixed point nor a periodic orbit within its cap (a slow approach, or irregular bouncing whose
-#: drift is a long-time mean)
+#: what the hatching means, in every legend: ``settled`` is false, i.e. the cell's drift did not
+#: settle within its cap on a fixed point, a periodic orbit or a motion that beats without
+#: repeating (a slow approach, or irregular bouncing whose drift is a long-time mean)
 HATCH_LABEL = "not settled: no steady drift found"
 
 
