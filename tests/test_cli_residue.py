@@ -196,3 +196,14 @@ def test_a_number_written_as_text_in_a_particles_table_is_refused(field, value, 
     line = _one_line(code, err)
     assert f"particles.{field} = '{value}' is a number written as text" in line, line
     assert not out.exists()
+
+
+def test_an_infinity_written_as_text_is_not_told_to_lose_its_quotes(tmp_path, monkeypatch, capsys):
+    """m_star = "inf" was told 'write m_star = inf without quotes', which the field's range
+    refuses in turn: the line says a finite number is expected."""
+    scene = tmp_path / "inf.toml"
+    scene.write_text('[particle]\nm_star = "inf"\n')
+    code, _, err = call(monkeypatch, capsys, "run", str(scene))
+    line = _one_line(code, err)
+    assert "particle.m_star = 'inf'" in line and "a finite number is expected" in line, line
+    assert "without quotes" not in line

@@ -11,6 +11,7 @@ particle.m_star=10`` arrives as text and is parsed on purpose (:func:`sawdrift.c
 
 from __future__ import annotations
 
+import math
 import types
 import typing
 from collections.abc import Mapping
@@ -72,10 +73,13 @@ def _items(annotation: Any) -> Any:
 def _refuse(path: str, value: str, source: str | None) -> None:
     """One line if ``value`` (text) is a number written as text."""
     try:
-        float(value.strip())
+        number = float(value.strip())
     except ValueError:
         return  # not a number: the schema names what is wrong with it
     where = f"{source}: " if source else ""
+    if not math.isfinite(number):  # "inf" unquoted is refused by the field's range in turn
+        raise SceneError(f"{where}{path} = {value!r} is text (in quotes), and not a finite "
+                         "number: a finite number is expected")
     leaf = path.rsplit(".", 1)[-1]
     shown = value.strip() if "[" in leaf else f"{leaf} = {value.strip()}"
     raise SceneError(f"{where}{path} = {value!r} is a number written as text (in quotes): a "
