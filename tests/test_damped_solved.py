@@ -12,6 +12,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from sawdrift.errors import SawdriftError
+
 from .brute_force import default_and_brute
 
 
@@ -109,3 +111,74 @@ def test_confirming_windows_do_not_start_on_an_orbit_the_run_leaves():
     assert res.settled and res.settle_method != "orbit_then_full"
     gap = abs(res.drift_ratio - brute.drift_ratio)
     assert gap <= 1e-3 * abs(brute.drift_ratio), (res.drift_ratio, brute.drift_ratio)
+
+
+def _placed_run(**scene):
+    """The stepper of ``scene``'s default run where it would be put on its damped orbit, that
+    orbit, and the state's scale (the run stops there)."""
+    import sawdrift.dynamics.direct as direct
+    from sawdrift import Scene, run
+
+    seen = {}
+
+    def stop(stepper, orbit, scale):
+        seen.update(stepper=stepper.twin(), orbit=orbit, scale=scale)
+        raise _Stop
+
+    original = direct.reaches_orbit
+    direct.reaches_orbit = stop
+    try:
+        run(Scene(**scene))
+    except _Stop:
+        pass
+    finally:
+        direct.reaches_orbit = original
+    return seen["stepper"], seen["orbit"], seen["scale"]
+
+
+class _Stop(SawdriftError):
+    """Ends the run where it would be put on its orbit (passes the plugin guard as its own)."""
+
+
+def test_a_damped_orbit_draws_the_run_in_at_its_floquet_rate():
+    """hertz_tsuji m* 16.5, A* 8.7: the vertical Floquet multipliers of the solved orbit (one
+    period of finite differences) say a disturbance decays over tau = 1290 periods; the run from
+    its own state, once near the orbit, closes in by exp(-1) per tau (measured 0.37), and the
+    check lets the orbit be placed."""
+    from sawdrift.dynamics.floquet import reaches_orbit, vertical_decay_periods
+    from sawdrift.dynamics.orbit_use import place_on_orbit
+
+    stepper, orbit, scale = _placed_run(model="hertz_tsuji", particle={"m_star": 16.524291},
+                                        drive={"amplitude": 8.7})
+    placed = stepper.twin()
+    place_on_orbit(placed, orbit)
+    tau = vertical_decay_periods(placed, scale)
+    assert 1000.0 < tau < 1600.0
+    run = stepper.twin()
+    chunk = int(np.ceil(tau))
+    y0, v0 = orbit.mean_compression + orbit.eta[0], orbit.eta_rate[0]
+    env = []
+    for _ in range(8):
+        ends = run.advance_periods(chunk)[-chunk // 5:]
+        env.append(np.max(np.hypot((ends[:, 2] - y0) / scale[1], (ends[:, 3] - v0) / scale[2])))
+    ratios = np.array(env[5:]) / np.array(env[4:7])  # near the orbit: below 2e-2
+    assert env[4] < 2e-2 and np.all(np.abs(np.log(ratios) + 1.0) < 0.3), (env, ratios)
+    assert reaches_orbit(stepper, orbit, scale) == 0
+
+
+def test_a_run_that_heads_for_another_motion_is_not_put_on_its_damped_orbit():
+    """mmd m* 300, A* 1, mu 0.2, normal damping 0.1, load -0.1: the period-one orbit solved for
+    its hops is stable (its vertical multipliers 0.99989 in modulus), but the run from rest
+    settles on a modulated hop 2.8e-3 (scaled) from it: 0.025875 in drift ratio over the last
+    quarter of 1e5, 2e5 and 4e5 periods of brute force, where the orbit drifts at 0.025522
+    (1.4e-2 off), which the run reported, settled. Now the run is not put on the orbit: its
+    windows from where the check saw the plateau give 0.025869, not settled, and say so."""
+    from sawdrift import Scene, run
+
+    res = run(Scene(model="mmd", particle={"m_star": 300.0, "load": -0.1},
+                    drive={"amplitude": 1.0}, material={"mu": 0.2},
+                    effects={"normal_damping": 0.1}))
+    brute = 0.025875
+    assert res.settle_method != "solved"
+    assert abs(res.drift_ratio - brute) <= 1e-3 * brute, res.drift_ratio
+    assert not res.settled and any("not settled" in w for w in res.warnings), res.warnings

@@ -65,6 +65,7 @@ import math
 import numpy as np
 
 from .approach import relative_bound
+from .floquet import reaches_orbit
 from .full_inertia import settle_full, shift_speed
 from .imposed import imposed_drift
 from .orbit_law import damped_normal
@@ -258,7 +259,8 @@ def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
         return not (probe.contact_lost and abs(probe.liftoffs_per_period - 1.0) > LIFT_MATCH)
 
     # a damped normal contact decays towards the orbit: no probe of the transient, the run is
-    # put on the orbit and its evidence window judges it
+    # put on the orbit (where a copy of it closes in on the orbit, .floquet.reaches_orbit) and
+    # its evidence window judges it
     damped = damped_normal(stepper)
     orbit = separated_orbit(stepper, scene, speed, tol, keep_contact=False,
                             regular=None if damped else regular)
@@ -273,6 +275,12 @@ def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
     # stick boundary the particle's ringing, which the orbit leaves out, sets its drift
     solved = m >= SOLVED_MIN_MASS and not orbit.partial_slip
     if damped:
+        away = reaches_orbit(stepper, orbit, scale)
+        if away:
+            # the run from its own state heads for another motion (a modulated hop): windows
+            # from where the check saw it settle on it (or take its long-time mean)
+            stepper.advance_periods(away)
+            return None
         place_on_orbit(stepper, orbit)
         averaged = (orbit.drift, 1.0 if orbit.loses_contact else 0.0, 0.0)
     else:
