@@ -280,7 +280,7 @@ def direct_start(stepper: Stepper, scene, speed: float, scale: np.ndarray
             # the run from its own state heads for another motion (a modulated hop): windows
             # from where the check saw it settle on it (or take its long-time mean)
             stepper.advance_periods(away)
-            return None
+            return IRREGULAR if m >= SOLVED_MIN_MASS else None
         place_on_orbit(stepper, orbit)
         averaged = (orbit.drift, 1.0 if orbit.loses_contact else 0.0, 0.0)
     else:
