@@ -84,10 +84,12 @@ MOST_PERIODS = 60_000
 SHORT_DECAY = 30.0
 
 
-def reaches_orbit(stepper: Stepper, orbit: SeparatedOrbit, scale: np.ndarray) -> int:
-    """0 where a run from the stepper's present state reaches the damped ``orbit``, or where
-    that cannot be told within :data:`MOST_PERIODS` (the orbit is placed, as before); else the
-    periods after which a twin of the run showed it does not (module docstring). The envelope
+def reaches_orbit(stepper: Stepper, orbit: SeparatedOrbit, scale: np.ndarray
+                  ) -> tuple[int, float]:
+    """(0, tau) where a run from the stepper's present state reaches the damped ``orbit``, or
+    where that cannot be told within :data:`MOST_PERIODS` (the orbit is placed, as before);
+    else (the periods after which a twin of the run showed it does not, tau) (module
+    docstring); tau is the orbit's vertical decay time (:func:`vertical_decay_periods`). The envelope
     is the largest scaled vertical distance from the orbit's state over the last fifth of each
     tau (the disturbance turns about the orbit); once it is below :data:`LINEAR`, two taus
     that each shrink it by :data:`PLATEAU` or more say the run reaches the orbit, one that does
@@ -96,7 +98,7 @@ def reaches_orbit(stepper: Stepper, orbit: SeparatedOrbit, scale: np.ndarray) ->
     place_on_orbit(placed, orbit)
     tau = vertical_decay_periods(placed, scale)
     if tau <= SHORT_DECAY or not math.isfinite(tau):
-        return 0
+        return 0, tau
     y0 = orbit.mean_compression + float(orbit.eta[0])
     v0 = float(orbit.eta_rate[0])
     run = stepper.twin()
@@ -110,9 +112,9 @@ def reaches_orbit(stepper: Stepper, orbit: SeparatedOrbit, scale: np.ndarray) ->
         env = float(np.max(np.hypot((tail[:, 2] - y0) / scale[1], (tail[:, 3] - v0) / scale[2])))
         if last < LINEAR:
             if env >= PLATEAU * last:
-                return spent
+                return spent, tau
             falls += 1
             if falls == 2:
-                return 0
+                return 0, tau
         last = env
-    return 0
+    return 0, tau

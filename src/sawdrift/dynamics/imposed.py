@@ -245,11 +245,13 @@ def _contact_steps(a: np.ndarray, model) -> np.ndarray:
 
 
 def imposed_drift(stepper: Stepper, scene, speed: float, scale: np.ndarray | None = None,
-                  evidence: int = 0) -> tuple[BatchMeans | None, Window | None]:
+                  evidence: int = 0, record: int = 0) -> tuple[BatchMeans | None, Window | None]:
     """The long-time mean drift (x* per period) and its error at an imposed speed along the
     run's own recorded vertical motion (module docstring); None without a zero of <T*>(V).
 
-    With ``scale`` and ``evidence`` periods, the record's
+    The record holds at least ``record`` periods (a run that heads for a slowly modulated
+    motion, :func:`~.floquet.reaches_orbit`: one decay time of the modulation). With ``scale``
+    and ``evidence`` periods, the record's
     first :data:`BRACKET_PERIODS` give the zero the secants start from before the rest is
     recorded, and the rest, at that zero's speed, is measured as a window too
     (:func:`~.window.measure_window`): the regime's evidence at the drift, returned with the
@@ -261,7 +263,7 @@ def imposed_drift(stepper: Stepper, scene, speed: float, scale: np.ndarray | Non
     3.5e-14). An irregular heavy bouncer runs 400 periods fewer.
     """
     m = scene.particle.m_star
-    periods = max(scene.numerics.mean_periods, 2 * full_window_length(m, scene.theta, 1))
+    periods = max(scene.numerics.mean_periods, 2 * full_window_length(m, scene.theta, 1), record)
     rest = periods - BRACKET_PERIODS
     if scale is None or evidence <= 0 or rest < evidence:
         return _solve(_Pushes(_Record(stepper, record_columns(stepper, periods)), speed)), None
