@@ -52,3 +52,6 @@ class Settling:
     #: a drift solved directly under a load whose slow-cycle average may be off by this (drift
     #: ratio) beyond the tolerance (:func:`~.direct.averaging_error`): not settled
     uncertain: float = 0.0
+    #: the vertical decay time (periods) of the damped orbit a run was sent back from, where its
+    #: windows settled sooner (:class:`~.direct.SentBack`): not settled
+    slow_vertical: float = 0.0

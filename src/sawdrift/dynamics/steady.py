@@ -53,7 +53,7 @@ from ..errors import SceneError
 from . import adams_bashforth as ig
 from .adams_bashforth import horizontal_inertia
 from .approach import relative_bound
-from .direct import settle_direct
+from .direct import SentBack, settle_direct
 from .evidence import EV_LANDING
 from .full_inertia import (
     held,
@@ -259,6 +259,15 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     got = settle_direct(stepper, scene, speed, scale, minimum_window, max_steps)
     if isinstance(got, tuple):
         return got
+    if isinstance(got, SentBack):
+        # sent back from its damped orbit: windows that settle before its vertical motion can
+        # have relaxed are not a steady drift (.direct.SentBack)
+        start = stepper.step
+        win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps)
+        ran = (stepper.step - start) / stepper.k_per
+        if info.settled and ran < got.tau:
+            info = replace(info, settled=False, slow_vertical=got.tau)
+        return win, replace(info, periods=stepper.step / stepper.k_per)
     # a sticking or creeping contact (STUCK) returns to its drift within a window from any
     # start, held by its tangential stiffness (the creep scales as m*^(-1/2) at full inertia):
     # no approach at reduced inertia, windows at full inertia from here

@@ -308,6 +308,12 @@ def _unsettled_reason(out: WaveRun, settling: bool) -> str:
                 f"that average may be off by about {out.settling.uncertain:.1g} in drift ratio, "
                 f"beyond the tolerance; brute force (--no-settle, some 40 m*/mu periods) "
                 f"decides")
+    if out.settling.slow_vertical > 0.0:
+        return (f"not settled: put on the damped orbit its drift was solved for, it did not "
+                f"stay there by its evidence window; its windows from its own state agreed after "
+                f"{periods:.0f} periods, but its vertical motion relaxes over about "
+                f"{out.settling.slow_vertical:.0f} periods, so their drift need not be the steady "
+                f"one; brute force (--no-settle, several times that) decides")
     if out.settling.leaving:
         return (f"not settled: its take-offs still moved away from repeating when the run "
                 f"stopped after {periods:.0f} periods (an orbit losing its stability, as at a "
