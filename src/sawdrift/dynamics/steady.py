@@ -259,20 +259,16 @@ def settle(stepper: Stepper, scene, speed: float, scale: np.ndarray, minimum_win
     got = settle_direct(stepper, scene, speed, scale, minimum_window, max_steps)
     if isinstance(got, tuple):
         return got
-    if isinstance(got, SentBack):
-        # sent back from its damped orbit: windows that settle before its vertical motion can
-        # have relaxed are not a steady drift (.direct.SentBack)
-        start = stepper.step
-        win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps)
-        ran = (stepper.step - start) / stepper.k_per
-        if info.settled and ran < got.tau:
-            info = replace(info, settled=False, slow_vertical=got.tau)
-        return win, replace(info, periods=stepper.step / stepper.k_per)
     # a sticking or creeping contact (STUCK) returns to its drift within a window from any
     # start, held by its tangential stiffness (the creep scales as m*^(-1/2) at full inertia):
     # no approach at reduced inertia, windows at full inertia from here
+    start = stepper.step
     win, info = _approach(stepper, scene, speed, scale, minimum_window, max_steps,
                           reduce=got != STUCK)
+    if isinstance(got, SentBack) and info.settled and stepper.step - start < got.tau * stepper.k_per:
+        # sent back from its damped orbit: windows that settle before its vertical motion can
+        # have relaxed are not a steady drift (.direct.SentBack)
+        info = replace(info, settled=False, slow_vertical=got.tau)
     return win, replace(info, periods=stepper.step / stepper.k_per)
 
 
