@@ -181,6 +181,16 @@ def observe_step(st, out, slip, a):
     st[S_COUNT] += 1.0
 
 
+@njit(cache=True)
+def observe_flight_steps(st, n):
+    """:func:`observe_step` of ``n`` whole flight steps at once (``n`` > 0), none of which
+    deepens a* (:func:`~sawdrift.dynamics.flight.flight_skip`): out of contact, no slip. The
+    counts are whole numbers, so the sums are those of ``n`` single steps to the bit."""
+    st[S_LOST] = 1.0
+    st[S_OUT] += n
+    st[S_COUNT] += n
+
+
 def events(st: np.ndarray) -> np.ndarray:
     """The events written since the window opened, as an (n, EV_W) array."""
     n = int(st[S_NEV])

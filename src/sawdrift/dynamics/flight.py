@@ -87,12 +87,14 @@ def flight_skip(s, n_max, parab, bound, deepest):
         if t1 >= b_lo:
             return 0  # inside the band already
         n = min(n, _steps_to(b_lo, h, s, n_max) + 1)  # step s + n - 1 at the band's edge
+    first = parabola(y0, vy0, ay, t1)
+    if first > thr or first - bound < deepest:
+        return 0
     for _ in range(3):
         if n < MIN_SKIP:
             return 0
-        if (parabola(y0, vy0, ay, (s + n) * h) <= thr and parabola(y0, vy0, ay, t1) <= thr
-                and parabola(y0, vy0, ay, (s + n - 1) * h) - bound >= deepest
-                and parabola(y0, vy0, ay, t1) - bound >= deepest):
+        if (parabola(y0, vy0, ay, (s + n) * h) <= thr
+                and parabola(y0, vy0, ay, (s + n - 1) * h) - bound >= deepest):
             return n
         n -= 1
     return 0
@@ -169,9 +171,7 @@ def flight_body(y, fh, ctr, dp, k_end, rec, rec_every, st, consts):
                 observe_step(st, 1.0, 0.0, a_j)  # noqa: F821
             counted = k + n - max(k + 1, k_ramp)
             if counted > 0:
-                st[S_LOST] = 1.0  # noqa: F821
-                st[S_OUT] += counted  # noqa: F821
-                st[S_COUNT] += counted  # noqa: F821
+                observe_flight_steps(st, counted)  # noqa: F821
             j += n
             tau = (k0 + j - ka) * h
             a_j = (parabola(y0, vy0, ay, tau)

@@ -109,7 +109,7 @@ def _walk(data: Mapping[str, Any], models: list[type[BaseModel]], source: str | 
     for key, value in data.items():
         infos = [m.model_fields[key] for m in models if key in m.model_fields]
         if not infos:
-            continue  # not a field (check_known_fields names it), or model_params (below)
+            continue  # not a field (check_known_fields names it), or model_params (bind's)
         path = f"{prefix}{key}"
         if not isinstance(value, bool) and all(_is_bool(i.annotation) for i in infos):
             _refuse_bool(path, value, source)
