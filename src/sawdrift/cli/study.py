@@ -416,11 +416,10 @@ def bifurcation_cmd(
     n_failed = sum(1 for p in done if p.get("error"))
     if as_json:
         typer.echo(json.dumps(res.summary))
-        failed_cells(n_failed, len(done), "values", f"{out}/{TABLE}")
-        return
-    _bifurcation_text(res, field)
-    typer.echo(f"wrote {out}/bifurcation.parquet, bifurcation.json, bifurcation.png "
-               f"({res.computed} values computed)")
+    else:
+        _bifurcation_text(res, field)
+        typer.echo(f"wrote {out}/bifurcation.parquet, bifurcation.json, bifurcation.png "
+                   f"({res.computed} values computed)")
     failed_cells(n_failed, len(done), "values", f"{out}/{TABLE}")
 
 
