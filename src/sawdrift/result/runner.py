@@ -83,7 +83,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
     """The Result of a periodic drive's run: the regime named from the window's evidence."""
     wave = scene.drive
     assert hasattr(wave, "amplitude") and hasattr(wave, "ramp_periods")  # any periodic drive
-    win, settling, sync = out.window, out.settling, out.window.sync
+    win, settling = out.window, out.settling
     hop_period = out.hop_period
     t90 = settling.t90_periods if out.settle_on else math.nan
     solved = settling.drift if out.speed > 0.0 else None
@@ -109,6 +109,87 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
         t90 = math.nan
         detach = out.last_liftoff if ending == "ejected" else math.nan
     extra: dict[str, object] = {}
+    settled, warnings = _verdict(scene, out, ending, settled, drift_se, ret)
+    if not settled:
+        t90 = math.nan  # the time to 90 % of a speed never reached (it was quoted unsettled)
+    runaway = runaway_acceleration(scene, acceleration) if ending == "runaway" else math.nan
+    if scene.device is not None:
+        extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None,
+                                    detach, drift_se * out.speed, runaway))
+    k_per = stepper.k_per
+    steps = out.steps  # a long-time mean's twin ran on after the window: its steps count
+    return Result(
+        **_window_fields(out, ending == "ejected"),
+        model=scene.model,
+        engine=engine,
+        m_star=scene.particle.m_star,
+        amplitude=wave.amplitude,
+        mu=scene.material.mu,
+        nu=scene.material.nu,
+        horizontal_ratio=scene.horizontal_ratio,
+        profile=scene.particle.profile.shape,
+        steps_per_period=k_per,
+        periods=steps / k_per,
+        ramp_periods=wave.ramp_periods,
+        measure_periods=win.periods,
+        drift_velocity=drift,
+        drift_ratio=drift_ratio,
+        regime=regime,
+        orbit=drive.orbit_name(scene),
+        steps=steps,
+        wall_time_s=out.wall_time_s,
+        gross_slip_fraction=_gross_slip(scene, win, out.speed),
+        scene=scene.model_dump(mode="json"),
+        trajectory=out.trajectory,
+        compile_s=out.compile_s,
+        settled=settled,
+        settle_method=settling.method,
+        settle_periods=(settling.periods if out.long_mean is None
+                        else max(settling.periods, steps / k_per)),
+        t90_periods=t90,
+        horizontal_inertia=settling.horizontal_inertia if out.settle_on else math.nan,
+        mean_acceleration=runaway,
+        drift_ratio_se=drift_se,
+        detach_time=detach,
+        warnings=warnings,
+        detach_phase=detach % 1.0 if math.isfinite(detach) and detach >= 0.0 else math.nan,
+        extra=extra,
+    )
+
+
+def _window_fields(out: WaveRun, ejected: bool) -> dict[str, object]:
+    """The Result's fields read off the run's measuring window: contact, lift-offs and their
+    phases, spin, periodicity, the Lyapunov exponent, events. A free flight's window has no
+    motion to be chaotic or periodic in (an ejected 'silica bead on quartz' reported a Lyapunov
+    exponent 0.0137 and periodicity 0.47): NaN for an ejected particle."""
+    win, sync, hop_period = out.window, out.window.sync, out.hop_period
+    return dict(
+        contact_lost=win.contact_lost,
+        out_of_contact_fraction=win.out_of_contact_fraction,
+        min_compression=win.min_compression,
+        liftoffs_per_period=win.liftoffs_per_period,
+        hop_period=hop_period,
+        liftoff_phase=sync.phase,
+        liftoff_phase_spread=sync.spread,
+        lyapunov=math.nan if ejected else out.lyapunov,
+        spin_rate=win.spin_rate,
+        periodicity=math.nan if ejected else win.periodicity,
+        event_rows=win.events,
+        chaotic=out.chaotic,
+        events_dropped=win.events_dropped,
+        orbit_period=win.orbit_period,
+        liftoffs_per_hop=sync.liftoffs_per_hop if hop_period else math.nan,
+        liftoff_phases=sync.phases if hop_period else (),
+    )
+
+
+def _verdict(scene: Scene, out: WaveRun, ending: str, settled: bool, drift_se: float,
+             ret: float) -> tuple[bool, tuple[str, ...]]:
+    """Whether a periodic drive's run counts as settled, and its warnings: a runaway's or an
+    ejection's (no steady drift), a neutral load (nothing restores the speed), a run within the
+    drive's start-up ramp, or the reason a settling run did not settle."""
+    wave = scene.drive
+    stepper = out.stepper
     # a runaway or an ejection has no steady drift: nothing of a long-time mean to warn about
     warnings = _warnings(scene, replace(out, long_mean=None) if ending else out, drift_se)
     if ending == "ejected":
@@ -132,68 +213,7 @@ def _wave_result(scene: Scene, engine: str, drive: Drive, out: WaveRun) -> Resul
                      "motion; give more periods or a shorter ramp (--ramp-periods)",)
     elif not settled and not ending and out.long_mean is None and scene.numerics.settle is not False:
         warnings += (_unsettled_reason(out, scene.numerics.settle is True),)
-    if not settled:
-        t90 = math.nan  # the time to 90 % of a speed never reached (it was quoted unsettled)
-    runaway = runaway_acceleration(scene, acceleration) if ending == "runaway" else math.nan
-    if scene.device is not None:
-        extra.update(device_outputs(scene.device, drift, regime, t90 if out.settle_on else None,
-                                    detach, drift_se * out.speed, runaway))
-    k_per = stepper.k_per
-    steps = out.steps  # a long-time mean's twin ran on after the window: its steps count
-    return Result(
-        model=scene.model,
-        engine=engine,
-        m_star=scene.particle.m_star,
-        amplitude=wave.amplitude,
-        mu=scene.material.mu,
-        nu=scene.material.nu,
-        horizontal_ratio=scene.horizontal_ratio,
-        profile=scene.particle.profile.shape,
-        steps_per_period=k_per,
-        periods=steps / k_per,
-        ramp_periods=wave.ramp_periods,
-        measure_periods=win.periods,
-        drift_velocity=drift,
-        drift_ratio=drift_ratio,
-        regime=regime,
-        orbit=drive.orbit_name(scene),
-        contact_lost=win.contact_lost,
-        out_of_contact_fraction=win.out_of_contact_fraction,
-        min_compression=win.min_compression,
-        steps=steps,
-        wall_time_s=out.wall_time_s,
-        gross_slip_fraction=_gross_slip(scene, win, out.speed),
-        liftoffs_per_period=win.liftoffs_per_period,
-        hop_period=hop_period,
-        liftoff_phase=sync.phase,
-        liftoff_phase_spread=sync.spread,
-        # a free flight's window has no motion to be chaotic or periodic in: an ejected 'silica
-        # bead on quartz' reported a Lyapunov exponent 0.0137 and periodicity 0.47
-        lyapunov=math.nan if ending == "ejected" else out.lyapunov,
-        spin_rate=win.spin_rate,
-        periodicity=math.nan if ending == "ejected" else win.periodicity,
-        scene=scene.model_dump(mode="json"),
-        trajectory=out.trajectory,
-        event_rows=win.events,
-        chaotic=out.chaotic,
-        events_dropped=win.events_dropped,
-        compile_s=out.compile_s,
-        orbit_period=win.orbit_period,
-        settled=settled,
-        settle_method=settling.method,
-        settle_periods=(settling.periods if out.long_mean is None
-                        else max(settling.periods, steps / k_per)),
-        t90_periods=t90,
-        horizontal_inertia=settling.horizontal_inertia if out.settle_on else math.nan,
-        liftoffs_per_hop=sync.liftoffs_per_hop if hop_period else math.nan,
-        liftoff_phases=sync.phases if hop_period else (),
-        mean_acceleration=runaway,
-        drift_ratio_se=drift_se,
-        detach_time=detach,
-        warnings=warnings,
-        detach_phase=detach % 1.0 if math.isfinite(detach) and detach >= 0.0 else math.nan,
-        extra=extra,
-    )
+    return settled, warnings
 
 
 def _reported_drift(out: WaveRun, drift_ratio: float,
