@@ -317,13 +317,56 @@ def sweep(
         prep.close()
     if size and progress and not large and not done:
         announce(est)
+    todo, wanted, columns = _plan_cells(scenes, done, force, extra_axes, traces, have)
+    if size and done and est.cells:
+        # the cells still to run, not the whole grid (a finished table was estimated at 14 s
+        # and the 1 h gate read the whole grid's size)
+        left = len(todo) / est.cells
+        est = replace(est, cells=len(todo), steps=est.steps * left, most=est.most * left)
+        check(est, yes, smaller="fewer cells or periods")
+        expected = est.seconds
+        if progress and todo and not large:
+            announce(est)
+    own = executor is None
+    if executor is None:
+        executor = Executor(resolve_workers(workers), scheduler)
+    rows = {cid: row for cid, row in done.items() if cid in wanted}
+    for cid, row in rows.items():
+        # a kept cell gets this sweep's columns too: an axis added to an existing table (the
+        # mu = 0.1 half of a grid whose cells were there) had NaN for its value
+        add_columns(row, columns.get(cid, {}))
+    if progress and rows and todo and path is not None:
+        # the size printed above is the whole grid's: say what a resumed sweep still runs
+        print(f"{label[0]}: {len(rows)} of the {len(wanted)} cells already in {path.name}, "
+              f"{len(todo)} to run", file=sys.stderr)
+    bar = None
+    if progress and todo:
+        bar = make_progress(len(wanted), label[0], label[1], initial=len(rows), expected=expected)
+    try:
+        _run_cells(executor, todo, rows, columns, path, swept_from,
+                   partial(run_cell, engine=engine, traces=traces), on_row, bar)
+    finally:
+        if own:
+            executor.close()
+        if bar is not None:
+            bar.close()
+    frame = to_frame(rows.values())
+    if path is not None:
+        _write_back(frame, path, done, rows, wanted, swept_from, traces)
+    return frame
+
+
+def _plan_cells(scenes: list[Scene], done: dict[str, dict[str, Any]], force: bool,
+                extra_axes: dict[str, Any], traces: bool, have: set[str]
+                ) -> tuple[list[str], set[str], dict[str, dict[str, Any]]]:
+    """The cells of a sweep still to run (scene JSON, the heaviest particles first), the ids of
+    every cell it wants, and each cell's swept fields' values as the validated scene holds them
+    (SI for devices) with a device's SI columns."""
     # with force, a scene the table holds keeps its row, whatever code computed it
     held = {r["scene_id"]: cid for cid, r in done.items() if r.get("scene_id")} if force else {}
     todo: list[str] = []
     weights: list[float] = []
     wanted: set[str] = set()
-    # the swept fields' values of each cell, as the validated scene holds them (SI for devices),
-    # and a device's SI columns
     columns: dict[str, dict[str, Any]] = {}
     loaded = any(s.device is not None and device_columns(s)[0].get("load_N") for s in scenes)
     for scene in scenes:
@@ -346,31 +389,16 @@ def sweep(
     # the heaviest particles first: they take the longest (the relaxation, the windows and the
     # records grow with m*), and a batch that ends on them leaves a worker idle
     todo = [todo[i] for i in sorted(range(len(todo)), key=weights.__getitem__)]
-    if size and done and est.cells:
-        # the cells still to run, not the whole grid (a finished table was estimated at 14 s
-        # and the 1 h gate read the whole grid's size)
-        left = len(todo) / est.cells
-        est = replace(est, cells=len(todo), steps=est.steps * left, most=est.most * left)
-        check(est, yes, smaller="fewer cells or periods")
-        expected = est.seconds
-        if progress and todo and not large:
-            announce(est)
-    own = executor is None
-    if executor is None:
-        executor = Executor(resolve_workers(workers), scheduler)
-    rows = {cid: row for cid, row in done.items() if cid in wanted}
-    for cid, row in rows.items():
-        # a kept cell gets this sweep's columns too: an axis added to an existing table (the
-        # mu = 0.1 half of a grid whose cells were there) had NaN for its value
-        add_columns(row, columns.get(cid, {}))
-    if progress and rows and todo and path is not None:
-        # the size printed above is the whole grid's: say what a resumed sweep still runs
-        print(f"{label[0]}: {len(rows)} of the {len(wanted)} cells already in {path.name}, "
-              f"{len(todo)} to run", file=sys.stderr)
+    return todo, wanted, columns
+
+
+def _run_cells(executor: Executor, todo: list[str], rows: dict[str, dict[str, Any]],
+               columns: dict[str, dict[str, Any]], path: Path | None,
+               swept_from: dict[str, Any], cell: Callable[[str], dict[str, Any]],
+               on_row: Callable[[dict[str, Any]], None] | None, bar: Any) -> None:
+    """Run ``todo`` on ``executor`` into ``rows``: each finished row gets its swept columns,
+    its trace stored, and is appended to the table's journal the moment it completes."""
     journal = journal_path(path) if path is not None else None
-    bar = None
-    if progress and todo:
-        bar = make_progress(len(wanted), label[0], label[1], initial=len(rows), expected=expected)
     fh = None
     if journal is not None and todo:
         header = not journal.exists()
@@ -378,7 +406,7 @@ def sweep(
         if header:  # what the rows belong to, until the table's metadata records it
             fh.write(json.dumps({"base_scene": swept_from}) + "\n")
     try:
-        for _i, row in executor.imap(partial(run_cell, engine=engine, traces=traces), todo):
+        for _i, row in executor.imap(cell, todo):
             trace = row.pop("trace", None)
             if trace is not None and path is not None:
                 append_trace(path, row["cell_id"], trace)
@@ -392,16 +420,8 @@ def sweep(
             if bar is not None:
                 bar.update(1)
     finally:
-        if own:
-            executor.close()
         if fh is not None:
             fh.close()
-        if bar is not None:
-            bar.close()
-    frame = to_frame(rows.values())
-    if path is not None:
-        _write_back(frame, path, done, rows, wanted, swept_from, traces)
-    return frame
 
 
 #: summary columns that hold a swept field's value in every row (a row swept before the field
