@@ -83,15 +83,7 @@ def field_cmd(
         from ..study.axes import parse_values
 
         species = (name, parse_values(spec, name))
-    if start is not None and not direct:  # it was ignored without a word
-        _fail(f"--start {start:g} is the start of the direct run: add --direct (or drop --start)")
-    if start is not None and not -1e6 <= start <= 1e6:  # it was reported as drive.position
-        _fail(f"--start = {start!r}: the direct run's start, in wavelengths; allowed: -1e6 to 1e6")
-    if "drive.position" in scene_overrides:  # it was ignored without a word
-        given = typed_as(scene_overrides, "drive.position",
-                         f"--position {scene_overrides['drive.position']!r}")
-        _fail(f"{given}: the field runs every position over half a wavelength itself (a direct "
-              "run starts at --start): drop it")
+    _check_start(start, direct, scene_overrides)
     start = 0.0 if start is None else start
     direct_periods = scene_overrides.pop("numerics.periods", None) if direct else None
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides,
@@ -149,6 +141,18 @@ def field_cmd(
         typer.echo(json.dumps(json_nulls(data)))  # a failed or ejected position's V: null
         _end_if_interrupted(study, out, direct)
         return
+    _print_fields(study, scene.numerics.settle is False)
+    if kind == ".csv":
+        typer.echo(f"wrote {out}")
+    elif out is not None:
+        typer.echo(f"wrote {out}/field.json, field.png, scene.toml")
+    _end_if_interrupted(study, out, direct)
+
+
+def _print_fields(study: Any, fixed: bool) -> None:
+    """The text output of a drift field: per field its summary, traps and repellers, the
+    positions ejected or not settled (``fixed``: a run of fixed length, hint --settle), run
+    errors and warnings; then a direct run against the field's prediction."""
     for fld in study.fields:
         head = f"{fld.label}: " if fld.label else ""
         typer.echo(f"{head}{fld.summary}")
@@ -161,7 +165,7 @@ def field_cmd(
         loose = sum(1 for ok, r in zip(fld.settled, fld.regimes, strict=True)
                     if ok is False and r != "ejected")
         if loose:
-            hint = (" (use --settle)" if scene.numerics.settle is False else
+            hint = (" (use --settle)" if fixed else
                     " (irregular motion: a long-time mean, or not settled within the period cap)")
             typer.echo(f"  {loose} of {len(fld.settled)} positions NOT settled: their drift is "
                        f"not a steady one{hint}")
@@ -176,11 +180,20 @@ def field_cmd(
         typer.echo(f"direct run from xi = {d['start']:g}, {d['periods']:g} periods: ends at xi = "
                    f"{d['final_position']:.5f}; the field predicts {where:.5f}"
                    + (f" (trap at {pred['trap']:.5f})" if pred.get("trap") is not None else ""))
-    if kind == ".csv":
-        typer.echo(f"wrote {out}")
-    elif out is not None:
-        typer.echo(f"wrote {out}/field.json, field.png, scene.toml")
-    _end_if_interrupted(study, out, direct)
+
+
+def _check_start(start: float | None, direct: bool, scene_overrides: dict[str, Any]) -> None:
+    """One line and exit status 2 for a --start without --direct or out of range, and for a
+    --position (the field runs every position itself)."""
+    if start is not None and not direct:  # it was ignored without a word
+        _fail(f"--start {start:g} is the start of the direct run: add --direct (or drop --start)")
+    if start is not None and not -1e6 <= start <= 1e6:  # it was reported as drive.position
+        _fail(f"--start = {start!r}: the direct run's start, in wavelengths; allowed: -1e6 to 1e6")
+    if "drive.position" in scene_overrides:  # it was ignored without a word
+        given = typed_as(scene_overrides, "drive.position",
+                         f"--position {scene_overrides['drive.position']!r}")
+        _fail(f"{given}: the field runs every position over half a wavelength itself (a direct "
+              "run starts at --start): drop it")
 
 
 def _end_if_interrupted(study: Any, out: Path | None, direct: bool) -> None:
