@@ -31,7 +31,7 @@ import math
 import tempfile
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -49,6 +49,9 @@ from ..scene.schema import Scene
 from ..study.progress import counter
 from .engine import open_lammps
 from .realize import LAMMPS_EQUIVALENT, WALL_NU, Realization, lammps_restitution, realize
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 #: chunks of a run between two progress updates (at most)
 CHUNKS = 100
@@ -316,23 +319,7 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
                                 f"{info['steps'] / k_per:g} periods")
     if scene.device is not None:
         extra.update(device_outputs(scene.device, drift, regime, None))
-    frame = None
-    if trajectory:
-        import pandas as pd
-
-        every = max(1, k_per // 200)
-        cols = ["t", "x", "vx", "y", "vy", "a", "b", "N_star", "T_star"]
-        data = dict(rec_all)
-        if real.rotation:
-            # psi = R phi / a0 from rest (the record starts at t* = 0 here), by the trapezoidal
-            # rule on psi' (LAMMPS keeps no angle); the contact point moves with x* + psi, so
-            # b* = (x* + psi - u_x*) / (theta mu), as in the native trajectory
-            spin = data["spin"]
-            psi = np.concatenate(([0.0], np.cumsum(0.5 * (spin[1:] + spin[:-1]) / k_per)))
-            data["psi"] = psi
-            data["b"] = data["b"] + psi / (real.theta * real.mu)
-            cols += ["psi", "spin"]
-        frame = pd.DataFrame({c: data[c][::every] for c in cols})
+    frame = _trajectory_frame(rec_all, real, k_per) if trajectory else None
     return Result(
         model=scene.model, engine="lammps", m_star=scene.particle.m_star,
         amplitude=scene.drive.amplitude, mu=scene.material.mu, nu=scene.material.nu,
@@ -351,6 +338,27 @@ def to_result(scene: Scene, rows: np.ndarray, info: dict[str, Any], trajectory: 
         settle_method=settling.method, settle_periods=settling.periods,
         liftoffs_per_hop=sync.liftoffs_per_hop if sync.hop_period else math.nan, extra=extra,
     )
+
+
+def _trajectory_frame(rec_all: dict[str, np.ndarray], real: Realization, k_per: int
+                      ) -> pd.DataFrame:
+    """The trajectory of a LAMMPS record as the native run gives it (about 200 rows a period):
+    t*, x*, x*', y*, y*', a*, b*, N*, T*, and with rotation psi and its rate."""
+    import pandas as pd
+
+    every = max(1, k_per // 200)
+    cols = ["t", "x", "vx", "y", "vy", "a", "b", "N_star", "T_star"]
+    data = dict(rec_all)
+    if real.rotation:
+        # psi = R phi / a0 from rest (the record starts at t* = 0 here), by the trapezoidal
+        # rule on psi' (LAMMPS keeps no angle); the contact point moves with x* + psi, so
+        # b* = (x* + psi - u_x*) / (theta mu), as in the native trajectory
+        spin = data["spin"]
+        psi = np.concatenate(([0.0], np.cumsum(0.5 * (spin[1:] + spin[:-1]) / k_per)))
+        data["psi"] = psi
+        data["b"] = data["b"] + psi / (real.theta * real.mu)
+        cols += ["psi", "spin"]
+    return pd.DataFrame({c: data[c][::every] for c in cols})
 
 
 def run_scene(scene: Scene, *, trajectory: bool = False, progress: bool | None = None) -> Result:
