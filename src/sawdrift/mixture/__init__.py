@@ -9,7 +9,7 @@ touching chains, and sorting times.
   contact normals, splits where a pair force would pull;
 * :mod:`.events`: beads in lanes along the wave moved from contact to contact in slow time (1-D);
 * :mod:`.plane`: beads on the plate in 2-D, sliding round each other (:mod:`.plane_curves`,
-  :mod:`.plane_kernel`: its compiled parts);
+  :mod:`.plane_kernel` and :mod:`.plane_step`: its compiled parts);
 * :mod:`.check`: chains placed by hand, in LAMMPS and in the slow model;
 * :mod:`.sort`: ensembles of random placements run with the slow model (``sawdrift sort``).
 """

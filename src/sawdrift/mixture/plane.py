@@ -27,7 +27,7 @@ is the pair's load on each bead (x and y), its vertical part presses the lower b
 and lifts the higher one (N_j = W_j - P n_z, N_i = W_i + P n_z). A head-on contact (dy = 0) has no
 y part: a line of beads along the wave stays a line, and moves as the 1-D chains do.
 
-Time steps (:func:`.plane_kernel.integrate`). A bead that touches nothing moves at its free drift,
+Time steps (:func:`.plane_step.integrate`). A bead that touches nothing moves at its free drift,
 exactly, over any step. Beads that touch form clusters; each step is a backward Euler step,
 d = dt V(x + d), solved by Newton's method per cluster from the linearly implicit step
 (I - dt J) d = dt V, with J the derivative of the drifts with respect to the positions through
@@ -53,6 +53,7 @@ import numpy as np
 from . import plane_kernel as kernel
 from .chains import Bead
 from .curves import SpeciesCurves
+from .plane_step import integrate
 
 __all__ = ["PUSHED_APART", "TOLERANCE", "PlaneModel", "PlaneRun", "clusters", "curve_arrays", "free_speeds",
            "jitter", "worst_overlap"]
@@ -183,10 +184,10 @@ class PlaneModel:
         n = self.x.size
         out_x, out_y = np.empty((times.size, n)), np.empty((times.size, n))
         out_u, stats = np.zeros((2, n)), np.zeros(5)
-        status = kernel.integrate(self.x, self.y, self.kinds, self.rad, self.hgt, self.wgt,
-                                  *self.arrays, self.free, self.u, self.perp, self.stiff, self.tol,
-                                  self.skin, self.slide, times, out_x, out_y, out_u, stats,
-                                  max_steps)
+        status = integrate(self.x, self.y, self.kinds, self.rad, self.hgt, self.wgt,
+                           *self.arrays, self.free, self.u, self.perp, self.stiff, self.tol,
+                           self.skin, self.slide, times, out_x, out_y, out_u, stats,
+                           max_steps)
         if status == 1:
             raise RuntimeError(f"more than {max_steps} steps: the beads are jammed")
         if status == 2:
