@@ -12,7 +12,8 @@ import numpy as np
 
 from ..contact.base import ContactModel
 from ..scene.schema import Impact, Scene
-from .assembly import Assembly, impact_duration
+from .assembly import Assembly
+from .impact_scale import impact_duration
 from .records import MAX_TRAJECTORY_ROWS
 from .stepper import Stepper
 
@@ -51,7 +52,7 @@ class ImpactRun:
     wall_time_s: float
 
 
-#: contact times (:func:`~.assembly.impact_duration`) a default impact run lasts at most: a
+#: contact times (:func:`~.impact_scale.impact_duration`) a default impact run lasts at most: a
 #: contact that outlasts them holds the particle (damped, it came to rest under gravity)
 IMPACT_DURATIONS = 4.0
 
