@@ -98,39 +98,36 @@ def _drift(scene: Scene, repeats: int) -> tuple[float, Any]:
     return wall, result
 
 
-def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[dict[str, Any]]:
-    rows: list[dict[str, Any]] = []
-    default_order = Numerics().order
-    compliant = [m for m in models if not _is_rigid(m)]
-    rigid = [m for m in models if _is_rigid(m)]
-    n_runs = (
-        len(compliant) * (2 + len(cfg.orders) * len(cfg.steps))
-        + len(rigid) * (2 + len(cfg.rigid_steps))
-        + (1 + len(cfg.wave_strips) if "mdr" in compliant else 0)
-    )
-    bar = _progress(n_runs, "wave", progress)
-    periods = cfg.periods
+class _Ladders:
+    """The step-size ladders of the wave setting: each model's reference drift (fixed runs at
+    the two reference steps) and one row per (order, steps per period) against it."""
 
-    def reference(model: str, params: dict[str, Any] | None = None) -> tuple[float, float, str]:
+    def __init__(self, cfg: StudyConfig, bar: Any):
+        self.cfg, self.bar = cfg, bar
+        self.rows: list[dict[str, Any]] = []
+        self.mmd_ref = math.nan
+
+    def reference(self, model: str, params: dict[str, Any] | None = None
+                  ) -> tuple[float, float, str]:
+        """(drift ratio at the fine reference step, its change from the coarse one, regime)."""
+        cfg = self.cfg
         coarse, fine = cfg.reference_steps
         # runs of fixed length throughout the ladders: each step size sees the same window (a
         # default run could go on settling for a different number of periods at each)
-        r1 = run(_wave_scene(model, order=4, steps_per_period=coarse, periods=periods,
+        r1 = run(_wave_scene(model, order=4, steps_per_period=coarse, periods=cfg.periods,
                              model_params=params, settle=False))
-        bar.update(1)
-        r2 = run(_wave_scene(model, order=4, steps_per_period=fine, periods=periods,
+        self.bar.update(1)
+        r2 = run(_wave_scene(model, order=4, steps_per_period=fine, periods=cfg.periods,
                              model_params=params, settle=False))
-        bar.update(1)
+        self.bar.update(1)
         return r2.drift_ratio, abs(r2.drift_ratio - r1.drift_ratio), r2.regime
 
-    mmd_ref, mmd_unc, mmd_regime = math.nan, math.nan, ""
-    if compliant:
-        mmd_ref, mmd_unc, mmd_regime = reference("mmd")
-
-    def ladder_row(model: str, order: int | None, spp: int, ref: float, unc: float, ref_regime: str,
-                   default_spp: int, params: dict[str, Any] | None = None, ladder: str = "steps",
-                   strips: int | None = None, note: str = "") -> None:
-        scene = _wave_scene(model, order=order, steps_per_period=spp, periods=periods,
+    def row(self, model: str, order: int | None, spp: int, ref: float, unc: float,
+            ref_regime: str, default_spp: int, params: dict[str, Any] | None = None,
+            ladder: str = "steps", strips: int | None = None, note: str = "") -> None:
+        """One rung: a fixed run at ``spp`` steps per period (and ``order``) against ``ref``."""
+        cfg = self.cfg
+        scene = _wave_scene(model, order=order, steps_per_period=spp, periods=cfg.periods,
                             model_params=params, settle=False)
         try:
             wall, res = _drift(scene, cfg.repeats)
@@ -139,49 +136,65 @@ def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[
         except NonFiniteStateError:
             wall, value, steps, regime, err = math.nan, math.nan, None, "non-finite", math.nan
             note = (note + "; " if note else "") + "state became non-finite (unstable)"
-        is_default = spp == default_spp and (order is None or order == default_order)
+        is_default = spp == default_spp and (order is None or order == Numerics().order)
         if ladder == "strips":
             is_default = is_default and strips == _default_strips()
-        rows.append(_row(
+        self.rows.append(_row(
             setting="wave", model=model, ladder=ladder, order=order, steps_per_period=spp,
-            strips=strips, m_star=WAVE_M_STAR, amplitude=WAVE_AMPLITUDE, periods=periods,
+            strips=strips, m_star=WAVE_M_STAR, amplitude=WAVE_AMPLITUDE, periods=cfg.periods,
             steps=steps, wall_s=wall,
             ns_per_step=1e9 * wall / steps if steps else math.nan, value=value, reference=ref,
             error=err, rel_error=err / abs(ref) if ref else math.nan, reference_uncertainty=unc,
-            model_error_vs_mmd=(abs(ref - mmd_ref) if ladder == "steps" and not _is_rigid(model)
-                                else math.nan),
+            model_error_vs_mmd=(abs(ref - self.mmd_ref) if ladder == "steps"
+                                and not _is_rigid(model) else math.nan),
             regime=regime, reference_regime=ref_regime, is_default=is_default, note=note,
         ))
-        bar.update(1)
+        self.bar.update(1)
 
+
+def _wave_rows(models: Sequence[str], cfg: StudyConfig, progress: bool) -> list[dict[str, Any]]:
+    default_order = Numerics().order
+    compliant = [m for m in models if not _is_rigid(m)]
+    rigid = [m for m in models if _is_rigid(m)]
+    n_runs = (
+        len(compliant) * (2 + len(cfg.orders) * len(cfg.steps))
+        + len(rigid) * (2 + len(cfg.rigid_steps))
+        + (1 + len(cfg.wave_strips) if "mdr" in compliant else 0)
+    )
+    periods = cfg.periods
+    ladders = _Ladders(cfg, _progress(n_runs, "wave", progress))
+    mmd_unc, mmd_regime = math.nan, ""
+    if compliant:
+        ladders.mmd_ref, mmd_unc, mmd_regime = ladders.reference("mmd")
     for model in compliant:
         if model == "mmd":
-            ref, unc, ref_regime = mmd_ref, mmd_unc, mmd_regime
+            ref, unc, ref_regime = ladders.mmd_ref, mmd_unc, mmd_regime
         else:
-            ref, unc, ref_regime = reference(model)
+            ref, unc, ref_regime = ladders.reference(model)
         default_spp = steps_per_period(_wave_scene(model, periods=periods))
         strips = _default_strips() if model == "mdr" else None
         for order in cfg.orders:
             for spp in cfg.steps:
-                ladder_row(model, order, spp, ref, unc, ref_regime, default_spp, strips=strips)
+                ladders.row(model, order, spp, ref, unc, ref_regime, default_spp, strips=strips)
     if "mdr" in compliant:
         # strip ladder at the default numerics, against mmd run with identical numerics
         base = _wave_scene("mmd", periods=periods, settle=False)
         default_spp = steps_per_period(base)
         mmd_same = run(base)
-        bar.update(1)
+        ladders.bar.update(1)
         for strips in cfg.wave_strips:
-            ladder_row("mdr", default_order, default_spp, mmd_same.drift_ratio, math.nan,
-                       mmd_same.regime, default_spp, params={"strips": strips}, ladder="strips",
-                       strips=strips, note="vs mmd with identical numerics (strip error only)")
+            ladders.row("mdr", default_order, default_spp, mmd_same.drift_ratio, math.nan,
+                        mmd_same.regime, default_spp, params={"strips": strips},
+                        ladder="strips", strips=strips,
+                        note="vs mmd with identical numerics (strip error only)")
     for model in rigid:
-        ref, unc, ref_regime = reference(model)
+        ref, unc, ref_regime = ladders.reference(model)
         default_spp = steps_per_period(_wave_scene(model, periods=periods))
         for spp in cfg.rigid_steps:
-            ladder_row(model, None, spp, ref, unc, ref_regime, default_spp,
-                       note="event-locating scheme (no Adams-Bashforth order)")
-    bar.close()
-    return rows
+            ladders.row(model, None, spp, ref, unc, ref_regime, default_spp,
+                        note="event-locating scheme (no Adams-Bashforth order)")
+    ladders.bar.close()
+    return ladders.rows
 
 
 # -- (c) the defaults over the (m*, A*) plane ------------------------------------------------------
