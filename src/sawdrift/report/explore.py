@@ -37,8 +37,8 @@ from ..study.axes import column_unit
 from ..study.table import TABLE_COLUMNS, table_metadata
 from ..study.traces import PACKED_FIELDS, Trace, pack_traces, read_traces, read_traces_file
 from .diagrams import COLOURS
-from .explore_page import (  # noqa: F401 - the tooltip's texts, also read from here
-    build_document,
+from .explore_page import build_document
+from .explore_texts import (  # noqa: F401 - the tooltip's texts, also read from here
     chaotic_cells,
     drift_notes,
     error_text,
