@@ -189,7 +189,11 @@ def test_rigid_removal_threshold_in_the_stiff_limit(law):
 
 
 def test_example_drifts_below_removal_and_is_ejected_above():
-    """examples/micro_silica_on_linbo3.toml: held and drifting at 0.01 nm, removed at 0.2 nm."""
+    """examples/micro_silica_on_linbo3.toml: drifting against the wave at 0.01 nm, removed at
+    0.2 nm. At 0.01 nm the adhesive contact's free vertical oscillation is at half the wave's
+    frequency and grows (1.2 % a period) into a beat of about 1100 periods: the default run is
+    not settled on its quiet start (-0.003435, settled, before), and its long-time mean agrees
+    with brute force over 16000 periods (the second half: -0.0030456) within 3 errors."""
     from pathlib import Path
 
     import sawdrift as sd
@@ -198,7 +202,11 @@ def test_example_drifts_below_removal_and_is_ejected_above():
     path = Path(__file__).resolve().parents[1] / "examples" / "micro_silica_on_linbo3.toml"
     scene = Scene.from_toml(path)
     held = sd.run(scene)
-    assert held.regime == "drift_against" and held.settled and not held.contact_lost
+    assert held.regime == "drift_against" and not held.settled
+    assert any("half the wave's frequency" in w for w in held.warnings)
+    brute = sd.run(scene.with_updates(**{"numerics.settle": False, "numerics.periods": 16000,
+                                         "numerics.measure_periods": 8000}))
+    assert abs(held.drift_ratio - brute.drift_ratio) <= 3.0 * held.drift_ratio_se
     speed = held.extra["drift_speed_m_s"]
     assert -1e-5 < speed < -1e-7  # m/s, against the propagation direction
     assert not any("a0 < 1 nm" in w for w in held.extra.get("warnings", []))

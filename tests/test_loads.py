@@ -199,16 +199,19 @@ def test_the_motor_gives_its_stall_thrust_in_device_units():
 
 
 def test_a_slow_drift_stalls_where_it_stops_not_at_the_surface_speed_s_threshold():
-    """A 10 um silica sphere on a 20 MHz line drifts at 3.4e-3 of the surface speed, and its
-    speed falls linearly with the load. "Advances" was judged against 1e-3 of the surface speed:
-    the stall came at 29 % of the free speed (3489 M g), 30 % short of the load that stops it,
-    and that run was called "stick". Now the speed at the stall is zero within 1 % of the free
-    drift (a run's accuracy, 2e-5 of the surface speed, is 0.6 % of it), and the linear fall of
-    the first three points reaches zero there within 1 %."""
-    scene = sd.Scene.from_toml(MOTOR.parent / "micro_silica_on_linbo3.toml")
-    curve = load_curve(scene, loads=4, workers=1)
+    """A 10 um silica sphere on a 20 MHz line (DMT) drifts at 5.3e-3 of the surface speed, and
+    its speed falls linearly with the load. "Advances" was judged against 1e-3 of the surface
+    speed: the stall came at 29 % of the free speed, 30 % short of the load that stops it, and
+    that run was called "stick". Now the speed at the stall is zero within 1 % of the free
+    drift (a run's accuracy, 2e-5 of the surface speed, is 0.4 % of it), and the linear fall of
+    the first three points reaches zero there within 1 %. (With JKR the example's contact is at
+    its half-frequency resonance, no steady drift to stall: :mod:`tests.test_half_resonance`.)"""
+    scene = sd.Scene.from_toml(MOTOR.parent / "micro_silica_on_linbo3.toml").with_updates(
+        **{"effects.adhesion": "dmt"})
+    curve = load_curve(scene, loads=4, workers=1, tolerance=2e-4)
     v0 = curve.velocities[0]
-    assert 0.0 < v0 < 4e-3 * 2 * math.pi * scene.horizontal_ratio * scene.drive.amplitude
+    assert 0.0 < v0 < 6e-3 * 2 * math.pi * scene.horizontal_ratio * scene.drive.amplitude
+    assert all(curve.settled)
     assert abs(curve.velocities[-1]) <= curve.threshold <= 0.01 * v0
     slope = np.polyfit(curve.loads[:3], curve.velocities[:3], 1)[0]
     assert curve.stall_load == pytest.approx(-v0 / slope, rel=0.01)

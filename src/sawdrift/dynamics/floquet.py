@@ -41,12 +41,12 @@ from .stepper import Stepper
 D0 = 1e-7
 
 
-def vertical_decay_periods(stepper: Stepper, scale: np.ndarray) -> float:
-    """tau = -1 / ln |multiplier|, periods, of the slowest vertical Floquet multiplier of the
-    motion through the stepper's present state, over one period (module docstring); inf where
-    a disturbance does not decay (|multiplier| >= 1) or the measurement is not finite.
-    ``stepper`` itself is not advanced."""
-    k = stepper.k_per
+def vertical_jacobian(stepper: Stepper, scale: np.ndarray, periods: int = 1
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """(J, z): the 2 x 2 Jacobian of the vertical state (y*, y*') after ``periods`` periods with
+    respect to the present one, by finite differences (module docstring), and the vertical state
+    the motion itself reaches then. ``stepper`` itself is not advanced."""
+    k = stepper.k_per * periods
     base = stepper.twin()
     twins = []
     steps = []
@@ -60,6 +60,15 @@ def vertical_decay_periods(stepper: Stepper, scale: np.ndarray) -> float:
         twin.advance(k)
     jac = np.array([[(t.y[i] - base.y[i]) / d for t, d in zip(twins, steps, strict=True)]
                     for i in (2, 3)])
+    return jac, base.y[2:4].copy()
+
+
+def vertical_decay_periods(stepper: Stepper, scale: np.ndarray) -> float:
+    """tau = -1 / ln |multiplier|, periods, of the slowest vertical Floquet multiplier of the
+    motion through the stepper's present state, over one period (module docstring); inf where
+    a disturbance does not decay (|multiplier| >= 1) or the measurement is not finite.
+    ``stepper`` itself is not advanced."""
+    jac, _end = vertical_jacobian(stepper, scale)
     if not np.all(np.isfinite(jac)):
         return math.inf
     largest = float(np.max(np.abs(np.linalg.eigvals(jac))))

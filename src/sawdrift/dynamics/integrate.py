@@ -33,6 +33,7 @@ from .full_inertia import (
     settle_full,
     tapered_drift_ratio,
 )
+from .half_resonance import half_resonance_growth
 from .orbit_search import orbit_search
 from .steady import (
     Settling,
@@ -149,15 +150,8 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     chaos, twin = (_long_mean(stepper, win, _mean_budget(num, win), target)
                    if chaotic and num.settle is not False else (None, None))
     if settling is None:
-        settling = assess_fixed(win, speed, num.settle_tolerance,
-                                relaxation_periods(scene, scene.particle.m_star, speed),
-                                periods_run, chaotic,
-                                before=None if before is None else tapered_drift_ratio(before,
-                                                                                       speed))
-        if num.settle is False:  # a fixed run reports its window's mean, settled on an orbit
-            settling = replace(settling, drift=None, settled=settling.settled and (
-                on_orbit(win) or not win.contact_lost))  # or in contact (no fixed point else)
-        elif stepper.step > fixed_end:  # it went on in windows to its periodic orbit
+        settling = _fixed_verdict(scene, win, speed, periods_run, chaotic, before)
+        if num.settle is not False and stepper.step > fixed_end:  # on in windows to its orbit
             settling = replace(settling, method="fixed_then_windows")
         if leaving and num.settle is not False:
             # still leaving its old orbit for another: no steady motion to settle on yet
@@ -178,6 +172,9 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
         # a settling run stopped by its cap within one flight: the mean of its bounces
         chaos, twin = _flights_mean(stepper, scene, win, settling, speed,
                                     drive.vertical_amplitude(scene), series)
+    grown = _past_half_resonance(stepper, scene, win, settling, chaos, scale, speed)
+    if grown is not None:
+        win, settling, chaos, twin, (lyap, chaotic) = grown
     ended = orbit_window(stepper, twin, chaos, n_periods, speed, scale)
     path = stepper.trajectory() if trajectory else None
     if ended is not None:
@@ -193,6 +190,48 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
                    last_liftoff=float(stepper.st[S_LASTLIFT]), long_mean=chaos,
                    steps=max(stepper.step, 0 if twin is None else twin.step))
 
+
+def _fixed_verdict(scene: Scene, win: Window, speed: float, periods_run: float, chaotic: bool,
+                   before: Window | None) -> Settling:
+    """Whether a fixed-length run ended at its steady drift (:func:`~.steady.assess_fixed`); a
+    run asked to be fixed (``settle = false``) reports its window's mean, settled on an orbit
+    or in contact (no fixed point else)."""
+    num = scene.numerics
+    settling = assess_fixed(win, speed, num.settle_tolerance,
+                            relaxation_periods(scene, scene.particle.m_star, speed), periods_run,
+                            chaotic, before=None if before is None else tapered_drift_ratio(
+                                before, speed))
+    if num.settle is False:
+        settling = replace(settling, drift=None, settled=settling.settled and (
+            on_orbit(win) or not win.contact_lost))
+    return settling
+
+
+def _past_half_resonance(stepper: Stepper, scene: Scene, win: Window, settling: Settling,
+                         chaos: BatchMeans | None, scale: np.ndarray, speed: float
+                         ) -> tuple[Window, Settling, BatchMeans | None, Stepper | None,
+                                    tuple[float, bool]] | None:
+    """Where a compliant run settled in contact on a vertical orbit unstable at half the wave's
+    frequency (:mod:`.half_resonance`), before its disturbance grew: not settled, and, unless
+    the run is fixed (``settle = false``: it reports its window), the run goes on until the
+    disturbance has grown, to the long-time mean of the motion it grows into. Returns the
+    window, settling, mean, the twin the mean ran on and (Lyapunov exponent, chaos verdict)
+    from there; None where the run's orbit is not such an orbit."""
+    if not settling.settled or chaos is not None or stepper.rigid or win.contact_lost:
+        return None
+    growth = half_resonance_growth(stepper, scale)
+    if growth is None:
+        return None
+    settling = replace(settling, settled=False, drift=None, unstable=growth.rate)
+    num = scene.numerics
+    if num.settle is False:
+        return win, settling, None, None, (math.nan, False)
+    stepper.advance_periods(growth.wait)
+    win = measure_window(stepper, scene.measure_periods(), speed, scale)
+    budget = growth.mean_periods(_mean_budget(num, win), MOST_FLIGHT_BUDGETS * num.mean_periods)
+    chaos, twin = _long_mean(stepper, win, budget, num.settle_tolerance * speed)
+    return win, settling, chaos, twin, (lyapunov(win, scale) if win.contact_lost
+                                        else (math.nan, False))
 
 def _exponent_of(win: Window, scale: np.ndarray) -> tuple[float, bool]:
     """The Lyapunov exponent and chaos verdict of the window a default run settled on after

@@ -55,3 +55,6 @@ class Settling:
     #: the vertical decay time (periods) of the damped orbit a run was sent back from, where its
     #: windows settled sooner (:class:`~.direct.SentBack`): not settled
     slow_vertical: float = 0.0
+    #: the growth rate (per period) of the unstable vertical orbit a run's windows kept contact
+    #: on (:mod:`.half_resonance`): no steady state, not settled
+    unstable: float = 0.0

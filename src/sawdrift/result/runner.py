@@ -272,6 +272,8 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
     warnings = (tuple(device_warnings(scene.device, scene.effects.adhesion))
                 if scene.device is not None else ())
     warnings += _table_warning(scene)
+    if out.settling.unstable > 0.0:
+        warnings += (_unstable_warning(out),)
     if out.long_mean is not None and out.long_mean.approaching and out.speed > 0.0:
         periods = out.stepper.step / out.stepper.k_per
         warnings += (f"not settled: {STILL_MOVING}: its windows still moved one way when they "
@@ -312,6 +314,19 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
                      "counts (lift-offs, contact loss, gross slip) cover the whole window",)
     return warnings
 
+
+def _unstable_warning(out: WaveRun) -> str:
+    """Why a run that kept contact on its vertical orbit is not settled there: the orbit is
+    unstable at half the wave's frequency (:mod:`~sawdrift.dynamics.half_resonance`)."""
+    rate = out.settling.unstable
+    what = ("the drift is the long-time mean of the motion it grows into"
+            if out.long_mean is not None else
+            "this fixed run's window is a sample of it before it grew; the default run (without "
+            "--no-settle) follows it and reports the long-time mean of what it grows into")
+    return (f"not settled: the contact's free vertical oscillation is unstable at half the "
+            f"wave's frequency (a parametric resonance: a disturbance grows by "
+            f"{100.0 * math.expm1(rate):.2g} % a period), so the steady contact its first "
+            f"periods showed is no steady state; {what}")
 
 def _unsettled_reason(out: WaveRun, settling: bool) -> str:
     """Why a run that was to settle did not: its drift still moving when its periods ran out, or

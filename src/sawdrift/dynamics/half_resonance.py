@@ -1,0 +1,113 @@
+"""A contact that looks steady on an unstable orbit: the parametric resonance at half the wave's
+frequency.
+
+The normal force of a compliant contact is a nonlinear function of the compression, so the
+wave, which modulates the compression once a period, also modulates the contact's stiffness once
+a period. An undamped free vertical oscillation whose frequency is near half the wave's (for a
+Hertz contact N*'(1) = 1.5, so m* near 1.5 / pi^2 = 0.152; with adhesion the stiffer adhesive
+contact puts it at other masses) is then pumped parametrically, as a swing is by standing up
+and crouching twice a swing: the period-one orbit of the vertical motion is unstable, and any
+disturbance of it grows exponentially. The run from rest leaves only a small one, so for tens
+to hundreds of periods the contact holds or slides exactly as on the orbit, and windows measured
+then agree and settle; later the oscillation has grown into a slow beat of large bounces that
+moves the drift by 10 to 20 % or changes its regime (hertz_mindlin_dem, m* = 0.152, A* = 0.1:
+0.0304 settled after 60 periods, 0.038 from brute force over 8000; mmd and jaeger there settled
+as sticking, where brute force drifts with and against the wave).
+
+The test, where a run would settle on a window that kept contact:
+
+1. the vertical Jacobian J over one period at the present state (:func:`~.floquet.vertical_jacobian`,
+   three periods of integration). Its trace says how the vertical motion turns once a period:
+   2 cos(2 pi f) for a stable orbit of rotation f. Only a trace within :data:`NEAR_HALF` of -2
+   (f within about 0.02 of a half, or already unstable there) goes on;
+2. one Newton step to the orbit from the present state, z - (J - I)^-1 (P(z) - z), and the
+   Jacobian J_n over :data:`GROWTH_PERIODS` periods there. On a stable orbit |tr J_n| <= 2 (a
+   rotation); on an unstable one |tr J_n| = lambda^n + lambda^-n, and a trace above
+   :data:`UNSTABLE_TRACE` gives the growth rate ln |lambda| per period. One period is not
+   enough near the tongue's edge: the micro-silica example's J has the trace -1.99981 (a
+   rotation), while its disturbances grow by 1.2 % a period (J_60 says so).
+
+An unstable orbit is no steady state. The run goes on until its disturbance has grown to
+:data:`GROWN` (scaled), as the run from rest would without help, and its drift is the long-time
+mean from there (a periodic orbit where the growth ends on one).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .floquet import vertical_jacobian
+from .stepper import Stepper
+
+#: a one-period trace within this of -2 (rotation within about 0.02 of a half a period) is
+#: tested over :data:`GROWTH_PERIODS`; of the 1076 cells of the default 41 x 41 mmd sweep that
+#: settle in contact, 4 are (one a stable orbit near the edge, m* = 0.1, A* = 0.53)
+NEAR_HALF = 0.02
+
+#: periods the growth test follows the orbit's neighbours (its cost: three times this)
+GROWTH_PERIODS = 60
+
+#: |tr J_n| above which the orbit is unstable: a growth of at least acosh(UNSTABLE_TRACE / 2) /
+#: GROWTH_PERIODS = 5.3e-3 a period (a disturbance grows e-fold within 190 periods)
+UNSTABLE_TRACE = 2.1
+
+#: the scaled distance from the orbit a disturbance grows to before the long-time mean starts
+GROWN = 1.0
+
+#: periods a run waits at most for its disturbance to grow
+MOST_WAIT = 20_000
+
+#: the long-time mean after the growth spans this many e-folding times 1 / rate: the beat the
+#: disturbance grows into lasts 12 to 17 of them (hertz_mindlin_dem m* = 0.152, A* = 0.1: 320
+#: periods at 5.4 % a period; the micro-silica example: 1100 periods at 1.2 %), so about four
+#: beats
+MEAN_GROWTHS = 64.0
+
+
+@dataclass(frozen=True)
+class Growth:
+    """An unstable vertical orbit: its growth rate (per period), the scaled distance of the run
+    from it, and the periods the run takes to grow to :data:`GROWN` from there."""
+
+    rate: float
+    distance: float
+
+    @property
+    def wait(self) -> int:
+        """Periods until a disturbance of :attr:`distance` has grown to :data:`GROWN`, at most
+        :data:`MOST_WAIT`."""
+        if self.distance >= GROWN:
+            return 0
+        ahead = math.log(GROWN / max(self.distance, 1e-300)) / self.rate
+        return int(min(MOST_WAIT, math.ceil(ahead)))
+
+    def mean_periods(self, budget: int, most: int) -> int:
+        """The long-time mean's periods: :data:`MEAN_GROWTHS` e-folding times, at least
+        ``budget`` (``numerics.mean_periods``) and at most ``most``."""
+        return int(min(most, max(budget, math.ceil(MEAN_GROWTHS / self.rate))))
+
+
+def half_resonance_growth(stepper: Stepper, scale: np.ndarray) -> Growth | None:
+    """The growth of the vertical orbit the run is on where that orbit is unstable at half the
+    wave's frequency (module docstring), else None. ``stepper`` is not advanced."""
+    jac, end = vertical_jacobian(stepper, scale)
+    if not np.all(np.isfinite(jac)) or np.trace(jac) > -2.0 + NEAR_HALF:
+        return None
+    here = stepper.y[2:4].copy()
+    try:
+        orbit = here - np.linalg.solve(jac - np.eye(2), end - here)
+    except np.linalg.LinAlgError:
+        return None
+    shift = np.zeros(4)
+    shift[2:4] = orbit - here
+    on_orbit = stepper.twin(shift)
+    long_jac, _end = vertical_jacobian(on_orbit, scale, GROWTH_PERIODS)
+    trace = abs(float(np.trace(long_jac)))
+    if not math.isfinite(trace) or trace <= UNSTABLE_TRACE:
+        return None
+    rate = math.acosh(0.5 * trace) / GROWTH_PERIODS
+    distance = float(np.hypot(shift[2] / scale[1], shift[3] / scale[2]))
+    return Growth(rate, distance)
