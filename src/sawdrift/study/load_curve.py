@@ -21,8 +21,8 @@ regime classifier's threshold for "stick") and the unloaded drift itself, but no
 accuracy of a run, the settling's absolute floor (2e-5 of the surface speed by default,
 :func:`~sawdrift.dynamics.approach.relative_bound`); the loaded runs are
 classified with that threshold too. Against the surface speed alone a slow drift stalled early:
-a 10 um silica sphere on a 20 MHz lithium niobate line drifting at 3.4e-3 of the surface speed
-was called stalled, and its run "stick", at 29 % of its free speed, 30 % short of the load that
+a 10 um silica sphere (DMT) on a 20 MHz lithium niobate line drifting at 5.3e-3 of the surface
+speed was called stalled, and its run "stick", at 29 % of its free speed, 30 % short of the load that
 stops it (:func:`_advance_tolerance`). A drift that is a long-time mean (a chaotic or irregular
 bouncer) carries its standard error; an unloaded one within three errors of zero gives no
 direction to load against, and so no stall load (``free_state``, :data:`FREE_STATES`). Device
