@@ -24,6 +24,16 @@ def test_a_run_of_1e14_steps_is_refused_with_its_estimate(monkeypatch, capsys):
     assert "days" in lines[0]  # 1e14 steps at any rate below 1e9 steps/s
 
 
+def test_a_long_run_says_its_size_unless_no_progress(monkeypatch, capsys):
+    """A run above the quiet bound prints its size on stderr first; --no-progress leaves that
+    line out, as the README says (run had no such option: "No such option: --no-progress")."""
+    monkeypatch.setattr("sawdrift.study.estimate.QUIET_STEPS", 1e3)
+    code, out, err = call(monkeypatch, capsys, "run", "--model", "mmd", "--json")
+    assert code == 0 and "steps" in err, err
+    code, out, err = call(monkeypatch, capsys, "run", "--model", "mmd", "--json", "--no-progress")
+    assert code == 0 and err == "" and out.startswith("{"), err
+
+
 def test_a_million_cell_sweep_is_refused_before_its_grid_is_built(monkeypatch, capsys, tmp_path):
     """The default 1000 x 1000 mmd sweep is estimated at about an hour on the 2-core machine (1 to
     1.3 h, with the calibration's rate): the bound is set to ten minutes here, so that a fast

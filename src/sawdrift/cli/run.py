@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from contextlib import nullcontext
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -16,6 +17,7 @@ from .._texts import says_heating
 from ..study.progress import notice, run_progress
 from .app import (
     Param,
+    Progress,
     Yes,
     _fail,
     _parse_param,
@@ -146,6 +148,7 @@ def run_cmd(
         "about 1e6 rows, a longer run's thinned evenly")] = None,
     explain: Annotated[bool, typer.Option("--explain", help="print the assembled system only (text; "
                                                   "not with --json or -o)")] = False,
+    progress: Progress = True,
     yes: Yes = False,
     *,
     scene_overrides: dict[str, Any],
@@ -182,7 +185,7 @@ def run_cmd(
         typer.echo("\n\n".join(sd.explain(sc, engine) for sc in scenes))  # type: ignore[arg-type]
         return
     if engine != "lammps":
-        _size(scenes, engine, yes)
+        _size(scenes, engine, yes, progress)
     # the folders this command makes are taken away again if no run ends (a failing second
     # model of --model mmd,other left its folder behind, empty)
     created = new_folders(out) if out is not None and kind == "folder" else []
@@ -194,7 +197,8 @@ def run_cmd(
         for sc in scenes:
             with notice(f"run: {sc.model}: working (a model's first run after installing "
                         "compiles its loops: up to half a minute; settling a heavy particle "
-                        "takes longer)"), run_progress(f"run: {sc.model}"):
+                        "takes longer)", enabled=progress), \
+                    (run_progress(f"run: {sc.model}") if progress else nullcontext()):
                 results.append(_run_one(sc, engine, out is not None))
     except BaseException as exc:
         if not (isinstance(exc, KeyboardInterrupt) and results):
@@ -288,14 +292,15 @@ def _not_a_table(out: Path) -> None:
               "another file name")
 
 
-def _size(scenes: list[Any], engine: str, yes: bool) -> None:
-    """A run of more than QUIET_STEPS steps says its size first; above 1 h it needs --yes."""
+def _size(scenes: list[Any], engine: str, yes: bool, show: bool = True) -> None:
+    """A run of more than QUIET_STEPS steps says its size first (``show``); above 1 h it needs
+    --yes."""
     from ..study.estimate import QUIET_STEPS, cell_steps, size_check
 
     for sc in scenes:
         if cell_steps(sc)[0] > QUIET_STEPS:
             size_check(f"run: {sc.model}", [sc], 1, workers=1, engine=engine, yes=yes,
-                       smaller="fewer --periods or --steps-per-period")
+                       show=show, smaller="fewer --periods or --steps-per-period")
 
 
 def _run_one(scene: Any, engine: str, trajectory: bool) -> Any:
