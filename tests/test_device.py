@@ -529,6 +529,20 @@ def test_a_runaway_device_gives_its_acceleration_in_m_per_s2():
     assert r.summary()["mean_acceleration_m_s2"] == r.extra["mean_acceleration_m_s2"]
 
 
+
+def test_a_runaway_asked_to_settle_is_not_settled_to_its_cap():
+    """examples/saw_linear_motor.toml (settle = true, max_periods = 1e6) under 2 mN, above
+    mu (preload + weight) = 1.478 mN: no steady drift to settle on. It ran its 1e6 periods (9 s)
+    to report the runaway; now a fixed run of its 60 periods does, at (F - mu M g) / m."""
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "saw_linear_motor.toml"
+    r = sd.run(sd.Scene.from_toml(path).with_updates(**{"device.load": "2 mN"}))
+    assert r.regime == "runaway" and not r.settled and r.periods == 60.0
+    mass = 7850.0 * 4.0 / 3.0 * math.pi * 0.5e-3**3
+    expected = (2e-3 - 0.2 * (7.35e-3 + mass * 9.81)) / mass
+    assert abs(r.extra["mean_acceleration_m_s2"]) == pytest.approx(expected, rel=2e-3)
+
 _CONE = """[device]
 frequency = "20 kHz"
 amplitude = "0.5 nm"

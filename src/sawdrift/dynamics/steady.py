@@ -99,7 +99,8 @@ def relaxation_periods(scene, m_x: float, speed: float) -> float:
 
 
 def settles(scene, speed: float, rigid: bool) -> bool:
-    """Whether a run settles its drift: ``numerics.settle``, or by default where it must and can.
+    """Whether a run settles its drift: never where a load runs away (:func:`runs_away`: no
+    steady drift), else ``numerics.settle``, or by default where it must and can.
 
     Unset, a run settles when its horizontal relaxation time (:func:`horizontal_relaxation`, of
     order m*/mu periods) exceeds a third of ``numerics.periods``: a fixed run that short would end
@@ -110,11 +111,13 @@ def settles(scene, speed: float, rigid: bool) -> bool:
     for it anyway. Where the drift can be solved directly (:func:`~.separated.solvable`, from
     ``SOLVED_MIN_MASS`` up) the run settles however fast it relaxes.
     """
+    if runs_away(scene):
+        # no steady drift to settle on, asked for or not (a load beyond the holding bound with
+        # settle = true ran to its cap: 1e6 periods, 9 s, for the runaway a fixed run names)
+        return False
     given = scene.numerics.settle
     if given is not None:
         return bool(given)
-    if runs_away(scene):
-        return False  # no steady drift to settle on
     m = scene.particle.m_star
     if horizontal_relaxation(scene, horizontal_inertia(m, rigid), speed) > AUTO_SETTLE_PERIODS:
         return False
