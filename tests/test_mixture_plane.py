@@ -238,3 +238,18 @@ def test_plane_only_options_with_lanes_are_refused(option, value, monkeypatch, c
     code, _, err = call(monkeypatch, capsys, "sort", str(EXAMPLES / "mixture.toml"),
                         "--geometry", "line", option, value, "--seeds", "1", "--until", "1e3")
     assert code == 2 and f"{option} belongs to --geometry plane" in err
+
+
+def test_a_fraction_rounded_to_one_bead_of_each_species_is_said(monkeypatch, capsys):
+    """count 10, fraction 0.01 placed 1 small and 9 large beads without a word (round(0.1) = 0,
+    each species keeps at least one); the command says so on stderr, and a fraction written as
+    nan is not a finite number (it was "Input should be less than 1" alone)."""
+    code, out, err = call(monkeypatch, capsys, "sort", str(EXAMPLES / "mixture.toml"),
+                          "--seeds", "1", "--until", "1e3", "--set", "particles.count=10",
+                          "--set", "particles.fraction=0.01")
+    assert code == 0 and "0.1 of the first radius" in err and "1 and 9" in err, err
+    assert "R = 0.2 mm (1)" in out and "R = 1 mm (9)" in out
+    code, _, err = call(monkeypatch, capsys, "sort", str(EXAMPLES / "mixture.toml"),
+                        "--set", "particles.fraction=nan")
+    assert code == 2 and "particles.fraction = 'nan' is not a finite number" in err, err
+    assert len(err.strip().splitlines()) == 1

@@ -78,6 +78,7 @@ def sort_cmd(
                                             particle_sets)
     if particles is None:
         _fail(f"{scene_file}: sort needs a [particles] table (two radii)")
+    _say_rounded(particles)
     why = slow_model_refusal(scene)
     if why is not None:
         _fail(why)
@@ -208,6 +209,22 @@ def _check(scene: sd.Scene, particles: dict[str, Any], result: Any, periods: int
             "lammps_touching_pairs": lmp.window_pairs, "model_chains": model["chains"],
             "transient": periods < CHECK_PERIODS}
 
+
+def _say_rounded(particles: dict[str, Any]) -> None:
+    """A note on stderr where the placements' counts are not round(fraction count): each species
+    keeps at least one bead (count 10, fraction 0.01 placed 1 small and 9 large, silently)."""
+    from ..lammps.placement import parse_particles
+
+    spec = parse_particles(particles)
+    if len(spec.radius) != 2 or spec.positions is not None:
+        return
+    first = spec.counts()[0]
+    share = spec.fraction * spec.count
+    if first != round(share):
+        typer.echo(f"note: particles.fraction = {spec.fraction:g} of {spec.count} beads is "
+                   f"{share:.3g} of the first radius; each species keeps at least one bead: "
+                   f"{first} and {spec.count - first} (a share of {first / spec.count:.3g})",
+                   err=True)
 
 def _fmt(x: float | None, spec: str = ".3g") -> str:
     return "-" if x is None or (isinstance(x, float) and math.isnan(x)) else format(x, spec)

@@ -23,8 +23,9 @@ from pydantic import BaseModel, ValidationError
 
 from ..errors import SawdriftError, SceneError
 from ..scene.bounds import NOT_A_NUMBER
+from ..scene.messages import format_validation_error
 from ..scene.overrides import nearest
-from ..scene.parts import Impact, Prescribed, format_validation_error
+from ..scene.parts import Impact, Prescribed
 from ..scene.quoted import refuse_quoted_fields
 from ..scene.schema import Scene
 from .adhesion import adhesion_of, adhesive_model, supports_adhesion

@@ -37,7 +37,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from ..errors import SceneError
 from ..scene.bounds import NOT_A_NUMBER
 from ..scene.device import to_si
-from ..scene.parts import format_validation_error
+from ..scene.messages import format_validation_error
 from ..scene.schema import Scene
 from ..scene.units import in_range
 from .realize import Realization, realize

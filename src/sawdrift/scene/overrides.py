@@ -31,7 +31,7 @@ from ..errors import SceneError
 from .adhesion import adhesive_out_of_range, load_bound, normalized_adhesion
 from .device import FIELD_KIND, UNITS, Device, derived_out_of_range, normalized
 from .dotted import get_dotted, set_dotted
-from .parts import format_validation_error
+from .messages import format_validation_error
 from .profiles import Profile
 
 #: Each scene field a device derives, and the device fields that set it.

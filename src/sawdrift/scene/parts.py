@@ -3,7 +3,7 @@
 All quantities are the normalized ones of docs/physics.md (paper eq. 4-5): t* = f t, one
 wave period is one unit of t*; m* = a0 m f^2 / (M g); A* = A_y / a0. The whole scene that holds
 them is :class:`sawdrift.scene.schema.Scene`; this module also holds the helpers every layer of
-the scene uses (dotted paths, one-line validation messages).
+the scene uses (dotted paths); its one-line validation messages are :mod:`.messages`.
 """
 
 from __future__ import annotations
@@ -16,7 +16,6 @@ from pydantic import (
     BaseModel,
     ConfigDict,
     Field,
-    ValidationError,
     WrapValidator,
     model_serializer,
     model_validator,
@@ -444,41 +443,3 @@ class Effects(BaseModel):
             "overlap of the largest tensile force (the LAMMPS convention)"
         ),
     )
-
-
-
-#: Tags of the drive union (the ``kind`` of each drive class).
-_DRIVE_KINDS = tuple(cls.model_fields["kind"].default for cls in (Wave, Prescribed, Impact))
-
-
-def format_validation_error(exc: ValidationError, source: str | None = None) -> str:
-    """One line naming the first offending field, its value and what is allowed; a field not
-    known comes first (a typo 'radii' was reported as 'radius is required' alone)."""
-    errors = exc.errors()
-    err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
-    parts = [str(p) for p in err["loc"] if not str(p).startswith("function-")]
-    if len(parts) > 1 and parts[0] == "drive" and parts[1] in _DRIVE_KINDS:
-        del parts[1]  # the union's tag is not a field the user wrote
-    loc = ".".join(parts)
-    msg = err["msg"].removeprefix("Value error, ")
-    where = f"{source}: " if source else ""
-    if err["type"] == "missing":
-        return f"{where}{loc} is required"
-    if err["type"] == "extra_forbidden":
-        return f"{where}{loc} is not a known field"
-    if err["type"] == "union_tag_invalid":
-        # pydantic's text named the discriminator function ("found using _drive_kind()")
-        ctx = err.get("ctx", {})
-        return (f"{where}{loc}.kind = {ctx.get('tag')!r} is not a kind of drive: use one of "
-                f"{ctx.get('expected_tags')}")
-    if loc:
-        value = err.get("input")
-        if isinstance(value, (int, float, str, bool)):
-            shown = str(value).lower() if isinstance(value, bool) else repr(value)  # as in TOML
-            return f"{where}{loc} = {shown} {msg}" if msg.startswith("is ") else (
-                f"{where}{loc} = {shown}: {msg}"
-            )
-        return f"{where}{loc}: {msg}"
-    if msg.startswith("model_params."):
-        return f"{where}{msg}"
-    return f"{where}scene: {msg}"

@@ -34,6 +34,7 @@ from ..errors import SceneError
 from .adhesion import adhesion_consistent
 from .device import Device
 from .dotted import get_dotted, set_dotted
+from .messages import format_validation_error
 from .overrides import DERIVED, apply_device, drop_replaced, nearest, plain_section, strip_derived
 from .parts import (
     FROZEN,
@@ -48,7 +49,6 @@ from .parts import (
     Prescribed,
     Wave,
     bounded,
-    format_validation_error,
 )
 from .quoted import refuse_quoted_numbers
 from .rayleigh import rayleigh_ratio, theta
