@@ -305,3 +305,23 @@ def test_no_gravity_and_no_preload_says_why_with_and_without_adhesion():
     plain = _one_line(run_main("run", MOTOR, "--set", "device.gravity=0", "--set",
                                "device.preload=0 N"))
     assert "nothing would hold the particle" in plain
+
+
+def test_a_contact_spanning_part_of_a_wavelength_warns():
+    """The motor's 0.5 mm ball on a 10 nm wave: a 3.0 um contact spans 300 wavelengths, where
+    the model moves the contact with the surface at one point; it ran without a word. The Hertz
+    contact radius (M g 3 R / 4 E*)^(1/3) is in the warning, with its share of the wavelength;
+    the motor's 9.6 MHz wave at 350 um has none."""
+    from sawdrift.scene.validity import device_warnings
+
+    data = tomllib.loads(MOTOR.read_text())
+    data["device"].update(wavelength="10 nm", amplitude="1 pm")
+    scene = build_scene(data)
+    mass = 7850.0 * 4.0 / 3.0 * math.pi * 0.5e-3**3
+    e1, e2 = 210e9 / (1 - 0.3**2), 170e9 / (1 - 0.25**2)
+    e_star = 1.0 / (1.0 / e1 + 1.0 / e2)
+    radius = (3.0 * (7.35e-3 + mass * 9.81) * 0.5e-3 / (4.0 * e_star)) ** (1.0 / 3.0)
+    (warned,) = [w for w in device_warnings(scene.device) if "wavelengths" in w]
+    assert f"contact radius {radius:.3g} m" in warned and f"{radius / 1e-8:.2g} wavelengths" in warned
+    data["device"].update(wavelength="350 um", amplitude="10 nm")
+    assert not any("wavelengths" in w for w in device_warnings(build_scene(data).device))

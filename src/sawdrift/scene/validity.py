@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 
 from .adhesion import PULLOFF_FACTOR, adhesive_rest, adhesive_sets_contact, tabor_warning
-from .device import Device, normalized
+from .device import Device, device_wavelength, normalized
 
 
 def device_warnings(device: Device, law: str = "none") -> list[str]:
@@ -44,9 +44,34 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
         out.append(f"compression a0 = {n['a0_m']:.3g} m above 0.01 R (strain a0/R = "
                    f"{n['a0_m'] / float(part.radius):.3g}): beyond Boussinesq's small-strain "
                    "solution")
+    patch = _patch_warning(device, n, adhesive, law)
+    if patch is not None:
+        out.append(patch)
     if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
         # the angle itself: the fixed "27 % at 42 deg" read as the error at every angle
         out.append(f"half-angle {math.degrees(float(part.half_angle)):.3g} deg below 60 deg: "
                    "Sneddon's small-slope solution underestimates the contact radius, more the "
                    "sharper the cone (27 % at 42 deg)")
     return out
+
+
+#: the largest contact radius, in wavelengths, over which the wave's motion counts as uniform:
+#: the phase of the surface motion changes by 2 pi 2 a / lambda = 0.63 rad across the contact
+PATCH_WAVELENGTHS = 0.05
+
+
+def _patch_warning(device: Device, n: dict, adhesive: bool, law: str) -> str | None:
+    """The contact radius above :data:`PATCH_WAVELENGTHS` of the device's wavelength (where it
+    is known, :func:`~.device.device_wavelength`): the model moves the contact with the surface
+    at one point, and a contact spanning a good part of a wavelength (a 0.5 mm ball, 3 um of
+    contact, on a 10 nm wave ran without a word) feels an average of the wave over its patch."""
+    lam = device_wavelength(device)
+    if lam is None:
+        return None
+    radius = (adhesive_rest(device, law)["contact_radius_m"] if adhesive
+              and device.particle.shape == "sphere" else n["contact_radius_m"])
+    if not radius > PATCH_WAVELENGTHS * lam:
+        return None
+    return (f"contact radius {radius:.3g} m is {radius / lam:.2g} wavelengths (wavelength "
+            f"{lam:.3g} m): the wave moves the surface by different amounts across the contact, "
+            f"which the model takes at one point; keep it below {PATCH_WAVELENGTHS:g} wavelengths")
