@@ -250,12 +250,16 @@ def _punch_or_cone(shape: str, **particle) -> dict:
 
 
 def test_a_flat_punch_compressed_beyond_small_strain_warns():
-    """A 1 mm punch of 1 kg on 1 MPa: a0 = M g / (2 E* R) = 8.9 mm, nine times the punch
-    radius, ran without a word (a sphere's contact radius above 0.1 R warns)."""
+    """A 1 mm punch of 1 kg on 100 MPa: a0 = M g / (2 E* R) = 89 um, 0.089 of the punch radius,
+    ran without a word (a sphere's contact radius above 0.1 R warns). On 1 MPa (a0 = 8.9 mm,
+    nine times its radius) it is refused, as a sphere whose contact is wider than itself is:
+    it ran with the warning."""
     from sawdrift.scene.validity import device_warnings
 
-    soft = build_scene(_punch_or_cone("flat", radius="1 mm"))
-    e_star = 1e6 / (2.0 * (1.0 - 0.3**2))
+    data = _punch_or_cone("flat", radius="1 mm", youngs_modulus="100 MPa")
+    data["device"]["substrate"]["youngs_modulus"] = "100 MPa"
+    soft = build_scene(data)
+    e_star = 1e8 / (2.0 * (1.0 - 0.3**2))
     a0 = 1.0 * 9.81 / (2.0 * e_star * 1e-3)
     (warned,) = [w for w in device_warnings(soft.device) if "above 0.01 R" in w]
     assert f"a0 = {a0:.3g} m" in warned and f"a0/R = {a0 / 1e-3:.3g}" in warned
@@ -263,6 +267,9 @@ def test_a_flat_punch_compressed_beyond_small_strain_warns():
     data["device"]["substrate"]["youngs_modulus"] = "100 GPa"
     stiff = build_scene(data)  # a0 = 89 nm
     assert not any("above 0.01 R" in w for w in device_warnings(stiff.device))
+    with pytest.raises(SceneError, match="exceeds its radius 0.001 m: no elastic contact") as info:
+        build_scene(_punch_or_cone("flat", radius="1 mm"))
+    assert "\n" not in str(info.value) and f"{a0 * 100:.3g} m" in str(info.value)
 
 
 @pytest.mark.parametrize("angle", [20.0, 55.0])

@@ -345,14 +345,15 @@ def derived_out_of_range(device: Device) -> str | None:
                 f"{AMPLITUDE_MAX * n['a0_m']:.3g} m, or raise device.preload or use a larger "
                 "particle")
     part = device.particle
-    if part.shape == "sphere" and n["contact_radius_m"] >= float(part.radius):
-        # a contact wider than the sphere: no Hertz contact at all (1 kPa moduli on a 0.5 mm
-        # ball gave a contact radius of 3.4 R and ran with a warning)
-        return (f"the sphere's Hertz contact radius under its load, {n['contact_radius_m']:.3g} "
-                f"m, exceeds its radius {float(part.radius):.3g} m: no Hertz contact (the moduli "
-                "are far too soft for the load, or the radius too small); check "
-                "device.particle.youngs_modulus, device.substrate.youngs_modulus, "
-                "device.preload")
+    # a contact wider than the sphere (1 kPa on a 0.5 mm ball: 3.4 R, run with a warning), a punch
+    # pressed in deeper than its radius (1 um on 1 MPa: a0 = 3.4 mm, the same): no contact at all
+    size = {"sphere": ("sphere's Hertz contact radius", n["contact_radius_m"], "Hertz"),
+            "flat": ("flat punch's compression", n["a0_m"], "elastic")}.get(part.shape)
+    if size is not None and size[1] >= float(part.radius):
+        return (f"the {size[0]} under its load, {size[1]:.3g} m, exceeds its radius "
+                f"{float(part.radius):.3g} m: no {size[2]} contact (the moduli are far too soft "
+                "for the load, or the radius too small); check device.particle.youngs_modulus, "
+                "device.substrate.youngs_modulus, device.preload")
     return None
 
 
