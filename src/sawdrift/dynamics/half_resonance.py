@@ -1,30 +1,33 @@
 """A contact that looks steady on an unstable orbit: the parametric resonance at half the wave's
 frequency.
 
-The normal force of a compliant contact is a nonlinear function of the compression, so the
-wave, which modulates the compression once a period, also modulates the contact's stiffness once
-a period. An undamped free vertical oscillation whose frequency is near half the wave's (for a
-Hertz contact N*'(1) = 1.5, so m* near 1.5 / pi^2 = 0.152; with adhesion the stiffer adhesive
-contact puts it at other masses) is then pumped parametrically, as a swing is by standing up
-and crouching twice a swing: the period-one orbit of the vertical motion is unstable, and any
-disturbance of it grows exponentially. The run from rest leaves only a small one, so for tens
-to hundreds of periods the contact holds or slides exactly as on the orbit, and windows measured
-then agree and settle; later the oscillation has grown into a slow beat of large bounces that
-moves the drift by 10 to 20 % or changes its regime (hertz_mindlin_dem, m* = 0.152, A* = 0.1:
-0.0304 settled after 60 periods, 0.038 from brute force over 8000; mmd and jaeger there settled
-as sticking, where brute force drifts with and against the wave).
+The normal force of a compliant contact is a nonlinear function of the compression, so the wave,
+which modulates the compression once a period, also modulates the contact's stiffness once a
+period. A free vertical oscillation whose frequency is near half the wave's (for a Hertz contact
+N*'(1) = 1.5, so m* near 1.5 / pi^2 = 0.152; with adhesion the stiffer adhesive contact puts it
+at other masses), undamped or damped less than it is pumped, is pumped parametrically, as a
+swing is by standing up and crouching twice a swing: the period-one orbit of the vertical motion
+is unstable, and any disturbance of it grows exponentially. The run from rest leaves only a
+small one, so for tens to hundreds of periods the contact holds or slides exactly as on the
+orbit, and windows measured then agree and settle; later the oscillation has grown into a slow
+beat of large bounces that moves the drift by 10 to 20 % or changes its regime
+(hertz_mindlin_dem, m* = 0.152, A* = 0.1: 0.0304 settled after 60 periods, 0.038 from brute
+force over 8000; mmd and jaeger there settled as sticking, where brute force drifts with and
+against the wave).
 
 The test, where a run would settle on a window that kept contact:
 
 1. the vertical Jacobian J over one period at the present state (:func:`~.floquet.vertical_jacobian`,
-   three periods of integration). Its trace says how the vertical motion turns once a period:
-   2 cos(2 pi f) for a stable orbit of rotation f. Only a trace within :data:`NEAR_HALF` of -2
-   (f within about 0.02 of a half, or already unstable there) goes on;
+   three periods of integration). Its trace and determinant say how the vertical motion turns
+   once a period: an orbit loses its stability to a flip (a disturbance that changes sign every
+   period and grows) where tr J crosses -(1 + det J), -2 for an undamped contact (det J = 1), a
+   little above it for a damped one. Only a trace within :data:`NEAR_HALF` of that boundary, or
+   beyond it, goes on;
 2. one Newton step to the orbit from the present state, z - (J - I)^-1 (P(z) - z), and the
-   Jacobian J_n over :data:`GROWTH_PERIODS` periods there. On a stable orbit |tr J_n| <= 2 (a
-   rotation); on an unstable one |tr J_n| = lambda^n + lambda^-n, and a trace above
-   :data:`UNSTABLE_TRACE` gives the growth rate ln |lambda| per period. One period is not
-   enough near the tongue's edge: the micro-silica example's J has the trace -1.99981 (a
+   Jacobian J_n over :data:`GROWTH_PERIODS` periods there: the modulus of its largest eigenvalue
+   is exp(n r), r the growth rate of a disturbance per period (0 on a stable undamped orbit,
+   below 0 on a damped one). A rate above :data:`MIN_RATE` is an unstable orbit. One period is
+   not enough near the tongue's edge: the micro-silica example's J has the trace -1.99981 (a
    rotation), while its disturbances grow by 1.2 % a period (J_60 says so).
 
 An unstable orbit is no steady state. The run goes on until its disturbance has grown to
@@ -42,17 +45,20 @@ import numpy as np
 from .floquet import vertical_jacobian
 from .stepper import Stepper
 
-#: a one-period trace within this of -2 (rotation within about 0.02 of a half a period) is
-#: tested over :data:`GROWTH_PERIODS`; of the 1076 cells of the default 41 x 41 mmd sweep that
-#: settle in contact, 4 are (one a stable orbit near the edge, m* = 0.1, A* = 0.53)
+#: a one-period trace within this of -(1 + det J) (the flip boundary: -2 for an undamped
+#: contact, det J = 1; a damped one's det J < 1 moves it) is tested over :data:`GROWTH_PERIODS`;
+#: of the 1076 cells of the default 41 x 41 mmd sweep that settle in contact, 4 are (one a
+#: stable orbit near the edge, m* = 0.1, A* = 0.53)
 NEAR_HALF = 0.02
 
 #: periods the growth test follows the orbit's neighbours (its cost: three times this)
 GROWTH_PERIODS = 60
 
-#: |tr J_n| above which the orbit is unstable: a growth of at least acosh(UNSTABLE_TRACE / 2) /
-#: GROWTH_PERIODS = 5.3e-3 a period (a disturbance grows e-fold within 190 periods)
-UNSTABLE_TRACE = 2.1
+#: the least growth rate (per period) that counts as unstable: a disturbance grows e-fold within
+#: 1000 periods; a stable orbit's J over 60 periods gives the scheme's own 1e-4 or less
+#: (hertz_mindlin_dem, m* = 0.152, A* = 0.01 grows by 5.24e-3 a period: a bound of 5.3e-3 missed
+#: it, and it settled 25 to 40 % low; the silica example at 0.007 nm grows by 3.7e-3)
+MIN_RATE = 1e-3
 
 #: the scaled distance from the orbit a disturbance grows to before the long-time mean starts
 GROWN = 1.0
@@ -60,7 +66,8 @@ GROWN = 1.0
 #: periods a run waits at most for its disturbance to grow
 MOST_WAIT = 20_000
 
-#: the long-time mean after the growth spans this many e-folding times 1 / rate: the beat the
+#: the long-time mean after the growth spans this many e-folding times 1 / rate (at most
+#: ``MOST_FLIGHT_BUDGETS`` mean budgets, :mod:`.integrate`): the beat the
 #: disturbance grows into lasts 12 to 17 of them (hertz_mindlin_dem m* = 0.152, A* = 0.1: 320
 #: periods at 5.4 % a period; the micro-silica example: 1100 periods at 1.2 %), so about four
 #: beats
@@ -94,7 +101,7 @@ def half_resonance_growth(stepper: Stepper, scale: np.ndarray) -> Growth | None:
     """The growth of the vertical orbit the run is on where that orbit is unstable at half the
     wave's frequency (module docstring), else None. ``stepper`` is not advanced."""
     jac, end = vertical_jacobian(stepper, scale)
-    if not np.all(np.isfinite(jac)) or np.trace(jac) > -2.0 + NEAR_HALF:
+    if not np.all(np.isfinite(jac)) or np.trace(jac) > -(1.0 + np.linalg.det(jac)) + NEAR_HALF:
         return None
     here = stepper.y[2:4].copy()
     try:
@@ -105,9 +112,11 @@ def half_resonance_growth(stepper: Stepper, scale: np.ndarray) -> Growth | None:
     shift[2:4] = orbit - here
     on_orbit = stepper.twin(shift)
     long_jac, _end = vertical_jacobian(on_orbit, scale, GROWTH_PERIODS)
-    trace = abs(float(np.trace(long_jac)))
-    if not math.isfinite(trace) or trace <= UNSTABLE_TRACE:
+    if not np.all(np.isfinite(long_jac)):
         return None
-    rate = math.acosh(0.5 * trace) / GROWTH_PERIODS
+    largest = float(np.max(np.abs(np.linalg.eigvals(long_jac))))
+    rate = math.log(largest) / GROWTH_PERIODS if largest > 0.0 else -math.inf
+    if not rate > MIN_RATE:
+        return None
     distance = float(np.hypot(shift[2] / scale[1], shift[3] / scale[2]))
     return Growth(rate, distance)

@@ -318,15 +318,18 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
 def _unstable_warning(out: WaveRun) -> str:
     """Why a run that kept contact on its vertical orbit is not settled there: the orbit is
     unstable at half the wave's frequency (:mod:`~sawdrift.dynamics.half_resonance`)."""
-    rate = out.settling.unstable
+    why = (f"the contact's free vertical oscillation is unstable at half the wave's frequency "
+           f"(a parametric resonance: a disturbance grows by "
+           f"{100.0 * math.expm1(out.settling.unstable):.2g} % a period)")
+    if out.settling.settled:  # the growth ended on a periodic orbit (.transient)
+        return (f"{why}: the steady contact of the run's first periods was not its steady "
+                "state; the run followed the disturbance to the periodic orbit it grows into")
     what = ("the drift is the long-time mean of the motion it grows into"
             if out.long_mean is not None else
             "this fixed run's window is a sample of it before it grew; the default run (without "
             "--no-settle) follows it and reports the long-time mean of what it grows into")
-    return (f"not settled: the contact's free vertical oscillation is unstable at half the "
-            f"wave's frequency (a parametric resonance: a disturbance grows by "
-            f"{100.0 * math.expm1(rate):.2g} % a period), so the steady contact its first "
-            f"periods showed is no steady state; {what}")
+    return (f"not settled: {why}, so the steady contact its first periods showed is no steady "
+            f"state; {what}")
 
 def _unsettled_reason(out: WaveRun, settling: bool) -> str:
     """Why a run that was to settle did not: its drift still moving when its periods ran out, or
