@@ -219,7 +219,7 @@ def _past_half_resonance(stepper: Stepper, scene: Scene, win: Window, settling: 
     from there; None where the run's orbit is not such an orbit."""
     if not settling.settled or chaos is not None or stepper.rigid or win.contact_lost:
         return None
-    growth = half_resonance_growth(stepper, scale)
+    growth = half_resonance_growth(stepper, scale, win.samples)
     if growth is None:
         return None
     settling = replace(settling, settled=False, drift=None, unstable=growth.rate)
