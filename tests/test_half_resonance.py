@@ -121,3 +121,23 @@ def test_a_contact_beside_the_tongue_still_settles(m):
                                    drive={"amplitude": 0.1})
     assert res.settled
     assert abs(res.drift_ratio - brute.drift_ratio) <= max(1e-3 * abs(brute.drift_ratio), 2e-5)
+
+
+@pytest.mark.parametrize(("turn", "far"), [(0.3, True), (0.7, True), (0.95, False), (1.0, False)])
+def test_the_window_screen_reads_the_turn_of_the_strobe_map(turn, far):
+    """States z_{n+1} = z* + J (z_n - z*) of a rotation by ``turn`` pi (elliptic, tr J =
+    2 cos(turn pi)) are far from the flip up to about 0.82 pi (tr J > -1.7) and not beyond; a
+    flip with |lambda| = 1.05 (turn 1.0: J = diag(-1.05, -1/1.05)) is not far from it either."""
+    from sawdrift.dynamics.half_resonance import far_from_flip
+
+    if turn < 1.0:
+        c, s = math.cos(turn * math.pi), math.sin(turn * math.pi)
+        jac = np.array([[c, -3.0 * s], [s / 3.0, c]])  # an ellipse, det 1
+    else:
+        jac = np.diag([-1.05, -1.0 / 1.05])
+    orbit, z = np.array([0.9, 0.01]), np.array([0.9 + 1e-5, 0.01 - 2e-5])
+    rows = []
+    for _ in range(27):
+        z = orbit + jac @ (z - orbit)
+        rows.append([0.0, 0.0, *z])
+    assert far_from_flip(np.array(rows), np.ones(3)) is far
