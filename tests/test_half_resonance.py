@@ -89,6 +89,8 @@ def test_a_damped_contact_grows_off_its_unstable_orbit_onto_another(scene):
     follows the growth to that orbit and agrees within the acceptance bound."""
     res, brute = default_and_brute(8000, **scene, **HALF)
     assert res.settled and res.settle_method == "mean_then_orbit", res.settle_method
+    # an orbit that keeps contact has no Lyapunov exponent, as any run in contact (it had one)
+    assert res.contact_lost or math.isnan(res.lyapunov), (res.contact_lost, res.lyapunov)
     assert any("half the wave's frequency" in w for w in res.warnings)
     assert abs(res.drift_ratio - brute.drift_ratio) <= max(1e-3 * abs(brute.drift_ratio), 2e-5)
 
@@ -141,3 +143,13 @@ def test_the_window_screen_reads_the_turn_of_the_strobe_map(turn, far):
         z = orbit + jac @ (z - orbit)
         rows.append([0.0, 0.0, *z])
     assert far_from_flip(np.array(rows), np.ones(3)) is far
+
+
+def test_a_run_already_grown_goes_straight_to_its_mean(monkeypatch):
+    """Where the run is already as far from the orbit as the growth is waited for, it waits
+    no period: advance_periods(0) raised IndexError (a traceback) there."""
+    import sawdrift.dynamics.half_resonance as half
+
+    monkeypatch.setattr(half, "GROWN", 1e-9)
+    res = sd.run(sd.Scene(model="hertz_mindlin_dem", **HALF))
+    assert not res.settled and math.isfinite(res.drift_ratio_se)

@@ -247,7 +247,7 @@ def test_a_fraction_rounded_to_one_bead_of_each_species_is_said(monkeypatch, cap
     code, out, err = call(monkeypatch, capsys, "sort", str(EXAMPLES / "mixture.toml"),
                           "--seeds", "1", "--until", "1e3", "--set", "particles.count=10",
                           "--set", "particles.fraction=0.01")
-    assert code == 0 and "0.1 of the first radius" in err and "1 and 9" in err, err
+    assert code == 0 and "0.1 of a bead of the first radius" in err and "1 and 9" in err, err
     assert "R = 0.2 mm (1)" in out and "R = 1 mm (9)" in out
     code, _, err = call(monkeypatch, capsys, "sort", str(EXAMPLES / "mixture.toml"),
                         "--set", "particles.fraction=nan")

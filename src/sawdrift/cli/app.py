@@ -159,7 +159,8 @@ def _scheduler_option(value: str | None) -> str | None:
 Scheduler = Annotated[str | None, typer.Option("--scheduler", help="dask.distributed address "
                                                "([tcp://]host:port)", callback=_scheduler_option)]
 Engine = Annotated[str, typer.Option("--engine", help="compiled or python")]
-Progress = Annotated[bool, typer.Option("--progress/--no-progress")]
+Progress = Annotated[bool, typer.Option("--progress/--no-progress", help="progress bars, notices "
+                                        "and the size line on stderr")]
 Yes = Annotated[bool, typer.Option("--yes", help="start even when the size estimate (printed "
                                    "before the work) is above 1 h")]
 

@@ -222,7 +222,7 @@ def _say_rounded(particles: dict[str, Any]) -> None:
     share = spec.fraction * spec.count
     if first != round(share):
         typer.echo(f"note: particles.fraction = {spec.fraction:g} of {spec.count} beads is "
-                   f"{share:.3g} of the first radius; each species keeps at least one bead: "
+                   f"{share:.3g} of a bead of the first radius; each species keeps at least one: "
                    f"{first} and {spec.count - first} (a share of {first / spec.count:.3g})",
                    err=True)
 

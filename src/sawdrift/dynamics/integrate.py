@@ -181,7 +181,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
         # the irregular motion was a transient that ended on a periodic orbit (.transient)
         win, stepper, chaos = ended, twin, None
         settling = orbit_settling(settling, twin, win)
-        lyap, chaotic = lyapunov(win, scale)
+        lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
@@ -226,12 +226,15 @@ def _past_half_resonance(stepper: Stepper, scene: Scene, win: Window, settling: 
     num = scene.numerics
     if num.settle is False:
         return win, settling, None, None, (math.nan, False)
-    stepper.advance_periods(growth.wait)
+    if growth.wait > 0:
+        stepper.advance_periods(growth.wait)
     win = measure_window(stepper, scene.measure_periods(), speed, scale)
     budget = growth.mean_periods(_mean_budget(num, win), MOST_FLIGHT_BUDGETS * num.mean_periods)
-    chaos, twin = _long_mean(stepper, win, budget, num.settle_tolerance * speed)
+    # the whole budget, no early stop at the tolerance (part of one beat can look converged)
+    chaos, twin = _long_mean(stepper, win, budget, 0.0)
     return win, settling, chaos, twin, (lyapunov(win, scale) if win.contact_lost
                                         else (math.nan, False))
+
 
 def _exponent_of(win: Window, scale: np.ndarray) -> tuple[float, bool]:
     """The Lyapunov exponent and chaos verdict of the window a default run settled on after

@@ -273,7 +273,7 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
                 if scene.device is not None else ())
     warnings += _table_warning(scene)
     if out.settling.unstable > 0.0:
-        warnings += (_unstable_warning(out),)
+        warnings += (_unstable_warning(out, scene.numerics.settle is False),)
     if out.long_mean is not None and out.long_mean.approaching and out.speed > 0.0:
         periods = out.stepper.step / out.stepper.k_per
         warnings += (f"not settled: {STILL_MOVING}: its windows still moved one way when they "
@@ -315,7 +315,7 @@ def _warnings(scene: Scene, out: WaveRun, drift_se: float) -> tuple[str, ...]:
     return warnings
 
 
-def _unstable_warning(out: WaveRun) -> str:
+def _unstable_warning(out: WaveRun, fixed: bool) -> str:
     """Why a run that kept contact on its vertical orbit is not settled there: the orbit is
     unstable at half the wave's frequency (:mod:`~sawdrift.dynamics.half_resonance`)."""
     why = (f"the contact's free vertical oscillation is unstable at half the wave's frequency "
@@ -324,12 +324,12 @@ def _unstable_warning(out: WaveRun) -> str:
     if out.settling.settled:  # the growth ended on a periodic orbit (.transient)
         return (f"{why}: the steady contact of the run's first periods was not its steady "
                 "state; the run followed the disturbance to the periodic orbit it grows into")
-    what = ("the drift is the long-time mean of the motion it grows into"
-            if out.long_mean is not None else
-            "this fixed run's window is a sample of it before it grew; the default run (without "
-            "--no-settle) follows it and reports the long-time mean of what it grows into")
+    what = ("this fixed run's window is a sample of it before it grew; the default run (without "
+            "--no-settle) follows it and reports the long-time mean of what it grows into"
+            if fixed else "the drift is the long-time mean of the motion it grows into")
     return (f"not settled: {why}, so the steady contact its first periods showed is no steady "
             f"state; {what}")
+
 
 def _unsettled_reason(out: WaveRun, settling: bool) -> str:
     """Why a run that was to settle did not: its drift still moving when its periods ran out, or
