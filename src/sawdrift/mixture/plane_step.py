@@ -109,17 +109,11 @@ def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep,
     xt, yt, ux, uy, moved = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
     parent, loc = np.zeros(n, dtype=np.int64), np.zeros(n, dtype=np.int64)
     eps = 5e-2 * tol
-    pi, pj = build_pairs(x, y, kind, rad, hgt, skin)
-    quarter = 0.25 * far_gap(x, y, kind, rad, hgt, skin)
-    over = np.zeros(pi.size)
-    act, start = np.zeros(pi.size, dtype=np.bool_), np.zeros(pi.size, dtype=np.bool_)
-    t, k, dt_prev, first = 0.0, 0, math.inf, True
+    pi, pj, quarter, over, act, start = _pair_list(x, y, kind, rad, hgt, skin)
+    t, dt_prev, first = 0.0, math.inf, True
     stats[:] = 0.0
     stats[2] = 1.0
-    while k < sample_t.size and sample_t[k] <= t:
-        out_x[k, :] = x
-        out_y[k, :] = y
-        k += 1
+    k = _write_samples(x, y, t, 0, sample_t, out_x, out_y)
     while k < sample_t.size:
         if stats[0] >= max_steps:
             return 1
@@ -167,16 +161,10 @@ def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep,
             dt_prev = dt
         stats[0] += 1.0
         if worst > quarter:
-            pi, pj = build_pairs(x, y, kind, rad, hgt, skin)
-            quarter = 0.25 * far_gap(x, y, kind, rad, hgt, skin)
-            over = np.zeros(pi.size)
-            act, start = np.zeros(pi.size, dtype=np.bool_), np.zeros(pi.size, dtype=np.bool_)
+            pi, pj, quarter, over, act, start = _pair_list(x, y, kind, rad, hgt, skin)
             moved[:] = 0.0
             stats[2] += 1.0
-        while k < sample_t.size and sample_t[k] <= t:
-            out_x[k, :] = x
-            out_y[k, :] = y
-            k += 1
+        k = _write_samples(x, y, t, k, sample_t, out_x, out_y)
     if k < sample_t.size:  # parted: every bead at its free drift from t on
         ux[:] = wx
         uy[:] = wy
@@ -185,6 +173,28 @@ def integrate(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep,
     out_u[1, :] = uy
     return 0
 
+
+
+@njit(**JIT)
+def _pair_list(x, y, kind, rad, hgt, skin: float):
+    """The pairs within the skin (:func:`~.plane_kernel.build_pairs`), a quarter of the nearest
+    gap beyond it (how far a bead may move before the list is built again), and the pairs'
+    overlaps and contact flags (now, at the step's start), zeroed."""
+    pi, pj = build_pairs(x, y, kind, rad, hgt, skin)
+    quarter = 0.25 * far_gap(x, y, kind, rad, hgt, skin)
+    over = np.zeros(pi.size)
+    return (pi, pj, quarter, over, np.zeros(pi.size, dtype=np.bool_),
+            np.zeros(pi.size, dtype=np.bool_))
+
+
+@njit(**JIT)
+def _write_samples(x, y, t: float, k: int, sample_t, out_x, out_y) -> int:
+    """The positions at every sample time from the ``k``-th up to ``t``; the next index."""
+    while k < sample_t.size and sample_t[k] <= t:
+        out_x[k, :] = x
+        out_y[k, :] = y
+        k += 1
+    return k
 
 @njit(**JIT)
 def _newton(x, y, kind, rad, hgt, wgt, table, v0, dv, lo, hi, logn, nc, hstep, vfree, u, perp,
