@@ -336,6 +336,15 @@ def test_the_python_engine_runs_the_same_load_terms(model, effects):
     assert b.drift_velocity == pytest.approx(a.drift_velocity, rel=1e-12, abs=0.0)
 
 
+@pytest.mark.parametrize("field", ["particle.load", "device.load"])
+def test_a_load_curve_over_a_load_axis_is_refused(field):
+    """--axis particle.load=0,0.1 printed two identical curves (the curve runs its own loads),
+    where --load is refused."""
+    proc = run_main("load-curve", "--model", "mmd", "--m-star", "100", "--axis", f"{field}=0,0.1")
+    assert proc.returncode == 2 and f"--axis {field}" in proc.stderr, proc.stderr
+    assert len(proc.stderr.strip().splitlines()) == 1
+
+
 def test_load_curve_axis_overlays_species_each_as_its_own_curve(tmp_path):
     # sorting: one curve per value of a particle field; each species' stall load is the one of a
     # curve computed for that species alone (the overlay changes nothing)

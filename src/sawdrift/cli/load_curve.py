@@ -86,6 +86,9 @@ def load_curve_cmd(
         from ..study.axes import parse_values
 
         name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
+        if name in ("particle.load", "device.load"):  # two identical curves, without a word
+            _fail(f"--axis {name}: load-curve runs its own loads, from 0 to the stall load; "
+                  "sweep another field (e.g. particle.m_star=0.05,0.5)")
         species = len(parse_values(spec, name))
     _size(scene, axis, loads, workers, engine, yes, progress)
     bar = counter(species * _stages(workers), "load-curve", "stage", enabled=progress)
