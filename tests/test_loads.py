@@ -448,3 +448,31 @@ def test_no_drift_without_load_is_one_line(sawdrift_main):
     assert "nothing to stall" in lines[0]
     curve = load_curve(sd.Scene(drive={"amplitude": 0.0}), loads=3, workers=1)
     assert curve.free_state == "no_drift" and curve.stall_load == 0.0
+
+
+@pytest.mark.parametrize("command", ["load-curve", "force-velocity"])
+def test_ctrl_c_in_a_curve_keeps_the_runs_that_ended(command, monkeypatch, capsys, tmp_path):
+    """Ctrl-C after two loaded runs: they are printed and written (partial_runs.json in the
+    output folder), exit status 130. It said "stopped before writing its results" and left an
+    empty folder: minutes of heavy runs lost."""
+    import sawdrift.study.load_curve as lc
+    from .cli_call import call
+
+    real, calls = lc._run_load, []
+
+    def interrupted_third(scene_json, engine):
+        calls.append(1)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+        return real(scene_json, engine)
+
+    monkeypatch.setattr(lc, "_run_load", interrupted_third)
+    out = tmp_path / "curve"
+    code, stdout, err = call(monkeypatch, capsys, command, "--model", "mmd", "--m-star", "1",
+                             "--amplitude", "0.5", "--workers", "1", "--no-progress", "-o",
+                             str(out))
+    assert code == 130 and "2 loaded runs ended" in err, err
+    kept = json.loads((out / "partial_runs.json").read_text())
+    assert kept["complete"] is False and len(kept["runs"]) == 2
+    assert all(math.isfinite(r["drift_velocity"]) for r in kept["runs"])
+    assert stdout.count("L = ") == 2

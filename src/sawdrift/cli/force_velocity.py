@@ -25,6 +25,7 @@ from .app import (
     remove_new,
     write_outputs,
 )
+from .interrupts import interrupted_curve
 from .run_text import curve_warning_lines, pm_text
 from .scene_options import refuse_given_load, scene_from_options, with_scene_options
 
@@ -61,6 +62,7 @@ def force_velocity_cmd(
     """
     from ..report.force_velocity_plot import plot_force_velocity
     from ..study.force_velocity import force_velocity
+    from ..study.load_curve import CurveInterrupted
 
     fast_start()
     check_engine(engine)
@@ -80,7 +82,10 @@ def force_velocity_cmd(
     except BaseException:
         remove_new(created)  # a refused command leaves no folder behind
         raise
-    curve = force_velocity(scene, points=points, workers=workers, engine=engine)
+    try:
+        curve = force_velocity(scene, points=points, workers=workers, engine=engine)
+    except CurveInterrupted as stop:
+        interrupted_curve(stop, out, "force-velocity")
     data = curve.to_json()
     if out is not None:
         write_outputs(out, "force_velocity", data, lambda path: plot_force_velocity(curve, path),

@@ -15,7 +15,7 @@ from typing import Any
 
 import typer
 
-__all__ = ["interrupted", "interrupted_placements"]
+__all__ = ["interrupted", "interrupted_curve", "interrupted_placements"]
 
 
 #: whether a command already said what its Ctrl-C kept (:func:`interrupted`)
@@ -93,6 +93,32 @@ def interrupted_placements(done: int, total: int, written: Path | None) -> None:
     interrupted(f"interrupted (Ctrl-C) after {done} of {total} placements: the numbers are of "
                 f"those{kept}")
 
+
+def interrupted_curve(stop: Any, out: Path | None, command: str) -> None:
+    """End a load or force-velocity curve that Ctrl-C stopped (``stop``: a
+    :class:`~sawdrift.study.load_curve.CurveInterrupted`): the loaded runs that ended, printed
+    and written as JSON (``partial_runs.json`` in an output folder, ``NAME.partial.json`` beside
+    an output file), then :func:`interrupted`. Whole minutes of heavy runs were lost: "the
+    command stopped before writing its results", an empty folder."""
+    import json
+
+    rows = []
+    for load in sorted(stop.table):
+        row = {"load": load, **stop.table[load]}
+        if stop.newtons > 0.0:
+            row["load_N"] = load * stop.newtons
+        rows.append(row)
+        typer.echo(f"L = {load:+.6g} M g: drift velocity {row.get('drift_velocity')} a0 f, "
+                   f"{row.get('regime')}, settled {row.get('settled')}")
+    written = ""
+    if out is not None and rows:
+        path = (out / "partial_runs.json" if out.suffix == "" or out.is_dir()
+                else out.with_suffix(".partial.json"))
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps({"command": command, "complete": False, "runs": rows}))
+        written = f", written to {path}"
+    interrupted(f"interrupted (Ctrl-C): {command} stopped with {len(rows)} loaded runs ended, "
+                f"printed above{written}; the curve needs the rest: run the command again")
 
 def _say_interrupted(code: object) -> None:
     """Ctrl-C, which typer turns into exit status 130 with no word: one line, unless the command

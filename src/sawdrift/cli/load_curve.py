@@ -24,6 +24,7 @@ from .app import (
     out_kind,
     write_outputs,
 )
+from .interrupts import interrupted_curve
 from .run_text import curve_warning_lines, pm_text
 from .scene_options import refuse_given_load, scene_from_options, with_scene_options
 
@@ -64,7 +65,7 @@ def load_curve_cmd(
     """
     from ..dynamics.steady import refuse_free_spin
     from ..report.load_curve_plot import plot_load_curve
-    from ..study.load_curve import load_curve
+    from ..study.load_curve import CurveInterrupted, load_curve
 
     fast_start()
     check_engine(engine)
@@ -97,8 +98,11 @@ def load_curve_cmd(
         with bar:
             _species_curves(scene, axis, loads, workers, engine, note, as_json, out)
         return
-    with bar:
-        curve = load_curve(scene, loads=loads, workers=workers, engine=engine, progress=note)
+    try:
+        with bar:
+            curve = load_curve(scene, loads=loads, workers=workers, engine=engine, progress=note)
+    except CurveInterrupted as stop:
+        interrupted_curve(stop, out, "load-curve")
     data = curve.to_json()
     if kind == ".csv":
         _curve_csv([("", data)], out)

@@ -173,6 +173,8 @@ def force_velocity(
             applied.append(0.0)
         applied.sort()
         rows = runner.run(applied)
+    except KeyboardInterrupt:
+        raise runner.interrupted() from None
     finally:
         runner.close()
     if progress is not None:

@@ -247,14 +247,33 @@ class _Runner:
         return self.scene.with_updates(**updates)
 
     def run(self, applied: Sequence[float]) -> list[dict[str, Any]]:
+        """The summaries of the runs at the loads ``applied``; each run that ends is kept in
+        :attr:`table` at once (a Ctrl-C keeps them: :class:`CurveInterrupted`)."""
         todo = [a for a in dict.fromkeys(applied) if a not in self.table]
         scenes = [self.loaded(a).model_dump_json() for a in todo]
-        results = self.executor.map(partial(_run_load, engine=self.engine), scenes)
-        self.table.update(zip(todo, results, strict=True))
+        for i, result in self.executor.imap(partial(_run_load, engine=self.engine), scenes):
+            if i is not None:
+                self.table[todo[i]] = result
         return [self.table[a] for a in applied]
+
+    def interrupted(self) -> CurveInterrupted:
+        """What a Ctrl-C leaves: the runs that ended, by load (:class:`CurveInterrupted`)."""
+        return CurveInterrupted(dict(self.table), self.newtons)
 
     def close(self) -> None:
         self.executor.close()
+
+
+class CurveInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a load or force-velocity curve, with the loaded runs that ended: ``table``
+    maps each applied load (units of M g, signed along +x) to its run's summary; ``newtons`` is
+    M g in N for a device (0 otherwise). A KeyboardInterrupt still, for a caller that does not
+    look."""
+
+    def __init__(self, table: dict[float, dict[str, Any]], newtons: float) -> None:
+        super().__init__(f"{len(table)} loaded runs ended")
+        self.table = table
+        self.newtons = newtons
 
 
 def _surface_speed(scene: Scene) -> float:
@@ -319,6 +338,8 @@ def load_curve(
     note = progress or (lambda _line: None)
     try:
         curve = _curve(scene, runner, speed, loads, tolerance, note)
+    except KeyboardInterrupt:
+        raise runner.interrupted() from None
     finally:
         runner.close()
     return LoadCurve(**curve, runs=len(runner.table), wall_time_s=time.perf_counter() - t0,
