@@ -456,6 +456,7 @@ def test_ctrl_c_in_a_curve_keeps_the_runs_that_ended(command, monkeypatch, capsy
     output folder), exit status 130. It said "stopped before writing its results" and left an
     empty folder: minutes of heavy runs lost."""
     import sawdrift.study.load_curve as lc
+
     from .cli_call import call
 
     real, calls = lc._run_load, []
@@ -472,7 +473,9 @@ def test_ctrl_c_in_a_curve_keeps_the_runs_that_ended(command, monkeypatch, capsy
                              "--amplitude", "0.5", "--workers", "1", "--no-progress", "-o",
                              str(out))
     assert code == 130 and "2 loaded runs ended" in err, err
-    kept = json.loads((out / "partial_runs.json").read_text())
+    text = (out / "partial_runs.json").read_text()
+    assert "NaN" not in text and "Infinity" not in text  # a settled run's error is null
+    kept = json.loads(text)
     assert kept["complete"] is False and len(kept["runs"]) == 2
     assert all(math.isfinite(r["drift_velocity"]) for r in kept["runs"])
     assert stdout.count("L = ") == 2

@@ -102,6 +102,8 @@ def interrupted_curve(stop: Any, out: Path | None, command: str) -> None:
     command stopped before writing its results", an empty folder."""
     import json
 
+    from .app import json_nulls  # (app imports this module)
+
     rows = []
     for load in sorted(stop.table):
         row = {"load": load, **stop.table[load]}
@@ -115,7 +117,8 @@ def interrupted_curve(stop: Any, out: Path | None, command: str) -> None:
         path = (out / "partial_runs.json" if out.suffix == "" or out.is_dir()
                 else out.with_suffix(".partial.json"))
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps({"command": command, "complete": False, "runs": rows}))
+        path.write_text(json.dumps(json_nulls({"command": command, "complete": False,
+                                                "runs": rows}), indent=1) + "\n")
         written = f", written to {path}"
     interrupted(f"interrupted (Ctrl-C): {command} stopped with {len(rows)} loaded runs ended, "
                 f"printed above{written}; the curve needs the rest: run the command again")
