@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -340,9 +341,12 @@ def test_the_python_engine_runs_the_same_load_terms(model, effects):
 def test_a_load_curve_over_a_load_axis_is_refused(field):
     """--axis particle.load=0,0.1 printed two identical curves (the curve runs its own loads),
     where --load is refused."""
-    proc = run_main("load-curve", "--model", "mmd", "--m-star", "100", "--axis", f"{field}=0,0.1")
+    out = Path(tempfile.mkdtemp()) / "lc"
+    proc = run_main("load-curve", "--model", "mmd", "--m-star", "100", "--axis", f"{field}=0,0.1",
+                    "-o", out)
     assert proc.returncode == 2 and f"--axis {field}" in proc.stderr, proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1
+    assert not out.exists()  # a refused command leaves no folder behind
 
 
 def test_load_curve_axis_overlays_species_each_as_its_own_curve(tmp_path):
@@ -479,3 +483,33 @@ def test_ctrl_c_in_a_curve_keeps_the_runs_that_ended(command, monkeypatch, capsy
     assert kept["complete"] is False and len(kept["runs"]) == 2
     assert all(math.isfinite(r["drift_velocity"]) for r in kept["runs"])
     assert stdout.count("L = ") == 2
+
+
+def test_ctrl_c_in_a_species_load_curve_keeps_the_curves_that_ended(monkeypatch, capsys,
+                                                                    tmp_path):
+    """--axis particle.m_star=1,2, Ctrl-C at the second species' second run: the first
+    species' whole curve and the second's first run are written (partial_runs.json), exit 130;
+    they were lost, an empty folder."""
+    import sawdrift.study.load_curve as lc
+
+    from .cli_call import call
+
+    real, second = lc._run_load, []
+
+    def interrupted_later(scene_json, engine):
+        if json.loads(scene_json)["particle"]["m_star"] == 2.0:
+            second.append(1)
+            if len(second) == 2:
+                raise KeyboardInterrupt
+        return real(scene_json, engine)
+
+    monkeypatch.setattr(lc, "_run_load", interrupted_later)
+    out = tmp_path / "species"
+    code, _, err = call(monkeypatch, capsys, "load-curve", "--model", "mmd", "--amplitude", "0.5",
+                        "--axis", "particle.m_star=1,2", "--loads", "3", "--workers", "1",
+                        "--no-progress", "-o", str(out))
+    assert code == 130 and "1 curves and 1 loaded runs ended" in err, err
+    kept = json.loads((out / "partial_runs.json").read_text())
+    assert [s["label"] for s in kept["species"]] == ["particle.m_star=1.0"]
+    assert kept["interrupted_species"] == "particle.m_star=2.0" and len(kept["runs"]) == 1
+    assert math.isfinite(kept["species"][0]["stall_load"])

@@ -94,12 +94,14 @@ def interrupted_placements(done: int, total: int, written: Path | None) -> None:
                 f"those{kept}")
 
 
-def interrupted_curve(stop: Any, out: Path | None, command: str) -> None:
+def interrupted_curve(stop: Any, out: Path | None, command: str,
+                      done: dict[str, Any] | None = None) -> None:
     """End a load or force-velocity curve that Ctrl-C stopped (``stop``: a
     :class:`~sawdrift.study.load_curve.CurveInterrupted`): the loaded runs that ended, printed
     and written as JSON (``partial_runs.json`` in an output folder, ``NAME.partial.json`` beside
-    an output file), then :func:`interrupted`. Whole minutes of heavy runs were lost: "the
-    command stopped before writing its results", an empty folder."""
+    an output file), with ``done`` (the curves of an --axis that ended, written beside them),
+    then :func:`interrupted`. Whole minutes of heavy runs were lost: "the command stopped before
+    writing its results", an empty folder."""
     import json
 
     from .app import json_nulls  # (app imports this module)
@@ -113,15 +115,17 @@ def interrupted_curve(stop: Any, out: Path | None, command: str) -> None:
         typer.echo(f"L = {load:+.6g} M g: drift velocity {row.get('drift_velocity')} a0 f, "
                    f"{row.get('regime')}, settled {row.get('settled')}")
     written = ""
-    if out is not None and rows:
+    curves = len(done["species"]) if done else 0
+    if out is not None and (rows or curves):
         path = (out / "partial_runs.json" if out.suffix == "" or out.is_dir()
                 else out.with_suffix(".partial.json"))
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(json_nulls({"command": command, "complete": False,
-                                                "runs": rows}), indent=1) + "\n")
+        kept = {"command": command, "complete": False, "runs": rows, **(done or {})}
+        path.write_text(json.dumps(json_nulls(kept), indent=1) + "\n")
         written = f", written to {path}"
-    interrupted(f"interrupted (Ctrl-C): {command} stopped with {len(rows)} loaded runs ended, "
-                f"printed above{written}; the curve needs the rest: run the command again")
+    ended = f"{curves} curves and " if done else ""
+    interrupted(f"interrupted (Ctrl-C): {command} stopped with {ended}{len(rows)} loaded runs "
+                f"ended, printed above{written}; the curve needs the rest: run the command again")
 
 def _say_interrupted(code: object) -> None:
     """Ctrl-C, which typer turns into exit status 130 with no word: one line, unless the command

@@ -73,6 +73,10 @@ def load_curve_cmd(
         _fail(f"--loads = {loads}: a load curve needs at least 2 loads")
     if workers is not None and workers < 1:
         _fail(f"--workers = {workers}: give at least 1")
+    name = axis.partition("=")[0].strip() if axis is not None else None
+    if name in ("particle.load", "device.load"):  # two identical curves, without a word
+        _fail(f"--axis {name}: load-curve runs its own loads, from 0 to the stall load; "
+              "sweep another field (e.g. particle.m_star=0.05,0.5)")
     what = "the curve: load, drift velocity and its error, power, regime, settled"
     kind = out_kind(out, (".csv",), what) if out is not None else None
     if out is not None:
@@ -87,9 +91,6 @@ def load_curve_cmd(
         from ..study.axes import parse_values
 
         name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
-        if name in ("particle.load", "device.load"):  # two identical curves, without a word
-            _fail(f"--axis {name}: load-curve runs its own loads, from 0 to the stall load; "
-                  "sweep another field (e.g. particle.m_star=0.05,0.5)")
         species = len(parse_values(spec, name))
     _size(scene, axis, loads, workers, engine, yes, progress)
     bar = counter(species * _stages(workers), "load-curve", "stage", enabled=progress)
@@ -272,13 +273,18 @@ def _species_curves(scene: Any, axis: str, loads: int, workers: int | None, engi
     from ..report.load_curve_plot import plot_load_curves
     from ..study.axes import parse_values
     from ..study.field import species_scenes
-    from ..study.load_curve import load_curve
+    from ..study.load_curve import CurveInterrupted, load_curve
 
     name, spec = _split_axis(axis, "FIELD=a,b", "particle.m_star=0.05,0.5")
     curves = []
     for label, sp in species_scenes(scene, (name, parse_values(spec, name))):
-        curves.append((label, load_curve(sp, loads=loads, workers=workers, engine=engine,
-                                         progress=note)))
+        try:
+            curves.append((label, load_curve(sp, loads=loads, workers=workers, engine=engine,
+                                             progress=note)))
+        except CurveInterrupted as stop:  # the curves that ended go with the runs that did
+            done = {"axis": name, "interrupted_species": label,
+                    "species": [{"label": lb, **c.to_json()} for lb, c in curves]}
+            interrupted_curve(stop, out, "load-curve", done)
     data = {"axis": name, "species": [{"label": label, **c.to_json()} for label, c in curves]}
     if out is not None and out.suffix.lower() == ".csv" and not out.is_dir():
         _curve_csv([(label, c.to_json()) for label, c in curves], out)
