@@ -45,8 +45,8 @@ In the twenty-fourth session, on its final code: 2 of 1708 settled drifts off, 1
 damping 0.5 at m* 22.3, A* 8.7, is 0.92455 +- 0.00012 against 0.92439 from 1.28e5 periods; its
 stored brute force, 0.21 and 0.36, had not converged). In the twenty-fifth session, on its final
 code: 2 of 1707 settled drifts off, 14 of 358 means, 5 without a warning (the windows of a few
-long flights no longer jump the speed: 52 drifts moved, the same bad counts, the median distance
-from brute force in errors 0.27 -> 0.25).
+long flights no longer jump the speed: 44 drifts moved, the same bad counts, the median distance
+from brute force in errors 0.27 -> 0.26).
 """
 
 from __future__ import annotations
