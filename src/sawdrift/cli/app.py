@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import inspect
 import json
-import math
 import sys
 import warnings
 from pathlib import Path
@@ -31,6 +30,7 @@ from .interrupts import (  # noqa: F401 - the commands import them from here
     interrupted,
     interrupted_placements,
 )
+from .json_out import json_nulls  # noqa: F401 - the commands import it from here
 
 
 def reflow(text: str | None) -> str | None:
@@ -451,17 +451,6 @@ def check_engine(engine: str, lammps: bool = False) -> None:
     allowed = ("compiled", "python", "lammps") if lammps else ("compiled", "python")
     if engine not in allowed:
         _fail(f"--engine = {engine!r} is not allowed; use " + ", ".join(repr(a) for a in allowed))
-
-
-def json_nulls(data: Any) -> Any:
-    """``data`` with every NaN or infinite float replaced by None (JSON null: NaN is no JSON)."""
-    if isinstance(data, dict):
-        return {k: json_nulls(v) for k, v in data.items()}
-    if isinstance(data, list | tuple):
-        return [json_nulls(v) for v in data]
-    if isinstance(data, float) and not math.isfinite(data):
-        return None
-    return data
 
 
 def write_outputs(out: Path, stem: str, data: dict[str, Any], plot: Any, scene: Any) -> None:

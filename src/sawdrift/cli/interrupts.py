@@ -15,6 +15,8 @@ from typing import Any
 
 import typer
 
+from .json_out import json_nulls
+
 __all__ = ["interrupted", "interrupted_curve", "interrupted_placements"]
 
 
@@ -103,8 +105,6 @@ def interrupted_curve(stop: Any, out: Path | None, command: str,
     then :func:`interrupted`. Whole minutes of heavy runs were lost: "the command stopped before
     writing its results", an empty folder."""
     import json
-
-    from .app import json_nulls  # (app imports this module)
 
     rows = []
     for load in sorted(stop.table):
