@@ -454,24 +454,29 @@ def test_no_drift_without_load_is_one_line(sawdrift_main):
     assert curve.free_state == "no_drift" and curve.stall_load == 0.0
 
 
+def _interrupt_when(monkeypatch, when) -> None:
+    """A Ctrl-C in the loaded run whose scene (a dict) ``when`` picks (serial runs)."""
+    import sawdrift.study.load_curve as lc
+
+    real = lc._run_load
+
+    def run_load(scene_json: str, engine: str):
+        if when(json.loads(scene_json)):
+            raise KeyboardInterrupt
+        return real(scene_json, engine)
+
+    monkeypatch.setattr(lc, "_run_load", run_load)
+
+
 @pytest.mark.parametrize("command", ["load-curve", "force-velocity"])
 def test_ctrl_c_in_a_curve_keeps_the_runs_that_ended(command, monkeypatch, capsys, tmp_path):
     """Ctrl-C after two loaded runs: they are printed and written (partial_runs.json in the
     output folder), exit status 130. It said "stopped before writing its results" and left an
     empty folder: minutes of heavy runs lost."""
-    import sawdrift.study.load_curve as lc
-
     from .cli_call import call
 
-    real, calls = lc._run_load, []
-
-    def interrupted_third(scene_json, engine):
-        calls.append(1)
-        if len(calls) == 3:
-            raise KeyboardInterrupt
-        return real(scene_json, engine)
-
-    monkeypatch.setattr(lc, "_run_load", interrupted_third)
+    calls = []
+    _interrupt_when(monkeypatch, lambda scene: calls.append(1) or len(calls) == 3)
     out = tmp_path / "curve"
     code, stdout, err = call(monkeypatch, capsys, command, "--model", "mmd", "--m-star", "1",
                              "--amplitude", "0.5", "--workers", "1", "--no-progress", "-o",
@@ -490,20 +495,11 @@ def test_ctrl_c_in_a_species_load_curve_keeps_the_curves_that_ended(monkeypatch,
     """--axis particle.m_star=1,2, Ctrl-C at the second species' second run: the first
     species' whole curve and the second's first run are written (partial_runs.json), exit 130;
     they were lost, an empty folder."""
-    import sawdrift.study.load_curve as lc
-
     from .cli_call import call
 
-    real, second = lc._run_load, []
-
-    def interrupted_later(scene_json, engine):
-        if json.loads(scene_json)["particle"]["m_star"] == 2.0:
-            second.append(1)
-            if len(second) == 2:
-                raise KeyboardInterrupt
-        return real(scene_json, engine)
-
-    monkeypatch.setattr(lc, "_run_load", interrupted_later)
+    second = []
+    _interrupt_when(monkeypatch, lambda scene: scene["particle"]["m_star"] == 2.0 and (
+        second.append(1) or len(second) == 2))
     out = tmp_path / "species"
     code, _, err = call(monkeypatch, capsys, "load-curve", "--model", "mmd", "--amplitude", "0.5",
                         "--axis", "particle.m_star=1,2", "--loads", "3", "--workers", "1",
