@@ -99,11 +99,12 @@ def interrupted_placements(done: int, total: int, written: Path | None) -> None:
 def interrupted_curve(stop: Any, out: Path | None, command: str,
                       done: dict[str, Any] | None = None) -> None:
     """End a load or force-velocity curve that Ctrl-C stopped (``stop``: a
-    :class:`~sawdrift.study.load_curve.CurveInterrupted`): the loaded runs that ended, printed
-    and written as JSON (``partial_runs.json`` in an output folder, ``NAME.partial.json`` beside
-    an output file), with ``done`` (the curves of an --axis that ended, written beside them),
-    then :func:`interrupted`. Whole minutes of heavy runs were lost: "the command stopped before
-    writing its results", an empty folder."""
+    :class:`~sawdrift.study.load_curve.CurveInterrupted`): the loaded runs that ended,
+    printed on stderr (stdout stays the results': --json prints one object or nothing) and
+    written as JSON (``partial_runs.json`` in an output folder, ``NAME.partial.json`` beside
+    an output file), with ``done`` (the curves of an --axis that ended, written beside
+    them), then :func:`interrupted`. Whole minutes of heavy runs were lost: "the command
+    stopped before writing its results", an empty folder."""
     import json
 
     rows = []
@@ -113,7 +114,7 @@ def interrupted_curve(stop: Any, out: Path | None, command: str,
             row["load_N"] = load * stop.newtons
         rows.append(row)
         typer.echo(f"L = {load:+.6g} M g: drift velocity {row.get('drift_velocity')} a0 f, "
-                   f"{row.get('regime')}, settled {row.get('settled')}")
+                   f"{row.get('regime')}, settled {row.get('settled')}", err=True)
     written = ""
     curves = len(done["species"]) if done else 0
     if out is not None and (rows or curves):
