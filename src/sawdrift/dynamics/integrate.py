@@ -201,10 +201,8 @@ def _fixed_verdict(scene: Scene, win: Window, speed: float, periods_run: float, 
                             relaxation_periods(scene, scene.particle.m_star, speed), periods_run,
                             chaotic, before=None if before is None else tapered_drift_ratio(
                                 before, speed))
-    if num.settle is False:
-        settling = replace(settling, drift=None, settled=settling.settled and (
-            on_orbit(win) or not win.contact_lost))
-    return settling
+    return settling if num.settle is not False else replace(
+        settling, drift=None, settled=settling.settled and (on_orbit(win) or not win.contact_lost))
 
 
 def _past_half_resonance(stepper: Stepper, scene: Scene, win: Window, settling: Settling,
@@ -230,8 +228,7 @@ def _past_half_resonance(stepper: Stepper, scene: Scene, win: Window, settling: 
         stepper.advance_periods(growth.wait)
     win = measure_window(stepper, scene.measure_periods(), speed, scale)
     budget = growth.mean_periods(_mean_budget(num, win), MOST_FLIGHT_BUDGETS * num.mean_periods)
-    # the whole budget, no early stop at the tolerance (part of one beat can look converged)
-    chaos, twin = _long_mean(stepper, win, budget, 0.0)
+    chaos, twin = _long_mean(stepper, win, budget, 0.0)  # no early stop: a beat's part can agree
     return win, settling, chaos, twin, (lyapunov(win, scale) if win.contact_lost
                                         else (math.nan, False))
 

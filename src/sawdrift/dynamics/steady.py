@@ -111,9 +111,7 @@ def settles(scene, speed: float, rigid: bool) -> bool:
     for it anyway. Where the drift can be solved directly (:func:`~.separated.solvable`, from
     ``SOLVED_MIN_MASS`` up) the run settles however fast it relaxes.
     """
-    if runs_away(scene):
-        # no steady drift to settle on, asked for or not (a load beyond the holding bound with
-        # settle = true ran to its cap: 1e6 periods, 9 s, for the runaway a fixed run names)
+    if runs_away(scene):  # asked for or not: a runaway with settle = true ran its 1e6-period cap
         return False
     given = scene.numerics.settle
     if given is not None:
