@@ -81,7 +81,7 @@ def load_curve_cmd(
     kind = out_kind(out, (".csv",), what) if out is not None else None
     if out is not None:
         _writable(out, folder=kind == "folder")
-    swept = (axis.partition("=")[0].strip(),) if axis is not None else ()
+    swept = (name,) if name is not None else ()
     scene = scene_from_options(scene_arg, model, _parse_param(param), scene_overrides,
                                swept=swept)
     refuse_given_load(scene, "load-curve", "runs its own loads, from 0 to the stall load")

@@ -131,7 +131,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
     scale = drive.state_scale(scene)
     settle_on = settles(scene, speed, stepper.rigid)
     win, settling, before = _measure(stepper, scene, speed, scale, settle_on)
-    lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
+    lyap, chaotic = _exponent_of(win, scale)
     # the per-period rows of the run's windows (displacement, vertical energy), one contiguous
     # stretch of its own trajectory up to now: a long-time mean after them starts from all of it
     series = [period_rows(win, stepper)]
@@ -181,7 +181,7 @@ def integrate_wave(scene: Scene, model: ContactModel, plan: Assembly, trajectory
         # the irregular motion was a transient that ended on a periodic orbit (.transient)
         win, stepper, chaos = ended, twin, None
         settling = orbit_settling(settling, twin, win)
-        lyap, chaotic = lyapunov(win, scale) if win.contact_lost else (math.nan, False)
+        lyap, chaotic = _exponent_of(win, scale)
     wall = time.perf_counter() - t0
     return WaveRun(stepper=stepper, window=win, settling=settling, settle_on=settle_on,
                    speed=speed, lyapunov=lyap, chaotic=chaotic,
@@ -229,15 +229,14 @@ def _past_half_resonance(stepper: Stepper, scene: Scene, win: Window, settling: 
     win = measure_window(stepper, scene.measure_periods(), speed, scale)
     budget = growth.mean_periods(_mean_budget(num, win), MOST_FLIGHT_BUDGETS * num.mean_periods)
     chaos, twin = _long_mean(stepper, win, budget, 0.0)  # no early stop: a beat's part can agree
-    return win, settling, chaos, twin, (lyapunov(win, scale) if win.contact_lost
-                                        else (math.nan, False))
+    return win, settling, chaos, twin, _exponent_of(win, scale)
 
 
 def _exponent_of(win: Window, scale: np.ndarray) -> tuple[float, bool]:
-    """The Lyapunov exponent and chaos verdict of the window a default run settled on after
-    going on from its fixed window (:func:`_go_on`): the evidence of one motion comes from one
-    window (material_point m* = 1, A* = 0.5 kept -0.061 from a window of its transient at
-    period 87, where the orbit of 10 it settled on at period 195 sticks in every orbit and
+    """The Lyapunov exponent and chaos verdict of the window the run reports (its first, or the
+    one it settled on after going on from it, :func:`_go_on`): the evidence of one motion comes
+    from one window (material_point m* = 1, A* = 0.5 kept -0.061 from a window of its transient
+    at period 87, where the orbit of 10 it settled on at period 195 sticks in every orbit and
     erases any perturbation, -inf, as a fixed run of 300 periods says). NaN for a window that
     did not lose contact, as for any such run."""
     return lyapunov(win, scale) if win.contact_lost else (math.nan, False)

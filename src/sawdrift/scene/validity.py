@@ -29,12 +29,12 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
     if n["a0_m"] < 1e-9 and not (adhesive and adhesive_sets_contact(device, law)):
         out.append(f"a0 < 1 nm (a0 = {n['a0_m']:.3g} m): adhesion and roughness, not gravity and "
                    "preload, then set the contact; the model's assumptions do not hold")
-    if part.shape == "sphere":
-        radius = (adhesive_rest(device, law)["contact_radius_m"] if adhesive
-                  else n["contact_radius_m"])
-        if radius > 0.1 * float(part.radius):
-            out.append(f"contact radius {radius:.3g} m above 0.1 R: beyond Hertz's small-strain "
-                       "theory")
+    # the contact radius at rest: with adhesion a sphere's is the adhesive contact's
+    radius = (adhesive_rest(device, law)["contact_radius_m"] if adhesive and part.shape == "sphere"
+              else n["contact_radius_m"])
+    if part.shape == "sphere" and radius > 0.1 * float(part.radius):
+        out.append(f"contact radius {radius:.3g} m above 0.1 R: beyond Hertz's small-strain "
+                   "theory")
     tabor_out = tabor_warning(device, law)
     if tabor_out is not None:
         out.append(tabor_out)
@@ -44,7 +44,7 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
         out.append(f"compression a0 = {n['a0_m']:.3g} m above 0.01 R (strain a0/R = "
                    f"{n['a0_m'] / float(part.radius):.3g}): beyond Boussinesq's small-strain "
                    "solution")
-    patch = _patch_warning(device, n, adhesive, law)
+    patch = _patch_warning(device, radius)
     if patch is not None:
         out.append(patch)
     if part.shape == "cone" and float(part.half_angle) < math.radians(60.0):
@@ -60,16 +60,14 @@ def device_warnings(device: Device, law: str = "none") -> list[str]:
 PATCH_WAVELENGTHS = 0.05
 
 
-def _patch_warning(device: Device, n: dict, adhesive: bool, law: str) -> str | None:
-    """The contact radius above :data:`PATCH_WAVELENGTHS` of the device's wavelength (where it
+def _patch_warning(device: Device, radius: float) -> str | None:
+    """The contact ``radius`` above :data:`PATCH_WAVELENGTHS` of the device's wavelength (where it
     is known, :func:`~.device.device_wavelength`): the model moves the contact with the surface
     at one point, and a contact spanning a good part of a wavelength (a 0.5 mm ball, 3 um of
     contact, on a 10 nm wave ran without a word) feels an average of the wave over its patch."""
     lam = device_wavelength(device)
     if lam is None:
         return None
-    radius = (adhesive_rest(device, law)["contact_radius_m"] if adhesive
-              and device.particle.shape == "sphere" else n["contact_radius_m"])
     if not radius > PATCH_WAVELENGTHS * lam:
         return None
     return (f"contact radius {radius:.3g} m is {radius / lam:.2g} wavelengths (wavelength "
